@@ -1,0 +1,93 @@
+#version 450 core
+#include "common/frame.glsl"
+#include "common/lighting.glsl"
+#include "common/fresnel.glsl"
+
+in vec3 v_world;
+in vec3 v_normal;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_normal;   // world normal, w = object id + 1
+layout(location = 2) out vec4 o_position; // world position, w = 1 on geometry
+
+uniform int u_material_kind; // 0 diffuse, 1 glass, 2 mirror, 3 water
+uniform vec3 u_color;
+uniform float u_ior;
+uniform vec3 u_absorption;
+uniform int u_object_id;
+
+uniform int u_shadow_total;
+uniform int u_shadow_first[4];
+uniform int u_shadow_count[4];
+uniform int u_shadow_cube[4];
+uniform mat4 u_shadow_matrix[4];
+uniform vec4 u_shadow_params[4]; // range, bias, 1/size
+layout(binding = 1) uniform sampler2D u_shadow_2d[4];
+layout(binding = 5) uniform samplerCube u_shadow_cubes[4];
+layout(binding = 9) uniform sampler2D u_caustics;
+uniform int u_has_caustics;
+
+// Fraction of light reaching p from the light of shadow map k (3x3 PCF).
+float shadow_visibility(int k, vec3 p, vec3 n, vec3 to_light)
+{
+    float bias = u_shadow_params[k].y * (1.0 + 2.0 * (1.0 - abs(dot(n, to_light))));
+    if (u_shadow_cube[k] == 1) {
+        vec3 d = (u_shadow_matrix[k] * vec4(p, 1.0)).xyz; // p - light position
+        float dist = length(d);
+        float stored = texture(u_shadow_cubes[k], d).r * u_shadow_params[k].x;
+        return dist - bias > stored ? 0.0 : 1.0;
+    }
+    vec4 c = u_shadow_matrix[k] * vec4(p + n * bias, 1.0);
+    if (c.w <= 0.0)
+        return 1.0;
+    vec3 q = c.xyz / c.w * 0.5 + 0.5;
+    if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z > 1.0)
+        return 1.0;
+    float texel = u_shadow_params[k].z, lit = 0.0;
+    for (int y = -1; y <= 1; y++)
+        for (int x = -1; x <= 1; x++)
+            lit += q.z - 1e-5 > texture(u_shadow_2d[k], q.xy + vec2(x, y) * texel).r ? 0.0 : 1.0;
+    return lit / 9.0;
+}
+
+float visibility(int light, vec3 p, vec3 n, vec3 to_light)
+{
+    for (int k = 0; k < u_shadow_total; k++)
+        if (light >= u_shadow_first[k] && light < u_shadow_first[k] + u_shadow_count[k])
+            return shadow_visibility(k, p, n, to_light);
+    return 1.0;
+}
+
+void main()
+{
+    vec3 n = normalize(v_normal);
+    vec3 view = normalize(v_world - u_camera_pos.xyz);
+    if (dot(n, view) > 0.0 && u_material_kind == 0)
+        n = -n; // two-sided diffuse surfaces
+    vec3 radiance;
+    if (u_material_kind == 0) {
+        vec3 e = vec3(0.0);
+        for (int i = 0; i < u_counts.x; i++) {
+            vec3 to_light;
+            float dist;
+            vec3 irr = light_irradiance(i, v_world, n, to_light, dist);
+            if (max(irr.r, max(irr.g, irr.b)) > 0.0)
+                e += irr * visibility(i, v_world, n, to_light);
+        }
+        if (u_has_caustics == 1)
+            e += texelFetch(u_caustics, ivec2(gl_FragCoord.xy), 0).rgb;
+        radiance = u_color / PI * e + u_color * u_ambient.rgb;
+    } else if (u_material_kind == 2) {
+        radiance = u_color * environment_radiance(reflect(view, n));
+    } else {
+        // One interface only: the refraction passes trace the second.
+        bool entering = dot(n, view) < 0.0;
+        vec3 nn = entering ? n : -n;
+        float eta = entering ? 1.0 / u_ior : u_ior;
+        float f = fresnel_dielectric(dot(-view, nn), eta);
+        vec3 t = refract_or_reflect(view, nn, eta);
+        radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * environment_radiance(t);
+    }
+    o_color = vec4(radiance, 1.0);
+    o_normal = vec4(n, float(u_object_id + 1));
+    o_position = vec4(v_world, 1.0);
+}

@@ -1,0 +1,15 @@
+#version 450 core
+// Cube maps store distance to the light over the map's range; 2D maps only
+// need the depth buffer.
+in vec3 v_world;
+#ifdef SHADOW_DISTANCE
+uniform vec3 u_light_position;
+uniform float u_range;
+out vec4 o_distance;
+#endif
+void main()
+{
+#ifdef SHADOW_DISTANCE
+    o_distance = vec4(length(v_world - u_light_position) / u_range, 0.0, 0.0, 1.0);
+#endif
+}

@@ -1,0 +1,122 @@
+#include "app/cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/log.h"
+
+void cli_usage(FILE *out)
+{
+    fputs("usage:\n"
+          "  caustica render SCENE.lua [-o OUT.png|OUT.pfm] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
+          "  caustica record SCENE.lua -o DIR [--frames A:B] [--size WxH] [--set k=v ...]\n"
+          "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
+          "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
+          "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
+          "  caustica compare A B [--mask M]\n"
+          "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose\n",
+          out);
+}
+
+void cli_print_error(const struct error *err) { fprintf(stderr, "caustica: %s\n", err->message); }
+
+static bool parse_int(const char *s, int *out)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < -1000000000L || v > 1000000000L)
+        return false;
+    *out = (int)v;
+    return true;
+}
+
+static bool usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "caustica: ");
+    fprintf(stderr, fmt, arg);
+    fputc('\n', stderr);
+    cli_usage(stderr);
+    return false;
+}
+
+bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
+{
+    memset(cli, 0, sizeof *cli);
+    cli->frames_from = cli->frames_to = -1;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+#define NEED_VALUE()                                        \
+    do {                                                    \
+        if (!next)                                          \
+            return usage_error("%s needs a value", a);      \
+        i++;                                                \
+    } while (0)
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            NEED_VALUE();
+            cli->output = next;
+        } else if (strcmp(a, "--frame") == 0) {
+            NEED_VALUE();
+            if (!parse_int(next, &cli->frame) || cli->frame < 0)
+                return usage_error("--frame needs a frame number >= 0, got '%s'", next);
+        } else if (strcmp(a, "--frames") == 0) {
+            NEED_VALUE();
+            const char *colon = strchr(next, ':');
+            cli->frames_set = true;
+            if (colon) {
+                char first[32];
+                snprintf(first, sizeof first, "%.*s", (int)(colon - next), next);
+                if (!parse_int(first, &cli->frames_from) || !parse_int(colon + 1, &cli->frames_to) ||
+                    cli->frames_from < 0 || cli->frames_to < cli->frames_from)
+                    return usage_error("--frames needs A:B with 0 <= A <= B, got '%s'", next);
+            } else {
+                if (!parse_int(next, &cli->frames_to) || cli->frames_to < 1)
+                    return usage_error("--frames needs a count >= 1 or A:B, got '%s'", next);
+                cli->frames_from = 0;
+                cli->frames_to -= 1;
+            }
+        } else if (strcmp(a, "--size") == 0) {
+            NEED_VALUE();
+            if (sscanf(next, "%dx%d", &cli->width, &cli->height) != 2 || cli->width < 1 || cli->height < 1 ||
+                cli->width > 16384 || cli->height > 16384)
+                return usage_error("--size needs WxH (1..16384), got '%s'", next);
+        } else if (strcmp(a, "--backend") == 0) {
+            NEED_VALUE();
+            if (!gl_backend_parse(next, &app->backend) || app->backend == GL_BACKEND_GLFW)
+                return usage_error("--backend must be osmesa or egl, got '%s'", next);
+        } else if (strcmp(a, "--set") == 0) {
+            NEED_VALUE();
+            struct error err;
+            if (!lua_params_add(&cli->params, next, &err))
+                return usage_error("%s", err.message);
+        } else if (strcmp(a, "--screenshot") == 0) {
+            NEED_VALUE();
+            cli->screenshot = next;
+        } else if (strcmp(a, "--mask") == 0) {
+            NEED_VALUE();
+            cli->mask = next;
+        } else if (strcmp(a, "--filter") == 0) {
+            NEED_VALUE();
+            cli->filter = next;
+        } else if (strcmp(a, "--timings") == 0) {
+            cli->timings = true;
+        } else if (strcmp(a, "--update-refs") == 0) {
+            cli->update_refs = true;
+        } else if (strcmp(a, "--no-render") == 0) {
+            cli->no_render = true;
+        } else if (strcmp(a, "--trusted") == 0) {
+            app->trusted = true;
+        } else if (strcmp(a, "--verbose") == 0 || strcmp(a, "-v") == 0) {
+            log_set_verbose(true);
+        } else if (a[0] == '-' && a[1]) {
+            return usage_error("unknown option '%s'", a);
+        } else {
+            if (cli->npositional >= 64)
+                return usage_error("too many arguments (%s)", a);
+            cli->positional[cli->npositional++] = a;
+        }
+#undef NEED_VALUE
+    }
+    return true;
+}

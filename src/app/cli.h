@@ -1,0 +1,42 @@
+/* Command-line options shared by the verbs. */
+#ifndef CAUSTICA_CLI_H
+#define CAUSTICA_CLI_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "app/app.h"
+#include "app/session.h"
+
+#define EXIT_SCENE_ERROR 1
+#define EXIT_USAGE 2
+
+struct cli {
+    const char *verb;
+    const char *positional[64];
+    int npositional;
+    const char *output;      /* -o */
+    int frame;               /* --frame */
+    int frames_from, frames_to; /* --frames A:B (record), N (run) */
+    bool frames_set;
+    int width, height;       /* --size */
+    const char *screenshot;
+    const char *mask;
+    bool timings, update_refs, no_render;
+    const char *filter;
+    struct lua_params params;
+};
+
+/* Parses argv after the verb; prints the problem and returns false on bad usage. */
+bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli);
+void cli_usage(FILE *out);
+void cli_print_error(const struct error *err);
+
+int cmd_render(struct app *app, struct cli *cli);
+int cmd_record(struct app *app, struct cli *cli);
+int cmd_run(struct app *app, struct cli *cli);
+int cmd_test(struct app *app, struct cli *cli);
+int cmd_info(struct app *app, struct cli *cli);
+int cmd_compare(struct app *app, struct cli *cli);
+
+#endif

@@ -1,0 +1,186 @@
+/* `caustica run`: the scene in a window (GLFW). Left-drag orbits the camera
+ * around its target, the wheel zooms; the script and shaders reload when
+ * their files change, and a broken edit keeps the last good frame. With
+ * --frames N --screenshot OUT.png it renders N frames, saves what the
+ * window shows and exits, so it can be tested under xvfb-run. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "app/cli.h"
+#include "core/fileio.h"
+#include "core/log.h"
+#include "graph/graph.h"
+
+struct orbit {
+    bool active, dragging;
+    double last_x, last_y;
+    float yaw, pitch, zoom; /* offsets from the script's camera */
+};
+
+static struct orbit orbit_state = {.zoom = 1.0f};
+
+static void on_mouse_button(GLFWwindow *w, int button, int action, int mods)
+{
+    (void)mods;
+    if (button != GLFW_MOUSE_BUTTON_LEFT)
+        return;
+    orbit_state.dragging = action == GLFW_PRESS;
+    glfwGetCursorPos(w, &orbit_state.last_x, &orbit_state.last_y);
+}
+
+static void on_cursor(GLFWwindow *w, double x, double y)
+{
+    (void)w;
+    if (!orbit_state.dragging)
+        return;
+    orbit_state.yaw -= (float)(x - orbit_state.last_x) * 0.01f;
+    orbit_state.pitch += (float)(y - orbit_state.last_y) * 0.01f;
+    orbit_state.pitch = fminf(fmaxf(orbit_state.pitch, -1.4f), 1.4f);
+    orbit_state.last_x = x;
+    orbit_state.last_y = y;
+    orbit_state.active = true;
+}
+
+static void on_scroll(GLFWwindow *w, double dx, double dy)
+{
+    (void)w;
+    (void)dx;
+    orbit_state.zoom *= powf(0.9f, (float)dy);
+    orbit_state.zoom = fminf(fmaxf(orbit_state.zoom, 0.05f), 20.0f);
+    orbit_state.active = true;
+}
+
+/* The script's camera turned by the mouse: yaw about +Y, pitch about the
+ * camera's right axis, distance scaled by zoom. */
+static void apply_orbit(struct scene *scene)
+{
+    if (!orbit_state.active)
+        return;
+    struct camera *c = &scene->camera;
+    vec3 off = vec3_sub(c->eye, c->target);
+    float dist = vec3_length(off) * orbit_state.zoom;
+    float yaw = atan2f(off.x, off.z) + orbit_state.yaw;
+    float pitch = asinf(fminf(fmaxf(math_safe_div(off.y, vec3_length(off), 0.0f), -1.0f), 1.0f)) + orbit_state.pitch;
+    pitch = fminf(fmaxf(pitch, -1.5f), 1.5f);
+    c->eye = vec3_add(c->target, vec3_make(dist * cosf(pitch) * sinf(yaw), dist * sinf(pitch), dist * cosf(pitch) * cosf(yaw)));
+    c->version++;
+}
+
+static bool save_window(int w, int h, const char *path, struct error *err)
+{
+    uint8_t *buf = malloc((size_t)w * (size_t)h * 4);
+    uint8_t *flipped = malloc((size_t)w * (size_t)h * 4);
+    if (!buf || !flipped) {
+        free(buf);
+        free(flipped);
+        return error_set(err, "out of memory");
+    }
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_BACK);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, buf);
+    for (int y = 0; y < h; y++)
+        memcpy(flipped + (size_t)y * (size_t)w * 4, buf + (size_t)(h - 1 - y) * (size_t)w * 4, (size_t)w * 4);
+    bool ok = image_write_png_rgba8(path, flipped, w, h, err);
+    free(buf);
+    free(flipped);
+    return ok;
+}
+
+int cmd_run(struct app *app, struct cli *cli)
+{
+    if (cli->npositional != 1) {
+        fprintf(stderr, "caustica: run needs one scene script\n");
+        cli_usage(stderr);
+        return EXIT_USAGE;
+    }
+    struct error err;
+    if (cli->screenshot && !path_check_writable_dir(cli->screenshot, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    struct session_options o = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
+                                .height = cli->height};
+    /* The script is read before the window opens, to size the window. */
+    struct session *s;
+    app->backend = GL_BACKEND_GLFW;
+    if (!session_open(app, &o, &s, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    app->window_width = s->width;
+    app->window_height = s->height;
+    if (!app_ensure_gl(app, &err)) {
+        session_close(s);
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    GLFWwindow *window = app->gl->window;
+    glfwSetMouseButtonCallback(window, on_mouse_button);
+    glfwSetCursorPosCallback(window, on_cursor);
+    glfwSetScrollCallback(window, on_scroll);
+    if (cli->screenshot)
+        glfwSwapInterval(0);
+    long long script_mtime = file_mtime_ns(s->script);
+    int limit = cli->frames_set ? cli->frames_to + 1 : -1;
+    int frame = 0, shown = 0;
+    bool ok = true, have_frame = false;
+    double start = log_now();
+    while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        /* Live reload: the script, then shaders. A failure keeps the last good state. */
+        long long mt = file_mtime_ns(s->script);
+        if (mt != script_mtime) {
+            script_mtime = mt;
+            struct session *fresh;
+            if (session_open(app, &o, &fresh, &err)) {
+                session_close(s);
+                s = fresh;
+                fprintf(stderr, "caustica: reloaded %s\n", s->script);
+            } else {
+                cli_print_error(&err);
+            }
+        }
+        bool reloaded;
+        if (!gl_program_cache_reload_changed(&app->renderer.programs, &reloaded, &err))
+            cli_print_error(&err);
+        else if (reloaded)
+            fprintf(stderr, "caustica: reloaded shaders\n");
+        int want = limit > 0 ? frame : (int)((log_now() - start) * s->fps) % s->frames;
+        if (session_goto_frame(s, want, &err)) {
+            apply_orbit(s->scene);
+            if (session_render(s, want, &err))
+                have_frame = true;
+            else
+                cli_print_error(&err);
+        } else {
+            cli_print_error(&err);
+        }
+        int fw, fh;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        struct graph_resource *res = graph_output(s->graph);
+        if (have_frame && res && !renderer_present_window(&app->renderer, &res->texture, fw, fh, &err))
+            cli_print_error(&err);
+        shown++;
+        frame++;
+        if (limit > 0 && frame >= limit) {
+            if (cli->screenshot)
+                ok = save_window(fw, fh, cli->screenshot, &err);
+            glfwSwapBuffers(window);
+            break;
+        }
+        glfwSwapBuffers(window);
+    }
+    session_close(s);
+    if (!ok) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    log_info("showed %d frames", shown);
+    return 0;
+}

@@ -1,0 +1,120 @@
+/* `caustica test [PATH ...]`: runs scripted regression tests (files named
+ * *_test.lua, folders searched), one line per case, and ends with
+ * "N passed, N failed". */
+#define _DEFAULT_SOURCE
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <lauxlib.h>
+
+#include "app/cli.h"
+#include "core/fileio.h"
+#include "lua/lua_host.h"
+
+static int compare_strings(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+static bool is_test_file(const char *name)
+{
+    size_t n = strlen(name);
+    return n > 9 && strcmp(name + n - 9, "_test.lua") == 0;
+}
+
+/* Collects test files under `path` (a file or a folder), sorted. */
+static void collect(const char *path, char ***files, int *count, int *cap)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return;
+    if (S_ISREG(st.st_mode)) {
+        if (*count == *cap) {
+            *cap = *cap ? *cap * 2 : 32;
+            *files = realloc(*files, (size_t)*cap * sizeof **files);
+        }
+        (*files)[(*count)++] = strdup(path);
+        return;
+    }
+    DIR *d = opendir(path);
+    if (!d)
+        return;
+    struct dirent *e;
+    char **names = NULL;
+    int n = 0, ncap = 0;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.')
+            continue;
+        char child[4096];
+        snprintf(child, sizeof child, "%s/%s", path, e->d_name);
+        struct stat cs;
+        if (stat(child, &cs) != 0 || (!S_ISDIR(cs.st_mode) && !is_test_file(e->d_name)))
+            continue;
+        if (n == ncap) {
+            ncap = ncap ? ncap * 2 : 32;
+            names = realloc(names, (size_t)ncap * sizeof *names);
+        }
+        names[n++] = strdup(child);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof *names, compare_strings);
+    for (int i = 0; i < n; i++) {
+        collect(names[i], files, count, cap);
+        free(names[i]);
+    }
+    free(names);
+}
+
+int cmd_test(struct app *app, struct cli *cli)
+{
+    char **files = NULL;
+    int count = 0, cap = 0;
+    char default_dir[4200];
+    snprintf(default_dir, sizeof default_dir, "%s/tests/lua", app->root);
+    if (cli->npositional == 0)
+        collect(default_dir, &files, &count, &cap);
+    for (int i = 0; i < cli->npositional; i++) {
+        if (!file_exists(cli->positional[i])) {
+            fprintf(stderr, "caustica: test: %s: no such file or folder\n", cli->positional[i]);
+            return EXIT_USAGE;
+        }
+        collect(cli->positional[i], &files, &count, &cap);
+    }
+    long passed = 0, failed = 0;
+    for (int i = 0; i < count; i++) {
+        struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true, .app = app,
+                                      .update_refs = cli->update_refs, .filter = cli->filter};
+        struct error err;
+        lua_State *L = lua_host_create(&ho, &err);
+        bool ok = L && lua_host_run_file(L, files[i], 0, &err);
+        if (ok) {
+            lua_getglobal(L, "require");
+            lua_pushstring(L, "caustica.test");
+            ok = lua_host_call(L, 1, 1, NULL, &err);
+            if (ok) {
+                lua_getfield(L, -1, "_run");
+                lua_pushstring(L, files[i]);
+                ok = lua_host_call(L, 1, 2, NULL, &err);
+                if (ok) {
+                    passed += (long)lua_tointeger(L, -2);
+                    failed += (long)lua_tointeger(L, -1);
+                }
+            }
+        }
+        if (!ok) {
+            printf("FAIL %s: %s\n", files[i], err.message);
+            failed++;
+        }
+        fflush(stdout);
+        lua_host_destroy(L);
+        free(files[i]);
+    }
+    free(files);
+    if (count == 0)
+        printf("no test files found\n");
+    printf("%ld passed, %ld failed\n", passed, failed);
+    return failed == 0 && count > 0 ? 0 : EXIT_SCENE_ERROR;
+}

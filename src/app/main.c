@@ -1,0 +1,37 @@
+/* caustica: the command line. Exit status: 0 success, 1 a scene, asset or
+ * render error (message on stderr), 2 bad usage. */
+#include <stdio.h>
+#include <string.h>
+
+#include "app/cli.h"
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "help") == 0) {
+        cli_usage(argc < 2 ? stderr : stdout);
+        return argc < 2 ? EXIT_USAGE : 0;
+    }
+    static const struct {
+        const char *name;
+        int (*run)(struct app *, struct cli *);
+    } verbs[] = {
+        {"render", cmd_render}, {"record", cmd_record}, {"run", cmd_run},
+        {"test", cmd_test},     {"info", cmd_info},     {"compare", cmd_compare},
+    };
+    for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++) {
+        if (strcmp(argv[1], verbs[i].name) != 0)
+            continue;
+        static struct app app;
+        static struct cli cli;
+        app_init(&app);
+        if (!cli_parse(argc - 2, argv + 2, &app, &cli))
+            return EXIT_USAGE;
+        cli.verb = verbs[i].name;
+        int rc = verbs[i].run(&app, &cli);
+        app_shutdown(&app);
+        return rc;
+    }
+    fprintf(stderr, "caustica: unknown command '%s'\n", argv[1]);
+    cli_usage(stderr);
+    return EXIT_USAGE;
+}

@@ -1,0 +1,264 @@
+#include "app/session.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lauxlib.h>
+
+#include "core/fileio.h"
+#include "graph/graph.h"
+#include "lua/lua_host.h"
+
+struct scene *lscene_check(lua_State *L, int idx);
+struct graph *lgraph_check(lua_State *L, int idx);
+
+static bool field_number(lua_State *L, int t, const char *script, const char *name, double *out, struct error *err)
+{
+    int type = lua_getfield(L, t, name);
+    if (type != LUA_TNIL) {
+        if (type != LUA_TNUMBER) {
+            lua_pop(L, 1);
+            return error_set(err, "%s: the returned table's '%s' must be a number, got %s", script, name,
+                             lua_typename(L, type));
+        }
+        *out = lua_tonumber(L, -1);
+    }
+    lua_pop(L, 1);
+    return true;
+}
+
+/* Checks the table a scene script returns (LUA_API.md: fixed keys). */
+static bool read_result(struct session *s, struct error *err)
+{
+    lua_State *L = s->L;
+    const char *script = s->script;
+    if (!lua_istable(L, -1))
+        return error_set(err, "%s: a scene script must return a table {scene = ..., graph = ...}, it returned %s",
+                         script, luaL_typename(L, -1));
+    int t = lua_gettop(L);
+    lua_getfield(L, t, "scene");
+    if (!luaL_testudata(L, -1, "caustica.Scene"))
+        return error_set(err, "%s: the returned table's 'scene' must be a scene (c.scene{...}), got %s", script,
+                         luaL_typename(L, -1));
+    s->scene = lscene_check(L, -1);
+    lua_pop(L, 1);
+    lua_getfield(L, t, "graph");
+    if (!luaL_testudata(L, -1, "caustica.Graph"))
+        return error_set(err, "%s: the returned table's 'graph' must be a graph (c.graph()), got %s", script,
+                         luaL_typename(L, -1));
+    s->graph = lgraph_check(L, -1);
+    lua_pop(L, 1);
+    int type = lua_getfield(L, t, "update");
+    if (type == LUA_TFUNCTION) {
+        s->update_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    } else {
+        lua_pop(L, 1);
+        s->update_ref = LUA_NOREF;
+        if (type != LUA_TNIL)
+            return error_set(err, "%s: the returned table's 'update' must be a function, got %s", script,
+                             lua_typename(L, type));
+    }
+    double frames = 1, fps = 30, exposure = 1;
+    if (!field_number(L, t, script, "frames", &frames, err) || !field_number(L, t, script, "fps", &fps, err) ||
+        !field_number(L, t, script, "exposure", &exposure, err))
+        return false;
+    if (frames < 1 || frames > 1e7 || !(fps > 0) || fps > 1e4 || !(exposure >= 0) || !isfinite(exposure))
+        return error_set(err, "%s: frames must be >= 1, fps in (0, 10000] and exposure >= 0", script);
+    s->frames = (int)frames;
+    s->fps = fps;
+    s->exposure = (float)exposure;
+    s->tonemap = TONEMAP_CLAMP;
+    if (lua_getfield(L, t, "tonemap") != LUA_TNIL) {
+        if (!lua_isstring(L, -1) || !tonemap_parse(lua_tostring(L, -1), &s->tonemap))
+            return error_set(err, "%s: tonemap must be \"clamp\", \"reinhard\" or \"aces\"", script);
+    }
+    lua_pop(L, 1);
+    s->width = s->height = 512;
+    if (lua_getfield(L, t, "size") != LUA_TNIL) {
+        lua_rawgeti(L, -1, 1);
+        lua_rawgeti(L, -2, 2);
+        if (!lua_isinteger(L, -2) || !lua_isinteger(L, -1) || lua_tointeger(L, -2) < 1 || lua_tointeger(L, -1) < 1 ||
+            lua_tointeger(L, -2) > 16384 || lua_tointeger(L, -1) > 16384)
+            return error_set(err, "%s: size must be {width, height} in pixels (1..16384)", script);
+        s->width = (int)lua_tointeger(L, -2);
+        s->height = (int)lua_tointeger(L, -1);
+        lua_pop(L, 2);
+    }
+    lua_pop(L, 1);
+    if (s->options.width > 0) {
+        s->width = s->options.width;
+        s->height = s->options.height;
+    }
+    s->result_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    return true;
+}
+
+static void unload(struct session *s)
+{
+    if (s->L)
+        lua_host_destroy(s->L); /* runs __gc: GL objects go while the context lives */
+    s->L = NULL;
+    s->scene = NULL;
+    s->graph = NULL;
+}
+
+static bool load(struct session *s, struct error *err)
+{
+    struct lua_host_options ho = {
+        .root = s->app->root,
+        .script_path = s->script,
+        .params = &s->options.params,
+        .trusted = s->app->trusted,
+        .write_dir = s->options.write_dir,
+        .app = s->app,
+    };
+    s->L = lua_host_create(&ho, err);
+    if (!s->L)
+        return false;
+    s->advanced = -1;
+    if (!lua_host_run_file(s->L, s->script, 1, err) || !read_result(s, err)) {
+        unload(s);
+        return false;
+    }
+    char unused[512];
+    lua_host_unused_params(s->L, unused, sizeof unused);
+    if (unused[0])
+        fprintf(stderr, "caustica: warning: %s: --set %s: the script has no c.param of that name\n", s->script, unused);
+    return true;
+}
+
+bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err)
+{
+    struct session *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    s->app = app;
+    s->options = *options;
+    snprintf(s->script, sizeof s->script, "%s", options->script);
+    s->options.script = s->script;
+    if (!load(s, err)) {
+        free(s);
+        return false;
+    }
+    *out = s;
+    return true;
+}
+
+void session_close(struct session *s)
+{
+    if (!s)
+        return;
+    unload(s);
+    free(s);
+}
+
+bool session_reload(struct session *s, struct error *err)
+{
+    unload(s);
+    return load(s, err);
+}
+
+bool session_goto_frame(struct session *s, int frame, struct error *err)
+{
+    if (frame < 0)
+        return error_set(err, "frame %d: frames count from 0", frame);
+    if (frame < s->advanced) {
+        /* Going back in time: the script's state only moves forward. */
+        unload(s);
+        if (!load(s, err))
+            return false;
+    }
+    double dt = 1.0 / s->fps;
+    while (s->advanced < frame) {
+        int i = s->advanced + 1;
+        if (s->update_ref != LUA_NOREF) {
+            lua_rawgeti(s->L, LUA_REGISTRYINDEX, s->update_ref);
+            lua_pushnumber(s->L, (double)i * dt);
+            lua_pushnumber(s->L, dt);
+            char context[64];
+            snprintf(context, sizeof context, "(in update, frame %d)", i);
+            if (!lua_host_call(s->L, 2, 0, context, err))
+                return false;
+        }
+        s->advanced = i;
+    }
+    return true;
+}
+
+bool session_render(struct session *s, int frame, struct error *err)
+{
+    if (!session_goto_frame(s, frame, err))
+        return false;
+    if (!app_ensure_gl(s->app, err))
+        return false;
+    struct renderer *r = &s->app->renderer;
+    if (!graph_compile(s->graph, r, s->width, s->height, err))
+        return error_prefix(err, "%s", s->script);
+    if (!renderer_begin_frame(r, s->scene, s->width, s->height, frame, (double)frame / s->fps, err))
+        return error_prefix(err, "%s", s->script);
+    if (!graph_execute(s->graph, r, s->scene, frame, (double)frame / s->fps, err))
+        return error_prefix(err, "%s", s->script);
+    r->exposure = s->exposure;
+    r->tonemap = s->tonemap;
+    return true;
+}
+
+bool session_read_linear(struct session *s, struct image *out, struct error *err)
+{
+    struct graph_resource *res = graph_output(s->graph);
+    if (!res)
+        return error_set(err, "%s: nothing rendered yet", s->script);
+    if (res->texture.target != GL_TEXTURE_2D || gl_format_is_depth(res->texture.format))
+        return error_set(err, "%s: the graph output '%s' is not a colour image", s->script, res->name);
+    if (!image_create(out, res->texture.width, res->texture.height, err))
+        return false;
+    if (!gl_texture_read_rgba32f(&res->texture, 0, out->rgba, err)) {
+        image_destroy(out);
+        return false;
+    }
+    image_flip_rows(out);
+    return true;
+}
+
+bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err)
+{
+    struct graph_resource *res = graph_output(s->graph);
+    if (!res)
+        return error_set(err, "%s: nothing rendered yet", s->script);
+    if (res->texture.target != GL_TEXTURE_2D || gl_format_is_depth(res->texture.format))
+        return error_set(err, "%s: the graph output '%s' is not a colour image", s->script, res->name);
+    uint8_t *buf = malloc((size_t)res->texture.width * (size_t)res->texture.height * 4);
+    if (!buf)
+        return error_set(err, "out of memory");
+    s->app->renderer.exposure = s->exposure;
+    s->app->renderer.tonemap = s->tonemap;
+    if (!renderer_present_bytes(&s->app->renderer, &res->texture, buf, err)) {
+        free(buf);
+        return false;
+    }
+    *rgba = buf;
+    return true;
+}
+
+bool session_write_image(struct session *s, const char *path, struct error *err)
+{
+    if (image_path_is_pfm(path)) {
+        struct image img;
+        if (!session_read_linear(s, &img, err))
+            return false;
+        bool ok = image_write_pfm(path, &img, err);
+        image_destroy(&img);
+        return ok;
+    }
+    if (!image_path_is_png(path))
+        return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+    uint8_t *bytes;
+    if (!session_read_srgb(s, &bytes, err))
+        return false;
+    struct graph_resource *res = graph_output(s->graph);
+    bool ok = image_write_png_rgba8(path, bytes, res->texture.width, res->texture.height, err);
+    free(bytes);
+    return ok;
+}

@@ -1,0 +1,54 @@
+/* One scene script, loaded and run: its Lua state, scene, graph and
+ * animation. Frame N is always the state after update() ran for frames
+ * 0..N at the script's fixed time step, whichever verb asks for it. */
+#ifndef CAUSTICA_SESSION_H
+#define CAUSTICA_SESSION_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <lua.h>
+
+#include "app/app.h"
+#include "io/image.h"
+#include "lua/lua_host.h"
+
+struct session_options {
+    const char *script;
+    struct lua_params params;
+    int width, height;       /* 0: the script's size */
+    const char *write_dir;   /* where a sandboxed script may write */
+};
+
+struct session {
+    struct app *app;
+    struct session_options options;
+    char script[4096];
+    lua_State *L;
+    int result_ref;          /* the table the script returned */
+    struct scene *scene;     /* borrowed from the Lua state */
+    struct graph *graph;     /* borrowed from the Lua state */
+    int update_ref;          /* LUA_NOREF when the script has no update */
+    int frames;
+    double fps;
+    int width, height;
+    float exposure;
+    enum tonemap_operator tonemap;
+    int advanced;            /* last frame update() ran for; -1 before any */
+};
+
+bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);
+void session_close(struct session *s);
+/* Loads the script again from scratch (fresh Lua state, passes and caches). */
+bool session_reload(struct session *s, struct error *err);
+/* Runs update() up to `frame` (reloading the script to go back in time). */
+bool session_goto_frame(struct session *s, int frame, struct error *err);
+/* Renders `frame`: the graph's output texture holds linear radiance after. */
+bool session_render(struct session *s, int frame, struct error *err);
+bool session_read_linear(struct session *s, struct image *out, struct error *err);
+/* Tone-mapped 8-bit sRGB, rows top to bottom (caller frees). */
+bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err);
+/* Writes the rendered frame: .png tone mapped, .pfm linear. */
+bool session_write_image(struct session *s, const char *path, struct error *err);
+
+#endif

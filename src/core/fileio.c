@@ -1,0 +1,114 @@
+#define _POSIX_C_SOURCE 200809L
+#include "core/fileio.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+bool file_read_all(const char *path, char **data, size_t *size, struct error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    if (fseek(f, 0, SEEK_END) != 0) {
+        fclose(f);
+        return error_set(err, "%s: cannot seek", path);
+    }
+    long len = ftell(f);
+    if (len < 0) {
+        fclose(f);
+        return error_set(err, "%s: cannot tell size", path);
+    }
+    rewind(f);
+    char *buf = malloc((size_t)len + 1);
+    if (!buf) {
+        fclose(f);
+        return error_set(err, "%s: out of memory (%ld bytes)", path, len);
+    }
+    size_t got = fread(buf, 1, (size_t)len, f);
+    fclose(f);
+    if (got != (size_t)len) {
+        free(buf);
+        return error_set(err, "%s: short read", path);
+    }
+    buf[len] = '\0';
+    *data = buf;
+    if (size)
+        *size = (size_t)len;
+    return true;
+}
+
+bool file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+long long file_mtime_ns(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return 0;
+    return (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
+}
+
+void path_dirname(const char *path, char *out, size_t outlen)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) {
+        snprintf(out, outlen, ".");
+        return;
+    }
+    size_t n = (size_t)(slash - path);
+    if (n == 0)
+        n = 1; /* "/file" -> "/" */
+    if (n >= outlen)
+        n = outlen - 1;
+    memcpy(out, path, n);
+    out[n] = '\0';
+}
+
+void path_join(const char *dir, const char *rel, char *out, size_t outlen)
+{
+    if (rel[0] == '/' || !dir || !dir[0] || strcmp(dir, ".") == 0)
+        snprintf(out, outlen, "%s", rel);
+    else
+        snprintf(out, outlen, "%s/%s", dir, rel);
+}
+
+void path_temporary(const char *path, char *out, size_t outlen)
+{
+    snprintf(out, outlen, "%s.tmp.%ld", path, (long)getpid());
+}
+
+bool path_check_writable_dir(const char *path, struct error *err)
+{
+    char dir[4096];
+    path_dirname(path, dir, sizeof dir);
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return error_set(err, "%s: output folder '%s' does not exist", path, dir);
+    if (!S_ISDIR(st.st_mode))
+        return error_set(err, "%s: '%s' is not a folder", path, dir);
+    if (access(dir, W_OK) != 0)
+        return error_set(err, "%s: output folder '%s' is not writable", path, dir);
+    return true;
+}
+
+bool dir_ensure(const char *path, struct error *err)
+{
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        if (!S_ISDIR(st.st_mode))
+            return error_set(err, "%s: exists and is not a folder", path);
+        if (access(path, W_OK) != 0)
+            return error_set(err, "%s: folder is not writable", path);
+        return true;
+    }
+    if (mkdir(path, 0777) != 0)
+        return error_set(err, "%s: cannot create folder: %s", path, strerror(errno));
+    return true;
+}

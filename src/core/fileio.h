@@ -1,0 +1,27 @@
+/* Reading whole files, writing atomically (temporary file, then rename), and
+ * path helpers. */
+#ifndef CAUSTICA_FILEIO_H
+#define CAUSTICA_FILEIO_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/error.h"
+
+/* Reads a whole file; the buffer is NUL-terminated and owned by the caller. */
+bool file_read_all(const char *path, char **data, size_t *size, struct error *err);
+bool file_exists(const char *path);
+/* Modification time in nanoseconds, 0 when the file does not exist. */
+long long file_mtime_ns(const char *path);
+/* Directory part of `path` ("." when none) into `out`. */
+void path_dirname(const char *path, char *out, size_t outlen);
+/* `rel` resolved against directory `dir` unless it is absolute. */
+void path_join(const char *dir, const char *rel, char *out, size_t outlen);
+/* `path` + ".tmp.<pid>": where an atomic writer puts data before renaming. */
+void path_temporary(const char *path, char *out, size_t outlen);
+/* Checks that the folder that would hold `path` exists and is writable. */
+bool path_check_writable_dir(const char *path, struct error *err);
+/* Creates a directory (one level) when it does not exist. */
+bool dir_ensure(const char *path, struct error *err);
+
+#endif

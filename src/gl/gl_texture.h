@@ -1,0 +1,41 @@
+/* Textures and framebuffers: each struct owns its GL name and has one
+ * release path (gl_texture_destroy / gl_framebuffer_destroy). */
+#ifndef CAUSTICA_GL_TEXTURE_H
+#define CAUSTICA_GL_TEXTURE_H
+
+#include <stdbool.h>
+
+#include "core/error.h"
+#include "gl/gl_api.h"
+
+struct gl_texture {
+    GLuint id;
+    GLenum target;   /* GL_TEXTURE_2D, GL_TEXTURE_CUBE_MAP, GL_TEXTURE_2D_ARRAY */
+    GLenum format;   /* sized internal format */
+    int width, height, layers;
+};
+
+/* Parses "rgba16f", "rgba32f", "r32f", "rgba8", "depth32f" ... */
+bool gl_format_parse(const char *name, GLenum *format);
+const char *gl_format_name(GLenum format);
+bool gl_format_is_depth(GLenum format);
+
+bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
+                       int layers, struct error *err);
+void gl_texture_destroy(struct gl_texture *tex);
+/* Reads level 0 (layer `layer` of a cube map / array) as float RGBA. */
+bool gl_texture_read_rgba32f(const struct gl_texture *tex, int layer, float *out, struct error *err);
+
+struct gl_framebuffer {
+    GLuint id;
+};
+
+bool gl_framebuffer_create(struct gl_framebuffer *fb, struct error *err);
+void gl_framebuffer_destroy(struct gl_framebuffer *fb);
+/* Attaches colour textures (layer -1 = whole level) and an optional depth
+ * texture, sets the draw buffers and checks completeness. */
+bool gl_framebuffer_attach(struct gl_framebuffer *fb, const struct gl_texture *const *colors,
+                           const int *color_layers, int ncolors, const struct gl_texture *depth,
+                           int depth_layer, struct error *err);
+
+#endif

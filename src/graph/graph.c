@@ -1,0 +1,282 @@
+#include "graph/graph.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/renderer.h"
+
+void graph_init(struct graph *g) { memset(g, 0, sizeof *g); }
+
+static void release_resources(struct graph *g)
+{
+    for (int i = 0; i < g->resource_count; i++)
+        gl_texture_destroy(&g->resources[i].texture);
+    free(g->resources);
+    g->resources = NULL;
+    g->resource_count = 0;
+}
+
+void graph_release(struct graph *g)
+{
+    release_resources(g);
+    for (int i = 0; i < g->count; i++)
+        if (g->entries[i].query && gl_api_ready())
+            gl.DeleteQueries(1, &g->entries[i].query);
+    free(g->entries);
+    g->entries = NULL;
+    g->count = g->capacity = 0;
+    g->compiled = false;
+}
+
+bool graph_add(struct graph *g, const char *name, struct pass *pass, struct error *err)
+{
+    if (!name[0] || strchr(name, '.') || strlen(name) >= PASS_NAME_MAX)
+        return error_set(err, "pass name '%s' must be non-empty, shorter than %d characters and without '.'", name,
+                         PASS_NAME_MAX);
+    for (int i = 0; i < g->count; i++) {
+        if (strcmp(g->entries[i].pass->name, name) == 0)
+            return error_set(err, "a pass named '%s' is already in the graph", name);
+        if (g->entries[i].pass == pass)
+            return error_set(err, "this %s pass is already in the graph as '%s'", pass->desc->name,
+                             g->entries[i].pass->name);
+    }
+    if (g->count == g->capacity) {
+        int cap = g->capacity ? g->capacity * 2 : 8;
+        struct graph_entry *e = realloc(g->entries, (size_t)cap * sizeof *e);
+        if (!e)
+            return error_set(err, "out of memory");
+        g->entries = e;
+        g->capacity = cap;
+    }
+    struct graph_entry *e = &g->entries[g->count++];
+    memset(e, 0, sizeof *e);
+    e->pass = pass;
+    snprintf(pass->name, sizeof pass->name, "%s", name);
+    g->compiled = false;
+    return true;
+}
+
+bool graph_set_output(struct graph *g, const char *name, struct error *err)
+{
+    if (!strchr(name, '.'))
+        return error_set(err, "graph output '%s' must name a pass output as 'pass.output'", name);
+    snprintf(g->output, sizeof g->output, "%s", name);
+    g->compiled = false;
+    return true;
+}
+
+static int find_output_of(const struct graph *g, int upto, const char *resource, int *which)
+{
+    for (int i = 0; i < upto; i++) {
+        const struct pass *p = g->entries[i].pass;
+        size_t n = strlen(p->name);
+        if (strncmp(resource, p->name, n) != 0 || resource[n] != '.')
+            continue;
+        for (int o = 0; o < p->output_count; o++)
+            if (strcmp(resource + n + 1, p->outputs[o].name) == 0) {
+                *which = o;
+                return i;
+            }
+    }
+    return -1;
+}
+
+/* "shade.color" is produced by ...: lists the passes that do produce an
+ * output of that name, so an order mistake is easy to see. */
+static void list_producers(const struct graph *g, const char *resource, char *out, size_t outlen)
+{
+    const char *dot = strrchr(resource, '.');
+    const char *outname = dot ? dot + 1 : resource;
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; i < g->count; i++) {
+        const struct pass *p = g->entries[i].pass;
+        for (int o = 0; o < p->output_count; o++)
+            if (strcmp(p->outputs[o].name, outname) == 0 && used < outlen) {
+                int w = snprintf(out + used, outlen - used, "%s'%s.%s' (pass %d)", used ? ", " : "", p->name,
+                                 p->outputs[o].name, i + 1);
+                if (w > 0)
+                    used += (size_t)w;
+            }
+    }
+}
+
+bool graph_check(struct graph *g, struct error *err)
+{
+    if (g->count == 0)
+        return error_set(err, "the graph has no passes: add one with g:add(name, c.pass.<kind>{...})");
+    if (!g->output[0])
+        return error_set(err, "the graph has no output: call g:output(\"pass.output\")");
+    /* Every input must be produced by an earlier pass. */
+    for (int i = 0; i < g->count; i++) {
+        struct graph_entry *e = &g->entries[i];
+        struct pass *p = e->pass;
+        for (int k = 0; k < p->input_count; k++) {
+            int which = 0;
+            int producer = find_output_of(g, i, p->inputs[k].source, &which);
+            if (producer < 0) {
+                char producers[512];
+                list_producers(g, p->inputs[k].source, producers, sizeof producers);
+                int later = find_output_of(g, g->count, p->inputs[k].source, &which);
+                if (later >= 0)
+                    return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which pass '%s' (pass %d) "
+                                          "makes only later: move '%s' before '%s'",
+                                     p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
+                                     g->entries[later].pass->name, later + 1, g->entries[later].pass->name, p->name);
+                return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s",
+                                 p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
+                                 producers[0] ? "; outputs of that name: " : "", producers);
+            }
+        }
+    }
+    int which = 0;
+    int out_pass = find_output_of(g, g->count, g->output, &which);
+    if (out_pass < 0) {
+        char producers[512];
+        list_producers(g, g->output, producers, sizeof producers);
+        return error_set(err, "graph output '%s' is made by no pass%s%s", g->output,
+                         producers[0] ? "; outputs of that name: " : "", producers);
+    }
+    /* Keep what the output depends on, walking backwards. */
+    for (int i = 0; i < g->count; i++) {
+        g->entries[i].state = GRAPH_PASS_PRUNED;
+        snprintf(g->entries[i].reason, sizeof g->entries[i].reason,
+                 "contributes nothing to the output '%s'", g->output);
+    }
+    g->entries[out_pass].state = GRAPH_PASS_KEPT;
+    g->entries[out_pass].reason[0] = '\0';
+    for (int i = out_pass; i >= 0; i--) {
+        struct graph_entry *e = &g->entries[i];
+        if (e->state != GRAPH_PASS_KEPT)
+            continue;
+        for (int k = 0; k < e->pass->input_count; k++) {
+            int producer = find_output_of(g, i, e->pass->inputs[k].source, &which);
+            if (producer >= 0 && g->entries[producer].state != GRAPH_PASS_KEPT) {
+                g->entries[producer].state = GRAPH_PASS_KEPT;
+                g->entries[producer].reason[0] = '\0';
+            }
+        }
+    }
+    return true;
+}
+
+bool graph_compile(struct graph *g, struct renderer *r, int width, int height, struct error *err)
+{
+    if (g->compiled && g->width == width && g->height == height)
+        return true;
+    if (!graph_check(g, err))
+        return false;
+    release_resources(g);
+    int total = 0;
+    for (int i = 0; i < g->count; i++)
+        total += g->entries[i].pass->output_count;
+    g->resources = calloc((size_t)(total > 0 ? total : 1), sizeof *g->resources);
+    if (!g->resources)
+        return error_set(err, "out of memory");
+    g->width = width;
+    g->height = height;
+    for (int i = 0; i < g->count; i++) {
+        struct graph_entry *e = &g->entries[i];
+        struct pass *p = e->pass;
+        for (int o = 0; o < PASS_MAX_OUTPUTS; o++)
+            e->output_resources[o] = -1;
+        for (int k = 0; k < PASS_MAX_INPUTS; k++)
+            e->input_resources[k] = -1;
+        for (int k = 0; k < p->input_count; k++) {
+            int which = 0, producer = find_output_of(g, i, p->inputs[k].source, &which);
+            e->input_resources[k] = g->entries[producer].output_resources[which];
+        }
+        if (e->state != GRAPH_PASS_KEPT)
+            continue;
+        for (int o = 0; o < p->output_count; o++) {
+            struct graph_resource *res = &g->resources[g->resource_count];
+            const struct pass_output_decl *d = &p->outputs[o];
+            snprintf(res->name, sizeof res->name, "%s.%s", p->name, d->name);
+            res->decl = *d;
+            res->producer = i;
+            res->light_index = -1;
+            res->matrix = mat4_identity();
+            int w = d->width > 0 ? d->width : width, h = d->height > 0 ? d->height : height;
+            if (!gl_texture_create(&res->texture, d->target, d->format, w, h, 1, err)) {
+                release_resources(g);
+                return error_prefix(err, "pass '%s' output '%s'", p->name, d->name);
+            }
+            e->output_resources[o] = g->resource_count++;
+        }
+        if (!p->created) {
+            if (p->desc->create && !p->desc->create(p, r, err))
+                return error_prefix(err, "pass '%s' (%s%s%s)", p->name, p->desc->name, p->origin[0] ? ", made at " : "",
+                                    p->origin);
+            p->created = true;
+        }
+        if (!e->query)
+            gl.GenQueries(1, &e->query);
+    }
+    int which = 0;
+    int out_pass = find_output_of(g, g->count, g->output, &which);
+    g->output_resource = g->entries[out_pass].output_resources[which];
+    g->compiled = true;
+    return gl_check("graph compile", err);
+}
+
+bool graph_execute(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
+                   struct error *err)
+{
+    for (int i = 0; i < g->count; i++) {
+        struct graph_entry *e = &g->entries[i];
+        if (e->state != GRAPH_PASS_KEPT)
+            continue;
+        struct pass *p = e->pass;
+        struct pass_frame f;
+        memset(&f, 0, sizeof f);
+        f.renderer = r;
+        f.scene = scene;
+        f.width = g->width;
+        f.height = g->height;
+        f.frame = frame;
+        f.time = time;
+        for (int k = 0; k < p->input_count; k++)
+            f.inputs[k] = e->input_resources[k] >= 0 ? &g->resources[e->input_resources[k]] : NULL;
+        for (int o = 0; o < p->output_count; o++)
+            f.outputs[o] = e->output_resources[o] >= 0 ? &g->resources[e->output_resources[o]] : NULL;
+        e->last_why[0] = '\0';
+        e->last_need = p->desc->needed ? p->desc->needed(p, &f, e->last_why, sizeof e->last_why) : PASS_RUN;
+        if (e->last_need != PASS_RUN) {
+            e->last_ms = 0.0;
+            continue;
+        }
+        renderer_reset_state(r);
+        gl.BeginQuery(GL_TIME_ELAPSED, e->query);
+        bool ok = p->desc->execute(p, &f, err);
+        gl.EndQuery(GL_TIME_ELAPSED);
+        if (!ok)
+            return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
+        if (!gl_check("executing the pass", err))
+            return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
+    }
+    /* Timings: waiting for the queries costs a pipeline drain, which the
+     * frame needs anyway before its image is read back. */
+    for (int i = 0; i < g->count; i++) {
+        struct graph_entry *e = &g->entries[i];
+        if (e->state != GRAPH_PASS_KEPT || e->last_need != PASS_RUN)
+            continue;
+        GLuint64 ns = 0;
+        gl.GetQueryObjectui64v(e->query, GL_QUERY_RESULT, &ns);
+        e->last_ms = (double)ns * 1e-6;
+    }
+    return true;
+}
+
+struct graph_resource *graph_output(struct graph *g)
+{
+    return g->compiled && g->output_resource >= 0 ? &g->resources[g->output_resource] : NULL;
+}
+
+struct graph_resource *graph_find_resource(struct graph *g, const char *name)
+{
+    for (int i = 0; i < g->resource_count; i++)
+        if (strcmp(g->resources[i].name, name) == 0)
+            return &g->resources[i];
+    return NULL;
+}

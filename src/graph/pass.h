@@ -1,0 +1,162 @@
+/* A render pass: a descriptor (what `c.pass.<name>` creates, with its
+ * parameters, inputs and outputs) and instances made from it by scripts.
+ * A pass is one C file in src/passes plus shaders/<name>/; adding one means
+ * writing the descriptor and listing it in pass_registry.c. */
+#ifndef CAUSTICA_PASS_H
+#define CAUSTICA_PASS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/error.h"
+#include "core/vecmath.h"
+#include "gl/gl_texture.h"
+
+struct renderer;
+struct scene;
+struct light;
+struct pass;
+
+enum pass_param_type {
+    PASS_PARAM_NUMBER,
+    PASS_PARAM_INTEGER,
+    PASS_PARAM_BOOLEAN,
+    PASS_PARAM_STRING,
+    PASS_PARAM_ENUM,       /* a string from `choices` ("a|b|c") */
+    PASS_PARAM_LIGHT,      /* a light of the scene */
+    PASS_PARAM_INPUT,      /* "pass.output": a texture made by an earlier pass */
+    PASS_PARAM_INPUT_LIST, /* one such name or a list of them */
+    PASS_PARAM_COLOR,      /* {r, g, b[, a]} */
+    PASS_PARAM_INPUT_MAP,  /* {slot = "pass.output", ...}: named inputs (user passes) */
+    PASS_PARAM_OUTPUT_MAP, /* {name = "rgba32f", ...} or {"name", ...}: named outputs (user passes) */
+    PASS_PARAM_UNIFORM_MAP,/* {name = number or {x, y[, z[, w]]}, ...} */
+    PASS_PARAM_TABLE,      /* a Lua table kept by reference (custom passes) */
+    PASS_PARAM_FUNCTION,   /* a Lua function kept by reference (custom passes) */
+};
+
+struct pass_param_desc {
+    const char *name;
+    enum pass_param_type type;
+    double default_number; /* number, integer, boolean (0/1) */
+    double min, max;       /* number, integer: accepted range */
+    const char *default_string; /* string/enum default; NULL = none */
+    const char *choices;   /* enum: "a|b|c" */
+    bool required;
+    bool is_path; /* string: a file path, resolved against the script's folder */
+    const char *help;
+};
+
+struct pass_value {
+    bool set;
+    double number;
+    char *string;          /* owned */
+    struct light *light;   /* borrowed (Lua keeps it alive) */
+    float color[4];
+    char **list;           /* owned strings: an input list, or a map's values */
+    char **keys;           /* owned strings: a map's keys (same count as list) */
+    float (*vectors)[4];   /* uniform map values */
+    int *vector_sizes;
+    int list_count;
+    int lua_ref;           /* table/function in the Lua registry, or -1 */
+};
+
+#define PASS_MAX_INPUTS 16
+#define PASS_MAX_OUTPUTS 8
+#define PASS_NAME_MAX 64
+#define RESOURCE_NAME_MAX 160
+
+struct pass_input_decl {
+    char name[PASS_NAME_MAX];        /* the slot, e.g. "shadow" */
+    char source[RESOURCE_NAME_MAX];  /* "pass.output" */
+};
+
+struct pass_output_decl {
+    char name[PASS_NAME_MAX];
+    GLenum format;
+    GLenum target;   /* GL_TEXTURE_2D or GL_TEXTURE_CUBE_MAP */
+    int width, height; /* 0: the frame's size */
+};
+
+/* A texture in the graph ("pass.output") and what its producer says about
+ * it: a shadow map's light-space matrix, the light it belongs to. */
+struct graph_resource {
+    char name[RESOURCE_NAME_MAX];
+    struct pass_output_decl decl;
+    struct gl_texture texture;
+    int producer;      /* index of the pass in the graph */
+    mat4 matrix;
+    int light_index;   /* index into the frame's GPU light list, -1 if none */
+    float range;
+    float bias;
+    int kind;          /* producer-defined (shadow map: light kind) */
+};
+
+/* What a pass sees while it runs. */
+struct pass_frame {
+    struct renderer *renderer;
+    struct scene *scene;
+    int width, height;
+    int frame;
+    double time;
+    struct graph_resource *inputs[PASS_MAX_INPUTS];   /* by declaration order, NULL if absent */
+    struct graph_resource *outputs[PASS_MAX_OUTPUTS];
+};
+
+enum pass_need { PASS_RUN, PASS_REUSE, PASS_SKIP };
+
+struct pass_desc {
+    const char *name;
+    const char *summary;
+    const struct pass_param_desc *params;
+    int param_count;
+    /* Declares inputs and outputs from the parameter values. */
+    bool (*declare)(struct pass *p, struct error *err);
+    /* Allocates what does not depend on the frame (programs, framebuffers). */
+    bool (*create)(struct pass *p, struct renderer *r, struct error *err);
+    bool (*execute)(struct pass *p, struct pass_frame *f, struct error *err);
+    /* Does this frame need the pass? REUSE keeps last frame's outputs.
+     * NULL means it always runs. `why` explains a REUSE or SKIP. */
+    enum pass_need (*needed)(struct pass *p, struct pass_frame *f, char *why, size_t whylen);
+    void (*destroy)(struct pass *p);
+};
+
+struct pass {
+    const struct pass_desc *desc;
+    char name[PASS_NAME_MAX];  /* the name given to g:add */
+    char origin[600];          /* "script.lua:12", where the script made it */
+    struct pass_value *values; /* desc->param_count, owned */
+    struct pass_input_decl inputs[PASS_MAX_INPUTS];
+    int input_count;
+    struct pass_output_decl outputs[PASS_MAX_OUTPUTS];
+    int output_count;
+    bool created;
+    void *state;               /* owned by the pass's create/destroy */
+    void *lua;                 /* lua_State* for passes that call back into the script */
+};
+
+/* Creation and release of instances (values filled by the Lua binding). */
+struct pass *pass_create(const struct pass_desc *desc);
+void pass_destroy(struct pass *p);
+
+/* Typed access to parameter values, by name (the descriptor must have it). */
+double pass_number(const struct pass *p, const char *name);
+const char *pass_string(const struct pass *p, const char *name);
+struct light *pass_light(const struct pass *p, const char *name);
+const float *pass_color(const struct pass *p, const char *name);
+const struct pass_value *pass_value(const struct pass *p, const char *name);
+int pass_param_index(const struct pass_desc *desc, const char *name);
+
+/* Used by declare(). */
+bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err);
+bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum target, int width, int height,
+                         struct error *err);
+/* The resolved input for `slot` (NULL when the script gave none). */
+struct graph_resource *pass_frame_input(const struct pass *p, struct pass_frame *f, const char *slot);
+struct graph_resource *pass_frame_output(const struct pass *p, struct pass_frame *f, const char *name);
+
+/* The registry of descriptors (pass_registry.c). */
+int pass_registry_count(void);
+const struct pass_desc *pass_registry_get(int index);
+const struct pass_desc *pass_registry_find(const char *name);
+
+#endif

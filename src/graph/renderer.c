@@ -1,0 +1,327 @@
+#include "graph/renderer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+bool renderer_create(struct renderer *r, const char *root, struct error *err)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->root, sizeof r->root, "%s", root);
+    char shader_root[1100];
+    snprintf(shader_root, sizeof shader_root, "%s/shaders", root);
+    gl_program_cache_init(&r->programs, shader_root);
+    gl.CreateBuffers(1, &r->frame_ubo);
+    gl.NamedBufferStorage(r->frame_ubo, sizeof r->uniforms, NULL, GL_DYNAMIC_STORAGE_BIT);
+    gl.CreateVertexArrays(1, &r->empty_vao);
+    r->exposure = 1.0f;
+    r->tonemap = TONEMAP_CLAMP;
+    /* Dummy textures stand in for optional inputs a script did not give. */
+    if (!gl_texture_create(&r->dummy_2d, GL_TEXTURE_2D, GL_RGBA16F, 1, 1, 1, err) ||
+        !gl_texture_create(&r->dummy_cube, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, 1, 1, 6, err) ||
+        !gl_texture_create(&r->dummy_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 1, 1, 1, err) ||
+        !gl_framebuffer_create(&r->present_fb, err) || !gl_framebuffer_create(&r->scratch_fb, err)) {
+        renderer_destroy(r);
+        return false;
+    }
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    gl.ClearTexImage(r->dummy_2d.id, 0, GL_RGBA, GL_FLOAT, zero);
+    gl.ClearTexImage(r->dummy_cube.id, 0, GL_RGBA, GL_FLOAT, zero);
+    gl.ClearTexImage(r->dummy_depth.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    return gl_check("renderer set-up", err);
+}
+
+void renderer_destroy(struct renderer *r)
+{
+    gl_program_cache_destroy(&r->programs);
+    if (gl_api_ready()) {
+        if (r->frame_ubo)
+            gl.DeleteBuffers(1, &r->frame_ubo);
+        if (r->empty_vao)
+            gl.DeleteVertexArrays(1, &r->empty_vao);
+    }
+    gl_texture_destroy(&r->dummy_2d);
+    gl_texture_destroy(&r->dummy_cube);
+    gl_texture_destroy(&r->dummy_depth);
+    gl_texture_destroy(&r->present_texture);
+    gl_framebuffer_destroy(&r->present_fb);
+    gl_framebuffer_destroy(&r->scratch_fb);
+    r->frame_ubo = r->empty_vao = 0;
+}
+
+static void copy_mat(float *dst, mat4 m) { memcpy(dst, m.m, sizeof m.m); }
+
+/* The lights as the shaders see them. A linear light becomes `samples`
+ * point lights spread along its segment, each with 1/samples of the
+ * intensity (the "linear = N point lights" of the design). */
+static void fill_lights(struct renderer *r, const struct scene *scene)
+{
+    int n = 0;
+    for (int i = 0; i < scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++) {
+        const struct light *l = scene->lights[i];
+        r->light_first[i] = n;
+        int count = l->kind == LIGHT_LINEAR ? (l->samples < 1 ? 1 : l->samples) : 1;
+        int made = 0;
+        for (int s = 0; s < count && n < SCENE_MAX_GPU_LIGHTS; s++, made++) {
+            struct renderer_gpu_light *g = &r->uniforms.lights[n++];
+            vec3 pos = l->position;
+            float kind = l->kind == LIGHT_DIRECTIONAL ? 1.0f : l->kind == LIGHT_SPOT ? 2.0f : 0.0f;
+            vec3 intensity = l->intensity;
+            if (l->kind == LIGHT_LINEAR) {
+                float u = ((float)s + 0.5f) / (float)count;
+                pos = vec3_add(l->position, vec3_scale(vec3_sub(l->end, l->position), u));
+                intensity = vec3_scale(l->intensity, 1.0f / (float)count);
+            }
+            vec3 dir = vec3_normalize_or(l->direction, vec3_make(0, -1, 0));
+            float outer = fminf(fmaxf(l->angle, 0.1f), 89.9f) * (float)MATH_PI / 180.0f;
+            float inner = outer * (1.0f - fminf(fmaxf(l->softness, 0.0f), 1.0f));
+            g->position[0] = pos.x;
+            g->position[1] = pos.y;
+            g->position[2] = pos.z;
+            g->position[3] = kind;
+            g->direction[0] = dir.x;
+            g->direction[1] = dir.y;
+            g->direction[2] = dir.z;
+            g->direction[3] = cosf(outer);
+            g->intensity[0] = intensity.x;
+            g->intensity[1] = intensity.y;
+            g->intensity[2] = intensity.z;
+            g->intensity[3] = cosf(inner);
+        }
+        r->light_entries[i] = made;
+    }
+    r->uniforms.counts[0] = n;
+}
+
+bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, int height, int frame, double time,
+                          struct error *err)
+{
+    r->width = width;
+    r->height = height;
+    r->frame = frame;
+    r->time = time;
+    for (int i = 0; i < scene->object_count; i++)
+        if (!mesh_upload(scene->objects[i]->mesh, err))
+            return false;
+    if (scene->environment && !environment_upload(scene->environment, err))
+        return false;
+    if (!deform_update(r, scene, time, err))
+        return false;
+    for (int i = 0; i < scene->object_count; i++)
+        scene->objects[i]->model = object_model_matrix(scene->objects[i]);
+
+    const struct camera *c = &scene->camera;
+    r->view = mat4_look_at(c->eye, c->target, c->up);
+    float znear = c->znear > 1e-4f ? c->znear : 1e-4f;
+    float zfar = c->zfar > znear * 2 ? c->zfar : znear * 2;
+    r->proj = mat4_perspective(c->fov, (float)width / (float)height, znear, zfar);
+    mat4 vp = mat4_mul(r->proj, r->view), inv;
+    mat4_inverse(vp, &inv);
+    struct renderer_frame_uniforms *u = &r->uniforms;
+    memset(u, 0, sizeof *u);
+    copy_mat(u->view, r->view);
+    copy_mat(u->proj, r->proj);
+    copy_mat(u->view_proj, vp);
+    copy_mat(u->inv_view_proj, inv);
+    u->camera_pos[0] = c->eye.x;
+    u->camera_pos[1] = c->eye.y;
+    u->camera_pos[2] = c->eye.z;
+    u->camera_pos[3] = (float)time;
+    u->viewport[0] = (float)width;
+    u->viewport[1] = (float)height;
+    u->viewport[2] = 1.0f / (float)width;
+    u->viewport[3] = 1.0f / (float)height;
+    u->background[0] = scene->background.x;
+    u->background[1] = scene->background.y;
+    u->background[2] = scene->background.z;
+    u->background[3] = scene->environment ? 1.0f : 0.0f;
+    u->ambient[0] = scene->ambient.x;
+    u->ambient[1] = scene->ambient.y;
+    u->ambient[2] = scene->ambient.z;
+    u->counts[1] = frame;
+    fill_lights(r, scene);
+    gl.NamedBufferSubData(r->frame_ubo, 0, sizeof *u, u);
+    renderer_reset_state(r);
+    /* The environment stays bound for every pass. */
+    gl.BindTextureUnit(RENDERER_ENVIRONMENT_UNIT,
+                       scene->environment ? scene->environment->texture.id : r->dummy_cube.id);
+    return gl_check("frame set-up", err);
+}
+
+void renderer_reset_state(struct renderer *r)
+{
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+    gl.DepthMask(GL_TRUE);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.DepthFunc(GL_LESS);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, RENDERER_FRAME_BINDING, r->frame_ubo);
+    gl.UseProgram(0);
+    gl.BindVertexArray(0);
+}
+
+/* One VAO per object, over the deformed buffers when it has them. */
+static void object_bind(struct object *obj)
+{
+    bool deformed = obj->buffer_deformed_positions != 0 && object_is_animated_geometry(obj);
+    GLuint pos = deformed ? obj->buffer_deformed_positions : obj->mesh->buffer_positions;
+    GLuint nrm = deformed ? obj->buffer_deformed_normals : obj->mesh->buffer_normals;
+    if (!obj->vao) {
+        gl.CreateVertexArrays(1, &obj->vao);
+        gl.EnableVertexArrayAttrib(obj->vao, 0);
+        gl.EnableVertexArrayAttrib(obj->vao, 1);
+        gl.VertexArrayAttribFormat(obj->vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        gl.VertexArrayAttribFormat(obj->vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
+        gl.VertexArrayAttribBinding(obj->vao, 0, 0);
+        gl.VertexArrayAttribBinding(obj->vao, 1, 1);
+    }
+    if (obj->vao_mesh_positions != pos) {
+        gl.VertexArrayVertexBuffer(obj->vao, 0, pos, 0, 3 * sizeof(float));
+        gl.VertexArrayVertexBuffer(obj->vao, 1, nrm, 0, 3 * sizeof(float));
+        gl.VertexArrayElementBuffer(obj->vao, obj->mesh->buffer_indices);
+        obj->vao_mesh_positions = pos;
+    }
+    gl.BindVertexArray(obj->vao);
+}
+
+void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
+                           unsigned filter)
+{
+    (void)r;
+    GLint loc_model = gl_program_uniform(program, "u_model");
+    GLint loc_normal = gl_program_uniform(program, "u_normal_matrix");
+    GLint loc_kind = gl_program_uniform(program, "u_material_kind");
+    GLint loc_color = gl_program_uniform(program, "u_color");
+    GLint loc_ior = gl_program_uniform(program, "u_ior");
+    GLint loc_abs = gl_program_uniform(program, "u_absorption");
+    GLint loc_id = gl_program_uniform(program, "u_object_id");
+    gl.UseProgram(program->id);
+    for (int i = 0; i < scene->object_count; i++) {
+        struct object *o = scene->objects[i];
+        if (!o->visible)
+            continue;
+        if ((filter & DRAW_CASTERS) && !o->cast_shadows)
+            continue;
+        bool specular = material_is_specular(&o->material);
+        if ((filter & DRAW_DIFFUSE) && specular)
+            continue;
+        if ((filter & DRAW_SPECULAR) && !specular)
+            continue;
+        mat4 inv, nm;
+        mat4_inverse(o->model, &inv);
+        nm = mat4_transpose(inv);
+        gl.ProgramUniformMatrix4fv(program->id, loc_model, 1, GL_FALSE, o->model.m);
+        gl.ProgramUniformMatrix4fv(program->id, loc_normal, 1, GL_FALSE, nm.m);
+        gl.ProgramUniform1i(program->id, loc_kind, (GLint)o->material.kind);
+        gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
+        gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
+        gl.ProgramUniform3f(program->id, loc_abs, o->material.absorption.x, o->material.absorption.y,
+                            o->material.absorption.z);
+        gl.ProgramUniform1i(program->id, loc_id, o->id);
+        object_bind(o);
+        gl.DrawElements(GL_TRIANGLES, (GLsizei)o->mesh->index_count, GL_UNSIGNED_INT, NULL);
+    }
+    gl.BindVertexArray(0);
+}
+
+void renderer_draw_fullscreen(struct renderer *r)
+{
+    gl.BindVertexArray(r->empty_vao);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.BindVertexArray(0);
+}
+
+bool tonemap_parse(const char *name, enum tonemap_operator *out)
+{
+    if (strcmp(name, "clamp") == 0)
+        *out = TONEMAP_CLAMP;
+    else if (strcmp(name, "reinhard") == 0)
+        *out = TONEMAP_REINHARD;
+    else if (strcmp(name, "aces") == 0)
+        *out = TONEMAP_ACES;
+    else
+        return false;
+    return true;
+}
+
+static bool tonemap_draw(struct renderer *r, const struct gl_texture *linear, struct error *err)
+{
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "tonemap/tonemap.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_exposure"), r->exposure);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_operator"), (GLint)r->tonemap);
+    gl.BindTextureUnit(0, linear->id);
+    renderer_draw_fullscreen(r);
+    return true;
+}
+
+static bool ensure_present_target(struct renderer *r, int w, int h, struct error *err)
+{
+    if (r->present_texture.id && r->present_texture.width == w && r->present_texture.height == h)
+        return true;
+    gl_texture_destroy(&r->present_texture);
+    if (!gl_texture_create(&r->present_texture, GL_TEXTURE_2D, GL_RGBA8, w, h, 1, err))
+        return false;
+    const struct gl_texture *colors[1] = {&r->present_texture};
+    return gl_framebuffer_attach(&r->present_fb, colors, NULL, 1, NULL, -1, err);
+}
+
+bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, uint8_t *rgba, struct error *err)
+{
+    int w = linear->width, h = linear->height;
+    renderer_reset_state(r);
+    if (!ensure_present_target(r, w, h, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
+    gl.Viewport(0, 0, w, h);
+    if (!tonemap_draw(r, linear, err))
+        return false;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->present_fb.id);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    /* GL rows go bottom to top; images top to bottom. */
+    size_t row = (size_t)w * 4;
+    uint8_t *tmp = malloc(row);
+    if (!tmp)
+        return error_set(err, "out of memory");
+    for (int y = 0; y < h / 2; y++) {
+        memcpy(tmp, rgba + (size_t)y * row, row);
+        memcpy(rgba + (size_t)y * row, rgba + (size_t)(h - 1 - y) * row, row);
+        memcpy(rgba + (size_t)(h - 1 - y) * row, tmp, row);
+    }
+    free(tmp);
+    return gl_check("presenting the image", err);
+}
+
+bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, int fb_width, int fb_height,
+                             struct error *err)
+{
+    int w = linear->width, h = linear->height;
+    renderer_reset_state(r);
+    if (!ensure_present_target(r, w, h, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
+    gl.Viewport(0, 0, w, h);
+    if (!tonemap_draw(r, linear, err))
+        return false;
+    /* Letterbox into the window, keeping the aspect ratio; at equal sizes
+     * the blit copies pixels exactly. */
+    float scale = fminf((float)fb_width / (float)w, (float)fb_height / (float)h);
+    int dw = (int)lrintf((float)w * scale), dh = (int)lrintf((float)h * scale);
+    int dx = (fb_width - dw) / 2, dy = (fb_height - dh) / 2;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, fb_width, fb_height);
+    gl.ClearColor(0, 0, 0, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    gl.BlitNamedFramebuffer(r->present_fb.id, 0, 0, 0, w, h, dx, dy, dx + dw, dy + dh, GL_COLOR_BUFFER_BIT,
+                            dw == w && dh == h ? GL_NEAREST : GL_LINEAR);
+    return gl_check("presenting to the window", err);
+}

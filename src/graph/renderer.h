@@ -1,0 +1,93 @@
+/* What every pass shares: the shader programs, the per-frame uniform block
+ * (camera, time, lights at binding 0), the environment at texture unit 15,
+ * drawing the scene's objects, and presenting (tone mapping) the result. */
+#ifndef CAUSTICA_RENDERER_H
+#define CAUSTICA_RENDERER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/vecmath.h"
+#include "gl/gl_program.h"
+#include "gl/gl_texture.h"
+#include "scene/scene.h"
+
+#define RENDERER_FRAME_BINDING 0
+#define RENDERER_ENVIRONMENT_UNIT 15
+
+/* std140 mirror of `Frame` in shaders/common/frame.glsl. */
+struct renderer_gpu_light {
+    float position[4];  /* xyz, w = kind (0 point, 1 directional, 2 spot) */
+    float direction[4]; /* xyz, w = cos(outer angle) */
+    float intensity[4]; /* rgb, w = cos(inner angle) */
+};
+
+struct renderer_frame_uniforms {
+    float view[16], proj[16], view_proj[16], inv_view_proj[16];
+    float camera_pos[4]; /* xyz, w = time */
+    float viewport[4];   /* width, height, 1/width, 1/height */
+    float background[4]; /* rgb, w = 1 when an environment map is bound */
+    float ambient[4];
+    int32_t counts[4];   /* x = lights, y = frame */
+    struct renderer_gpu_light lights[SCENE_MAX_GPU_LIGHTS];
+};
+
+enum tonemap_operator { TONEMAP_CLAMP, TONEMAP_REINHARD, TONEMAP_ACES };
+
+struct renderer {
+    char root[1024]; /* the project folder holding shaders/ and lua/ */
+    struct gl_program_cache programs;
+    GLuint frame_ubo;
+    GLuint empty_vao;
+    struct gl_texture dummy_2d, dummy_cube, dummy_depth;
+    struct renderer_frame_uniforms uniforms;
+    mat4 view, proj;
+    int width, height;
+    int frame;
+    double time;
+    /* Index of each scene light's first entry in uniforms.lights (a
+     * linear light takes `samples` entries). */
+    int light_first[SCENE_MAX_GPU_LIGHTS];
+    int light_entries[SCENE_MAX_GPU_LIGHTS];
+    /* presenting */
+    struct gl_texture present_texture;
+    struct gl_framebuffer present_fb;
+    struct gl_framebuffer scratch_fb;
+    float exposure;
+    enum tonemap_operator tonemap;
+};
+
+bool renderer_create(struct renderer *r, const char *root, struct error *err);
+void renderer_destroy(struct renderer *r);
+/* Uploads what the scene needs, runs morphs and deformers, fills the frame
+ * uniforms. Call once per frame before graph_execute. */
+bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, int height, int frame, double time,
+                          struct error *err);
+/* Back to a known GL state between passes. */
+void renderer_reset_state(struct renderer *r);
+
+enum renderer_draw_filter {
+    DRAW_ALL = 0,
+    DRAW_CASTERS = 1,   /* objects that cast shadows */
+    DRAW_DIFFUSE = 2,   /* diffuse materials only */
+    DRAW_SPECULAR = 4,  /* glass, water, mirror only */
+};
+/* Draws the visible objects with `program`, setting u_model,
+ * u_normal_matrix, u_material_kind, u_color, u_ior, u_absorption,
+ * u_object_id. */
+void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
+                           unsigned filter);
+void renderer_draw_fullscreen(struct renderer *r);
+
+/* Tone maps a linear texture into 8-bit sRGB and reads it back (rows top to bottom). */
+bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, uint8_t *rgba, struct error *err);
+/* Tone maps into the window's framebuffer (size fb_width x fb_height). */
+bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, int fb_width, int fb_height,
+                             struct error *err);
+bool tonemap_parse(const char *name, enum tonemap_operator *out);
+
+/* scene/deform.c: morphs and deformers into each object's buffers. */
+bool deform_update(struct renderer *r, struct scene *scene, double time, struct error *err);
+
+#endif

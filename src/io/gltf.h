@@ -1,0 +1,50 @@
+/* glTF 2.0 loading: every triangle primitive of the default scene,
+ * flattened into one mesh in the scene's space (node transforms applied),
+ * with morph targets and the glass parameters of KHR_materials_ior,
+ * _transmission and _volume. The loader is a thin C++ shim over tinygltf
+ * (gltf_shim.cpp, the project's only C++). */
+#ifndef CAUSTICA_GLTF_H
+#define CAUSTICA_GLTF_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct gltf_material {
+    bool present;
+    float base_color[3];
+    bool glass;                 /* transmission > 0 */
+    float ior;                  /* KHR_materials_ior, 1.5 by default */
+    float transmission;         /* KHR_materials_transmission */
+    float attenuation_color[3]; /* KHR_materials_volume */
+    float attenuation_distance; /* 0 = infinite (no absorption) */
+};
+
+struct gltf_mesh {
+    size_t vertex_count;
+    size_t index_count;
+    float *positions; /* vertex_count * 3 */
+    float *normals;   /* vertex_count * 3, generated when the file has none */
+    uint32_t *indices;
+    int target_count;
+    float *target_positions; /* target_count * vertex_count * 3 deltas */
+    float *target_normals;   /* same layout; zero where the file has none */
+    float *weights;          /* target_count default weights */
+    char **target_names;     /* target_count names ("" when unnamed) */
+    struct gltf_material material; /* of the first primitive that has one */
+};
+
+bool gltf_load(const char *path, struct gltf_mesh *out, struct error *err);
+void gltf_mesh_free(struct gltf_mesh *mesh);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

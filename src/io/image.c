@@ -1,0 +1,265 @@
+#define _POSIX_C_SOURCE 200809L
+#include "io/image.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <png.h>
+
+#include "core/fileio.h"
+
+bool image_create(struct image *img, int width, int height, struct error *err)
+{
+    img->width = img->height = 0;
+    img->rgba = NULL;
+    if (width <= 0 || height <= 0 || width > 32768 || height > 32768)
+        return error_set(err, "image size %dx%d is out of range", width, height);
+    img->rgba = calloc((size_t)width * (size_t)height * 4, sizeof(float));
+    if (!img->rgba)
+        return error_set(err, "out of memory for a %dx%d image", width, height);
+    img->width = width;
+    img->height = height;
+    return true;
+}
+
+void image_destroy(struct image *img)
+{
+    free(img->rgba);
+    img->rgba = NULL;
+    img->width = img->height = 0;
+}
+
+void image_flip_rows(struct image *img)
+{
+    size_t row = (size_t)img->width * 4;
+    float *tmp = malloc(row * sizeof(float));
+    if (!tmp)
+        return;
+    for (int y = 0; y < img->height / 2; y++) {
+        float *a = img->rgba + (size_t)y * row;
+        float *b = img->rgba + (size_t)(img->height - 1 - y) * row;
+        memcpy(tmp, a, row * sizeof(float));
+        memcpy(a, b, row * sizeof(float));
+        memcpy(b, tmp, row * sizeof(float));
+    }
+    free(tmp);
+}
+
+float image_srgb_encode(float c)
+{
+    if (!(c > 0.0f))
+        return 0.0f;
+    if (c >= 1.0f)
+        return 1.0f;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+float image_srgb_decode(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+bool image_path_is_png(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && (strcmp(path + n - 4, ".png") == 0 || strcmp(path + n - 4, ".PNG") == 0);
+}
+
+bool image_path_is_pfm(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && (strcmp(path + n - 4, ".pfm") == 0 || strcmp(path + n - 4, ".PFM") == 0);
+}
+
+/* Writes through a temporary file and renames it into place. */
+static bool finish_atomic(FILE *f, const char *tmp, const char *path, bool ok, struct error *err)
+{
+    if (fclose(f) != 0 && ok)
+        ok = error_set(err, "%s: write failed: %s", path, strerror(errno));
+    if (ok && rename(tmp, path) != 0)
+        ok = error_set(err, "%s: cannot rename the finished file into place: %s", path, strerror(errno));
+    if (!ok)
+        remove(tmp);
+    return ok;
+}
+
+bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err)
+{
+    if (!path_check_writable_dir(path, err))
+        return false;
+    char tmp[4096];
+    path_temporary(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info) {
+        png_destroy_write_struct(&png, &info);
+        return finish_atomic(f, tmp, path, error_set(err, "%s: libpng initialisation failed", path), err);
+    }
+    png_bytep *rows = malloc((size_t)height * sizeof *rows);
+    if (!rows || setjmp(png_jmpbuf(png))) {
+        free(rows);
+        png_destroy_write_struct(&png, &info);
+        return finish_atomic(f, tmp, path, error_set(err, "%s: PNG encoding failed", path), err);
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    for (int y = 0; y < height; y++)
+        rows[y] = (png_bytep)(rgba + (size_t)y * (size_t)width * 4);
+    png_write_image(png, rows);
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    free(rows);
+    return finish_atomic(f, tmp, path, true, err);
+}
+
+bool image_read_png_rgba8(const char *path, uint8_t **out, int *width, int *height, struct error *err)
+{
+    png_image pi;
+    memset(&pi, 0, sizeof pi);
+    pi.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&pi, path))
+        return error_set(err, "%s: cannot read PNG: %s", path, pi.message);
+    pi.format = PNG_FORMAT_RGBA;
+    size_t size = PNG_IMAGE_SIZE(pi);
+    uint8_t *buf = malloc(size);
+    if (!buf) {
+        png_image_free(&pi);
+        return error_set(err, "%s: out of memory", path);
+    }
+    if (!png_image_finish_read(&pi, NULL, buf, 0, NULL)) {
+        free(buf);
+        return error_set(err, "%s: cannot decode PNG: %s", path, pi.message);
+    }
+    *out = buf;
+    *width = (int)pi.width;
+    *height = (int)pi.height;
+    return true;
+}
+
+bool image_read_png(const char *path, struct image *img, struct error *err)
+{
+    uint8_t *buf;
+    int w, h;
+    if (!image_read_png_rgba8(path, &buf, &w, &h, err))
+        return false;
+    if (!image_create(img, w, h, err)) {
+        free(buf);
+        return false;
+    }
+    float lut[256];
+    for (int i = 0; i < 256; i++)
+        lut[i] = image_srgb_decode((float)i / 255.0f);
+    size_t n = (size_t)w * (size_t)h;
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++)
+            img->rgba[i * 4 + (size_t)c] = lut[buf[i * 4 + (size_t)c]];
+        img->rgba[i * 4 + 3] = (float)buf[i * 4 + 3] / 255.0f;
+    }
+    free(buf);
+    return true;
+}
+
+bool image_write_pfm(const char *path, const struct image *img, struct error *err)
+{
+    if (!path_check_writable_dir(path, err))
+        return false;
+    char tmp[4096];
+    path_temporary(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    /* PFM: "PF", size, scale < 0 for little-endian, rows bottom to top. */
+    bool ok = fprintf(f, "PF\n%d %d\n-1.0\n", img->width, img->height) > 0;
+    float *row = malloc((size_t)img->width * 3 * sizeof(float));
+    ok = ok && row;
+    for (int y = img->height - 1; ok && y >= 0; y--) {
+        for (int x = 0; x < img->width; x++)
+            for (int c = 0; c < 3; c++)
+                row[x * 3 + c] = img->rgba[((size_t)y * (size_t)img->width + (size_t)x) * 4 + (size_t)c];
+        ok = fwrite(row, sizeof(float), (size_t)img->width * 3, f) == (size_t)img->width * 3;
+    }
+    free(row);
+    if (!ok)
+        error_set(err, "%s: write failed", path);
+    return finish_atomic(f, tmp, path, ok, err);
+}
+
+bool image_read_pfm(const char *path, struct image *img, struct error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    char magic[3] = "";
+    int w = 0, h = 0;
+    double scale = 0;
+    if (fscanf(f, "%2s %d %d %lf", magic, &w, &h, &scale) != 4 || fgetc(f) == EOF ||
+        (strcmp(magic, "PF") != 0 && strcmp(magic, "Pf") != 0)) {
+        fclose(f);
+        return error_set(err, "%s: not a PFM file (expected a 'PF' or 'Pf' header)", path);
+    }
+    int channels = magic[1] == 'F' ? 3 : 1;
+    if (scale > 0) {
+        fclose(f);
+        return error_set(err, "%s: big-endian PFM is not supported", path);
+    }
+    if (!image_create(img, w, h, err)) {
+        fclose(f);
+        return error_prefix(err, "%s", path);
+    }
+    float *row = malloc((size_t)w * (size_t)channels * sizeof(float));
+    bool ok = row != NULL;
+    for (int y = h - 1; ok && y >= 0; y--) {
+        ok = fread(row, sizeof(float), (size_t)w * (size_t)channels, f) == (size_t)w * (size_t)channels;
+        for (int x = 0; ok && x < w; x++) {
+            float *px = img->rgba + ((size_t)y * (size_t)w + (size_t)x) * 4;
+            for (int c = 0; c < 3; c++)
+                px[c] = row[x * channels + (channels == 3 ? c : 0)];
+            px[3] = 1.0f;
+        }
+    }
+    free(row);
+    fclose(f);
+    if (!ok) {
+        image_destroy(img);
+        return error_set(err, "%s: truncated PFM data", path);
+    }
+    return true;
+}
+
+bool image_read(const char *path, struct image *img, struct error *err)
+{
+    if (image_path_is_pfm(path))
+        return image_read_pfm(path, img, err);
+    if (image_path_is_png(path))
+        return image_read_png(path, img, err);
+    return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+}
+
+bool image_write(const char *path, const struct image *img, struct error *err)
+{
+    if (image_path_is_pfm(path))
+        return image_write_pfm(path, img, err);
+    if (!image_path_is_png(path))
+        return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+    size_t n = (size_t)img->width * (size_t)img->height;
+    uint8_t *bytes = malloc(n * 4);
+    if (!bytes)
+        return error_set(err, "%s: out of memory", path);
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++)
+            bytes[i * 4 + (size_t)c] = (uint8_t)lrintf(image_srgb_encode(img->rgba[i * 4 + (size_t)c]) * 255.0f);
+        bytes[i * 4 + 3] = 255;
+    }
+    bool ok = image_write_png_rgba8(path, bytes, img->width, img->height, err);
+    free(bytes);
+    return ok;
+}

@@ -1,0 +1,39 @@
+/* Float RGBA images in linear radiance, rows top to bottom, and their files:
+ * PNG (8-bit sRGB, libpng) and PFM (linear float RGB). */
+#ifndef CAUSTICA_IMAGE_H
+#define CAUSTICA_IMAGE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/error.h"
+
+struct image {
+    int width, height;
+    float *rgba; /* owned, width * height * 4 */
+};
+
+bool image_create(struct image *img, int width, int height, struct error *err);
+void image_destroy(struct image *img);
+void image_flip_rows(struct image *img);
+
+float image_srgb_encode(float linear);
+float image_srgb_decode(float encoded);
+
+/* Writes 8-bit sRGB RGBA (already tone mapped) bytes to PNG, atomically:
+ * the file appears complete or not at all. */
+bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err);
+/* Reads a PNG as linear float (sRGB decoded). */
+bool image_read_png(const char *path, struct image *img, struct error *err);
+/* Reads a PNG's 8-bit RGBA bytes, undecoded (owned by the caller). */
+bool image_read_png_rgba8(const char *path, uint8_t **rgba, int *width, int *height, struct error *err);
+bool image_write_pfm(const char *path, const struct image *img, struct error *err);
+bool image_read_pfm(const char *path, struct image *img, struct error *err);
+/* Picks the format by extension (.png or .pfm). PNG gets a plain clamp and
+ * sRGB encoding; tone-mapped output comes from the GPU path instead. */
+bool image_read(const char *path, struct image *img, struct error *err);
+bool image_write(const char *path, const struct image *img, struct error *err);
+bool image_path_is_png(const char *path);
+bool image_path_is_pfm(const char *path);
+
+#endif

@@ -1,0 +1,454 @@
+#define _POSIX_C_SOURCE 200809L
+/* caustica.graph: the render graph and the pass constructors. Every
+ * descriptor in the registry becomes `c.pass.<name>`, checked here against
+ * its parameter list, with no per-pass binding code. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "graph/graph.h"
+#include "lua/l_util.h"
+#include "lua/lua_host.h"
+
+#define GRAPH_MT "caustica.Graph"
+#define PASS_MT "caustica.Pass"
+
+struct l_pass { struct pass *pass; };
+struct l_graph { struct graph graph; };
+
+struct light *llight_test(lua_State *L, int idx);
+
+static const char *type_name(enum pass_param_type t)
+{
+    switch (t) {
+    case PASS_PARAM_NUMBER: return "number";
+    case PASS_PARAM_INTEGER: return "integer";
+    case PASS_PARAM_BOOLEAN: return "boolean";
+    case PASS_PARAM_STRING: return "string";
+    case PASS_PARAM_ENUM: return "string";
+    case PASS_PARAM_LIGHT: return "light";
+    case PASS_PARAM_INPUT: return "string 'pass.output'";
+    case PASS_PARAM_INPUT_LIST: return "string 'pass.output' or a list of them";
+    case PASS_PARAM_INPUT_MAP: return "table {name = 'pass.output'}";
+    case PASS_PARAM_OUTPUT_MAP: return "table {name = 'format'}";
+    case PASS_PARAM_UNIFORM_MAP: return "table {name = number or vector}";
+    case PASS_PARAM_COLOR: return "color {r, g, b[, a]}";
+    case PASS_PARAM_TABLE: return "table";
+    case PASS_PARAM_FUNCTION: return "function";
+    }
+    return "?";
+}
+
+static char *dup_string(lua_State *L, const char *s)
+{
+    char *d = strdup(s);
+    if (!d)
+        luaL_error(L, "out of memory");
+    return d;
+}
+
+/* Reads one map entry list (string keys) into v->keys / v->list / vectors. */
+static void read_map(lua_State *L, int idx, struct pass_value *v, const struct pass_param_desc *d, const char *fn)
+{
+    int n = 0;
+    lua_pushnil(L);
+    while (lua_next(L, idx)) {
+        n++;
+        lua_pop(L, 1);
+    }
+    v->keys = calloc((size_t)n + 1, sizeof *v->keys);
+    v->list = calloc((size_t)n + 1, sizeof *v->list);
+    v->vectors = calloc((size_t)n + 1, sizeof *v->vectors);
+    v->vector_sizes = calloc((size_t)n + 1, sizeof *v->vector_sizes);
+    if (!v->keys || !v->list || !v->vectors || !v->vector_sizes)
+        luaL_error(L, "out of memory");
+    /* Ordered: array part first ({"color", "mask"}), then string keys sorted
+     * so the declaration order does not depend on hashing. */
+    int count = 0;
+    int len = (int)lua_rawlen(L, idx);
+    for (int i = 1; i <= len; i++) {
+        lua_rawgeti(L, idx, i);
+        if (d->type != PASS_PARAM_OUTPUT_MAP || !lua_isstring(L, -1))
+            luaL_error(L, "bad argument '%s' to '%s' (%s expected)", d->name, fn, type_name(d->type));
+        v->keys[count] = dup_string(L, lua_tostring(L, -1));
+        v->list[count] = dup_string(L, "rgba32f");
+        v->list_count = ++count;
+        lua_pop(L, 1);
+    }
+    lua_pushnil(L);
+    while (lua_next(L, idx)) {
+        if (lua_type(L, -2) != LUA_TSTRING) {
+            lua_pop(L, 1);
+            continue;
+        }
+        const char *key = lua_tostring(L, -2);
+        int at = count;
+        while (at > 0 && strcmp(v->keys[at - 1], key) > 0 && at > len) {
+            v->keys[at] = v->keys[at - 1];
+            v->list[at] = v->list[at - 1];
+            memcpy(v->vectors[at], v->vectors[at - 1], sizeof v->vectors[0]);
+            v->vector_sizes[at] = v->vector_sizes[at - 1];
+            at--;
+        }
+        v->keys[at] = dup_string(L, key);
+        v->list[at] = NULL;
+        v->vector_sizes[at] = 0;
+        if (d->type == PASS_PARAM_UNIFORM_MAP) {
+            if (lua_isnumber(L, -1)) {
+                v->vectors[at][0] = (float)lua_tonumber(L, -1);
+                v->vector_sizes[at] = 1;
+            } else if (lua_istable(L, -1)) {
+                int m = (int)lua_rawlen(L, -1);
+                if (m < 1 || m > 4)
+                    luaL_error(L, "bad argument '%s' to '%s' (uniform '%s': 1 to 4 numbers expected)", d->name, fn, key);
+                for (int i = 0; i < m; i++) {
+                    lua_rawgeti(L, -1, i + 1);
+                    v->vectors[at][i] = (float)luaL_checknumber(L, -1);
+                    lua_pop(L, 1);
+                }
+                v->vector_sizes[at] = m;
+            } else {
+                luaL_error(L, "bad argument '%s' to '%s' (uniform '%s': number or vector expected, got %s)", d->name,
+                           fn, key, luaL_typename(L, -1));
+            }
+            v->list[at] = dup_string(L, "");
+        } else {
+            if (!lua_isstring(L, -1))
+                luaL_error(L, "bad argument '%s' to '%s' ('%s': string expected, got %s)", d->name, fn, key,
+                           luaL_typename(L, -1));
+            v->list[at] = dup_string(L, lua_tostring(L, -1));
+        }
+        v->list_count = ++count;
+        lua_pop(L, 1);
+    }
+}
+
+static void read_param(lua_State *L, struct pass *p, int i, int idx)
+{
+    const struct pass_param_desc *d = &p->desc->params[i];
+    struct pass_value *v = &p->values[i];
+    const char *fn = p->desc->name;
+    int t = lua_type(L, idx);
+    v->set = true;
+    switch (d->type) {
+    case PASS_PARAM_NUMBER:
+    case PASS_PARAM_INTEGER:
+        if (t != LUA_TNUMBER)
+            lutil_field_error(L, fn, d->name, "number", idx);
+        v->number = lua_tonumber(L, idx);
+        if (d->type == PASS_PARAM_INTEGER && !lua_isinteger(L, idx))
+            luaL_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, v->number);
+        if (d->min < d->max && (v->number < d->min || v->number > d->max))
+            luaL_error(L, "bad argument '%s' to '%s' (%g is out of range %g..%g)", d->name, fn, v->number, d->min,
+                       d->max);
+        break;
+    case PASS_PARAM_BOOLEAN:
+        if (t != LUA_TBOOLEAN)
+            lutil_field_error(L, fn, d->name, "boolean", idx);
+        v->number = lua_toboolean(L, idx);
+        break;
+    case PASS_PARAM_STRING:
+    case PASS_PARAM_ENUM:
+    case PASS_PARAM_INPUT:
+        if (t != LUA_TSTRING)
+            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        if (d->type == PASS_PARAM_ENUM) {
+            const char *s = lua_tostring(L, idx);
+            size_t n = strlen(s);
+            const char *c = d->choices;
+            bool ok = false;
+            while (c && *c) {
+                const char *bar = strchr(c, '|');
+                size_t len = bar ? (size_t)(bar - c) : strlen(c);
+                if (len == n && strncmp(c, s, n) == 0)
+                    ok = true;
+                c = bar ? bar + 1 : NULL;
+            }
+            if (!ok)
+                luaL_error(L, "bad argument '%s' to '%s' (one of %s expected, got '%s')", d->name, fn, d->choices, s);
+        }
+        if (d->is_path) {
+            char path[4096];
+            lua_host_resolve_path(L, lua_tostring(L, idx), path, sizeof path);
+            v->string = dup_string(L, path);
+        } else {
+            v->string = dup_string(L, lua_tostring(L, idx));
+        }
+        break;
+    case PASS_PARAM_LIGHT:
+        v->light = llight_test(L, idx);
+        if (!v->light)
+            lutil_field_error(L, fn, d->name, "light", idx);
+        break;
+    case PASS_PARAM_INPUT_LIST:
+        if (t == LUA_TSTRING) {
+            v->list = calloc(1, sizeof *v->list);
+            if (!v->list)
+                luaL_error(L, "out of memory");
+            v->list[0] = dup_string(L, lua_tostring(L, idx));
+            v->list_count = 1;
+        } else if (t == LUA_TTABLE) {
+            int n = (int)lua_rawlen(L, idx);
+            v->list = calloc((size_t)n + 1, sizeof *v->list);
+            if (!v->list)
+                luaL_error(L, "out of memory");
+            for (int k = 0; k < n; k++) {
+                lua_rawgeti(L, idx, k + 1);
+                if (!lua_isstring(L, -1))
+                    lutil_field_error(L, fn, d->name, type_name(d->type), -1);
+                v->list[k] = dup_string(L, lua_tostring(L, -1));
+                v->list_count = k + 1;
+                lua_pop(L, 1);
+            }
+        } else {
+            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        }
+        break;
+    case PASS_PARAM_INPUT_MAP:
+    case PASS_PARAM_OUTPUT_MAP:
+    case PASS_PARAM_UNIFORM_MAP:
+        if (t != LUA_TTABLE)
+            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        read_map(L, idx, v, d, fn);
+        break;
+    case PASS_PARAM_COLOR: {
+        vec3 c;
+        if (!lutil_to_vec3(L, idx, &c))
+            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        v->color[0] = c.x;
+        v->color[1] = c.y;
+        v->color[2] = c.z;
+        v->color[3] = 1.0f;
+        break;
+    }
+    case PASS_PARAM_TABLE:
+    case PASS_PARAM_FUNCTION:
+        if (t != (d->type == PASS_PARAM_TABLE ? LUA_TTABLE : LUA_TFUNCTION))
+            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        lua_pushvalue(L, idx);
+        v->lua_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+        break;
+    }
+}
+
+static int pass_new(lua_State *L)
+{
+    const struct pass_desc *desc = lua_touserdata(L, lua_upvalueindex(1));
+    if (lua_isnoneornil(L, 1)) {
+        lua_settop(L, 0);
+        lua_newtable(L);
+    }
+    if (!lua_istable(L, 1))
+        return luaL_error(L, "bad argument #1 to '%s' (table of parameters expected, got %s)", desc->name,
+                          luaL_typename(L, 1));
+    const char *allowed[PASS_MAX_INPUTS * 2 + 1];
+    int na = 0;
+    for (int i = 0; i < desc->param_count && na < PASS_MAX_INPUTS * 2; i++)
+        allowed[na++] = desc->params[i].name;
+    allowed[na] = NULL;
+    lutil_check_fields(L, 1, desc->name, allowed);
+
+    struct l_pass *u = lua_newuserdatauv(L, sizeof *u, 1);
+    u->pass = pass_create(desc);
+    luaL_setmetatable(L, PASS_MT);
+    if (!u->pass)
+        return luaL_error(L, "out of memory");
+    int idx = lua_gettop(L);
+    lua_pushvalue(L, 1);
+    lua_setiuservalue(L, idx, 1); /* keeps lights and functions alive */
+    struct pass *p = u->pass;
+    p->lua = L;
+    lutil_where(L, p->origin, sizeof p->origin);
+    for (int i = 0; i < desc->param_count; i++) {
+        const struct pass_param_desc *d = &desc->params[i];
+        if (lua_getfield(L, 1, d->name) == LUA_TNIL) {
+            if (d->required)
+                luaL_error(L, "bad argument '%s' to '%s' (%s expected, got no value)", d->name, desc->name,
+                           type_name(d->type));
+        } else {
+            read_param(L, p, i, lua_gettop(L));
+        }
+        lua_pop(L, 1);
+    }
+    struct error err;
+    if (desc->declare && !desc->declare(p, &err))
+        return luaL_error(L, "%s", err.message);
+    lua_settop(L, idx);
+    return 1;
+}
+
+static int pass_gc(lua_State *L)
+{
+    struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
+    if (u->pass) {
+        for (int i = 0; i < u->pass->desc->param_count; i++)
+            if (u->pass->values[i].lua_ref >= 0)
+                luaL_unref(L, LUA_REGISTRYINDEX, u->pass->values[i].lua_ref);
+        pass_destroy(u->pass);
+    }
+    u->pass = NULL;
+    return 0;
+}
+
+static int pass_index(lua_State *L)
+{
+    struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
+    const char *k = luaL_checkstring(L, 2);
+    if (strcmp(k, "kind") == 0)
+        lua_pushstring(L, u->pass->desc->name);
+    else if (strcmp(k, "name") == 0)
+        lua_pushstring(L, u->pass->name);
+    else if (strcmp(k, "outputs") == 0) {
+        lua_createtable(L, u->pass->output_count, 0);
+        for (int i = 0; i < u->pass->output_count; i++) {
+            lua_pushstring(L, u->pass->outputs[i].name);
+            lua_rawseti(L, -2, i + 1);
+        }
+    } else
+        lua_pushnil(L);
+    return 1;
+}
+
+static int pass_tostring(lua_State *L)
+{
+    struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
+    lua_pushfstring(L, "Pass(%s '%s')", u->pass->desc->name, u->pass->name);
+    return 1;
+}
+
+/* ---- graph ----------------------------------------------------------- */
+
+static struct graph *check_graph(lua_State *L, int idx)
+{
+    return &((struct l_graph *)luaL_checkudata(L, idx, GRAPH_MT))->graph;
+}
+
+struct graph *lgraph_check(lua_State *L, int idx) { return check_graph(L, idx); }
+
+static int graph_new(lua_State *L)
+{
+    struct l_graph *u = lua_newuserdatauv(L, sizeof *u, 1);
+    graph_init(&u->graph);
+    luaL_setmetatable(L, GRAPH_MT);
+    lua_newtable(L);
+    lua_setiuservalue(L, -2, 1);
+    return 1;
+}
+
+static int graph_gc(lua_State *L)
+{
+    graph_release(check_graph(L, 1));
+    return 0;
+}
+
+static int graph_add_l(lua_State *L)
+{
+    struct graph *g = check_graph(L, 1);
+    const char *name = luaL_checkstring(L, 2);
+    struct l_pass *p = luaL_testudata(L, 3, PASS_MT);
+    if (!p)
+        return luaL_argerror(L, 3, lua_pushfstring(L, "pass (c.pass.<kind>{...}) expected, got %s", luaL_typename(L, 3)));
+    struct error err;
+    if (!graph_add(g, name, p->pass, &err))
+        return luaL_error(L, "%s", err.message);
+    lua_getiuservalue(L, 1, 1);
+    lua_pushvalue(L, 3);
+    lua_rawseti(L, -2, (lua_Integer)lua_rawlen(L, -2) + 1);
+    lua_pushvalue(L, 3);
+    return 1;
+}
+
+static int graph_output_l(lua_State *L)
+{
+    struct graph *g = check_graph(L, 1);
+    struct error err;
+    if (!graph_set_output(g, luaL_checkstring(L, 2), &err))
+        return luaL_error(L, "%s", err.message);
+    return 0;
+}
+
+static int graph_timings_l(lua_State *L)
+{
+    struct graph *g = check_graph(L, 1);
+    lua_newtable(L);
+    for (int i = 0; i < g->count; i++) {
+        if (g->entries[i].state != GRAPH_PASS_KEPT)
+            continue;
+        lua_pushnumber(L, g->entries[i].last_ms);
+        lua_setfield(L, -2, g->entries[i].pass->name);
+    }
+    return 1;
+}
+
+static int graph_passes_l(lua_State *L)
+{
+    struct graph *g = check_graph(L, 1);
+    struct error err;
+    bool checked = graph_check(g, &err);
+    lua_createtable(L, g->count, 0);
+    for (int i = 0; i < g->count; i++) {
+        const struct graph_entry *e = &g->entries[i];
+        lua_createtable(L, 0, 4);
+        lua_pushstring(L, e->pass->name);
+        lua_setfield(L, -2, "name");
+        lua_pushstring(L, e->pass->desc->name);
+        lua_setfield(L, -2, "kind");
+        lua_pushboolean(L, checked && e->state == GRAPH_PASS_KEPT);
+        lua_setfield(L, -2, "kept");
+        lua_pushstring(L, checked ? e->reason : err.message);
+        lua_setfield(L, -2, "reason");
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
+static int graph_index(lua_State *L)
+{
+    check_graph(L, 1);
+    const char *k = luaL_checkstring(L, 2);
+    static const luaL_Reg methods[] = {{"add", graph_add_l}, {"output", graph_output_l}, {"timings", graph_timings_l},
+                                       {"passes", graph_passes_l}, {NULL, NULL}};
+    for (int i = 0; methods[i].name; i++)
+        if (strcmp(methods[i].name, k) == 0) {
+            lua_pushcfunction(L, methods[i].func);
+            return 1;
+        }
+    lua_pushnil(L);
+    return 1;
+}
+
+static int graph_tostring(lua_State *L)
+{
+    struct graph *g = check_graph(L, 1);
+    lua_pushfstring(L, "Graph(%d passes, output '%s')", g->count, g->output);
+    return 1;
+}
+
+int luaopen_caustica_graph(lua_State *L)
+{
+    static const luaL_Reg pass_meta[] = {{"__gc", pass_gc}, {"__index", pass_index}, {"__tostring", pass_tostring},
+                                         {NULL, NULL}};
+    static const luaL_Reg graph_meta[] = {{"__gc", graph_gc}, {"__index", graph_index}, {"__tostring", graph_tostring},
+                                          {NULL, NULL}};
+    luaL_newmetatable(L, PASS_MT);
+    luaL_setfuncs(L, pass_meta, 0);
+    lua_pop(L, 1);
+    luaL_newmetatable(L, GRAPH_MT);
+    luaL_setfuncs(L, graph_meta, 0);
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushcfunction(L, graph_new);
+    lua_setfield(L, -2, "graph");
+    lua_newtable(L);
+    for (int i = 0; i < pass_registry_count(); i++) {
+        const struct pass_desc *d = pass_registry_get(i);
+        lua_pushlightuserdata(L, (void *)d);
+        lua_pushcclosure(L, pass_new, 1);
+        lua_setfield(L, -2, d->name);
+    }
+    lua_setfield(L, -2, "pass");
+    return 1;
+}

@@ -1,0 +1,205 @@
+/* caustica.image: float images (linear RGBA), their files, and the error
+ * metrics between two of them. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "io/image.h"
+#include "lua/l_image.h"
+#include "lua/lua_host.h"
+#include "reference/image_metrics.h"
+
+struct image *limage_check(lua_State *L, int idx) { return luaL_checkudata(L, idx, IMAGE_MT); }
+
+struct image *limage_push(lua_State *L)
+{
+    struct image *img = lua_newuserdatauv(L, sizeof *img, 0);
+    memset(img, 0, sizeof *img);
+    luaL_setmetatable(L, IMAGE_MT);
+    return img;
+}
+
+static int image_load_l(lua_State *L)
+{
+    char path[4096];
+    lua_host_resolve_path(L, luaL_checkstring(L, 1), path, sizeof path);
+    struct image *img = limage_push(L);
+    struct error err;
+    if (!image_read(path, img, &err))
+        return luaL_error(L, "%s", err.message);
+    return 1;
+}
+
+static int image_new_l(lua_State *L)
+{
+    int w = (int)luaL_checkinteger(L, 1), h = (int)luaL_checkinteger(L, 2);
+    struct image *img = limage_push(L);
+    struct error err;
+    if (!image_create(img, w, h, &err))
+        return luaL_error(L, "%s", err.message);
+    return 1;
+}
+
+static void push_metrics(lua_State *L, const struct image_metrics *m)
+{
+    lua_createtable(L, 0, 7);
+    lua_pushnumber(L, m->rmse);
+    lua_setfield(L, -2, "rmse");
+    lua_pushnumber(L, m->rel_rmse);
+    lua_setfield(L, -2, "rel_rmse");
+    lua_pushnumber(L, m->psnr);
+    lua_setfield(L, -2, "psnr");
+    lua_pushnumber(L, m->ssim);
+    lua_setfield(L, -2, "ssim");
+    lua_pushnumber(L, m->max);
+    lua_setfield(L, -2, "max");
+    lua_pushinteger(L, m->nan);
+    lua_setfield(L, -2, "nan");
+    lua_pushinteger(L, m->pixels);
+    lua_setfield(L, -2, "pixels");
+}
+
+static int image_compare_l(lua_State *L)
+{
+    struct image *a = limage_check(L, 1), *b = limage_check(L, 2);
+    struct image *mask = lua_isnoneornil(L, 3) ? NULL : limage_check(L, 3);
+    struct image_metrics m;
+    struct error err;
+    if (!image_metrics_compute(a, b, mask, &m, &err))
+        return luaL_error(L, "%s", err.message);
+    push_metrics(L, &m);
+    return 1;
+}
+
+static int image_gc(lua_State *L)
+{
+    image_destroy(limage_check(L, 1));
+    return 0;
+}
+
+static int image_save_l(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    const char *rel = luaL_checkstring(L, 2);
+    char path[4096];
+    lua_host_resolve_path(L, rel, path, sizeof path);
+    const struct lua_host_options *o = lua_host_options_of(L);
+    if (o && !o->trusted && !o->write_dir)
+        return luaL_error(L, "image:save('%s'): a sandboxed script may not write files (run with --trusted)", rel);
+    struct error err;
+    if (!image_write(path, img, &err))
+        return luaL_error(L, "%s", err.message);
+    return 0;
+}
+
+static int image_pixel_l(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    lua_Integer x = luaL_checkinteger(L, 2), y = luaL_checkinteger(L, 3);
+    if (x < 0 || y < 0 || x >= img->width || y >= img->height)
+        return luaL_error(L, "pixel (%d, %d) is outside the %dx%d image", (int)x, (int)y, img->width, img->height);
+    const float *p = img->rgba + ((size_t)y * (size_t)img->width + (size_t)x) * 4;
+    for (int c = 0; c < 4; c++)
+        lua_pushnumber(L, p[c]);
+    return 4;
+}
+
+/* Mean and maximum of RGB, count of non-finite values, over a region. */
+static int image_stats_l(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    int x0 = (int)luaL_optinteger(L, 2, 0), y0 = (int)luaL_optinteger(L, 3, 0);
+    int x1 = (int)luaL_optinteger(L, 4, img->width), y1 = (int)luaL_optinteger(L, 5, img->height);
+    if (x0 < 0 || y0 < 0 || x1 > img->width || y1 > img->height || x0 >= x1 || y0 >= y1)
+        return luaL_error(L, "stats: region (%d,%d)-(%d,%d) is not inside the %dx%d image", x0, y0, x1, y1,
+                          img->width, img->height);
+    double sum[3] = {0, 0, 0}, max = 0;
+    long nan = 0, n = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++, n++) {
+            const float *p = img->rgba + ((size_t)y * (size_t)img->width + (size_t)x) * 4;
+            for (int c = 0; c < 3; c++) {
+                if (!isfinite(p[c])) {
+                    nan++;
+                    continue;
+                }
+                sum[c] += p[c];
+                if (p[c] > max)
+                    max = p[c];
+            }
+        }
+    lua_createtable(L, 0, 4);
+    lua_createtable(L, 3, 0);
+    for (int c = 0; c < 3; c++) {
+        lua_pushnumber(L, sum[c] / (double)n);
+        lua_rawseti(L, -2, c + 1);
+    }
+    lua_setfield(L, -2, "mean");
+    lua_pushnumber(L, (sum[0] + sum[1] + sum[2]) / (3.0 * (double)n));
+    lua_setfield(L, -2, "mean_gray");
+    lua_pushnumber(L, max);
+    lua_setfield(L, -2, "max");
+    lua_pushinteger(L, nan);
+    lua_setfield(L, -2, "nan");
+    return 1;
+}
+
+/* A copy with every channel clamped to [0, 1]: what an 8-bit PNG keeps. */
+static int image_clamped_l(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    struct image *out = limage_push(L);
+    struct error err;
+    if (!image_create(out, img->width, img->height, &err))
+        return luaL_error(L, "%s", err.message);
+    size_t n = (size_t)img->width * (size_t)img->height * 4;
+    for (size_t i = 0; i < n; i++) {
+        float v = img->rgba[i];
+        out->rgba[i] = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    }
+    return 1;
+}
+
+static int image_index(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    const char *k = luaL_checkstring(L, 2);
+    if (strcmp(k, "width") == 0)
+        lua_pushinteger(L, img->width);
+    else if (strcmp(k, "height") == 0)
+        lua_pushinteger(L, img->height);
+    else if (strcmp(k, "save") == 0)
+        lua_pushcfunction(L, image_save_l);
+    else if (strcmp(k, "pixel") == 0)
+        lua_pushcfunction(L, image_pixel_l);
+    else if (strcmp(k, "stats") == 0)
+        lua_pushcfunction(L, image_stats_l);
+    else if (strcmp(k, "clamped") == 0)
+        lua_pushcfunction(L, image_clamped_l);
+    else
+        lua_pushnil(L);
+    return 1;
+}
+
+static int image_tostring(lua_State *L)
+{
+    struct image *img = limage_check(L, 1);
+    lua_pushfstring(L, "Image(%dx%d)", img->width, img->height);
+    return 1;
+}
+
+int luaopen_caustica_image(lua_State *L)
+{
+    static const luaL_Reg meta[] = {{"__gc", image_gc}, {"__index", image_index}, {"__tostring", image_tostring},
+                                    {NULL, NULL}};
+    luaL_newmetatable(L, IMAGE_MT);
+    luaL_setfuncs(L, meta, 0);
+    lua_pop(L, 1);
+    static const luaL_Reg funcs[] = {{"load", image_load_l}, {"new", image_new_l}, {"compare", image_compare_l},
+                                     {"render", limage_render}, {NULL, NULL}};
+    luaL_newlib(L, funcs);
+    return 1;
+}

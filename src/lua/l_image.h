@@ -1,0 +1,16 @@
+#ifndef CAUSTICA_L_IMAGE_H
+#define CAUSTICA_L_IMAGE_H
+
+#include <lua.h>
+
+#include "io/image.h"
+
+#define IMAGE_MT "caustica.Image"
+
+struct image *limage_check(lua_State *L, int idx);
+/* Pushes an empty Image userdata (fill it, or it stays 0x0). */
+struct image *limage_push(lua_State *L);
+/* render(script, {set = {...}, size = {w, h}, frame = n}) -> Image (l_render.c) */
+int limage_render(lua_State *L);
+
+#endif

@@ -1,0 +1,411 @@
+#define _GNU_SOURCE
+#include "lua/lua_host.h"
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lauxlib.h>
+#include <lualib.h>
+
+#include "core/fileio.h"
+
+#define HOST_KEY "caustica.host"
+
+struct host_state {
+    struct lua_host_options options;
+    struct lua_params params;
+    bool used[LUA_PARAMS_MAX];
+    char root[4096];
+    char script[4096];
+    char script_dir[4096];
+    char write_dir[4096];
+    char filter[256];
+};
+
+static struct host_state *host_of(lua_State *L)
+{
+    lua_getfield(L, LUA_REGISTRYINDEX, HOST_KEY);
+    struct host_state *h = lua_touserdata(L, -1);
+    lua_pop(L, 1);
+    return h;
+}
+
+bool lua_params_add(struct lua_params *params, const char *assignment, struct error *err)
+{
+    const char *eq = strchr(assignment, '=');
+    if (!eq || eq == assignment)
+        return error_set(err, "--set needs name=value, got '%s'", assignment);
+    size_t klen = (size_t)(eq - assignment);
+    if (klen >= sizeof params->keys[0] || strlen(eq + 1) >= sizeof params->values[0])
+        return error_set(err, "--set '%s' is too long", assignment);
+    int at = params->count;
+    for (int i = 0; i < params->count; i++)
+        if (strlen(params->keys[i]) == klen && strncmp(params->keys[i], assignment, klen) == 0)
+            at = i; /* a later --set of the same name wins */
+    if (at >= LUA_PARAMS_MAX)
+        return error_set(err, "at most %d --set values", LUA_PARAMS_MAX);
+    memcpy(params->keys[at], assignment, klen);
+    params->keys[at][klen] = '\0';
+    snprintf(params->values[at], sizeof params->values[at], "%s", eq + 1);
+    if (at == params->count)
+        params->count++;
+    return true;
+}
+
+/* c.param(name, default): the --set value converted to the default's type. */
+static int host_param(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    const char *name = luaL_checkstring(L, 1);
+    if (lua_isnone(L, 2))
+        return luaL_error(L, "bad argument #2 to 'param' (a default value expected)");
+    for (int i = 0; i < h->params.count; i++) {
+        if (strcmp(h->params.keys[i], name) != 0)
+            continue;
+        h->used[i] = true;
+        const char *v = h->params.values[i];
+        switch (lua_type(L, 2)) {
+        case LUA_TNUMBER: {
+            char *end;
+            double d = strtod(v, &end);
+            if (end == v || *end)
+                return luaL_error(L, "--set %s=%s: a number expected (the default is %s)", name, v, lua_tostring(L, 2));
+            if (lua_isinteger(L, 2) && d == (double)(lua_Integer)d)
+                lua_pushinteger(L, (lua_Integer)d);
+            else
+                lua_pushnumber(L, d);
+            return 1;
+        }
+        case LUA_TBOOLEAN:
+            if (strcmp(v, "true") == 0 || strcmp(v, "1") == 0 || strcmp(v, "yes") == 0)
+                lua_pushboolean(L, 1);
+            else if (strcmp(v, "false") == 0 || strcmp(v, "0") == 0 || strcmp(v, "no") == 0)
+                lua_pushboolean(L, 0);
+            else
+                return luaL_error(L, "--set %s=%s: true or false expected", name, v);
+            return 1;
+        default:
+            lua_pushstring(L, v);
+            return 1;
+        }
+    }
+    lua_pushvalue(L, 2);
+    return 1;
+}
+
+void lua_host_unused_params(lua_State *L, char *out, size_t outlen)
+{
+    struct host_state *h = host_of(L);
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; h && i < h->params.count; i++)
+        if (!h->used[i]) {
+            int w = snprintf(out + used, outlen - used, "%s%s", used ? ", " : "", h->params.keys[i]);
+            if (w > 0 && used + (size_t)w < outlen)
+                used += (size_t)w;
+        }
+}
+
+static int host_script_dir(lua_State *L)
+{
+    lua_pushstring(L, host_of(L)->script_dir);
+    return 1;
+}
+
+/* For the test harness: {update_refs = bool, filter = string|nil}. */
+static int host_test_options(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    lua_createtable(L, 0, 2);
+    lua_pushboolean(L, h->options.update_refs);
+    lua_setfield(L, -2, "update_refs");
+    if (h->options.filter) {
+        lua_pushstring(L, h->options.filter);
+        lua_setfield(L, -2, "filter");
+    }
+    return 1;
+}
+
+static int host_root(lua_State *L)
+{
+    lua_pushstring(L, host_of(L)->root);
+    return 1;
+}
+
+int luaopen_caustica_host(lua_State *L)
+{
+    static const luaL_Reg funcs[] = {{"param", host_param}, {"script_dir", host_script_dir}, {"root", host_root},
+                                     {"test_options", host_test_options}, {NULL, NULL}};
+    luaL_newlib(L, funcs);
+    return 1;
+}
+
+/* ---- sandbox --------------------------------------------------------- */
+
+static int sandbox_denied(lua_State *L)
+{
+    return luaL_error(L, "%s is not available to a sandboxed scene script (run with --trusted to allow it)",
+                      lua_tostring(L, lua_upvalueindex(1)));
+}
+
+static void deny(lua_State *L, const char *lib, const char *name)
+{
+    if (lua_getglobal(L, lib) != LUA_TTABLE) {
+        lua_pop(L, 1);
+        return;
+    }
+    lua_pushfstring(L, "%s.%s", lib, name);
+    lua_pushcclosure(L, sandbox_denied, 1);
+    lua_setfield(L, -2, name);
+    lua_pop(L, 1);
+}
+
+/* Is `path` inside the folder a sandboxed script may write to? */
+static bool may_write(struct host_state *h, const char *path)
+{
+    if (!h->write_dir[0])
+        return false;
+    char dir[4096], real_dir[PATH_MAX], real_allowed[PATH_MAX];
+    path_dirname(path, dir, sizeof dir);
+    if (!realpath(dir, real_dir) || !realpath(h->write_dir, real_allowed))
+        return false;
+    size_t n = strlen(real_allowed);
+    return strncmp(real_dir, real_allowed, n) == 0 && (real_dir[n] == '\0' || real_dir[n] == '/');
+}
+
+/* io.open that reads anywhere and writes only inside the output folder. */
+static int sandbox_io_open(lua_State *L)
+{
+    const char *path = luaL_checkstring(L, 1);
+    const char *mode = luaL_optstring(L, 2, "r");
+    if (strpbrk(mode, "wa+") && !may_write(host_of(L), path))
+        return luaL_error(L, "io.open('%s', '%s'): a sandboxed scene script may write only inside the output folder "
+                             "(run with --trusted to allow it)", path, mode);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* load/loadfile accept text only: a crafted binary chunk can crash Lua. */
+static int sandbox_load(lua_State *L)
+{
+    int n = lua_gettop(L);
+    if (n < 1)
+        return luaL_error(L, "bad argument #1 to 'load' (value expected)");
+    lua_settop(L, 4);
+    lua_pushstring(L, "t");
+    lua_replace(L, 3);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, 4, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+static int sandbox_loadfile(lua_State *L)
+{
+    lua_settop(L, 3);
+    lua_pushstring(L, "t");
+    lua_replace(L, 2);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, 3, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+static void wrap_global(lua_State *L, const char *lib, const char *name, lua_CFunction wrapper)
+{
+    if (lib) {
+        lua_getglobal(L, lib);
+        lua_getfield(L, -1, name);
+        lua_pushcclosure(L, wrapper, 1);
+        lua_setfield(L, -2, name);
+        lua_pop(L, 1);
+    } else {
+        lua_getglobal(L, name);
+        lua_pushcclosure(L, wrapper, 1);
+        lua_setglobal(L, name);
+    }
+}
+
+static void apply_sandbox(lua_State *L)
+{
+    deny(L, "os", "execute");
+    deny(L, "os", "exit");
+    deny(L, "os", "remove");
+    deny(L, "os", "rename");
+    deny(L, "os", "tmpname");
+    deny(L, "io", "popen");
+    deny(L, "io", "output");
+    deny(L, "io", "tmpfile");
+    deny(L, "package", "loadlib");
+    wrap_global(L, "io", "open", sandbox_io_open);
+    wrap_global(L, NULL, "load", sandbox_load);
+    wrap_global(L, NULL, "loadfile", sandbox_loadfile);
+    /* dofile through the wrapped loadfile. */
+    luaL_dostring(L, "local loadfile = loadfile; dofile = function(f) local fn = assert(loadfile(f)); return fn() end");
+    /* No C modules, and no debug library (it reaches past every wrapper). */
+    lua_getglobal(L, "package");
+    lua_pushstring(L, "");
+    lua_setfield(L, -2, "cpath");
+    lua_getfield(L, -1, "searchers");
+    lua_pushnil(L);
+    lua_rawseti(L, -2, 4);
+    lua_pushnil(L);
+    lua_rawseti(L, -2, 3);
+    lua_pop(L, 2);
+    luaL_dostring(L, "local tb = debug.traceback; debug = { traceback = tb }; package.loaded.debug = debug");
+}
+
+/* ---- state ----------------------------------------------------------- */
+
+static int host_state_gc(lua_State *L)
+{
+    (void)L;
+    return 0;
+}
+
+lua_State *lua_host_create(const struct lua_host_options *options, struct error *err)
+{
+    lua_State *L = luaL_newstate();
+    if (!L) {
+        error_set(err, "cannot create a Lua state (out of memory)");
+        return NULL;
+    }
+    luaL_openlibs(L);
+    struct host_state *h = lua_newuserdatauv(L, sizeof *h, 0);
+    memset(h, 0, sizeof *h);
+    h->options = *options;
+    if (options->params)
+        h->params = *options->params;
+    snprintf(h->root, sizeof h->root, "%s", options->root);
+    snprintf(h->script, sizeof h->script, "%s", options->script_path ? options->script_path : "");
+    path_dirname(h->script, h->script_dir, sizeof h->script_dir);
+    snprintf(h->write_dir, sizeof h->write_dir, "%s", options->write_dir ? options->write_dir : "");
+    snprintf(h->filter, sizeof h->filter, "%s", options->filter ? options->filter : "");
+    h->options.filter = options->filter ? h->filter : NULL;
+    h->options.params = &h->params;
+    lua_newtable(L);
+    lua_pushcfunction(L, host_state_gc);
+    lua_setfield(L, -2, "__gc");
+    lua_setmetatable(L, -2);
+    lua_setfield(L, LUA_REGISTRYINDEX, HOST_KEY);
+
+    /* Modules: the C ones preloaded, the Lua ones from <root>/lua. */
+    lua_getglobal(L, "package");
+    lua_pushfstring(L, "%s/lua/?.lua;%s/lua/?/init.lua;%s/?.lua", h->root, h->root, h->script_dir);
+    lua_setfield(L, -2, "path");
+    lua_getfield(L, -1, "preload");
+    lua_pushcfunction(L, luaopen_caustica_scene);
+    lua_setfield(L, -2, "caustica.scene");
+    lua_pushcfunction(L, luaopen_caustica_graph);
+    lua_setfield(L, -2, "caustica.graph");
+    lua_pushcfunction(L, luaopen_caustica_image);
+    lua_setfield(L, -2, "caustica.image");
+    lua_pushcfunction(L, luaopen_caustica_host);
+    lua_setfield(L, -2, "caustica.host");
+    lua_pop(L, 2);
+    if (!options->trusted)
+        apply_sandbox(L);
+    return L;
+}
+
+void lua_host_destroy(lua_State *L)
+{
+    if (L)
+        lua_close(L);
+}
+
+const struct lua_host_options *lua_host_options_of(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    return h ? &h->options : NULL;
+}
+
+struct app *lua_host_app(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    return h ? h->options.app : NULL;
+}
+
+void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen)
+{
+    struct host_state *h = host_of(L);
+    path_join(h ? h->script_dir : ".", rel, out, outlen);
+}
+
+/* Message handler: the error plus the script frames of the traceback. */
+static int message_handler(lua_State *L)
+{
+    const char *msg = lua_tostring(L, 1);
+    if (!msg) {
+        if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+            msg = lua_tostring(L, -1);
+        else
+            msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+    }
+    luaL_traceback(L, L, msg, 1);
+    return 1;
+}
+
+/* Keeps the first line (the message) and the traceback lines that point
+ * into Lua files, dropping C frames; no traceback when it adds nothing. */
+static void format_error(const char *raw, const char *context, struct error *err)
+{
+    char out[ERROR_MESSAGE_MAX];
+    const char *nl = strchr(raw, '\n');
+    size_t first = nl ? (size_t)(nl - raw) : strlen(raw);
+    int used = snprintf(out, sizeof out, "%.*s%s%s", (int)first, raw, context ? " " : "", context ? context : "");
+    int frames = 0;
+    char trace[ERROR_MESSAGE_MAX] = "";
+    size_t tused = 0;
+    const char *line = nl ? nl + 1 : NULL;
+    while (line && *line) {
+        const char *next = strchr(line, '\n');
+        size_t n = next ? (size_t)(next - line) : strlen(line);
+        const char *p = line;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        bool keep = strncmp(p, "[C]", 3) != 0 && strncmp(p, "stack traceback", 15) != 0 && strstr(p, ".lua:") &&
+                    strstr(p, "[C]: in ?") == NULL;
+        if (keep && tused + n + 8 < sizeof trace) {
+            tused += (size_t)snprintf(trace + tused, sizeof trace - tused, "\n  %.*s", (int)(n - (size_t)(p - line)), p);
+            frames++;
+        }
+        line = next ? next + 1 : NULL;
+    }
+    if (frames > 1 && used > 0 && (size_t)used < sizeof out)
+        snprintf(out + used, sizeof out - (size_t)used, "\nstack traceback:%s", trace);
+    error_set(err, "%s", out);
+}
+
+bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err)
+{
+    int base = lua_gettop(L) - nargs;
+    lua_pushcfunction(L, message_handler);
+    lua_insert(L, base);
+    int rc = lua_pcall(L, nargs, nresults, base);
+    lua_remove(L, base);
+    if (rc != LUA_OK) {
+        format_error(lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)", context, err);
+        lua_pop(L, 1);
+        return false;
+    }
+    return true;
+}
+
+bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct error *err)
+{
+    if (!file_exists(path))
+        return error_set(err, "%s: no such file", path);
+    int rc = luaL_loadfilex(L, path, "t");
+    if (rc != LUA_OK) {
+        /* Syntax errors already read "file:line: message". */
+        format_error(lua_tostring(L, -1), NULL, err);
+        lua_pop(L, 1);
+        return false;
+    }
+    return lua_host_call(L, 0, nresults, NULL, err);
+}

@@ -1,0 +1,60 @@
+/* The Lua host: a state per scene script with the caustica modules, the
+ * script's parameters (--set), a sandbox unless --trusted, and errors that
+ * carry "file:line: message" plus a short traceback. */
+#ifndef CAUSTICA_LUA_HOST_H
+#define CAUSTICA_LUA_HOST_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include <lua.h>
+
+#include "core/error.h"
+
+struct pass;
+struct pass_frame;
+struct app;
+
+#define LUA_PARAMS_MAX 64
+
+struct lua_params {
+    int count;
+    char keys[LUA_PARAMS_MAX][64];
+    char values[LUA_PARAMS_MAX][256];
+};
+
+/* Adds "k=v"; false with a message when malformed or too many. */
+bool lua_params_add(struct lua_params *params, const char *assignment, struct error *err);
+
+struct lua_host_options {
+    const char *root;        /* project folder: lua/ and shaders/ */
+    const char *script_path; /* the scene or test script */
+    const struct lua_params *params;
+    bool trusted;            /* no sandbox */
+    const char *write_dir;   /* where a sandboxed script may write (NULL: nowhere) */
+    struct app *app;         /* for rendering from scripts (tests) */
+    bool update_refs;        /* caustica test --update-refs */
+    const char *filter;      /* caustica test --filter */
+};
+
+lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
+void lua_host_destroy(lua_State *L);
+/* Runs a file, leaving `nresults` values on the stack. */
+bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct error *err);
+/* Calls the function at the top of the stack with `nargs` arguments below it. */
+bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err);
+/* `rel` against the running script's folder (absolute paths unchanged). */
+void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen);
+struct app *lua_host_app(lua_State *L);
+const struct lua_host_options *lua_host_options_of(lua_State *L);
+/* Parameters given with --set that the script never asked for. */
+void lua_host_unused_params(lua_State *L, char *out, size_t outlen);
+/* The custom pass: calls its run(ctx) (l_pass_context.c). */
+bool lua_host_run_custom_pass(struct pass *p, struct pass_frame *f, struct error *err);
+
+int luaopen_caustica_scene(lua_State *L);
+int luaopen_caustica_graph(lua_State *L);
+int luaopen_caustica_image(lua_State *L);
+int luaopen_caustica_host(lua_State *L);
+
+#endif

@@ -1,0 +1,27 @@
+/* custom: a pass written in Lua. Its `run(ctx)` function is called each
+ * frame with a context that clears outputs and runs fullscreen shaders
+ * (src/lua/l_pass_context.c translates those calls). */
+#include "graph/pass.h"
+#include "lua/lua_host.h"
+
+bool fullscreen_declare_io(struct pass *p, struct error *err);
+
+static const struct pass_param_desc params[] = {
+    {.name = "run", .type = PASS_PARAM_FUNCTION, .required = true, .help = "function(ctx) called every frame"},
+    {.name = "inputs", .type = PASS_PARAM_INPUT_MAP, .help = "{name = \"pass.output\", ...}"},
+    {.name = "outputs", .type = PASS_PARAM_OUTPUT_MAP, .help = "{name = \"rgba32f\", ...}; default {color = \"rgba32f\"}"},
+};
+
+static bool custom_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    return lua_host_run_custom_pass(p, f, err);
+}
+
+const struct pass_desc custom_pass = {
+    .name = "custom",
+    .summary = "a pass written in Lua: run(ctx) clears outputs and draws fullscreen shaders",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = fullscreen_declare_io,
+    .execute = custom_execute,
+};

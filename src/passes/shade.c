@@ -1,0 +1,156 @@
+/* shade: the scene in linear radiance. Diffuse surfaces get Lambert direct
+ * light (shadowed by the shadow maps given), the uniform ambient and any
+ * caustic irradiance; specular ones (glass, water, mirror) a single-
+ * interface approximation (Fresnel-weighted environment reflection and
+ * refraction) that the refraction passes replace. Also writes the depth,
+ * normal and position buffers later passes read. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+
+#define SHADE_MAX_SHADOWS 4
+
+struct shade_state {
+    struct gl_framebuffer fb;
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+     .help = "shadow map(s) from shadow_map passes, e.g. \"shadow.depth\" or {\"s1.depth\", \"s2.depth\"}"},
+    {.name = "background", .type = PASS_PARAM_INPUT,
+     .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},
+    {.name = "caustics", .type = PASS_PARAM_INPUT,
+     .help = "screen-space caustic irradiance added on diffuse surfaces"},
+};
+
+static bool shade_declare(struct pass *p, struct error *err)
+{
+    const struct pass_value *shadows = pass_value(p, "shadow");
+    if (shadows->list_count > SHADE_MAX_SHADOWS)
+        return error_set(err, "bad argument 'shadow' to 'shade' (at most %d shadow maps, got %d)", SHADE_MAX_SHADOWS,
+                         shadows->list_count);
+    for (int i = 0; i < shadows->list_count; i++) {
+        char slot[32];
+        snprintf(slot, sizeof slot, "shadow%d", i);
+        if (!pass_declare_input(p, slot, shadows->list[i], err))
+            return false;
+    }
+    const char *bg = pass_string(p, "background");
+    if (bg && !pass_declare_input(p, "background", bg, err))
+        return false;
+    const char *caustics = pass_string(p, "caustics");
+    if (caustics && !pass_declare_input(p, "caustics", caustics, err))
+        return false;
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "normal", GL_RGBA16F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "position", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool shade_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct shade_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->fb, err);
+}
+
+static void shade_destroy(struct pass *p)
+{
+    struct shade_state *s = p->state;
+    if (!s)
+        return;
+    gl_framebuffer_destroy(&s->fb);
+    free(s);
+    p->state = NULL;
+}
+
+static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct shade_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct graph_resource *color = pass_frame_output(p, f, "color"), *depth = pass_frame_output(p, f, "depth"),
+                          *normal = pass_frame_output(p, f, "normal"), *position = pass_frame_output(p, f, "position");
+    const struct gl_texture *colors[3] = {&color->texture, &normal->texture, &position->texture};
+    if (!gl_framebuffer_attach(&s->fb, colors, NULL, 3, &depth->texture, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    const float zero[4] = {0, 0, 0, 0};
+    gl.ClearNamedFramebufferfv(s->fb.id, GL_COLOR, 1, zero);
+    gl.ClearNamedFramebufferfv(s->fb.id, GL_COLOR, 2, zero);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+
+    /* Background: the given image, or the environment. */
+    struct graph_resource *bg = pass_frame_input(p, f, "background");
+    struct gl_program *bgprog;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag",
+                        bg ? "#define FROM_TEXTURE 1\n" : "", &bgprog, err))
+        return false;
+    gl.UseProgram(bgprog->id);
+    if (bg)
+        gl.BindTextureUnit(0, bg->texture.id);
+    /* Only the colour attachment: the background has no normal or position. */
+    const GLenum background_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, background_only);
+    gl.DepthMask(GL_FALSE);
+    renderer_draw_fullscreen(r);
+    gl.DepthMask(GL_TRUE);
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
+
+    /* Objects. */
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "shade/shade.vert", "shade/shade.frag", NULL, &prog, err))
+        return false;
+    int nshadow = 0;
+    for (int i = 0; i < SHADE_MAX_SHADOWS; i++) {
+        char slot[32], name[64];
+        snprintf(slot, sizeof slot, "shadow%d", i);
+        struct graph_resource *sh = pass_frame_input(p, f, slot);
+        if (!sh)
+            continue;
+        bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
+        gl.BindTextureUnit((GLuint)(1 + i), cube ? r->dummy_depth.id : sh->texture.id);
+        gl.BindTextureUnit((GLuint)(5 + i), cube ? sh->texture.id : r->dummy_cube.id);
+        int entries = sh->light_index >= 0 ? 1 : 0;
+        for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
+            if (r->light_first[li] == sh->light_index)
+                entries = r->light_entries[li];
+        snprintf(name, sizeof name, "u_shadow_first[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), sh->light_index);
+        snprintf(name, sizeof name, "u_shadow_count[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), entries);
+        snprintf(name, sizeof name, "u_shadow_cube[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), cube ? 1 : 0);
+        snprintf(name, sizeof name, "u_shadow_matrix[%d]", nshadow);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, sh->matrix.m);
+        snprintf(name, sizeof name, "u_shadow_params[%d]", nshadow);
+        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), sh->range, sh->bias,
+                            1.0f / (float)sh->texture.width, 0.0f);
+        nshadow++;
+    }
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);
+    struct graph_resource *caustics = pass_frame_input(p, f, "caustics");
+    gl.BindTextureUnit(9, caustics ? caustics->texture.id : r->dummy_2d.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), caustics ? 1 : 0);
+    gl.Enable(GL_DEPTH_TEST);
+    renderer_draw_objects(r, f->scene, prog, DRAW_ALL);
+    return true;
+}
+
+const struct pass_desc shade_pass = {
+    .name = "shade",
+    .summary = "Lambert + shadows + ambient in linear radiance, with depth, normal and position buffers",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = shade_declare,
+    .create = shade_create,
+    .execute = shade_execute,
+    .destroy = shade_destroy,
+};

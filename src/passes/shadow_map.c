@@ -1,0 +1,203 @@
+/* shadow_map: depth as seen from one light. Directional lights get an
+ * orthographic map fitted to the scene's bounds, spot lights a perspective
+ * one over their cone, point and linear lights a cube map of distances
+ * (a linear light's from its midpoint). The map is reused while neither
+ * the light nor any caster changed. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "scene/scene.h"
+
+struct shadow_state {
+    struct gl_framebuffer fb;
+    struct gl_texture cube_depth; /* depth buffer for the cube faces */
+    bool valid;
+    uint64_t light_version, geometry_version;
+    int width, height;
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light whose shadows to render"},
+    {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 1024, .min = 16, .max = 8192,
+     .help = "width and height of the map in texels"},
+    {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.003, .min = 0, .max = 1,
+     .help = "depth bias in scene units against self-shadowing"},
+};
+
+static bool is_cube(const struct light *l) { return l->kind == LIGHT_POINT || l->kind == LIGHT_LINEAR; }
+
+static bool shadow_declare(struct pass *p, struct error *err)
+{
+    struct light *l = pass_light(p, "light");
+    int size = (int)pass_number(p, "size");
+    if (is_cube(l))
+        return pass_declare_output(p, "depth", GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
+    return pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size, err);
+}
+
+static bool shadow_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct shadow_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    if (!gl_framebuffer_create(&s->fb, err))
+        return false;
+    if (is_cube(pass_light(p, "light"))) {
+        int size = (int)pass_number(p, "size");
+        if (!gl_texture_create(&s->cube_depth, GL_TEXTURE_CUBE_MAP, GL_DEPTH_COMPONENT32F, size, size, 6, err))
+            return false;
+    }
+    return true;
+}
+
+static void shadow_destroy(struct pass *p)
+{
+    struct shadow_state *s = p->state;
+    if (!s)
+        return;
+    gl_framebuffer_destroy(&s->fb);
+    gl_texture_destroy(&s->cube_depth);
+    free(s);
+    p->state = NULL;
+}
+
+static int scene_light_index(const struct scene *scene, const struct light *l)
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i] == l)
+            return i;
+    return -1;
+}
+
+static bool any_animated(const struct scene *scene)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (scene->objects[i]->visible && scene->objects[i]->cast_shadows && object_is_animated_geometry(scene->objects[i]))
+            return true;
+    return false;
+}
+
+static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    struct shadow_state *s = p->state;
+    struct light *l = pass_light(p, "light");
+    /* Hu & Qin §4: in a static scene shadow maps are reused, not redrawn. */
+    if (s->valid && s->light_version == l->version && s->geometry_version == scene_geometry_version(f->scene) &&
+        !any_animated(f->scene) && s->width == f->width && s->height == f->height) {
+        snprintf(why, whylen, "reused: the light and the casters did not change since the last frame");
+        return PASS_REUSE;
+    }
+    return PASS_RUN;
+}
+
+static vec3 light_center(const struct light *l)
+{
+    return l->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(l->position, l->end), 0.5f) : l->position;
+}
+
+static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct shadow_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct light *l = pass_light(p, "light");
+    struct graph_resource *out = f->outputs[0];
+    int size = out->texture.width;
+    int index = scene_light_index(f->scene, l);
+    if (index < 0)
+        return error_set(err, "its light was never added to the scene (use scene:add(light))");
+    out->light_index = index < SCENE_MAX_GPU_LIGHTS ? r->light_first[index] : -1;
+    out->kind = (int)l->kind;
+
+    vec3 lo, hi;
+    scene_bounds(f->scene, &lo, &hi);
+    vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    float radius = 0.5f * vec3_length(vec3_sub(hi, lo)) + 1e-3f;
+    float bias = (float)pass_number(p, "bias");
+
+    struct gl_program *prog;
+    const char *defines = is_cube(l) ? "#define SHADOW_DISTANCE 1\n" : "";
+    if (!gl_program_get(&r->programs, "shadow_map/shadow.vert", "shadow_map/shadow.frag", defines, &prog, err))
+        return false;
+    GLint loc_light_vp = gl_program_uniform(prog, "u_light_view_proj");
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Viewport(0, 0, size, size);
+
+    if (!is_cube(l)) {
+        mat4 view, proj;
+        vec3 dir = vec3_normalize_or(l->direction, vec3_make(0, -1, 0));
+        if (l->kind == LIGHT_DIRECTIONAL) {
+            vec3 eye = vec3_sub(center, vec3_scale(dir, 2.0f * radius));
+            view = mat4_look_at(eye, center, vec3_make(0, 1, 0));
+            proj = mat4_ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
+            out->range = 4.0f * radius;
+        } else {
+            view = mat4_look_at(l->position, vec3_add(l->position, dir), vec3_make(0, 1, 0));
+            float far = vec3_length(vec3_sub(center, l->position)) + radius;
+            float fov = fminf(2.0f * l->angle + 2.0f, 179.0f);
+            proj = mat4_perspective(fov, 1.0f, fmaxf(far * 1e-3f, 1e-3f), fmaxf(far, 1e-2f));
+            out->range = far;
+        }
+        out->matrix = mat4_mul(proj, view);
+        if (!gl_framebuffer_attach(&s->fb, NULL, NULL, 0, &out->texture, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        /* Slope-scaled offset against acne; the constant bias is applied when sampling. */
+        gl.Enable(GL_POLYGON_OFFSET_FILL);
+        gl.PolygonOffset(1.5f, 2.0f);
+        gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, out->matrix.m);
+        renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
+    } else {
+        /* Cube faces in the OpenGL order +X -X +Y -Y +Z -Z with their up vectors. */
+        static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        vec3 pos = light_center(l);
+        float range = vec3_length(vec3_sub(center, pos)) + radius;
+        range = fmaxf(range, 1e-2f);
+        out->range = range;
+        out->matrix = mat4_translate(vec3_scale(pos, -1.0f));
+        mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-4f, 1e-3f), range);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_light_position"), pos.x, pos.y, pos.z);
+        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_range"), range);
+        for (int face = 0; face < 6; face++) {
+            const struct gl_texture *colors[1] = {&out->texture};
+            int layers[1] = {face};
+            if (!gl_framebuffer_attach(&s->fb, colors, layers, 1, &s->cube_depth, face, err))
+                return false;
+            gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
+            const float far_value[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+            gl.ClearNamedFramebufferfv(s->fb.id, GL_COLOR, 0, far_value);
+            gl.Clear(GL_DEPTH_BUFFER_BIT);
+            mat4 view = mat4_look_at(pos, vec3_add(pos, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
+                                     vec3_make(ups[face][0], ups[face][1], ups[face][2]));
+            mat4 vp = mat4_mul(proj, view);
+            gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, vp.m);
+            renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
+        }
+    }
+    out->bias = bias;
+    s->valid = true;
+    s->light_version = l->version;
+    s->geometry_version = scene_geometry_version(f->scene);
+    s->width = f->width;
+    s->height = f->height;
+    return true;
+}
+
+const struct pass_desc shadow_map_pass = {
+    .name = "shadow_map",
+    .summary = "depth from a light: 2D for directional and spot lights, a distance cube map for point and linear lights",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = shadow_declare,
+    .create = shadow_create,
+    .execute = shadow_execute,
+    .needed = shadow_needed,
+    .destroy = shadow_destroy,
+};

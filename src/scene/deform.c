@@ -1,0 +1,81 @@
+/* Morph targets and deformers, evaluated once per frame on the GPU
+ * (shaders/deform/deform.comp) into buffers that every pass draws from and
+ * that the reference renderer reads back: one source of geometry. */
+#include <stdio.h>
+#include <string.h>
+
+#include "graph/renderer.h"
+
+static bool ensure_buffers(struct object *o, struct error *err)
+{
+    size_t n = o->mesh->vertex_count;
+    if (o->buffer_deformed_positions && o->deformed_vertices == n)
+        return true;
+    if (o->buffer_deformed_positions) {
+        GLuint b[2] = {o->buffer_deformed_positions, o->buffer_deformed_normals};
+        gl.DeleteBuffers(2, b);
+    }
+    gl.CreateBuffers(1, &o->buffer_deformed_positions);
+    gl.CreateBuffers(1, &o->buffer_deformed_normals);
+    gl.NamedBufferStorage(o->buffer_deformed_positions, (GLsizeiptr)(n * 3 * sizeof(float)), NULL, 0);
+    gl.NamedBufferStorage(o->buffer_deformed_normals, (GLsizeiptr)(n * 3 * sizeof(float)), NULL, 0);
+    o->deformed_vertices = n;
+    o->vao_mesh_positions = 0; /* rebind the VAO */
+    return gl_check("allocating deformed vertex buffers", err);
+}
+
+bool deform_update(struct renderer *r, struct scene *scene, double time, struct error *err)
+{
+    bool any = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        struct object *o = scene->objects[i];
+        if (!object_is_animated_geometry(o))
+            continue;
+        if (!ensure_buffers(o, err))
+            return false;
+        char defines[8192];
+        const char *origin = NULL;
+        if (o->deform.kind == DEFORM_GLSL) {
+            int n = snprintf(defines, sizeof defines, "#define DEFORM_KIND 2\n%s\n", o->deform.glsl ? o->deform.glsl : "");
+            if (n < 0 || (size_t)n >= sizeof defines)
+                return error_set(err, "%s: the deformer's GLSL is longer than %zu characters", o->deform.origin,
+                                 sizeof defines - 64);
+            origin = o->deform.origin;
+        } else {
+            snprintf(defines, sizeof defines, "#define DEFORM_KIND %d\n", o->deform.kind == DEFORM_WAVE ? 1 : 0);
+        }
+        struct gl_program *prog;
+        if (!gl_program_get_compute(&r->programs, "deform/deform.comp", defines, origin, &prog, err))
+            return false;
+        struct mesh *m = o->mesh;
+        gl.UseProgram(prog->id);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m->buffer_positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m->buffer_normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m->target_count ? m->buffer_target_positions : m->buffer_positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m->target_count ? m->buffer_target_normals : m->buffer_normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, o->buffer_deformed_positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, o->buffer_deformed_normals);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_vertex_count"), (GLint)m->vertex_count);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_target_count"), m->target_count);
+        for (int t = 0; t < SCENE_MAX_MORPH_TARGETS; t++) {
+            char name[32];
+            snprintf(name, sizeof name, "u_weights[%d]", t);
+            gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, name), t < m->target_count ? o->morph_weights[t] : 0.0f);
+        }
+        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_time"), (float)time);
+        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, "u_wave"), o->deform.amplitude, o->deform.frequency,
+                            o->deform.speed, 0.0f);
+        vec3 d = vec3_normalize_or(o->deform.direction, vec3_make(1, 0, 0));
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_wave_direction"), d.x, d.y, d.z);
+        vec3 ext = vec3_sub(m->bounds_max, m->bounds_min);
+        float size = vec3_length(ext);
+        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_step"), 1e-3f * (size > 0 ? size : 1.0f));
+        GLuint groups = (GLuint)((m->vertex_count + 255) / 256);
+        gl.DispatchCompute(groups, 1, 1);
+        any = true;
+    }
+    if (any)
+        gl.MemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.UseProgram(0);
+    return gl_check("morphs and deformers", err);
+}

@@ -1,0 +1,113 @@
+/* Environment cube maps: six PNG faces in a folder (px, nx, py, ny, pz, nz
+ * .png, the OpenGL cube map layout), decoded to linear radiance. The same
+ * data feeds the GPU texture and the CPU lookup the reference uses. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/fileio.h"
+#include "io/image.h"
+#include "scene/scene.h"
+
+static const char *face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+
+struct environment *environment_load(const char *folder, struct error *err)
+{
+    struct environment *env = calloc(1, sizeof *env);
+    if (!env) {
+        error_set(err, "out of memory");
+        return NULL;
+    }
+    snprintf(env->path, sizeof env->path, "%s", folder);
+    for (int f = 0; f < 6; f++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s.png", folder, face_names[f]);
+        struct image img;
+        if (!image_read_png(path, &img, err)) {
+            environment_destroy(env);
+            error_prefix(err, "cube map '%s' needs px/nx/py/ny/pz/nz.png", folder);
+            return NULL;
+        }
+        if (img.width != img.height || (f > 0 && img.width != env->size)) {
+            error_set(err, "%s: cube map faces must be square and of one size (%dx%d)", path, img.width, img.height);
+            image_destroy(&img);
+            environment_destroy(env);
+            return NULL;
+        }
+        env->size = img.width;
+        env->faces[f] = malloc((size_t)img.width * (size_t)img.height * 3 * sizeof(float));
+        if (!env->faces[f]) {
+            image_destroy(&img);
+            environment_destroy(env);
+            error_set(err, "out of memory");
+            return NULL;
+        }
+        for (size_t i = 0; i < (size_t)img.width * (size_t)img.height; i++)
+            for (int c = 0; c < 3; c++)
+                env->faces[f][i * 3 + (size_t)c] = img.rgba[i * 4 + (size_t)c];
+        image_destroy(&img);
+    }
+    return env;
+}
+
+bool environment_upload(struct environment *env, struct error *err)
+{
+    if (env->texture.id)
+        return true;
+    if (!gl_texture_create(&env->texture, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
+        return false;
+    float *rgba = malloc((size_t)env->size * (size_t)env->size * 4 * sizeof(float));
+    if (!rgba)
+        return error_set(err, "out of memory");
+    for (int f = 0; f < 6; f++) {
+        for (size_t i = 0; i < (size_t)env->size * (size_t)env->size; i++) {
+            memcpy(rgba + i * 4, env->faces[f] + i * 3, 3 * sizeof(float));
+            rgba[i * 4 + 3] = 1.0f;
+        }
+        /* Cube map faces are stored with their first row at the top of the
+         * image as OpenGL expects (t grows downward in face space). */
+        gl.TextureSubImage3D(env->texture.id, 0, 0, 0, f, env->size, env->size, 1, GL_RGBA, GL_FLOAT, rgba);
+    }
+    free(rgba);
+    return gl_check("uploading the environment", err);
+}
+
+vec3 environment_lookup(const struct environment *env, vec3 d)
+{
+    /* The OpenGL cube map face selection and (s, t) (spec §8.13). */
+    float ax = fabsf(d.x), ay = fabsf(d.y), az = fabsf(d.z);
+    int face;
+    float ma, sc, tc;
+    if (ax >= ay && ax >= az) {
+        face = d.x >= 0 ? 0 : 1;
+        ma = ax;
+        sc = d.x >= 0 ? -d.z : d.z;
+        tc = -d.y;
+    } else if (ay >= az) {
+        face = d.y >= 0 ? 2 : 3;
+        ma = ay;
+        sc = d.x;
+        tc = d.y >= 0 ? d.z : -d.z;
+    } else {
+        face = d.z >= 0 ? 4 : 5;
+        ma = az;
+        sc = d.z >= 0 ? d.x : -d.x;
+        tc = -d.y;
+    }
+    float s = 0.5f * (math_safe_div(sc, ma, 0.0f) + 1.0f), t = 0.5f * (math_safe_div(tc, ma, 0.0f) + 1.0f);
+    int x = (int)fminf(fmaxf(s * (float)env->size, 0.0f), (float)env->size - 1);
+    int y = (int)fminf(fmaxf(t * (float)env->size, 0.0f), (float)env->size - 1);
+    const float *px = env->faces[face] + ((size_t)y * (size_t)env->size + (size_t)x) * 3;
+    return vec3_make(px[0], px[1], px[2]);
+}
+
+void environment_destroy(struct environment *env)
+{
+    if (!env)
+        return;
+    gl_texture_destroy(&env->texture);
+    for (int f = 0; f < 6; f++)
+        free(env->faces[f]);
+    free(env);
+}

@@ -1,0 +1,241 @@
+/* Meshes: procedural shapes, glTF files, and their GPU buffers. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/gltf.h"
+#include "scene/scene.h"
+
+struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
+                                     uint32_t *indices, size_t index_count, struct error *err)
+{
+    struct mesh *m = calloc(1, sizeof *m);
+    if (!m || !positions || !normals || !indices) {
+        free(m);
+        free(positions);
+        free(normals);
+        free(indices);
+        error_set(err, "%s: out of memory", name);
+        return NULL;
+    }
+    snprintf(m->name, sizeof m->name, "%s", name);
+    m->positions = positions;
+    m->normals = normals;
+    m->indices = indices;
+    m->vertex_count = vertex_count;
+    m->index_count = index_count;
+    mesh_compute_bounds(m);
+    return m;
+}
+
+void mesh_compute_bounds(struct mesh *m)
+{
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        vec3 p = {m->positions[i * 3], m->positions[i * 3 + 1], m->positions[i * 3 + 2]};
+        lo = vec3_min(lo, p);
+        hi = vec3_max(hi, p);
+    }
+    if (m->vertex_count == 0)
+        lo = hi = vec3_make(0, 0, 0);
+    m->bounds_min = lo;
+    m->bounds_max = hi;
+    float extent = 0.0f;
+    size_t n = (size_t)m->target_count * m->vertex_count;
+    for (size_t i = 0; i < n; i++) {
+        const float *d = m->target_positions + i * 3;
+        float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (len > extent)
+            extent = len;
+    }
+    m->morph_extent = extent;
+}
+
+struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
+{
+    if (!(radius > 0.0f) || segments < 3 || segments > 2048) {
+        error_set(err, "sphere: radius must be > 0 and segments in 3..2048 (got %g, %d)", (double)radius, segments);
+        return NULL;
+    }
+    int rings = segments / 2 < 2 ? 2 : segments / 2;
+    size_t nv = (size_t)(rings + 1) * (size_t)(segments + 1);
+    size_t ni = (size_t)rings * (size_t)segments * 6;
+    float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
+    uint32_t *idx = malloc(ni * sizeof(uint32_t));
+    size_t v = 0, k = 0;
+    for (int r = 0; r <= rings && p && n; r++) {
+        float theta = (float)MATH_PI * (float)r / (float)rings;
+        for (int s = 0; s <= segments; s++, v++) {
+            float phi = 2.0f * (float)MATH_PI * (float)s / (float)segments;
+            float x = sinf(theta) * cosf(phi), y = cosf(theta), z = -sinf(theta) * sinf(phi);
+            n[v * 3] = x;
+            n[v * 3 + 1] = y;
+            n[v * 3 + 2] = z;
+            p[v * 3] = radius * x;
+            p[v * 3 + 1] = radius * y;
+            p[v * 3 + 2] = radius * z;
+        }
+    }
+    for (int r = 0; r < rings && idx; r++)
+        for (int s = 0; s < segments; s++) {
+            uint32_t a = (uint32_t)(r * (segments + 1) + s), b = a + (uint32_t)segments + 1;
+            /* counter-clockwise seen from outside */
+            idx[k++] = a; idx[k++] = b; idx[k++] = a + 1;
+            idx[k++] = a + 1; idx[k++] = b; idx[k++] = b + 1;
+        }
+    return mesh_create_from_arrays("sphere", p, n, nv, idx, ni, err);
+}
+
+struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
+{
+    if (!(size > 0.0f) || resolution < 1 || resolution > 4096) {
+        error_set(err, "grid: size must be > 0 and resolution in 1..4096 (got %g, %d)", (double)size, resolution);
+        return NULL;
+    }
+    size_t side = (size_t)resolution + 1;
+    size_t nv = side * side, ni = (size_t)resolution * (size_t)resolution * 6;
+    float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
+    uint32_t *idx = malloc(ni * sizeof(uint32_t));
+    for (size_t j = 0; j < side && p && n; j++)
+        for (size_t i = 0; i < side; i++) {
+            size_t v = j * side + i;
+            p[v * 3] = size * ((float)i / (float)resolution - 0.5f);
+            p[v * 3 + 1] = 0.0f;
+            p[v * 3 + 2] = size * ((float)j / (float)resolution - 0.5f);
+            n[v * 3] = 0.0f;
+            n[v * 3 + 1] = 1.0f;
+            n[v * 3 + 2] = 0.0f;
+        }
+    size_t k = 0;
+    for (size_t j = 0; j < (size_t)resolution && idx; j++)
+        for (size_t i = 0; i < (size_t)resolution; i++) {
+            uint32_t a = (uint32_t)(j * side + i), b = a + (uint32_t)side;
+            /* +Y faces up: counter-clockwise seen from above */
+            idx[k++] = a; idx[k++] = b; idx[k++] = a + 1;
+            idx[k++] = a + 1; idx[k++] = b; idx[k++] = b + 1;
+        }
+    struct mesh *m = mesh_create_from_arrays("grid", p, n, nv, idx, ni, err);
+    return m;
+}
+
+struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err)
+{
+    struct mesh *m = mesh_create_grid(size, subdivisions, err);
+    if (m)
+        snprintf(m->name, sizeof m->name, "plane");
+    return m;
+}
+
+struct mesh *mesh_create_box(vec3 size, struct error *err)
+{
+    if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
+        error_set(err, "box: every side must be > 0");
+        return NULL;
+    }
+    static const float normals[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    float *p = malloc(24 * 3 * sizeof(float)), *n = malloc(24 * 3 * sizeof(float));
+    uint32_t *idx = malloc(36 * sizeof(uint32_t));
+    if (p && n && idx)
+        for (int f = 0; f < 6; f++) {
+            vec3 nn = {normals[f][0], normals[f][1], normals[f][2]};
+            /* two axes spanning the face, ordered so that u x v = n */
+            vec3 u = fabsf(nn.y) > 0.5f ? vec3_make(1, 0, 0) : vec3_make(0, 1, 0);
+            vec3 v = vec3_cross(nn, u);
+            u = vec3_cross(v, nn);
+            static const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+            for (int c = 0; c < 4; c++) {
+                vec3 q = vec3_add(nn, vec3_add(vec3_scale(u, corners[c][0]), vec3_scale(v, corners[c][1])));
+                int vi = f * 4 + c;
+                p[vi * 3] = q.x * size.x * 0.5f;
+                p[vi * 3 + 1] = q.y * size.y * 0.5f;
+                p[vi * 3 + 2] = q.z * size.z * 0.5f;
+                n[vi * 3] = nn.x;
+                n[vi * 3 + 1] = nn.y;
+                n[vi * 3 + 2] = nn.z;
+            }
+            uint32_t b = (uint32_t)f * 4;
+            uint32_t *t = idx + f * 6;
+            t[0] = b; t[1] = b + 1; t[2] = b + 2; t[3] = b; t[4] = b + 2; t[5] = b + 3;
+        }
+    return mesh_create_from_arrays("box", p, n, 24, idx, 36, err);
+}
+
+struct mesh *mesh_load_gltf(const char *path, struct error *err)
+{
+    struct gltf_mesh g;
+    if (!gltf_load(path, &g, err))
+        return NULL;
+    if (g.target_count > SCENE_MAX_MORPH_TARGETS) {
+        error_set(err, "%s: %d morph targets, at most %d are supported", path, g.target_count,
+                  SCENE_MAX_MORPH_TARGETS);
+        gltf_mesh_free(&g);
+        return NULL;
+    }
+    struct mesh *m = calloc(1, sizeof *m);
+    if (!m) {
+        gltf_mesh_free(&g);
+        error_set(err, "%s: out of memory", path);
+        return NULL;
+    }
+    snprintf(m->name, sizeof m->name, "%s", path);
+    m->vertex_count = g.vertex_count;
+    m->index_count = g.index_count;
+    m->positions = g.positions;
+    m->normals = g.normals;
+    m->indices = g.indices;
+    m->target_count = g.target_count;
+    m->target_positions = g.target_positions;
+    m->target_normals = g.target_normals;
+    for (int t = 0; t < g.target_count; t++)
+        m->default_weights[t] = g.weights[t];
+    free(g.weights);
+    if (g.target_names)
+        for (int t = 0; t < g.target_count; t++)
+            free(g.target_names[t]);
+    free(g.target_names);
+    mesh_compute_bounds(m);
+    return m;
+}
+
+static GLuint make_buffer(const void *data, size_t bytes)
+{
+    GLuint b = 0;
+    gl.CreateBuffers(1, &b);
+    gl.NamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, 0);
+    return b;
+}
+
+bool mesh_upload(struct mesh *m, struct error *err)
+{
+    if (m->buffer_positions)
+        return true;
+    size_t vbytes = m->vertex_count * 3 * sizeof(float);
+    m->buffer_positions = make_buffer(m->positions, vbytes);
+    m->buffer_normals = make_buffer(m->normals, vbytes);
+    m->buffer_indices = make_buffer(m->indices, m->index_count * sizeof(uint32_t));
+    if (m->target_count > 0) {
+        m->buffer_target_positions = make_buffer(m->target_positions, vbytes * (size_t)m->target_count);
+        m->buffer_target_normals = make_buffer(m->target_normals, vbytes * (size_t)m->target_count);
+    }
+    if (!gl_check("uploading a mesh", err))
+        return error_prefix(err, "%s", m->name);
+    return true;
+}
+
+void mesh_destroy(struct mesh *m)
+{
+    if (!m)
+        return;
+    if (gl_api_ready()) {
+        GLuint buffers[5] = {m->buffer_positions, m->buffer_normals, m->buffer_indices,
+                             m->buffer_target_positions, m->buffer_target_normals};
+        gl.DeleteBuffers(5, buffers);
+    }
+    free(m->positions);
+    free(m->normals);
+    free(m->indices);
+    free(m->target_positions);
+    free(m->target_normals);
+    free(m);
+}

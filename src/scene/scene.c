@@ -1,0 +1,228 @@
+/* Objects, lights, materials and the scene that borrows them. */
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *material_kind_name(enum material_kind kind)
+{
+    switch (kind) {
+    case MATERIAL_DIFFUSE: return "diffuse";
+    case MATERIAL_GLASS: return "glass";
+    case MATERIAL_MIRROR: return "mirror";
+    case MATERIAL_WATER: return "water";
+    }
+    return "?";
+}
+
+bool material_is_specular(const struct material *m) { return m->kind != MATERIAL_DIFFUSE; }
+
+struct object *object_create(struct mesh *mesh)
+{
+    struct object *obj = calloc(1, sizeof *obj);
+    if (!obj)
+        return NULL;
+    obj->mesh = mesh;
+    obj->material.kind = MATERIAL_DIFFUSE;
+    obj->material.color = vec3_make(0.8f, 0.8f, 0.8f);
+    obj->material.ior = 1.5f;
+    obj->scale = vec3_make(1, 1, 1);
+    obj->rotation = quat_identity();
+    obj->visible = true;
+    obj->cast_shadows = true;
+    obj->deform.direction = vec3_make(1, 0, 0);
+    for (int t = 0; t < SCENE_MAX_MORPH_TARGETS && mesh; t++)
+        obj->morph_weights[t] = mesh->default_weights[t];
+    obj->version = 1;
+    obj->model = mat4_identity();
+    return obj;
+}
+
+void object_destroy(struct object *obj)
+{
+    if (!obj)
+        return;
+    if (gl_api_ready()) {
+        GLuint buffers[2] = {obj->buffer_deformed_positions, obj->buffer_deformed_normals};
+        gl.DeleteBuffers(2, buffers);
+        if (obj->vao)
+            gl.DeleteVertexArrays(1, &obj->vao);
+    }
+    free(obj->deform.glsl);
+    free(obj);
+}
+
+bool object_is_animated_geometry(const struct object *obj)
+{
+    if (obj->deform.kind != DEFORM_NONE)
+        return true;
+    for (int t = 0; t < obj->mesh->target_count; t++)
+        if (obj->morph_weights[t] != 0.0f)
+            return true;
+    return false;
+}
+
+mat4 object_model_matrix(const struct object *obj)
+{
+    return mat4_trs(obj->position, obj->rotation, obj->scale);
+}
+
+void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi)
+{
+    vec3 a = obj->mesh->bounds_min, b = obj->mesh->bounds_max;
+    /* Morphs and deformers move vertices: grow the box by the largest
+     * possible displacement so shadow frusta never clip the object. */
+    float grow = 0.0f;
+    for (int t = 0; t < obj->mesh->target_count; t++)
+        grow += fabsf(obj->morph_weights[t]) * obj->mesh->morph_extent;
+    if (obj->deform.kind == DEFORM_WAVE)
+        grow += fabsf(obj->deform.amplitude);
+    else if (obj->deform.kind == DEFORM_GLSL)
+        grow += 0.5f * vec3_length(vec3_sub(b, a)); /* unknown function: be generous */
+    a = vec3_sub(a, vec3_make(grow, grow, grow));
+    b = vec3_add(b, vec3_make(grow, grow, grow));
+    mat4 m = object_model_matrix(obj);
+    vec3 l = {INFINITY, INFINITY, INFINITY}, h = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < 8; i++) {
+        vec3 c = {(i & 1) ? b.x : a.x, (i & 2) ? b.y : a.y, (i & 4) ? b.z : a.z};
+        vec3 w = mat4_transform_point(m, c);
+        l = vec3_min(l, w);
+        h = vec3_max(h, w);
+    }
+    *lo = l;
+    *hi = h;
+}
+
+struct light *light_create(enum light_kind kind)
+{
+    struct light *l = calloc(1, sizeof *l);
+    if (!l)
+        return NULL;
+    l->kind = kind;
+    l->position = vec3_make(0, 5, 0);
+    l->end = vec3_make(1, 5, 0);
+    l->direction = vec3_make(0, -1, 0);
+    l->intensity = vec3_make(1, 1, 1);
+    l->angle = 30.0f;
+    l->softness = 0.2f;
+    l->samples = 8;
+    l->cast_shadows = true;
+    l->version = 1;
+    return l;
+}
+
+void light_destroy(struct light *light) { free(light); }
+
+const char *light_kind_name(enum light_kind kind)
+{
+    switch (kind) {
+    case LIGHT_POINT: return "point";
+    case LIGHT_DIRECTIONAL: return "directional";
+    case LIGHT_SPOT: return "spot";
+    case LIGHT_LINEAR: return "linear";
+    }
+    return "?";
+}
+
+void scene_init(struct scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    scene->camera.eye = vec3_make(0, 2, 6);
+    scene->camera.target = vec3_make(0, 0.5f, 0);
+    scene->camera.up = vec3_make(0, 1, 0);
+    scene->camera.fov = 45.0f;
+    scene->camera.znear = 0.05f;
+    scene->camera.zfar = 100.0f;
+    scene->camera.version = 1;
+    scene->background = vec3_make(0.05f, 0.05f, 0.06f);
+    scene->version = 1;
+}
+
+void scene_release(struct scene *scene)
+{
+    free(scene->objects);
+    free(scene->lights);
+    scene->objects = NULL;
+    scene->lights = NULL;
+    scene->object_count = scene->light_count = 0;
+}
+
+static bool grow(void **items, int *capacity, int count, size_t elem, struct error *err)
+{
+    if (count < *capacity)
+        return true;
+    int cap = *capacity ? *capacity * 2 : 16;
+    void *p = realloc(*items, (size_t)cap * elem);
+    if (!p)
+        return error_set(err, "out of memory");
+    *items = p;
+    *capacity = cap;
+    return true;
+}
+
+bool scene_object_add(struct scene *scene, struct object *obj, struct error *err)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (scene->objects[i] == obj)
+            return true;
+    if (!grow((void **)&scene->objects, &scene->object_capacity, scene->object_count, sizeof(struct object *), err))
+        return false;
+    obj->id = scene->next_object_id++;
+    scene->objects[scene->object_count++] = obj;
+    scene->version++;
+    return true;
+}
+
+bool scene_light_add(struct scene *scene, struct light *light, struct error *err)
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i] == light)
+            return true;
+    if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count, sizeof(struct light *), err))
+        return false;
+    scene->lights[scene->light_count++] = light;
+    scene->version++;
+    return true;
+}
+
+void scene_object_remove(struct scene *scene, struct object *obj)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (scene->objects[i] == obj) {
+            memmove(scene->objects + i, scene->objects + i + 1,
+                    (size_t)(scene->object_count - i - 1) * sizeof *scene->objects);
+            scene->object_count--;
+            scene->version++;
+            return;
+        }
+}
+
+bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+{
+    vec3 l = {INFINITY, INFINITY, INFINITY}, h = {-INFINITY, -INFINITY, -INFINITY};
+    bool any = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible)
+            continue;
+        vec3 a, b;
+        object_world_bounds(o, &a, &b);
+        l = vec3_min(l, a);
+        h = vec3_max(h, b);
+        any = true;
+    }
+    if (!any)
+        l = h = vec3_make(0, 0, 0);
+    *lo = l;
+    *hi = h;
+    return any;
+}
+
+uint64_t scene_geometry_version(const struct scene *scene)
+{
+    uint64_t v = scene->version * 1000003u;
+    for (int i = 0; i < scene->object_count; i++)
+        v = v * 31u + scene->objects[i]->version;
+    return v;
+}

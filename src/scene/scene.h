@@ -1,0 +1,158 @@
+/* The scene: meshes, objects, materials, lights, camera and environment.
+ * Lua owns meshes, objects and lights (userdata); the scene borrows them.
+ * Every live change bumps a version, which is how the graph knows what it
+ * can reuse from the last frame. */
+#ifndef CAUSTICA_SCENE_H
+#define CAUSTICA_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/vecmath.h"
+#include "gl/gl_api.h"
+#include "gl/gl_texture.h"
+
+#define SCENE_MAX_MORPH_TARGETS 8
+#define SCENE_MAX_GPU_LIGHTS 32
+
+struct mesh {
+    char name[512]; /* the file it came from, or the procedural kind */
+    size_t vertex_count, index_count;
+    float *positions, *normals; /* vertex_count * 3 each */
+    uint32_t *indices;
+    int target_count;
+    float *target_positions, *target_normals; /* target_count * vertex_count * 3 deltas */
+    float default_weights[SCENE_MAX_MORPH_TARGETS];
+    vec3 bounds_min, bounds_max; /* of the base shape */
+    float morph_extent;          /* largest |delta| over the targets, to bound morphs */
+    /* GPU copies, created by mesh_upload (owned). */
+    GLuint buffer_positions, buffer_normals, buffer_indices, buffer_target_positions, buffer_target_normals;
+};
+
+/* Procedural meshes. Each returns a mesh owned by the caller (mesh_destroy). */
+struct mesh *mesh_create_sphere(float radius, int segments, struct error *err);
+struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err);
+struct mesh *mesh_create_box(vec3 size, struct error *err);
+struct mesh *mesh_create_grid(float size, int resolution, struct error *err);
+struct mesh *mesh_load_gltf(const char *path, struct error *err);
+/* Takes ownership of the arrays (malloc'd). */
+struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
+                                     uint32_t *indices, size_t index_count, struct error *err);
+void mesh_compute_bounds(struct mesh *mesh);
+bool mesh_upload(struct mesh *mesh, struct error *err);
+void mesh_destroy(struct mesh *mesh);
+
+enum material_kind { MATERIAL_DIFFUSE, MATERIAL_GLASS, MATERIAL_MIRROR, MATERIAL_WATER };
+
+struct material {
+    enum material_kind kind;
+    vec3 color;      /* diffuse albedo, or the tint of a mirror */
+    float ior;       /* glass, water */
+    vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
+};
+
+const char *material_kind_name(enum material_kind kind);
+bool material_is_specular(const struct material *m);
+
+enum deform_kind { DEFORM_NONE, DEFORM_WAVE, DEFORM_GLSL };
+
+struct deformer {
+    enum deform_kind kind;
+    float amplitude, frequency, speed; /* wave: p.y += a * sin(f * dot(p.xz, dir) - speed * t) */
+    vec3 direction;
+    char *glsl;          /* owned: "vec3 deform(vec3 p, float t) { ... }" */
+    char origin[600];    /* "script.lua:12" where the deformer was made, for error messages */
+};
+
+struct object {
+    int id;
+    struct mesh *mesh; /* borrowed (Lua keeps the mesh alive) */
+    struct material material;
+    vec3 position, scale;
+    quat rotation;
+    bool visible, cast_shadows;
+    float morph_weights[SCENE_MAX_MORPH_TARGETS];
+    struct deformer deform;
+    uint64_t version;
+    /* Per-frame geometry after morphs and deformers (owned GL buffers);
+     * when the object has neither, passes draw the mesh's own buffers. */
+    GLuint buffer_deformed_positions, buffer_deformed_normals;
+    size_t deformed_vertices;
+    GLuint vao;
+    bool vao_uses_deformed;
+    GLuint vao_mesh_positions; /* which buffers the VAO was built for */
+    mat4 model;
+};
+
+struct object *object_create(struct mesh *mesh);
+void object_destroy(struct object *obj);
+/* Morphs or deforms this frame? */
+bool object_is_animated_geometry(const struct object *obj);
+mat4 object_model_matrix(const struct object *obj);
+void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
+
+enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
+
+struct light {
+    enum light_kind kind;
+    vec3 position;  /* point, spot; start of a linear light */
+    vec3 end;       /* linear: end of the segment */
+    vec3 direction; /* directional (direction light travels), spot (axis) */
+    vec3 intensity; /* point/spot/linear: W/sr (all samples together); directional: irradiance */
+    float angle;    /* spot: outer half-angle, degrees */
+    float softness; /* spot: fraction of the cone over which it fades */
+    int samples;    /* linear: number of point lights */
+    bool cast_shadows;
+    uint64_t version;
+};
+
+struct light *light_create(enum light_kind kind);
+void light_destroy(struct light *light);
+const char *light_kind_name(enum light_kind kind);
+
+struct camera {
+    vec3 eye, target, up;
+    float fov, znear, zfar;
+    uint64_t version;
+};
+
+struct environment {
+    char path[512];
+    int size;
+    float *faces[6]; /* owned: linear RGB float, size*size*3 each, +X -X +Y -Y +Z -Z */
+    struct gl_texture texture;
+};
+
+struct environment *environment_load(const char *folder, struct error *err);
+bool environment_upload(struct environment *env, struct error *err);
+/* Radiance the environment sends along `dir`. */
+vec3 environment_lookup(const struct environment *env, vec3 dir);
+void environment_destroy(struct environment *env);
+
+struct scene {
+    struct camera camera;
+    vec3 background;           /* radiance of the background when there is no environment */
+    vec3 ambient;              /* radiance of a uniform ambient sky, unoccluded */
+    struct environment *environment; /* borrowed (Lua owns), may be NULL */
+    struct object **objects;   /* borrowed */
+    int object_count, object_capacity;
+    struct light **lights;     /* borrowed */
+    int light_count, light_capacity;
+    uint64_t version;          /* bumped when objects/lights are added or removed */
+    int next_object_id;
+};
+
+void scene_init(struct scene *scene);
+void scene_release(struct scene *scene);
+bool scene_object_add(struct scene *scene, struct object *obj, struct error *err);
+bool scene_light_add(struct scene *scene, struct light *light, struct error *err);
+void scene_object_remove(struct scene *scene, struct object *obj);
+/* Bounds of every visible object, after its transform (morphs included
+ * conservatively). Returns false for an empty scene. */
+bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Sum of object versions and the scene version: changes when any caster moves. */
+uint64_t scene_geometry_version(const struct scene *scene);
+
+#endif
