@@ -2,6 +2,7 @@
 #include "core/fileio.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,8 +94,14 @@ bool path_check_writable_dir(const char *path, struct error *err)
         return error_set(err, "%s: output folder '%s' does not exist", path, dir);
     if (!S_ISDIR(st.st_mode))
         return error_set(err, "%s: '%s' is not a folder", path, dir);
-    if (access(dir, W_OK) != 0)
-        return error_set(err, "%s: output folder '%s' is not writable", path, dir);
+    /* Try it: permission bits say nothing for root or read-only mounts. */
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/.caustica-probe.%ld", dir, (long)getpid());
+    int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL, 0600);
+    if (fd < 0)
+        return error_set(err, "%s: output folder '%s' is not writable: %s", path, dir, strerror(errno));
+    close(fd);
+    unlink(probe);
     return true;
 }
 

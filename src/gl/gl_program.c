@@ -31,10 +31,15 @@ static bool text_append(struct text *t, const char *s, size_t n)
     return true;
 }
 
-static bool text_printf(struct text *t, const char *fmt, int a, int b)
+/* "#line" for line `line` of file `file`. The file number is folded into
+ * the line number (file * LINE_STRIDE + line) rather than given as GLSL's
+ * source-string number, which drivers do not report reliably (Mesa prints
+ * 0 for some errors). */
+#define LINE_STRIDE 100000
+static bool text_line_directive(struct text *t, int line, int file)
 {
     char buf[64];
-    int n = snprintf(buf, sizeof buf, fmt, a, b);
+    int n = snprintf(buf, sizeof buf, "#line %d\n", file * LINE_STRIDE + line);
     return n > 0 && text_append(t, buf, (size_t)n);
 }
 
@@ -73,7 +78,7 @@ static bool assemble(const char *root, const char *path, const char *defines, st
     bool ok = true;
     int lineno = 0;
     if (depth > 0)
-        ok = text_printf(out, "#line %d %d\n", 1, id);
+        ok = text_line_directive(out, 1, id);
     char *line = data;
     while (ok && line && *line) {
         char *next = strchr(line, '\n');
@@ -102,14 +107,14 @@ static bool assemble(const char *root, const char *path, const char *defines, st
                 break;
             }
             ok = assemble(root, inc, NULL, files, out, depth + 1, err) &&
-                 text_printf(out, "#line %d %d\n", lineno + 1, id);
+                 text_line_directive(out, lineno + 1, id);
         } else {
             ok = text_append(out, line, n) && text_append(out, "\n", 1);
             if (ok && depth == 0 && strncmp(p, "#version", 8) == 0) {
                 if (defines && defines[0])
-                    ok = text_printf(out, "#line %d %d\n", 1, DEFINES_SOURCE) &&
+                    ok = text_line_directive(out, 1, DEFINES_SOURCE) &&
                          text_append(out, defines, strlen(defines)) && text_append(out, "\n", 1);
-                ok = ok && text_printf(out, "#line %d %d\n", lineno + 1, id);
+                ok = ok && text_line_directive(out, lineno + 1, id);
             }
         }
         line = next ? next + 1 : NULL;
@@ -132,6 +137,8 @@ static void rewrite_log(const char *log, const struct source_files *files, struc
         int file = -1, lno = -1, consumed = 0;
         if (sscanf(line, "%d:%d(%*d)%n", &file, &lno, &consumed) == 2 ||
             sscanf(line, "%d(%d)%n", &file, &lno, &consumed) == 2) {
+            file = lno / LINE_STRIDE;
+            lno = lno % LINE_STRIDE;
             const char *rest = line + consumed;
             while (*rest == ' ' || *rest == ':')
                 rest++;
@@ -168,6 +175,8 @@ static bool compile_stage(GLenum type, const char *source, const struct source_f
         char log[4096] = "";
         gl.GetShaderInfoLog(sh, sizeof log, NULL, log);
         gl.DeleteShader(sh);
+        if (getenv("CAUSTICA_RAW_SHADER_LOG"))
+            fprintf(stderr, "%s\n", log);
         rewrite_log(log, files, err);
         return false;
     }

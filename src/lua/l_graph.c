@@ -427,6 +427,21 @@ static int graph_tostring(lua_State *L)
     return 1;
 }
 
+/* c.pass.<unknown>: say which passes exist instead of "attempt to call nil". */
+static int pass_table_index(lua_State *L)
+{
+    const char *name = lua_tostring(L, 2);
+    luaL_Buffer b;
+    luaL_buffinit(L, &b);
+    for (int i = 0; i < pass_registry_count(); i++) {
+        if (i)
+            luaL_addstring(&b, ", ");
+        luaL_addstring(&b, pass_registry_get(i)->name);
+    }
+    luaL_pushresult(&b);
+    return luaL_error(L, "unknown pass '%s' (known passes: %s)", name ? name : "?", lua_tostring(L, -1));
+}
+
 int luaopen_caustica_graph(lua_State *L)
 {
     static const luaL_Reg pass_meta[] = {{"__gc", pass_gc}, {"__index", pass_index}, {"__tostring", pass_tostring},
@@ -449,6 +464,10 @@ int luaopen_caustica_graph(lua_State *L)
         lua_pushcclosure(L, pass_new, 1);
         lua_setfield(L, -2, d->name);
     }
+    lua_newtable(L);
+    lua_pushcfunction(L, pass_table_index);
+    lua_setfield(L, -2, "__index");
+    lua_setmetatable(L, -2);
     lua_setfield(L, -2, "pass");
     return 1;
 }

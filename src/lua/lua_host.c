@@ -282,7 +282,12 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
         h->params = *options->params;
     snprintf(h->root, sizeof h->root, "%s", options->root);
     snprintf(h->script, sizeof h->script, "%s", options->script_path ? options->script_path : "");
-    path_dirname(h->script, h->script_dir, sizeof h->script_dir);
+    /* Absolute, so that paths made from it mean the same to every module
+     * (shader paths that are not absolute are read from shaders/). */
+    char dir[4096];
+    path_dirname(h->script, dir, sizeof dir);
+    if (!realpath(dir, h->script_dir))
+        snprintf(h->script_dir, sizeof h->script_dir, "%s", dir);
     snprintf(h->write_dir, sizeof h->write_dir, "%s", options->write_dir ? options->write_dir : "");
     snprintf(h->filter, sizeof h->filter, "%s", options->filter ? options->filter : "");
     h->options.filter = options->filter ? h->filter : NULL;

@@ -1,1 +1,85 @@
-int main(void){return 0;}
+#define _DEFAULT_SOURCE
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "core/fileio.h"
+#include "io/image.h"
+#include "reference/image_metrics.h"
+
+int main(void)
+{
+    struct error err;
+    struct image a, b;
+    CHECK(image_create(&a, 16, 8, &err));
+    for (int i = 0; i < 16 * 8; i++) {
+        a.rgba[i * 4 + 0] = (float)i / 128.0f;
+        a.rgba[i * 4 + 1] = 0.5f;
+        a.rgba[i * 4 + 2] = 2.5f; /* HDR survives PFM */
+        a.rgba[i * 4 + 3] = 1.0f;
+    }
+    char dir[] = "/tmp/caustica-test-image-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    char pfm[256], png[256];
+    snprintf(pfm, sizeof pfm, "%s/a.pfm", dir);
+    snprintf(png, sizeof png, "%s/a.png", dir);
+
+    /* PFM round trip is exact, rows keep their order */
+    CHECK(image_write_pfm(pfm, &a, &err));
+    CHECK(image_read_pfm(pfm, &b, &err));
+    CHECK(b.width == 16 && b.height == 8);
+    struct image_metrics m;
+    CHECK(image_metrics_compute(&a, &b, NULL, &m, &err));
+    CHECK_NEAR(m.rmse, 0, 0);
+    CHECK_NEAR(b.rgba[(5 * 16 + 3) * 4], (5 * 16 + 3) / 128.0, 1e-7);
+    image_destroy(&b);
+
+    /* PNG: clamped and 8-bit sRGB, so within half a code value after decoding */
+    CHECK(image_write(png, &a, &err));
+    CHECK(image_read_png(png, &b, &err));
+    float worst = 0;
+    for (int i = 0; i < 16 * 8; i++) {
+        float want = a.rgba[i * 4] > 1 ? 1 : a.rgba[i * 4];
+        float got = b.rgba[i * 4];
+        float enc_err = fabsf(image_srgb_encode(got) - image_srgb_encode(want));
+        if (enc_err > worst)
+            worst = enc_err;
+    }
+    CHECK(worst <= 0.5f / 255.0f + 1e-6f);
+    CHECK_NEAR(b.rgba[2], 1.0, 1e-6); /* 2.5 clamps to 1 */
+    image_destroy(&b);
+
+    /* no temporary files are left behind */
+    char tmp[300];
+    path_temporary(png, tmp, sizeof tmp);
+    CHECK(!file_exists(tmp));
+
+    /* metrics: a known difference */
+    CHECK(image_create(&b, 16, 8, &err));
+    memcpy(b.rgba, a.rgba, 16 * 8 * 4 * sizeof(float));
+    b.rgba[0] += 0.3f;
+    CHECK(image_metrics_compute(&a, &b, NULL, &m, &err));
+    CHECK_NEAR(m.max, 0.3, 1e-6);
+    CHECK_NEAR(m.rmse, sqrt(0.09 / (16 * 8 * 3)), 1e-6);
+    b.rgba[5] = NAN;
+    CHECK(image_metrics_compute(&a, &b, NULL, &m, &err));
+    CHECK(m.nan == 1);
+    CHECK(isfinite(m.rmse));
+
+    /* size mismatch and unwritable folders are errors, not crashes */
+    struct image c;
+    CHECK(image_create(&c, 4, 4, &err));
+    CHECK(!image_metrics_compute(&a, &c, NULL, &m, &err));
+    CHECK_CONTAINS(err.message, "differ in size");
+    CHECK(!image_write_pfm("/proc/self/nope.pfm", &a, &err));
+    CHECK_CONTAINS(err.message, "not writable");
+    CHECK(!image_read_pfm("/nonexistent.pfm", &c, &err));
+    CHECK(!image_create(&c, 0, 4, &err));
+
+    image_destroy(&a);
+    image_destroy(&b);
+    unlink(pfm);
+    unlink(png);
+    rmdir(dir);
+    return check_finish("test_image");
+}

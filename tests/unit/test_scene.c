@@ -1,1 +1,88 @@
-int main(void){return 0;}
+#include <stdlib.h>
+
+#include "check.h"
+#include "scene/scene.h"
+
+static bool normals_unit(const struct mesh *m)
+{
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        const float *n = m->normals + i * 3;
+        if (fabsf(sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0f) > 1e-4f)
+            return false;
+    }
+    return true;
+}
+
+/* Every triangle's winding agrees with its vertex normals (counter-clockwise
+ * seen from outside), and no index is out of range. */
+static bool winding_outward(const struct mesh *m)
+{
+    for (size_t t = 0; t < m->index_count; t += 3) {
+        for (int k = 0; k < 3; k++)
+            if (m->indices[t + (size_t)k] >= m->vertex_count)
+                return false;
+        const float *a = m->positions + m->indices[t] * 3, *b = m->positions + m->indices[t + 1] * 3,
+                    *c = m->positions + m->indices[t + 2] * 3;
+        vec3 e1 = vec3_make(b[0] - a[0], b[1] - a[1], b[2] - a[2]), e2 = vec3_make(c[0] - a[0], c[1] - a[1], c[2] - a[2]);
+        vec3 fn = vec3_cross(e1, e2);
+        if (vec3_length(fn) < 1e-6f)
+            continue; /* the sphere's poles have zero-area triangles */
+        const float *n = m->normals + m->indices[t] * 3;
+        if (vec3_dot(fn, vec3_make(n[0], n[1], n[2])) <= 0)
+            return false;
+    }
+    return true;
+}
+
+int main(void)
+{
+    struct error err;
+    struct mesh *s = mesh_create_sphere(0.5f, 16, &err);
+    CHECK(s && normals_unit(s) && winding_outward(s));
+    CHECK_NEAR(s->bounds_max.y, 0.5, 1e-6);
+    CHECK_NEAR(s->bounds_min.x, -0.5, 1e-3);
+    struct mesh *g = mesh_create_grid(2.0f, 4, &err);
+    CHECK(g && g->vertex_count == 25 && g->index_count == 96 && winding_outward(g));
+    struct mesh *b = mesh_create_box(vec3_make(1, 2, 3), &err);
+    CHECK(b && b->vertex_count == 24 && normals_unit(b) && winding_outward(b));
+    CHECK_NEAR(b->bounds_max.z, 1.5, 1e-6);
+    CHECK(mesh_create_sphere(-1.0f, 16, &err) == NULL);
+    CHECK_CONTAINS(err.message, "radius");
+    CHECK(mesh_create_grid(1.0f, 0, &err) == NULL);
+    CHECK(mesh_create_box(vec3_make(0, 1, 1), &err) == NULL);
+
+    /* Objects: bounds follow the transform and grow with a morph. */
+    struct object *o = object_create(b);
+    o->position = vec3_make(10, 0, 0);
+    vec3 lo, hi;
+    object_world_bounds(o, &lo, &hi);
+    CHECK_NEAR(lo.x, 9.5, 1e-5);
+    CHECK_NEAR(hi.x, 10.5, 1e-5);
+    CHECK(!object_is_animated_geometry(o));
+    o->deform.kind = DEFORM_WAVE;
+    o->deform.amplitude = 0.25f;
+    CHECK(object_is_animated_geometry(o));
+    object_world_bounds(o, &lo, &hi);
+    CHECK_NEAR(hi.y, 1.25, 1e-5);
+
+    /* The scene: adding twice is once; versions change when objects do. */
+    struct scene sc;
+    scene_init(&sc);
+    CHECK(scene_object_add(&sc, o, &err));
+    CHECK(scene_object_add(&sc, o, &err));
+    CHECK(sc.object_count == 1);
+    uint64_t v = scene_geometry_version(&sc);
+    o->version++;
+    CHECK(scene_geometry_version(&sc) != v);
+    CHECK(scene_bounds(&sc, &lo, &hi));
+    scene_object_remove(&sc, o);
+    CHECK(sc.object_count == 0);
+    CHECK(!scene_bounds(&sc, &lo, &hi));
+    scene_release(&sc);
+
+    object_destroy(o);
+    mesh_destroy(s);
+    mesh_destroy(g);
+    mesh_destroy(b);
+    return check_finish("test_scene");
+}

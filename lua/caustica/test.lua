@@ -1,0 +1,124 @@
+-- Scripted regression tests (LUA_API.md):
+--   local t = require "caustica.test"
+--   t.case("name", function() ... end)
+-- `caustica test` runs every *_test.lua file, one line per case, and ends
+-- with "N passed, N failed".
+local image = require "caustica.image"
+local host = require "caustica.host"
+
+local t = { _cases = {} }
+local options = host.test_options()
+
+--- Registers a test case.
+function t.case(name, fn)
+  assert(type(name) == "string", "t.case: a name expected")
+  assert(type(fn) == "function", "t.case: a function expected")
+  t._cases[#t._cases + 1] = { name = name, fn = fn }
+end
+
+--- Renders a scene script and returns its linear image (and per-pass ms).
+--- opts: set = {k = v}, size = {w, h}, frame = n
+function t.render(script, opts)
+  return image.render(script, opts)
+end
+
+local function fail(message, level)
+  error(message, (level or 1) + 1)
+end
+
+--- Fails unless `cond` holds.
+function t.expect(cond, message)
+  if not cond then fail(message or "expectation failed", 2) end
+end
+
+--- Fails unless a and b are within the given tolerances:
+--- { rmse = , max = , psnr = (minimum), rel_rmse = , ssim = (minimum) }
+function t.expect_close(a, b, tol)
+  tol = tol or { rmse = 1 / 255 }
+  local m = image.compare(a, b)
+  local problems = {}
+  if m.nan > 0 then problems[#problems + 1] = string.format("%d non-finite values", m.nan) end
+  if tol.rmse and m.rmse > tol.rmse then
+    problems[#problems + 1] = string.format("rmse %.6g > %.6g", m.rmse, tol.rmse) end
+  if tol.rel_rmse and m.rel_rmse > tol.rel_rmse then
+    problems[#problems + 1] = string.format("rel_rmse %.6g > %.6g", m.rel_rmse, tol.rel_rmse) end
+  if tol.max and m.max > tol.max then
+    problems[#problems + 1] = string.format("max %.6g > %.6g", m.max, tol.max) end
+  if tol.psnr and m.psnr < tol.psnr then
+    problems[#problems + 1] = string.format("psnr %.4g < %.4g", m.psnr, tol.psnr) end
+  if tol.ssim and m.ssim < tol.ssim then
+    problems[#problems + 1] = string.format("ssim %.4g < %.4g", m.ssim, tol.ssim) end
+  if #problems > 0 then fail("images differ: " .. table.concat(problems, ", "), 2) end
+  return m
+end
+
+--- Fails unless a and b differ by at least `rmse` (a change must show).
+function t.expect_different(a, b, rmse)
+  local m = image.compare(a, b)
+  if m.rmse < rmse then
+    fail(string.format("images should differ: rmse %.6g < %.6g", m.rmse, rmse), 2)
+  end
+  return m
+end
+
+--- Compares with a golden PNG in tests/refs (clamped to [0, 1] as a PNG
+--- keeps it). `caustica test --update-refs` rewrites the file instead; a
+--- golden image is committed only after a person looked at it.
+function t.expect_golden(img, name, tol)
+  local path = host.root() .. "/tests/refs/" .. name
+  local clamped = img:clamped()
+  if options.update_refs then
+    clamped:save(path)
+    io.write("  updated ", path, "\n")
+    return
+  end
+  local ok, ref = pcall(image.load, path)
+  if not ok then
+    fail("no golden image " .. path .. " (run caustica test --update-refs, then look at it)", 2)
+  end
+  local m = image.compare(clamped, ref)
+  tol = tol or { rmse = 2 / 255 }
+  if m.nan > 0 or (tol.rmse and m.rmse > tol.rmse) or (tol.max and m.max > tol.max) then
+    fail(string.format("differs from %s: rmse %.6g max %.6g nan %d", name, m.rmse, m.max, m.nan), 2)
+  end
+  return m
+end
+
+--- Fails unless fn raises an error whose message contains `text`.
+function t.expect_error(fn, text)
+  local ok, err = pcall(fn)
+  if ok then fail("expected an error" .. (text and (" containing '" .. text .. "'") or ""), 2) end
+  if text and not tostring(err):find(text, 1, true) then
+    fail("error '" .. tostring(err) .. "' does not contain '" .. text .. "'", 2)
+  end
+  return err
+end
+
+--- Fails unless the image has no NaN or Inf anywhere.
+function t.expect_finite(img)
+  local s = img:stats()
+  if s.nan > 0 then fail(string.format("%d non-finite values", s.nan), 2) end
+  return s
+end
+
+-- Runs the registered cases (called by `caustica test`).
+function t._run(file)
+  local passed, failed = 0, 0
+  for _, case in ipairs(t._cases) do
+    if not options.filter or case.name:find(options.filter, 1, true) then
+      local start = os.clock()
+      local ok, err = xpcall(case.fn, function(e) return e end)
+      if ok then
+        passed = passed + 1
+        print(string.format("ok   %s: %s (%.2f s)", file, case.name, os.clock() - start))
+      else
+        failed = failed + 1
+        print(string.format("FAIL %s: %s: %s", file, case.name, tostring(err)))
+      end
+      io.stdout:flush()
+    end
+  end
+  return passed, failed
+end
+
+return t

@@ -1,0 +1,68 @@
+# Bad input gets a clear error naming the file (and line), exit 1, and no
+# partial output; bad command lines exit 2 with usage.
+source "$(dirname "$0")/lib.sh"
+O="$WORK/out.png"
+
+printf 'local c = require "caustica"\nlocal x = = 1\n' >"$WORK/syntax.lua"
+expect_error "Lua syntax error" 1 "syntax.lua:2:" "$O" -- "$CAUSTICA" render "$WORK/syntax.lua" -o "$O"
+
+expect_error "missing .glb" 1 "nope.glb" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=nope.glb -o "$O"
+head -c 3000 scenes/assets/teapot.glb >"$WORK/truncated.glb"
+expect_error "truncated .glb" 1 "truncated.glb" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path="$WORK/truncated.glb" -o "$O"
+expect_error "out-of-range indices" 1 "bad_indices.gltf: mesh '': index 5 is out of range" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/bad_indices.gltf -o "$O"
+expect_error "NaN positions" 1 "nan_positions.gltf" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/nan_positions.gltf -o "$O"
+expect_error "error names the script line" 1 "mesh_file.lua:7:" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/nan_positions.gltf -o "$O"
+
+printf 'local c = require "caustica"\nlocal p = c.pass.nosuch {}\n' >"$WORK/unknown_pass.lua"
+expect_error "unknown pass" 1 "unknown_pass.lua:2: unknown pass 'nosuch' (known passes: shadow_map" "$O" -- \
+  "$CAUSTICA" render "$WORK/unknown_pass.lua" -o "$O"
+printf 'local c = require "caustica"\nlocal l = c.light.point {}\nlocal p = c.pass.shadow_map { light = l, size = "big" }\n' >"$WORK/param.lua"
+expect_error "wrong parameter type" 1 \
+  "param.lua:3: bad argument 'size' to 'shadow_map' (number expected, got string)" "$O" -- \
+  "$CAUSTICA" render "$WORK/param.lua" -o "$O"
+printf 'local c = require "caustica"\nlocal p = c.pass.shade { shadows = "x.depth" }\n' >"$WORK/field.lua"
+expect_error "unknown parameter" 1 "field.lua:2: unknown field 'shadows' in 'shade'" "$O" -- \
+  "$CAUSTICA" render "$WORK/field.lua" -o "$O"
+
+expect_error "shader that fails to compile" 1 "broken.frag:7: error" "$O" -- \
+  "$CAUSTICA" render tests/scenes/passes.lua --set mode=broken_shader -o "$O"
+expect_error "deformer GLSL that fails to compile" 1 "deform.lua:18 (deformer):3: error" "$O" -- \
+  "$CAUSTICA" render tests/scenes/deform.lua --set mode=broken -o "$O"
+expect_error "input made only by a later pass" 1 "move 'shade' before 'invert'" "$O" -- \
+  "$CAUSTICA" render tests/scenes/passes.lua --set mode=late_input -o "$O"
+
+expect_error "unwritable output folder" 1 "is not writable" - -- \
+  "$CAUSTICA" render scenes/demo.lua -o /proc/self/out.png
+expect_error "missing output folder" 1 "does not exist" - -- \
+  "$CAUSTICA" render scenes/demo.lua -o "$WORK/no/such/dir/out.png"
+expect_error "record into an unwritable folder" 1 "/proc/self/frames" - -- \
+  "$CAUSTICA" record scenes/demo.lua -o /proc/self/frames --frames 0:1
+expect_error "missing script" 1 "nosuch.lua: no such file" "$O" -- "$CAUSTICA" render "$WORK/nosuch.lua" -o "$O"
+printf 'return 42\n' >"$WORK/returns_number.lua"
+expect_error "script returning the wrong thing" 1 "must return a table" "$O" -- \
+  "$CAUSTICA" render "$WORK/returns_number.lua" -o "$O"
+
+for try in execute popen write loadlib; do
+  expect_error "sandbox denies $try" 1 "sandbox.lua:" "$O" -- \
+    "$CAUSTICA" render tests/scenes/sandbox.lua --set try=$try -o "$O"
+done
+test ! -e /tmp/caustica-sandbox-escape.txt && pass "sandboxed write left no file" || fail "sandboxed write" "file exists"
+"$CAUSTICA" render tests/scenes/sandbox.lua --set try=execute --trusted -o "$O" 2>"$WORK/err" \
+  && pass "--trusted lifts the sandbox" || fail "--trusted lifts the sandbox" "$(cat "$WORK/err")"
+rm -f "$O"
+
+# Bad command lines: exit 2 with usage.
+expect_error "no verb" 2 "usage" - -- "$CAUSTICA"
+expect_error "unknown verb" 2 "unknown command 'frob'" - -- "$CAUSTICA" frob
+expect_error "unknown option" 2 "unknown option '--frobnicate'" - -- "$CAUSTICA" render scenes/demo.lua --frobnicate
+expect_error "bad --size" 2 "--size needs WxH" - -- "$CAUSTICA" render scenes/demo.lua --size 12
+expect_error "bad --set" 2 "--set needs name=value" - -- "$CAUSTICA" render scenes/demo.lua --set x
+expect_error "bad --backend" 2 "--backend must be osmesa or egl" - -- "$CAUSTICA" render scenes/demo.lua --backend vulkan
+expect_error "bad output extension" 2 "must end in .png or .pfm" - -- "$CAUSTICA" render scenes/demo.lua -o x.jpg
+expect_error "record without -o" 2 "record needs" - -- "$CAUSTICA" record scenes/demo.lua
+finish
