@@ -25,8 +25,9 @@ static bool open_session(struct app *app, struct cli *cli, const char *write_dir
 static void print_timings(const struct session *s)
 {
     const struct graph *g = s->graph;
-    double total = 0;
+    double total = s->app->renderer.deform_ms;
     printf("%-16s %-22s %10s\n", "pass", "kind", "ms");
+    printf("%-16s %-22s %10.3f\n", "(geometry)", "morphs and deformers", s->app->renderer.deform_ms);
     for (int i = 0; i < g->count; i++) {
         const struct graph_entry *e = &g->entries[i];
         if (e->state != GRAPH_PASS_KEPT) {

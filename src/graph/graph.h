@@ -25,7 +25,7 @@ struct graph_entry {
     enum pass_need last_need;
     char last_why[256];
     double last_ms;
-    GLuint query;
+    GLuint queries[2]; /* GL_TIMESTAMP before and after */
 };
 
 struct graph {

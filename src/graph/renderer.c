@@ -15,6 +15,7 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     gl.CreateBuffers(1, &r->frame_ubo);
     gl.NamedBufferStorage(r->frame_ubo, sizeof r->uniforms, NULL, GL_DYNAMIC_STORAGE_BIT);
     gl.CreateVertexArrays(1, &r->empty_vao);
+    gl.GenQueries(2, r->deform_queries);
     r->exposure = 1.0f;
     r->tonemap = TONEMAP_CLAMP;
     /* Dummy textures stand in for optional inputs a script did not give. */
@@ -41,6 +42,8 @@ void renderer_destroy(struct renderer *r)
             gl.DeleteBuffers(1, &r->frame_ubo);
         if (r->empty_vao)
             gl.DeleteVertexArrays(1, &r->empty_vao);
+        if (r->deform_queries[0])
+            gl.DeleteQueries(2, r->deform_queries);
     }
     gl_texture_destroy(&r->dummy_2d);
     gl_texture_destroy(&r->dummy_cube);
@@ -49,6 +52,7 @@ void renderer_destroy(struct renderer *r)
     gl_framebuffer_destroy(&r->present_fb);
     gl_framebuffer_destroy(&r->scratch_fb);
     r->frame_ubo = r->empty_vao = 0;
+    r->deform_queries[0] = r->deform_queries[1] = 0;
 }
 
 static void copy_mat(float *dst, mat4 m) { memcpy(dst, m.m, sizeof m.m); }
@@ -107,8 +111,15 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
             return false;
     if (scene->environment && !environment_upload(scene->environment, err))
         return false;
-    if (!deform_update(r, scene, time, err))
+    gl.QueryCounter(r->deform_queries[0], GL_TIMESTAMP);
+    bool deformed = deform_update(r, scene, time, err);
+    gl.QueryCounter(r->deform_queries[1], GL_TIMESTAMP);
+    if (!deformed)
         return false;
+    GLuint64 t0 = 0, t1 = 0;
+    gl.GetQueryObjectui64v(r->deform_queries[0], GL_QUERY_RESULT, &t0);
+    gl.GetQueryObjectui64v(r->deform_queries[1], GL_QUERY_RESULT, &t1);
+    r->deform_ms = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
     for (int i = 0; i < scene->object_count; i++)
         scene->objects[i]->model = object_model_matrix(scene->objects[i]);
 

@@ -56,6 +56,8 @@ struct renderer {
     struct gl_framebuffer scratch_fb;
     float exposure;
     enum tonemap_operator tonemap;
+    GLuint deform_queries[2];
+    double deform_ms; /* GPU time of the last frame's morphs and deformers */
 };
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err);

@@ -39,3 +39,6 @@ finish() {
   echo "$PASSED passed, $FAILED failed"
   [ "$FAILED" = 0 ]
 }
+
+# metric NAME LINE: one value from `caustica compare`'s key=value line.
+metric() { tr ' ' '\n' <<<"$2" | sed -n "s/^$1=//p"; }

@@ -1,0 +1,19 @@
+# `caustica info` lists every pass as kept or left out, with the reason.
+source "$(dirname "$0")/lib.sh"
+"$CAUSTICA" info tests/scenes/passes.lua --set mode=prune >"$WORK/prune.txt" 2>&1
+grep -q "unused           environment      left out: contributes nothing to the output 'shade.color'" "$WORK/prune.txt" \
+  && pass "unused pass left out with reason" || fail "unused pass" "$(cat "$WORK/prune.txt")"
+grep -q "shade            shade            kept" "$WORK/prune.txt" && pass "output pass kept" || fail "output pass kept" "$(cat "$WORK/prune.txt")"
+# A static light and static casters: the shadow map is reused on frame 1.
+"$CAUSTICA" info tests/scenes/lights.lua >"$WORK/static.txt" 2>&1
+grep -q "shadow .*reused: the light and the casters did not change" "$WORK/static.txt" \
+  && pass "static shadow map reused" || fail "static shadow reuse" "$(cat "$WORK/static.txt")"
+# The demo's light moves: its shadow map runs every frame.
+"$CAUSTICA" info scenes/demo.lua --size 64x64 >"$WORK/demo.txt" 2>&1
+grep -q "shadow .*runs every frame" "$WORK/demo.txt" && pass "moving light: shadow map redrawn" \
+  || fail "moving light" "$(cat "$WORK/demo.txt")"
+grep -q "in  shadow0      <- shadow.depth" "$WORK/demo.txt" && pass "inputs listed" || fail "inputs listed" "$(cat "$WORK/demo.txt")"
+"$CAUSTICA" render scenes/demo.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
+grep -qE "^shade +shade +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
+  && pass "--timings prints per-pass milliseconds" || fail "--timings" "$(cat "$WORK/timings.txt")"
+finish
