@@ -322,7 +322,9 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             if (t < (int)mesh.weights.size())
                 b.weights[(size_t)t] = (float)mesh.weights[(size_t)t];
         }
-        auto names = mesh.extras.Get("targetNames");
+        tinygltf::Value names;
+        if (mesh.extras.IsObject() && mesh.extras.Has("targetNames"))
+            names = mesh.extras.Get("targetNames");
         for (int t = 0; t < nt && names.IsArray() && t < (int)names.ArrayLen(); t++)
             b.target_names[(size_t)t] = names.Get(t).IsString() ? names.Get(t).Get<std::string>() : "";
     }

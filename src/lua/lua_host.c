@@ -382,7 +382,8 @@ static void format_error(const char *raw, const char *context, struct error *err
         line = next ? next + 1 : NULL;
     }
     if (frames > 1 && used > 0 && (size_t)used < sizeof out)
-        snprintf(out + used, sizeof out - (size_t)used, "\nstack traceback:%s", trace);
+        snprintf(out + used, sizeof out - (size_t)used, "\nstack traceback:%.*s",
+                 (int)(sizeof out - (size_t)used - 18), trace);
     error_set(err, "%s", out);
 }
 

@@ -189,6 +189,20 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
     m->target_normals = g.target_normals;
     for (int t = 0; t < g.target_count; t++)
         m->default_weights[t] = g.weights[t];
+    if (g.material.present) {
+        /* KHR_materials_transmission/_ior/_volume onto the glass material:
+         * attenuation colour c at distance d is Beer-Lambert sigma = -ln(c) / d. */
+        m->has_material = true;
+        m->material.color = vec3_make(g.material.base_color[0], g.material.base_color[1], g.material.base_color[2]);
+        m->material.ior = g.material.ior > 0.0f ? g.material.ior : 1.5f;
+        m->material.kind = g.material.glass ? MATERIAL_GLASS : MATERIAL_DIFFUSE;
+        if (g.material.glass && g.material.attenuation_distance > 0.0f) {
+            float *c = g.material.attenuation_color;
+            float d = g.material.attenuation_distance;
+            m->material.absorption = vec3_make(-logf(fmaxf(c[0], 1e-6f)) / d, -logf(fmaxf(c[1], 1e-6f)) / d,
+                                               -logf(fmaxf(c[2], 1e-6f)) / d);
+        }
+    }
     free(g.weights);
     if (g.target_names)
         for (int t = 0; t < g.target_count; t++)

@@ -27,6 +27,8 @@ struct object *object_create(struct mesh *mesh)
     obj->material.kind = MATERIAL_DIFFUSE;
     obj->material.color = vec3_make(0.8f, 0.8f, 0.8f);
     obj->material.ior = 1.5f;
+    if (mesh && mesh->has_material)
+        obj->material = mesh->material;
     obj->scale = vec3_make(1, 1, 1);
     obj->rotation = quat_identity();
     obj->visible = true;

@@ -17,8 +17,19 @@
 #define SCENE_MAX_MORPH_TARGETS 8
 #define SCENE_MAX_GPU_LIGHTS 32
 
+enum material_kind { MATERIAL_DIFFUSE, MATERIAL_GLASS, MATERIAL_MIRROR, MATERIAL_WATER };
+
+struct material {
+    enum material_kind kind;
+    vec3 color;      /* diffuse albedo, or the tint of a mirror */
+    float ior;       /* glass, water */
+    vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
+};
+
 struct mesh {
     char name[512]; /* the file it came from, or the procedural kind */
+    bool has_material;      /* the file gave one: objects use it unless the script picks another */
+    struct material material;
     size_t vertex_count, index_count;
     float *positions, *normals; /* vertex_count * 3 each */
     uint32_t *indices;
@@ -43,15 +54,6 @@ struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *
 void mesh_compute_bounds(struct mesh *mesh);
 bool mesh_upload(struct mesh *mesh, struct error *err);
 void mesh_destroy(struct mesh *mesh);
-
-enum material_kind { MATERIAL_DIFFUSE, MATERIAL_GLASS, MATERIAL_MIRROR, MATERIAL_WATER };
-
-struct material {
-    enum material_kind kind;
-    vec3 color;      /* diffuse albedo, or the tint of a mirror */
-    float ior;       /* glass, water */
-    vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
-};
 
 const char *material_kind_name(enum material_kind kind);
 bool material_is_specular(const struct material *m);

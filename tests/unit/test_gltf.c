@@ -2,6 +2,7 @@
 
 #include "check.h"
 #include "io/gltf.h"
+#include "scene/scene.h"
 
 static char root[1024];
 
@@ -79,6 +80,16 @@ int main(void)
     CHECK_NEAR(m.material.attenuation_distance, 2.0, 1e-6);
     CHECK_NEAR(m.material.attenuation_color[0], 0.5, 1e-6);
     gltf_mesh_free(&m);
+    /* ... and a mesh loaded from it gives objects that glass, with sigma = -ln(c) / d */
+    struct mesh *mesh = mesh_load_gltf(asset("tests/data/glass_material.gltf"), &err);
+    CHECK(mesh && mesh->has_material && mesh->material.kind == MATERIAL_GLASS);
+    struct object *obj = object_create(mesh);
+    CHECK(obj->material.kind == MATERIAL_GLASS);
+    CHECK_NEAR(obj->material.ior, 1.33, 1e-6);
+    CHECK_NEAR(obj->material.absorption.x, -log(0.5) / 2.0, 1e-5);
+    CHECK_NEAR(obj->material.absorption.z, 0.0, 1e-6);
+    object_destroy(obj);
+    mesh_destroy(mesh);
 
     /* bad input: errors that name the file, never a crash */
     CHECK(!gltf_load(asset("tests/data/bad_indices.gltf"), &m, &err));
