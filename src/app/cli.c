@@ -14,6 +14,8 @@ void cli_usage(FILE *out)
           "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
           "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
           "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
+          "  caustica reference SCENE.lua -o OUT.pfm [--frame N] [--size WxH] [--photons N] [--spp N]\n"
+          "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
           "  caustica compare A B [--mask M]\n"
           "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose\n",
           out);
@@ -99,6 +101,32 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
         } else if (strcmp(a, "--filter") == 0) {
             NEED_VALUE();
             cli->filter = next;
+        } else if (strcmp(a, "--photons") == 0) {
+            NEED_VALUE();
+            char *end;
+            cli->photons = strtol(next, &end, 10);
+            if (end == next || *end || cli->photons < 0 || cli->photons > 2000000000L)
+                return usage_error("--photons needs a count >= 0, got '%s'", next);
+        } else if (strcmp(a, "--spp") == 0) {
+            NEED_VALUE();
+            if (!parse_int(next, &cli->spp) || cli->spp < 1)
+                return usage_error("--spp needs a count >= 1, got '%s'", next);
+        } else if (strcmp(a, "--time-budget") == 0 || strcmp(a, "--radius") == 0) {
+            NEED_VALUE();
+            char *end;
+            double v = strtod(next, &end);
+            if (end == next || *end || !(v > 0) || v > 1e9)
+                return usage_error("this option needs a positive number, got '%s'", next);
+            if (a[2] == 't')
+                cli->time_budget = v;
+            else
+                cli->radius = v;
+        } else if (strcmp(a, "--seed") == 0) {
+            NEED_VALUE();
+            char *end;
+            cli->seed = strtoll(next, &end, 10);
+            if (end == next || *end || cli->seed < 0)
+                return usage_error("--seed needs an integer >= 0, got '%s'", next);
         } else if (strcmp(a, "--timings") == 0) {
             cli->timings = true;
         } else if (strcmp(a, "--update-refs") == 0) {

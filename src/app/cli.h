@@ -24,6 +24,11 @@ struct cli {
     const char *mask;
     bool timings, update_refs, no_render;
     const char *filter;
+    long photons;            /* --photons (reference) */
+    int spp;                 /* --spp: SPPM iterations (reference) */
+    double time_budget;      /* --time-budget seconds (reference) */
+    long long seed;          /* --seed (reference) */
+    double radius;           /* --radius: initial SPPM radius (reference) */
     struct lua_params params;
 };
 
@@ -38,5 +43,6 @@ int cmd_run(struct app *app, struct cli *cli);
 int cmd_test(struct app *app, struct cli *cli);
 int cmd_info(struct app *app, struct cli *cli);
 int cmd_compare(struct app *app, struct cli *cli);
+int cmd_reference(struct app *app, struct cli *cli);
 
 #endif

@@ -10,6 +10,7 @@
 #include "core/fileio.h"
 #include "graph/graph.h"
 #include "lua/lua_host.h"
+#include "reference/reference.h"
 
 struct scene *lscene_check(lua_State *L, int idx);
 struct graph *lgraph_check(lua_State *L, int idx);
@@ -261,4 +262,22 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
     bool ok = image_write_png_rgba8(path, bytes, res->texture.width, res->texture.height, err);
     free(bytes);
     return ok;
+}
+
+bool session_reference(struct session *s, int frame, const struct ref_options *options, struct image *out,
+                       struct ref_stats *stats, struct error *err)
+{
+    if (!session_goto_frame(s, frame, err) || !app_ensure_gl(s->app, err))
+        return false;
+    /* The same frame set-up as a GPU frame: deformers run into the buffers
+     * the reference then reads back, lights are expanded the same way. */
+    struct renderer *r = &s->app->renderer;
+    if (!renderer_begin_frame(r, s->scene, s->width, s->height, frame, (double)frame / s->fps, err))
+        return error_prefix(err, "%s", s->script);
+    struct ref_options o = *options;
+    o.width = s->width;
+    o.height = s->height;
+    if (!ref_render(r, s->scene, &o, out, stats, err))
+        return error_prefix(err, "%s", s->script);
+    return true;
 }

@@ -48,6 +48,11 @@ bool session_render(struct session *s, int frame, struct error *err);
 bool session_read_linear(struct session *s, struct image *out, struct error *err);
 /* Tone-mapped 8-bit sRGB, rows top to bottom (caller frees). */
 bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err);
+struct ref_options;
+struct ref_stats;
+/* The ground truth of `frame` at the session's size (src/reference). */
+bool session_reference(struct session *s, int frame, const struct ref_options *options, struct image *out,
+                       struct ref_stats *stats, struct error *err);
 /* Writes the rendered frame: .png tone mapped, .pfm linear. */
 bool session_write_image(struct session *s, const char *path, struct error *err);
 

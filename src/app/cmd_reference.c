@@ -1,0 +1,59 @@
+/* `caustica reference`: the ground truth of one frame as linear PFM. */
+#include <stdio.h>
+
+#include "app/cli.h"
+#include "core/fileio.h"
+#include "reference/reference.h"
+
+int cmd_reference(struct app *app, struct cli *cli)
+{
+    if (cli->npositional != 1 || !cli->output) {
+        fprintf(stderr, "caustica: reference needs one scene script and -o OUT.pfm\n");
+        cli_usage(stderr);
+        return EXIT_USAGE;
+    }
+    if (!image_path_is_pfm(cli->output)) {
+        fprintf(stderr, "caustica: -o %s: the reference is linear radiance, write it as .pfm\n", cli->output);
+        return EXIT_USAGE;
+    }
+    struct error err;
+    if (!path_check_writable_dir(cli->output, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    struct session_options so = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
+                                 .height = cli->height};
+    struct session *s;
+    if (!session_open(app, &so, &s, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    struct ref_options o;
+    ref_options_default(&o);
+    if (cli->photons > 0)
+        o.photons = cli->photons;
+    if (cli->spp > 0)
+        o.iterations = cli->spp;
+    if (cli->time_budget > 0) {
+        o.time_budget = cli->time_budget;
+        if (cli->spp <= 0)
+            o.iterations = 1 << 30; /* until the budget is spent */
+    }
+    if (cli->seed > 0)
+        o.seed = (uint64_t)cli->seed;
+    o.initial_radius = cli->radius;
+    o.progress = true;
+    struct image img = {0};
+    struct ref_stats st;
+    bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write_pfm(cli->output, &img, &err);
+    if (ok)
+        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s -> %s\n", s->script, st.iterations,
+               st.photons, st.caustic_photons, st.seconds, cli->output);
+    image_destroy(&img);
+    session_close(s);
+    if (!ok) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    return 0;
+}

@@ -1,0 +1,235 @@
+#include "reference/ref_scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+dvec3 dv_normalize_or(dvec3 a, dvec3 fallback)
+{
+    double len = sqrt(dv_dot(a, a));
+    if (!(len > 1e-300) || !isfinite(len))
+        return fallback;
+    return dv_scale(a, 1.0 / len);
+}
+
+static dvec3 from_vec3(vec3 v) { return dv(v.x, v.y, v.z); }
+
+/* Object-space vertices of this frame: the deformed GPU buffers when the
+ * object morphs or deforms, else the mesh's own arrays. */
+static bool frame_vertices(const struct object *o, float *pos, float *nrm, struct error *err)
+{
+    size_t bytes = o->mesh->vertex_count * 3 * sizeof(float);
+    if (object_is_animated_geometry(o) && o->buffer_deformed_positions) {
+        gl.GetNamedBufferSubData(o->buffer_deformed_positions, 0, (GLsizeiptr)bytes, pos);
+        gl.GetNamedBufferSubData(o->buffer_deformed_normals, 0, (GLsizeiptr)bytes, nrm);
+        return gl_check("reading back deformed geometry", err);
+    }
+    memcpy(pos, o->mesh->positions, bytes);
+    memcpy(nrm, o->mesh->normals, bytes);
+    return true;
+}
+
+bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err)
+{
+    memset(rs, 0, sizeof *rs);
+    rs->device = rtcNewDevice(NULL);
+    if (!rs->device)
+        return error_set(err, "reference: Embree could not create a device (error %d)", (int)rtcGetDeviceError(NULL));
+    rs->rtc = rtcNewScene(rs->device);
+    rtcSetSceneBuildQuality(rs->rtc, RTC_BUILD_QUALITY_HIGH);
+    /* Robust (watertight) traversal: rays through a shared edge must not slip between triangles. */
+    rtcSetSceneFlags(rs->rtc, RTC_SCENE_FLAG_ROBUST);
+    rs->objects = calloc((size_t)(scene->object_count + 1), sizeof *rs->objects);
+    rs->geometry_object = calloc((size_t)(scene->object_count + 1), sizeof *rs->geometry_object);
+    if (!rs->objects || !rs->geometry_object) {
+        ref_scene_release(rs);
+        return error_set(err, "reference: out of memory");
+    }
+    dvec3 lo = dv(INFINITY, INFINITY, INFINITY), hi = dv(-INFINITY, -INFINITY, -INFINITY);
+    dvec3 slo = lo, shi = hi;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible || o->mesh->index_count == 0)
+            continue;
+        struct ref_object *ro = &rs->objects[rs->object_count];
+        size_t n = o->mesh->vertex_count;
+        ro->positions = malloc((n * 3 + 4) * sizeof(float)); /* Embree reads 16 bytes past a vertex */
+        ro->normals = malloc((n * 3 + 4) * sizeof(float));
+        if (!ro->positions || !ro->normals) {
+            free(ro->positions);
+            free(ro->normals);
+            ref_scene_release(rs);
+            return error_set(err, "reference: out of memory for %zu vertices", n);
+        }
+        if (!frame_vertices(o, ro->positions, ro->normals, err)) {
+            free(ro->positions);
+            free(ro->normals);
+            ref_scene_release(rs);
+            return false;
+        }
+        mat4 inv, nm;
+        mat4_inverse(o->model, &inv);
+        nm = mat4_transpose(inv);
+        for (size_t v = 0; v < n; v++) {
+            float *p = ro->positions + v * 3, *q = ro->normals + v * 3;
+            vec3 w = mat4_transform_point(o->model, vec3_make(p[0], p[1], p[2]));
+            vec3 wn = vec3_normalize_or(mat4_transform_dir(nm, vec3_make(q[0], q[1], q[2])), vec3_make(0, 1, 0));
+            if (!math_finite3(w))
+                w = vec3_make(0, 0, 0); /* a deformer gone wrong: the GPU collapses it too */
+            p[0] = w.x; p[1] = w.y; p[2] = w.z;
+            q[0] = wn.x; q[1] = wn.y; q[2] = wn.z;
+            dvec3 dw = from_vec3(w);
+            lo = dv(fmin(lo.x, dw.x), fmin(lo.y, dw.y), fmin(lo.z, dw.z));
+            hi = dv(fmax(hi.x, dw.x), fmax(hi.y, dw.y), fmax(hi.z, dw.z));
+            if (material_is_specular(&o->material)) {
+                slo = dv(fmin(slo.x, dw.x), fmin(slo.y, dw.y), fmin(slo.z, dw.z));
+                shi = dv(fmax(shi.x, dw.x), fmax(shi.y, dw.y), fmax(shi.z, dw.z));
+            }
+        }
+        ro->indices = o->mesh->indices;
+        ro->vertex_count = n;
+        ro->triangle_count = o->mesh->index_count / 3;
+        ro->material = o->material;
+        RTCGeometry geom = rtcNewGeometry(rs->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, ro->positions, 0,
+                                   3 * sizeof(float), n);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0,
+                                   3 * sizeof(uint32_t), ro->triangle_count);
+        rtcCommitGeometry(geom);
+        unsigned id = rtcAttachGeometry(rs->rtc, geom);
+        rtcReleaseGeometry(geom);
+        rs->geometry_object[id] = (unsigned)rs->object_count;
+        rs->geometry_count = (int)id + 1;
+        rs->object_count++;
+    }
+    rtcCommitScene(rs->rtc);
+    if (rtcGetDeviceError(rs->device) != RTC_ERROR_NONE) {
+        ref_scene_release(rs);
+        return error_set(err, "reference: Embree failed to build the scene");
+    }
+    if (rs->object_count == 0)
+        lo = hi = dv(0, 0, 0);
+    rs->bounds_lo = lo;
+    rs->bounds_hi = hi;
+    double extent = sqrt(dv_dot(dv_sub(hi, lo), dv_sub(hi, lo)));
+    rs->epsilon = fmax(extent, 1e-3) * 2e-5;
+    rs->has_specular_bounds = slo.x <= shi.x;
+    if (rs->has_specular_bounds) {
+        rs->specular_center = dv_scale(dv_add(slo, shi), 0.5);
+        rs->specular_radius = 0.5 * sqrt(dv_dot(dv_sub(shi, slo), dv_sub(shi, slo))) * 1.001 + rs->epsilon;
+    }
+    /* Lights exactly as the shaders see them (linear lights already split). */
+    rs->light_count = r->uniforms.counts[0];
+    for (int i = 0; i < rs->light_count; i++) {
+        const struct renderer_gpu_light *g = &r->uniforms.lights[i];
+        struct ref_light *l = &rs->lights[i];
+        l->kind = (int)lrintf(g->position[3]);
+        l->position = dv(g->position[0], g->position[1], g->position[2]);
+        l->direction = dv_normalize_or(dv(g->direction[0], g->direction[1], g->direction[2]), dv(0, -1, 0));
+        l->intensity = dv(g->intensity[0], g->intensity[1], g->intensity[2]);
+        l->cos_outer = g->direction[3];
+        l->cos_inner = g->intensity[3];
+    }
+    mat4 vp = mat4_mul(r->proj, r->view);
+    mat4_inverse(vp, &rs->inv_view_proj);
+    rs->eye = from_vec3(scene->camera.eye);
+    rs->environment = scene->environment;
+    rs->background = from_vec3(scene->background);
+    rs->ambient = from_vec3(scene->ambient);
+    return true;
+}
+
+void ref_scene_release(struct ref_scene *rs)
+{
+    for (int i = 0; i < rs->object_count; i++) {
+        free(rs->objects[i].positions);
+        free(rs->objects[i].normals);
+    }
+    free(rs->objects);
+    free(rs->geometry_object);
+    if (rs->rtc)
+        rtcReleaseScene(rs->rtc);
+    if (rs->device)
+        rtcReleaseDevice(rs->device);
+    memset(rs, 0, sizeof *rs);
+}
+
+bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = (float)origin.x;
+    rh.ray.org_y = (float)origin.y;
+    rh.ray.org_z = (float)origin.z;
+    rh.ray.dir_x = (float)dir.x;
+    rh.ray.dir_y = (float)dir.y;
+    rh.ray.dir_z = (float)dir.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = (float)fmin(tmax, 3e38);
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rs->rtc, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return false;
+    const struct ref_object *o = &rs->objects[rs->geometry_object[rh.hit.geomID]];
+    const uint32_t *tri = o->indices + (size_t)rh.hit.primID * 3;
+    const float *p0 = o->positions + tri[0] * 3, *p1 = o->positions + tri[1] * 3, *p2 = o->positions + tri[2] * 3;
+    dvec3 a = dv(p0[0], p0[1], p0[2]), b = dv(p1[0], p1[1], p1[2]), c = dv(p2[0], p2[1], p2[2]);
+    double u = rh.hit.u, v = rh.hit.v, w = 1.0 - u - v;
+    hit->t = rh.ray.tfar;
+    hit->object = (int)rs->geometry_object[rh.hit.geomID];
+    hit->primitive = rh.hit.primID;
+    /* The hit point from the barycentrics is more precise than o + t d. */
+    hit->position = dv_add(dv_add(dv_scale(a, w), dv_scale(b, u)), dv_scale(c, v));
+    dvec3 ng = dv_cross(dv_sub(b, a), dv_sub(c, a));
+    hit->geometric_normal = dv_normalize_or(ng, dv_scale(dir, -1.0));
+    const float *n0 = o->normals + tri[0] * 3, *n1 = o->normals + tri[1] * 3, *n2 = o->normals + tri[2] * 3;
+    dvec3 ns = dv(w * n0[0] + u * n1[0] + v * n2[0], w * n0[1] + u * n1[1] + v * n2[1], w * n0[2] + u * n1[2] + v * n2[2]);
+    ns = dv_normalize_or(ns, hit->geometric_normal);
+    if (dv_dot(ns, hit->geometric_normal) <= 0.0)
+        ns = hit->geometric_normal; /* an interpolated normal that flipped: trust the triangle */
+    hit->shading_normal = ns;
+    return true;
+}
+
+bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRay ray;
+    memset(&ray, 0, sizeof ray);
+    ray.org_x = (float)origin.x;
+    ray.org_y = (float)origin.y;
+    ray.org_z = (float)origin.z;
+    ray.dir_x = (float)dir.x;
+    ray.dir_y = (float)dir.y;
+    ray.dir_z = (float)dir.z;
+    ray.tnear = 0.0f;
+    ray.tfar = (float)fmin(tmax, 3e38);
+    ray.mask = 0xffffffffu;
+    rtcOccluded1(rs->rtc, &ctx, &ray);
+    return ray.tfar < 0.0f;
+}
+
+dvec3 ref_scene_environment(const struct ref_scene *rs, dvec3 dir)
+{
+    if (!rs->environment)
+        return rs->background;
+    vec3 c = environment_lookup(rs->environment, vec3_make((float)dir.x, (float)dir.y, (float)dir.z));
+    return dv(c.x, c.y, c.z);
+}
+
+void ref_scene_camera_ray(const struct ref_scene *rs, double px, double py, int width, int height, dvec3 *origin,
+                          dvec3 *dir)
+{
+    /* NDC of the image point (rows top to bottom), unprojected at the near
+     * and far planes: the same rays the rasterizer samples at pixel centres. */
+    double x = 2.0 * px / width - 1.0, y = 1.0 - 2.0 * py / height;
+    vec3 a = mat4_transform_point(rs->inv_view_proj, vec3_make((float)x, (float)y, -1.0f));
+    vec3 b = mat4_transform_point(rs->inv_view_proj, vec3_make((float)x, (float)y, 1.0f));
+    *origin = dv(a.x, a.y, a.z); /* from the near plane, as the rasterizer clips */
+    *dir = dv_normalize_or(dv(b.x - a.x, b.y - a.y, b.z - a.z), dv(0, 0, -1));
+}

@@ -1,0 +1,83 @@
+/* The reference renderer's copy of one frame: world-space triangles after
+ * morphs and deformers (read back from the GPU buffers every pass draws),
+ * the same camera, lights (the renderer's expanded light list), materials
+ * and environment, in an Embree scene. */
+#ifndef CAUSTICA_REF_SCENE_H
+#define CAUSTICA_REF_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <embree3/rtcore.h>
+
+#include "core/error.h"
+#include "graph/renderer.h"
+#include "scene/scene.h"
+
+typedef struct { double x, y, z; } dvec3;
+
+static inline dvec3 dv(double x, double y, double z) { return (dvec3){x, y, z}; }
+static inline dvec3 dv_add(dvec3 a, dvec3 b) { return dv(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline dvec3 dv_sub(dvec3 a, dvec3 b) { return dv(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline dvec3 dv_scale(dvec3 a, double s) { return dv(a.x * s, a.y * s, a.z * s); }
+static inline dvec3 dv_mul(dvec3 a, dvec3 b) { return dv(a.x * b.x, a.y * b.y, a.z * b.z); }
+static inline double dv_dot(dvec3 a, dvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline dvec3 dv_cross(dvec3 a, dvec3 b)
+{
+    return dv(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+dvec3 dv_normalize_or(dvec3 a, dvec3 fallback);
+
+struct ref_object {
+    float *positions; /* world space, vertex_count * 3 (+ padding for Embree), owned */
+    float *normals;   /* world space, owned */
+    uint32_t *indices; /* borrowed from the mesh */
+    size_t vertex_count, triangle_count;
+    struct material material;
+};
+
+struct ref_light {
+    int kind;        /* 0 point, 1 directional, 2 spot (as in the frame uniforms) */
+    dvec3 position, direction, intensity;
+    double cos_outer, cos_inner;
+};
+
+struct ref_scene {
+    RTCDevice device;
+    RTCScene rtc;
+    struct ref_object *objects;
+    int object_count;
+    unsigned *geometry_object; /* Embree geometry id -> object index */
+    int geometry_count;
+    struct ref_light lights[SCENE_MAX_GPU_LIGHTS];
+    int light_count;
+    mat4 inv_view_proj;
+    dvec3 eye;
+    const struct environment *environment; /* borrowed */
+    dvec3 background, ambient;
+    dvec3 bounds_lo, bounds_hi;
+    double epsilon; /* ray offset, from the scene size */
+    bool has_specular_bounds;
+    dvec3 specular_center; /* bounding sphere of the specular objects */
+    double specular_radius;
+};
+
+struct ref_hit {
+    double t;
+    int object;
+    unsigned primitive;
+    dvec3 position;
+    dvec3 geometric_normal; /* unit, outward (counter-clockwise winding) */
+    dvec3 shading_normal;   /* unit, on the same side as the geometric normal */
+};
+
+bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err);
+void ref_scene_release(struct ref_scene *rs);
+bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit);
+bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);
+dvec3 ref_scene_environment(const struct ref_scene *rs, dvec3 dir);
+/* The primary ray through image point (px, py) (pixels, top-left origin). */
+void ref_scene_camera_ray(const struct ref_scene *rs, double px, double py, int width, int height, dvec3 *origin,
+                          dvec3 *dir);
+
+#endif

@@ -1,0 +1,634 @@
+/* The reference estimator: eye paths traced exactly through specular
+ * chains (Fresnel, Snell, total internal reflection, Beer-Lambert), direct
+ * light by shadow rays at the first diffuse vertex, and caustics
+ * (light -> specular+ -> diffuse) by stochastic progressive photon mapping
+ * (Hachisuka & Jensen, SIGGRAPH Asia 2009): each iteration traces one eye
+ * path per pixel to a visible point and a batch of photons, and shrinks
+ * every pixel's gather radius by R' = R sqrt((N + a M) / (N + M)) with
+ * a = 2/3, so bias and variance both go to zero as iterations grow
+ * (docs/REFERENCE.md). The transport is the one caustica's scenes define:
+ * lights are the emitters, the environment is seen directly and through
+ * specular chains, diffuse surfaces get direct light, caustics and the
+ * scene's ambient term, and there is no diffuse interreflection. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/log.h"
+#include "core/vecmath.h"
+#include "reference/ref_rng.h"
+#include "reference/ref_scene.h"
+#include "reference/reference.h"
+
+#define MAX_DEPTH 32       /* specular bounces: every loop has a cap */
+#define MAX_MEDIA 8
+#define SPPM_ALPHA (2.0 / 3.0)
+#define PHOTON_CHUNKS 64
+#define RADIUS_PIXELS 2.0  /* initial gather radius, in pixel footprints */   /* fixed, so the result does not depend on the thread count */
+
+void ref_options_default(struct ref_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->width = o->height = 256;
+    o->photons = 200000;
+    o->iterations = 16;
+    o->seed = 1;
+}
+
+/* ---- optics ------------------------------------------------------------ */
+
+/* Exact unpolarised Fresnel reflectance; eta = n_incident / n_transmitted.
+ * 1 under total internal reflection, 0 for matched indices. */
+static double fresnel(double cos_i, double eta)
+{
+    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
+    double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0)
+        return 1.0;
+    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
+    double rs = (eta * cos_i - cos_t) / fmax(eta * cos_i + cos_t, 1e-300);
+    double rp = (cos_i - eta * cos_t) / fmax(cos_i + eta * cos_t, 1e-300);
+    return fmin(fmax(0.5 * (rs * rs + rp * rp), 0.0), 1.0);
+}
+
+static dvec3 reflect(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n, 2.0 * dv_dot(d, n))); }
+
+/* Snell refraction of unit d about unit n facing against d; false under TIR. */
+static bool refract(dvec3 d, dvec3 n, double eta, dvec3 *t)
+{
+    double cos_i = -dv_dot(d, n);
+    double sin2_t = eta * eta * fmax(0.0, 1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0)
+        return false;
+    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
+    *t = dv_normalize_or(dv_add(dv_scale(d, eta), dv_scale(n, eta * cos_i - cos_t)), d);
+    return true;
+}
+
+static bool is_dielectric(const struct material *m) { return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER; }
+
+/* The media a path is inside: a small stack of object indices. */
+struct media {
+    int objects[MAX_MEDIA];
+    int count;
+};
+
+static dvec3 medium_sigma(const struct ref_scene *rs, const struct media *m)
+{
+    if (m->count == 0)
+        return dv(0, 0, 0);
+    vec3 a = rs->objects[m->objects[m->count - 1]].material.absorption;
+    return dv(a.x, a.y, a.z);
+}
+
+static void media_toggle(struct media *m, int object, bool entering)
+{
+    if (entering) {
+        if (m->count < MAX_MEDIA)
+            m->objects[m->count++] = object;
+        return;
+    }
+    for (int i = m->count - 1; i >= 0; i--)
+        if (m->objects[i] == object) {
+            memmove(m->objects + i, m->objects + i + 1, (size_t)(m->count - i - 1) * sizeof m->objects[0]);
+            m->count--;
+            return;
+        }
+}
+
+/* Beer-Lambert over distance t in the current medium. */
+static dvec3 attenuate(dvec3 beta, dvec3 sigma, double t)
+{
+    return dv(beta.x * exp(-sigma.x * t), beta.y * exp(-sigma.y * t), beta.z * exp(-sigma.z * t));
+}
+
+/* Which dielectrics contain point p: walk a ray upwards and note, for each
+ * object, whether its first crossing leaves it. */
+static void media_at(const struct ref_scene *rs, dvec3 p, struct media *m)
+{
+    m->count = 0;
+    int seen[64];
+    int nseen = 0;
+    dvec3 dir = dv(0.0001, 1.0, 0.0002);
+    dir = dv_normalize_or(dir, dv(0, 1, 0));
+    dvec3 o = p;
+    for (int step = 0; step < 64; step++) {
+        struct ref_hit h;
+        if (!ref_scene_intersect(rs, o, dir, INFINITY, &h))
+            break;
+        bool known = false;
+        for (int i = 0; i < nseen; i++)
+            known = known || seen[i] == h.object;
+        if (!known && nseen < 64) {
+            seen[nseen++] = h.object;
+            if (is_dielectric(&rs->objects[h.object].material) && dv_dot(dir, h.geometric_normal) > 0.0)
+                media_toggle(m, h.object, true);
+        }
+        o = dv_add(h.position, dv_scale(dir, rs->epsilon * 4));
+    }
+}
+
+/* One step through a specular surface: picks reflection or refraction by
+ * Fresnel (the weight cancels), updates the media, returns the new
+ * direction and origin. */
+static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, struct media *media, dvec3 *dir,
+                          dvec3 *origin, dvec3 *beta, struct ref_rng *rng)
+{
+    const struct material *m = &rs->objects[h->object].material;
+    dvec3 ng = h->geometric_normal, n = h->shading_normal;
+    bool entering = dv_dot(*dir, ng) < 0.0;
+    dvec3 nn = entering ? n : dv_scale(n, -1.0);
+    dvec3 ngo = entering ? ng : dv_scale(ng, -1.0);
+    if (m->kind == MATERIAL_MIRROR) {
+        *dir = dv_normalize_or(reflect(*dir, nn), reflect(*dir, ngo));
+        *beta = dv_mul(*beta, dv(m->color.x, m->color.y, m->color.z));
+        *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
+        return;
+    }
+    double eta = entering ? 1.0 / m->ior : m->ior;
+    double cos_i = -dv_dot(*dir, nn);
+    double f = fresnel(cos_i, eta);
+    dvec3 t;
+    bool can_refract = refract(*dir, nn, eta, &t);
+    if (!can_refract || ref_rng_uniform(rng) < f) {
+        *dir = dv_normalize_or(reflect(*dir, nn), reflect(*dir, ngo));
+        *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
+    } else {
+        *dir = t;
+        *origin = dv_sub(h->position, dv_scale(ngo, rs->epsilon));
+        media_toggle(media, h->object, entering);
+    }
+}
+
+/* ---- per-pixel state ---------------------------------------------------- */
+
+struct visible_point {
+    bool valid;
+    dvec3 position, normal; /* normal faces the eye */
+    dvec3 weight;           /* path throughput x albedo / pi */
+};
+
+struct pixel {
+    dvec3 direct;           /* sum over iterations of what the eye path gathered */
+    dvec3 tau;              /* SPPM flux */
+    double radius, n;
+    struct visible_point vp;
+    dvec3 phi;              /* this iteration's photons */
+    long m;
+};
+
+/* Direct light at a diffuse point with normal n (facing the viewer). */
+static dvec3 direct_light(const struct ref_scene *rs, dvec3 p, dvec3 n)
+{
+    dvec3 e = dv(0, 0, 0);
+    dvec3 origin = dv_add(p, dv_scale(n, rs->epsilon));
+    for (int i = 0; i < rs->light_count; i++) {
+        const struct ref_light *l = &rs->lights[i];
+        if (l->kind == 1) {
+            dvec3 wi = dv_scale(l->direction, -1.0);
+            double c = dv_dot(n, wi);
+            if (c > 0.0 && !ref_scene_occluded(rs, origin, wi, INFINITY))
+                e = dv_add(e, dv_scale(l->intensity, c));
+            continue;
+        }
+        dvec3 d = dv_sub(l->position, p);
+        double d2 = fmax(dv_dot(d, d), 1e-16);
+        double dist = sqrt(d2);
+        dvec3 wi = dv_scale(d, 1.0 / dist);
+        double c = dv_dot(n, wi);
+        if (c <= 0.0)
+            continue;
+        double spot = 1.0;
+        if (l->kind == 2) {
+            /* the shaders' smoothstep falloff over the cone's edge */
+            double ca = dv_dot(dv_scale(wi, -1.0), l->direction);
+            double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
+            double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
+            spot = x * x * (3.0 - 2.0 * x);
+            if (spot <= 0.0)
+                continue;
+        }
+        if (!ref_scene_occluded(rs, origin, wi, dist * (1.0 - 1e-6) - rs->epsilon))
+            e = dv_add(e, dv_scale(l->intensity, c * spot / d2));
+    }
+    return e;
+}
+
+struct job {
+    const struct ref_scene *rs;
+    const struct ref_options *o;
+    struct pixel *pixels;
+    int iteration;
+    int thread, threads;
+    const struct media *camera_media;
+    double pixel_angle; /* radians a pixel spans at the image centre */
+    /* photons */
+    long photons_per_light;
+    struct grid *grid;
+    struct photon_hits *chunks;
+    long long caustic_photons[PHOTON_CHUNKS];
+};
+
+static void trace_eye(struct job *j, int x, int y)
+{
+    const struct ref_scene *rs = j->rs;
+    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 1u,
+                                      (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
+    dvec3 origin, dir;
+    /* Pixel centres, as the rasterizer samples: a point-sampled reference. */
+    ref_scene_camera_ray(rs, x + 0.5, y + 0.5, j->o->width, j->o->height, &origin, &dir);
+    dvec3 beta = dv(1, 1, 1);
+    struct media media = *j->camera_media;
+    px->vp.valid = false;
+    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+        struct ref_hit h;
+        if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h)) {
+            px->direct = dv_add(px->direct, dv_mul(beta, ref_scene_environment(rs, dir)));
+            return;
+        }
+        beta = attenuate(beta, medium_sigma(rs, &media), h.t);
+        const struct material *m = &rs->objects[h.object].material;
+        if (m->kind == MATERIAL_DIFFUSE) {
+            dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
+            dvec3 albedo = dv(m->color.x, m->color.y, m->color.z);
+            dvec3 e = direct_light(rs, h.position, n);
+            dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
+            px->direct = dv_add(px->direct, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
+            if (px->radius <= 0.0) {
+                /* First visible point: start the gather radius at a few
+                 * pixel footprints at this distance (then SPPM shrinks it). */
+                dvec3 eye_to = dv_sub(h.position, rs->eye);
+                double footprint = sqrt(dv_dot(eye_to, eye_to)) * j->pixel_angle;
+                px->radius = j->o->initial_radius > 0 ? j->o->initial_radius : fmax(RADIUS_PIXELS * footprint, 1e-6);
+            }
+            px->vp.valid = true;
+            px->vp.position = h.position;
+            px->vp.normal = n;
+            px->vp.weight = f;
+            return;
+        }
+        specular_step(rs, &h, &media, &dir, &origin, &beta, &rng);
+        if (dv_dot(beta, beta) < 1e-30)
+            return;
+    }
+}
+
+static void *camera_thread(void *arg)
+{
+    struct job *j = arg;
+    for (int y = j->thread; y < j->o->height; y += j->threads)
+        for (int x = 0; x < j->o->width; x++)
+            trace_eye(j, x, y);
+    return NULL;
+}
+
+/* ---- photons ------------------------------------------------------------ */
+
+/* A hash grid over the visible points (cell = the largest radius). */
+struct grid {
+    double cell;
+    dvec3 origin;
+    size_t size;      /* hash table slots */
+    size_t *start;    /* size + 1 offsets into items */
+    int *items;       /* pixel indices */
+};
+
+static size_t cell_hash(const struct grid *g, long x, long y, long z)
+{
+    uint64_t h = ((uint64_t)x * 73856093u) ^ ((uint64_t)y * 19349663u) ^ ((uint64_t)z * 83492791u);
+    return (size_t)(h % g->size);
+}
+
+static void grid_build(struct grid *g, const struct pixel *pixels, int count)
+{
+    double rmax = 0;
+    int valid = 0;
+    dvec3 lo = dv(INFINITY, INFINITY, INFINITY);
+    for (int i = 0; i < count; i++)
+        if (pixels[i].vp.valid) {
+            rmax = fmax(rmax, pixels[i].radius);
+            lo = dv(fmin(lo.x, pixels[i].vp.position.x), fmin(lo.y, pixels[i].vp.position.y),
+                    fmin(lo.z, pixels[i].vp.position.z));
+            valid++;
+        }
+    g->cell = rmax > 0 ? rmax : 1.0;
+    g->origin = valid ? lo : dv(0, 0, 0);
+    g->size = (size_t)(valid > 0 ? valid * 2 : 1);
+    g->start = calloc(g->size + 1, sizeof *g->start);
+    /* two passes: count, then fill (counting sort by cell) */
+    for (int pass = 0; pass < 2; pass++) {
+        size_t *fill = NULL;
+        if (pass == 1) {
+            for (size_t s = 0; s < g->size; s++)
+                g->start[s + 1] += g->start[s];
+            g->items = malloc((g->start[g->size] + 1) * sizeof *g->items);
+            fill = malloc((g->size + 1) * sizeof *fill);
+            memcpy(fill, g->start, (g->size + 1) * sizeof *fill);
+        }
+        for (int i = 0; i < count; i++) {
+            const struct pixel *p = &pixels[i];
+            if (!p->vp.valid)
+                continue;
+            dvec3 q = dv_sub(p->vp.position, g->origin);
+            long x0 = (long)floor((q.x - p->radius) / g->cell), x1 = (long)floor((q.x + p->radius) / g->cell);
+            long y0 = (long)floor((q.y - p->radius) / g->cell), y1 = (long)floor((q.y + p->radius) / g->cell);
+            long z0 = (long)floor((q.z - p->radius) / g->cell), z1 = (long)floor((q.z + p->radius) / g->cell);
+            for (long z = z0; z <= z1; z++)
+                for (long y = y0; y <= y1; y++)
+                    for (long x = x0; x <= x1; x++) {
+                        size_t h = cell_hash(g, x, y, z);
+                        if (pass == 0)
+                            g->start[h + 1]++;
+                        else
+                            g->items[fill[h]++] = i;
+                    }
+        }
+        free(fill);
+    }
+}
+
+static void grid_release(struct grid *g)
+{
+    free(g->start);
+    free(g->items);
+    memset(g, 0, sizeof *g);
+}
+
+struct photon_hit {
+    int pixel;
+    float flux[3];
+};
+
+struct photon_hits {
+    struct photon_hit *items;
+    size_t count, capacity;
+};
+
+static void hits_push(struct photon_hits *h, int pixel, dvec3 flux)
+{
+    if (h->count == h->capacity) {
+        size_t cap = h->capacity ? h->capacity * 2 : 1024;
+        struct photon_hit *p = realloc(h->items, cap * sizeof *p);
+        if (!p)
+            return; /* out of memory: the photon is lost, the estimate stays finite */
+        h->items = p;
+        h->capacity = cap;
+    }
+    h->items[h->count++] = (struct photon_hit){pixel, {(float)flux.x, (float)flux.y, (float)flux.z}};
+}
+
+/* An orthonormal basis around unit w. */
+static void basis(dvec3 w, dvec3 *u, dvec3 *v)
+{
+    dvec3 a = fabs(w.x) > 0.9 ? dv(0, 1, 0) : dv(1, 0, 0);
+    *u = dv_normalize_or(dv_cross(a, w), dv(1, 0, 0));
+    *v = dv_cross(w, *u);
+}
+
+/* Emits photon `index` of light `l` towards the bounding sphere of the
+ * specular objects (only photons whose first hit is specular can make a
+ * caustic, so no other direction contributes) and returns its flux. */
+static bool emit(const struct ref_scene *rs, const struct ref_light *l, long per_light, struct ref_rng *rng,
+                 dvec3 *origin, dvec3 *dir, dvec3 *flux)
+{
+    dvec3 c = rs->specular_center;
+    double radius = rs->specular_radius;
+    double u1 = ref_rng_uniform(rng), u2 = ref_rng_uniform(rng);
+    if (l->kind == 1) {
+        /* a disk across the sphere, perpendicular to the light, far upstream */
+        dvec3 u, v;
+        basis(l->direction, &u, &v);
+        double r = radius * sqrt(u1), phi = 2.0 * MATH_PI * u2;
+        double back = radius + sqrt(dv_dot(dv_sub(rs->bounds_hi, rs->bounds_lo), dv_sub(rs->bounds_hi, rs->bounds_lo))) + 1.0;
+        *origin = dv_add(dv_sub(c, dv_scale(l->direction, back)), dv_add(dv_scale(u, r * cos(phi)), dv_scale(v, r * sin(phi))));
+        *dir = l->direction;
+        *flux = dv_scale(l->intensity, MATH_PI * radius * radius / (double)per_light);
+        return true;
+    }
+    dvec3 to = dv_sub(c, l->position);
+    double dist = sqrt(dv_dot(to, to));
+    double cos_max = dist > radius ? sqrt(fmax(0.0, 1.0 - (radius / dist) * (radius / dist))) : -1.0;
+    dvec3 w = dv_normalize_or(to, dv(0, -1, 0)), u, v;
+    basis(w, &u, &v);
+    double cos_t = 1.0 - u1 * (1.0 - cos_max), sin_t = sqrt(fmax(0.0, 1.0 - cos_t * cos_t)), phi = 2.0 * MATH_PI * u2;
+    *dir = dv_normalize_or(dv_add(dv_scale(w, cos_t), dv_add(dv_scale(u, sin_t * cos(phi)), dv_scale(v, sin_t * sin(phi)))), w);
+    *origin = l->position;
+    double solid_angle = 2.0 * MATH_PI * (1.0 - cos_max);
+    double spot = 1.0;
+    if (l->kind == 2) {
+        double ca = dv_dot(*dir, l->direction);
+        double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
+        double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
+        spot = x * x * (3.0 - 2.0 * x);
+        if (spot <= 0.0)
+            return false;
+    }
+    *flux = dv_scale(l->intensity, spot * solid_angle / (double)per_light);
+    return true;
+}
+
+static void gather(struct job *j, struct photon_hits *hits, dvec3 p, dvec3 n_surface, dvec3 dir, dvec3 flux)
+{
+    const struct grid *g = j->grid;
+    dvec3 q = dv_sub(p, g->origin);
+    size_t h = cell_hash(g, (long)floor(q.x / g->cell), (long)floor(q.y / g->cell), (long)floor(q.z / g->cell));
+    for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
+        int i = g->items[k];
+        const struct pixel *px = &j->pixels[i];
+        dvec3 d = dv_sub(px->vp.position, p);
+        if (dv_dot(d, d) > px->radius * px->radius)
+            continue;
+        /* same side of the same kind of surface, arriving from the lit side */
+        if (dv_dot(px->vp.normal, dir) >= 0.0 || fabs(dv_dot(px->vp.normal, n_surface)) < 0.5)
+            continue;
+        hits_push(hits, i, dv_mul(px->vp.weight, flux));
+    }
+}
+
+static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic)
+{
+    const struct ref_scene *rs = j->rs;
+    struct ref_rng rng = ref_rng_seed(j->o->seed, 7919u * (uint64_t)j->iteration + 2u + (uint64_t)light * 104729u,
+                                      (uint64_t)index);
+    dvec3 origin, dir, flux;
+    if (!emit(rs, &rs->lights[light], j->photons_per_light, &rng, &origin, &dir, &flux))
+        return;
+    struct media media = {.count = 0}; /* lights are outside every dielectric */
+    int specular = 0;
+    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+        struct ref_hit h;
+        if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h))
+            return;
+        flux = attenuate(flux, medium_sigma(rs, &media), h.t);
+        const struct material *m = &rs->objects[h.object].material;
+        if (m->kind == MATERIAL_DIFFUSE) {
+            if (specular > 0) {
+                (*caustic)++;
+                gather(j, hits, h.position, h.geometric_normal, dir, flux);
+            }
+            return; /* L D paths are direct light, gathered by shadow rays */
+        }
+        specular_step(rs, &h, &media, &dir, &origin, &flux, &rng);
+        specular++;
+        if (dv_dot(flux, flux) < 1e-40)
+            return;
+    }
+}
+
+static void *photon_thread(void *arg)
+{
+    struct job *j = arg;
+    long total = j->photons_per_light * j->rs->light_count;
+    for (int c = j->thread; c < PHOTON_CHUNKS; c += j->threads) {
+        long begin = total * c / PHOTON_CHUNKS, end = total * (c + 1) / PHOTON_CHUNKS;
+        for (long k = begin; k < end; k++)
+            trace_photon(j, (int)(k / j->photons_per_light), k % j->photons_per_light, &j->chunks[c],
+                         &j->caustic_photons[c]);
+    }
+    return NULL;
+}
+
+static void run_threads(struct job *base, int threads, void *(*fn)(void *))
+{
+    struct job jobs[64];
+    pthread_t ids[64];
+    if (threads > 64)
+        threads = 64;
+    for (int t = 0; t < threads; t++) {
+        jobs[t] = *base;
+        jobs[t].thread = t;
+        jobs[t].threads = threads;
+        memset(jobs[t].caustic_photons, 0, sizeof jobs[t].caustic_photons);
+    }
+    int started = 0;
+    for (int t = 1; t < threads; t++)
+        if (pthread_create(&ids[t], NULL, fn, &jobs[t]) == 0)
+            started = t;
+        else
+            break;
+    /* the calling thread takes slot 0, and the slots of threads that did not start */
+    for (int t = 0; t < threads; t++)
+        if (t == 0 || t > started)
+            fn(&jobs[t]);
+    for (int t = 1; t <= started; t++)
+        pthread_join(ids[t], NULL);
+    for (int t = 0; t < threads; t++)
+        for (int c = 0; c < PHOTON_CHUNKS; c++)
+            base->caustic_photons[c] += jobs[t].caustic_photons[c];
+}
+
+bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
+                struct ref_stats *stats, struct error *err)
+{
+    double start = log_now();
+    struct ref_scene rs;
+    if (!ref_scene_build(&rs, r, scene, err))
+        return false;
+    size_t npix = (size_t)o->width * (size_t)o->height;
+    struct pixel *pixels = calloc(npix, sizeof *pixels);
+    struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
+    if (!pixels || !chunks || !image_create(out, o->width, o->height, err)) {
+        free(pixels);
+        free(chunks);
+        ref_scene_release(&rs);
+        return err && err->message[0] ? false : error_set(err, "reference: out of memory");
+    }
+    double fov = (double)scene->camera.fov * MATH_PI / 180.0;
+    double pixel_angle = 2.0 * tan(0.5 * fov) / o->height;
+    int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    if (threads < 1)
+        threads = 1;
+    struct media camera_media;
+    dvec3 cam_origin, cam_dir;
+    ref_scene_camera_ray(&rs, o->width * 0.5, o->height * 0.5, o->width, o->height, &cam_origin, &cam_dir);
+    media_at(&rs, cam_origin, &camera_media);
+
+    bool caustics = rs.has_specular_bounds && rs.light_count > 0 && o->photons > 0;
+    long per_light = caustics ? (o->photons + rs.light_count - 1) / rs.light_count : 0;
+    long long emitted = 0, caustic_total = 0;
+    int it = 0;
+    bool tty = o->progress && isatty(STDERR_FILENO);
+    for (; it < o->iterations; it++) {
+        struct job job = {.rs = &rs, .o = o, .pixels = pixels, .iteration = it, .camera_media = &camera_media,
+                          .pixel_angle = pixel_angle, .photons_per_light = per_light, .chunks = chunks};
+        run_threads(&job, threads, camera_thread);
+        if (caustics) {
+            struct grid grid;
+            grid_build(&grid, pixels, (int)npix);
+            job.grid = &grid;
+            run_threads(&job, threads, photon_thread);
+            /* Reduce in chunk order: the same sums whatever the thread count. */
+            for (int c = 0; c < PHOTON_CHUNKS; c++) {
+                for (size_t k = 0; k < chunks[c].count; k++) {
+                    struct pixel *px = &pixels[chunks[c].items[k].pixel];
+                    px->phi = dv_add(px->phi, dv(chunks[c].items[k].flux[0], chunks[c].items[k].flux[1],
+                                                  chunks[c].items[k].flux[2]));
+                    px->m++;
+                }
+                chunks[c].count = 0;
+                caustic_total += job.caustic_photons[c];
+            }
+            grid_release(&grid);
+            emitted += (long long)per_light * rs.light_count;
+            /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
+            for (size_t i = 0; i < npix; i++) {
+                struct pixel *px = &pixels[i];
+                if (px->m > 0) {
+                    double n_new = px->n + SPPM_ALPHA * (double)px->m;
+                    double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
+                    double shrink = (r_new * r_new) / (px->radius * px->radius);
+                    px->tau = dv_scale(dv_add(px->tau, px->phi), shrink);
+                    px->n = n_new;
+                    px->radius = r_new;
+                }
+                px->phi = dv(0, 0, 0);
+                px->m = 0;
+            }
+        }
+        double elapsed = log_now() - start;
+        if (tty) {
+            double left = elapsed / (it + 1) * (o->iterations - it - 1);
+            fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left   ", it + 1, o->iterations,
+                    emitted, left);
+            fflush(stderr);
+        }
+        if (o->time_budget > 0 && elapsed >= o->time_budget) {
+            it++;
+            break;
+        }
+    }
+    if (tty)
+        fputc('\n', stderr);
+    int iterations = it > 0 ? it : 1;
+    for (size_t i = 0; i < npix; i++) {
+        const struct pixel *px = &pixels[i];
+        dvec3 l = dv_scale(px->direct, 1.0 / iterations);
+        /* Each iteration's photons carry the lights' power between them
+         * (flux per photon = power / photons), so tau averages over the
+         * iterations: L = tau / (iterations pi R^2). */
+        if (emitted > 0 && px->radius > 0 && px->n > 0)
+            l = dv_add(l, dv_scale(px->tau, 1.0 / ((double)iterations * MATH_PI * px->radius * px->radius)));
+        float *dst = out->rgba + i * 4;
+        dst[0] = (float)l.x;
+        dst[1] = (float)l.y;
+        dst[2] = (float)l.z;
+        dst[3] = 1.0f;
+    }
+    if (stats) {
+        stats->iterations = iterations;
+        stats->photons = emitted;
+        stats->caustic_photons = caustic_total;
+        stats->seconds = log_now() - start;
+    }
+    for (int c = 0; c < PHOTON_CHUNKS; c++)
+        free(chunks[c].items);
+    free(chunks);
+    free(pixels);
+    ref_scene_release(&rs);
+    return true;
+}

@@ -1,0 +1,40 @@
+/* The ground truth: an exact CPU renderer of the same scene snapshot the
+ * GPU draws (geometry read back after morphs and deformers), built on
+ * Embree. Estimator: see docs/REFERENCE.md. */
+#ifndef CAUSTICA_REFERENCE_H
+#define CAUSTICA_REFERENCE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "io/image.h"
+
+struct renderer;
+struct scene;
+
+struct ref_options {
+    int width, height;
+    long photons;        /* photons emitted per iteration */
+    int iterations;      /* SPPM iterations (one camera sample per pixel each) */
+    double time_budget;  /* seconds; > 0 stops early when spent (and may run past `iterations`? no) */
+    uint64_t seed;
+    double initial_radius; /* 0: from the scene size */
+    bool progress;       /* print progress with time left on stderr */
+    int threads;         /* 0: all cores */
+};
+
+struct ref_stats {
+    int iterations;        /* iterations done */
+    long long photons;     /* photons emitted in all */
+    long long caustic_photons; /* photons that reached a diffuse surface after a specular one */
+    double seconds;
+};
+
+void ref_options_default(struct ref_options *o);
+/* Renders the scene as set up by renderer_begin_frame for this frame (the
+ * deformed vertex buffers are read back from the GPU). */
+bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
+                struct ref_stats *stats, struct error *err);
+
+#endif
