@@ -26,6 +26,12 @@ local function fail(message, level)
   error(message, (level or 1) + 1)
 end
 
+--- Renders the ground truth (the CPU reference) of a scene script.
+--- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius
+function t.reference(script, opts)
+  return image.reference(script, opts)
+end
+
 --- Fails unless `cond` holds.
 function t.expect(cond, message)
   if not cond then fail(message or "expectation failed", 2) end

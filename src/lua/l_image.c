@@ -199,7 +199,7 @@ int luaopen_caustica_image(lua_State *L)
     luaL_setfuncs(L, meta, 0);
     lua_pop(L, 1);
     static const luaL_Reg funcs[] = {{"load", image_load_l}, {"new", image_new_l}, {"compare", image_compare_l},
-                                     {"render", limage_render}, {NULL, NULL}};
+                                     {"render", limage_render}, {"reference", limage_reference}, {NULL, NULL}};
     luaL_newlib(L, funcs);
     return 1;
 }

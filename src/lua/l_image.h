@@ -12,5 +12,7 @@ struct image *limage_check(lua_State *L, int idx);
 struct image *limage_push(lua_State *L);
 /* render(script, {set = {...}, size = {w, h}, frame = n}) -> Image (l_render.c) */
 int limage_render(lua_State *L);
+/* reference(script, opts) -> Image, stats (l_render.c) */
+int limage_reference(lua_State *L);
 
 #endif

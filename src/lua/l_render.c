@@ -11,6 +11,7 @@
 #include "graph/graph.h"
 #include "lua/l_image.h"
 #include "lua/lua_host.h"
+#include "reference/reference.h"
 
 /* A scene path as a test writes it: relative to the working folder, the
  * project root, or the test script's folder, in that order. */
@@ -27,15 +28,13 @@ static void find_script(lua_State *L, const char *rel, char *out, size_t outlen)
     lua_host_resolve_path(L, rel, out, outlen);
 }
 
-int limage_render(lua_State *L)
+/* Reads {set = {...}, size = {w, h}, frame = n} into the session options. */
+static void read_options(lua_State *L, char *path, size_t pathlen, struct session_options *o, int *frame)
 {
-    struct app *app = lua_host_app(L);
-    if (!app)
-        return luaL_error(L, "render: not available here");
-    char path[4096];
-    find_script(L, luaL_checkstring(L, 1), path, sizeof path);
-    struct session_options o = {.script = path};
-    int frame = 0;
+    find_script(L, luaL_checkstring(L, 1), path, pathlen);
+    memset(o, 0, sizeof *o);
+    o->script = path;
+    *frame = 0;
     if (!lua_isnoneornil(L, 2)) {
         luaL_checktype(L, 2, LUA_TTABLE);
         if (lua_getfield(L, 2, "set") == LUA_TTABLE) {
@@ -48,23 +47,34 @@ int limage_render(lua_State *L)
                 snprintf(assignment, sizeof assignment, "%s=%s", k, v);
                 lua_pop(L, 3);
                 struct error err;
-                if (!lua_params_add(&o.params, assignment, &err))
-                    return luaL_error(L, "render: %s", err.message);
+                if (!lua_params_add(&o->params, assignment, &err))
+                    luaL_error(L, "render: %s", err.message);
             }
         }
         lua_pop(L, 1);
         if (lua_getfield(L, 2, "size") == LUA_TTABLE) {
             lua_rawgeti(L, -1, 1);
             lua_rawgeti(L, -2, 2);
-            o.width = (int)luaL_checkinteger(L, -2);
-            o.height = (int)luaL_checkinteger(L, -1);
+            o->width = (int)luaL_checkinteger(L, -2);
+            o->height = (int)luaL_checkinteger(L, -1);
             lua_pop(L, 2);
         }
         lua_pop(L, 1);
         if (lua_getfield(L, 2, "frame") != LUA_TNIL)
-            frame = (int)luaL_checkinteger(L, -1);
+            *frame = (int)luaL_checkinteger(L, -1);
         lua_pop(L, 1);
     }
+}
+
+int limage_render(lua_State *L)
+{
+    struct app *app = lua_host_app(L);
+    if (!app)
+        return luaL_error(L, "render: not available here");
+    char path[4096];
+    struct session_options o;
+    int frame;
+    read_options(L, path, sizeof path, &o, &frame);
     struct session *s;
     struct error err;
     if (!session_open(app, &o, &s, &err))
@@ -83,5 +93,63 @@ int limage_render(lua_State *L)
     session_close(s);
     if (!ok)
         return luaL_error(L, "%s", err.message);
+    return 2;
+}
+
+/* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget})
+ * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
+int limage_reference(lua_State *L)
+{
+    struct app *app = lua_host_app(L);
+    if (!app)
+        return luaL_error(L, "reference: not available here");
+    char path[4096];
+    struct session_options o;
+    int frame;
+    read_options(L, path, sizeof path, &o, &frame);
+    struct ref_options ro;
+    ref_options_default(&ro);
+    if (lua_istable(L, 2)) {
+        if (lua_getfield(L, 2, "photons") != LUA_TNIL)
+            ro.photons = (long)luaL_checkinteger(L, -1);
+        if (lua_getfield(L, 2, "spp") != LUA_TNIL)
+            ro.iterations = (int)luaL_checkinteger(L, -1);
+        if (lua_getfield(L, 2, "seed") != LUA_TNIL)
+            ro.seed = (uint64_t)luaL_checkinteger(L, -1);
+        if (lua_getfield(L, 2, "radius") != LUA_TNIL)
+            ro.initial_radius = luaL_checknumber(L, -1);
+        if (lua_getfield(L, 2, "time_budget") != LUA_TNIL)
+            ro.time_budget = luaL_checknumber(L, -1);
+        if (lua_getfield(L, 2, "threads") != LUA_TNIL)
+            ro.threads = (int)luaL_checkinteger(L, -1);
+        lua_pop(L, 6);
+    }
+    if (ro.photons < 0 || ro.iterations < 1)
+        return luaL_error(L, "reference: photons must be >= 0 and spp >= 1");
+    struct session *s;
+    struct error err;
+    if (!session_open(app, &o, &s, &err))
+        return luaL_error(L, "%s", err.message);
+    struct image *img = limage_push(L);
+    struct ref_stats st;
+    bool ok = session_reference(s, frame, &ro, img, &st, &err);
+    session_close(s);
+    if (!ok)
+        return luaL_error(L, "%s", err.message);
+    lua_createtable(L, 0, 4);
+    lua_pushinteger(L, st.iterations);
+    lua_setfield(L, -2, "iterations");
+    lua_pushinteger(L, (lua_Integer)st.photons);
+    lua_setfield(L, -2, "photons");
+    lua_pushinteger(L, (lua_Integer)st.caustic_photons);
+    lua_setfield(L, -2, "caustic_photons");
+    lua_pushnumber(L, st.seconds);
+    lua_setfield(L, -2, "seconds");
+    lua_createtable(L, 3, 0);
+    for (int k = 0; k < 3; k++) {
+        lua_pushnumber(L, st.caustic_power[k]);
+        lua_rawseti(L, -2, k + 1);
+    }
+    lua_setfield(L, -2, "caustic_power");
     return 2;
 }

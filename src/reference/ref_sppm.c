@@ -231,6 +231,7 @@ struct job {
     struct grid *grid;
     struct photon_hits *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
+    double caustic_power[PHOTON_CHUNKS][3]; /* flux the photons brought to diffuse surfaces */
 };
 
 static void trace_eye(struct job *j, int x, int y)
@@ -242,8 +243,10 @@ static void trace_eye(struct job *j, int x, int y)
     dvec3 origin, dir;
     /* Pixel centres, as the rasterizer samples: a point-sampled reference. */
     ref_scene_camera_ray(rs, x + 0.5, y + 0.5, j->o->width, j->o->height, &origin, &dir);
-    dvec3 beta = dv(1, 1, 1);
     struct media media = *j->camera_media;
+    /* The ray starts on the near plane (what the rasterizer clips), but the
+     * camera sits at the eye: the medium around it absorbs from there. */
+    dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye))));
     px->vp.valid = false;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
@@ -450,7 +453,8 @@ static void gather(struct job *j, struct photon_hits *hits, dvec3 p, dvec3 n_sur
     }
 }
 
-static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic)
+static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic,
+                         double *power)
 {
     const struct ref_scene *rs = j->rs;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 7919u * (uint64_t)j->iteration + 2u + (uint64_t)light * 104729u,
@@ -469,6 +473,9 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
         if (m->kind == MATERIAL_DIFFUSE) {
             if (specular > 0) {
                 (*caustic)++;
+                power[0] += flux.x;
+                power[1] += flux.y;
+                power[2] += flux.z;
                 gather(j, hits, h.position, h.geometric_normal, dir, flux);
             }
             return; /* L D paths are direct light, gathered by shadow rays */
@@ -488,7 +495,7 @@ static void *photon_thread(void *arg)
         long begin = total * c / PHOTON_CHUNKS, end = total * (c + 1) / PHOTON_CHUNKS;
         for (long k = begin; k < end; k++)
             trace_photon(j, (int)(k / j->photons_per_light), k % j->photons_per_light, &j->chunks[c],
-                         &j->caustic_photons[c]);
+                         &j->caustic_photons[c], j->caustic_power[c]);
     }
     return NULL;
 }
@@ -504,6 +511,7 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
         jobs[t].thread = t;
         jobs[t].threads = threads;
         memset(jobs[t].caustic_photons, 0, sizeof jobs[t].caustic_photons);
+        memset(jobs[t].caustic_power, 0, sizeof jobs[t].caustic_power);
     }
     int started = 0;
     for (int t = 1; t < threads; t++)
@@ -518,8 +526,11 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
     for (int t = 1; t <= started; t++)
         pthread_join(ids[t], NULL);
     for (int t = 0; t < threads; t++)
-        for (int c = 0; c < PHOTON_CHUNKS; c++)
+        for (int c = 0; c < PHOTON_CHUNKS; c++) {
             base->caustic_photons[c] += jobs[t].caustic_photons[c];
+            for (int k = 0; k < 3; k++)
+                base->caustic_power[c][k] += jobs[t].caustic_power[c][k];
+        }
 }
 
 bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
@@ -551,6 +562,7 @@ bool ref_render(struct renderer *r, struct scene *scene, const struct ref_option
     bool caustics = rs.has_specular_bounds && rs.light_count > 0 && o->photons > 0;
     long per_light = caustics ? (o->photons + rs.light_count - 1) / rs.light_count : 0;
     long long emitted = 0, caustic_total = 0;
+    double caustic_power[3] = {0, 0, 0};
     int it = 0;
     bool tty = o->progress && isatty(STDERR_FILENO);
     for (; it < o->iterations; it++) {
@@ -572,6 +584,8 @@ bool ref_render(struct renderer *r, struct scene *scene, const struct ref_option
                 }
                 chunks[c].count = 0;
                 caustic_total += job.caustic_photons[c];
+                for (int k = 0; k < 3; k++)
+                    caustic_power[k] += job.caustic_power[c][k];
             }
             grid_release(&grid);
             emitted += (long long)per_light * rs.light_count;
@@ -624,6 +638,8 @@ bool ref_render(struct renderer *r, struct scene *scene, const struct ref_option
         stats->photons = emitted;
         stats->caustic_photons = caustic_total;
         stats->seconds = log_now() - start;
+        for (int k = 0; k < 3; k++)
+            stats->caustic_power[k] = caustic_power[k] / iterations;
     }
     for (int c = 0; c < PHOTON_CHUNKS; c++)
         free(chunks[c].items);

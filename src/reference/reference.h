@@ -28,6 +28,7 @@ struct ref_stats {
     int iterations;        /* iterations done */
     long long photons;     /* photons emitted in all */
     long long caustic_photons; /* photons that reached a diffuse surface after a specular one */
+    double caustic_power[3]; /* W reaching diffuse surfaces by light-specular+-diffuse paths */
     double seconds;
 };
 

@@ -8,10 +8,14 @@ local floor_depth = c.param("floor", 1.0)      -- distance from the ball's centr
 local hide = c.param("hide", false)
 local elevation = c.param("elevation", 90)
 local size = c.param("size", 64)
+local aperture = c.param("aperture", 0)
+local view = c.param("view", "side")            -- "side", or "down": from just above the floor, looking straight down          -- > 0: an opaque plate above the ball with a square hole of this half-width
 
 local scene = c.scene {
   -- low and from the side, so the floor under the ball is seen past it
-  camera = c.camera { eye = {0, -floor_depth + 0.5, 3}, target = {0, -floor_depth, 0}, fov = 20 },
+  camera = view == "down"
+    and c.camera { eye = {0, -floor_depth + 0.08, 0}, target = {0, -floor_depth, 0}, up = {0, 0, -1}, fov = 60 }
+    or c.camera { eye = {0, -floor_depth + 0.5, 3}, target = {0, -floor_depth, 0}, fov = 20 },
   background = {0, 0, 0},
 }
 local e = math.rad(elevation)
@@ -21,6 +25,19 @@ scene:add(c.object { mesh = c.mesh.plane { size = 40 }, position = {0, -floor_de
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
                                   material = c.material.glass { ior = ior } })
 ball.visible = not hide
+if aperture > 0 then
+  -- Four slabs around a square hole: only paraxial rays reach the ball.
+  local w, plate = 10, c.material.diffuse { color = {0, 0, 0} }
+  local y = radius + 0.1
+  for _, s in ipairs {
+    { pos = {-(w + aperture) / 2, y, 0}, size = {w - aperture, 0.02, 2 * w} },
+    { pos = { (w + aperture) / 2, y, 0}, size = {w - aperture, 0.02, 2 * w} },
+    { pos = {0, y, -(w + aperture) / 2}, size = {2 * aperture, 0.02, w - aperture} },
+    { pos = {0, y,  (w + aperture) / 2}, size = {2 * aperture, 0.02, w - aperture} },
+  } do
+    scene:add(c.object { mesh = c.mesh.box { size = s.size }, position = s.pos, material = plate })
+  end
+end
 ball.cast_shadows = true
 local g = c.graph()
 g:add("shade", c.pass.shade {})

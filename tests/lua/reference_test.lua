@@ -1,0 +1,214 @@
+-- The ground truth against physics, not against itself: answers known in
+-- closed form (or by a one-dimensional integral done here), at small sizes.
+local t = require "caustica.test"
+
+local function mean_ratio(img, channel, x0, y0, x1, y1, expected)
+  local sum, n = 0, 0
+  for y = y0, y1 - 1 do
+    for x = x0, x1 - 1 do
+      local v = { img:pixel(x, y) }
+      sum = sum + v[channel] / expected(x, y)
+      n = n + 1
+    end
+  end
+  return sum / n
+end
+
+-- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted.
+local function fresnel(cos_i, eta)
+  local sin2_t = eta * eta * (1 - cos_i * cos_i)
+  if sin2_t >= 1 then return 1 end
+  local cos_t = math.sqrt(1 - sin2_t)
+  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+  return 0.5 * (rs * rs + rp * rp)
+end
+
+t.case("direct light: a floor under a directional light has L = albedo / pi * E", function()
+  local img = t.reference("tests/scenes/lights.lua", { set = { kind = "directional" }, photons = 0, spp = 1 })
+  local r = img:pixel(10, 80)
+  t.expect(math.abs(r - 0.8 / math.pi * 2) < 1e-4, "floor radiance " .. r)
+end)
+
+t.case("the GPU's Lambert shading and the reference agree where no shadow edge intervenes", function()
+  local gpu = t.render("tests/scenes/lights.lua", { set = { kind = "point" } })
+  local ref = t.reference("tests/scenes/lights.lua", { set = { kind = "point" }, photons = 0, spp = 1 })
+  for _, p in ipairs { { 8, 80 }, { 88, 88 }, { 48, 20 }, { 20, 60 } } do
+    local a, b = gpu:pixel(p[1], p[2]), ref:pixel(p[1], p[2])
+    t.expect(math.abs(a - b) <= 1e-3 * math.max(b, 1e-3) + 1e-5, string.format("pixel %d,%d: GPU %g, reference %g", p[1], p[2], a, b))
+  end
+end)
+
+t.case("IOR 1.0: a matched sphere is invisible (its shadow is filled exactly by the light through it)", function()
+  -- Looking straight down at the floor under the ball: with the ball hidden
+  -- the floor gets E = 1 directly; with a ball of IOR 1.0 the shadow rays are
+  -- blocked but the photons pass straight through (Fresnel reflectance 0).
+  -- (a gather radius of 0.01 keeps the photon noise down; the field is uniform, so no bias)
+  local opts = { set = { ior = 1.0, floor = 1.0, view = "down" }, photons = 100000, spp = 12, radius = 0.01 }
+  local with = t.reference("tests/scenes/ball_lens.lua", opts)
+  opts.set.hide = true
+  local without = t.reference("tests/scenes/ball_lens.lua", opts)
+  local ratio = mean_ratio(with, 1, 0, 0, 64, 64, function() return 1 / math.pi end)
+  t.expect(math.abs(ratio - 1) < 0.02, "mean radiance / (1/pi) = " .. ratio)
+  -- per pixel: within the photon estimate's noise (12 iterations)
+  t.expect_close(with, without, { rel_rmse = 0.15 })
+  t.expect_finite(with)
+end)
+
+t.case("ball lens: the caustic is smallest and brightest at f = nR / (2(n - 1))", function()
+  -- R = 0.5, n = 1.5: f = 0.75 from the centre. An aperture keeps the rays
+  -- paraxial (a full ball's spherical aberration focuses its rim nearer).
+  local peak, spot = {}, {}
+  for _, f in ipairs { 0.6, 0.75, 0.9 } do
+    local img = t.reference("tests/scenes/ball_lens.lua",
+      { set = { floor = f, aperture = 0.09, view = "down" }, photons = 100000, spp = 12 })
+    t.expect_finite(img)
+    local max = img:stats().max
+    local bright = 0
+    for y = 0, 63 do
+      for x = 0, 63 do
+        if img:pixel(x, y) > 0.5 * max then bright = bright + 1 end
+      end
+    end
+    peak[f], spot[f] = max, bright
+  end
+  t.expect(peak[0.75] > 5 * peak[0.6] and peak[0.75] > 5 * peak[0.9],
+    string.format("peaks %g %g %g", peak[0.6], peak[0.75], peak[0.9]))
+  t.expect(spot[0.75] < spot[0.6] and spot[0.75] < spot[0.9],
+    string.format("spots %d %d %d pixels", spot[0.6], spot[0.75], spot[0.9]))
+end)
+
+-- Power a parallel beam (irradiance 1) at impact parameter b sends down to
+-- a floor `depth` below a sphere (R, n), all Fresnel branches followed: the
+-- external reflection and every internal bounce's transmitted part. Light
+-- stays in the meridional plane, so a 2D trace is exact.
+local function floor_fraction(b, R, n, depth, half_floor)
+  local function lands(px, py, dx, dy)
+    if dy >= 0 then return false end
+    local tt = (-depth - py) / dy
+    return math.abs(px + tt * dx) < half_floor
+  end
+  local function refract(dx, dy, nx, ny, eta)
+    local ci = -(dx * nx + dy * ny)
+    local s2 = eta * eta * (1 - ci * ci)
+    if s2 >= 1 then return nil end
+    local ct = math.sqrt(1 - s2)
+    return eta * dx + (eta * ci - ct) * nx, eta * dy + (eta * ci - ct) * ny
+  end
+  local px, py = b, math.sqrt(R * R - b * b)
+  local nx, ny = px / R, py / R
+  local f1 = fresnel(ny, 1 / n)
+  local total = 0
+  if lands(px, py, 2 * ny * nx, -1 + 2 * ny * ny) then total = total + f1 end
+  local tx, ty = refract(0, -1, nx, ny, 1 / n)
+  local w = 1 - f1
+  for _ = 1, 64 do
+    local s = -2 * (px * tx + py * ty)
+    px, py = px + s * tx, py + s * ty
+    nx, ny = px / R, py / R
+    local c = tx * nx + ty * ny
+    local fi = fresnel(c, n)
+    local ox, oy = refract(tx, ty, -nx, -ny, n)
+    if ox and lands(px, py, ox, oy) then total = total + w * (1 - fi) end
+    w = w * fi
+    tx, ty = tx - 2 * c * nx, ty - 2 * c * ny
+    if w < 1e-9 then break end
+  end
+  return total
+end
+
+t.case("energy: the light through and off a sphere that reaches the floor matches the Fresnel integral within 1%", function()
+  -- Power reaching the floor = E * integral over the silhouette disk of the
+  -- fraction each ray delivers (transmittance through both interfaces, plus
+  -- the downward external reflection and internal bounces); the unshadowed
+  -- floor gets E directly, which the shadow rays compute exactly.
+  local R, n, depth = 0.5, 1.5, 1.0
+  local steps, expected = 20000, 0
+  for i = 1, steps do
+    local b = R * (i - 0.5) / steps
+    expected = expected + floor_fraction(b, R, n, depth, 20) * 2 * math.pi * b * (R / steps)
+  end
+  local _, stats = t.reference("tests/scenes/ball_lens.lua",
+    { set = { floor = depth, view = "down" }, size = { 16, 16 }, photons = 400000, spp = 4 })
+  local got = stats.caustic_power[1]
+  t.expect(math.abs(got / expected - 1) < 0.01,
+    string.format("caustic power %.6f W, expected %.6f W (silhouette %.6f W)", got, expected, math.pi * R * R))
+end)
+
+t.case("the photon density estimate integrates to the power through the lens", function()
+  -- Behind the aperture and out of focus (floor 0.9 below the ball) the light
+  -- refracted straight through falls inside the downward view: the sum of
+  -- pi L over the pixels' floor areas (albedo 1) must equal the power through
+  -- the square hole times the transmittance of both interfaces, T(b)^2 (the
+  -- exit angle equals the entry's refracted angle in a sphere).
+  local img = t.reference("tests/scenes/ball_lens.lua",
+    { set = { floor = 0.9, aperture = 0.09, view = "down" }, photons = 200000, spp = 12 })
+  local half = 0.08 * math.tan(math.rad(30))
+  local area = (2 * half / 64) ^ 2
+  local power = 0
+  for y = 0, 63 do
+    for x = 0, 63 do power = power + math.pi * img:pixel(x, y) * area end
+  end
+  local a, R, n, steps, expected = 0.09, 0.5, 1.5, 200, 0
+  for i = 1, steps do
+    for k = 1, steps do
+      local x, z = a * (2 * (i - 0.5) / steps - 1), a * (2 * (k - 0.5) / steps - 1)
+      local cos_i = math.sqrt(1 - (x * x + z * z) / (R * R))
+      local tr = 1 - fresnel(cos_i, 1 / n)
+      expected = expected + tr * tr * (2 * a / steps) ^ 2
+    end
+  end
+  t.expect(math.abs(power / expected - 1) < 0.02, string.format("integrated %.6g W, expected %.6g W", power, expected))
+end)
+
+t.case("flat water: uniform floor irradiance E cos(ti) T exp(-c d / cos(tt)), per channel", function()
+  -- Directional light of irradiance 1 at elevation 60 deg (ti = 30 deg) on
+  -- water of IOR 1.33, depth d = 0.5, absorption c = (0.2, 0.5, 1.0). The
+  -- beam's footprint on the horizontal surface and on the horizontal floor
+  -- is the same, so the floor receives the power the surface transmits:
+  --   E_floor = cos(ti) * T(ti) * exp(-c * d / cos(tt)),  sin(tt) = sin(ti) / n,
+  -- with T = 1 - Fresnel reflectance. The camera sits under water 0.3 above
+  -- the floor, so each pixel sees L = E_floor / pi * exp(-c * distance).
+  local n, d, h = 1.33, 0.5, 0.3
+  local ti = math.rad(30)
+  local tt = math.asin(math.sin(ti) / n)
+  local T = 1 - fresnel(math.cos(ti), 1 / n)
+  local img = t.reference("tests/scenes/flat_water.lua", { photons = 400000, spp = 8 })
+  t.expect_finite(img)
+  local tan_half = math.tan(math.rad(20))
+  for channel, c in ipairs { 0.2, 0.5, 1.0 } do
+    local e_floor = math.cos(ti) * T * math.exp(-c * d / math.cos(tt))
+    local ratio = mean_ratio(img, channel, 8, 8, 56, 56, function(x, y)
+      local u, v = (2 * (x + 0.5) / 64 - 1) * tan_half, (2 * (y + 0.5) / 64 - 1) * tan_half
+      return e_floor / math.pi * math.exp(-c * h * math.sqrt(1 + u * u + v * v))
+    end)
+    t.expect(math.abs(ratio - 1) < 0.02, string.format("channel %d: measured / closed form = %.4f", channel, ratio))
+  end
+end)
+
+for _, ior in ipairs { 0.8, 1.0, 2.42 } do
+  t.case("IOR " .. ior .. ": no NaN or Inf anywhere (total internal reflection included)", function()
+    local img = t.reference("tests/scenes/glass.lua", { set = { ior = ior }, photons = 0, spp = 2 })
+    t.expect_finite(img)
+    local lit = t.reference("tests/scenes/ball_lens.lua", { set = { ior = ior }, photons = 50000, spp = 2 })
+    t.expect_finite(lit)
+  end)
+end
+
+t.case("a camera inside glass sees by total internal reflection without NaN", function()
+  local img = t.reference("tests/scenes/inside_glass.lua", { photons = 20000, spp = 2 })
+  t.expect_finite(img)
+  t.expect(img:stats().max > 0, "something is visible")
+end)
+
+t.case("the reference is deterministic for a seed, whatever the thread count", function()
+  local opts = { set = { floor = 0.9, aperture = 0.09, view = "down" }, size = { 32, 32 }, photons = 20000, spp = 2 }
+  opts.threads, opts.seed = 1, 7
+  local a = t.reference("tests/scenes/ball_lens.lua", opts)
+  opts.threads = 3
+  local b = t.reference("tests/scenes/ball_lens.lua", opts)
+  t.expect_close(a, b, { max = 0 })
+  opts.seed = 8
+  local c = t.reference("tests/scenes/ball_lens.lua", opts)
+  t.expect_different(a, c, 1e-6)
+end)
