@@ -17,6 +17,9 @@ void cli_usage(FILE *out)
           "  caustica reference SCENE.lua -o OUT.pfm [--frame N] [--size WxH] [--photons N] [--spp N]\n"
           "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
           "  caustica compare A B [--mask M]\n"
+          "  caustica convert IN.pfm OUT.png [--exposure E]\n"
+          "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
+          "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
           "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose\n",
           out);
 }
@@ -111,6 +114,12 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             NEED_VALUE();
             if (!parse_int(next, &cli->spp) || cli->spp < 1)
                 return usage_error("--spp needs a count >= 1, got '%s'", next);
+        } else if (strcmp(a, "--exposure") == 0) {
+            NEED_VALUE();
+            char *end;
+            cli->exposure = strtod(next, &end);
+            if (end == next || *end || !(cli->exposure > 0))
+                return usage_error("--exposure needs a positive number, got '%s'", next);
         } else if (strcmp(a, "--time-budget") == 0 || strcmp(a, "--radius") == 0) {
             NEED_VALUE();
             char *end;
@@ -127,6 +136,21 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             cli->seed = strtoll(next, &end, 10);
             if (end == next || *end || cli->seed < 0)
                 return usage_error("--seed needs an integer >= 0, got '%s'", next);
+        } else if (strcmp(a, "--sweep") == 0) {
+            NEED_VALUE();
+            if (cli->nsweeps >= 16 || !strchr(next, '=') || next[0] == '=')
+                return usage_error("--sweep needs key=v1,v2,... (at most 16 sweeps), got '%s'", next);
+            cli->sweeps[cli->nsweeps++] = next;
+        } else if (strcmp(a, "--ref-photons") == 0) {
+            NEED_VALUE();
+            char *end;
+            cli->ref_photons = strtol(next, &end, 10);
+            if (end == next || *end || cli->ref_photons < 0)
+                return usage_error("--ref-photons needs a count >= 0, got '%s'", next);
+        } else if (strcmp(a, "--ref-spp") == 0) {
+            NEED_VALUE();
+            if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
+                return usage_error("--ref-spp needs a count >= 8, got '%s'", next);
         } else if (strcmp(a, "--timings") == 0) {
             cli->timings = true;
         } else if (strcmp(a, "--update-refs") == 0) {

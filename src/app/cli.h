@@ -29,6 +29,11 @@ struct cli {
     double time_budget;      /* --time-budget seconds (reference) */
     long long seed;          /* --seed (reference) */
     double radius;           /* --radius: initial SPPM radius (reference) */
+    const char *sweeps[16];  /* --sweep key=v1,v2,... (bench) */
+    int nsweeps;
+    long ref_photons;        /* --ref-photons (bench) */
+    int ref_spp;             /* --ref-spp: the longest reference run of the curve (bench) */
+    double exposure;         /* --exposure (convert) */
     struct lua_params params;
 };
 
@@ -44,5 +49,7 @@ int cmd_test(struct app *app, struct cli *cli);
 int cmd_info(struct app *app, struct cli *cli);
 int cmd_compare(struct app *app, struct cli *cli);
 int cmd_reference(struct app *app, struct cli *cli);
+int cmd_bench(struct app *app, struct cli *cli);
+int cmd_convert(struct app *app, struct cli *cli);
 
 #endif

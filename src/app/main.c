@@ -17,7 +17,8 @@ int main(int argc, char **argv)
     } verbs[] = {
         {"render", cmd_render}, {"record", cmd_record}, {"run", cmd_run},
         {"test", cmd_test},     {"info", cmd_info},     {"compare", cmd_compare},
-        {"reference", cmd_reference},
+        {"reference", cmd_reference}, {"bench", cmd_bench},
+        {"convert", cmd_convert},
     };
     for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++) {
         if (strcmp(argv[1], verbs[i].name) != 0)

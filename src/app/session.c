@@ -267,6 +267,12 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
 bool session_reference(struct session *s, int frame, const struct ref_options *options, struct image *out,
                        struct ref_stats *stats, struct error *err)
 {
+    return session_reference_parts(s, frame, options, out, NULL, stats, err);
+}
+
+bool session_reference_parts(struct session *s, int frame, const struct ref_options *options, struct image *out,
+                             struct image *caustic, struct ref_stats *stats, struct error *err)
+{
     if (!session_goto_frame(s, frame, err) || !app_ensure_gl(s->app, err))
         return false;
     /* The same frame set-up as a GPU frame: deformers run into the buffers
@@ -277,7 +283,43 @@ bool session_reference(struct session *s, int frame, const struct ref_options *o
     struct ref_options o = *options;
     o.width = s->width;
     o.height = s->height;
-    if (!ref_render(r, s->scene, &o, out, stats, err))
+    if (!ref_render_parts(r, s->scene, &o, out, caustic, stats, err))
         return error_prefix(err, "%s", s->script);
     return true;
+}
+
+bool session_set_pass_param(struct session *s, const char *key, double value, struct error *err)
+{
+    const char *dot = strchr(key, '.');
+    if (!dot)
+        return error_set(err, "'%s' is not a pass parameter (pass.param)", key);
+    char pass_name[PASS_NAME_MAX];
+    snprintf(pass_name, sizeof pass_name, "%.*s", (int)(dot - key), key);
+    for (int i = 0; i < s->graph->count; i++) {
+        struct pass *p = s->graph->entries[i].pass;
+        if (strcmp(p->name, pass_name) != 0)
+            continue;
+        int k = pass_param_index(p->desc, dot + 1);
+        if (k < 0)
+            return error_set(err, "%s: pass '%s' (%s) has no parameter '%s'", s->script, pass_name, p->desc->name, dot + 1);
+        const struct pass_param_desc *d = &p->desc->params[k];
+        if (d->type != PASS_PARAM_NUMBER && d->type != PASS_PARAM_INTEGER && d->type != PASS_PARAM_BOOLEAN)
+            return error_set(err, "%s: %s is not a number parameter", s->script, key);
+        if (d->type == PASS_PARAM_INTEGER && value != floor(value))
+            return error_set(err, "%s: %s needs an integer, got %g", s->script, key, value);
+        if (d->min < d->max && (value < d->min || value > d->max))
+            return error_set(err, "%s: %s = %g is out of range %g..%g", s->script, key, value, d->min, d->max);
+        if (p->created)
+            return error_set(err, "%s: %s: the pass already ran; set parameters before rendering", s->script, key);
+        p->values[k].number = value;
+        p->values[k].set = true;
+        /* Outputs may depend on the value (a shadow map's size): declare again. */
+        p->input_count = 0;
+        p->output_count = 0;
+        if (p->desc->declare && !p->desc->declare(p, err))
+            return error_prefix(err, "%s: %s", s->script, key);
+        s->graph->compiled = false;
+        return true;
+    }
+    return error_set(err, "%s: no pass named '%s' in the graph", s->script, pass_name);
 }

@@ -39,6 +39,9 @@ struct session {
 
 bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);
 void session_close(struct session *s);
+/* Overrides a number parameter of a pass: "pass.param" = value (what
+ * `caustica bench --sweep shadow.size=512,1024` does). Before rendering. */
+bool session_set_pass_param(struct session *s, const char *key, double value, struct error *err);
 /* Loads the script again from scratch (fresh Lua state, passes and caches). */
 bool session_reload(struct session *s, struct error *err);
 /* Runs update() up to `frame` (reloading the script to go back in time). */
@@ -53,6 +56,9 @@ struct ref_stats;
 /* The ground truth of `frame` at the session's size (src/reference). */
 bool session_reference(struct session *s, int frame, const struct ref_options *options, struct image *out,
                        struct ref_stats *stats, struct error *err);
+/* ... also giving the caustic part alone (`caustic` may be NULL). */
+bool session_reference_parts(struct session *s, int frame, const struct ref_options *options, struct image *out,
+                             struct image *caustic, struct ref_stats *stats, struct error *err);
 /* Writes the rendered frame: .png tone mapped, .pfm linear. */
 bool session_write_image(struct session *s, const char *path, struct error *err);
 

@@ -536,6 +536,12 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
 bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                 struct ref_stats *stats, struct error *err)
 {
+    return ref_render_parts(r, scene, o, out, NULL, stats, err);
+}
+
+bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
+                      struct image *caustic_out, struct ref_stats *stats, struct error *err)
+{
     double start = log_now();
     struct ref_scene rs;
     if (!ref_scene_build(&rs, r, scene, err))
@@ -543,7 +549,9 @@ bool ref_render(struct renderer *r, struct scene *scene, const struct ref_option
     size_t npix = (size_t)o->width * (size_t)o->height;
     struct pixel *pixels = calloc(npix, sizeof *pixels);
     struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
-    if (!pixels || !chunks || !image_create(out, o->width, o->height, err)) {
+    if (!pixels || !chunks || !image_create(out, o->width, o->height, err) ||
+        (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
+        image_destroy(out);
         free(pixels);
         free(chunks);
         ref_scene_release(&rs);
@@ -625,8 +633,17 @@ bool ref_render(struct renderer *r, struct scene *scene, const struct ref_option
         /* Each iteration's photons carry the lights' power between them
          * (flux per photon = power / photons), so tau averages over the
          * iterations: L = tau / (iterations pi R^2). */
+        dvec3 lc = dv(0, 0, 0);
         if (emitted > 0 && px->radius > 0 && px->n > 0)
-            l = dv_add(l, dv_scale(px->tau, 1.0 / ((double)iterations * MATH_PI * px->radius * px->radius)));
+            lc = dv_scale(px->tau, 1.0 / ((double)iterations * MATH_PI * px->radius * px->radius));
+        l = dv_add(l, lc);
+        if (caustic_out) {
+            float *cd = caustic_out->rgba + i * 4;
+            cd[0] = (float)lc.x;
+            cd[1] = (float)lc.y;
+            cd[2] = (float)lc.z;
+            cd[3] = 1.0f;
+        }
         float *dst = out->rgba + i * 4;
         dst[0] = (float)l.x;
         dst[1] = (float)l.y;

@@ -37,5 +37,9 @@ void ref_options_default(struct ref_options *o);
  * deformed vertex buffers are read back from the GPU). */
 bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
                 struct ref_stats *stats, struct error *err);
+/* The same, also returning the caustic (light -> specular+ -> diffuse)
+ * part of the image on its own (may be NULL). */
+bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
+                      struct image *caustic, struct ref_stats *stats, struct error *err);
 
 #endif

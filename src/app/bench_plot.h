@@ -1,0 +1,26 @@
+/* A log-log plot of error against time as an SVG file a browser opens. */
+#ifndef CAUSTICA_BENCH_PLOT_H
+#define CAUSTICA_BENCH_PLOT_H
+
+#include <stdbool.h>
+
+#include "core/error.h"
+
+struct plot_point {
+    double x, y;       /* time (ms), error; points with x or y <= 0 are left out */
+    char label[128];
+    int series;        /* 0.. : colour and legend entry */
+};
+
+struct plot {
+    const char *title, *x_label, *y_label;
+    const char *series_names[8];
+    bool series_lines[8]; /* join the series' points in order */
+    int series_count;
+    struct plot_point *points;
+    int count;
+};
+
+bool bench_plot_write_svg(const char *path, const struct plot *plot, struct error *err);
+
+#endif

@@ -1,0 +1,35 @@
+# `caustica bench`: CSV, Markdown table and plot; the ground truth cached;
+# the reference's own error falls as it runs longer.
+source "$(dirname "$0")/lib.sh"
+B="$WORK/bench"
+"$CAUSTICA" bench tests/scenes/ball_lens.lua --sweep floor=0.75,1.0 --sweep shade.caustics=0 --size 32x32 --frames 2 \
+  -o "$B" --ref-photons 20000 --ref-spp 8 >"$WORK/out.txt" 2>"$WORK/err.txt"
+# (shade has no number parameter: that sweep must be refused)
+grep -q "not a number parameter\|has no parameter" "$WORK/err.txt" && pass "a non-number pass parameter is refused" \
+  || fail "non-number pass parameter" "$(cat "$WORK/err.txt")"
+
+"$CAUSTICA" bench tests/scenes/ball_lens.lua --sweep floor=0.75,1.0 --size 32x32 --frames 2 \
+  -o "$B" --ref-photons 20000 --ref-spp 8 >"$WORK/out.txt" 2>"$WORK/err.txt" || fail "bench" "$(cat "$WORK/err.txt")"
+for f in results.csv results.md plot.svg; do
+  [ -s "$B/$f" ] && pass "wrote $f" || fail "wrote $f" "missing"
+done
+rows=$(grep -c '^gpu,' "$B/results.csv"); refs=$(grep -c '^reference,' "$B/results.csv")
+[ "$rows" = 2 ] && [ "$refs" = 4 ] && pass "2 variants and 4 reference levels" || fail "rows" "$rows gpu, $refs reference"
+grep -q "<svg" "$B/plot.svg" && grep -q "reference 8 it" "$B/plot.svg" && pass "plot has the reference curve" \
+  || fail "plot" "$(head -c 300 "$B/plot.svg")"
+# the caustic-region error of the reference falls from 1 to 8 iterations
+first=$(grep '^reference,' "$B/results.csv" | head -1 | awk -F, '{print $NF}')
+last=$(grep '^reference,' "$B/results.csv" | tail -1 | awk -F, '{print $NF}')
+awk "BEGIN { exit !($last < $first) }" && pass "reference error falls ($first -> $last)" || fail "reference error falls" "$first -> $last"
+ls "$B"/cache/truth_*.pfm >/dev/null 2>&1 && pass "ground truth cached" || fail "cache" "no files"
+grep -q "rendering the ground truth" "$WORK/err.txt" && pass "first run renders the truth" || fail "first run" "$(cat "$WORK/err.txt")"
+"$CAUSTICA" bench tests/scenes/ball_lens.lua --sweep floor=0.75,1.0 --size 32x32 --frames 2 \
+  -o "$B" --ref-photons 20000 --ref-spp 8 >"$WORK/out2.txt" 2>"$WORK/err2.txt"
+grep -q "rendering the ground truth" "$WORK/err2.txt" && fail "second run" "rendered the truth again" || pass "second run reuses the cache"
+
+# The demo with a sweep of a pass parameter.
+"$CAUSTICA" bench scenes/demo.lua --sweep shadow.size=256,1024 --size 64x64 --frames 2 -o "$WORK/demo" \
+  --ref-photons 1000 --ref-spp 8 >"$WORK/demo.txt" 2>&1 && [ -s "$WORK/demo/results.md" ] \
+  && pass "bench on the demo" || fail "bench on the demo" "$(cat "$WORK/demo.txt")"
+expect_error "bad sweep" 2 "--sweep needs key=v1,v2" - -- "$CAUSTICA" bench scenes/demo.lua --sweep nothing
+finish
