@@ -22,6 +22,7 @@
 #define ENVIRONMENT_MT "caustica.Environment"
 #define DEFORMER_MT "caustica.Deformer"
 #define SCENE_MT "caustica.Scene"
+#define MEDIUM_MT "caustica.Medium"
 
 struct l_mesh { struct mesh *mesh; };
 struct l_object { struct object *obj; };
@@ -655,6 +656,131 @@ static int environment_gc(lua_State *L)
     return 0;
 }
 
+/* ---- media ------------------------------------------------------------ */
+
+struct l_medium { struct medium *medium; };
+
+/* c.medium { sigma_s, sigma_a, g, density = number | function(x, y, z), resolution = {nx, ny, nz}, box = {min, max} } */
+static int medium_new(lua_State *L)
+{
+    luaL_checktype(L, 1, LUA_TTABLE);
+    static const char *const fields[] = {"sigma_s", "sigma_a", "g", "density", "resolution", "box", NULL};
+    lutil_check_fields(L, 1, "medium", fields);
+    struct l_medium *u = lua_newuserdatauv(L, sizeof *u, 0);
+    u->medium = medium_create();
+    luaL_setmetatable(L, MEDIUM_MT);
+    if (!u->medium)
+        return luaL_error(L, "out of memory");
+    int idx = lua_gettop(L);
+    struct medium *m = u->medium;
+    lutil_opt_vec3(L, 1, "medium", "sigma_s", &m->sigma_s);
+    lutil_opt_vec3(L, 1, "medium", "sigma_a", &m->sigma_a);
+    lutil_opt_number(L, 1, "medium", "g", &m->g);
+    if (!(m->g > -0.99f && m->g < 0.99f))
+        return luaL_error(L, "bad argument 'g' to 'medium' (a number in (-0.99, 0.99) expected, got %f)", (double)m->g);
+    if (m->sigma_s.x < 0 || m->sigma_s.y < 0 || m->sigma_s.z < 0 || m->sigma_a.x < 0 || m->sigma_a.y < 0 ||
+        m->sigma_a.z < 0 || !math_finite3(m->sigma_s) || !math_finite3(m->sigma_a))
+        return luaL_error(L, "bad argument 'sigma_s'/'sigma_a' to 'medium' (non-negative finite coefficients expected)");
+    if (lua_getfield(L, 1, "box") != LUA_TTABLE)
+        return luaL_error(L, "bad argument 'box' to 'medium' ({{x0, y0, z0}, {x1, y1, z1}} expected, got %s)",
+                          luaL_typename(L, -1));
+    lua_rawgeti(L, -1, 1);
+    m->box_min = lutil_check_vec3(L, -1, "medium", "box");
+    lua_rawgeti(L, -2, 2);
+    m->box_max = lutil_check_vec3(L, -1, "medium", "box");
+    lua_pop(L, 3);
+    if (!(m->box_min.x < m->box_max.x && m->box_min.y < m->box_max.y && m->box_min.z < m->box_max.z))
+        return luaL_error(L, "bad argument 'box' to 'medium' (min must be below max on every axis)");
+    int type = lua_getfield(L, 1, "density");
+    if (type == LUA_TNUMBER) {
+        m->density = (float)lua_tonumber(L, -1);
+        if (!(m->density >= 0) || !isfinite(m->density))
+            return luaL_error(L, "bad argument 'density' to 'medium' (a non-negative number expected)");
+        m->max_density = m->density;
+    } else if (type == LUA_TFUNCTION) {
+        /* A density function, sampled once on the corners of a grid. */
+        int res[3] = {32, 32, 32};
+        if (lua_getfield(L, 1, "resolution") == LUA_TTABLE)
+            for (int k = 0; k < 3; k++) {
+                lua_rawgeti(L, -1, k + 1);
+                res[k] = (int)luaL_checkinteger(L, -1);
+                lua_pop(L, 1);
+            }
+        lua_pop(L, 1);
+        for (int k = 0; k < 3; k++)
+            if (res[k] < 2 || res[k] > 256)
+                return luaL_error(L, "bad argument 'resolution' to 'medium' (2..256 per axis expected)");
+        m->nx = res[0];
+        m->ny = res[1];
+        m->nz = res[2];
+        m->grid = malloc((size_t)res[0] * (size_t)res[1] * (size_t)res[2] * sizeof(float));
+        if (!m->grid)
+            return luaL_error(L, "out of memory for a %dx%dx%d density grid", res[0], res[1], res[2]);
+        m->max_density = 0;
+        int fn = lua_gettop(L);
+        for (int z = 0; z < res[2]; z++)
+            for (int y = 0; y < res[1]; y++)
+                for (int x = 0; x < res[0]; x++) {
+                    vec3 p = {m->box_min.x + (m->box_max.x - m->box_min.x) * (float)x / (float)(res[0] - 1),
+                              m->box_min.y + (m->box_max.y - m->box_min.y) * (float)y / (float)(res[1] - 1),
+                              m->box_min.z + (m->box_max.z - m->box_min.z) * (float)z / (float)(res[2] - 1)};
+                    lua_pushvalue(L, fn);
+                    lua_pushnumber(L, p.x);
+                    lua_pushnumber(L, p.y);
+                    lua_pushnumber(L, p.z);
+                    lua_call(L, 3, 1);
+                    if (!lua_isnumber(L, -1))
+                        return luaL_error(L, "medium density function must return a number, got %s", luaL_typename(L, -1));
+                    float d = (float)lua_tonumber(L, -1);
+                    lua_pop(L, 1);
+                    if (!(d >= 0) || !isfinite(d))
+                        return luaL_error(L, "medium density function returned %f at (%f, %f, %f): non-negative finite "
+                                             "values expected", (double)d, (double)p.x, (double)p.y, (double)p.z);
+                    m->grid[((size_t)z * (size_t)res[1] + (size_t)y) * (size_t)res[0] + (size_t)x] = d;
+                    if (d > m->max_density)
+                        m->max_density = d;
+                }
+    } else if (type != LUA_TNIL) {
+        return lutil_field_error(L, "medium", "density", "number or function(x, y, z)", -1);
+    }
+    lua_settop(L, idx);
+    return 1;
+}
+
+/* medium:density_at{x, y, z} */
+static int medium_density_at(lua_State *L)
+{
+    struct l_medium *u = luaL_checkudata(L, 1, MEDIUM_MT);
+    vec3 p = lutil_check_vec3(L, 2, "density_at", "point");
+    lua_pushnumber(L, medium_density(u->medium, p));
+    return 1;
+}
+
+static int medium_gc(lua_State *L)
+{
+    struct l_medium *u = luaL_checkudata(L, 1, MEDIUM_MT);
+    medium_destroy(u->medium);
+    u->medium = NULL;
+    return 0;
+}
+
+static int medium_index(lua_State *L)
+{
+    struct l_medium *u = luaL_checkudata(L, 1, MEDIUM_MT);
+    const char *k = luaL_checkstring(L, 2);
+    if (strcmp(k, "sigma_s") == 0)
+        lutil_push_vec3(L, u->medium->sigma_s);
+    else if (strcmp(k, "sigma_a") == 0)
+        lutil_push_vec3(L, u->medium->sigma_a);
+    else if (strcmp(k, "g") == 0)
+        lua_pushnumber(L, u->medium->g);
+    else if (strcmp(k, "density_at") == 0)
+        lua_pushcfunction(L, medium_density_at);
+    else
+        lua_pushnil(L);
+    return 1;
+}
+
 /* ---- scenes ---------------------------------------------------------- */
 
 static struct scene *check_scene(lua_State *L, int idx)
@@ -686,8 +812,23 @@ static void scene_set(lua_State *L, int scene_idx, struct scene *s, const char *
         }
         lua_pushvalue(L, v);
         lua_setiuservalue(L, scene_idx, 2); /* keep it alive */
+    } else if (strcmp(k, "medium") == 0) {
+        if (lua_isnil(L, v)) {
+            s->medium = NULL;
+        } else {
+            struct l_medium *m = luaL_testudata(L, v, MEDIUM_MT);
+            if (!m)
+                lutil_field_error(L, "scene", k, "medium (c.medium{...})", v);
+            s->medium = m->medium;
+        }
+        /* keep it alive in the members table */
+        lua_getiuservalue(L, scene_idx, 1);
+        lua_pushstring(L, "medium");
+        lua_pushvalue(L, v);
+        lua_rawset(L, -3);
+        lua_pop(L, 1);
     } else {
-        luaL_error(L, "scene has no field '%s' (fields: camera, background, ambient, environment)", k);
+        luaL_error(L, "scene has no field '%s' (fields: camera, background, ambient, environment, medium)", k);
     }
     s->version++;
 }
@@ -697,7 +838,7 @@ static int scene_new(lua_State *L)
     if (lua_isnoneornil(L, 1))
         lua_newtable(L);
     luaL_checktype(L, 1, LUA_TTABLE);
-    static const char *const fields[] = {"camera", "background", "ambient", "environment", NULL};
+    static const char *const fields[] = {"camera", "background", "ambient", "environment", "medium", NULL};
     lutil_check_fields(L, 1, "scene", fields);
     struct l_scene *u = lua_newuserdatauv(L, sizeof *u, 2);
     scene_init(&u->scene);
@@ -782,6 +923,10 @@ static int scene_index(lua_State *L)
         lutil_push_vec3(L, s->ambient);
     else if (strcmp(k, "environment") == 0)
         lua_getiuservalue(L, 1, 2);
+    else if (strcmp(k, "medium") == 0) {
+        lua_getiuservalue(L, 1, 1);
+        lua_getfield(L, -1, "medium");
+    }
     else if (strcmp(k, "add") == 0)
         lua_pushcfunction(L, scene_add);
     else if (strcmp(k, "remove") == 0)
@@ -851,6 +996,7 @@ int luaopen_caustica_scene(lua_State *L)
     static const luaL_Reg camera_meta[] = {{"__index", camera_index}, {"__newindex", camera_newindex}, {NULL, NULL}};
     static const luaL_Reg environment_meta[] = {{"__gc", environment_gc}, {NULL, NULL}};
     static const luaL_Reg deformer_meta[] = {{"__gc", deform_gc}, {NULL, NULL}};
+    static const luaL_Reg medium_meta[] = {{"__gc", medium_gc}, {"__index", medium_index}, {NULL, NULL}};
     static const luaL_Reg scene_meta[] = {{"__gc", scene_gc}, {"__index", scene_index}, {"__newindex", scene_newindex},
                                           {"__tostring", scene_tostring}, {NULL, NULL}};
     new_metatable(L, MESH_MT, mesh_meta);
@@ -861,9 +1007,10 @@ int luaopen_caustica_scene(lua_State *L)
     new_metatable(L, ENVIRONMENT_MT, environment_meta);
     new_metatable(L, DEFORMER_MT, deformer_meta);
     new_metatable(L, SCENE_MT, scene_meta);
+    new_metatable(L, MEDIUM_MT, medium_meta);
 
     static const luaL_Reg top[] = {{"scene", scene_new}, {"object", object_new}, {"camera", camera_new},
-                                   {"cubemap", cubemap_new}, {NULL, NULL}};
+                                   {"cubemap", cubemap_new}, {"medium", medium_new}, {NULL, NULL}};
     static const luaL_Reg meshes[] = {{"load", mesh_load}, {"sphere", mesh_sphere}, {"plane", mesh_plane},
                                       {"box", mesh_box}, {"grid", mesh_grid}, {NULL, NULL}};
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},

@@ -20,6 +20,7 @@
 
 #include "core/log.h"
 #include "core/vecmath.h"
+#include "reference/ref_media.h"
 #include "reference/ref_rng.h"
 #include "reference/ref_scene.h"
 #include "reference/reference.h"
@@ -28,7 +29,9 @@
 #define MAX_MEDIA 8
 #define SPPM_ALPHA (2.0 / 3.0)
 #define PHOTON_CHUNKS 64
-#define RADIUS_PIXELS 2.0  /* initial gather radius, in pixel footprints */   /* fixed, so the result does not depend on the thread count */
+#define RADIUS_PIXELS 2.0  /* initial gather radius, in pixel footprints */
+#define MAX_SEGMENTS 4     /* camera path segments through the medium kept for the volume gather */
+#define VOLUME_SAMPLES 8   /* stratified points per segment where volume photons are gathered */   /* fixed, so the result does not depend on the thread count */
 
 void ref_options_default(struct ref_options *o)
 {
@@ -179,13 +182,84 @@ struct pixel {
     struct visible_point vp;
     dvec3 phi;              /* this iteration's photons */
     long m;
+    /* this iteration's eye-path segments through the medium */
+    struct {
+        dvec3 origin, dir, beta;
+        double t0, t1;
+    } segments[MAX_SEGMENTS];
+    int segment_count;
 };
 
 /* Direct light at a diffuse point with normal n (facing the viewer). */
-static dvec3 direct_light(const struct ref_scene *rs, dvec3 p, dvec3 n)
+/* Light arriving at p from light l, unshadowed: the irradiance a surface
+ * facing it would get, the unit direction towards it and its distance. */
+static bool light_arrival(const struct ref_light *l, dvec3 p, dvec3 *e, dvec3 *wi, double *dist)
+{
+    if (l->kind == 1) {
+        *wi = dv_scale(l->direction, -1.0);
+        *dist = INFINITY;
+        *e = l->intensity;
+        return true;
+    }
+    dvec3 d = dv_sub(l->position, p);
+    double d2 = fmax(dv_dot(d, d), 1e-16);
+    *dist = sqrt(d2);
+    *wi = dv_scale(d, 1.0 / *dist);
+    double spot = 1.0;
+    if (l->kind == 2) {
+        /* the shaders' smoothstep falloff over the cone's edge */
+        double ca = dv_dot(dv_scale(*wi, -1.0), l->direction);
+        double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
+        double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
+        spot = x * x * (3.0 - 2.0 * x);
+        if (spot <= 0.0)
+            return false;
+    }
+    *e = dv_scale(l->intensity, spot / d2);
+    return true;
+}
+
+/* Radiance the lights scatter at medium point x towards -view (phase
+ * function included, sigma_s not), shadowed and attenuated. */
+static dvec3 inscatter(const struct ref_scene *rs, const struct ref_medium *rm, struct ref_rng *rng, dvec3 x,
+                       dvec3 view)
+{
+    dvec3 sum = dv(0, 0, 0);
+    for (int i = 0; i < rs->light_count; i++) {
+        dvec3 e, wi;
+        double dist;
+        if (!light_arrival(&rs->lights[i], x, &e, &wi, &dist))
+            continue;
+        double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) : INFINITY;
+        if (ref_scene_occluded(rs, x, wi, tmax))
+            continue;
+        /* cos between the light's travel direction (-wi) and the direction to the eye (-view) */
+        double p = ref_phase_hg(rm->g, dv_dot(wi, view));
+        sum = dv_add(sum, dv_scale(dv_mul(e, ref_medium_transmittance(rm, x, wi, tmax, rng)), p));
+    }
+    return sum;
+}
+
+static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *rm, struct ref_rng *rng, dvec3 p,
+                          dvec3 n)
 {
     dvec3 e = dv(0, 0, 0);
     dvec3 origin = dv_add(p, dv_scale(n, rs->epsilon));
+    if (rm->present) {
+        /* With a medium: the same geometry, attenuated along the shadow ray. */
+        for (int i = 0; i < rs->light_count; i++) {
+            dvec3 el, wi;
+            double dist;
+            if (!light_arrival(&rs->lights[i], p, &el, &wi, &dist))
+                continue;
+            double c = dv_dot(n, wi);
+            double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - rs->epsilon : INFINITY;
+            if (c <= 0.0 || ref_scene_occluded(rs, origin, wi, tmax))
+                continue;
+            e = dv_add(e, dv_scale(dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng)), c));
+        }
+        return e;
+    }
     for (int i = 0; i < rs->light_count; i++) {
         const struct ref_light *l = &rs->lights[i];
         if (l->kind == 1) {
@@ -225,7 +299,11 @@ struct job {
     int iteration;
     int thread, threads;
     const struct media *camera_media;
+    const struct ref_medium *medium;
     double pixel_angle; /* radians a pixel spans at the image centre */
+    /* volume photons */
+    struct volume_photons *volume_chunks;
+    struct volume_grid *volume_grid;
     /* photons */
     long photons_per_light;
     struct grid *grid;
@@ -248,9 +326,36 @@ static void trace_eye(struct job *j, int x, int y)
      * camera sits at the eye: the medium around it absorbs from there. */
     dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye))));
     px->vp.valid = false;
+    px->segment_count = 0;
+    const struct ref_medium *rm = j->medium;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
-        if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h)) {
+        bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
+        double t0, t1;
+        if (media.count == 0 && ref_medium_clip(rm, origin, dir, hit ? h.t : INFINITY, &t0, &t1)) {
+            /* Single scattering of the lights along the segment: one
+             * uniformly placed sample per iteration (unbiased; the
+             * iterations average it). */
+            double sdist = t0 + (t1 - t0) * ref_rng_uniform(&rng);
+            dvec3 at = dv_add(origin, dv_scale(dir, sdist));
+            double rho = ref_medium_density(rm, at);
+            if (rho > 0.0) {
+                dvec3 tr = ref_medium_transmittance(rm, origin, dir, sdist, &rng);
+                dvec3 ls = inscatter(rs, rm, &rng, at, dir);
+                dvec3 c = dv_mul(dv_mul(beta, tr), dv_mul(dv_scale(rm->sigma_s, rho * (t1 - t0)), ls));
+                px->direct = dv_add(px->direct, c);
+            }
+            if (px->segment_count < MAX_SEGMENTS) {
+                int k = px->segment_count++;
+                px->segments[k].origin = origin;
+                px->segments[k].dir = dir;
+                px->segments[k].beta = beta;
+                px->segments[k].t0 = t0;
+                px->segments[k].t1 = t1;
+            }
+            beta = dv_mul(beta, ref_medium_transmittance(rm, origin, dir, hit ? h.t : INFINITY, &rng));
+        }
+        if (!hit) {
             px->direct = dv_add(px->direct, dv_mul(beta, ref_scene_environment(rs, dir)));
             return;
         }
@@ -259,7 +364,7 @@ static void trace_eye(struct job *j, int x, int y)
         if (m->kind == MATERIAL_DIFFUSE) {
             dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
             dvec3 albedo = dv(m->color.x, m->color.y, m->color.z);
-            dvec3 e = direct_light(rs, h.position, n);
+            dvec3 e = direct_light(rs, rm, &rng, h.position, n);
             dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
             px->direct = dv_add(px->direct, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
             if (px->radius <= 0.0) {
@@ -385,6 +490,150 @@ static void hits_push(struct photon_hits *h, int pixel, dvec3 flux)
     h->items[h->count++] = (struct photon_hit){pixel, {(float)flux.x, (float)flux.y, (float)flux.z}};
 }
 
+/* Volume caustic photons: where light that went through specular
+ * surfaces scattered in the medium (flux already weighted by sigma_s). */
+struct volume_photon {
+    float position[3], dir[3], flux[3];
+};
+
+struct volume_photons {
+    struct volume_photon *items;
+    size_t count, capacity;
+};
+
+static void volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux)
+{
+    if (v->count == v->capacity) {
+        size_t cap = v->capacity ? v->capacity * 2 : 1024;
+        struct volume_photon *q = realloc(v->items, cap * sizeof *q);
+        if (!q)
+            return;
+        v->items = q;
+        v->capacity = cap;
+    }
+    v->items[v->count++] = (struct volume_photon){{(float)p.x, (float)p.y, (float)p.z},
+                                                  {(float)d.x, (float)d.y, (float)d.z},
+                                                  {(float)flux.x, (float)flux.y, (float)flux.z}};
+}
+
+/* A hash grid over volume photons, cell = the gather radius. */
+struct volume_grid {
+    double radius, cell;
+    size_t size;
+    size_t *start;
+    struct volume_photon *items; /* sorted by cell */
+};
+
+static size_t volume_hash(const struct volume_grid *g, long x, long y, long z)
+{
+    uint64_t h = ((uint64_t)x * 73856093u) ^ ((uint64_t)y * 19349663u) ^ ((uint64_t)z * 83492791u);
+    return (size_t)(h % g->size);
+}
+
+static void volume_grid_build(struct volume_grid *g, const struct volume_photons *chunks, int nchunks, double radius)
+{
+    size_t n = 0;
+    for (int c = 0; c < nchunks; c++)
+        n += chunks[c].count;
+    g->radius = radius;
+    g->cell = radius;
+    g->size = n > 0 ? n * 2 : 1;
+    g->start = calloc(g->size + 1, sizeof *g->start);
+    g->items = malloc((n + 1) * sizeof *g->items);
+    if (!g->start || !g->items) {
+        g->size = 0;
+        return;
+    }
+    for (int c = 0; c < nchunks; c++)
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            const float *p = chunks[c].items[k].position;
+            g->start[volume_hash(g, (long)floor(p[0] / g->cell), (long)floor(p[1] / g->cell), (long)floor(p[2] / g->cell)) + 1]++;
+        }
+    for (size_t s = 0; s < g->size; s++)
+        g->start[s + 1] += g->start[s];
+    size_t *fill = malloc((g->size + 1) * sizeof *fill);
+    if (!fill) {
+        g->size = 0;
+        return;
+    }
+    memcpy(fill, g->start, (g->size + 1) * sizeof *fill);
+    for (int c = 0; c < nchunks; c++)
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            const float *p = chunks[c].items[k].position;
+            size_t h = volume_hash(g, (long)floor(p[0] / g->cell), (long)floor(p[1] / g->cell), (long)floor(p[2] / g->cell));
+            g->items[fill[h]++] = chunks[c].items[k];
+        }
+    free(fill);
+}
+
+static void volume_grid_release(struct volume_grid *g)
+{
+    free(g->start);
+    free(g->items);
+    memset(g, 0, sizeof *g);
+}
+
+/* In-scattered radiance of the volume photons at x towards -view: the
+ * volume radiance estimate sum(flux * phase) / (4/3 pi r^3) (Jensen &
+ * Christensen 1998). */
+static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 x, dvec3 view)
+{
+    dvec3 sum = dv(0, 0, 0);
+    if (g->size == 0)
+        return sum;
+    long cx = (long)floor(x.x / g->cell), cy = (long)floor(x.y / g->cell), cz = (long)floor(x.z / g->cell);
+    double r2 = g->radius * g->radius;
+    for (long z = cz - 1; z <= cz + 1; z++)
+        for (long y = cy - 1; y <= cy + 1; y++)
+            for (long xx = cx - 1; xx <= cx + 1; xx++) {
+                size_t h = volume_hash(g, xx, y, z);
+                for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
+                    const struct volume_photon *p = &g->items[k];
+                    dvec3 d = dv(p->position[0] - x.x, p->position[1] - x.y, p->position[2] - x.z);
+                    if (dv_dot(d, d) > r2)
+                        continue;
+                    /* hash collisions bring photons of far cells: the distance test rejects them */
+                    double ph = ref_phase_hg(phase_g, -(p->dir[0] * view.x + p->dir[1] * view.y + p->dir[2] * view.z));
+                    sum = dv_add(sum, dv_scale(dv(p->flux[0], p->flux[1], p->flux[2]), ph));
+                }
+            }
+    return dv_scale(sum, 1.0 / (4.0 / 3.0 * MATH_PI * g->radius * g->radius * g->radius));
+}
+
+/* The volume caustic seen along a pixel's medium segments. */
+static void gather_volume(struct job *j, int x, int y)
+{
+    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    if (px->segment_count == 0)
+        return;
+    struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 3u,
+                                      (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
+    const struct ref_medium *rm = j->medium;
+    for (int k = 0; k < px->segment_count; k++) {
+        double t0 = px->segments[k].t0, t1 = px->segments[k].t1, step = (t1 - t0) / VOLUME_SAMPLES;
+        dvec3 o = px->segments[k].origin, d = px->segments[k].dir;
+        dvec3 sum = dv(0, 0, 0);
+        for (int s = 0; s < VOLUME_SAMPLES; s++) {
+            double t = t0 + step * (s + ref_rng_uniform(&rng));
+            dvec3 p = dv_add(o, dv_scale(d, t));
+            dvec3 l = volume_estimate(j->volume_grid, rm->g, p, d);
+            if (l.x + l.y + l.z <= 0.0)
+                continue;
+            sum = dv_add(sum, dv_mul(ref_medium_transmittance(rm, o, d, t, &rng), l));
+        }
+        px->direct = dv_add(px->direct, dv_mul(px->segments[k].beta, dv_scale(sum, step)));
+    }
+}
+
+static void *volume_thread(void *arg)
+{
+    struct job *j = arg;
+    for (int y = j->thread; y < j->o->height; y += j->threads)
+        for (int x = 0; x < j->o->width; x++)
+            gather_volume(j, x, y);
+    return NULL;
+}
+
 /* An orthonormal basis around unit w. */
 static void basis(dvec3 w, dvec3 *u, dvec3 *v)
 {
@@ -454,7 +703,7 @@ static void gather(struct job *j, struct photon_hits *hits, dvec3 p, dvec3 n_sur
 }
 
 static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic,
-                         double *power)
+                         double *power, struct volume_photons *volume)
 {
     const struct ref_scene *rs = j->rs;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 7919u * (uint64_t)j->iteration + 2u + (uint64_t)light * 104729u,
@@ -466,7 +715,24 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
     int specular = 0;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
-        if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h))
+        bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
+        if (media.count == 0 && j->medium->present) {
+            double ts = 0;
+            dvec3 w = dv(1, 1, 1);
+            enum ref_medium_event ev = ref_medium_track(j->medium, origin, dir, hit ? h.t : INFINITY, &rng, &ts, &w);
+            if (ev == REF_MEDIUM_ABSORB)
+                return;
+            if (ev == REF_MEDIUM_SCATTER) {
+                /* Light -> specular+ -> medium: a volume caustic photon. One
+                 * that scatters before any specular surface is direct
+                 * single scattering, which the eye paths estimate. */
+                if (specular > 0)
+                    volume_push(volume, dv_add(origin, dv_scale(dir, ts)), dir, dv_mul(flux, w));
+                return;
+            }
+            flux = dv_mul(flux, w);
+        }
+        if (!hit)
             return;
         flux = attenuate(flux, medium_sigma(rs, &media), h.t);
         const struct material *m = &rs->objects[h.object].material;
@@ -495,7 +761,7 @@ static void *photon_thread(void *arg)
         long begin = total * c / PHOTON_CHUNKS, end = total * (c + 1) / PHOTON_CHUNKS;
         for (long k = begin; k < end; k++)
             trace_photon(j, (int)(k / j->photons_per_light), k % j->photons_per_light, &j->chunks[c],
-                         &j->caustic_photons[c], j->caustic_power[c]);
+                         &j->caustic_photons[c], j->caustic_power[c], &j->volume_chunks[c]);
     }
     return NULL;
 }
@@ -562,6 +828,14 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
     if (threads < 1)
         threads = 1;
+    struct ref_medium medium;
+    ref_medium_init(&medium, scene->medium);
+    struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
+    double volume_radius = 0.0;
+    if (medium.present) {
+        dvec3 ext = dv_sub(medium.hi, medium.lo);
+        volume_radius = o->volume_radius > 0 ? o->volume_radius : 0.01 * sqrt(dv_dot(ext, ext));
+    }
     struct media camera_media;
     dvec3 cam_origin, cam_dir;
     ref_scene_camera_ray(&rs, o->width * 0.5, o->height * 0.5, o->width, o->height, &cam_origin, &cam_dir);
@@ -575,6 +849,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     bool tty = o->progress && isatty(STDERR_FILENO);
     for (; it < o->iterations; it++) {
         struct job job = {.rs = &rs, .o = o, .pixels = pixels, .iteration = it, .camera_media = &camera_media,
+                          .medium = &medium, .volume_chunks = volume_chunks,
                           .pixel_angle = pixel_angle, .photons_per_light = per_light, .chunks = chunks};
         run_threads(&job, threads, camera_thread);
         if (caustics) {
@@ -597,6 +872,20 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
             }
             grid_release(&grid);
             emitted += (long long)per_light * rs.light_count;
+            if (medium.present) {
+                /* Volume caustics: gather this iteration's volume photons with
+                 * the current radius, which shrinks as r^3 ~ i^(alpha - 1)
+                 * (Knaus & Zwicker 2011), so the average over iterations
+                 * converges. */
+                struct volume_grid vgrid;
+                volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, volume_radius);
+                job.volume_grid = &vgrid;
+                run_threads(&job, threads, volume_thread);
+                volume_grid_release(&vgrid);
+                for (int c = 0; c < PHOTON_CHUNKS; c++)
+                    volume_chunks[c].count = 0;
+                volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
+            }
             /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
             for (size_t i = 0; i < npix; i++) {
                 struct pixel *px = &pixels[i];
@@ -658,8 +947,11 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         for (int k = 0; k < 3; k++)
             stats->caustic_power[k] = caustic_power[k] / iterations;
     }
-    for (int c = 0; c < PHOTON_CHUNKS; c++)
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
         free(chunks[c].items);
+        free(volume_chunks[c].items);
+    }
+    free(volume_chunks);
     free(chunks);
     free(pixels);
     ref_scene_release(&rs);

@@ -20,6 +20,7 @@ struct ref_options {
     double time_budget;  /* seconds; > 0 stops early when spent (and may run past `iterations`? no) */
     uint64_t seed;
     double initial_radius; /* 0: from the scene size */
+    double volume_radius;  /* initial volume gather radius; 0: 1% of the medium box diagonal */
     bool progress;       /* print progress with time left on stderr */
     int threads;         /* 0: all cores */
 };

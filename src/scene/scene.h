@@ -133,8 +133,29 @@ bool environment_upload(struct environment *env, struct error *err);
 vec3 environment_lookup(const struct environment *env, vec3 dir);
 void environment_destroy(struct environment *env);
 
+/* A participating medium filling an axis-aligned box (outside dielectric
+ * objects, which keep their own absorption): coefficients at density 1,
+ * a Henyey-Greenstein phase function, and a density that is a constant or
+ * a grid over the box (trilinear). */
+struct medium {
+    vec3 sigma_s, sigma_a; /* per unit length at density 1 */
+    float g;               /* Henyey-Greenstein asymmetry, -1 < g < 1 (0 = isotropic) */
+    vec3 box_min, box_max;
+    float density;         /* homogeneous density (when grid is NULL) */
+    int nx, ny, nz;
+    float *grid;           /* owned: nx*ny*nz densities at the cell corners, x fastest */
+    float max_density;     /* majorant for tracking */
+    uint64_t version;
+};
+
+struct medium *medium_create(void);
+void medium_destroy(struct medium *m);
+/* Density at world point p (0 outside the box). */
+float medium_density(const struct medium *m, vec3 p);
+
 struct scene {
     struct camera camera;
+    struct medium *medium;     /* borrowed (Lua owns), may be NULL */
     vec3 background;           /* radiance of the background when there is no environment */
     vec3 ambient;              /* radiance of a uniform ambient sky, unoccluded */
     struct environment *environment; /* borrowed (Lua owns), may be NULL */

@@ -212,3 +212,61 @@ t.case("the reference is deterministic for a seed, whatever the thread count", f
   local c = t.reference("tests/scenes/ball_lens.lua", opts)
   t.expect_different(a, c, 1e-6)
 end)
+
+-- Participating media. The fog box [-1,1] x [0,1] x [-1,1] is lit from
+-- straight above by irradiance 1; the camera looks along +x at height 0.5,
+-- so the centre pixel's ray crosses 2 units of fog and each point on it is
+-- reached by light that crossed 0.5 units. Single scattering:
+--   L = sigma_s rho p(90 deg) exp(-sigma_t * (light path)) (1 - exp(-2 sigma_t rho)) / (sigma_t rho)
+local function hg(g, c) return (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * c) ^ 1.5) end
+local sigma_s, sigma_a = { 0.5, 0.4, 0.3 }, { 0.1, 0.2, 0.3 }
+
+local function fog_expected(channel, rho, light_path, g)
+  local st = sigma_s[channel] + sigma_a[channel]
+  return sigma_s[channel] * rho * hg(g, 0) * math.exp(-st * light_path) * (1 - math.exp(-2 * st * rho)) / (st * rho)
+end
+
+for _, g in ipairs { 0.0, 0.6 } do
+  t.case("homogeneous fog, g = " .. g .. ": single scattering matches the closed form per channel", function()
+    local img = t.reference("tests/scenes/fog.lua", { set = { g = g }, photons = 0, spp = 600 })
+    t.expect_finite(img)
+    local v = { img:pixel(16, 16) }
+    for k = 1, 3 do
+      local want = fog_expected(k, 1.0, 0.5, g)
+      t.expect(math.abs(v[k] / want - 1) < 0.03, string.format("channel %d: %.6g, closed form %.6g", k, v[k], want))
+    end
+  end)
+end
+
+t.case("heterogeneous fog: density 0.5 + 1.5 y through a grid, ratio tracking", function()
+  -- along the ray rho = 1.25; towards the light the optical depth is
+  -- sigma_t * integral_0.5^1 (0.5 + 1.5 y) dy = sigma_t * 0.8125
+  local img = t.reference("tests/scenes/fog.lua", { set = { density = "linear" }, photons = 0, spp = 600 })
+  local v = { img:pixel(16, 16) }
+  for k = 1, 3 do
+    local want = fog_expected(k, 1.25, 0.8125, 0)
+    t.expect(math.abs(v[k] / want - 1) < 0.04, string.format("channel %d: %.6g, closed form %.6g", k, v[k], want))
+  end
+end)
+
+t.case("volume caustics: a ball of IOR 1.0 above the fog leaves it as if there were no ball", function()
+  -- The ball blocks the shadow rays, and the volume photons through it
+  -- bring the same light back into the column below it.
+  local opts = { set = { ball = true, ior = 1.0 }, photons = 200000, spp = 16 }
+  local with = t.reference("tests/scenes/fog.lua", opts)
+  opts.set.hide = true
+  local without = t.reference("tests/scenes/fog.lua", opts)
+  local a, b = with:stats(12, 8, 21, 26).mean_gray, without:stats(12, 8, 21, 26).mean_gray
+  t.expect(math.abs(a / b - 1) < 0.04, string.format("column mean %.6g with the ball, %.6g without", a, b))
+end)
+
+t.case("volume caustics: a glass ball focuses a bright cone into the fog", function()
+  local opts = { set = { ball = true, size = 65 }, photons = 200000, spp = 8 }
+  local glass = t.reference("tests/scenes/fog.lua", opts)
+  opts.set.hide = true
+  local plain = t.reference("tests/scenes/fog.lua", opts)
+  t.expect_finite(glass)
+  -- the focus sits at the top of the fog, right above the image centre
+  local focus, fog = glass:stats(28, 8, 37, 16).max, plain:stats(28, 8, 37, 16).max
+  t.expect(focus > 2 * fog, string.format("brightest near the focus %.4g, plain fog %.4g", focus, fog))
+end)
