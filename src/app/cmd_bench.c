@@ -406,7 +406,7 @@ int cmd_bench(struct app *app, struct cli *cli)
             points[np].x = r->frame_ms;
             points[np].y = caustic && r->has_caustic ? r->caustic.rel_rmse : r->all.rel_rmse;
             points[np].series = c < combos ? 0 : 1;
-            snprintf(points[np].label, sizeof points[np].label, "%s", r->label);
+            snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
             np++;
         }
         char title[600];
