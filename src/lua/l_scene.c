@@ -13,6 +13,7 @@
 #include "lua/l_util.h"
 #include "lua/lua_host.h"
 #include "scene/scene.h"
+#include "scene/water.h"
 
 #define MESH_MT "caustica.Mesh"
 #define MATERIAL_MT "caustica.Material"
@@ -371,6 +372,130 @@ static int object_new(lua_State *L)
     return 1;
 }
 
+/* c.water { size, resolution, depth, attenuation = {r,g,b}, ior, damping,
+ * wave_speed, boundary = "reflective" | "fixed", position }: a water
+ * surface object (material water) driven by a height-field simulation. */
+static int water_new(lua_State *L)
+{
+    luaL_checktype(L, 1, LUA_TTABLE);
+    static const char *const fields[] = {"size", "resolution", "depth", "attenuation", "ior", "damping",
+                                         "wave_speed", "boundary", "position", "visible", "cast_shadows", NULL};
+    lutil_check_fields(L, 1, "water", fields);
+    float size = 2.0f, depth = 1.0f, ior = 1.33f, damping = 0.0f, speed = 1.0f;
+    int resolution = 64;
+    vec3 attenuation = {0.0f, 0.0f, 0.0f};
+    lutil_opt_number(L, 1, "water", "size", &size);
+    lutil_opt_integer(L, 1, "water", "resolution", &resolution);
+    lutil_opt_number(L, 1, "water", "depth", &depth);
+    lutil_opt_number(L, 1, "water", "ior", &ior);
+    lutil_opt_number(L, 1, "water", "damping", &damping);
+    lutil_opt_number(L, 1, "water", "wave_speed", &speed);
+    lutil_opt_vec3(L, 1, "water", "attenuation", &attenuation);
+    bool fixed = false;
+    if (lua_getfield(L, 1, "boundary") != LUA_TNIL) {
+        const char *b = lua_tostring(L, -1);
+        if (!b || (strcmp(b, "fixed") != 0 && strcmp(b, "reflective") != 0))
+            return luaL_error(L, "bad argument 'boundary' to 'water' (\"reflective\" or \"fixed\" expected)");
+        fixed = strcmp(b, "fixed") == 0;
+    }
+    lua_pop(L, 1);
+    if (!(ior > 0) || attenuation.x < 0 || attenuation.y < 0 || attenuation.z < 0)
+        return luaL_error(L, "bad argument to 'water' (ior > 0 and non-negative attenuation expected)");
+    struct error err;
+    struct mesh *m = mesh_create_grid(size, resolution - 1, &err);
+    if (!m)
+        return luaL_error(L, "water: %s", err.message);
+    snprintf(m->name, sizeof m->name, "water %dx%d", resolution, resolution);
+    struct l_mesh *mu = lua_newuserdatauv(L, sizeof *mu, 0);
+    mu->mesh = m;
+    luaL_setmetatable(L, MESH_MT);
+    int mesh_idx = lua_gettop(L);
+    struct l_object *u = lua_newuserdatauv(L, sizeof *u, 1);
+    u->obj = object_create(m);
+    luaL_setmetatable(L, OBJECT_MT);
+    if (!u->obj)
+        return luaL_error(L, "out of memory");
+    lua_pushvalue(L, mesh_idx);
+    lua_setiuservalue(L, -2, 1);
+    struct object *o = u->obj;
+    o->water = calloc(1, sizeof *o->water);
+    if (!o->water || !water_create(o->water, resolution, size, depth, speed, damping, fixed, &err)) {
+        free(o->water);
+        o->water = NULL;
+        return luaL_error(L, "%s", o->water ? err.message : "out of memory");
+    }
+    o->material.kind = MATERIAL_WATER;
+    o->material.ior = ior;
+    o->material.absorption = attenuation;
+    o->material.color = vec3_make(1, 1, 1);
+    int obj_idx = lua_gettop(L);
+    static const char *const passthrough[] = {"position", "visible", "cast_shadows", NULL};
+    for (int i = 0; passthrough[i]; i++) {
+        if (lua_getfield(L, 1, passthrough[i]) != LUA_TNIL)
+            object_set(L, o, passthrough[i], lua_gettop(L));
+        lua_pop(L, 1);
+    }
+    lua_settop(L, obj_idx);
+    return 1;
+}
+
+static struct water *check_water(lua_State *L, const char *fn)
+{
+    struct object *o = check_object(L, 1);
+    if (!o->water)
+        luaL_error(L, "%s: this object is not a water surface (make one with c.water{...})", fn);
+    return o->water;
+}
+
+/* water:drop(x, z, radius, strength) */
+static int water_drop_l(lua_State *L)
+{
+    struct water *w = check_water(L, "drop");
+    water_drop(w, (float)luaL_checknumber(L, 2), (float)luaL_checknumber(L, 3), (float)luaL_checknumber(L, 4),
+               (float)luaL_checknumber(L, 5));
+    check_object(L, 1)->version++;
+    return 0;
+}
+
+/* water:step(dt): advances the simulation, substepping to its stability limit */
+static int water_step_l(lua_State *L)
+{
+    struct water *w = check_water(L, "step");
+    double dt = luaL_checknumber(L, 2);
+    if (!(dt >= 0) || !isfinite(dt))
+        return luaL_error(L, "bad argument #1 to 'step' (a finite time step >= 0 expected)");
+    water_step(w, dt);
+    check_object(L, 1)->version++;
+    return 0;
+}
+
+/* water:set_heights(function(x, z) return h end) (velocities reset to 0) */
+static int water_set_heights_l(lua_State *L)
+{
+    struct water *w = check_water(L, "set_heights");
+    luaL_checktype(L, 2, LUA_TFUNCTION);
+    int n = w->resolution;
+    double dx = (double)w->size / (n - 1), half = 0.5 * w->size;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            lua_pushvalue(L, 2);
+            lua_pushnumber(L, -half + i * dx);
+            lua_pushnumber(L, -half + j * dx);
+            lua_call(L, 2, 1);
+            double h = lua_tonumber(L, -1);
+            lua_pop(L, 1);
+            if (!isfinite(h))
+                return luaL_error(L, "set_heights: the function returned a non-finite height at (%f, %f)",
+                                  -half + i * dx, -half + j * dx);
+            w->height[(size_t)j * (size_t)n + (size_t)i] = h;
+            w->velocity[(size_t)j * (size_t)n + (size_t)i] = 0.0;
+        }
+    w->dirty = true;
+    w->dirty_energy = true;
+    check_object(L, 1)->version++;
+    return 0;
+}
+
 static int object_gc(lua_State *L)
 {
     struct l_object *u = luaL_checkudata(L, 1, OBJECT_MT);
@@ -407,6 +532,25 @@ static int object_index(lua_State *L)
         }
     } else if (strcmp(k, "id") == 0)
         lua_pushinteger(L, o->id);
+    else if (o->water && strcmp(k, "drop") == 0)
+        lua_pushcfunction(L, water_drop_l);
+    else if (o->water && strcmp(k, "step") == 0)
+        lua_pushcfunction(L, water_step_l);
+    else if (o->water && strcmp(k, "set_heights") == 0)
+        lua_pushcfunction(L, water_set_heights_l);
+    else if (o->water && strcmp(k, "energy") == 0)
+        lua_pushnumber(L, water_energy(o->water));
+    else if (o->water && strcmp(k, "stable_step") == 0)
+        lua_pushnumber(L, water_stable_step(o->water));
+    else if (o->water && strcmp(k, "substeps") == 0)
+        lua_pushinteger(L, o->water->substeps);
+    else if (o->water && strcmp(k, "max_height") == 0) {
+        double hmax = 0.0;
+        for (size_t i = 0; i < (size_t)o->water->resolution * (size_t)o->water->resolution; i++)
+            hmax = fmax(hmax, fabs(o->water->height[i]));
+        lua_pushnumber(L, hmax);
+    } else if (o->water && strcmp(k, "depth") == 0)
+        lua_pushnumber(L, o->water->depth);
     else
         lua_pushnil(L);
     return 1;
@@ -1010,7 +1154,8 @@ int luaopen_caustica_scene(lua_State *L)
     new_metatable(L, MEDIUM_MT, medium_meta);
 
     static const luaL_Reg top[] = {{"scene", scene_new}, {"object", object_new}, {"camera", camera_new},
-                                   {"cubemap", cubemap_new}, {"medium", medium_new}, {NULL, NULL}};
+                                   {"cubemap", cubemap_new}, {"medium", medium_new},
+                                   {"water", water_new}, {NULL, NULL}};
     static const luaL_Reg meshes[] = {{"load", mesh_load}, {"sphere", mesh_sphere}, {"plane", mesh_plane},
                                       {"box", mesh_box}, {"grid", mesh_grid}, {NULL, NULL}};
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},

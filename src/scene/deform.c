@@ -2,9 +2,11 @@
  * (shaders/deform/deform.comp) into buffers that every pass draws from and
  * that the reference renderer reads back: one source of geometry. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "graph/renderer.h"
+#include "scene/water.h"
 
 static bool ensure_buffers(struct object *o, struct error *err)
 {
@@ -17,10 +19,14 @@ static bool ensure_buffers(struct object *o, struct error *err)
     }
     gl.CreateBuffers(1, &o->buffer_deformed_positions);
     gl.CreateBuffers(1, &o->buffer_deformed_normals);
-    gl.NamedBufferStorage(o->buffer_deformed_positions, (GLsizeiptr)(n * 3 * sizeof(float)), NULL, 0);
-    gl.NamedBufferStorage(o->buffer_deformed_normals, (GLsizeiptr)(n * 3 * sizeof(float)), NULL, 0);
+    gl.NamedBufferStorage(o->buffer_deformed_positions, (GLsizeiptr)(n * 3 * sizeof(float)), NULL,
+                          GL_DYNAMIC_STORAGE_BIT);
+    gl.NamedBufferStorage(o->buffer_deformed_normals, (GLsizeiptr)(n * 3 * sizeof(float)), NULL,
+                          GL_DYNAMIC_STORAGE_BIT);
     o->deformed_vertices = n;
     o->vao_mesh_positions = 0; /* rebind the VAO */
+    if (o->water)
+        o->water->dirty = true; /* new buffers: fill them */
     return gl_check("allocating deformed vertex buffers", err);
 }
 
@@ -33,6 +39,26 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
             continue;
         if (!ensure_buffers(o, err))
             return false;
+        if (o->water) {
+            /* The simulation runs on the CPU (its step is cheap and must be
+             * exact for the tests); its heights go to the same buffers. */
+            if (o->water->dirty) {
+                size_t n = o->mesh->vertex_count;
+                float *pos = malloc(n * 3 * sizeof(float)), *nrm = malloc(n * 3 * sizeof(float));
+                if (!pos || !nrm) {
+                    free(pos);
+                    free(nrm);
+                    return error_set(err, "out of memory for the water surface");
+                }
+                water_fill_vertices(o->water, pos, nrm);
+                gl.NamedBufferSubData(o->buffer_deformed_positions, 0, (GLsizeiptr)(n * 3 * sizeof(float)), pos);
+                gl.NamedBufferSubData(o->buffer_deformed_normals, 0, (GLsizeiptr)(n * 3 * sizeof(float)), nrm);
+                free(pos);
+                free(nrm);
+                o->water->dirty = false;
+            }
+            continue;
+        }
         char defines[8192];
         const char *origin = NULL;
         if (o->deform.kind == DEFORM_GLSL) {

@@ -1,5 +1,6 @@
 /* Objects, lights, materials and the scene that borrows them. */
 #include "scene/scene.h"
+#include "scene/water.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -52,12 +53,16 @@ void object_destroy(struct object *obj)
             gl.DeleteVertexArrays(1, &obj->vao);
     }
     free(obj->deform.glsl);
+    if (obj->water) {
+        water_release(obj->water);
+        free(obj->water);
+    }
     free(obj);
 }
 
 bool object_is_animated_geometry(const struct object *obj)
 {
-    if (obj->deform.kind != DEFORM_NONE)
+    if (obj->water || obj->deform.kind != DEFORM_NONE)
         return true;
     for (int t = 0; t < obj->mesh->target_count; t++)
         if (obj->morph_weights[t] != 0.0f)
@@ -80,6 +85,13 @@ void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi)
         grow += fabsf(obj->morph_weights[t]) * obj->mesh->morph_extent;
     if (obj->deform.kind == DEFORM_WAVE)
         grow += fabsf(obj->deform.amplitude);
+    if (obj->water) {
+        double hmax = 0.0;
+        size_t n = (size_t)obj->water->resolution * (size_t)obj->water->resolution;
+        for (size_t i = 0; i < n; i++)
+            hmax = fmax(hmax, fabs(obj->water->height[i]));
+        grow += (float)hmax;
+    }
     else if (obj->deform.kind == DEFORM_GLSL)
         grow += 0.5f * vec3_length(vec3_sub(b, a)); /* unknown function: be generous */
     a = vec3_sub(a, vec3_make(grow, grow, grow));

@@ -68,8 +68,11 @@ struct deformer {
     char origin[600];    /* "script.lua:12" where the deformer was made, for error messages */
 };
 
+struct water;
+
 struct object {
     int id;
+    struct water *water; /* owned: a simulated water surface drives this object's vertices */
     struct mesh *mesh; /* borrowed (Lua keeps the mesh alive) */
     struct material material;
     vec3 position, scale;
