@@ -81,6 +81,12 @@ struct light *pass_light(const struct pass *p, const char *name)
     return v ? v->light : NULL;
 }
 
+struct object *pass_object(const struct pass *p, const char *name)
+{
+    const struct pass_value *v = pass_value(p, name);
+    return v ? v->object : NULL;
+}
+
 const float *pass_color(const struct pass *p, const char *name)
 {
     const struct pass_value *v = pass_value(p, name);

@@ -24,6 +24,7 @@ enum pass_param_type {
     PASS_PARAM_STRING,
     PASS_PARAM_ENUM,       /* a string from `choices` ("a|b|c") */
     PASS_PARAM_LIGHT,      /* a light of the scene */
+    PASS_PARAM_OBJECT,     /* an object of the scene */
     PASS_PARAM_INPUT,      /* "pass.output": a texture made by an earlier pass */
     PASS_PARAM_INPUT_LIST, /* one such name or a list of them */
     PASS_PARAM_COLOR,      /* {r, g, b[, a]} */
@@ -51,6 +52,7 @@ struct pass_value {
     double number;
     char *string;          /* owned */
     struct light *light;   /* borrowed (Lua keeps it alive) */
+    struct object *object; /* borrowed (Lua keeps it alive) */
     float color[4];
     char **list;           /* owned strings: an input list, or a map's values */
     char **keys;           /* owned strings: a map's keys (same count as list) */
@@ -142,6 +144,7 @@ void pass_destroy(struct pass *p);
 double pass_number(const struct pass *p, const char *name);
 const char *pass_string(const struct pass *p, const char *name);
 struct light *pass_light(const struct pass *p, const char *name);
+struct object *pass_object(const struct pass *p, const char *name);
 const float *pass_color(const struct pass *p, const char *name);
 const struct pass_value *pass_value(const struct pass *p, const char *name);
 int pass_param_index(const struct pass_desc *desc, const char *name);

@@ -20,6 +20,7 @@ struct l_pass { struct pass *pass; };
 struct l_graph { struct graph graph; };
 
 struct light *llight_test(lua_State *L, int idx);
+struct object *lobject_test(lua_State *L, int idx);
 
 static const char *type_name(enum pass_param_type t)
 {
@@ -30,6 +31,7 @@ static const char *type_name(enum pass_param_type t)
     case PASS_PARAM_STRING: return "string";
     case PASS_PARAM_ENUM: return "string";
     case PASS_PARAM_LIGHT: return "light";
+    case PASS_PARAM_OBJECT: return "object";
     case PASS_PARAM_INPUT: return "string 'pass.output'";
     case PASS_PARAM_INPUT_LIST: return "string 'pass.output' or a list of them";
     case PASS_PARAM_INPUT_MAP: return "table {name = 'pass.output'}";
@@ -182,6 +184,11 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
         v->light = llight_test(L, idx);
         if (!v->light)
             lutil_field_error(L, fn, d->name, "light", idx);
+        break;
+    case PASS_PARAM_OBJECT:
+        v->object = lobject_test(L, idx);
+        if (!v->object)
+            lutil_field_error(L, fn, d->name, "object", idx);
         break;
     case PASS_PARAM_INPUT_LIST:
         if (t == LUA_TSTRING) {

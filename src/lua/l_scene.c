@@ -1116,6 +1116,12 @@ static int quat_mul_l(lua_State *L)
 
 struct scene *lscene_check(lua_State *L, int idx) { return check_scene(L, idx); }
 struct light *llight_check(lua_State *L, int idx) { return check_light(L, idx); }
+struct object *lobject_test(lua_State *L, int idx)
+{
+    struct l_object *u = luaL_testudata(L, idx, OBJECT_MT);
+    return u ? u->obj : NULL;
+}
+
 struct light *llight_test(lua_State *L, int idx)
 {
     struct l_light *u = luaL_testudata(L, idx, LIGHT_MT);

@@ -24,6 +24,8 @@ static const struct pass_param_desc params[] = {
      .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},
     {.name = "caustics", .type = PASS_PARAM_INPUT,
      .help = "screen-space caustic irradiance added on diffuse surfaces"},
+    {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "draw glass, water and mirrors (false: leave them to a later pass)"},
 };
 
 static bool shade_declare(struct pass *p, struct error *err)
@@ -140,7 +142,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.BindTextureUnit(9, caustics ? caustics->texture.id : r->dummy_2d.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), caustics ? 1 : 0);
     gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, prog, DRAW_ALL);
+    renderer_draw_objects(r, f->scene, prog, pass_number(p, "specular") != 0.0 ? DRAW_ALL : DRAW_DIFFUSE);
     return true;
 }
 

@@ -13,12 +13,18 @@ local scene = c.scene {
   camera = c.camera { eye = {0, -depth + camera_height, 0}, target = {0, -depth, 0}, up = {0, 0, -1}, fov = 40 },
   background = {0, 0, 0},
 }
-scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
-scene:add(c.object { mesh = c.mesh.grid { size = 3, resolution = 8 },
-                     material = c.material.water { ior = ior, absorption = {0.2, 0.5, 1.0} } })
+local water = scene:add(c.water { size = 3, resolution = c.param("grid", 9), depth = depth, ior = ior,
+                                  attenuation = {0.2, 0.5, 1.0} })
+local wave = c.param("wave", 0.0)   -- amplitude of a sinusoidal surface (0: flat)
+if wave > 0 then
+  water:set_heights(function(x, z) return wave * math.sin(2 * math.pi * x / 0.75) * math.cos(2 * math.pi * z / 1.1) end)
+end
 local g = c.graph()
-g:add("shade", c.pass.shade {})
+g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
+g:add("cv", c.pass.caustic_volumes { light = sun, water = water })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
 g:output("shade.color")
 return { scene = scene, graph = g, size = {size, size} }

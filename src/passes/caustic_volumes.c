@@ -1,0 +1,196 @@
+/* caustic_volumes: Sandberg & Falemo's water caustics. Every triangle of
+ * the water surface and the three light rays refracted at its vertices
+ * bound a caustic volume (§3.2); the volumes are built on the GPU each
+ * frame (a compute shader), drawn with additive blending, depth writes off
+ * and back-face culling (§3.5), and each fragment tests the receiver point
+ * seen at its pixel against its volume by cutting the volume with the
+ * horizontal plane through the point (§3.3). Inside, it adds the
+ * irradiance I0 exp(-c d) F_P, F_P the ratio of the generator triangle's
+ * area to the cut triangle's (§3.4). Back faces are drawn instead of front
+ * faces so that a camera inside the volumes (under water) works too.
+ *
+ * Departures, each for a reason: the pass writes caustic *irradiance* into
+ * a texture that `shade` multiplies by the receiver's albedo / pi (instead
+ * of radiance straight into the frame buffer), so it composes with any
+ * shading; the irradiance is converted from the horizontal cut to the
+ * receiver's own normal (exact for a floor, and right for the pots and the
+ * bunny of Fig. 3/7); and F_P is capped (parameter `cap`, by default a
+ * quarter of the grid's resolution: a caustic cannot be sharper than the
+ * generator grid resolves), so focusing never gives Inf. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "scene/scene.h"
+#include "scene/water.h"
+
+#define VOLUME_VEC4S 10 /* per volume: top[3], dir[3], bottom[3], flux (std430) */
+
+struct caustic_volumes_state {
+    struct gl_framebuffer receivers_fb, volumes_fb;
+    GLuint volumes;      /* SSBO, owned */
+    size_t capacity;     /* volumes it holds */
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "a directional or point light"},
+    {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
+    {.name = "cap", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 1e6,
+     .help = "largest flux ratio F_P (0: a quarter of the water grid's resolution)"},
+};
+
+static bool caustic_volumes_declare(struct pass *p, struct error *err)
+{
+    struct object *w = pass_object(p, "water");
+    if (!w->water)
+        return error_set(err, "bad argument 'water' to 'caustic_volumes' (a water surface from c.water{...} expected, got "
+                              "an ordinary object)");
+    struct light *l = pass_light(p, "light");
+    if (l->kind != LIGHT_DIRECTIONAL && l->kind != LIGHT_POINT)
+        return error_set(err, "bad argument 'light' to 'caustic_volumes' (a directional or point light expected, got a "
+                              "%s light)", light_kind_name(l->kind));
+    return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "position", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "normal", GL_RGBA16F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool caustic_volumes_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct caustic_volumes_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->volumes_fb, err);
+}
+
+static void caustic_volumes_destroy(struct pass *p)
+{
+    struct caustic_volumes_state *s = p->state;
+    if (!s)
+        return;
+    gl_framebuffer_destroy(&s->receivers_fb);
+    gl_framebuffer_destroy(&s->volumes_fb);
+    if (s->volumes && gl_api_ready())
+        gl.DeleteBuffers(1, &s->volumes);
+    free(s);
+    p->state = NULL;
+}
+
+static int light_gpu_index(const struct pass_frame *f, const struct light *l)
+{
+    for (int i = 0; i < f->scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++)
+        if (f->scene->lights[i] == l)
+            return f->renderer->light_first[i];
+    return -1;
+}
+
+static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct caustic_volumes_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct object *water = pass_object(p, "water");
+    struct light *light = pass_light(p, "light");
+    int light_index = light_gpu_index(f, light);
+    if (light_index < 0)
+        return error_set(err, "its light was never added to the scene (use scene:add(light))");
+    struct graph_resource *irr = pass_frame_output(p, f, "irradiance"), *pos = pass_frame_output(p, f, "position"),
+                          *nrm = pass_frame_output(p, f, "normal"), *depth = pass_frame_output(p, f, "depth");
+
+    /* Pass 1 (§3.5): world-space positions (and normals) of the receivers. */
+    const struct gl_texture *targets[2] = {&pos->texture, &nrm->texture};
+    if (!gl_framebuffer_attach(&s->receivers_fb, targets, NULL, 2, &depth->texture, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    const float zero[4] = {0, 0, 0, 0};
+    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
+    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 1, zero);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    struct gl_program *recv;
+    if (!gl_program_get(&r->programs, "caustic_volumes/receivers.vert", "caustic_volumes/receivers.frag", NULL, &recv,
+                        err))
+        return false;
+    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
+    gl.Disable(GL_DEPTH_TEST);
+
+    /* The caustic volumes, built on the GPU from this frame's surface. */
+    size_t triangles = water->mesh->index_count / 3;
+    if (s->capacity < triangles) {
+        if (s->volumes)
+            gl.DeleteBuffers(1, &s->volumes);
+        gl.CreateBuffers(1, &s->volumes);
+        gl.NamedBufferStorage(s->volumes, (GLsizeiptr)(triangles * VOLUME_VEC4S * 4 * sizeof(float)), NULL, 0);
+        s->capacity = triangles;
+    }
+    vec3 lo, hi;
+    scene_bounds(f->scene, &lo, &hi);
+    float bottom = lo.y - 0.01f - 0.01f * (hi.y - lo.y); /* just below the deepest receiver (§3.5) */
+    double cap = pass_number(p, "cap") > 0 ? pass_number(p, "cap") : 0.25 * water->water->resolution;
+    struct gl_program *build;
+    if (!gl_program_get_compute(&r->programs, "caustic_volumes/build.comp", NULL, NULL, &build, err))
+        return false;
+    gl.UseProgram(build->id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, water->buffer_deformed_positions);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, water->buffer_deformed_normals);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, water->mesh->buffer_indices);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->volumes);
+    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, water->model.m);
+    mat4 inv, nm;
+    mat4_inverse(water->model, &inv);
+    nm = mat4_transpose(inv);
+    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE, nm.m);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_triangles"), (GLint)triangles);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_bottom"), bottom);
+    gl.DispatchCompute((GLuint)((triangles + 63) / 64), 1, 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    /* Pass 2 (§3.5): additive blending, no depth writes, one side culled.
+     * We keep the back faces rather than the front ones: a convex volume
+     * covers each of its pixels with exactly one back face whether the
+     * camera is outside it or inside it (an underwater camera is inside
+     * most volumes, where the front faces are behind it). */
+    const struct gl_texture *irr_target[1] = {&irr->texture};
+    if (!gl_framebuffer_attach(&s->volumes_fb, irr_target, NULL, 1, NULL, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->volumes_fb.id);
+    gl.ClearNamedFramebufferfv(s->volumes_fb.id, GL_COLOR, 0, zero);
+    struct gl_program *draw;
+    if (!gl_program_get(&r->programs, "caustic_volumes/volume.vert", "caustic_volumes/volume.frag", NULL, &draw, err))
+        return false;
+    gl.UseProgram(draw->id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->volumes);
+    gl.BindTextureUnit(0, pos->texture.id);
+    gl.BindTextureUnit(1, nrm->texture.id);
+    gl.ProgramUniform3f(draw->id, gl_program_uniform(draw, "u_attenuation"), water->material.absorption.x,
+                        water->material.absorption.y, water->material.absorption.z);
+    gl.ProgramUniform1f(draw->id, gl_program_uniform(draw, "u_cap"), (float)cap);
+    gl.Enable(GL_BLEND);
+    gl.BlendEquation(GL_FUNC_ADD);
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_CULL_FACE);
+    gl.CullFace(GL_FRONT);
+    gl.FrontFace(GL_CCW);
+    gl.BindVertexArray(r->empty_vao);
+    gl.DrawArrays(GL_TRIANGLES, 0, (GLsizei)(triangles * 24));
+    gl.BindVertexArray(0);
+    return true;
+}
+
+const struct pass_desc caustic_volumes_pass = {
+    .name = "caustic_volumes",
+    .summary = "Sandberg & Falemo: water caustics as volumes per surface triangle (irradiance for shade)",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = caustic_volumes_declare,
+    .create = caustic_volumes_create,
+    .execute = caustic_volumes_execute,
+    .destroy = caustic_volumes_destroy,
+};
