@@ -18,9 +18,20 @@ scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -depth, 0}
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local water = scene:add(c.water { size = 3, resolution = c.param("grid", 9), depth = depth, ior = ior,
                                   attenuation = {0.2, 0.5, 1.0} })
-local wave = c.param("wave", 0.0)   -- amplitude of a sinusoidal surface (0: flat)
-if wave > 0 then
-  water:set_heights(function(x, z) return wave * math.sin(2 * math.pi * x / 0.75) * math.cos(2 * math.pi * z / 1.1) end)
+local wave = c.param("wave", 0.0)          -- amplitude of a sinusoidal surface (0: flat)
+local wavelength = c.param("wavelength", 0.75)
+local shape = c.param("shape", "waves")     -- "waves" (2D), "ridges" (along x only), "spikes" (every other vertex)
+if shape == "spikes" then
+  local n, step = c.param("grid", 9), 3 / (c.param("grid", 9) - 1)
+  water:set_heights(function(x, z)
+    local i, j = math.floor((x + 1.5) / step + 0.5), math.floor((z + 1.5) / step + 0.5)
+    return ((i + j) % 2) * wave
+  end)
+elseif wave > 0 then
+  water:set_heights(function(x, z)
+    if shape == "ridges" then return wave * math.sin(2 * math.pi * x / wavelength) end
+    return wave * math.sin(2 * math.pi * x / wavelength) * math.cos(2 * math.pi * z / 1.1)
+  end)
 end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })

@@ -1,0 +1,100 @@
+/* water_surface: the third pass of Sandberg & Falemo §3.5. The image of
+ * the pool's contents (with their caustics) is mapped onto the water
+ * surface through a refraction computed per fragment against a virtual
+ * plane (the pool floor under the mean water level), and the environment
+ * is reflected with Fresnel weights. Seen from below, total internal
+ * reflection shows the pool contents mirrored instead (never a NaN). */
+#include <stdlib.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "scene/water.h"
+
+struct water_surface_state {
+    struct gl_framebuffer fb;
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
+    {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene without the water surface"},
+    {.name = "depth", .type = PASS_PARAM_INPUT, .required = true, .help = "its depth buffer"},
+    {.name = "position", .type = PASS_PARAM_INPUT, .required = true, .help = "its world positions (for absorption)"},
+};
+
+static bool water_surface_declare(struct pass *p, struct error *err)
+{
+    if (!pass_object(p, "water")->water)
+        return error_set(err, "bad argument 'water' to 'water_surface' (a water surface from c.water{...} expected)");
+    return pass_declare_input(p, "color", pass_string(p, "color"), err) &&
+           pass_declare_input(p, "depth", pass_string(p, "depth"), err) &&
+           pass_declare_input(p, "position", pass_string(p, "position"), err) &&
+           pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool water_surface_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct water_surface_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->fb, err);
+}
+
+static void water_surface_destroy(struct pass *p)
+{
+    struct water_surface_state *s = p->state;
+    if (!s)
+        return;
+    gl_framebuffer_destroy(&s->fb);
+    free(s);
+    p->state = NULL;
+}
+
+static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct water_surface_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct object *water = pass_object(p, "water");
+    struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth"),
+                          *in_pos = pass_frame_input(p, f, "position"), *out = f->outputs[0];
+    const struct gl_texture *targets[1] = {&out->texture};
+    if (!gl_framebuffer_attach(&s->fb, targets, NULL, 1, NULL, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    /* the scene as it is, then the surface over it */
+    struct gl_program *copy;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag", "#define FROM_TEXTURE 1\n",
+                        &copy, err))
+        return false;
+    gl.UseProgram(copy->id);
+    gl.BindTextureUnit(0, in_color->texture.id);
+    renderer_draw_fullscreen(r);
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "water_surface/surface.vert", "water_surface/surface.frag", NULL, &prog, err))
+        return false;
+    gl.BindTextureUnit(0, in_color->texture.id);
+    gl.BindTextureUnit(1, in_depth->texture.id);
+    gl.BindTextureUnit(2, in_pos->texture.id);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
+    /* only the water object: draw it alone */
+    struct scene only = *f->scene;
+    struct object *list[1] = {water};
+    only.objects = list;
+    only.object_count = 1;
+    renderer_draw_objects(r, &only, prog, DRAW_ALL);
+    return true;
+}
+
+const struct pass_desc water_surface_pass = {
+    .name = "water_surface",
+    .summary = "Sandberg & Falemo's third pass: refraction mapping of the pool through the surface, Fresnel reflection",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = water_surface_declare,
+    .create = water_surface_create,
+    .execute = water_surface_execute,
+    .destroy = water_surface_destroy,
+};

@@ -1,0 +1,112 @@
+-- Sandberg & Falemo: the water simulation and the caustic volumes.
+local t = require "caustica.test"
+local c = require "caustica"
+
+local function fresnel(cos_i, eta)
+  local sin2_t = eta * eta * (1 - cos_i * cos_i)
+  if sin2_t >= 1 then return 1 end
+  local cos_t = math.sqrt(1 - sin2_t)
+  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+  return 0.5 * (rs * rs + rp * rp)
+end
+
+-- The flat-water closed form (derived in reference_test.lua): the floor's
+-- irradiance E cos(ti) T(ti) exp(-c d / cos(tt)).
+local function flat_floor_irradiance(elevation_deg, n, depth, c_abs)
+  local ti = math.rad(90 - elevation_deg)
+  local tt = math.asin(math.sin(ti) / n)
+  return math.cos(ti) * (1 - fresnel(math.cos(ti), 1 / n)) * math.exp(-c_abs * depth / math.cos(tt))
+end
+
+t.case("simulation: with no damping and no drops the discrete energy is conserved (1%) over 1000 stable steps", function()
+  local w = c.water { size = 2, resolution = 48, damping = 0 }
+  w:drop(0.2, -0.1, 0.3, 0.05)
+  local e0, dt = w.energy, w.stable_step
+  for _ = 1, 1000 do
+    w:step(dt)
+    t.expect(math.abs(w.energy / e0 - 1) < 0.01, "energy " .. w.energy .. " vs " .. e0)
+  end
+end)
+
+t.case("simulation: a time step 10x the stability limit stays bounded for 10000 steps (substepping)", function()
+  for _, boundary in ipairs { "reflective", "fixed" } do
+    local w = c.water { size = 2, resolution = 24, damping = 0, boundary = boundary }
+    w:drop(0, 0, 0.4, 0.05)
+    local e0, big = w.energy, 10 * w.stable_step
+    for i = 1, 10000 do
+      w:step(big)
+      if i % 500 == 0 then
+        t.expect(w.energy <= e0 * (1 + 1e-9), boundary .. ": energy grew to " .. w.energy .. " from " .. e0)
+      end
+    end
+    t.expect(w.max_height < 0.05 + 1e-9, boundary .. ": height " .. w.max_height)
+    t.expect(w.substeps >= 100000, "substeps " .. w.substeps)
+  end
+end)
+
+t.case("simulation: damping only removes energy", function()
+  local w = c.water { size = 2, resolution = 32, damping = 2.0 }
+  w:drop(0, 0, 0.4, 0.05)
+  local e0 = w.energy
+  local last = e0
+  for _ = 1, 200 do
+    w:step(1 / 30)
+    t.expect(w.energy <= last * (1 + 1e-9), "energy rose from " .. last .. " to " .. w.energy)
+    last = w.energy
+  end
+  t.expect(last < 0.01 * e0, string.format("after 200 frames %.3g of the energy is left", last / e0))
+end)
+
+t.case("caustic volumes: a flat surface gives the closed-form uniform floor irradiance (2%)", function()
+  -- The camera under water sees the floor directly (the surface is left
+  -- out of the shading), so each pixel is E_floor / pi, albedo 1.
+  local img = t.render("tests/scenes/flat_water.lua")
+  for channel, c_abs in ipairs { 0.2, 0.5, 1.0 } do
+    local want = flat_floor_irradiance(60, 1.33, 0.5, c_abs) / math.pi
+    local s = img:stats(4, 4, 60, 60)
+    t.expect(math.abs(s.mean[channel] / want - 1) < 0.02, string.format("channel %d: %.6g vs %.6g", channel, s.mean[channel], want))
+  end
+  local s = img:stats(4, 4, 60, 60)
+  t.expect(s.max <= flat_floor_irradiance(60, 1.33, 0.5, 0.2) / math.pi * 1.02, "uniform: max " .. s.max)
+end)
+
+t.case("caustic volumes: focusing waves stay finite and conserve the flux through the surface (5%)", function()
+  -- Ridges of wavelength 0.364 and amplitude 0.019 focus the light about
+  -- 0.7 below the surface, so refracted rays cross before the floor 1.5
+  -- down. The camera 1.0 above the floor sees exactly two wavelengths
+  -- across, so over the view the mean floor irradiance must be that of a
+  -- flat surface (the flux entering is the same; the flux ratio is capped
+  -- only where the cut triangle is smaller than the grid resolves).
+  local opts = { set = { depth = 1.5, camera_height = 1.0, grid = 161, wave = 0.019, wavelength = 0.364, shape = "ridges" } }
+  local img = t.render("tests/scenes/flat_water.lua", opts)
+  t.expect_finite(img)
+  local flat = t.render("tests/scenes/flat_water.lua", { set = { depth = 1.5, camera_height = 1.0, grid = 161 } })
+  local s, f = img:stats(), flat:stats()
+  t.expect(math.abs(s.mean[1] / f.mean[1] - 1) < 0.05, string.format("mean under waves %.6g, flat %.6g", s.mean[1], f.mean[1]))
+  t.expect(s.max > 2 * s.mean[1], "the waves focus light (max " .. s.max .. ", mean " .. s.mean[1] .. ")")
+end)
+
+t.case("caustic volumes: degenerate and inverted triangles, grazing and set light: no NaN or Inf", function()
+  t.expect_finite(t.render("tests/scenes/flat_water.lua", { set = { wave = 0.3, shape = "spikes" } }))
+  t.expect_finite(t.render("tests/scenes/flat_water.lua", { set = { elevation = 5 } }))
+  local below = t.render("tests/scenes/flat_water.lua", { set = { elevation = -10 } })
+  t.expect_finite(below)
+  t.expect(below:stats().max == 0, "a light below the horizon makes no caustics (max " .. below:stats().max .. ")")
+end)
+
+t.case("the pool: surface seen from above and from below (total internal reflection) stays finite", function()
+  t.expect_finite(t.render("scenes/sandberg_pool.lua", { size = { 64, 64 }, frame = 20 }))
+  t.expect_finite(t.render("scenes/sandberg_pool.lua", { size = { 64, 64 }, frame = 20, set = { underwater = true } }))
+end)
+
+t.case("GPU caustic volumes and the reference agree on a flat surface", function()
+  local gpu = t.render("tests/scenes/flat_water.lua", { set = { size = 32 } })
+  local ref = t.reference("tests/scenes/flat_water.lua", { set = { size = 32 }, photons = 200000, spp = 8 })
+  -- the reference's camera looks through 0.3 of absorbing water; the GPU
+  -- shading leaves that to the surface pass: compare the green channel's
+  -- ratio to its expected exp(-c * distance) at the centre
+  local g, r = select(2, gpu:pixel(16, 16)), select(2, ref:pixel(16, 16))
+  local expected = math.exp(-0.5 * 0.3)
+  t.expect(math.abs(r / g / expected - 1) < 0.1, string.format("reference / GPU = %.4f, expected %.4f", r / g, expected))
+end)
