@@ -10,19 +10,33 @@
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, binding = 1) readonly buffer Normals { float normals[]; };
-layout(std430, binding = 2) readonly buffer Indices { uint indices[]; };
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 uniform int u_triangles;
+uniform int u_water_resolution; // the simulation's vertices per side
+uniform int u_resolution;       // the generator grid's
 uniform int u_light;
 uniform float u_ior;
 uniform float u_bottom;
 
-vec3 fetch(uint v, bool normal)
+vec3 fetch(int v, bool normal)
 {
-    uint i = v * 3u;
-    return normal ? vec3(normals[i], normals[i + 1u], normals[i + 2u])
-                  : vec3(positions[i], positions[i + 1u], positions[i + 2u]);
+    int i = v * 3;
+    return normal ? vec3(normals[i], normals[i + 1], normals[i + 2])
+                  : vec3(positions[i], positions[i + 1], positions[i + 2]);
+}
+
+// The surface at generator vertex (i, j): bilinear in the water's grid.
+vec3 surface(int i, int j, bool normal)
+{
+    float s = float(u_water_resolution - 1) / float(u_resolution - 1);
+    vec2 f = vec2(float(i), float(j)) * s;
+    ivec2 a = min(ivec2(floor(f)), ivec2(u_water_resolution - 2));
+    vec2 t = f - vec2(a);
+    int n = u_water_resolution;
+    vec3 v00 = fetch(a.y * n + a.x, normal), v10 = fetch(a.y * n + a.x + 1, normal);
+    vec3 v01 = fetch((a.y + 1) * n + a.x, normal), v11 = fetch((a.y + 1) * n + a.x + 1, normal);
+    return mix(mix(v00, v10, t.x), mix(v01, v11, t.x), t.y);
 }
 
 void empty_volume(uint id)
@@ -42,11 +56,16 @@ void main()
         return;
     GpuLight light = u_lights[u_light];
     bool directional = int(light.position.w + 0.5) == 1;
+    // triangle id of the generator grid, counter-clockwise seen from above
+    // (as mesh_create_grid winds them): (a, b, a+1) and (a+1, b, b+1)
+    int cells = u_resolution - 1;
+    int cell = int(id) / 2, ci = cell % cells, cj = cell / cells;
+    ivec2 corner[3] = (int(id) % 2 == 0) ? ivec2[3](ivec2(ci, cj), ivec2(ci, cj + 1), ivec2(ci + 1, cj))
+                                         : ivec2[3](ivec2(ci + 1, cj), ivec2(ci, cj + 1), ivec2(ci + 1, cj + 1));
     vec3 p[3], r[3];
     for (int k = 0; k < 3; k++) {
-        uint v = indices[id * 3u + uint(k)];
-        p[k] = (u_model * vec4(fetch(v, false), 1.0)).xyz;
-        vec3 n = normalize(mat3(u_normal_matrix) * fetch(v, true));
+        p[k] = (u_model * vec4(surface(corner[k].x, corner[k].y, false), 1.0)).xyz;
+        vec3 n = normalize(mat3(u_normal_matrix) * surface(corner[k].x, corner[k].y, true));
         vec3 l = directional ? normalize(light.direction.xyz) : normalize(p[k] - light.position.xyz);
         if (dot(n, l) >= 0.0) { // lit from below the surface: no light enters here
             empty_volume(id);

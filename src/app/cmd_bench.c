@@ -123,6 +123,7 @@ struct truth {
     struct image image, caustic, mask;
     bool has_mask;
     struct lua_params params;
+    int width, height;
 };
 
 static bool get_truth(struct app *app, const char *script, const struct lua_params *params, int frame, int w, int h,
@@ -152,6 +153,8 @@ static bool get_truth(struct app *app, const char *script, const struct lua_para
     struct error ignore;
     t->has_mask = caustic_mask(&t->image, &t->caustic, &t->mask, &ignore);
     t->params = *params;
+    t->width = w;
+    t->height = h;
     return true;
 }
 
@@ -319,7 +322,8 @@ int cmd_bench(struct app *app, struct cli *cli)
         ro.iterations = level;
         ro.progress = false;
         ro.seed = truth_options.seed + 1000u + (uint64_t)level; /* independent of the truth's samples */
-        struct session_options so = {.script = script, .params = truths[0].params, .width = width, .height = height};
+        struct session_options so = {.script = script, .params = truths[0].params, .width = truths[0].width,
+                                     .height = truths[0].height};
         struct session *s = NULL;
         struct image img = {0};
         struct ref_stats st = {0};

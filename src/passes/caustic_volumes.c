@@ -6,8 +6,8 @@
  * seen at its pixel against its volume by cutting the volume with the
  * horizontal plane through the point (§3.3). Inside, it adds the
  * irradiance I0 exp(-c d) F_P, F_P the ratio of the generator triangle's
- * area to the cut triangle's (§3.4). Back faces are drawn instead of front
- * faces so that a camera inside the volumes (under water) works too.
+ * area to the cut triangle's (§3.4). For a camera under water, inside the
+ * volumes, the front faces are culled instead of the back ones.
  *
  * Departures, each for a reason: the pass writes caustic *irradiance* into
  * a texture that `shade` multiplies by the receiver's albedo / pi (instead
@@ -38,7 +38,9 @@ static const struct pass_param_desc params[] = {
     {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "a directional or point light"},
     {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
     {.name = "cap", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 1e6,
-     .help = "largest flux ratio F_P (0: a quarter of the water grid's resolution)"},
+     .help = "largest flux ratio F_P (0: a quarter of the generator grid's resolution)"},
+    {.name = "resolution", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4096,
+     .help = "generator grid, vertices per side, resampled from the surface (0: the water's own grid)"},
 };
 
 static bool caustic_volumes_declare(struct pass *p, struct error *err)
@@ -118,8 +120,11 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
     gl.Disable(GL_DEPTH_TEST);
 
-    /* The caustic volumes, built on the GPU from this frame's surface. */
-    size_t triangles = water->mesh->index_count / 3;
+    /* The caustic volumes, built on the GPU from this frame's surface,
+     * resampled (bilinearly) onto the generator grid. */
+    int water_res = water->water->resolution;
+    int gen_res = (int)pass_number(p, "resolution") >= 2 ? (int)pass_number(p, "resolution") : water_res;
+    size_t triangles = (size_t)(gen_res - 1) * (size_t)(gen_res - 1) * 2;
     if (s->capacity < triangles) {
         if (s->volumes)
             gl.DeleteBuffers(1, &s->volumes);
@@ -130,14 +135,13 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     vec3 lo, hi;
     scene_bounds(f->scene, &lo, &hi);
     float bottom = lo.y - 0.01f - 0.01f * (hi.y - lo.y); /* just below the deepest receiver (§3.5) */
-    double cap = pass_number(p, "cap") > 0 ? pass_number(p, "cap") : 0.25 * water->water->resolution;
+    double cap = pass_number(p, "cap") > 0 ? pass_number(p, "cap") : 0.25 * gen_res;
     struct gl_program *build;
     if (!gl_program_get_compute(&r->programs, "caustic_volumes/build.comp", NULL, NULL, &build, err))
         return false;
     gl.UseProgram(build->id);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, water->buffer_deformed_positions);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, water->buffer_deformed_normals);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, water->mesh->buffer_indices);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->volumes);
     gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, water->model.m);
     mat4 inv, nm;
@@ -145,6 +149,8 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     nm = mat4_transpose(inv);
     gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE, nm.m);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_triangles"), (GLint)triangles);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_water_resolution"), water_res);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_resolution"), gen_res);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_bottom"), bottom);
@@ -152,10 +158,13 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     /* Pass 2 (§3.5): additive blending, no depth writes, one side culled.
-     * We keep the back faces rather than the front ones: a convex volume
-     * covers each of its pixels with exactly one back face whether the
-     * camera is outside it or inside it (an underwater camera is inside
-     * most volumes, where the front faces are behind it). */
+     * A convex volume covers each of its pixels with exactly one front face
+     * and one back face while the camera is outside it: above the water we
+     * cull back faces as the paper does. A camera under water is inside
+     * most volumes, where the front faces are behind it; there we cull the
+     * front faces instead and keep the back ones, which still cover each
+     * pixel once. */
+    bool camera_above = f->scene->camera.eye.y > water->position.y;
     const struct gl_texture *irr_target[1] = {&irr->texture};
     if (!gl_framebuffer_attach(&s->volumes_fb, irr_target, NULL, 1, NULL, -1, err))
         return false;
@@ -176,7 +185,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.BlendFunc(GL_ONE, GL_ONE);
     gl.DepthMask(GL_FALSE);
     gl.Enable(GL_CULL_FACE);
-    gl.CullFace(GL_FRONT);
+    gl.CullFace(camera_above ? GL_BACK : GL_FRONT);
     gl.FrontFace(GL_CCW);
     gl.BindVertexArray(r->empty_vao);
     gl.DrawArrays(GL_TRIANGLES, 0, (GLsizei)(triangles * 24));

@@ -95,6 +95,15 @@ t.case("caustic volumes: degenerate and inverted triangles, grazing and set ligh
   t.expect(below:stats().max == 0, "a light below the horizon makes no caustics (max " .. below:stats().max .. ")")
 end)
 
+t.case("caustic volumes under a point light: the flat floor gets I cos(ti) T / (path factor), finite and lit", function()
+  local img = t.render("tests/scenes/flat_water.lua", { set = { light = "point", absorb = false } })
+  t.expect_finite(img)
+  t.expect(img:stats().mean_gray > 0.05, "the floor is lit through the water")
+  -- a camera above the water (back faces culled, as in the paper) sees the same caustics on the floor
+  local above = t.render("scenes/sandberg_pool.lua", { size = { 64, 64 }, frame = 5 })
+  t.expect_finite(above)
+end)
+
 t.case("the pool: surface seen from above and from below (total internal reflection) stays finite", function()
   t.expect_finite(t.render("scenes/sandberg_pool.lua", { size = { 64, 64 }, frame = 20 }))
   t.expect_finite(t.render("scenes/sandberg_pool.lua", { size = { 64, 64 }, frame = 20, set = { underwater = true } }))

@@ -13,11 +13,18 @@ local scene = c.scene {
   camera = c.camera { eye = {0, -depth + camera_height, 0}, target = {0, -depth, 0}, up = {0, 0, -1}, fov = 40 },
   background = {0, 0, 0},
 }
-local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+local sun
+if c.param("light", "directional") == "point" then
+  sun = scene:add(c.light.point { position = {0.5, 2.0, 0.2}, intensity = {4, 4, 4} })
+else
+  sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+end
 scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
+local absorb = c.param("absorb", true)    -- false: clear water (what the bench compares: the GPU shading
+                                          -- here does not absorb along the under-water view path)
 local water = scene:add(c.water { size = 3, resolution = c.param("grid", 9), depth = depth, ior = ior,
-                                  attenuation = {0.2, 0.5, 1.0} })
+                                  attenuation = absorb and {0.2, 0.5, 1.0} or {0, 0, 0} })
 local wave = c.param("wave", 0.0)          -- amplitude of a sinusoidal surface (0: flat)
 local wavelength = c.param("wavelength", 0.75)
 local shape = c.param("shape", "waves")     -- "waves" (2D), "ridges" (along x only), "spikes" (every other vertex)
@@ -35,7 +42,7 @@ elseif wave > 0 then
 end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("cv", c.pass.caustic_volumes { light = sun, water = water })
+g:add("cv", c.pass.caustic_volumes { light = sun, water = water, resolution = c.param("generator", 0) })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
 g:output("shade.color")
 return { scene = scene, graph = g, size = {size, size} }
