@@ -242,6 +242,17 @@ bool graph_execute(struct graph *g, struct renderer *r, struct scene *scene, int
             f.outputs[o] = e->output_resources[o] >= 0 ? &g->resources[e->output_resources[o]] : NULL;
         e->last_why[0] = '\0';
         e->last_need = p->desc->needed ? p->desc->needed(p, &f, e->last_why, sizeof e->last_why) : PASS_RUN;
+        if (e->last_need == PASS_SKIP) {
+            /* Nothing to do this frame: the outputs read as empty (no light,
+             * far depth) rather than as last frame's. */
+            const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+            for (int o = 0; o < p->output_count; o++)
+                if (f.outputs[o]) {
+                    bool depth = gl_format_is_depth(f.outputs[o]->texture.format);
+                    gl.ClearTexImage(f.outputs[o]->texture.id, 0, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
+                                     depth ? (const void *)&far_depth : (const void *)zero);
+                }
+        }
         if (e->last_need != PASS_RUN) {
             e->last_ms = 0.0;
             continue;

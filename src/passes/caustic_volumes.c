@@ -90,6 +90,25 @@ static int light_gpu_index(const struct pass_frame *f, const struct light *l)
     return -1;
 }
 
+/* The scene does not ask for caustics when the water is hidden or the sun
+ * is below its horizon: the pass is left out of the frame (its irradiance
+ * reads as zero). */
+static enum pass_need caustic_volumes_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)f;
+    struct object *water = pass_object(p, "water");
+    struct light *light = pass_light(p, "light");
+    if (!water->visible) {
+        snprintf(why, whylen, "left out: the water surface is hidden");
+        return PASS_SKIP;
+    }
+    if (light->kind == LIGHT_DIRECTIONAL && light->direction.y >= 0.0f) {
+        snprintf(why, whylen, "left out: the light is below the horizon, no light enters the water");
+        return PASS_SKIP;
+    }
+    return PASS_RUN;
+}
+
 static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct caustic_volumes_state *s = p->state;
@@ -201,5 +220,6 @@ const struct pass_desc caustic_volumes_pass = {
     .declare = caustic_volumes_declare,
     .create = caustic_volumes_create,
     .execute = caustic_volumes_execute,
+    .needed = caustic_volumes_needed,
     .destroy = caustic_volumes_destroy,
 };

@@ -13,6 +13,10 @@ grep -q "shadow .*reused: the light and the casters did not change" "$WORK/stati
 grep -q "shadow .*runs every frame" "$WORK/demo.txt" && pass "moving light: shadow map redrawn" \
   || fail "moving light" "$(cat "$WORK/demo.txt")"
 grep -q "in  shadow0      <- shadow.depth" "$WORK/demo.txt" && pass "inputs listed" || fail "inputs listed" "$(cat "$WORK/demo.txt")"
+# A caustics pass the scene does not ask for (its sun below the horizon) is left out, with the reason.
+"$CAUSTICA" info tests/scenes/flat_water.lua --set elevation=-10 >"$WORK/water.txt" 2>&1
+grep -q "cv .*left out: the light is below the horizon" "$WORK/water.txt" && pass "caustics left out when not needed" \
+  || fail "caustics left out" "$(cat "$WORK/water.txt")"
 "$CAUSTICA" render scenes/demo.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
 grep -qE "^shade +shade +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
   && pass "--timings prints per-pass milliseconds" || fail "--timings" "$(cat "$WORK/timings.txt")"
