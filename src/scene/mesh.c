@@ -242,14 +242,15 @@ void mesh_destroy(struct mesh *m)
     if (!m)
         return;
     if (gl_api_ready()) {
-        GLuint buffers[5] = {m->buffer_positions, m->buffer_normals, m->buffer_indices,
-                             m->buffer_target_positions, m->buffer_target_normals};
-        gl.DeleteBuffers(5, buffers);
+        GLuint buffers[6] = {m->buffer_positions, m->buffer_normals, m->buffer_indices,
+                             m->buffer_target_positions, m->buffer_target_normals, m->buffer_thickness};
+        gl.DeleteBuffers(6, buffers);
     }
     free(m->positions);
     free(m->normals);
     free(m->indices);
     free(m->target_positions);
     free(m->target_normals);
+    free(m->thickness);
     free(m);
 }

@@ -38,8 +38,10 @@ struct mesh {
     float default_weights[SCENE_MAX_MORPH_TARGETS];
     vec3 bounds_min, bounds_max; /* of the base shape */
     float morph_extent;          /* largest |delta| over the targets, to bound morphs */
+    float *thickness;          /* per-vertex d_N for Wyman's refraction, made on demand (owned) */
     /* GPU copies, created by mesh_upload (owned). */
     GLuint buffer_positions, buffer_normals, buffer_indices, buffer_target_positions, buffer_target_normals;
+    GLuint buffer_thickness;
 };
 
 /* Procedural meshes. Each returns a mesh owned by the caller (mesh_destroy). */
@@ -53,6 +55,8 @@ struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *
                                      uint32_t *indices, size_t index_count, struct error *err);
 void mesh_compute_bounds(struct mesh *mesh);
 bool mesh_upload(struct mesh *mesh, struct error *err);
+/* d_N per vertex (scene/thickness.c, Embree), and its GPU buffer. */
+bool mesh_compute_thickness(struct mesh *mesh, struct error *err);
 void mesh_destroy(struct mesh *mesh);
 
 const char *material_kind_name(enum material_kind kind);

@@ -1,0 +1,145 @@
+#version 450 core
+// Hu & Qin §2.1 (or Wyman 2005 with WYMAN): refraction of the environment
+// through two interfaces, per fragment of the visible front surface.
+#include "common/frame.glsl"
+#include "common/fresnel.glsl"
+in vec3 v_world;
+in vec3 v_normal;
+in float v_thickness;
+layout(location = 0) out vec4 o_color;
+layout(binding = 1) uniform sampler2D u_front_normal;
+layout(binding = 2) uniform sampler2D u_back_normal;
+layout(binding = 3) uniform sampler2D u_front_depth;
+layout(binding = 4) uniform sampler2D u_back_depth;
+uniform float u_ior;
+uniform vec3 u_absorption;
+uniform int u_iterations;
+uniform float u_tolerance;
+uniform int u_search_steps;
+
+// world point -> (uv in [0,1], window depth in [0,1])
+vec3 project(vec3 p)
+{
+    vec4 c = u_view_proj * vec4(p, 1.0);
+    return c.xyz / max(c.w, 1e-6) * 0.5 + 0.5;
+}
+
+// window depth at uv -> eye-space distance along -z (positive)
+float linear_depth(float d)
+{
+    float z = d * 2.0 - 1.0;
+    return u_proj[3][2] / (z + u_proj[2][2]); // for a standard perspective matrix: -z_eye
+}
+
+float eye_depth(vec3 p) { return -(u_view * vec4(p, 1.0)).z; }
+
+// A point on the refractor's silhouette-bounded image: is uv inside it?
+bool inside(vec2 uv, sampler2D depth_buffer)
+{
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) &&
+           texture(depth_buffer, uv).r < 1.0;
+}
+
+// world position of the surface stored at uv in a depth buffer
+vec3 unproject(vec2 uv, float d)
+{
+    vec4 w = u_inv_view_proj * vec4(vec3(uv, d) * 2.0 - 1.0, 1.0);
+    return w.xyz / w.w;
+}
+
+void main()
+{
+    vec3 n1 = normalize(v_normal);
+    vec3 v = normalize(v_world - u_camera_pos.xyz);
+    if (dot(v, n1) > 0.0)
+        n1 = -n1;
+    float eta = 1.0 / u_ior;
+    float f1 = fresnel_dielectric(-dot(v, n1), eta);
+    vec3 reflected = environment_radiance(reflect(v, n1));
+    vec3 t1 = refract(v, n1, eta);
+    if (dot(t1, t1) == 0.0) { // total internal reflection at the entry (an IOR below 1)
+        o_color = vec4(reflected, 1.0);
+        return;
+    }
+    t1 = normalize(t1);
+    vec3 p1 = v_world;
+    vec2 uv1 = project(p1).xy;
+
+    bool back = true;
+    float dT;
+#ifdef WYMAN
+    // Wyman 2005: d_T ~ (theta_t / theta_i) d_V + (1 - theta_t / theta_i) d_N, with
+    // d_V the view ray's thickness from the two depth buffers and d_N precomputed.
+    float ti = acos(clamp(-dot(v, n1), -1.0, 1.0)), tt = acos(clamp(-dot(t1, n1), -1.0, 1.0));
+    float ratio = ti > 1e-4 ? clamp(tt / ti, 0.0, 1.0) : 1.0;
+    float dV = max(linear_depth(texture(u_back_depth, uv1).r) - eye_depth(p1), 0.0) / max(dot(v, -vec3(u_view[0][2], u_view[1][2], u_view[2][2])), 1e-3);
+    dT = ratio * dV + (1.0 - ratio) * v_thickness;
+#else
+    // §2.1.2: the dividing pixel p_e along the projected T1 (binary search,
+    // Fig. 7), then the angles decide: a T1 turned further from the view
+    // ray than the direction to P_e leaves through the front-facing part.
+    vec2 t1s = project(p1 + t1 * 1e-2).xy - uv1;
+    float len2 = dot(t1s, t1s);
+    if (len2 > 1e-16) {
+        t1s /= sqrt(len2);
+        float len = 0.75, left = len; // 75% of the buffer, as the paper starts
+        vec2 pe = uv1;
+        bool found = false;
+        for (int i = 0; i < 2 * u_search_steps; i++) { // capped
+            vec2 test = uv1 + len * t1s;
+            left *= 0.5;
+            bool in_refractor = inside(test, u_back_depth);
+            if (in_refractor) {
+                pe = test;
+                found = true;
+                len += left;
+            } else {
+                len -= left;
+            }
+            if (i + 1 >= u_search_steps && found)
+                break;
+        }
+        if (found) {
+            vec3 Pe = unproject(pe, texture(u_back_depth, pe).r);
+            float theta_e = acos(clamp(dot(normalize(Pe - p1), v), -1.0, 1.0));
+            float theta_t = acos(clamp(dot(t1, v), -1.0, 1.0));
+            back = theta_t <= theta_e;
+        }
+    }
+    // §2.1.3, Fig. 9: d_T from a small start, corrected by the depth buffer
+    // of the surface it leaves through, in eye-space depth units.
+    dT = 1e-3 * length(p1 - u_camera_pos.xyz);
+    vec3 fwd = -vec3(u_view[0][2], u_view[1][2], u_view[2][2]);
+    float rate = max(abs(dot(t1, fwd)), 0.05); // eye depth per unit length along T1
+    for (int i = 0; i < u_iterations; i++) { // capped by the parameter's range
+        vec3 p2 = p1 + dT * t1;
+        vec3 q = project(p2);
+        if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))))
+            break;
+        float d = back ? texture(u_back_depth, q.xy).r : texture(u_front_depth, q.xy).r;
+        if (d >= 1.0)
+            break; // off the refractor: keep the last estimate
+        // Fig. 9: Steplength = Flag * (depth - z), Flag = -1 for the front-facing surface
+        float zbuf = linear_depth(d), zp = eye_depth(p2);
+        float step = (back ? zbuf - zp : zp - zbuf) / rate;
+        dT = max(dT + step, 0.0);
+        if (abs(step) < u_tolerance)
+            break;
+    }
+#endif
+    vec3 p2 = p1 + dT * t1;
+    vec2 uv2 = project(p2).xy;
+    vec3 n2 = back ? texture(u_back_normal, uv2).xyz : texture(u_front_normal, uv2).xyz;
+    if (dot(n2, n2) < 0.5)
+        n2 = back ? texture(u_back_normal, uv1).xyz : -n1; // outside the buffer: the nearest guess
+    n2 = normalize(n2);
+    // leaving: the normal facing against the ray is -n2 (n2 is outward)
+    vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
+    float f2 = fresnel_dielectric(-dot(t1, m), u_ior);
+    vec3 t2 = refract(t1, m, u_ior);
+    vec3 exit_dir = dot(t2, t2) > 0.0 ? normalize(t2) : reflect(t1, m); // TIR: the reflected ray (approximation)
+    vec3 transmitted = environment_radiance(exit_dir) * exp(-u_absorption * dT);
+    if (dot(t2, t2) > 0.0)
+        transmitted *= (1.0 - f2);
+    o_color = vec4(f1 * reflected + (1.0 - f1) * transmitted, 1.0);
+}

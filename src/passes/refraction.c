@@ -1,0 +1,219 @@
+/* refraction: two-sided image-space refraction of environment maps,
+ * Hu & Qin §2.1 (method "huqin"), with Wyman's 2005 method as the baseline
+ * it improves on (method "wyman").
+ *
+ * Initial pass: normals and depths of the front- and back-facing surfaces
+ * of the refractive objects (glass, water) into buffers. Rendering pass,
+ * per fragment of the visible front surface: T1 from Snell at P1; for
+ * "huqin", the dividing pixel p_e by a binary search along the projected
+ * T1 (Fig. 7) decides whether P2 lies on the back- or the front-facing
+ * surface (§2.1.2), and d_T comes from the iterative depth-buffer lookup
+ * of Fig. 9 (§2.1.3); for "wyman", d_T interpolates the view-ray
+ * thickness d_V and a precomputed per-vertex thickness d_N by the angles
+ * (Wyman 2005). N2 comes from the matching normal buffer (§2.1.4); T2 goes
+ * into the environment. Total internal reflection at either interface
+ * reflects (never a NaN); every loop has a cap. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "scene/scene.h"
+
+#define MAX_ITERATIONS 16
+#define MAX_SEARCH_STEPS 16
+
+struct refraction_state {
+    struct gl_framebuffer front_fb, back_fb, out_fb;
+    struct gl_texture front_normal, back_normal, front_depth, back_depth;
+    int width, height;
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "method", .type = PASS_PARAM_ENUM, .default_string = "huqin", .choices = "huqin|wyman",
+     .help = "huqin (Hu & Qin 2007) or wyman (Wyman 2005, the baseline)"},
+    {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene image to draw over"},
+    {.name = "depth", .type = PASS_PARAM_INPUT, .required = true, .help = "its depth (the refractors' front surfaces)"},
+    {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = MAX_ITERATIONS,
+     .help = "iterations of the d_T lookup (Fig. 9); 0 keeps the first estimate"},
+    {.name = "tolerance", .type = PASS_PARAM_NUMBER, .default_number = 1e-4, .min = 0, .max = 1,
+     .help = "stop the d_T iteration when a step is below this (scene units)"},
+    {.name = "search_steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = MAX_SEARCH_STEPS,
+     .help = "binary search steps for the dividing pixel p_e (Fig. 7)"},
+};
+
+static bool refraction_declare(struct pass *p, struct error *err)
+{
+    return pass_declare_input(p, "color", pass_string(p, "color"), err) &&
+           pass_declare_input(p, "depth", pass_string(p, "depth"), err) &&
+           pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool refraction_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct refraction_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
+           gl_framebuffer_create(&s->out_fb, err);
+}
+
+static void release_targets(struct refraction_state *s)
+{
+    gl_texture_destroy(&s->front_normal);
+    gl_texture_destroy(&s->back_normal);
+    gl_texture_destroy(&s->front_depth);
+    gl_texture_destroy(&s->back_depth);
+}
+
+static void refraction_destroy(struct pass *p)
+{
+    struct refraction_state *s = p->state;
+    if (!s)
+        return;
+    release_targets(s);
+    gl_framebuffer_destroy(&s->front_fb);
+    gl_framebuffer_destroy(&s->back_fb);
+    gl_framebuffer_destroy(&s->out_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static bool is_refractive(const struct object *o)
+{
+    return o->visible && (o->material.kind == MATERIAL_GLASS || o->material.kind == MATERIAL_WATER);
+}
+
+/* Left out when no refractive object is visible: the image passes through. */
+static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)p;
+    for (int i = 0; i < f->scene->object_count; i++)
+        if (is_refractive(f->scene->objects[i]))
+            return PASS_RUN;
+    snprintf(why, whylen, "passes the image through: no refractive object in the scene");
+    return PASS_RUN; /* still copies its input; cheap */
+}
+
+/* Draws each refractive object alone (its d_N buffer bound for Wyman's). */
+static bool draw_refractors(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
+                            bool wyman, struct error *err)
+{
+    for (int i = 0; i < scene->object_count; i++) {
+        struct object *o = scene->objects[i];
+        if (!is_refractive(o))
+            continue;
+        struct mesh *m = o->mesh;
+        if (wyman) {
+            if (!mesh_compute_thickness(m, err))
+                return false;
+            if (!m->buffer_thickness) {
+                gl.CreateBuffers(1, &m->buffer_thickness);
+                gl.NamedBufferStorage(m->buffer_thickness, (GLsizeiptr)(m->vertex_count * sizeof(float)), m->thickness, 0);
+            }
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m->buffer_thickness);
+        }
+        struct scene only = *scene;
+        struct object *list[1] = {o};
+        only.objects = list;
+        only.object_count = 1;
+        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+    }
+    return true;
+}
+
+static bool ensure_targets(struct refraction_state *s, int w, int h, struct error *err)
+{
+    if (s->front_normal.id && s->width == w && s->height == h)
+        return true;
+    release_targets(s);
+    s->width = w;
+    s->height = h;
+    if (!gl_texture_create(&s->front_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+        !gl_texture_create(&s->back_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+        !gl_texture_create(&s->front_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
+        !gl_texture_create(&s->back_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err))
+        return false;
+    const struct gl_texture *fc[1] = {&s->front_normal}, *bc[1] = {&s->back_normal};
+    return gl_framebuffer_attach(&s->front_fb, fc, NULL, 1, &s->front_depth, -1, err) &&
+           gl_framebuffer_attach(&s->back_fb, bc, NULL, 1, &s->back_depth, -1, err);
+}
+
+static bool refraction_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct refraction_state *s = p->state;
+    struct renderer *r = f->renderer;
+    bool wyman = strcmp(pass_string(p, "method"), "wyman") == 0;
+    struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
+    if (!ensure_targets(s, f->width, f->height, err))
+        return false;
+    const char *defines = wyman ? "#define WYMAN 1\n" : "";
+
+    /* Initial pass: front- and back-facing normals and depths. */
+    struct gl_program *surf;
+    if (!gl_program_get(&r->programs, "refraction/surfaces.vert", "refraction/surfaces.frag", defines, &surf, err))
+        return false;
+    const float zero[4] = {0, 0, 0, 0};
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Enable(GL_CULL_FACE);
+    gl.Viewport(0, 0, f->width, f->height);
+    for (int side = 0; side < 2; side++) {
+        struct gl_framebuffer *fb = side == 0 ? &s->front_fb : &s->back_fb;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fb->id);
+        gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
+        if (!draw_refractors(r, f->scene, surf, wyman, err))
+            return false;
+    }
+    gl.Disable(GL_CULL_FACE);
+
+    /* Rendering pass: the input image, then the refractors' visible front
+     * surfaces refracting the environment (depth-tested against the input). */
+    const struct gl_texture *oc[1] = {&f->outputs[0]->texture};
+    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, &in_depth->texture, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    struct gl_program *copy;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag", "#define FROM_TEXTURE 1\n",
+                        &copy, err))
+        return false;
+    gl.Disable(GL_DEPTH_TEST);
+    gl.UseProgram(copy->id);
+    gl.BindTextureUnit(0, in_color->texture.id);
+    renderer_draw_fullscreen(r);
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
+        return false;
+    gl.BindTextureUnit(1, s->front_normal.id);
+    gl.BindTextureUnit(2, s->back_normal.id);
+    gl.BindTextureUnit(3, s->front_depth.id);
+    gl.BindTextureUnit(4, s->back_depth.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_number(p, "iterations"));
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_number(p, "tolerance"));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_number(p, "search_steps"));
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_CULL_FACE);
+    gl.CullFace(GL_BACK);
+    if (!draw_refractors(r, f->scene, prog, wyman, err))
+        return false;
+    return true;
+}
+
+const struct pass_desc refraction_pass = {
+    .name = "refraction",
+    .summary = "Hu & Qin two-sided image-space refraction of the environment (or Wyman 2005's baseline)",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = refraction_declare,
+    .create = refraction_create,
+    .execute = refraction_execute,
+    .needed = refraction_needed,
+    .destroy = refraction_destroy,
+};
