@@ -1,0 +1,55 @@
+-- Hu & Qin §2.1 refraction (and Wyman's baseline): stability and the
+-- paper's claim against the reference.
+local t = require "caustica.test"
+
+-- Refraction and reflection of an environment cannot be brighter than the
+-- brightest thing in it: the room's ceiling panel, (255, 255, 250) in sRGB,
+-- radiance 1.0.
+local ENVIRONMENT_MAX = 1.0
+local function range_ok(img)
+  local s = img:stats()
+  return s.nan == 0 and s.max <= ENVIRONMENT_MAX * (1 + 1e-5)
+end
+
+for _, method in ipairs { "huqin", "wyman" } do
+  t.case(method .. ": IOR 1.0 leaves the environment behind the sphere as it is", function()
+    -- Fresnel reflectance is 0 and both refractions keep the direction, so
+    -- only Beer-Lambert absorption inside (0.1-0.3 per unit over up to 1.2)
+    -- changes the image: compare with absorption-corrected tolerance.
+    local with = t.render("tests/scenes/refract.lua", { set = { ior = 1.0, method = method } })
+    local without = t.render("tests/scenes/refract.lua", { set = { ior = 1.0, method = method, hide = true } })
+    -- absorption at most 1 - exp(-0.3 * 1.2) = 30% of the (sub-1) environment radiance
+    t.expect_close(with, without, { rel_rmse = 0.25 })
+    t.expect_finite(with)
+  end)
+end
+
+for _, ior in ipairs { 0.8, 1.33, 2.42 } do
+  for _, view in ipairs { "front", "grazing", "near" } do
+    t.case(string.format("IOR %g, %s view: no NaN or Inf, within the environment's range", ior, view), function()
+      for _, method in ipairs { "huqin", "wyman" } do
+        local img = t.render("tests/scenes/refract.lua", { set = { ior = ior, view = view, method = method, iterations = 16 } })
+        t.expect(range_ok(img), method .. ": values outside the environment's range or not finite")
+      end
+    end)
+  end
+end
+
+t.case("Fig. 11 (IOR 1.75): Hu & Qin's error against the reference is lower than Wyman's", function()
+  local opts = { set = { ior = 1.75 }, size = { 96, 96 } }
+  local ref = t.reference("scenes/huqin_sphere.lua", { set = { ior = 1.75 }, size = { 96, 96 }, photons = 0, spp = 32 })
+  opts.set.method = "huqin"
+  local hq = t.render("scenes/huqin_sphere.lua", opts)
+  opts.set.method = "wyman"
+  local wy = t.render("scenes/huqin_sphere.lua", opts)
+  local c = require("caustica").image
+  local e_hq, e_wy = c.compare(hq, ref).rel_rmse, c.compare(wy, ref).rel_rmse
+  t.expect(e_hq < e_wy, string.format("Hu & Qin rel_rmse %.4f, Wyman %.4f", e_hq, e_wy))
+end)
+
+t.case("refraction: no refractive object, the image passes through unchanged", function()
+  local a = t.render("tests/scenes/refract.lua", { set = { hide = true } })
+  local b = t.render("tests/scenes/refract.lua", { set = { hide = true, method = "wyman" } })
+  t.expect_close(a, b, { max = 0 })
+  t.expect_finite(a)
+end)
