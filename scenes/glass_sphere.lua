@@ -16,9 +16,17 @@ scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.dif
 scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 128 }, position = {0, radius + 0.15, 0},
                      material = c.material.glass { ior = ior } })
 
+local techniques = c.param("techniques", true)   -- false: plain shading only
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
-g:add("shade", c.pass.shade { shadow = "shadow.depth" })
-g:output("shade.color")
+if techniques then
+  g:add("photons", c.pass.photon_caustics { light = lamp, buffer = c.param("buffer", 256), k = c.param("k", 2) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+  g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", iterations = c.param("iterations", 3) })
+  g:output("glass.color")
+else
+  g:add("shade", c.pass.shade { shadow = "shadow.depth" })
+  g:output("shade.color")
+end
 
 return { scene = scene, graph = g, size = {256, 256} }

@@ -1,0 +1,141 @@
+#version 450 core
+// Hu & Qin §3.1: one photon per photon-buffer pixel that sees a refractor
+// (or mirror) from the light. It enters (Fresnel, Snell), crosses the
+// object (d_T by the depth-buffer iteration of Fig. 9, in the light's
+// view), leaves (Fresnel, Snell; total internal reflection drops it), and
+// meets the nearest receiver impostor (Fig. 16 correction). Out: (u, v, k)
+// and its flux: the light's irradiance over the pixel's footprint times
+// the two transmittances and Beer-Lambert absorption.
+#include "common/frame.glsl"
+#include "common/fresnel.glsl"
+#include "photon_caustics/impostors.glsl"
+in vec2 v_uv;
+layout(location = 0) out vec4 o_photon;
+layout(location = 1) out vec4 o_flux;
+layout(binding = 1) uniform sampler2D u_front_normal;
+layout(binding = 2) uniform sampler2D u_back_normal;
+layout(binding = 3) uniform sampler2D u_front_depth;
+layout(binding = 4) uniform sampler2D u_back_depth;
+uniform mat4 u_light_view_proj;
+uniform mat4 u_light_inverse;
+uniform int u_light;
+uniform int u_iterations;
+uniform float u_buffer;
+uniform int u_mirror;
+uniform float u_ior;
+uniform vec3 u_tint;
+uniform vec3 u_absorption;
+
+vec3 unproject(vec2 uv, float d)
+{
+    vec4 w = u_light_inverse * vec4(vec3(uv, d) * 2.0 - 1.0, 1.0);
+    return w.xyz / w.w;
+}
+
+vec3 project(vec3 p)
+{
+    vec4 c = u_light_view_proj * vec4(p, 1.0);
+    return c.xyz / max(c.w, 1e-6) * 0.5 + 0.5;
+}
+
+void nothing()
+{
+    o_photon = vec4(0.0);
+    o_flux = vec4(0.0);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec2 uv = (vec2(px) + 0.5) / u_buffer;
+    float d1 = texelFetch(u_front_depth, px, 0).r;
+    if (d1 >= 1.0) {
+        nothing();
+        return;
+    }
+    GpuLight light = u_lights[u_light];
+    int kind = int(light.position.w + 0.5);
+    vec3 p1 = unproject(uv, d1);
+    vec3 ldir = kind == 1 ? normalize(light.direction.xyz) : normalize(p1 - light.position.xyz);
+    // irradiance perpendicular to the light at p1, and the pixel's footprint across the beam
+    vec3 e = light.intensity.rgb;
+    if (kind != 1) {
+        vec3 d = p1 - light.position.xyz;
+        e /= max(dot(d, d), 1e-8);
+        if (kind == 2)
+            e *= smoothstep(light.direction.w, max(light.intensity.w, light.direction.w + 1e-4),
+                            dot(ldir, normalize(light.direction.xyz)));
+    }
+    vec3 a = unproject(uv + vec2(1.0 / u_buffer, 0.0), d1) - p1, b = unproject(uv + vec2(0.0, 1.0 / u_buffer), d1) - p1;
+    vec3 flux = e * abs(dot(cross(a, b), ldir));
+    vec3 n1 = normalize(texelFetch(u_front_normal, px, 0).xyz);
+    if (dot(ldir, n1) > 0.0)
+        n1 = -n1;
+    float eps = 1e-4 * length(p1 - unproject(vec2(0.5), 0.5)) + 1e-5;
+    vec3 origin, dir;
+    if (u_mirror == 1) {
+        dir = reflect(ldir, n1); // reflective caustics (Fig. 19 bottom)
+        origin = p1 + n1 * eps;
+        flux *= u_tint;
+    } else {
+        float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / u_ior);
+        vec3 t1 = refract(ldir, n1, 1.0 / u_ior);
+        if (dot(t1, t1) == 0.0) {
+            nothing(); // an IOR below 1 reflecting everything at the entry
+            return;
+        }
+        t1 = normalize(t1);
+        flux *= 1.0 - f1;
+        // d_T (Fig. 9): start small, move to the back surface along the light's view
+        float dT = 1e-3;
+        for (int i = 0; i < max(u_iterations, 1); i++) {
+            vec3 q = project(p1 + dT * t1);
+            if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))))
+                break;
+            float db = texture(u_back_depth, q.xy).r;
+            if (db >= 1.0)
+                break;
+            vec3 pb = unproject(q.xy, db);
+            vec3 view = kind == 1 ? ldir : normalize(pb - light.position.xyz);
+            float step = dot(pb - (p1 + dT * t1), view) / max(abs(dot(t1, view)), 0.05);
+            dT = max(dT + step, 0.0);
+            if (abs(step) < 1e-5)
+                break;
+        }
+        vec3 p2 = p1 + dT * t1;
+        vec3 n2 = texture(u_back_normal, project(p2).xy).xyz;
+        if (dot(n2, n2) < 0.5) {
+            nothing();
+            return;
+        }
+        n2 = normalize(n2);
+        vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
+        float f2 = fresnel_dielectric(-dot(t1, m), u_ior);
+        vec3 t2 = refract(t1, m, u_ior);
+        if (dot(t2, t2) == 0.0) {
+            nothing(); // total internal reflection at the exit: the photon is not followed further
+            return;
+        }
+        flux *= (1.0 - f2) * exp(-u_absorption * dT);
+        dir = normalize(t2);
+        origin = p2 - m * eps;
+    }
+    float best = 1e30;
+    int hit = -1;
+    vec2 huv = vec2(0.0);
+    for (int k = 0; k < u_impostor_count; k++) {
+        vec2 kuv;
+        float t = impostor_hit(k, origin, dir, u_iterations, kuv);
+        if (t > 0.0 && t < best) {
+            best = t;
+            hit = k;
+            huv = kuv;
+        }
+    }
+    if (hit < 0) {
+        nothing();
+        return;
+    }
+    o_photon = vec4(huv, float(hit), 1.0);
+    o_flux = vec4(flux, 1.0);
+}

@@ -1,0 +1,104 @@
+#include "passes/impostors.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "graph/renderer.h"
+
+void impostors_release(struct impostor_set *set)
+{
+    gl_texture_destroy(&set->depth);
+    gl_texture_destroy(&set->depth_buffer);
+    gl_framebuffer_destroy(&set->fb);
+    if (set->ubo && gl_api_ready())
+        gl.DeleteBuffers(1, &set->ubo);
+    memset(set, 0, sizeof *set);
+}
+
+int impostors_find(const struct impostor_set *set, const struct object *object)
+{
+    for (int i = 0; i < set->count; i++)
+        if (set->items[i].object == object)
+            return i;
+    return -1;
+}
+
+bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
+                     int size, struct error *err)
+{
+    int count = 0;
+    struct impostor items[IMPOSTOR_MAX];
+    for (int i = 0; i < scene->object_count && count < IMPOSTOR_MAX; i++) {
+        struct object *o = scene->objects[i];
+        if (!o->visible || material_is_specular(&o->material))
+            continue;
+        vec3 lo, hi;
+        object_world_bounds(o, &lo, &hi);
+        struct impostor *im = &items[count++];
+        im->object = o;
+        im->center = vec3_scale(vec3_add(lo, hi), 0.5f);
+        im->half = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
+        im->axis = vec3_normalize_or(vec3_sub(im->center, refractor_center), vec3_make(0, -1, 0));
+        vec3 hint = fabsf(im->axis.y) > 0.9f ? vec3_make(0, 0, 1) : vec3_make(0, 1, 0);
+        im->right = vec3_normalize_or(vec3_cross(hint, im->axis), vec3_make(1, 0, 0));
+        im->up = vec3_cross(im->axis, im->right);
+    }
+    if (set->size != size || set->count != count || !set->depth.id) {
+        impostors_release(set);
+        if (count == 0)
+            return true;
+        if (!gl_texture_create(&set->depth, GL_TEXTURE_2D_ARRAY, GL_R32F, size, size, count, err) ||
+            !gl_texture_create(&set->depth_buffer, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err) ||
+            !gl_framebuffer_create(&set->fb, err))
+            return false;
+        gl.CreateBuffers(1, &set->ubo);
+        gl.NamedBufferStorage(set->ubo, IMPOSTOR_MAX * sizeof(struct impostor_gpu), NULL, GL_DYNAMIC_STORAGE_BIT);
+        set->size = size;
+    }
+    set->count = count;
+    memcpy(set->items, items, sizeof items);
+    struct impostor_gpu gpu[IMPOSTOR_MAX];
+    memset(gpu, 0, sizeof gpu);
+    for (int k = 0; k < count; k++) {
+        const struct impostor *im = &items[k];
+        gpu[k] = (struct impostor_gpu){{im->center.x, im->center.y, im->center.z, im->half},
+                                       {im->axis.x, im->axis.y, im->axis.z, 0},
+                                       {im->right.x, im->right.y, im->right.z, 0},
+                                       {im->up.x, im->up.y, im->up.z, 0}};
+    }
+    gl.NamedBufferSubData(set->ubo, 0, sizeof gpu, gpu);
+
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "photon_caustics/impostor.vert", "photon_caustics/impostor.frag", NULL, &prog,
+                        err))
+        return false;
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Viewport(0, 0, size, size);
+    for (int k = 0; k < count; k++) {
+        const struct impostor *im = &items[k];
+        const struct gl_texture *colors[1] = {&set->depth};
+        int layers[1] = {k};
+        if (!gl_framebuffer_attach(&set->fb, colors, layers, 1, &set->depth_buffer, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, set->fb.id);
+        const float empty[4] = {IMPOSTOR_EMPTY, 0, 0, 0};
+        gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 0, empty);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        /* parallel projection along the axis, from the refractor's side (Fig. 12) */
+        vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));
+        mat4 view = mat4_look_at(eye, im->center, im->up);
+        mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
+        mat4 vp = mat4_mul(proj, view);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
+                            im->center.z);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
+        struct scene only = *scene;
+        struct object *list[1] = {im->object};
+        only.objects = list;
+        only.object_count = 1;
+        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+    }
+    gl.Disable(GL_DEPTH_TEST);
+    return gl_check("building impostors", err);
+}

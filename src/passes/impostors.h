@@ -1,0 +1,52 @@
+/* Impostors (Hu & Qin §2.2.1, Fig. 12): each nearby object stands in as a
+ * square rectangle of side 2 d_i at its centre O_i, perpendicular to the
+ * line from the refractor's centre O_R, with a texture made by a parallel
+ * projection along that line. Here the texture holds each texel's depth
+ * along the line (relative to the rectangle's plane), which the iterative
+ * lookup of Fig. 16 uses to correct where a ray meets the object. */
+#ifndef CAUSTICA_IMPOSTORS_H
+#define CAUSTICA_IMPOSTORS_H
+
+#include <stdbool.h>
+
+#include "core/error.h"
+#include "gl/gl_texture.h"
+#include "scene/scene.h"
+
+#define IMPOSTOR_MAX 16
+#define IMPOSTOR_EMPTY 1e30f /* depth of a texel where the object is not */
+
+struct renderer;
+
+struct impostor {
+    struct object *object; /* borrowed */
+    vec3 center, axis, right, up;
+    float half;            /* d_i: half the rectangle's side */
+};
+
+/* std430 mirror of `Impostor` in shaders/photon_caustics/impostors.glsl */
+struct impostor_gpu {
+    float center[4]; /* xyz, w = half side */
+    float axis[4];
+    float right[4];
+    float up[4];
+};
+
+struct impostor_set {
+    int count, size;
+    struct impostor items[IMPOSTOR_MAX];
+    struct gl_texture depth;        /* r32f array: one layer per impostor */
+    struct gl_texture depth_buffer; /* for rendering them */
+    struct gl_framebuffer fb;
+    GLuint ubo;                     /* the impostors' frames (std430 SSBO) */
+};
+
+/* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
+ * `refractor_center`, each rendered at size x size. */
+bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
+                     int size, struct error *err);
+void impostors_release(struct impostor_set *set);
+/* Index of the impostor standing in for `object`, or -1. */
+int impostors_find(const struct impostor_set *set, const struct object *object);
+
+#endif

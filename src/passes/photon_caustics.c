@@ -1,0 +1,354 @@
+/* photon_caustics: Hu & Qin §3. A photon buffer is rendered from the light
+ * (§3.1): each of its pixels on a refractor (or mirror) follows the light
+ * through the object (the two-sided lookup of §2.1 in the light's view)
+ * and onto the impostor of the receiver it reaches (§2.2, with the
+ * iterative correction of Fig. 16), and stores (u, v, k) and its flux.
+ * The photons are accumulated into one caustic texture per receiver on
+ * the GPU (no read-back) and filtered with
+ *   c(u, v) = s * sum p(u + i, v + j) sqrt(1 + 2k^2 - (i^2 + j^2))   (§3.2),
+ * normalised so that s = 1 keeps the photons' energy: the texture holds
+ * irradiance. Caustic mapping (§3.3) projects it back onto the receivers
+ * seen by the camera, with a shadow-map-like test against the impostor's
+ * depth, into a screen-space irradiance `shade` adds. A static scene (light
+ * and objects unchanged) reuses the photon buffer and caustic textures (§4);
+ * only the mapping is redone. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/impostors.h"
+#include "scene/scene.h"
+
+struct photon_state {
+    struct impostor_set impostors;
+    struct gl_framebuffer light_fb[2], photon_fb, map_fb;
+    struct gl_texture light_normal[2], light_depth[2]; /* front, back as seen from the light */
+    struct gl_texture photons, photon_flux;           /* the photon buffer: (u, v, k, valid), flux */
+    struct gl_texture counts;                         /* r32ui array, 3 layers per receiver */
+    struct gl_texture caustics;                       /* rgba32f array, one layer per receiver */
+    int buffer, texture, receivers;
+    bool valid;
+    uint64_t light_version, geometry_version;
+    mat4 light_view_proj, light_inverse;
+    float fixed_point; /* flux -> integer count scale */
+};
+
+static const struct pass_param_desc params[] = {
+    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light the photons come from"},
+    {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 2048,
+     .help = "photon buffer size (photons = buffer^2 at most), 64-512 in the paper"},
+    {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8, .help = "filter radius (§3.2)"},
+    {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
+     .help = "filter scale; 1 keeps the photons' energy (irradiance)"},
+    {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "caustic texture size per receiver"},
+    {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
+     .help = "iterations of d_T and of the impostor correction (Fig. 9, 16)"},
+    {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
+     .help = "depth tolerance of the caustic mapping test, scene units"},
+};
+
+static bool photon_declare(struct pass *p, struct error *err)
+{
+    return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool photon_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct photon_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->light_fb[0], err) && gl_framebuffer_create(&s->light_fb[1], err) &&
+           gl_framebuffer_create(&s->photon_fb, err) && gl_framebuffer_create(&s->map_fb, err);
+}
+
+static void release_textures(struct photon_state *s)
+{
+    for (int i = 0; i < 2; i++) {
+        gl_texture_destroy(&s->light_normal[i]);
+        gl_texture_destroy(&s->light_depth[i]);
+    }
+    gl_texture_destroy(&s->photons);
+    gl_texture_destroy(&s->photon_flux);
+    gl_texture_destroy(&s->counts);
+    gl_texture_destroy(&s->caustics);
+}
+
+static void photon_destroy(struct pass *p)
+{
+    struct photon_state *s = p->state;
+    if (!s)
+        return;
+    release_textures(s);
+    impostors_release(&s->impostors);
+    for (int i = 0; i < 2; i++)
+        gl_framebuffer_destroy(&s->light_fb[i]);
+    gl_framebuffer_destroy(&s->photon_fb);
+    gl_framebuffer_destroy(&s->map_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static bool specular_bounds(const struct scene *scene, vec3 *center, float *radius)
+{
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    bool any = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible || !material_is_specular(&o->material))
+            continue;
+        vec3 a, b;
+        object_world_bounds(o, &a, &b);
+        lo = vec3_min(lo, a);
+        hi = vec3_max(hi, b);
+        any = true;
+    }
+    if (any) {
+        *center = vec3_scale(vec3_add(lo, hi), 0.5f);
+        *radius = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
+    }
+    return any;
+}
+
+static enum pass_need photon_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)p;
+    vec3 c;
+    float rad;
+    if (!specular_bounds(f->scene, &c, &rad)) {
+        snprintf(why, whylen, "left out: no refractive or reflective object makes caustics");
+        return PASS_SKIP;
+    }
+    return PASS_RUN;
+}
+
+static int light_gpu_index(const struct pass_frame *f, const struct light *l)
+{
+    for (int i = 0; i < f->scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++)
+        if (f->scene->lights[i] == l)
+            return f->renderer->light_first[i];
+    return -1;
+}
+
+static bool ensure_textures(struct photon_state *s, int buffer, int texture, int receivers, struct error *err)
+{
+    if (s->buffer == buffer && s->texture == texture && s->receivers == receivers && s->photons.id)
+        return true;
+    release_textures(s);
+    s->buffer = buffer;
+    s->texture = texture;
+    s->receivers = receivers;
+    s->valid = false;
+    for (int i = 0; i < 2; i++) {
+        if (!gl_texture_create(&s->light_normal[i], GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
+            !gl_texture_create(&s->light_depth[i], GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, buffer, buffer, 1, err))
+            return false;
+        const struct gl_texture *c[1] = {&s->light_normal[i]};
+        if (!gl_framebuffer_attach(&s->light_fb[i], c, NULL, 1, &s->light_depth[i], -1, err))
+            return false;
+    }
+    if (!gl_texture_create(&s->photons, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
+        !gl_texture_create(&s->photon_flux, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err))
+        return false;
+    const struct gl_texture *pc[2] = {&s->photons, &s->photon_flux};
+    if (!gl_framebuffer_attach(&s->photon_fb, pc, NULL, 2, NULL, -1, err))
+        return false;
+    int layers = receivers > 0 ? receivers : 1;
+    return gl_texture_create(&s->counts, GL_TEXTURE_2D_ARRAY, GL_R32UI, texture, texture, 3 * layers, err) &&
+           gl_texture_create(&s->caustics, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, texture, texture, layers, err);
+}
+
+static void bind_impostors(struct photon_state *s, const struct gl_program *prog)
+{
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s->impostors.ubo);
+    gl.BindTextureUnit(6, s->impostors.depth.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
+}
+
+static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct photon_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct light *light = pass_light(p, "light");
+    int light_index = light_gpu_index(f, light);
+    if (light_index < 0)
+        return error_set(err, "its light was never added to the scene (use scene:add(light))");
+    vec3 oc;
+    float orad;
+    specular_bounds(f->scene, &oc, &orad);
+    int buffer = (int)pass_number(p, "buffer"), texture = (int)pass_number(p, "texture");
+    int iterations = (int)pass_number(p, "iterations");
+    uint64_t gv = scene_geometry_version(f->scene);
+    bool reuse = s->valid && s->light_version == light->version && s->geometry_version == gv && s->buffer == buffer &&
+                 s->texture == texture;
+    bool animated = false;
+    for (int i = 0; i < f->scene->object_count; i++)
+        animated = animated || (f->scene->objects[i]->visible && object_is_animated_geometry(f->scene->objects[i]));
+    reuse = reuse && !animated;
+    if (!reuse) {
+        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, err) ||
+            !ensure_textures(s, buffer, texture, s->impostors.count, err))
+            return false;
+        /* The light's view of the refractors' bounding sphere. */
+        vec3 light_pos;
+        mat4 view, proj;
+        if (light->kind == LIGHT_DIRECTIONAL) {
+            vec3 d = vec3_normalize_or(light->direction, vec3_make(0, -1, 0));
+            light_pos = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
+            view = mat4_look_at(light_pos, oc, vec3_make(0, 1, 0));
+            proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
+        } else {
+            light_pos = light->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(light->position, light->end), 0.5f)
+                                                    : light->position;
+            float dist = vec3_length(vec3_sub(oc, light_pos));
+            float half = dist > orad ? asinf(fminf(orad / dist, 1.0f)) : 1.2f;
+            float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.05f, 170.0f);
+            view = mat4_look_at(light_pos, oc, vec3_make(0, 1, 0));
+            proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.5f, dist + 2.0f * orad);
+        }
+        s->light_view_proj = mat4_mul(proj, view);
+        mat4_inverse(s->light_view_proj, &s->light_inverse);
+
+        /* Front and back surfaces of the refractors from the light (§2.1, in its view). */
+        struct gl_program *surf;
+        if (!gl_program_get(&r->programs, "photon_caustics/light_surfaces.vert", "refraction/surfaces.frag", NULL,
+                            &surf, err))
+            return false;
+        gl.ProgramUniformMatrix4fv(surf->id, gl_program_uniform(surf, "u_light_view_proj"), 1, GL_FALSE,
+                                   s->light_view_proj.m);
+        const float zero[4] = {0, 0, 0, 0};
+        gl.Enable(GL_DEPTH_TEST);
+        gl.Enable(GL_CULL_FACE);
+        gl.Viewport(0, 0, buffer, buffer);
+        for (int side = 0; side < 2; side++) {
+            gl.BindFramebuffer(GL_FRAMEBUFFER, s->light_fb[side].id);
+            gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 0, zero);
+            gl.Clear(GL_DEPTH_BUFFER_BIT);
+            gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
+            renderer_draw_objects(r, f->scene, surf, DRAW_SPECULAR);
+        }
+        gl.Disable(GL_CULL_FACE);
+        gl.Disable(GL_DEPTH_TEST);
+
+        /* §3.1: the photon buffer. One fullscreen draw traces every photon. */
+        struct gl_program *trace;
+        if (!gl_program_get(&r->programs, "common/fullscreen.vert", "photon_caustics/trace.frag", NULL, &trace, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->photon_fb.id);
+        gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 0, zero);
+        gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 1, zero);
+        gl.UseProgram(trace->id);
+        bind_impostors(s, trace);
+        gl.BindTextureUnit(1, s->light_normal[0].id);
+        gl.BindTextureUnit(2, s->light_normal[1].id);
+        gl.BindTextureUnit(3, s->light_depth[0].id);
+        gl.BindTextureUnit(4, s->light_depth[1].id);
+        gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
+                                   s->light_view_proj.m);
+        gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
+                                   s->light_inverse.m);
+        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
+        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
+        gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
+        /* the refractors' material: one refractor's (the first) */
+        for (int i = 0; i < f->scene->object_count; i++) {
+            const struct object *o = f->scene->objects[i];
+            if (o->visible && material_is_specular(&o->material)) {
+                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_mirror"), o->material.kind == MATERIAL_MIRROR);
+                gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_ior"), o->material.ior);
+                gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_tint"), o->material.color.x,
+                                    o->material.color.y, o->material.color.z);
+                gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_absorption"), o->material.absorption.x,
+                                    o->material.absorption.y, o->material.absorption.z);
+                break;
+            }
+        }
+        gl.Viewport(0, 0, buffer, buffer);
+        renderer_draw_fullscreen(r);
+
+        /* §3.2: accumulate into the caustic textures (fixed point: the
+         * scale keeps even all the light in one texel below 2^31). */
+        vec3 e = light->intensity;
+        float emax = fmaxf(e.x, fmaxf(e.y, e.z));
+        float total = light->kind == LIGHT_DIRECTIONAL ? emax * 4.0f * orad * orad : emax * 4.0f * (float)MATH_PI;
+        s->fixed_point = 2.0e9f / fmaxf(total, 1e-20f);
+        if (s->impostors.count > 0) {
+            const GLuint zero_u = 0;
+            gl.ClearTexImage(s->counts.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
+            struct gl_program *acc;
+            if (!gl_program_get_compute(&r->programs, "photon_caustics/accumulate.comp", NULL, NULL, &acc, err))
+                return false;
+            gl.UseProgram(acc->id);
+            gl.BindTextureUnit(0, s->photons.id);
+            gl.BindTextureUnit(1, s->photon_flux.id);
+            gl.BindImageTexture(0, s->counts.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+            gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
+            gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
+            gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+            gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+            struct gl_program *filt;
+            if (!gl_program_get_compute(&r->programs, "photon_caustics/filter.comp", NULL, NULL, &filt, err))
+                return false;
+            gl.UseProgram(filt->id);
+            bind_impostors(s, filt);
+            gl.BindImageTexture(0, s->counts.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+            gl.BindImageTexture(1, s->caustics.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
+            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_number(p, "k"));
+            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_number(p, "s"));
+            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
+            gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
+            gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        }
+        s->valid = true;
+        s->light_version = light->version;
+        s->geometry_version = gv;
+    }
+
+    /* §3.3: caustic mapping onto the receivers the camera sees. */
+    struct graph_resource *irr = pass_frame_output(p, f, "irradiance"), *depth = pass_frame_output(p, f, "depth");
+    const struct gl_texture *c[1] = {&irr->texture};
+    if (!gl_framebuffer_attach(&s->map_fb, c, NULL, 1, &depth->texture, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->map_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    const float zero[4] = {0, 0, 0, 0};
+    gl.ClearNamedFramebufferfv(s->map_fb.id, GL_COLOR, 0, zero);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    if (s->impostors.count == 0)
+        return true;
+    struct gl_program *map;
+    if (!gl_program_get(&r->programs, "shade/shade.vert", "photon_caustics/map.frag", NULL, &map, err))
+        return false;
+    gl.UseProgram(map->id);
+    bind_impostors(s, map);
+    gl.BindTextureUnit(7, s->caustics.id);
+    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_number(p, "bias"));
+    for (int k = 0; k < s->impostors.count; k++) {
+        char name[48];
+        snprintf(name, sizeof name, "u_impostor_object[%d]", k);
+        gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors.items[k].object->id);
+    }
+    gl.Enable(GL_DEPTH_TEST);
+    /* all objects write depth (so refractors hide what is behind them); receivers get the caustics */
+    renderer_draw_objects(r, f->scene, map, DRAW_ALL);
+    return true;
+}
+
+const struct pass_desc photon_caustics_pass = {
+    .name = "photon_caustics",
+    .summary = "Hu & Qin §3: photon buffer from the light, caustic textures per receiver, caustic mapping",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = photon_declare,
+    .create = photon_create,
+    .execute = photon_execute,
+    .needed = photon_needed,
+    .destroy = photon_destroy,
+};
