@@ -62,7 +62,8 @@ t.case("the 800K-triangle dragon deforms", function()
 end)
 
 t.case("demo frame 45 matches its golden image", function()
-  -- tests/refs/demo_frame45.png: the teapot and the dinosaur well into its
-  -- morph towards the blob, with the light to the front right.
+  -- tests/refs/demo_frame45.png: the teapot, and the glass dinosaur well
+  -- into its morph towards the blob, refracting the room, its shadow with
+  -- a faint caustic; the light to the front right.
   t.expect_golden(t.render("scenes/demo.lua", { size = { 128, 128 }, frame = 45 }), "demo_frame45.png")
 end)

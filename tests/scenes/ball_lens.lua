@@ -19,7 +19,7 @@ local scene = c.scene {
   background = {0, 0, 0},
 }
 local e = math.rad(elevation)
-scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 scene:add(c.object { mesh = c.mesh.plane { size = 40 }, position = {0, -floor_depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
@@ -40,6 +40,14 @@ if aperture > 0 then
 end
 ball.cast_shadows = true
 local g = c.graph()
-g:add("shade", c.pass.shade {})
+if c.param("techniques", false) then
+  -- Hu & Qin's photon caustics on the GPU (the scene's sun is the only light)
+  g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
+  g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),
+                                             k = c.param("k", 2) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+else
+  g:add("shade", c.pass.shade {})
+end
 g:output("shade.color")
 return { scene = scene, graph = g, size = {size, size} }
