@@ -14,13 +14,14 @@ local view = c.param("view", "side")            -- "side", or "down": from just 
 local scene = c.scene {
   -- low and from the side, so the floor under the ball is seen past it
   camera = view == "down"
-    and c.camera { eye = {0, -floor_depth + 0.08, 0}, target = {0, -floor_depth, 0}, up = {0, 0, -1}, fov = 60 }
+    and c.camera { eye = {0, -floor_depth + c.param("camera_height", 0.08), 0}, target = {0, -floor_depth, 0},
+                   up = {0, 0, -1}, fov = 60 }
     or c.camera { eye = {0, -floor_depth + 0.5, 3}, target = {0, -floor_depth, 0}, fov = 20 },
   background = {0, 0, 0},
 }
 local e = math.rad(elevation)
 local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
-scene:add(c.object { mesh = c.mesh.plane { size = 40 }, position = {0, -floor_depth, 0},
+scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, position = {0, -floor_depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
                                   material = c.material.glass { ior = ior } })

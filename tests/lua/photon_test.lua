@@ -1,0 +1,42 @@
+-- Hu & Qin §3 photon-buffer caustics: energy against the reference, and
+-- the degenerate cases.
+local t = require "caustica.test"
+
+for _, depth in ipairs { 1.0, 1.5 } do
+  t.case(string.format("photon caustics under a glass ball (floor %.1f below): the reference's irradiance within 5%%", depth), function()
+    -- Looking straight down at the floor inside the ball's shadow, where
+    -- only the light through the ball arrives: the GPU's caustic textures
+    -- must carry the same energy as the ground truth there.
+    local set = { techniques = true, floor = depth, view = "down", camera_height = 0.45, floor_size = 3 }
+    local gpu = t.render("tests/scenes/ball_lens.lua", { set = set })
+    set.techniques = false
+    local ref = t.reference("tests/scenes/ball_lens.lua", { set = set, photons = 200000, spp = 8 })
+    local a, b = gpu:stats().mean_gray, ref:stats().mean_gray
+    t.expect_finite(gpu)
+    t.expect(math.abs(a / b - 1) < 0.05, string.format("GPU mean %.5g, reference %.5g", a, b))
+  end)
+end
+
+t.case("photon caustics: no receiver, zero photons: nothing, and no NaN", function()
+  local img = t.render("tests/scenes/photon_edge.lua", { set = { receivers = false } })
+  t.expect_finite(img)
+end)
+
+t.case("photon caustics: an impostor seen edge-on by the photons, IOR 0.8 and 2.42: finite", function()
+  for _, ior in ipairs { 0.8, 1.5, 2.42 } do
+    t.expect_finite(t.render("tests/scenes/photon_edge.lua", { set = { ior = ior } }))
+  end
+end)
+
+t.case("photon caustics: all the energy focused into one texel stays finite", function()
+  -- a 16-texel caustic texture, no filter, the floor at the ball's focus
+  local img = t.render("tests/scenes/ball_lens.lua",
+    { set = { techniques = true, floor = 0.75, view = "down", texture = 16, k = 0, buffer = 256 } })
+  t.expect_finite(img)
+  t.expect(img:stats().max > 0, "the focus is lit")
+end)
+
+t.case("photon caustics: the pass runs and is timed on a scene's first frame", function()
+  local _, ms = t.render("scenes/glass_sphere.lua", { size = { 64, 64 } })
+  t.expect(ms.photons ~= nil and ms.photons > 0, "the first frame traces photons")
+end)
