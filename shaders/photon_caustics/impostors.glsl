@@ -9,6 +9,7 @@ struct Impostor {
 };
 layout(std430, binding = 5) readonly buffer Impostors { Impostor impostors[]; };
 layout(binding = 6) uniform sampler2DArray u_impostor_depth;
+layout(binding = 8) uniform sampler2DArray u_impostor_color;
 uniform int u_impostor_count;
 
 vec2 impostor_uv(int k, vec3 p)
@@ -54,4 +55,20 @@ float impostor_hit(int k, vec3 o, vec3 d, int iterations, out vec2 uv)
         uv = un;
     }
     return impostor_depth(k, uv) < 1e29 ? t : -1.0;
+}
+
+// The nearest impostor along a ray: its colour, or false for none.
+bool impostor_lookup(vec3 o, vec3 d, int iterations, out vec3 color)
+{
+    float best = 1e30;
+    color = vec3(0.0);
+    for (int k = 0; k < u_impostor_count; k++) {
+        vec2 uv;
+        float t = impostor_hit(k, o, d, iterations, uv);
+        if (t > 0.0 && t < best) {
+            best = t;
+            color = texture(u_impostor_color, vec3(uv, float(k))).rgb;
+        }
+    }
+    return best < 1e29;
 }

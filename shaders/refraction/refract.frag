@@ -3,6 +3,10 @@
 // through two interfaces, per fragment of the visible front surface.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
+#ifdef NEARBY
+#include "photon_caustics/impostors.glsl"
+uniform int u_correction;
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
@@ -16,6 +20,18 @@ uniform vec3 u_absorption;
 uniform int u_iterations;
 uniform float u_tolerance;
 uniform int u_search_steps;
+
+// What a ray from o in direction d sees: a nearby object's impostor (§2.2,
+// corrected by Fig. 16) or else the environment.
+vec3 trace_out(vec3 o, vec3 d)
+{
+#ifdef NEARBY
+    vec3 c;
+    if (impostor_lookup(o, d, u_correction, c))
+        return c;
+#endif
+    return environment_radiance(d);
+}
 
 // world point -> (uv in [0,1], window depth in [0,1])
 vec3 project(vec3 p)
@@ -55,7 +71,7 @@ void main()
         n1 = -n1;
     float eta = 1.0 / u_ior;
     float f1 = fresnel_dielectric(-dot(v, n1), eta);
-    vec3 reflected = environment_radiance(reflect(v, n1));
+    vec3 reflected = trace_out(v_world, reflect(v, n1));
     vec3 t1 = refract(v, n1, eta);
     if (dot(t1, t1) == 0.0) { // total internal reflection at the entry (an IOR below 1)
         o_color = vec4(reflected, 1.0);
@@ -138,7 +154,7 @@ void main()
     float f2 = fresnel_dielectric(-dot(t1, m), u_ior);
     vec3 t2 = refract(t1, m, u_ior);
     vec3 exit_dir = dot(t2, t2) > 0.0 ? normalize(t2) : reflect(t1, m); // TIR: the reflected ray (approximation)
-    vec3 transmitted = environment_radiance(exit_dir) * exp(-u_absorption * dT);
+    vec3 transmitted = trace_out(p2, exit_dir) * exp(-u_absorption * dT);
     if (dot(t2, t2) > 0.0)
         transmitted *= (1.0 - f2);
     o_color = vec4(f1 * reflected + (1.0 - f1) * transmitted, 1.0);

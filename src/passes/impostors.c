@@ -8,6 +8,7 @@
 void impostors_release(struct impostor_set *set)
 {
     gl_texture_destroy(&set->depth);
+    gl_texture_destroy(&set->color);
     gl_texture_destroy(&set->depth_buffer);
     gl_framebuffer_destroy(&set->fb);
     if (set->ubo && gl_api_ready())
@@ -39,15 +40,18 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         im->center = vec3_scale(vec3_add(lo, hi), 0.5f);
         im->half = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
         im->axis = vec3_normalize_or(vec3_sub(im->center, refractor_center), vec3_make(0, -1, 0));
+        /* up and right chosen so that the parallel projection below (a
+         * look-at along the axis) has right as its screen x and up as its y */
         vec3 hint = fabsf(im->axis.y) > 0.9f ? vec3_make(0, 0, 1) : vec3_make(0, 1, 0);
-        im->right = vec3_normalize_or(vec3_cross(hint, im->axis), vec3_make(1, 0, 0));
-        im->up = vec3_cross(im->axis, im->right);
+        im->up = vec3_normalize_or(vec3_sub(hint, vec3_scale(im->axis, vec3_dot(im->axis, hint))), vec3_make(0, 1, 0));
+        im->right = vec3_cross(im->axis, im->up);
     }
     if (set->size != size || set->count != count || !set->depth.id) {
         impostors_release(set);
         if (count == 0)
             return true;
         if (!gl_texture_create(&set->depth, GL_TEXTURE_2D_ARRAY, GL_R32F, size, size, count, err) ||
+            !gl_texture_create(&set->color, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
             !gl_texture_create(&set->depth_buffer, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err) ||
             !gl_framebuffer_create(&set->fb, err))
             return false;
@@ -76,13 +80,14 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     gl.Viewport(0, 0, size, size);
     for (int k = 0; k < count; k++) {
         const struct impostor *im = &items[k];
-        const struct gl_texture *colors[1] = {&set->depth};
-        int layers[1] = {k};
-        if (!gl_framebuffer_attach(&set->fb, colors, layers, 1, &set->depth_buffer, -1, err))
+        const struct gl_texture *colors[2] = {&set->depth, &set->color};
+        int layers[2] = {k, k};
+        if (!gl_framebuffer_attach(&set->fb, colors, layers, 2, &set->depth_buffer, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, set->fb.id);
-        const float empty[4] = {IMPOSTOR_EMPTY, 0, 0, 0};
+        const float empty[4] = {IMPOSTOR_EMPTY, 0, 0, 0}, black[4] = {0, 0, 0, 0};
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 0, empty);
+        gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 1, black);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         /* parallel projection along the axis, from the refractor's side (Fig. 12) */
         vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));

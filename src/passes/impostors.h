@@ -36,6 +36,7 @@ struct impostor_set {
     int count, size;
     struct impostor items[IMPOSTOR_MAX];
     struct gl_texture depth;        /* r32f array: one layer per impostor */
+    struct gl_texture color;        /* rgba16f array: the objects' radiance (lit, unshadowed) */
     struct gl_texture depth_buffer; /* for rendering them */
     struct gl_framebuffer fb;
     GLuint ubo;                     /* the impostors' frames (std430 SSBO) */

@@ -20,12 +20,14 @@
 
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/impostors.h"
 #include "scene/scene.h"
 
 #define MAX_ITERATIONS 16
 #define MAX_SEARCH_STEPS 16
 
 struct refraction_state {
+    struct impostor_set impostors;
     struct gl_framebuffer front_fb, back_fb, out_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
     int width, height;
@@ -42,6 +44,12 @@ static const struct pass_param_desc params[] = {
      .help = "stop the d_T iteration when a step is below this (scene units)"},
     {.name = "search_steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = MAX_SEARCH_STEPS,
      .help = "binary search steps for the dividing pixel p_e (Fig. 7)"},
+    {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "reflect and refract nearby objects through impostors (§2.2), not only the environment"},
+    {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "impostor texture size"},
+    {.name = "correction", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
+     .help = "iterations of the impostor correction (Fig. 16); 0 uses the rectangle's point"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
@@ -76,6 +84,7 @@ static void refraction_destroy(struct pass *p)
     if (!s)
         return;
     release_targets(s);
+    impostors_release(&s->impostors);
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
@@ -151,7 +160,23 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
-    const char *defines = wyman ? "#define WYMAN 1\n" : "";
+    bool nearby = pass_number(p, "nearby") != 0.0;
+    const char *defines = wyman ? (nearby ? "#define WYMAN 1\n#define NEARBY 1\n" : "#define WYMAN 1\n")
+                                : (nearby ? "#define NEARBY 1\n" : "");
+    if (nearby) {
+        /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
+        vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+        for (int i = 0; i < f->scene->object_count; i++)
+            if (is_refractive(f->scene->objects[i])) {
+                vec3 a, b;
+                object_world_bounds(f->scene->objects[i], &a, &b);
+                lo = vec3_min(lo, a);
+                hi = vec3_max(hi, b);
+            }
+        vec3 centre = lo.x <= hi.x ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
+        if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), err))
+            return false;
+    }
 
     /* Initial pass: front- and back-facing normals and depths. */
     struct gl_program *surf;
@@ -196,6 +221,13 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_number(p, "iterations"));
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_number(p, "tolerance"));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_number(p, "search_steps"));
+    if (nearby && s->impostors.count > 0) {
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s->impostors.ubo);
+        gl.BindTextureUnit(6, s->impostors.depth.id);
+        gl.BindTextureUnit(8, s->impostors.color.id);
+    }
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_number(p, "correction"));
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);
