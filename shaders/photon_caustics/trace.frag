@@ -22,6 +22,8 @@ uniform int u_light;
 uniform int u_iterations;
 uniform float u_buffer;
 uniform int u_mirror;
+uniform int u_fresnel_mirror; // reflecting off glass: the flux is weighted by the Fresnel reflectance
+uniform int u_single;         // one interface (water): the refracted light goes on to the receivers
 uniform float u_ior;
 uniform vec3 u_tint;
 uniform vec3 u_absorption;
@@ -76,7 +78,7 @@ void main()
     if (u_mirror == 1) {
         dir = reflect(ldir, n1); // reflective caustics (Fig. 19 bottom)
         origin = p1 + n1 * eps;
-        flux *= u_tint;
+        flux *= u_fresnel_mirror == 1 ? vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / u_ior)) : u_tint;
     } else {
         float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / u_ior);
         vec3 t1 = refract(ldir, n1, 1.0 / u_ior);
@@ -86,6 +88,10 @@ void main()
         }
         t1 = normalize(t1);
         flux *= 1.0 - f1;
+        if (u_single == 1) {
+            dir = t1;
+            origin = p1 - n1 * eps;
+        } else {
         // d_T (Fig. 9): start small, move to the back surface along the light's view
         float dT = 1e-3;
         for (int i = 0; i < max(u_iterations, 1); i++) {
@@ -119,6 +125,7 @@ void main()
         flux *= (1.0 - f2) * exp(-u_absorption * dT);
         dir = normalize(t2);
         origin = p2 - m * eps;
+        }
     }
     float best = 1e30;
     int hit = -1;
@@ -136,6 +143,8 @@ void main()
         nothing();
         return;
     }
+    if (u_single == 1 && u_mirror == 0)
+        flux *= exp(-u_absorption * best); // absorbed along the way in the water
     o_photon = vec4(huv, float(hit), 1.0);
     o_flux = vec4(flux, 1.0);
 }

@@ -20,6 +20,7 @@ uniform vec3 u_absorption;
 uniform int u_iterations;
 uniform float u_tolerance;
 uniform int u_search_steps;
+uniform int u_reflection; // 0: refraction alone (Fig. 24 a-e)
 
 // What a ray from o in direction d sees: a nearby object's impostor (§2.2,
 // corrected by Fig. 16) or else the environment.
@@ -157,5 +158,5 @@ void main()
     vec3 transmitted = trace_out(p2, exit_dir) * exp(-u_absorption * dT);
     if (dot(t2, t2) > 0.0)
         transmitted *= (1.0 - f2);
-    o_color = vec4(f1 * reflected + (1.0 - f1) * transmitted, 1.0);
+    o_color = vec4(u_reflection == 1 ? f1 * reflected + (1.0 - f1) * transmitted : transmitted, 1.0);
 }

@@ -23,8 +23,8 @@ uniform mat4 u_shadow_matrix[4];
 uniform vec4 u_shadow_params[4]; // range, bias, 1/size
 layout(binding = 1) uniform sampler2D u_shadow_2d[4];
 layout(binding = 5) uniform samplerCube u_shadow_cubes[4];
-layout(binding = 9) uniform sampler2D u_caustics;
-uniform int u_has_caustics;
+layout(binding = 9) uniform sampler2D u_caustics[4];
+uniform int u_has_caustics; // how many caustic irradiance images to add
 
 // Fraction of light reaching p from the light of shadow map k (3x3 PCF).
 float shadow_visibility(int k, vec3 p, vec3 n, vec3 to_light)
@@ -73,8 +73,8 @@ void main()
             if (max(irr.r, max(irr.g, irr.b)) > 0.0)
                 e += irr * visibility(i, v_world, n, to_light);
         }
-        if (u_has_caustics == 1)
-            e += texelFetch(u_caustics, ivec2(gl_FragCoord.xy), 0).rgb;
+        for (int k = 0; k < u_has_caustics; k++)
+            e += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
         radiance = u_color / PI * e + u_color * u_ambient.rgb;
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));

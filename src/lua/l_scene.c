@@ -111,6 +111,23 @@ static int mesh_box(lua_State *L)
     return push_mesh(L, mesh_create_box(size, &err), &err);
 }
 
+static int mesh_torus(lua_State *L)
+{
+    float radius = 1.0f, tube = 0.25f;
+    int segments = 64, sides = 24;
+    if (!lua_isnoneornil(L, 1)) {
+        luaL_checktype(L, 1, LUA_TTABLE);
+        static const char *const fields[] = {"radius", "tube", "segments", "sides", NULL};
+        lutil_check_fields(L, 1, "torus", fields);
+        lutil_opt_number(L, 1, "torus", "radius", &radius);
+        lutil_opt_number(L, 1, "torus", "tube", &tube);
+        lutil_opt_integer(L, 1, "torus", "segments", &segments);
+        lutil_opt_integer(L, 1, "torus", "sides", &sides);
+    }
+    struct error err;
+    return push_mesh(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
+}
+
 static int mesh_gc(lua_State *L)
 {
     struct l_mesh *u = luaL_checkudata(L, 1, MESH_MT);
@@ -1163,7 +1180,7 @@ int luaopen_caustica_scene(lua_State *L)
                                    {"cubemap", cubemap_new}, {"medium", medium_new},
                                    {"water", water_new}, {NULL, NULL}};
     static const luaL_Reg meshes[] = {{"load", mesh_load}, {"sphere", mesh_sphere}, {"plane", mesh_plane},
-                                      {"box", mesh_box}, {"grid", mesh_grid}, {NULL, NULL}};
+                                      {"box", mesh_box}, {"grid", mesh_grid}, {"torus", mesh_torus}, {NULL, NULL}};
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},
                                          {"mirror", material_mirror}, {"water", material_water}, {NULL, NULL}};
     static const luaL_Reg lights[] = {{"point", light_point}, {"directional", light_directional},

@@ -49,6 +49,8 @@ static const struct pass_param_desc params[] = {
      .help = "iterations of d_T and of the impostor correction (Fig. 9, 16)"},
     {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
      .help = "depth tolerance of the caustic mapping test, scene units"},
+    {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
+     .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -260,7 +262,12 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         for (int i = 0; i < f->scene->object_count; i++) {
             const struct object *o = f->scene->objects[i];
             if (o->visible && material_is_specular(&o->material)) {
-                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_mirror"), o->material.kind == MATERIAL_MIRROR);
+                bool reflect = o->material.kind == MATERIAL_MIRROR || strcmp(pass_string(p, "mode"), "reflect") == 0;
+                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_mirror"), reflect);
+                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_fresnel_mirror"),
+                                    reflect && o->material.kind != MATERIAL_MIRROR);
+                /* water is one interface (Fig. 28): the light stays in it */
+                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_single"), o->material.kind == MATERIAL_WATER);
                 gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_ior"), o->material.ior);
                 gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_tint"), o->material.color.x,
                                     o->material.color.y, o->material.color.z);

@@ -44,6 +44,8 @@ static const struct pass_param_desc params[] = {
      .help = "stop the d_T iteration when a step is below this (scene units)"},
     {.name = "search_steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = MAX_SEARCH_STEPS,
      .help = "binary search steps for the dividing pixel p_e (Fig. 7)"},
+    {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "add the Fresnel-weighted reflection (Fig. 24 a-e show refraction alone)"},
     {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "reflect and refract nearby objects through impostors (§2.2), not only the environment"},
     {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
@@ -228,6 +230,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_number(p, "correction"));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_number(p, "reflection") != 0.0);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);

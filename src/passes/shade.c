@@ -22,8 +22,8 @@ static const struct pass_param_desc params[] = {
      .help = "shadow map(s) from shadow_map passes, e.g. \"shadow.depth\" or {\"s1.depth\", \"s2.depth\"}"},
     {.name = "background", .type = PASS_PARAM_INPUT,
      .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},
-    {.name = "caustics", .type = PASS_PARAM_INPUT,
-     .help = "screen-space caustic irradiance added on diffuse surfaces"},
+    {.name = "caustics", .type = PASS_PARAM_INPUT_LIST,
+     .help = "screen-space caustic irradiance added on diffuse surfaces (one or a list, summed: several lights)"},
     {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "draw glass, water and mirrors (false: leave them to a later pass)"},
 };
@@ -43,9 +43,16 @@ static bool shade_declare(struct pass *p, struct error *err)
     const char *bg = pass_string(p, "background");
     if (bg && !pass_declare_input(p, "background", bg, err))
         return false;
-    const char *caustics = pass_string(p, "caustics");
-    if (caustics && !pass_declare_input(p, "caustics", caustics, err))
-        return false;
+    const struct pass_value *caustics = pass_value(p, "caustics");
+    if (caustics->list_count > SHADE_MAX_SHADOWS)
+        return error_set(err, "bad argument 'caustics' to 'shade' (at most %d inputs, got %d)", SHADE_MAX_SHADOWS,
+                         caustics->list_count);
+    for (int i = 0; i < caustics->list_count; i++) {
+        char slot[32];
+        snprintf(slot, sizeof slot, "caustics%d", i);
+        if (!pass_declare_input(p, slot, caustics->list[i], err))
+            return false;
+    }
     return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
            pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err) &&
            pass_declare_output(p, "normal", GL_RGBA16F, GL_TEXTURE_2D, 0, 0, err) &&
@@ -138,9 +145,16 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         nshadow++;
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);
-    struct graph_resource *caustics = pass_frame_input(p, f, "caustics");
-    gl.BindTextureUnit(9, caustics ? caustics->texture.id : r->dummy_2d.id);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), caustics ? 1 : 0);
+    int ncaustics = 0;
+    for (int i = 0; i < SHADE_MAX_SHADOWS; i++) {
+        char slot[32];
+        snprintf(slot, sizeof slot, "caustics%d", i);
+        struct graph_resource *c = pass_frame_input(p, f, slot);
+        gl.BindTextureUnit((GLuint)(9 + i), c ? c->texture.id : r->dummy_2d.id);
+        if (c)
+            ncaustics = i + 1;
+    }
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), ncaustics);
     gl.Enable(GL_DEPTH_TEST);
     renderer_draw_objects(r, f->scene, prog, pass_number(p, "specular") != 0.0 ? DRAW_ALL : DRAW_DIFFUSE);
     return true;

@@ -119,6 +119,40 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
     return m;
 }
 
+struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides, struct error *err)
+{
+    if (!(radius > 0.0f) || !(tube > 0.0f) || tube >= radius || segments < 3 || sides < 3 || segments > 4096 ||
+        sides > 4096) {
+        error_set(err, "torus: radius > tube > 0 and segments, sides in 3..4096 expected");
+        return NULL;
+    }
+    size_t nv = (size_t)(segments + 1) * (size_t)(sides + 1), ni = (size_t)segments * (size_t)sides * 6;
+    float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
+    uint32_t *idx = malloc(ni * sizeof(uint32_t));
+    size_t v = 0, k = 0;
+    for (int i = 0; i <= segments && p && n; i++) {
+        float u = 2.0f * (float)MATH_PI * (float)i / (float)segments;
+        for (int j = 0; j <= sides; j++, v++) {
+            float w = 2.0f * (float)MATH_PI * (float)j / (float)sides;
+            /* ring in the xz plane, tube around it */
+            vec3 nn = {cosf(w) * cosf(u), sinf(w), cosf(w) * sinf(u)};
+            n[v * 3] = nn.x;
+            n[v * 3 + 1] = nn.y;
+            n[v * 3 + 2] = nn.z;
+            p[v * 3] = (radius + tube * cosf(w)) * cosf(u);
+            p[v * 3 + 1] = tube * sinf(w);
+            p[v * 3 + 2] = (radius + tube * cosf(w)) * sinf(u);
+        }
+    }
+    for (int i = 0; i < segments && idx; i++)
+        for (int j = 0; j < sides; j++) {
+            uint32_t a = (uint32_t)(i * (sides + 1) + j), b = a + (uint32_t)sides + 1;
+            idx[k++] = a; idx[k++] = a + 1; idx[k++] = b;
+            idx[k++] = b; idx[k++] = a + 1; idx[k++] = b + 1;
+        }
+    return mesh_create_from_arrays("torus", p, n, nv, idx, ni, err);
+}
+
 struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err)
 {
     struct mesh *m = mesh_create_grid(size, subdivisions, err);

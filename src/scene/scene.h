@@ -49,6 +49,7 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err);
 struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err);
 struct mesh *mesh_create_box(vec3 size, struct error *err);
 struct mesh *mesh_create_grid(float size, int resolution, struct error *err);
+struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides, struct error *err);
 struct mesh *mesh_load_gltf(const char *path, struct error *err);
 /* Takes ownership of the arrays (malloc'd). */
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,

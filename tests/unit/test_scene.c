@@ -46,6 +46,11 @@ int main(void)
     struct mesh *b = mesh_create_box(vec3_make(1, 2, 3), &err);
     CHECK(b && b->vertex_count == 24 && normals_unit(b) && winding_outward(b));
     CHECK_NEAR(b->bounds_max.z, 1.5, 1e-6);
+    struct mesh *tor = mesh_create_torus(1.0f, 0.25f, 32, 16, &err);
+    CHECK(tor && normals_unit(tor) && winding_outward(tor));
+    CHECK_NEAR(tor->bounds_max.x, 1.25, 1e-5);
+    CHECK(mesh_create_torus(0.2f, 0.3f, 32, 16, &err) == NULL);
+    mesh_destroy(tor);
     CHECK(mesh_create_sphere(-1.0f, 16, &err) == NULL);
     CHECK_CONTAINS(err.message, "radius");
     CHECK(mesh_create_grid(1.0f, 0, &err) == NULL);

@@ -1,0 +1,44 @@
+-- Hu & Qin Fig. 24: one scene, the same ladder of features (the sphere's
+-- IOR is 1.15): --set stage=
+--   plain  shading only (the baseline frame time)
+--   a      refraction of the environment map
+--   b      uncorrected refraction of nearby geometry
+--   c      corrected refraction of nearby geometry
+--   d      refraction and caustics, photon buffer 64^2
+--   e      refraction and caustics, photon buffer 128^2
+--   f      reflection, refraction and caustics, photon buffer 128^2
+-- (g, recursive reflection and refraction, is not implemented yet.)
+local c = require "caustica"
+local stage = c.param("stage", "f")
+
+local scene = c.scene {
+  camera = c.camera { eye = {0, 1.3, 2.6}, target = {0, 0.35, 0}, fov = 45 },
+  environment = c.cubemap "assets/env/room",
+  ambient = {0.04, 0.04, 0.045},
+}
+local lamp = scene:add(c.light.point { position = {0.9, 2.4, 1.0}, intensity = {7, 6.8, 6.4} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse { color = {0.75, 0.75, 0.72} } })
+local buddha = c.mesh.load "assets/buddha_60k.glb"
+scene:add(c.object { mesh = buddha, position = {-0.1, -0.8 * buddha.bounds[1][2], -0.8}, scale = {0.8, 0.8, 0.8},
+                     material = c.material.diffuse { color = {0.85, 0.7, 0.4} } })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, position = {0.15, 0.5, 0.2},
+                     material = c.material.glass { ior = 1.15 } })
+
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
+local caustics = stage == "d" or stage == "e" or stage == "f"
+if caustics then
+  g:add("photons", c.pass.photon_caustics { light = lamp, buffer = stage == "d" and 64 or 128, texture = 512 })
+end
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = caustics and "photons.irradiance" or nil })
+if stage == "plain" then
+  g:output("shade.color")
+else
+  if not ({ a = 1, b = 1, c = 1, d = 1, e = 1, f = 1 })[stage] then
+    error("stage must be plain or a..f (g, recursion, is not implemented yet), got '" .. tostring(stage) .. "'")
+  end
+  g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", nearby = stage ~= "a",
+                                     correction = stage == "b" and 0 or 3, reflection = stage == "f" })
+  g:output("glass.color")
+end
+return { scene = scene, graph = g, size = {512, 512} }
