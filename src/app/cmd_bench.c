@@ -268,25 +268,37 @@ int cmd_bench(struct app *app, struct cli *cli)
             if (f == 0)
                 ok = session_read_linear(s, &img, &err);
             const struct graph *g = s->graph;
-            if (npasses < 0) {
+            if (npasses < 0)
                 npasses = 0;
-                for (int i = 0; i < g->count && npasses < MAX_PASSES; i++)
-                    snprintf(pass_names[npasses++], PASS_NAME_MAX, "%s", g->entries[i].pass->name);
-            }
+            /* every kept pass counts in the frame; the columns are the union
+             * of the passes seen in any variant */
             double total = app->renderer.deform_ms;
-            for (int p = 0; p < npasses; p++) {
-                per_pass[p][f] = 0;
-                for (int i = 0; i < g->count; i++)
-                    if (strcmp(g->entries[i].pass->name, pass_names[p]) == 0 && g->entries[i].state == GRAPH_PASS_KEPT)
-                        per_pass[p][f] = g->entries[i].last_ms;
-                total += per_pass[p][f];
+            for (int p = 0; p < MAX_PASSES; p++)
+                per_pass[p][f] = -1.0;
+            for (int i = 0; i < g->count; i++) {
+                const struct graph_entry *e = &g->entries[i];
+                if (e->state != GRAPH_PASS_KEPT)
+                    continue;
+                total += e->last_ms;
+                int col = -1;
+                for (int p = 0; p < npasses; p++)
+                    if (strcmp(pass_names[p], e->pass->name) == 0)
+                        col = p;
+                if (col < 0 && npasses < MAX_PASSES) {
+                    col = npasses++;
+                    snprintf(pass_names[col], PASS_NAME_MAX, "%s", e->pass->name);
+                    for (int c2 = 0; c2 < c; c2++)
+                        results[c2].pass_ms[col] = -1.0; /* earlier variants did not have it */
+                }
+                if (col >= 0)
+                    per_pass[col][f] = e->last_ms;
             }
             totals[f] = total;
         }
         if (ok) {
             r->frame_ms = median(totals, frames);
             for (int p = 0; p < npasses; p++)
-                r->pass_ms[p] = median(per_pass[p], frames);
+                r->pass_ms[p] = per_pass[p][0] < 0 ? -1.0 : median(per_pass[p], frames);
             width = s->width;
             height = s->height;
         }
@@ -381,7 +393,7 @@ int cmd_bench(struct app *app, struct cli *cli)
             fprintf(csv, ",%.4f", r->frame_ms);
             fprintf(md, "| %s | %.3f |", r->label, r->frame_ms);
             for (int p = 0; p < npasses; p++) {
-                if (c < combos) {
+                if (c < combos && r->pass_ms[p] >= 0) {
                     fprintf(csv, ",%.4f", r->pass_ms[p]);
                     fprintf(md, " %.3f |", r->pass_ms[p]);
                 } else {
