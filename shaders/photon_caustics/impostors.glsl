@@ -24,27 +24,60 @@ float impostor_depth(int k, vec2 uv)
     return texture(u_impostor_depth, vec3(uv, float(k))).r;
 }
 
-// Where does the ray (o, d) meet the object of impostor k? Starts at the
-// rectangle (P_rect), then `iterations` times: look up the depth at the
-// current point's texel and move along the ray to that depth. Returns the
-// distance t (or -1 for a miss) and the texel uv.
+// Where does the ray (o, d) meet the object of impostor k? Hu & Qin §2.2.2:
+// the seed matters. Candidates are the ray's points at the rectangle
+// (P_rect) and at the front and back of the impostor's slab; a candidate
+// "beyond" the surface stored at its own texel (its z past P_select's) is
+// preferred, the one closest to that surface among them; failing that,
+// the candidate with the closest z. Then `iterations` times: look up the
+// depth at the current texel and move along the ray to that depth (Fig.
+// 16). Returns the distance t (or -1 for a miss) and the texel uv.
 float impostor_hit(int k, vec3 o, vec3 d, int iterations, out vec2 uv)
 {
     Impostor im = impostors[k];
     float along = dot(d, im.axis.xyz);
+    uv = vec2(0.0);
     if (abs(along) < 1e-4)
         return -1.0; // the rectangle seen edge-on: no hit (never a division by ~0)
     float base = dot(im.center.xyz - o, im.axis.xyz);
-    float t = base / along;
-    if (t <= 0.0)
-        return -1.0;
+    float half_side = im.center.w;
+    float best_t = -1.0, best_gap = 1e30, fallback_t = -1.0, fallback_gap = 1e30;
+    // no iterations: the uncorrected lookup at P_rect (Fig. 18c)
+    for (int c = -1; c <= 1 && iterations > 0; c++) {
+        float z = float(c) * half_side;      // depth of the candidate along the axis
+        float t = (base + z) / along;
+        if (t <= 0.0)
+            continue;
+        vec2 cuv = impostor_uv(k, o + t * d);
+        if (any(lessThan(cuv, vec2(0.0))) || any(greaterThan(cuv, vec2(1.0))))
+            continue;
+        float surface = impostor_depth(k, cuv);
+        if (surface >= 1e29)
+            continue;
+        float gap = abs(z - surface);
+        if (z >= surface && gap < best_gap) {
+            best_gap = gap;
+            best_t = t;
+        }
+        if (gap < fallback_gap) {
+            fallback_gap = gap;
+            fallback_t = t;
+        }
+    }
+    float t = best_t > 0.0 ? best_t : fallback_t;
+    if (t <= 0.0) {
+        // no candidate sees the object: the plain rectangle hit, if any
+        t = base / along;
+        if (t <= 0.0)
+            return -1.0;
+    }
     uv = impostor_uv(k, o + t * d);
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
         return -1.0;
     for (int i = 0; i < iterations; i++) { // capped by the caller's parameter range
         float depth = impostor_depth(k, uv);
         if (depth >= 1e29)
-            break; // the object is not at this texel: keep the rectangle's point
+            break; // the object is not at this texel: keep the last point
         float tn = (base + depth) / along;
         if (tn <= 0.0)
             break;

@@ -28,6 +28,8 @@
 
 struct refraction_state {
     struct impostor_set impostors;
+    bool impostors_valid;                 /* §4: a static scene reuses its impostors */
+    uint64_t impostor_geometry, impostor_lights;
     struct gl_framebuffer front_fb, back_fb, out_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
     int width, height;
@@ -176,8 +178,20 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
                 hi = vec3_max(hi, b);
             }
         vec3 centre = lo.x <= hi.x ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
-        if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), err))
-            return false;
+        uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
+        bool animated = false;
+        for (int i = 0; i < f->scene->light_count; i++)
+            lights = lights * 31u + f->scene->lights[i]->version;
+        for (int i = 0; i < f->scene->object_count; i++)
+            animated = animated || object_is_animated_geometry(f->scene->objects[i]);
+        if (!s->impostors_valid || animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
+            s->impostors.size != (int)pass_number(p, "impostor")) {
+            if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), err))
+                return false;
+            s->impostors_valid = true;
+            s->impostor_geometry = geometry;
+            s->impostor_lights = lights;
+        }
     }
 
     /* Initial pass: front- and back-facing normals and depths. */

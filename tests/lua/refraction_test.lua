@@ -55,13 +55,14 @@ t.case("refraction: no refractive object, the image passes through unchanged", f
 end)
 
 t.case("Fig. 18: through an IOR 1.0 sphere, the impostor correction removes most of the distortion", function()
-  -- The object-free render is the answer (IOR 1.0 bends nothing). Measured:
-  -- rel_rmse 0.136 uncorrected, 0.071 after 3 iterations (1.9x), 0.068
-  -- after 16; the paper's figure shows the same effect. We require 1.8x.
+  -- The object-free render is the answer (IOR 1.0 bends nothing). Measured
+  -- at 256^2: rel_rmse 0.136 through the uncorrected rectangles, 0.054 after
+  -- 3 iterations from the §2.2.2 seed (2.5x), 0.048 after 16. The paper
+  -- claims at least 2x; so do we.
   local truth = t.render("scenes/huqin_nearby.lua", { set = { hide = true }, size = { 128, 128 } })
   local raw = t.render("scenes/huqin_nearby.lua", { set = { correction = 0 }, size = { 128, 128 } })
   local fixed = t.render("scenes/huqin_nearby.lua", { set = { correction = 3 }, size = { 128, 128 } })
   local img = require("caustica").image
   local e_raw, e_fixed = img.compare(raw, truth).rel_rmse, img.compare(fixed, truth).rel_rmse
-  t.expect(e_raw > 1.8 * e_fixed, string.format("uncorrected %.4f, corrected %.4f", e_raw, e_fixed))
+  t.expect(e_raw > 2.0 * e_fixed, string.format("uncorrected %.4f, corrected %.4f", e_raw, e_fixed))
 end)
