@@ -7,7 +7,8 @@
 --   d      refraction and caustics, photon buffer 64^2
 --   e      refraction and caustics, photon buffer 128^2
 --   f      reflection, refraction and caustics, photon buffer 128^2
--- (g, recursive reflection and refraction, is not implemented yet.)
+--   g      recursive reflection and refraction: a mirror teapot beside the
+--          sphere, each seeing the other (two levels)
 local c = require "caustica"
 local stage = c.param("stage", "f")
 
@@ -23,10 +24,15 @@ scene:add(c.object { mesh = buddha, position = {-0.1, -0.8 * buddha.bounds[1][2]
                      material = c.material.diffuse { color = {0.85, 0.7, 0.4} } })
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, position = {0.15, 0.5, 0.2},
                      material = c.material.glass { ior = 1.15 } })
+if stage == "g" then
+  local teapot = c.mesh.load "assets/teapot.glb"
+  scene:add(c.object { mesh = teapot, position = {-0.75, -0.6 * teapot.bounds[1][2], 0.3}, scale = {0.6, 0.6, 0.6},
+                       rotation = c.quat.axis_angle({0, 1, 0}, 0.8), material = c.material.mirror { color = {0.9, 0.9, 0.95} } })
+end
 
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
-local caustics = stage == "d" or stage == "e" or stage == "f"
+local caustics = stage == "d" or stage == "e" or stage == "f" or stage == "g"
 if caustics then
   g:add("photons", c.pass.photon_caustics { light = lamp, buffer = stage == "d" and 64 or 128, texture = 512 })
 end
@@ -34,11 +40,12 @@ g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = caustics and "
 if stage == "plain" then
   g:output("shade.color")
 else
-  if not ({ a = 1, b = 1, c = 1, d = 1, e = 1, f = 1 })[stage] then
-    error("stage must be plain or a..f (g, recursion, is not implemented yet), got '" .. tostring(stage) .. "'")
+  if not ({ a = 1, b = 1, c = 1, d = 1, e = 1, f = 1, g = 1 })[stage] then
+    error("stage must be plain or a..g, got '" .. tostring(stage) .. "'")
   end
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", nearby = stage ~= "a",
-                                     correction = stage == "b" and 0 or 3, reflection = stage == "f" })
+                                     correction = stage == "b" and 0 or 3, reflection = stage == "f" or stage == "g",
+                                     recursion = stage == "g" and c.param("recursion", 2) or 0 })
   g:output("glass.color")
 end
 -- The lamp drifts a little every frame so that nothing is reused between

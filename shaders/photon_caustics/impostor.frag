@@ -5,11 +5,14 @@
 // shadows) plus the ambient, as `shade` lights diffuse surfaces.
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
+#include "common/fresnel.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
 uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
+uniform int u_material_kind;
+uniform float u_ior;
 layout(location = 0) out vec4 o_depth;
 layout(location = 1) out vec4 o_color;
 void main()
@@ -23,6 +26,16 @@ void main()
         vec3 to_light;
         float dist;
         e += light_irradiance(i, v_world, n, to_light, dist);
+    }
+    if (u_material_kind != 0) {
+        // a reflector/refractor seen along the axis: level 0 of the recursion
+        // reflects and refracts (one interface) the environment only
+        vec3 v = u_impostor_axis;
+        float f = u_material_kind == 2 ? 1.0 : fresnel_dielectric(-dot(v, n), 1.0 / u_ior);
+        vec3 t = refract_or_reflect(v, n, 1.0 / u_ior);
+        vec3 tint = u_material_kind == 2 ? u_color : vec3(1.0);
+        o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
+        return;
     }
     o_color = vec4(u_color / PI * e + u_color * u_ambient.rgb, 1.0);
 }

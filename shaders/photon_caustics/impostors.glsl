@@ -11,6 +11,7 @@ layout(std430, binding = 5) readonly buffer Impostors { Impostor impostors[]; };
 layout(binding = 6) uniform sampler2DArray u_impostor_depth;
 layout(binding = 8) uniform sampler2DArray u_impostor_color;
 uniform int u_impostor_count;
+uniform int u_skip_impostor = -1; // the object being shaded does not see its own impostor
 
 vec2 impostor_uv(int k, vec3 p)
 {
@@ -96,6 +97,8 @@ bool impostor_lookup(vec3 o, vec3 d, int iterations, out vec3 color)
     float best = 1e30;
     color = vec3(0.0);
     for (int k = 0; k < u_impostor_count; k++) {
+        if (k == u_skip_impostor)
+            continue;
         vec2 uv;
         float t = impostor_hit(k, o, d, iterations, uv);
         if (t > 0.0 && t < best) {

@@ -5,11 +5,15 @@ layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 uniform mat4 u_light_view_proj;
+uniform int u_material_kind; // set per object by the renderer
+uniform float u_ior;
 out vec3 v_normal;
 out float v_thickness;
 void main()
 {
     v_normal = mat3(u_normal_matrix) * a_normal;
-    v_thickness = 0.0;
+    // w of the normal buffer: which material the photon meets here
+    // (-1 a mirror, else the index of refraction)
+    v_thickness = u_material_kind == 2 ? -1.0 : u_ior;
     gl_Position = u_light_view_proj * (u_model * vec4(a_position, 1.0));
 }

@@ -70,18 +70,22 @@ void main()
     }
     vec3 a = unproject(uv + vec2(1.0 / u_buffer, 0.0), d1) - p1, b = unproject(uv + vec2(0.0, 1.0 / u_buffer), d1) - p1;
     vec3 flux = e * abs(dot(cross(a, b), ldir));
-    vec3 n1 = normalize(texelFetch(u_front_normal, px, 0).xyz);
+    vec4 front = texelFetch(u_front_normal, px, 0);
+    vec3 n1 = normalize(front.xyz);
+    // the material of the object this photon meets (several refractors may be in view)
+    bool is_mirror = front.w < 0.0;
+    float ior = is_mirror ? u_ior : front.w;
     if (dot(ldir, n1) > 0.0)
         n1 = -n1;
     float eps = 1e-4 * length(p1 - unproject(vec2(0.5), 0.5)) + 1e-5;
     vec3 origin, dir;
-    if (u_mirror == 1) {
+    if (is_mirror || u_mirror == 1) {
         dir = reflect(ldir, n1); // reflective caustics (Fig. 19 bottom)
         origin = p1 + n1 * eps;
-        flux *= u_fresnel_mirror == 1 ? vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / u_ior)) : u_tint;
+        flux *= is_mirror ? u_tint : vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / ior));
     } else {
-        float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / u_ior);
-        vec3 t1 = refract(ldir, n1, 1.0 / u_ior);
+        float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / ior);
+        vec3 t1 = refract(ldir, n1, 1.0 / ior);
         if (dot(t1, t1) == 0.0) {
             nothing(); // an IOR below 1 reflecting everything at the entry
             return;
@@ -116,8 +120,8 @@ void main()
         }
         n2 = normalize(n2);
         vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
-        float f2 = fresnel_dielectric(-dot(t1, m), u_ior);
-        vec3 t2 = refract(t1, m, u_ior);
+        float f2 = fresnel_dielectric(-dot(t1, m), ior);
+        vec3 t2 = refract(t1, m, ior);
         if (dot(t2, t2) == 0.0) {
             nothing(); // total internal reflection at the exit: the photon is not followed further
             return;
@@ -143,7 +147,7 @@ void main()
         nothing();
         return;
     }
-    if (u_single == 1 && u_mirror == 0)
+    if (u_single == 1 && !is_mirror && u_mirror == 0)
         flux *= exp(-u_absorption * best); // absorbed along the way in the water
     o_photon = vec4(huv, float(hit), 1.0);
     o_flux = vec4(flux, 1.0);

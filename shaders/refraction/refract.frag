@@ -17,6 +17,8 @@ layout(binding = 3) uniform sampler2D u_front_depth;
 layout(binding = 4) uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform vec3 u_absorption;
+uniform int u_material_kind; // 2: a mirror
+uniform vec3 u_color;
 uniform int u_iterations;
 uniform float u_tolerance;
 uniform int u_search_steps;
@@ -70,6 +72,10 @@ void main()
     vec3 v = normalize(v_world - u_camera_pos.xyz);
     if (dot(v, n1) > 0.0)
         n1 = -n1;
+    if (u_material_kind == 2) { // a mirror: reflection alone, of nearby objects too
+        o_color = vec4(u_color * trace_out(v_world, reflect(v, n1)), 1.0);
+        return;
+    }
     float eta = 1.0 / u_ior;
     float f1 = fresnel_dielectric(-dot(v, n1), eta);
     vec3 reflected = trace_out(v_world, reflect(v, n1));

@@ -9,6 +9,7 @@ void impostors_release(struct impostor_set *set)
 {
     gl_texture_destroy(&set->depth);
     gl_texture_destroy(&set->color);
+    gl_texture_destroy(&set->color_previous);
     gl_texture_destroy(&set->depth_buffer);
     gl_framebuffer_destroy(&set->fb);
     if (set->ubo && gl_api_ready())
@@ -25,18 +26,19 @@ int impostors_find(const struct impostor_set *set, const struct object *object)
 }
 
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
-                     int size, struct error *err)
+                     int size, bool include_specular, struct error *err)
 {
     int count = 0;
     struct impostor items[IMPOSTOR_MAX];
     for (int i = 0; i < scene->object_count && count < IMPOSTOR_MAX; i++) {
         struct object *o = scene->objects[i];
-        if (!o->visible || material_is_specular(&o->material))
+        if (!o->visible || (material_is_specular(&o->material) && !include_specular))
             continue;
         vec3 lo, hi;
         object_world_bounds(o, &lo, &hi);
         struct impostor *im = &items[count++];
         im->object = o;
+        im->specular = material_is_specular(&o->material);
         im->center = vec3_scale(vec3_add(lo, hi), 0.5f);
         im->half = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
         im->axis = vec3_normalize_or(vec3_sub(im->center, refractor_center), vec3_make(0, -1, 0));
@@ -52,6 +54,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
             return true;
         if (!gl_texture_create(&set->depth, GL_TEXTURE_2D_ARRAY, GL_R32F, size, size, count, err) ||
             !gl_texture_create(&set->color, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
+            !gl_texture_create(&set->color_previous, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
             !gl_texture_create(&set->depth_buffer, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err) ||
             !gl_framebuffer_create(&set->fb, err))
             return false;
@@ -106,4 +109,50 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     }
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("building impostors", err);
+}
+
+bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err)
+{
+    if (set->count == 0)
+        return true;
+    /* this level reads the previous one's colours */
+    gl.CopyImageSubData(set->color.id, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, set->color_previous.id, GL_TEXTURE_2D_ARRAY, 0, 0,
+                        0, 0, set->size, set->size, set->count);
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "photon_caustics/impostor.vert", "photon_caustics/impostor_recursive.frag", NULL,
+                        &prog, err))
+        return false;
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, set->ubo);
+    gl.BindTextureUnit(6, set->depth.id);
+    gl.BindTextureUnit(8, set->color_previous.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), set->count);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Viewport(0, 0, set->size, set->size);
+    for (int k = 0; k < set->count; k++) {
+        const struct impostor *im = &set->items[k];
+        if (!im->specular)
+            continue;
+        const struct gl_texture *colors[2] = {&set->depth, &set->color};
+        int layers[2] = {k, k};
+        if (!gl_framebuffer_attach(&set->fb, colors, layers, 2, &set->depth_buffer, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, set->fb.id);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));
+        mat4 view = mat4_look_at(eye, im->center, im->up);
+        mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
+        mat4 vp = mat4_mul(proj, view);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
+                            im->center.z);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), k); /* it does not see itself */
+        struct scene only = *scene;
+        struct object *list[1] = {im->object};
+        only.objects = list;
+        only.object_count = 1;
+        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+    }
+    gl.Disable(GL_DEPTH_TEST);
+    return gl_check("recursive impostors", err);
 }

@@ -20,6 +20,7 @@ struct renderer;
 
 struct impostor {
     struct object *object; /* borrowed */
+    bool specular;         /* a reflector/refractor: its colour is its own reflection/refraction */
     vec3 center, axis, right, up;
     float half;            /* d_i: half the rectangle's side */
 };
@@ -37,15 +38,22 @@ struct impostor_set {
     struct impostor items[IMPOSTOR_MAX];
     struct gl_texture depth;        /* r32f array: one layer per impostor */
     struct gl_texture color;        /* rgba16f array: the objects' radiance (lit, unshadowed) */
+    struct gl_texture color_previous; /* the previous recursion level's colours */
     struct gl_texture depth_buffer; /* for rendering them */
     struct gl_framebuffer fb;
     GLuint ubo;                     /* the impostors' frames (std430 SSBO) */
 };
 
 /* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
- * `refractor_center`, each rendered at size x size. */
+ * `refractor_center`, each rendered at size x size; with `include_specular`
+ * the reflectors and refractors too, their colour the environment they
+ * reflect and refract (the recursion's level 0). */
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
-                     int size, struct error *err);
+                     int size, bool include_specular, struct error *err);
+/* One level of recursive reflection/refraction (Hu & Qin §2.2, Fig. 1b,
+ * 24g): the specular objects' impostors are drawn again, reflecting and
+ * refracting the impostors of the previous level. */
+bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err);
 void impostors_release(struct impostor_set *set);
 /* Index of the impostor standing in for `object`, or -1. */
 int impostors_find(const struct impostor_set *set, const struct object *object);

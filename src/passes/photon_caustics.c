@@ -194,7 +194,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         animated = animated || (f->scene->objects[i]->visible && object_is_animated_geometry(f->scene->objects[i]));
     reuse = reuse && !animated;
     if (!reuse) {
-        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, err) ||
+        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
             return false;
         /* The light's view of the refractors' bounding sphere. */
@@ -258,7 +258,10 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
         gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
-        /* the refractors' material: one refractor's (the first) */
+        /* per pixel the photon buffer knows the material it meets (mirror or
+         * the index of refraction, in the normal buffer's w); tint,
+         * absorption and the one-interface rule come from the first
+         * specular object */
         for (int i = 0; i < f->scene->object_count; i++) {
             const struct object *o = f->scene->objects[i];
             if (o->visible && material_is_specular(&o->material)) {

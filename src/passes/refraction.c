@@ -54,6 +54,8 @@ static const struct pass_param_desc params[] = {
      .help = "impostor texture size"},
     {.name = "correction", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
      .help = "iterations of the impostor correction (Fig. 16); 0 uses the rectangle's point"},
+    {.name = "recursion", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4,
+     .help = "levels of recursive reflection/refraction through the reflectors' own impostors (Fig. 1b, 24g)"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
@@ -96,9 +98,11 @@ static void refraction_destroy(struct pass *p)
     p->state = NULL;
 }
 
+/* Glass and water refract; mirrors are drawn here too, reflecting nearby
+ * objects through the impostors (which `shade` cannot). */
 static bool is_refractive(const struct object *o)
 {
-    return o->visible && (o->material.kind == MATERIAL_GLASS || o->material.kind == MATERIAL_WATER);
+    return o->visible && material_is_specular(&o->material);
 }
 
 /* Left out when no refractive object is visible: the image passes through. */
@@ -114,7 +118,7 @@ static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, ch
 
 /* Draws each refractive object alone (its d_N buffer bound for Wyman's). */
 static bool draw_refractors(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
-                            bool wyman, struct error *err)
+                            bool wyman, const struct impostor_set *impostors, struct error *err)
 {
     for (int i = 0; i < scene->object_count; i++) {
         struct object *o = scene->objects[i];
@@ -130,6 +134,8 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
             }
             gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m->buffer_thickness);
         }
+        if (impostors)
+            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
         struct scene only = *scene;
         struct object *list[1] = {o};
         only.objects = list;
@@ -185,9 +191,13 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         for (int i = 0; i < f->scene->object_count; i++)
             animated = animated || object_is_animated_geometry(f->scene->objects[i]);
         if (!s->impostors_valid || animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
-            s->impostors.size != (int)pass_number(p, "impostor")) {
-            if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), err))
+            s->impostors.size != (int)pass_number(p, "impostor") || pass_number(p, "recursion") > 0) {
+            int levels = (int)pass_number(p, "recursion");
+            if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), levels > 0, err))
                 return false;
+            for (int level = 0; level < levels; level++)
+                if (!impostors_recurse(&s->impostors, r, f->scene, err))
+                    return false;
             s->impostors_valid = true;
             s->impostor_geometry = geometry;
             s->impostor_lights = lights;
@@ -208,7 +218,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
-        if (!draw_refractors(r, f->scene, surf, wyman, err))
+        if (!draw_refractors(r, f->scene, surf, wyman, NULL, err))
             return false;
     }
     gl.Disable(GL_CULL_FACE);
@@ -250,7 +260,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.DepthMask(GL_FALSE);
     gl.Enable(GL_CULL_FACE);
     gl.CullFace(GL_BACK);
-    if (!draw_refractors(r, f->scene, prog, wyman, err))
+    if (!draw_refractors(r, f->scene, prog, wyman, nearby ? &s->impostors : NULL, err))
         return false;
     return true;
 }

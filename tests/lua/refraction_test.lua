@@ -66,3 +66,12 @@ t.case("Fig. 18: through an IOR 1.0 sphere, the impostor correction removes most
   local e_raw, e_fixed = img.compare(raw, truth).rel_rmse, img.compare(fixed, truth).rel_rmse
   t.expect(e_raw > 2.0 * e_fixed, string.format("uncorrected %.4f, corrected %.4f", e_raw, e_fixed))
 end)
+
+t.case("Fig. 24g: recursive reflection and refraction changes what the mirror and the sphere show, finitely", function()
+  local flat = t.render("scenes/huqin_fig24.lua", { set = { stage = "g", recursion = 0 }, size = { 96, 96 } })
+  local deep = t.render("scenes/huqin_fig24.lua", { set = { stage = "g", recursion = 2 }, size = { 96, 96 } })
+  t.expect_finite(deep)
+  -- with recursion the teapot reflects the glass sphere (and the sphere
+  -- refracts the teapot) instead of the environment behind them
+  t.expect_different(flat, deep, 1e-3)
+end)
