@@ -96,10 +96,26 @@ vec3 environment_lookup(const struct environment *env, vec3 d)
         tc = -d.y;
     }
     float s = 0.5f * (math_safe_div(sc, ma, 0.0f) + 1.0f), t = 0.5f * (math_safe_div(tc, ma, 0.0f) + 1.0f);
-    int x = (int)fminf(fmaxf(s * (float)env->size, 0.0f), (float)env->size - 1);
-    int y = (int)fminf(fmaxf(t * (float)env->size, 0.0f), (float)env->size - 1);
-    const float *px = env->faces[face] + ((size_t)y * (size_t)env->size + (size_t)x) * 3;
-    return vec3_make(px[0], px[1], px[2]);
+    /* Bilinear within the face, clamped at its edges: what the GPU's
+     * GL_LINEAR cube map lookup (not seamless) returns, so that the
+     * reference and the passes see the same environment. */
+    float fx = s * (float)env->size - 0.5f, fy = t * (float)env->size - 0.5f;
+    float x0f = floorf(fx), y0f = floorf(fy);
+    float bx = fx - x0f, by = fy - y0f;
+    int last = env->size - 1;
+    int x0 = (int)fminf(fmaxf(x0f, 0.0f), (float)last), x1 = (int)fminf(fmaxf(x0f + 1.0f, 0.0f), (float)last);
+    int y0 = (int)fminf(fmaxf(y0f, 0.0f), (float)last), y1 = (int)fminf(fmaxf(y0f + 1.0f, 0.0f), (float)last);
+    const float *f = env->faces[face];
+    vec3 out = {0, 0, 0};
+    const int xs[2] = {x0, x1}, ys[2] = {y0, y1};
+    const float wx[2] = {1.0f - bx, bx}, wy[2] = {1.0f - by, by};
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            const float *px = f + ((size_t)ys[j] * (size_t)env->size + (size_t)xs[i]) * 3;
+            float w = wx[i] * wy[j];
+            out = vec3_add(out, vec3_make(px[0] * w, px[1] * w, px[2] * w));
+        }
+    return out;
 }
 
 void environment_destroy(struct environment *env)
