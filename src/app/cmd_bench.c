@@ -320,7 +320,8 @@ int cmd_bench(struct app *app, struct cli *cli)
             r->has_caustic = truths[t].has_mask;
             if (ok && r->has_caustic)
                 ok = image_metrics_compute(&img, &truths[t].image, &truths[t].mask, &r->caustic, &err);
-            printf("%-40s %9.3f ms  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms, r->all.rel_rmse,
+            printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms,
+                   results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0, r->all.rel_rmse,
                    r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0);
             fflush(stdout);
         }
@@ -374,15 +375,15 @@ int cmd_bench(struct app *app, struct cli *cli)
         fprintf(md, "| variant |");
         for (int k = 0; k < cli->nsweeps; k++)
             fprintf(csv, ",%s", sweeps[k].key);
-        fprintf(csv, ",frame_ms");
-        fprintf(md, " frame ms |");
+        fprintf(csv, ",frame_ms,frame_ratio");
+        fprintf(md, " frame ms | × first |");
         for (int p = 0; p < npasses; p++) {
             fprintf(csv, ",%s_ms", pass_names[p]);
             fprintf(md, " %s ms |", pass_names[p]);
         }
         fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse\n");
         fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse |\n|---|");
-        for (int p = 0; p < npasses + 5; p++)
+        for (int p = 0; p < npasses + 6; p++)
             fprintf(md, "---:|");
         fprintf(md, "\n");
         for (int c = 0; c < combos + ncurve; c++) {
@@ -390,8 +391,10 @@ int cmd_bench(struct app *app, struct cli *cli)
             fprintf(csv, "%s", c < combos ? "gpu" : "reference");
             for (int k = 0; k < cli->nsweeps; k++)
                 fprintf(csv, ",%s", c < combos ? r->values[k] : "");
-            fprintf(csv, ",%.4f", r->frame_ms);
-            fprintf(md, "| %s | %.3f |", r->label, r->frame_ms);
+            /* the frame time relative to the first variant (e.g. plain shading) */
+            double ratio = results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0;
+            fprintf(csv, ",%.4f,%.4f", r->frame_ms, ratio);
+            fprintf(md, "| %s | %.3f | %.2f |", r->label, r->frame_ms, ratio);
             for (int p = 0; p < npasses; p++) {
                 if (c < combos && r->pass_ms[p] >= 0) {
                     fprintf(csv, ",%.4f", r->pass_ms[p]);
