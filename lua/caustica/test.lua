@@ -107,6 +107,17 @@ function t.expect_finite(img)
   return s
 end
 
+--- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted
+--- (1 under total internal reflection): for tests that derive closed forms.
+function t.fresnel(cos_i, eta)
+  local sin2_t = eta * eta * (1 - cos_i * cos_i)
+  if sin2_t >= 1 then return 1 end
+  local cos_t = math.sqrt(1 - sin2_t)
+  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
+  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
+  return 0.5 * (rs * rs + rp * rp)
+end
+
 -- Runs the registered cases (called by `caustica test`).
 function t._run(file)
   local passed, failed = 0, 0

@@ -25,6 +25,30 @@ int impostors_find(const struct impostor_set *set, const struct object *object)
     return -1;
 }
 
+/* The parallel projection along the impostor's axis, from the refractor's
+ * side (Fig. 12), and its per-impostor uniforms. */
+static void set_impostor_view(const struct gl_program *prog, const struct impostor *im)
+{
+    vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));
+    mat4 view = mat4_look_at(eye, im->center, im->up);
+    mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
+    mat4 vp = mat4_mul(proj, view);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
+                        im->center.z);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
+}
+
+static void draw_alone(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
+                       struct object *object)
+{
+    struct scene only = *scene;
+    struct object *list[1] = {object};
+    only.objects = list;
+    only.object_count = 1;
+    renderer_draw_objects(r, &only, prog, DRAW_ALL);
+}
+
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
                      int size, bool include_specular, struct error *err)
 {
@@ -92,20 +116,8 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 0, empty);
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 1, black);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
-        /* parallel projection along the axis, from the refractor's side (Fig. 12) */
-        vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));
-        mat4 view = mat4_look_at(eye, im->center, im->up);
-        mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
-        mat4 vp = mat4_mul(proj, view);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
-                            im->center.z);
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
-        struct scene only = *scene;
-        struct object *list[1] = {im->object};
-        only.objects = list;
-        only.object_count = 1;
-        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+        set_impostor_view(prog, im);
+        draw_alone(r, scene, prog, im->object);
     }
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("building impostors", err);
@@ -138,20 +150,9 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, set->fb.id);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
-        vec3 eye = vec3_sub(im->center, vec3_scale(im->axis, 2.0f * im->half));
-        mat4 view = mat4_look_at(eye, im->center, im->up);
-        mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
-        mat4 vp = mat4_mul(proj, view);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
-                            im->center.z);
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
+        set_impostor_view(prog, im);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), k); /* it does not see itself */
-        struct scene only = *scene;
-        struct object *list[1] = {im->object};
-        only.objects = list;
-        only.object_count = 1;
-        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+        draw_alone(r, scene, prog, im->object);
     }
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("recursive impostors", err);

@@ -191,6 +191,18 @@ struct pixel {
 };
 
 /* Direct light at a diffuse point with normal n (facing the viewer). */
+/* The spot falloff the shaders use (smoothstep over the cone's edge) for
+ * light leaving in direction `out`; 1 for other lights. */
+static double spot_factor(const struct ref_light *l, dvec3 out)
+{
+    if (l->kind != 2)
+        return 1.0;
+    double ca = dv_dot(out, l->direction);
+    double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
+    double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
+    return x * x * (3.0 - 2.0 * x);
+}
+
 /* Light arriving at p from light l, unshadowed: the irradiance a surface
  * facing it would get, the unit direction towards it and its distance. */
 static bool light_arrival(const struct ref_light *l, dvec3 p, dvec3 *e, dvec3 *wi, double *dist)
@@ -205,16 +217,9 @@ static bool light_arrival(const struct ref_light *l, dvec3 p, dvec3 *e, dvec3 *w
     double d2 = fmax(dv_dot(d, d), 1e-16);
     *dist = sqrt(d2);
     *wi = dv_scale(d, 1.0 / *dist);
-    double spot = 1.0;
-    if (l->kind == 2) {
-        /* the shaders' smoothstep falloff over the cone's edge */
-        double ca = dv_dot(dv_scale(*wi, -1.0), l->direction);
-        double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
-        double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
-        spot = x * x * (3.0 - 2.0 * x);
-        if (spot <= 0.0)
-            return false;
-    }
+    double spot = spot_factor(l, dv_scale(*wi, -1.0));
+    if (spot <= 0.0)
+        return false;
     *e = dv_scale(l->intensity, spot / d2);
     return true;
 }
@@ -245,49 +250,19 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
 {
     dvec3 e = dv(0, 0, 0);
     dvec3 origin = dv_add(p, dv_scale(n, rs->epsilon));
-    if (rm->present) {
-        /* With a medium: the same geometry, attenuated along the shadow ray. */
-        for (int i = 0; i < rs->light_count; i++) {
-            dvec3 el, wi;
-            double dist;
-            if (!light_arrival(&rs->lights[i], p, &el, &wi, &dist))
-                continue;
-            double c = dv_dot(n, wi);
-            double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - rs->epsilon : INFINITY;
-            if (c <= 0.0 || ref_scene_occluded(rs, origin, wi, tmax))
-                continue;
-            e = dv_add(e, dv_scale(dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng)), c));
-        }
-        return e;
-    }
     for (int i = 0; i < rs->light_count; i++) {
-        const struct ref_light *l = &rs->lights[i];
-        if (l->kind == 1) {
-            dvec3 wi = dv_scale(l->direction, -1.0);
-            double c = dv_dot(n, wi);
-            if (c > 0.0 && !ref_scene_occluded(rs, origin, wi, INFINITY))
-                e = dv_add(e, dv_scale(l->intensity, c));
+        dvec3 el, wi;
+        double dist;
+        if (!light_arrival(&rs->lights[i], p, &el, &wi, &dist))
             continue;
-        }
-        dvec3 d = dv_sub(l->position, p);
-        double d2 = fmax(dv_dot(d, d), 1e-16);
-        double dist = sqrt(d2);
-        dvec3 wi = dv_scale(d, 1.0 / dist);
         double c = dv_dot(n, wi);
-        if (c <= 0.0)
+        double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - rs->epsilon : INFINITY;
+        if (c <= 0.0 || ref_scene_occluded(rs, origin, wi, tmax))
             continue;
-        double spot = 1.0;
-        if (l->kind == 2) {
-            /* the shaders' smoothstep falloff over the cone's edge */
-            double ca = dv_dot(dv_scale(wi, -1.0), l->direction);
-            double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
-            double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
-            spot = x * x * (3.0 - 2.0 * x);
-            if (spot <= 0.0)
-                continue;
-        }
-        if (!ref_scene_occluded(rs, origin, wi, dist * (1.0 - 1e-6) - rs->epsilon))
-            e = dv_add(e, dv_scale(l->intensity, c * spot / d2));
+        /* with a medium, attenuated along the shadow ray */
+        if (rm->present)
+            el = dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng));
+        e = dv_add(e, dv_scale(el, c));
     }
     return e;
 }
@@ -671,15 +646,9 @@ static bool emit(const struct ref_scene *rs, const struct ref_light *l, long per
     *dir = dv_normalize_or(dv_add(dv_scale(w, cos_t), dv_add(dv_scale(u, sin_t * cos(phi)), dv_scale(v, sin_t * sin(phi)))), w);
     *origin = l->position;
     double solid_angle = 2.0 * MATH_PI * (1.0 - cos_max);
-    double spot = 1.0;
-    if (l->kind == 2) {
-        double ca = dv_dot(*dir, l->direction);
-        double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
-        double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
-        spot = x * x * (3.0 - 2.0 * x);
-        if (spot <= 0.0)
-            return false;
-    }
+    double spot = spot_factor(l, *dir);
+    if (spot <= 0.0)
+        return false;
     *flux = dv_scale(l->intensity, spot * solid_angle / (double)per_light);
     return true;
 }

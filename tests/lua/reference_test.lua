@@ -14,15 +14,7 @@ local function mean_ratio(img, channel, x0, y0, x1, y1, expected)
   return sum / n
 end
 
--- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted.
-local function fresnel(cos_i, eta)
-  local sin2_t = eta * eta * (1 - cos_i * cos_i)
-  if sin2_t >= 1 then return 1 end
-  local cos_t = math.sqrt(1 - sin2_t)
-  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
-  return 0.5 * (rs * rs + rp * rp)
-end
+local fresnel = t.fresnel
 
 t.case("direct light: a floor under a directional light has L = albedo / pi * E", function()
   local img = t.reference("tests/scenes/lights.lua", { set = { kind = "directional" }, photons = 0, spp = 1 })

@@ -2,14 +2,7 @@
 local t = require "caustica.test"
 local c = require "caustica"
 
-local function fresnel(cos_i, eta)
-  local sin2_t = eta * eta * (1 - cos_i * cos_i)
-  if sin2_t >= 1 then return 1 end
-  local cos_t = math.sqrt(1 - sin2_t)
-  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
-  return 0.5 * (rs * rs + rp * rp)
-end
+local fresnel = t.fresnel
 
 -- The flat-water closed form (derived in reference_test.lua): the floor's
 -- irradiance E cos(ti) T(ti) exp(-c d / cos(tt)).
