@@ -15,13 +15,17 @@ uniform float u_ior;
 uniform vec3 u_absorption;
 uniform float u_depth;
 uniform float u_level;
+uniform int u_refract_mapping; // 0: the paper's virtual plane at the mean level; 1: the refracted ray
 
 // The scene image seen along a ray from P in direction d down to the
 // virtual plane, with the absorption over the distance to what is there.
 vec3 through_water(vec3 P, vec3 d)
 {
     float t = (P.y - (u_level - u_depth)) / max(-d.y, 0.05);
-    vec4 clip = u_view_proj * vec4(P + d * t, 1.0);
+    // §3.5: the texture coordinates of the virtual plane at the mean water
+    // level under P, or the point the refracted ray reaches on the floor
+    vec3 target = u_refract_mapping == 1 ? P + d * t : vec3(P.x, u_level, P.z);
+    vec4 clip = u_view_proj * vec4(target, 1.0);
     vec2 uv = clip.w > 0.0 ? clamp(clip.xy / clip.w * 0.5 + 0.5, 0.0, 1.0) : vec2(0.5);
     vec3 c = texture(u_scene, uv).rgb;
     vec4 q = texture(u_scene_position, uv);

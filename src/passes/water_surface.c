@@ -1,10 +1,13 @@
 /* water_surface: the third pass of Sandberg & Falemo §3.5. The image of
  * the pool's contents (with their caustics) is mapped onto the water
- * surface through a refraction computed per fragment against a virtual
- * plane (the pool floor under the mean water level), and the environment
- * is reflected with Fresnel weights. Seen from below, total internal
+ * surface with texture coordinates from a virtual plane at the mean water
+ * level (the displaced surface samples the image where the flat plane
+ * would be: the paper's "illusion of refraction", Fig. 6), or, with
+ * mapping = "refract", along the refracted ray down to the pool floor; the
+ * environment is reflected with Fresnel weights. Seen from below, total internal
  * reflection shows the pool contents mirrored instead (never a NaN). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -19,6 +22,9 @@ static const struct pass_param_desc params[] = {
     {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene without the water surface"},
     {.name = "depth", .type = PASS_PARAM_INPUT, .required = true, .help = "its depth buffer"},
     {.name = "position", .type = PASS_PARAM_INPUT, .required = true, .help = "its world positions (for absorption)"},
+    {.name = "mapping", .type = PASS_PARAM_ENUM, .default_string = "plane", .choices = "plane|refract",
+     .help = "plane: the paper's texture coordinates from a virtual plane at the mean water level; refract: "
+             "follow the refracted ray down to the pool floor"},
 };
 
 static bool water_surface_declare(struct pass *p, struct error *err)
@@ -79,6 +85,8 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.BindTextureUnit(2, in_pos->texture.id);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),
+                        strcmp(pass_string(p, "mapping"), "refract") == 0);
     /* only the water object: draw it alone */
     struct scene only = *f->scene;
     struct object *list[1] = {water};

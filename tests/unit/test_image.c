@@ -66,6 +66,21 @@ int main(void)
     CHECK(m.nan == 1);
     CHECK(isfinite(m.rmse));
 
+    /* a mask restricts the comparison to its lit pixels */
+    struct image mask;
+    CHECK(image_create(&mask, 16, 8, &err));
+    for (int c = 0; c < 3; c++)
+        mask.rgba[4 + c] = 1.0f; /* only pixel 1, which a and b share */
+    b.rgba[5] = a.rgba[5];
+    CHECK(image_metrics_compute(&a, &b, &mask, &m, &err));
+    CHECK(m.pixels == 1);
+    CHECK_NEAR(m.rmse, 0.0, 0.0);
+    mask.rgba[0] = 1.0f; /* and pixel 0, where they differ by 0.3 in red */
+    CHECK(image_metrics_compute(&a, &b, &mask, &m, &err));
+    CHECK(m.pixels == 2);
+    CHECK_NEAR(m.rmse, sqrt(0.09 / 6.0), 1e-6);
+    image_destroy(&mask);
+
     /* size mismatch and unwritable folders are errors, not crashes */
     struct image c;
     CHECK(image_create(&c, 4, 4, &err));
