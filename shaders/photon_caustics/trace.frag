@@ -21,12 +21,8 @@ uniform mat4 u_light_inverse;
 uniform int u_light;
 uniform int u_iterations;
 uniform float u_buffer;
-uniform int u_mirror;
-uniform int u_fresnel_mirror; // reflecting off glass: the flux is weighted by the Fresnel reflectance
-uniform int u_single;         // one interface (water): the refracted light goes on to the receivers
-uniform float u_ior;
-uniform vec3 u_tint;
-uniform vec3 u_absorption;
+uniform int u_reflect_glass; // mode "reflect": follow the light glass reflects (Fresnel-weighted)
+layout(binding = 5) uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w material kind
 
 vec3 unproject(vec2 uv, float d)
 {
@@ -72,17 +68,21 @@ void main()
     vec3 flux = e * abs(dot(cross(a, b), ldir));
     vec4 front = texelFetch(u_front_normal, px, 0);
     vec3 n1 = normalize(front.xyz);
-    // the material of the object this photon meets (several refractors may be in view)
+    // the material of the object this photon meets (several may be in view)
+    vec4 material = texelFetch(u_front_material, px, 0);
     bool is_mirror = front.w < 0.0;
-    float ior = is_mirror ? u_ior : front.w;
+    float ior = is_mirror ? 1.5 : front.w;
+    vec3 absorption = is_mirror ? vec3(0.0) : material.rgb;
+    vec3 tint = is_mirror ? material.rgb : vec3(1.0);
+    bool single = int(material.w + 0.5) == 3; // water: one interface (Fig. 28)
     if (dot(ldir, n1) > 0.0)
         n1 = -n1;
     float eps = 1e-4 * length(p1 - unproject(vec2(0.5), 0.5)) + 1e-5;
     vec3 origin, dir;
-    if (is_mirror || u_mirror == 1) {
+    if (is_mirror || u_reflect_glass == 1) {
         dir = reflect(ldir, n1); // reflective caustics (Fig. 19 bottom)
         origin = p1 + n1 * eps;
-        flux *= is_mirror ? u_tint : vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / ior));
+        flux *= is_mirror ? tint : vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / ior));
     } else {
         float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / ior);
         vec3 t1 = refract(ldir, n1, 1.0 / ior);
@@ -92,7 +92,7 @@ void main()
         }
         t1 = normalize(t1);
         flux *= 1.0 - f1;
-        if (u_single == 1) {
+        if (single) {
             dir = t1;
             origin = p1 - n1 * eps;
         } else {
@@ -126,7 +126,7 @@ void main()
             nothing(); // total internal reflection at the exit: the photon is not followed further
             return;
         }
-        flux *= (1.0 - f2) * exp(-u_absorption * dT);
+        flux *= (1.0 - f2) * exp(-absorption * dT);
         dir = normalize(t2);
         origin = p2 - m * eps;
         }
@@ -147,8 +147,8 @@ void main()
         nothing();
         return;
     }
-    if (u_single == 1 && !is_mirror && u_mirror == 0)
-        flux *= exp(-u_absorption * best); // absorbed along the way in the water
+    if (single && !is_mirror && u_reflect_glass == 0)
+        flux *= exp(-absorption * best); // absorbed along the way in the water
     o_photon = vec4(huv, float(hit), 1.0);
     o_flux = vec4(flux, 1.0);
 }

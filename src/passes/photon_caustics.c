@@ -26,6 +26,7 @@ struct photon_state {
     struct impostor_set impostors;
     struct gl_framebuffer light_fb[2], photon_fb, map_fb;
     struct gl_texture light_normal[2], light_depth[2]; /* front, back as seen from the light */
+    struct gl_texture light_material[2];              /* absorption or tint, and the material kind */
     struct gl_texture photons, photon_flux;           /* the photon buffer: (u, v, k, valid), flux */
     struct gl_texture counts;                         /* r32ui array, 3 layers per receiver */
     struct gl_texture caustics;                       /* rgba32f array, one layer per receiver */
@@ -75,6 +76,7 @@ static void release_textures(struct photon_state *s)
     for (int i = 0; i < 2; i++) {
         gl_texture_destroy(&s->light_normal[i]);
         gl_texture_destroy(&s->light_depth[i]);
+        gl_texture_destroy(&s->light_material[i]);
     }
     gl_texture_destroy(&s->photons);
     gl_texture_destroy(&s->photon_flux);
@@ -149,10 +151,11 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
     s->valid = false;
     for (int i = 0; i < 2; i++) {
         if (!gl_texture_create(&s->light_normal[i], GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
+            !gl_texture_create(&s->light_material[i], GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
             !gl_texture_create(&s->light_depth[i], GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, buffer, buffer, 1, err))
             return false;
-        const struct gl_texture *c[1] = {&s->light_normal[i]};
-        if (!gl_framebuffer_attach(&s->light_fb[i], c, NULL, 1, &s->light_depth[i], -1, err))
+        const struct gl_texture *c[2] = {&s->light_normal[i], &s->light_material[i]};
+        if (!gl_framebuffer_attach(&s->light_fb[i], c, NULL, 2, &s->light_depth[i], -1, err))
             return false;
     }
     if (!gl_texture_create(&s->photons, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
@@ -219,8 +222,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
 
         /* Front and back surfaces of the refractors from the light (§2.1, in its view). */
         struct gl_program *surf;
-        if (!gl_program_get(&r->programs, "photon_caustics/light_surfaces.vert", "refraction/surfaces.frag", NULL,
-                            &surf, err))
+        if (!gl_program_get(&r->programs, "photon_caustics/light_surfaces.vert", "photon_caustics/light_surfaces.frag",
+                            NULL, &surf, err))
             return false;
         gl.ProgramUniformMatrix4fv(surf->id, gl_program_uniform(surf, "u_light_view_proj"), 1, GL_FALSE,
                                    s->light_view_proj.m);
@@ -231,6 +234,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         for (int side = 0; side < 2; side++) {
             gl.BindFramebuffer(GL_FRAMEBUFFER, s->light_fb[side].id);
             gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 0, zero);
+            gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 1, zero);
             gl.Clear(GL_DEPTH_BUFFER_BIT);
             gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
             renderer_draw_objects(r, f->scene, surf, DRAW_SPECULAR);
@@ -251,6 +255,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.BindTextureUnit(2, s->light_normal[1].id);
         gl.BindTextureUnit(3, s->light_depth[0].id);
         gl.BindTextureUnit(4, s->light_depth[1].id);
+        gl.BindTextureUnit(5, s->light_material[0].id);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
                                    s->light_view_proj.m);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
@@ -258,27 +263,11 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
         gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
-        /* per pixel the photon buffer knows the material it meets (mirror or
-         * the index of refraction, in the normal buffer's w); tint,
-         * absorption and the one-interface rule come from the first
-         * specular object */
-        for (int i = 0; i < f->scene->object_count; i++) {
-            const struct object *o = f->scene->objects[i];
-            if (o->visible && material_is_specular(&o->material)) {
-                bool reflect = o->material.kind == MATERIAL_MIRROR || strcmp(pass_string(p, "mode"), "reflect") == 0;
-                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_mirror"), reflect);
-                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_fresnel_mirror"),
-                                    reflect && o->material.kind != MATERIAL_MIRROR);
-                /* water is one interface (Fig. 28): the light stays in it */
-                gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_single"), o->material.kind == MATERIAL_WATER);
-                gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_ior"), o->material.ior);
-                gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_tint"), o->material.color.x,
-                                    o->material.color.y, o->material.color.z);
-                gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_absorption"), o->material.absorption.x,
-                                    o->material.absorption.y, o->material.absorption.z);
-                break;
-            }
-        }
+        /* each photon reads the material it meets from the light-space
+         * buffers (mirror or index of refraction, tint or absorption, water's
+         * one interface): several specular objects may share the view */
+        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_reflect_glass"),
+                            strcmp(pass_string(p, "mode"), "reflect") == 0);
         gl.Viewport(0, 0, buffer, buffer);
         renderer_draw_fullscreen(r);
 
