@@ -175,8 +175,6 @@ static bool compile_stage(GLenum type, const char *source, const struct source_f
         char log[4096] = "";
         gl.GetShaderInfoLog(sh, sizeof log, NULL, log);
         gl.DeleteShader(sh);
-        if (getenv("CAUSTICA_RAW_SHADER_LOG"))
-            fprintf(stderr, "%s\n", log);
         rewrite_log(log, files, err);
         return false;
     }
