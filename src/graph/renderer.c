@@ -240,6 +240,22 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     gl.BindVertexArray(0);
 }
 
+void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
+                          struct object *object)
+{
+    struct scene only = *scene;
+    struct object *list[1] = {object};
+    only.objects = list;
+    only.object_count = 1;
+    renderer_draw_objects(r, &only, program, DRAW_ALL);
+}
+
+int renderer_light_slot(const struct renderer *r, const struct scene *scene, const struct light *light)
+{
+    int index = scene_light_index(scene, light);
+    return index >= 0 && index < SCENE_MAX_GPU_LIGHTS ? r->light_first[index] : -1;
+}
+
 void renderer_draw_fullscreen(struct renderer *r)
 {
     gl.BindVertexArray(r->empty_vao);

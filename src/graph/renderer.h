@@ -80,7 +80,13 @@ enum renderer_draw_filter {
  * u_object_id. */
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter);
+/* The same for one object, whatever its material. */
+void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
+                          struct object *object);
 void renderer_draw_fullscreen(struct renderer *r);
+/* First GPU light slot of `light` (an area light fills several), or -1 when
+ * it is not in the scene or past SCENE_MAX_GPU_LIGHTS. */
+int renderer_light_slot(const struct renderer *r, const struct scene *scene, const struct light *light);
 
 /* Tone maps a linear texture into 8-bit sRGB and reads it back (rows top to bottom). */
 bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, uint8_t *rgba, struct error *err);

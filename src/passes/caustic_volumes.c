@@ -82,14 +82,6 @@ static void caustic_volumes_destroy(struct pass *p)
     p->state = NULL;
 }
 
-static int light_gpu_index(const struct pass_frame *f, const struct light *l)
-{
-    for (int i = 0; i < f->scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++)
-        if (f->scene->lights[i] == l)
-            return f->renderer->light_first[i];
-    return -1;
-}
-
 /* The scene does not ask for caustics when the water is hidden or the sun
  * is below its horizon: the pass is left out of the frame (its irradiance
  * reads as zero). */
@@ -115,7 +107,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     struct renderer *r = f->renderer;
     struct object *water = pass_object(p, "water");
     struct light *light = pass_light(p, "light");
-    int light_index = light_gpu_index(f, light);
+    int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
     struct graph_resource *irr = pass_frame_output(p, f, "irradiance"), *pos = pass_frame_output(p, f, "position"),

@@ -39,16 +39,6 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
 }
 
-static void draw_alone(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
-                       struct object *object)
-{
-    struct scene only = *scene;
-    struct object *list[1] = {object};
-    only.objects = list;
-    only.object_count = 1;
-    renderer_draw_objects(r, &only, prog, DRAW_ALL);
-}
-
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
                      int size, bool include_specular, struct error *err)
 {
@@ -117,7 +107,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 1, black);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         set_impostor_view(prog, im);
-        draw_alone(r, scene, prog, im->object);
+        renderer_draw_object(r, scene, prog, im->object);
     }
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("building impostors", err);
@@ -152,7 +142,7 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         set_impostor_view(prog, im);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), k); /* it does not see itself */
-        draw_alone(r, scene, prog, im->object);
+        renderer_draw_object(r, scene, prog, im->object);
     }
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("recursive impostors", err);

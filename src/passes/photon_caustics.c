@@ -101,23 +101,12 @@ static void photon_destroy(struct pass *p)
 
 static bool specular_bounds(const struct scene *scene, vec3 *center, float *radius)
 {
-    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-    bool any = false;
-    for (int i = 0; i < scene->object_count; i++) {
-        const struct object *o = scene->objects[i];
-        if (!o->visible || !material_is_specular(&o->material))
-            continue;
-        vec3 a, b;
-        object_world_bounds(o, &a, &b);
-        lo = vec3_min(lo, a);
-        hi = vec3_max(hi, b);
-        any = true;
-    }
-    if (any) {
-        *center = vec3_scale(vec3_add(lo, hi), 0.5f);
-        *radius = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
-    }
-    return any;
+    vec3 lo, hi;
+    if (!scene_specular_bounds(scene, &lo, &hi))
+        return false;
+    *center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    *radius = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
+    return true;
 }
 
 static enum pass_need photon_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
@@ -130,14 +119,6 @@ static enum pass_need photon_needed(struct pass *p, struct pass_frame *f, char *
         return PASS_SKIP;
     }
     return PASS_RUN;
-}
-
-static int light_gpu_index(const struct pass_frame *f, const struct light *l)
-{
-    for (int i = 0; i < f->scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++)
-        if (f->scene->lights[i] == l)
-            return f->renderer->light_first[i];
-    return -1;
 }
 
 static bool ensure_textures(struct photon_state *s, int buffer, int texture, int receivers, struct error *err)
@@ -181,11 +162,11 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     struct photon_state *s = p->state;
     struct renderer *r = f->renderer;
     struct light *light = pass_light(p, "light");
-    int light_index = light_gpu_index(f, light);
+    int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
-    vec3 oc;
-    float orad;
+    vec3 oc = {0, 0, 0};
+    float orad = 1.0f; /* photon_needed left the pass out when nothing is specular */
     specular_bounds(f->scene, &oc, &orad);
     int buffer = (int)pass_number(p, "buffer"), texture = (int)pass_number(p, "texture");
     int iterations = (int)pass_number(p, "iterations");

@@ -136,11 +136,7 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
         }
         if (impostors)
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
-        struct scene only = *scene;
-        struct object *list[1] = {o};
-        only.objects = list;
-        only.object_count = 1;
-        renderer_draw_objects(r, &only, prog, DRAW_ALL);
+        renderer_draw_object(r, scene, prog, o);
     }
     return true;
 }
@@ -175,15 +171,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
                                 : (nearby ? "#define NEARBY 1\n" : "");
     if (nearby) {
         /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
-        vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-        for (int i = 0; i < f->scene->object_count; i++)
-            if (is_refractive(f->scene->objects[i])) {
-                vec3 a, b;
-                object_world_bounds(f->scene->objects[i], &a, &b);
-                lo = vec3_min(lo, a);
-                hi = vec3_max(hi, b);
-            }
-        vec3 centre = lo.x <= hi.x ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
+        vec3 lo, hi;
+        vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
         uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
         bool animated = false;
         for (int i = 0; i < f->scene->light_count; i++)

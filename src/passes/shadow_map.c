@@ -67,14 +67,6 @@ static void shadow_destroy(struct pass *p)
     p->state = NULL;
 }
 
-static int scene_light_index(const struct scene *scene, const struct light *l)
-{
-    for (int i = 0; i < scene->light_count; i++)
-        if (scene->lights[i] == l)
-            return i;
-    return -1;
-}
-
 static bool any_animated(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++)
@@ -108,10 +100,9 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     struct light *l = pass_light(p, "light");
     struct graph_resource *out = f->outputs[0];
     int size = out->texture.width;
-    int index = scene_light_index(f->scene, l);
-    if (index < 0)
+    if (scene_light_index(f->scene, l) < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
-    out->light_index = index < SCENE_MAX_GPU_LIGHTS ? r->light_first[index] : -1;
+    out->light_index = renderer_light_slot(r, f->scene, l);
     out->kind = (int)l->kind;
 
     vec3 lo, hi;

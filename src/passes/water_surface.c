@@ -87,12 +87,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),
                         strcmp(pass_string(p, "mapping"), "refract") == 0);
-    /* only the water object: draw it alone */
-    struct scene only = *f->scene;
-    struct object *list[1] = {water};
-    only.objects = list;
-    only.object_count = 1;
-    renderer_draw_objects(r, &only, prog, DRAW_ALL);
+    renderer_draw_object(r, f->scene, prog, water);
     return true;
 }
 

@@ -212,13 +212,13 @@ void scene_object_remove(struct scene *scene, struct object *obj)
         }
 }
 
-bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+static bool bounds_of_visible(const struct scene *scene, bool specular_only, vec3 *lo, vec3 *hi)
 {
     vec3 l = {INFINITY, INFINITY, INFINITY}, h = {-INFINITY, -INFINITY, -INFINITY};
     bool any = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (!o->visible)
+        if (!o->visible || (specular_only && !material_is_specular(&o->material)))
             continue;
         vec3 a, b;
         object_world_bounds(o, &a, &b);
@@ -226,11 +226,32 @@ bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
         h = vec3_max(h, b);
         any = true;
     }
-    if (!any)
-        l = h = vec3_make(0, 0, 0);
-    *lo = l;
-    *hi = h;
+    if (any) {
+        *lo = l;
+        *hi = h;
+    }
     return any;
+}
+
+bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+{
+    if (bounds_of_visible(scene, false, lo, hi))
+        return true;
+    *lo = *hi = vec3_make(0, 0, 0);
+    return false;
+}
+
+bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+{
+    return bounds_of_visible(scene, true, lo, hi);
+}
+
+int scene_light_index(const struct scene *scene, const struct light *light)
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i] == light)
+            return i;
+    return -1;
 }
 
 uint64_t scene_geometry_version(const struct scene *scene)

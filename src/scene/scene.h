@@ -183,6 +183,11 @@ void scene_object_remove(struct scene *scene, struct object *obj);
 /* Bounds of every visible object, after its transform (morphs included
  * conservatively). Returns false for an empty scene. */
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Bounds of the visible glass, water and mirrors only; false (and lo, hi
+ * left as they were) when there are none. */
+bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Position of `light` in scene->lights, or -1 when it was never added. */
+int scene_light_index(const struct scene *scene, const struct light *light);
 /* Sum of object versions and the scene version: changes when any caster moves. */
 uint64_t scene_geometry_version(const struct scene *scene);
 
