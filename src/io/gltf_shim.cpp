@@ -4,13 +4,17 @@
 // positions and truncated buffers are errors naming the file.
 #include "io/gltf.h"
 
+#include <cerrno>
+#include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 namespace {
 
@@ -112,6 +116,24 @@ double read_component(const unsigned char *p, int type, bool normalized)
     }
 }
 
+// Offsets and lengths come from the file: every sum and product is checked
+// so that a byteOffset near 2^64 cannot wrap the bounds check.
+size_t checked_add(size_t a, size_t b, const char *what)
+{
+    size_t r;
+    if (__builtin_add_overflow(a, b, &r))
+        throw Fail{std::string(what) + ": offset or length out of range"};
+    return r;
+}
+
+size_t checked_mul(size_t a, size_t b, const char *what)
+{
+    size_t r;
+    if (__builtin_mul_overflow(a, b, &r))
+        throw Fail{std::string(what) + ": offset or length out of range"};
+    return r;
+}
+
 // Reads `count * ncomp` values from a buffer view range, bounds-checked.
 void read_view(const tinygltf::Model &model, int view_index, size_t offset, size_t count, int ncomp,
                int ctype, bool normalized, std::vector<double> &out, size_t out_stride_elems,
@@ -128,9 +150,16 @@ void read_view(const tinygltf::Model &model, int view_index, size_t offset, size
         throw Fail{std::string(what) + ": unsupported component type " + std::to_string(ctype)};
     size_t elem = csize * (size_t)ncomp;
     size_t stride = view.byteStride ? view.byteStride : elem;
+    if (stride < elem)
+        throw Fail{std::string(what) + ": byteStride " + std::to_string(stride) + " is smaller than an element"};
+    size_t view_end = checked_add(view.byteOffset, view.byteLength, what);
+    if (view_end > buf.data.size())
+        throw Fail{std::string(what) + ": buffer view reads past the end of its buffer (truncated file?)"};
     if (count > 0) {
-        size_t last = view.byteOffset + offset + (count - 1) * stride + elem;
-        if (last > view.byteOffset + view.byteLength || view.byteOffset + view.byteLength > buf.data.size())
+        size_t last = checked_add(checked_add(checked_add(view.byteOffset, offset, what),
+                                              checked_mul(count - 1, stride, what), what),
+                                  elem, what);
+        if (last > view_end)
             throw Fail{std::string(what) + ": accessor reads past the end of its buffer (truncated file?)"};
     }
     const unsigned char *base = buf.data.data() + view.byteOffset + offset;
@@ -154,6 +183,18 @@ int type_components(int type)
     }
 }
 
+// The most elements an accessor may describe: what the file's binary data
+// could hold one byte per element, or 1M for a small file (an accessor with
+// no buffer view is all zeros, legal glTF, but its count must not ask for
+// gigabytes a 1 KB file cannot describe).
+size_t accessor_count_limit(const tinygltf::Model &model)
+{
+    size_t total = 0;
+    for (const auto &b : model.buffers)
+        total += b.data.size();
+    return total > ((size_t)1 << 20) ? total : ((size_t)1 << 20);
+}
+
 // An accessor as doubles, sparse substitution applied (glTF 2.0 §3.6.2.3).
 std::vector<double> read_accessor(const tinygltf::Model &model, int index, int want_comp, const char *what)
 {
@@ -163,18 +204,35 @@ std::vector<double> read_accessor(const tinygltf::Model &model, int index, int w
     int ncomp = type_components(acc.type);
     if (ncomp != want_comp)
         throw Fail{std::string(what) + ": expected " + std::to_string(want_comp) + " components, got " + std::to_string(ncomp)};
+    size_t limit = accessor_count_limit(model);
+    if (acc.count > limit)
+        throw Fail{std::string(what) + ": accessor count " + std::to_string(acc.count) +
+                   " is larger than the file can describe"};
     std::vector<double> out(acc.count * (size_t)ncomp, 0.0);
     if (acc.bufferView >= 0)
         read_view(model, acc.bufferView, acc.byteOffset, acc.count, ncomp, acc.componentType, acc.normalized, out,
                   (size_t)ncomp, nullptr, what);
     if (acc.sparse.isSparse) {
+        if (acc.sparse.count < 0 || (size_t)acc.sparse.count > acc.count)
+            throw Fail{std::string(what) + ": sparse count " + std::to_string(acc.sparse.count) +
+                       " is outside 0.." + std::to_string(acc.count)};
+        if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
+            throw Fail{std::string(what) + ": negative sparse byteOffset"};
+        int itype = acc.sparse.indices.componentType;
+        if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            throw Fail{std::string(what) + ": sparse indices must be unsigned integers, got component type " +
+                       std::to_string(itype)};
         size_t n = (size_t)acc.sparse.count;
         std::vector<double> idx(n);
         read_view(model, acc.sparse.indices.bufferView, (size_t)acc.sparse.indices.byteOffset, n, 1,
-                  acc.sparse.indices.componentType, false, idx, 1, nullptr, what);
+                  itype, false, idx, 1, nullptr, what);
         std::vector<size_t> targets(n);
-        for (size_t i = 0; i < n; i++)
+        for (size_t i = 0; i < n; i++) {
+            if (!(idx[i] >= 0) || idx[i] >= (double)acc.count)
+                throw Fail{std::string(what) + ": sparse index " + std::to_string((long long)idx[i]) + " out of range"};
             targets[i] = (size_t)idx[i];
+        }
         read_view(model, acc.sparse.values.bufferView, (size_t)acc.sparse.values.byteOffset, n, ncomp,
                   acc.componentType, acc.normalized, out, (size_t)ncomp, &targets, what);
     }
@@ -220,6 +278,25 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         }
     }
     m.glass = m.transmission > 0.0f;
+    // The rules c.material.glass applies (finite, IOR > 0, colours in
+    // [0, 1]): a file must not slip past them into NaN or negative absorption.
+    std::string name = "material '" + mat.name + "'";
+    for (int c = 0; c < 3; c++) {
+        if (!std::isfinite(m.base_color[c]) || m.base_color[c] < 0.0f)
+            throw Fail{name + ": baseColorFactor must be finite and >= 0"};
+        if (!std::isfinite(m.attenuation_color[c]) || m.attenuation_color[c] < 0.0f || m.attenuation_color[c] > 1.0f)
+            throw Fail{name + ": KHR_materials_volume attenuationColor must be in [0, 1]"};
+    }
+    if (!std::isfinite(m.ior) || !(m.ior > 0.0f))
+        throw Fail{name + ": KHR_materials_ior ior must be a positive finite number, got " + std::to_string(m.ior)};
+    if (!std::isfinite(m.transmission) || m.transmission < 0.0f || m.transmission > 1.0f)
+        throw Fail{name + ": KHR_materials_transmission transmissionFactor must be in [0, 1]"};
+    // 0 stands for "infinite" (no absorption); anything else must be a
+    // distance at which -ln(c)/d stays finite (c >= 1e-6 in mesh.c: d >= 1e-30
+    // keeps 13.8/d below FLT_MAX).
+    if (!std::isfinite(m.attenuation_distance) || m.attenuation_distance < 0.0f ||
+        (m.attenuation_distance > 0.0f && m.attenuation_distance < 1e-30f))
+        throw Fail{name + ": KHR_materials_volume attenuationDistance must be a positive finite distance"};
 }
 
 void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
@@ -266,8 +343,14 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
         throw Fail{"too many vertices"};
     for (size_t i = 0; i < nv; i++) {
         double x = pos[i * 3], y = pos[i * 3 + 1], z = pos[i * 3 + 2];
-        for (int r = 0; r < 3; r++)
-            b.positions.push_back((float)(world[r] * x + world[4 + r] * y + world[8 + r] * z + world[12 + r]));
+        for (int r = 0; r < 3; r++) {
+            // Checked after the node transform too: a scale of 1e300 turns
+            // finite file values into Inf (or overflows the float).
+            double v = world[r] * x + world[4 + r] * y + world[8 + r] * z + world[12 + r];
+            if (!std::isfinite(v) || std::fabs(v) > 1e30)
+                throw Fail{"mesh '" + mesh.name + "': a vertex position is not finite after its node transform"};
+            b.positions.push_back((float)v);
+        }
     }
     // Normals: transformed by the normal matrix, or generated below.
     b.normals.resize(b.positions.size(), 0.0f);
@@ -278,7 +361,8 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
                 n[r] = nm[r * 3 + 0] * nrm[i * 3] + nm[r * 3 + 1] * nrm[i * 3 + 1] + nm[r * 3 + 2] * nrm[i * 3 + 2];
             double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             for (int r = 0; r < 3; r++)
-                b.normals[(base + i) * 3 + (size_t)r] = len > 1e-20 ? (float)(n[r] / len) : (r == 1 ? 1.0f : 0.0f);
+                b.normals[(base + i) * 3 + (size_t)r] =
+                    len > 1e-20 && std::isfinite(len) ? (float)(n[r] / len) : (r == 1 ? 1.0f : 0.0f);
         }
     } else {
         // Area-weighted vertex normals (the cross product's length is twice
@@ -343,8 +427,12 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             for (size_t i = 0; i < nv; i++) {
                 if (!std::isfinite(d[i * 3]) || !std::isfinite(d[i * 3 + 1]) || !std::isfinite(d[i * 3 + 2]))
                     throw Fail{"a morph target has a non-finite position delta"};
-                for (int r = 0; r < 3; r++)
-                    tp[(base + i) * 3 + (size_t)r] = (float)(world[r] * d[i * 3] + world[4 + r] * d[i * 3 + 1] + world[8 + r] * d[i * 3 + 2]);
+                for (int r = 0; r < 3; r++) {
+                    double v = world[r] * d[i * 3] + world[4 + r] * d[i * 3 + 1] + world[8 + r] * d[i * 3 + 2];
+                    if (!std::isfinite(v) || std::fabs(v) > 1e30)
+                        throw Fail{"a morph target's position delta is not finite after its node transform"};
+                    tp[(base + i) * 3 + (size_t)r] = (float)v;
+                }
             }
         }
         auto tn_it = target.find("NORMAL");
@@ -353,30 +441,52 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             if (d.size() != pos.size())
                 throw Fail{"a morph target's NORMAL count differs from the mesh's"};
             for (size_t i = 0; i < nv; i++)
-                for (int r = 0; r < 3; r++)
-                    tn[(base + i) * 3 + (size_t)r] = (float)(nm[r * 3] * d[i * 3] + nm[r * 3 + 1] * d[i * 3 + 1] + nm[r * 3 + 2] * d[i * 3 + 2]);
+                for (int r = 0; r < 3; r++) {
+                    double v = nm[r * 3] * d[i * 3] + nm[r * 3 + 1] * d[i * 3 + 1] + nm[r * 3 + 2] * d[i * 3 + 2];
+                    tn[(base + i) * 3 + (size_t)r] = std::isfinite(v) && std::fabs(v) < 1e30 ? (float)v : 0.0f;
+                }
         }
     }
     read_material(model, prim.material, b.material);
 }
 
-void visit(const tinygltf::Model &model, int node_index, const Mat &parent, Builder &b, int depth)
+// Instancing (a node listed by several parents) is legal glTF, so a node may
+// be visited more than once; a DAG with fan-out can still ask for 2^24
+// visits from a 1 KB file. These bound the expanded scene.
+const size_t GLTF_MAX_NODE_VISITS = 100000;
+const size_t GLTF_MAX_PRIMITIVES = 20000;
+const size_t GLTF_MAX_VERTICES = (size_t)64 << 20;
+
+struct VisitBudget {
+    size_t nodes = 0, primitives = 0;
+};
+
+void visit(const tinygltf::Model &model, int node_index, const Mat &parent, Builder &b, int depth, VisitBudget &budget)
 {
     if (node_index < 0 || node_index >= (int)model.nodes.size())
         throw Fail{"node index " + std::to_string(node_index) + " is out of range"};
     if (depth > 64)
         throw Fail{"node hierarchy deeper than 64 levels (a cycle?)"};
+    if (++budget.nodes > GLTF_MAX_NODE_VISITS)
+        throw Fail{"the node hierarchy expands to more than " + std::to_string(GLTF_MAX_NODE_VISITS) +
+                   " node instances (nodes shared by many parents?)"};
     const tinygltf::Node &node = model.nodes[(size_t)node_index];
     Mat world = mat_mul(parent, node_matrix(node));
     if (node.mesh >= 0) {
         if (node.mesh >= (int)model.meshes.size())
             throw Fail{"mesh index " + std::to_string(node.mesh) + " is out of range"};
         const tinygltf::Mesh &mesh = model.meshes[(size_t)node.mesh];
-        for (const auto &prim : mesh.primitives)
+        for (const auto &prim : mesh.primitives) {
+            if (++budget.primitives > GLTF_MAX_PRIMITIVES)
+                throw Fail{"the scene expands to more than " + std::to_string(GLTF_MAX_PRIMITIVES) +
+                           " primitive instances"};
             add_primitive(model, mesh, prim, world, b);
+            if (b.positions.size() / 3 > GLTF_MAX_VERTICES)
+                throw Fail{"the scene expands to more than " + std::to_string(GLTF_MAX_VERTICES) + " vertices"};
+        }
     }
     for (int child : node.children)
-        visit(model, child, world, b, depth + 1);
+        visit(model, child, world, b, depth + 1, budget);
 }
 
 template <typename T> T *copy_out(const std::vector<T> &v)
@@ -387,6 +497,134 @@ template <typename T> T *copy_out(const std::vector<T> &v)
     if (!v.empty())
         std::memcpy(p, v.data(), v.size() * sizeof(T));
     return p;
+}
+
+// caustica uses no glTF images: they are never decoded (a corrupt JPEG or an
+// image view past the BIN chunk reached stb_image's bugs before).
+bool skip_image(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
+                void *)
+{
+    return true;
+}
+
+// External buffers are read only from the glTF's own folder and below, with
+// no shell expansion of the URI (tinygltf's default ExpandFilePath runs
+// wordexp): a file from somewhere else must not read /etc/shadow into vertices.
+struct FsScope {
+    std::string dir; // realpath of the glTF's folder
+};
+
+bool inside_scope(const std::string &path, const FsScope &scope)
+{
+    char *real = realpath(path.c_str(), nullptr);
+    if (!real)
+        return false;
+    std::string r(real);
+    std::free(real);
+    return r.size() > scope.dir.size() && r.compare(0, scope.dir.size(), scope.dir) == 0 && r[scope.dir.size()] == '/';
+}
+
+// Says yes for any file that exists, so that scoped_read can say why one
+// outside the folder is refused instead of "File not found".
+bool scoped_file_exists(const std::string &path, void *)
+{
+    return access(path.c_str(), F_OK) == 0;
+}
+
+std::string scoped_expand(const std::string &path, void *) { return path; }
+
+bool scoped_read(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
+{
+    if (!inside_scope(path, *(const FsScope *)user)) {
+        if (err)
+            *err += "'" + path + "' is outside the glTF file's folder (external files must be beside it or below)\n";
+        return false;
+    }
+    FILE *f = std::fopen(path.c_str(), "rb");
+    if (!f) {
+        if (err)
+            *err += "cannot open '" + path + "'\n";
+        return false;
+    }
+    std::vector<unsigned char> data;
+    unsigned char chunk[65536];
+    size_t n;
+    while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (data.size() + n > ((size_t)1 << 31)) {
+            std::fclose(f);
+            if (err)
+                *err += "'" + path + "' is larger than 2 GiB\n";
+            return false;
+        }
+        data.insert(data.end(), chunk, chunk + n);
+    }
+    std::fclose(f);
+    *out = std::move(data);
+    return true;
+}
+
+bool scoped_write(std::string *err, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    if (err)
+        *err += "caustica never writes glTF files\n";
+    return false;
+}
+
+// tinygltf's JSON parser recurses once per nesting level: 10^5 levels in a
+// 200 KB file overflow the stack. A glTF needs a handful of levels (extras a
+// few more); refuse anything deeper before parsing.
+const int GLTF_MAX_JSON_DEPTH = 128;
+
+void check_json_depth(const unsigned char *json, size_t len)
+{
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = json[i];
+        if (in_string) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                in_string = false;
+            continue;
+        }
+        if (c == '"')
+            in_string = true;
+        else if (c == '{' || c == '[') {
+            if (++depth > GLTF_MAX_JSON_DEPTH)
+                throw Fail{"JSON nested deeper than " + std::to_string(GLTF_MAX_JSON_DEPTH) + " levels"};
+        } else if (c == '}' || c == ']')
+            depth--;
+    }
+}
+
+uint32_t read_u32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+std::vector<unsigned char> read_file(const std::string &path)
+{
+    std::vector<unsigned char> data;
+    FILE *f = std::fopen(path.c_str(), "rb");
+    if (!f)
+        throw Fail{std::string("cannot open: ") + std::strerror(errno)};
+    unsigned char chunk[65536];
+    size_t n;
+    while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (data.size() + n > ((size_t)1 << 31)) {
+            std::fclose(f);
+            throw Fail{"larger than 2 GiB"};
+        }
+        data.insert(data.end(), chunk, chunk + n);
+    }
+    bool bad = std::ferror(f);
+    std::fclose(f);
+    if (bad)
+        throw Fail{"read error (is it a folder?)"};
+    return data;
 }
 
 } // namespace
@@ -400,8 +638,34 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         std::string gerr, gwarn;
         std::string p(path);
         bool binary = p.size() > 4 && (p.compare(p.size() - 4, 4, ".glb") == 0 || p.compare(p.size() - 4, 4, ".GLB") == 0);
-        bool ok = binary ? loader.LoadBinaryFromFile(&model, &gerr, &gwarn, p)
-                         : loader.LoadASCIIFromFile(&model, &gerr, &gwarn, p);
+        std::vector<unsigned char> bytes = read_file(p);
+        // The JSON part: the whole file, or the GLB's first chunk.
+        if (binary) {
+            if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0)
+                throw Fail{"cannot load glTF: not a binary glTF file (no 'glTF' header)"};
+            size_t json_len = read_u32(bytes.data() + 12);
+            if (json_len > bytes.size() - 20)
+                throw Fail{"cannot load glTF: the JSON chunk is longer than the file (truncated?)"};
+            check_json_depth(bytes.data() + 20, json_len);
+        } else {
+            check_json_depth(bytes.data(), bytes.size());
+        }
+        char *dir_c = realpath(p.c_str(), nullptr);
+        if (!dir_c)
+            throw Fail{std::string("cannot open: ") + std::strerror(errno)};
+        FsScope scope;
+        scope.dir = dir_c;
+        std::free(dir_c);
+        scope.dir = scope.dir.substr(0, scope.dir.rfind('/'));
+        if (scope.dir.empty())
+            scope.dir = "/";
+        tinygltf::FsCallbacks fs = {scoped_file_exists, scoped_expand, scoped_read, scoped_write, &scope};
+        loader.SetFsCallbacks(fs);
+        loader.SetImageLoader(skip_image, nullptr);
+        bool ok = binary ? loader.LoadBinaryFromMemory(&model, &gerr, &gwarn, bytes.data(), (unsigned int)bytes.size(),
+                                                       scope.dir)
+                         : loader.LoadASCIIFromString(&model, &gerr, &gwarn, (const char *)bytes.data(),
+                                                      (unsigned int)bytes.size(), scope.dir);
         if (!ok) {
             while (!gerr.empty() && (gerr.back() == '\n' || gerr.back() == ' '))
                 gerr.pop_back();
@@ -429,8 +693,9 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
                 if (!is_child[i])
                     roots.push_back((int)i);
         }
+        VisitBudget budget;
         for (int r : roots)
-            visit(model, r, mat_identity(), b, 0);
+            visit(model, r, mat_identity(), b, 0, budget);
         if (b.indices.empty())
             throw Fail{"no triangles in the default scene"};
         out->vertex_count = b.positions.size() / 3;

@@ -228,7 +228,7 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
          * attenuation colour c at distance d is Beer-Lambert sigma = -ln(c) / d. */
         m->has_material = true;
         m->material.color = vec3_make(g.material.base_color[0], g.material.base_color[1], g.material.base_color[2]);
-        m->material.ior = g.material.ior > 0.0f ? g.material.ior : 1.5f;
+        m->material.ior = g.material.ior; /* validated by the loader */
         m->material.kind = g.material.glass ? MATERIAL_GLASS : MATERIAL_DIFFUSE;
         if (g.material.glass && g.material.attenuation_distance > 0.0f) {
             float *c = g.material.attenuation_color;
