@@ -20,3 +20,13 @@ foreach(script ${LUA_TESTS})
   add_test(NAME lua_${name} COMMAND caustica test ${script} WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   set_tests_properties(lua_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
 endforeach()
+
+# Fuzz inputs replayed in every build: the seed corpus and each crash kept
+# from fuzzing (tests/fuzz/README.md).
+foreach(name gltf script)
+  add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
+  target_link_libraries(replay_${name} PRIVATE caustica_core)
+  add_test(NAME fuzz_${name}_regressions COMMAND replay_${name}
+           ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_${name} ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_${name})
+  set_tests_properties(fuzz_${name}_regressions PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
+endforeach()

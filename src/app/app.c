@@ -18,6 +18,8 @@ void app_init(struct app *app)
     app->backend = GL_BACKEND_OSMESA;
     app->window_width = 512;
     app->window_height = 512;
+    app->script_timeout = 30.0;
+    app->script_memory = 4096.0 * 1024.0 * 1024.0;
 }
 
 bool app_ensure_gl(struct app *app, struct error *err)

@@ -17,6 +17,14 @@ struct app {
     bool renderer_ready;
     struct renderer renderer;
     int window_width, window_height; /* for the window backend */
+    /* The sandbox's limits (README, security): wall time of one script call
+     * (seconds, 0 = none) and the Lua heap (bytes, 0 = none). */
+    double script_timeout;
+    double script_memory;
+    const char *allow_read[8]; /* --allow-read DIR: more folders a sandboxed script may read */
+    int allow_read_count;
+    const char *allow_write;   /* --allow-write DIR: a folder a sandboxed script may write */
+    int render_depth;          /* c.image.render nesting (a script that renders itself) */
 };
 
 /* Finds the project folder: $CAUSTICA_ROOT, else the build's source folder. */

@@ -20,7 +20,10 @@ void cli_usage(FILE *out)
           "  caustica convert IN.pfm OUT.png [--exposure E]\n"
           "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
           "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
-          "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose\n",
+          "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
+          "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
+          "  --script-memory MB (Lua heap, default 4096, 0 = none),\n"
+          "  --allow-read DIR (repeatable), --allow-write DIR (folders a sandboxed script may also use)\n",
           out);
 }
 
@@ -157,6 +160,24 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             cli->update_refs = true;
         } else if (strcmp(a, "--no-render") == 0) {
             cli->no_render = true;
+        } else if (strcmp(a, "--script-timeout") == 0 || strcmp(a, "--script-memory") == 0) {
+            NEED_VALUE();
+            char *end;
+            double v = strtod(next, &end);
+            if (end == next || *end || !(v >= 0) || v > 1e9)
+                return usage_error("this option needs a number >= 0 (0 = no limit), got '%s'", next);
+            if (strcmp(a, "--script-timeout") == 0)
+                app->script_timeout = v;
+            else
+                app->script_memory = v * 1024.0 * 1024.0;
+        } else if (strcmp(a, "--allow-read") == 0) {
+            NEED_VALUE();
+            if (app->allow_read_count >= (int)(sizeof app->allow_read / sizeof app->allow_read[0]))
+                return usage_error("at most 8 --allow-read folders (%s)", next);
+            app->allow_read[app->allow_read_count++] = next;
+        } else if (strcmp(a, "--allow-write") == 0) {
+            NEED_VALUE();
+            app->allow_write = next;
         } else if (strcmp(a, "--trusted") == 0) {
             app->trusted = true;
         } else if (strcmp(a, "--verbose") == 0 || strcmp(a, "-v") == 0) {

@@ -252,7 +252,8 @@ int cmd_bench(struct app *app, struct cli *cli)
         }
         if (cli->nsweeps == 0)
             snprintf(r->label, sizeof r->label, "default");
-        struct session_options so = {.script = script, .params = params, .width = cli->width, .height = cli->height};
+        struct session_options so = {.script = script, .params = params, .width = cli->width, .height = cli->height,
+                                     .past_last_frame = true};
         struct session *s = NULL;
         ok = ok && session_open(app, &so, &s, &err) && apply_overrides(s, sweeps, cli->nsweeps, choice, &err) &&
              session_render(s, frame, &err) /* warm-up: shader compilation, uploads */ &&

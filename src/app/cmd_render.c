@@ -61,10 +61,10 @@ int cmd_render(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    char dir[4096];
-    path_dirname(out, dir, sizeof dir);
+    /* The script itself may write nowhere (--allow-write DIR aside): the
+     * output image is written by caustica, not by the script. */
     struct session *s;
-    if (!open_session(app, cli, dir, &s))
+    if (!open_session(app, cli, NULL, &s))
         return EXIT_SCENE_ERROR;
     bool ok = session_render(s, cli->frame, &err);
     if (ok && cli->timings) {

@@ -25,6 +25,10 @@ static bool field_number(lua_State *L, int t, const char *script, const char *na
                              lua_typename(L, type));
         }
         *out = lua_tonumber(L, -1);
+        if (!isfinite(*out)) {
+            lua_pop(L, 1);
+            return error_set(err, "%s: the returned table's '%s' must be a finite number, got %g", script, name, *out);
+        }
     }
     lua_pop(L, 1);
     return true;
@@ -72,12 +76,15 @@ static bool read_result(struct session *s, struct error *err)
     s->exposure = (float)exposure;
     s->tonemap = TONEMAP_CLAMP;
     if (lua_getfield(L, t, "tonemap") != LUA_TNIL) {
-        if (!lua_isstring(L, -1) || !tonemap_parse(lua_tostring(L, -1), &s->tonemap))
+        if (lua_type(L, -1) != LUA_TSTRING || !tonemap_parse(lua_tostring(L, -1), &s->tonemap))
             return error_set(err, "%s: tonemap must be \"clamp\", \"reinhard\" or \"aces\"", script);
     }
     lua_pop(L, 1);
     s->width = s->height = 512;
     if (lua_getfield(L, t, "size") != LUA_TNIL) {
+        if (!lua_istable(L, -1))
+            return error_set(err, "%s: the returned table's 'size' must be {width, height} in pixels, got %s", script,
+                             luaL_typename(L, -1));
         lua_rawgeti(L, -1, 1);
         lua_rawgeti(L, -2, 2);
         if (!lua_isinteger(L, -2) || !lua_isinteger(L, -1) || lua_tointeger(L, -2) < 1 || lua_tointeger(L, -1) < 1 ||
@@ -112,8 +119,12 @@ static bool load(struct session *s, struct error *err)
         .script_path = s->script,
         .params = &s->options.params,
         .trusted = s->app->trusted,
-        .write_dir = s->options.write_dir,
+        .write_dir = s->options.write_dir ? s->options.write_dir : s->app->allow_write,
         .app = s->app,
+        .timeout = s->app->script_timeout,
+        .memory_limit = s->app->script_memory,
+        .read_dirs = s->app->allow_read,
+        .read_dir_count = s->app->allow_read_count,
     };
     s->L = lua_host_create(&ho, err);
     if (!s->L)
@@ -165,6 +176,13 @@ bool session_goto_frame(struct session *s, int frame, struct error *err)
 {
     if (frame < 0)
         return error_set(err, "frame %d: frames count from 0", frame);
+    /* Every frame runs update() for all frames before it: an index past the
+     * script's frame count is a typo more often than a wish, and 10^9 of
+     * them never end. */
+    if (frame >= s->frames && !s->options.past_last_frame)
+        return error_set(err, "%s: frame %d is past the script's last frame %d (it returns frames = %d; raise frames "
+                              "in the returned table to render later frames)", s->script, frame, s->frames - 1,
+                         s->frames);
     if (frame < s->advanced) {
         /* Going back in time: the script's state only moves forward. */
         unload(s);

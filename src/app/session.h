@@ -18,6 +18,8 @@ struct session_options {
     struct lua_params params;
     int width, height;       /* 0: the script's size */
     const char *write_dir;   /* where a sandboxed script may write */
+    bool past_last_frame;    /* frames past the script's count are allowed (bench times still scenes over
+                                several frames) */
 };
 
 struct session {

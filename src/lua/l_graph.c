@@ -175,6 +175,9 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
         if (d->is_path) {
             char path[4096];
             lua_host_resolve_path(L, lua_tostring(L, idx), path, sizeof path);
+            struct error err;
+            if (!lua_host_check_read(L, path, &err))
+                luaL_error(L, "bad argument '%s' to '%s' (%s)", d->name, fn, err.message);
             v->string = dup_string(L, path);
         } else {
             v->string = dup_string(L, lua_tostring(L, idx));

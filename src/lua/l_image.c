@@ -26,8 +26,10 @@ static int image_load_l(lua_State *L)
 {
     char path[4096];
     lua_host_resolve_path(L, luaL_checkstring(L, 1), path, sizeof path);
-    struct image *img = limage_push(L);
     struct error err;
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "%s", err.message);
+    struct image *img = limage_push(L);
     if (!image_read(path, img, &err))
         return luaL_error(L, "%s", err.message);
     return 1;
@@ -86,10 +88,9 @@ static int image_save_l(lua_State *L)
     const char *rel = luaL_checkstring(L, 2);
     char path[4096];
     lua_host_resolve_path(L, rel, path, sizeof path);
-    const struct lua_host_options *o = lua_host_options_of(L);
-    if (o && !o->trusted && !o->write_dir)
-        return luaL_error(L, "image:save('%s'): a sandboxed script may not write files (run with --trusted)", rel);
     struct error err;
+    if (!lua_host_check_write(L, path, &err))
+        return luaL_error(L, "image:save: %s", err.message);
     if (!image_write(path, img, &err))
         return luaL_error(L, "%s", err.message);
     return 0;

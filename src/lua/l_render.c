@@ -13,6 +13,10 @@
 #include "lua/lua_host.h"
 #include "reference/reference.h"
 
+/* c.image.render inside a rendered script inside ...: a test renders a scene
+ * (depth 1), which may render another; more is a script rendering itself. */
+#define LIMAGE_RENDER_MAX_DEPTH 4
+
 /* A scene path as a test writes it: relative to the working folder, the
  * project root, or the test script's folder, in that order. */
 static void find_script(lua_State *L, const char *rel, char *out, size_t outlen)
@@ -75,12 +79,23 @@ int limage_render(lua_State *L)
     struct session_options o;
     int frame;
     read_options(L, path, sizeof path, &o, &frame);
-    struct session *s;
     struct error err;
-    if (!session_open(app, &o, &s, &err))
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "render: %s", err.message);
+    /* A script that renders itself would recurse until the C stack ends. */
+    if (app->render_depth >= LIMAGE_RENDER_MAX_DEPTH)
+        return luaL_error(L, "render: scripts rendering scripts nest deeper than %d (does '%s' render itself?)",
+                          LIMAGE_RENDER_MAX_DEPTH, path);
+    struct session *s;
+    app->render_depth++;
+    bool opened = session_open(app, &o, &s, &err);
+    if (!opened) {
+        app->render_depth--;
         return luaL_error(L, "%s", err.message);
+    }
     struct image *img = limage_push(L);
     bool ok = session_render(s, frame, &err) && session_read_linear(s, img, &err);
+    app->render_depth--;
     if (ok) {
         /* second result: per-pass milliseconds */
         lua_newtable(L);
@@ -126,13 +141,23 @@ int limage_reference(lua_State *L)
     }
     if (ro.photons < 0 || ro.iterations < 1)
         return luaL_error(L, "reference: photons must be >= 0 and spp >= 1");
-    struct session *s;
     struct error err;
-    if (!session_open(app, &o, &s, &err))
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "reference: %s", err.message);
+    if (app->render_depth >= LIMAGE_RENDER_MAX_DEPTH)
+        return luaL_error(L, "reference: scripts rendering scripts nest deeper than %d (does '%s' render itself?)",
+                          LIMAGE_RENDER_MAX_DEPTH, path);
+    struct session *s;
+    app->render_depth++;
+    bool opened = session_open(app, &o, &s, &err);
+    if (!opened) {
+        app->render_depth--;
         return luaL_error(L, "%s", err.message);
+    }
     struct image *img = limage_push(L);
     struct ref_stats st;
     bool ok = session_reference(s, frame, &ro, img, &st, &err);
+    app->render_depth--;
     session_close(s);
     if (!ok)
         return luaL_error(L, "%s", err.message);

@@ -50,6 +50,8 @@ static int mesh_load(lua_State *L)
     char path[4096];
     lua_host_resolve_path(L, rel, path, sizeof path);
     struct error err;
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "%s", err.message);
     return push_mesh(L, mesh_load_gltf(path, &err), &err);
 }
 
@@ -800,6 +802,8 @@ static int cubemap_new(lua_State *L)
     char path[4096];
     lua_host_resolve_path(L, rel, path, sizeof path);
     struct error err;
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "%s", err.message);
     struct environment *env = environment_load(path, &err);
     if (!env)
         return luaL_error(L, "%s", err.message);

@@ -1,10 +1,13 @@
 #define _GNU_SOURCE
 #include "lua/lua_host.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
 
 #include <lauxlib.h>
 #include <lualib.h>
@@ -22,7 +25,43 @@ struct host_state {
     char script_dir[4096];
     char write_dir[4096];
     char filter[256];
+    /* Real paths of the folders a sandboxed script may read. */
+    char read_roots[12][PATH_MAX];
+    int read_root_count;
+    /* The time limit: the call in progress must end by `deadline`. */
+    double deadline;
+    int call_depth;
 };
+
+/* The Lua heap, counted by the allocator so that a table bomb becomes a
+ * clean "used more than N MB" instead of the machine's OOM killer. */
+struct host_memory {
+    size_t used, limit;
+};
+
+static void *host_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
+{
+    struct host_memory *m = ud;
+    size_t old = ptr ? osize : 0;
+    if (nsize == 0) {
+        free(ptr);
+        m->used -= old;
+        return NULL;
+    }
+    if (m->limit && nsize > old && m->used - old + nsize > m->limit)
+        return NULL;
+    void *p = realloc(ptr, nsize);
+    if (p)
+        m->used = m->used - old + nsize;
+    return p;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
 
 static struct host_state *host_of(lua_State *L)
 {
@@ -162,27 +201,104 @@ static void deny(lua_State *L, const char *lib, const char *name)
     lua_pop(L, 1);
 }
 
-/* Is `path` inside the folder a sandboxed script may write to? */
-static bool may_write(struct host_state *h, const char *path)
+static bool inside(const char *real, const char *root)
 {
-    if (!h->write_dir[0])
-        return false;
-    char dir[4096], real_dir[PATH_MAX], real_allowed[PATH_MAX];
-    path_dirname(path, dir, sizeof dir);
-    if (!realpath(dir, real_dir) || !realpath(h->write_dir, real_allowed))
-        return false;
-    size_t n = strlen(real_allowed);
-    return strncmp(real_dir, real_allowed, n) == 0 && (real_dir[n] == '\0' || real_dir[n] == '/');
+    size_t n = strlen(root);
+    if (n == 1 && root[0] == '/')
+        return true;
+    return strncmp(real, root, n) == 0 && (real[n] == '\0' || real[n] == '/');
 }
 
-/* io.open that reads anywhere and writes only inside the output folder. */
+/* The real path of `path`, or of its folder (plus the last component) when
+ * the file does not exist yet. */
+static bool real_path_of(const char *path, char *out, bool *exists)
+{
+    if (realpath(path, out)) {
+        *exists = true;
+        return true;
+    }
+    *exists = false;
+    char dir[4096], real_dir[PATH_MAX];
+    path_dirname(path, dir, sizeof dir);
+    if (!realpath(dir, real_dir))
+        return false;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    return snprintf(out, PATH_MAX, "%s/%s", real_dir, base) < PATH_MAX;
+}
+
+bool lua_host_check_read(lua_State *L, const char *path, struct error *err)
+{
+    struct host_state *h = host_of(L);
+    if (!h || h->options.trusted)
+        return true;
+    char real[PATH_MAX];
+    bool exists;
+    if (!real_path_of(path, real, &exists))
+        return true; /* the folder does not exist: the reader says "no such file" */
+    for (int i = 0; i < h->read_root_count; i++)
+        if (inside(real, h->read_roots[i]))
+            return true;
+    return error_set(err, "%s: a sandboxed scene script may read only its own folder, the project's lua/, shaders/ "
+                          "and scenes/, and the output folder (add --allow-read DIR, or run with --trusted)", path);
+}
+
+bool lua_host_check_write(lua_State *L, const char *path, struct error *err)
+{
+    struct host_state *h = host_of(L);
+    if (!h || h->options.trusted)
+        return true;
+    if (!h->write_dir[0])
+        return error_set(err, "%s: a sandboxed scene script may not write files here (render writes only its -o "
+                              "image; give --allow-write DIR, or run with --trusted)", path);
+    char dir[4096], real_dir[PATH_MAX], real_allowed[PATH_MAX];
+    path_dirname(path, dir, sizeof dir);
+    if (!realpath(dir, real_dir) || !realpath(h->write_dir, real_allowed) || !inside(real_dir, real_allowed))
+        return error_set(err, "%s: a sandboxed scene script may write only inside %s (run with --trusted to allow "
+                              "it)", path, h->write_dir);
+    /* The last component must not be a link out of the folder (or into it:
+     * the link may be changed between the check and the write). */
+    struct stat st;
+    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode))
+        return error_set(err, "%s: is a symbolic link; a sandboxed scene script does not write through links", path);
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    if (!base[0] || strcmp(base, ".") == 0 || strcmp(base, "..") == 0)
+        return error_set(err, "%s: not a file name", path);
+    return true;
+}
+
+static int raise_error(lua_State *L, const struct error *err)
+{
+    luaL_where(L, 1);
+    lua_pushstring(L, err->message);
+    lua_concat(L, 2);
+    return lua_error(L);
+}
+
+/* io.open with the sandbox's read and write rules. */
 static int sandbox_io_open(lua_State *L)
 {
     const char *path = luaL_checkstring(L, 1);
     const char *mode = luaL_optstring(L, 2, "r");
-    if (strpbrk(mode, "wa+") && !may_write(host_of(L), path))
-        return luaL_error(L, "io.open('%s', '%s'): a sandboxed scene script may write only inside the output folder "
-                             "(run with --trusted to allow it)", path, mode);
+    struct error err;
+    bool writes = strpbrk(mode, "wa+") != NULL;
+    if (writes ? !lua_host_check_write(L, path, &err) : !lua_host_check_read(L, path, &err))
+        return raise_error(L, &err);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* io.lines(file) and io.input(file) read: the read rule. */
+static int sandbox_io_read_file(lua_State *L)
+{
+    if (lua_type(L, 1) == LUA_TSTRING) {
+        struct error err;
+        if (!lua_host_check_read(L, lua_tostring(L, 1), &err))
+            return raise_error(L, &err);
+    }
     lua_pushvalue(L, lua_upvalueindex(1));
     lua_insert(L, 1);
     lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
@@ -206,6 +322,11 @@ static int sandbox_load(lua_State *L)
 
 static int sandbox_loadfile(lua_State *L)
 {
+    if (lua_type(L, 1) != LUA_TSTRING)
+        return luaL_error(L, "loadfile needs a file name in a sandboxed scene script (no standard input)");
+    struct error err;
+    if (!lua_host_check_read(L, lua_tostring(L, 1), &err))
+        return raise_error(L, &err);
     lua_settop(L, 3);
     lua_pushstring(L, "t");
     lua_replace(L, 2);
@@ -213,6 +334,60 @@ static int sandbox_loadfile(lua_State *L)
     lua_insert(L, 1);
     lua_call(L, 3, LUA_MULTRET);
     return lua_gettop(L);
+}
+
+/* require's searcher for Lua files, text chunks only and under the read rule
+ * (the standard one loads binary chunks: string.dump output written to a
+ * file and required ran, and a patched one crashed the process). */
+static int sandbox_lua_searcher(lua_State *L)
+{
+    const char *name = luaL_checkstring(L, 1);
+    lua_getglobal(L, "package");
+    lua_getfield(L, -1, "path");
+    const char *path = lua_tostring(L, -1);
+    if (!path)
+        return luaL_error(L, "'package.path' must be a string");
+    const char *file = luaL_gsub(L, name, ".", "/");
+    luaL_Buffer tried;
+    luaL_buffinit(L, &tried);
+    char candidate[4096];
+    for (const char *p = path; *p;) {
+        const char *semi = strchr(p, ';');
+        size_t n = semi ? (size_t)(semi - p) : strlen(p);
+        if (n > 0 && n < 1024) {
+            char tmpl[1024];
+            memcpy(tmpl, p, n);
+            tmpl[n] = '\0';
+            size_t used = 0;
+            candidate[0] = '\0';
+            for (const char *t = tmpl; *t && used + strlen(file) + 1 < sizeof candidate; t++) {
+                if (*t == '?')
+                    used += (size_t)snprintf(candidate + used, sizeof candidate - used, "%s", file);
+                else
+                    candidate[used++] = *t, candidate[used] = '\0';
+            }
+            FILE *f = fopen(candidate, "r");
+            if (f) {
+                fclose(f);
+                struct error err;
+                if (!lua_host_check_read(L, candidate, &err))
+                    return raise_error(L, &err);
+                if (luaL_loadfilex(L, candidate, "t") != LUA_OK)
+                    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, candidate,
+                                      lua_tostring(L, -1));
+                lua_pushstring(L, candidate);
+                return 2;
+            }
+            luaL_addstring(&tried, "\n\tno file '");
+            luaL_addstring(&tried, candidate);
+            luaL_addstring(&tried, "'");
+        }
+        p += n;
+        if (*p == ';')
+            p++;
+    }
+    luaL_pushresult(&tried);
+    return 1;
 }
 
 static void wrap_global(lua_State *L, const char *lib, const char *name, lua_CFunction wrapper)
@@ -237,20 +412,27 @@ static void apply_sandbox(lua_State *L)
     deny(L, "os", "remove");
     deny(L, "os", "rename");
     deny(L, "os", "tmpname");
+    deny(L, "os", "getenv");
+    deny(L, "os", "setlocale");
     deny(L, "io", "popen");
     deny(L, "io", "output");
     deny(L, "io", "tmpfile");
     deny(L, "package", "loadlib");
     wrap_global(L, "io", "open", sandbox_io_open);
+    wrap_global(L, "io", "lines", sandbox_io_read_file);
+    wrap_global(L, "io", "input", sandbox_io_read_file);
     wrap_global(L, NULL, "load", sandbox_load);
     wrap_global(L, NULL, "loadfile", sandbox_loadfile);
     /* dofile through the wrapped loadfile. */
     luaL_dostring(L, "local loadfile = loadfile; dofile = function(f) local fn = assert(loadfile(f)); return fn() end");
-    /* No C modules, and no debug library (it reaches past every wrapper). */
+    /* No C modules, Lua modules as text only, and no debug library (it
+     * reaches past every wrapper and every protected metatable). */
     lua_getglobal(L, "package");
     lua_pushstring(L, "");
     lua_setfield(L, -2, "cpath");
     lua_getfield(L, -1, "searchers");
+    lua_pushcfunction(L, sandbox_lua_searcher);
+    lua_rawseti(L, -2, 2);
     lua_pushnil(L);
     lua_rawseti(L, -2, 4);
     lua_pushnil(L);
@@ -259,18 +441,50 @@ static void apply_sandbox(lua_State *L)
     luaL_dostring(L, "local tb = debug.traceback; debug = { traceback = tb }; package.loaded.debug = debug");
 }
 
+/* The time limit: a count hook looks at the clock every 10,000 VM
+ * instructions. The error it raises can be caught by a pcall in the script,
+ * so once the deadline has passed it fires every 100 instructions until the
+ * error reaches the top. */
+static void timeout_hook(lua_State *L, lua_Debug *ar)
+{
+    struct host_state *h = host_of(L);
+    if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
+        return;
+    lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 100);
+    lua_getinfo(L, "Sl", ar);
+    if (ar->currentline > 0)
+        lua_pushfstring(L, "%s:%d: ", ar->short_src, ar->currentline);
+    else
+        lua_pushstring(L, "");
+    char msg[160];
+    snprintf(msg, sizeof msg, "script ran longer than %g s (raise --script-timeout, 0 = no limit)",
+             h->options.timeout);
+    lua_pushstring(L, msg);
+    lua_concat(L, 2);
+    lua_error(L);
+}
+
 /* ---- state ----------------------------------------------------------- */
 
-static int host_state_gc(lua_State *L)
+static void add_read_root(struct host_state *h, const char *dir)
 {
-    (void)L;
-    return 0;
+    if (!dir || !dir[0] || h->read_root_count >= (int)(sizeof h->read_roots / sizeof h->read_roots[0]))
+        return;
+    if (realpath(dir, h->read_roots[h->read_root_count]))
+        h->read_root_count++;
 }
 
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err)
 {
-    lua_State *L = luaL_newstate();
+    struct host_memory *mem = calloc(1, sizeof *mem);
+    if (!mem) {
+        error_set(err, "cannot create a Lua state (out of memory)");
+        return NULL;
+    }
+    mem->limit = options->memory_limit > 0 ? (size_t)options->memory_limit : 0;
+    lua_State *L = lua_newstate(host_alloc, mem);
     if (!L) {
+        free(mem);
         error_set(err, "cannot create a Lua state (out of memory)");
         return NULL;
     }
@@ -292,11 +506,17 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
     snprintf(h->filter, sizeof h->filter, "%s", options->filter ? options->filter : "");
     h->options.filter = options->filter ? h->filter : NULL;
     h->options.params = &h->params;
-    lua_newtable(L);
-    lua_pushcfunction(L, host_state_gc);
-    lua_setfield(L, -2, "__gc");
-    lua_setmetatable(L, -2);
+    h->options.write_dir = options->write_dir ? h->write_dir : NULL;
+    h->options.read_dirs = NULL;
+    h->options.read_dir_count = 0;
+    add_read_root(h, h->script_dir);
+    add_read_root(h, h->root);
+    add_read_root(h, h->write_dir);
+    for (int i = 0; i < options->read_dir_count; i++)
+        add_read_root(h, options->read_dirs[i]);
     lua_setfield(L, LUA_REGISTRYINDEX, HOST_KEY);
+    if (options->timeout > 0)
+        lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
 
     /* Modules: the C ones preloaded, the Lua ones from <root>/lua. */
     lua_getglobal(L, "package");
@@ -319,8 +539,12 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
 
 void lua_host_destroy(lua_State *L)
 {
-    if (L)
-        lua_close(L);
+    if (!L)
+        return;
+    void *mem;
+    lua_getallocf(L, &mem);
+    lua_close(L);
+    free(mem);
 }
 
 const struct lua_host_options *lua_host_options_of(lua_State *L)
@@ -389,11 +613,32 @@ static void format_error(const char *raw, const char *context, struct error *err
 
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err)
 {
+    struct host_state *h = host_of(L);
+    /* The time limit counts from the outermost call into the script. */
+    if (h && h->call_depth++ == 0 && h->options.timeout > 0) {
+        h->deadline = now_seconds() + h->options.timeout;
+        lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
+    }
     int base = lua_gettop(L) - nargs;
     lua_pushcfunction(L, message_handler);
     lua_insert(L, base);
     int rc = lua_pcall(L, nargs, nresults, base);
     lua_remove(L, base);
+    if (h && --h->call_depth == 0)
+        h->deadline = 0;
+    if (rc == LUA_ERRMEM) {
+        void *ud;
+        lua_getallocf(L, &ud);
+        const struct host_memory *mem = ud;
+        lua_pop(L, 1);
+        lua_gc(L, LUA_GCCOLLECT);
+        if (!mem->limit)
+            return error_set(err, "%s: out of memory%s%s", h ? h->script : "script", context ? " " : "",
+                             context ? context : "");
+        return error_set(err, "%s: the script used more than %.0f MB of memory (raise --script-memory MB, 0 = no "
+                              "limit)%s%s", h ? h->script : "script", (double)mem->limit / (1024.0 * 1024.0),
+                         context ? " " : "", context ? context : "");
+    }
     if (rc != LUA_OK) {
         format_error(lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)", context, err);
         lua_pop(L, 1);

@@ -35,6 +35,10 @@ struct lua_host_options {
     struct app *app;         /* for rendering from scripts (tests) */
     bool update_refs;        /* caustica test --update-refs */
     const char *filter;      /* caustica test --filter */
+    double timeout;          /* seconds one call into the script may run (0: no limit) */
+    double memory_limit;     /* bytes of Lua heap (0: no limit) */
+    const char *const *read_dirs; /* more folders a sandboxed script may read (--allow-read) */
+    int read_dir_count;
 };
 
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
@@ -43,6 +47,14 @@ void lua_host_destroy(lua_State *L);
 bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct error *err);
 /* Calls the function at the top of the stack with `nargs` arguments below it. */
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err);
+/* The sandbox's file rules (README, security). Reading: the script's own
+ * folder and below, the project folder (lua/, shaders/, scenes/ assets), the
+ * output folder and --allow-read folders. Writing: only inside the output
+ * folder the verb allows (none for `render`, the frames folder for `record`)
+ * or --allow-write, never through a symbolic link. Both always succeed with
+ * --trusted. False with a message naming the path and what to do. */
+bool lua_host_check_read(lua_State *L, const char *path, struct error *err);
+bool lua_host_check_write(lua_State *L, const char *path, struct error *err);
 /* `rel` against the running script's folder (absolute paths unchanged). */
 void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen);
 struct app *lua_host_app(lua_State *L);

@@ -1,0 +1,52 @@
+/* libFuzzer harness for the scene-script path (issue 9): the bytes are a
+ * scene script, run sandboxed (1 s per call, 256 MB) to its first frame at
+ * 16x16 on OSMesa. Any outcome but a sanitizer report or a crash is fine:
+ * a clean error is the expected result for most inputs. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app/app.h"
+#include "app/session.h"
+
+static char dir[256];
+static struct app app;
+
+int LLVMFuzzerInitialize(int *argc, char ***argv)
+{
+    (void)argc;
+    (void)argv;
+    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-script.%ld", (long)getpid());
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "mkdir -p %s/out", dir);
+    if (system(cmd) != 0)
+        return 1;
+    app_init(&app);
+    app.backend = GL_BACKEND_OSMESA;
+    app.script_timeout = 1.0;
+    app.script_memory = 256.0 * 1024 * 1024;
+    return 0;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    char path[320], out[320];
+    snprintf(path, sizeof path, "%s/scene.lua", dir);
+    snprintf(out, sizeof out, "%s/out", dir);
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return 0;
+    fwrite(data, 1, size, f);
+    fclose(f);
+    struct session_options o = {.script = path, .width = 16, .height = 16, .write_dir = out};
+    struct session *s;
+    struct error err;
+    if (!session_open(&app, &o, &s, &err))
+        return 0;
+    (void)session_render(s, 0, &err);
+    session_close(s);
+    return 0;
+}
