@@ -20,9 +20,11 @@ static void release_resources(struct graph *g)
 void graph_release(struct graph *g)
 {
     release_resources(g);
-    for (int i = 0; i < g->count; i++)
+    for (int i = 0; i < g->count; i++) {
         if (g->entries[i].queries[0] && gl_api_ready())
             gl.DeleteQueries(2, g->entries[i].queries);
+        pass_destroy(g->entries[i].pass);
+    }
     free(g->entries);
     g->entries = NULL;
     g->count = g->capacity = 0;
@@ -31,6 +33,8 @@ void graph_release(struct graph *g)
 
 bool graph_add(struct graph *g, const char *name, struct pass *pass, struct error *err)
 {
+    if (g->executing)
+        return error_set(err, "the graph is rendering a frame: add passes before rendering, not from a pass's run");
     if (!name[0] || strchr(name, '.') || strlen(name) >= PASS_NAME_MAX)
         return error_set(err, "pass name '%s' must be non-empty, shorter than %d characters and without '.'", name,
                          PASS_NAME_MAX);
@@ -52,6 +56,7 @@ bool graph_add(struct graph *g, const char *name, struct pass *pass, struct erro
     struct graph_entry *e = &g->entries[g->count++];
     memset(e, 0, sizeof *e);
     e->pass = pass;
+    pass_retain(pass);
     snprintf(pass->name, sizeof pass->name, "%s", name);
     g->compiled = false;
     return true;
@@ -59,6 +64,8 @@ bool graph_add(struct graph *g, const char *name, struct pass *pass, struct erro
 
 bool graph_set_output(struct graph *g, const char *name, struct error *err)
 {
+    if (g->executing)
+        return error_set(err, "the graph is rendering a frame: set its output before rendering, not from a pass's run");
     if (!strchr(name, '.'))
         return error_set(err, "graph output '%s' must name a pass output as 'pass.output'", name);
     snprintf(g->output, sizeof g->output, "%s", name);
@@ -220,8 +227,24 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
     return gl_check("graph compile", err);
 }
 
+static bool execute_passes(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
+                           struct error *err);
+
+/* The graph is frozen while it executes: a custom pass's run may not add
+ * passes or release the graph under the loop (graph_add refuses). */
 bool graph_execute(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
                    struct error *err)
+{
+    if (g->executing)
+        return error_set(err, "the graph is already rendering a frame");
+    g->executing = true;
+    bool ok = execute_passes(g, r, scene, frame, time, err);
+    g->executing = false;
+    return ok;
+}
+
+static bool execute_passes(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
+                           struct error *err)
 {
     for (int i = 0; i < g->count; i++) {
         struct graph_entry *e = &g->entries[i];

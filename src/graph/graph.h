@@ -32,6 +32,7 @@ struct graph {
     struct graph_entry *entries;
     int count, capacity;
     char output[RESOURCE_NAME_MAX];
+    bool executing;       /* inside graph_execute: frozen */
     /* compiled */
     bool compiled;
     struct graph_resource *resources; /* owned, with their textures */
@@ -41,7 +42,8 @@ struct graph {
 };
 
 void graph_init(struct graph *g);
-/* Releases textures and queries; the passes belong to the caller. */
+/* Releases textures, queries and the graph's references to its passes;
+ * leaves it empty (safe to call twice). */
 void graph_release(struct graph *g);
 bool graph_add(struct graph *g, const char *name, struct pass *pass, struct error *err);
 bool graph_set_output(struct graph *g, const char *name, struct error *err);

@@ -1,4 +1,5 @@
 #include "graph/pass.h"
+#include "scene/scene.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +10,7 @@ struct pass *pass_create(const struct pass_desc *desc)
     struct pass *p = calloc(1, sizeof *p);
     if (!p)
         return NULL;
+    p->references = 1;
     p->desc = desc;
     p->values = calloc((size_t)(desc->param_count > 0 ? desc->param_count : 1), sizeof *p->values);
     if (!p->values) {
@@ -23,9 +25,29 @@ struct pass *pass_create(const struct pass_desc *desc)
     return p;
 }
 
+void pass_retain(struct pass *p)
+{
+    if (p)
+        p->references++;
+}
+
+void pass_set_light(struct pass *p, int param, struct light *light)
+{
+    light_retain(light);
+    light_destroy(p->values[param].light);
+    p->values[param].light = light;
+}
+
+void pass_set_object(struct pass *p, int param, struct object *object)
+{
+    object_retain(object);
+    object_destroy(p->values[param].object);
+    p->values[param].object = object;
+}
+
 void pass_destroy(struct pass *p)
 {
-    if (!p)
+    if (!p || --p->references > 0)
         return;
     if (p->created && p->desc->destroy)
         p->desc->destroy(p);
@@ -40,6 +62,8 @@ void pass_destroy(struct pass *p)
         free(p->values[i].keys);
         free(p->values[i].vectors);
         free(p->values[i].vector_sizes);
+        light_destroy(p->values[i].light);
+        object_destroy(p->values[i].object);
     }
     free(p->values);
     free(p);

@@ -123,6 +123,7 @@ struct pass_desc {
 };
 
 struct pass {
+    int references;            /* the Lua userdata's, and the graph's while it holds the pass */
     const struct pass_desc *desc;
     char name[PASS_NAME_MAX];  /* the name given to g:add */
     char origin[600];          /* "script.lua:12", where the script made it */
@@ -136,9 +137,15 @@ struct pass {
     void *lua;                 /* lua_State* for passes that call back into the script */
 };
 
-/* Creation and release of instances (values filled by the Lua binding). */
+/* Creation and release of instances (values filled by the Lua binding).
+ * A light or object value holds a reference to it: set them with
+ * pass_set_light / pass_set_object. */
 struct pass *pass_create(const struct pass_desc *desc);
+void pass_retain(struct pass *p);
+/* Drops one reference; the last one destroys the pass's state and values. */
 void pass_destroy(struct pass *p);
+void pass_set_light(struct pass *p, int param, struct light *light);
+void pass_set_object(struct pass *p, int param, struct object *object);
 
 /* Typed access to parameter values, by name (the descriptor must have it). */
 double pass_number(const struct pass *p, const char *name);

@@ -184,14 +184,14 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
         }
         break;
     case PASS_PARAM_LIGHT:
-        v->light = llight_test(L, idx);
-        if (!v->light)
+        if (!llight_test(L, idx))
             lutil_field_error(L, fn, d->name, "light", idx);
+        pass_set_light(p, i, llight_test(L, idx));
         break;
     case PASS_PARAM_OBJECT:
-        v->object = lobject_test(L, idx);
-        if (!v->object)
+        if (!lobject_test(L, idx))
             lutil_field_error(L, fn, d->name, "object", idx);
+        pass_set_object(p, i, lobject_test(L, idx));
         break;
     case PASS_PARAM_INPUT_LIST:
         if (t == LUA_TSTRING) {
@@ -294,7 +294,8 @@ static int pass_gc(lua_State *L)
 {
     struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
     if (u->pass) {
-        for (int i = 0; i < u->pass->desc->param_count; i++)
+        /* The functions stay with a pass that a graph still holds. */
+        for (int i = 0; u->pass->references == 1 && i < u->pass->desc->param_count; i++)
             if (u->pass->values[i].lua_ref >= 0)
                 luaL_unref(L, LUA_REGISTRYINDEX, u->pass->values[i].lua_ref);
         pass_destroy(u->pass);
@@ -303,9 +304,17 @@ static int pass_gc(lua_State *L)
     return 0;
 }
 
+static struct l_pass *check_pass(lua_State *L, int idx)
+{
+    struct l_pass *u = luaL_checkudata(L, idx, PASS_MT);
+    if (!u->pass)
+        luaL_argerror(L, idx, "this pass was already released");
+    return u;
+}
+
 static int pass_index(lua_State *L)
 {
-    struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
+    struct l_pass *u = check_pass(L, 1);
     const char *k = luaL_checkstring(L, 2);
     if (strcmp(k, "kind") == 0)
         lua_pushstring(L, u->pass->desc->name);
@@ -324,7 +333,7 @@ static int pass_index(lua_State *L)
 
 static int pass_tostring(lua_State *L)
 {
-    struct l_pass *u = luaL_checkudata(L, 1, PASS_MT);
+    struct l_pass *u = check_pass(L, 1);
     lua_pushfstring(L, "Pass(%s '%s')", u->pass->desc->name, u->pass->name);
     return 1;
 }
@@ -350,7 +359,10 @@ static int graph_new(lua_State *L)
 
 static int graph_gc(lua_State *L)
 {
-    graph_release(check_graph(L, 1));
+    struct graph *g = check_graph(L, 1);
+    if (g->executing)
+        return luaL_error(L, "the graph is rendering a frame and cannot be released");
+    graph_release(g);
     return 0;
 }
 
@@ -359,7 +371,7 @@ static int graph_add_l(lua_State *L)
     struct graph *g = check_graph(L, 1);
     const char *name = luaL_checkstring(L, 2);
     struct l_pass *p = luaL_testudata(L, 3, PASS_MT);
-    if (!p)
+    if (!p || !p->pass)
         return luaL_argerror(L, 3, lua_pushfstring(L, "pass (c.pass.<kind>{...}) expected, got %s", luaL_typename(L, 3)));
     struct error err;
     if (!graph_add(g, name, p->pass, &err))
@@ -458,11 +470,16 @@ int luaopen_caustica_graph(lua_State *L)
                                          {NULL, NULL}};
     static const luaL_Reg graph_meta[] = {{"__gc", graph_gc}, {"__index", graph_index}, {"__tostring", graph_tostring},
                                           {NULL, NULL}};
+    /* Protected (__metatable): a script cannot reach __gc. */
     luaL_newmetatable(L, PASS_MT);
     luaL_setfuncs(L, pass_meta, 0);
+    lua_pushstring(L, PASS_MT);
+    lua_setfield(L, -2, "__metatable");
     lua_pop(L, 1);
     luaL_newmetatable(L, GRAPH_MT);
     luaL_setfuncs(L, graph_meta, 0);
+    lua_pushstring(L, GRAPH_MT);
+    lua_setfield(L, -2, "__metatable");
     lua_pop(L, 1);
     lua_newtable(L);
     lua_pushcfunction(L, graph_new);

@@ -198,6 +198,8 @@ int luaopen_caustica_image(lua_State *L)
                                     {NULL, NULL}};
     luaL_newmetatable(L, IMAGE_MT);
     luaL_setfuncs(L, meta, 0);
+    lua_pushstring(L, IMAGE_MT); /* protected: a script cannot reach __gc */
+    lua_setfield(L, -2, "__metatable");
     lua_pop(L, 1);
     static const luaL_Reg funcs[] = {{"load", image_load_l}, {"new", image_new_l}, {"compare", image_compare_l},
                                      {"render", limage_render}, {"reference", limage_reference}, {NULL, NULL}};

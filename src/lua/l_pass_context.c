@@ -169,6 +169,8 @@ bool lua_host_run_custom_pass(struct pass *p, struct pass_frame *f, struct error
     if (luaL_newmetatable(L, CONTEXT_MT)) {
         lua_pushcfunction(L, context_index);
         lua_setfield(L, -2, "__index");
+        lua_pushstring(L, CONTEXT_MT);
+        lua_setfield(L, -2, "__metatable");
     }
     lua_pop(L, 1);
     lua_rawgeti(L, LUA_REGISTRYINDEX, run->lua_ref);

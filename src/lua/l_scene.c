@@ -130,6 +130,22 @@ static int mesh_torus(lua_State *L)
     return push_mesh(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
 }
 
+/* A userdata whose __gc already ran (the script cannot reach __gc through
+ * the protected metatables; a trusted one can through debug): an error,
+ * never a NULL dereference. */
+static int released(lua_State *L, int idx, const char *what)
+{
+    return luaL_argerror(L, idx, lua_pushfstring(L, "this %s was already released", what));
+}
+
+static struct mesh *check_mesh(lua_State *L, int idx)
+{
+    struct l_mesh *u = luaL_checkudata(L, idx, MESH_MT);
+    if (!u->mesh)
+        released(L, idx, "mesh");
+    return u->mesh;
+}
+
 static int mesh_gc(lua_State *L)
 {
     struct l_mesh *u = luaL_checkudata(L, 1, MESH_MT);
@@ -141,6 +157,7 @@ static int mesh_gc(lua_State *L)
 static int mesh_index(lua_State *L)
 {
     struct l_mesh *u = luaL_checkudata(L, 1, MESH_MT);
+    check_mesh(L, 1);
     const char *k = luaL_checkstring(L, 2);
     if (strcmp(k, "vertex_count") == 0)
         lua_pushinteger(L, (lua_Integer)u->mesh->vertex_count);
@@ -164,6 +181,7 @@ static int mesh_index(lua_State *L)
 static int mesh_tostring(lua_State *L)
 {
     struct l_mesh *u = luaL_checkudata(L, 1, MESH_MT);
+    check_mesh(L, 1);
     lua_pushfstring(L, "Mesh(%s, %d triangles)", u->mesh->name, (int)(u->mesh->index_count / 3));
     return 1;
 }
@@ -278,7 +296,10 @@ static int deform_glsl(lua_State *L)
 
 static struct object *check_object(lua_State *L, int idx)
 {
-    return ((struct l_object *)luaL_checkudata(L, idx, OBJECT_MT))->obj;
+    struct object *o = ((struct l_object *)luaL_checkudata(L, idx, OBJECT_MT))->obj;
+    if (!o)
+        released(L, idx, "object");
+    return o;
 }
 
 static void set_morph_weights(lua_State *L, struct object *o, int idx)
@@ -368,7 +389,7 @@ static int object_new(lua_State *L)
     lutil_check_fields(L, 1, "object", fields);
     lua_getfield(L, 1, "mesh");
     struct l_mesh *mu = luaL_testudata(L, -1, MESH_MT);
-    if (!mu)
+    if (!mu || !mu->mesh)
         return lutil_field_error(L, "object", "mesh", "mesh (c.mesh.*)", -1);
     int mesh_idx = lua_gettop(L);
     struct l_object *u = lua_newuserdatauv(L, sizeof *u, 1);
@@ -438,10 +459,12 @@ static int water_new(lua_State *L)
     lua_setiuservalue(L, -2, 1);
     struct object *o = u->obj;
     o->water = calloc(1, sizeof *o->water);
-    if (!o->water || !water_create(o->water, resolution, size, depth, speed, damping, fixed, &err)) {
+    if (!o->water)
+        return luaL_error(L, "water: out of memory");
+    if (!water_create(o->water, resolution, size, depth, speed, damping, fixed, &err)) {
         free(o->water);
         o->water = NULL;
-        return luaL_error(L, "%s", o->water ? err.message : "out of memory");
+        return luaL_error(L, "water: %s", err.message);
     }
     o->material.kind = MATERIAL_WATER;
     o->material.ior = ior;
@@ -592,7 +615,10 @@ static int object_tostring(lua_State *L)
 
 static struct light *check_light(lua_State *L, int idx)
 {
-    return ((struct l_light *)luaL_checkudata(L, idx, LIGHT_MT))->light;
+    struct light *l = ((struct l_light *)luaL_checkudata(L, idx, LIGHT_MT))->light;
+    if (!l)
+        released(L, idx, "light");
+    return l;
 }
 
 static void light_set(lua_State *L, struct light *l, const char *k, int v)
@@ -916,6 +942,8 @@ static int medium_new(lua_State *L)
 static int medium_density_at(lua_State *L)
 {
     struct l_medium *u = luaL_checkudata(L, 1, MEDIUM_MT);
+    if (!u->medium)
+        return released(L, 1, "medium");
     vec3 p = lutil_check_vec3(L, 2, "density_at", "point");
     lua_pushnumber(L, medium_density(u->medium, p));
     return 1;
@@ -932,6 +960,8 @@ static int medium_gc(lua_State *L)
 static int medium_index(lua_State *L)
 {
     struct l_medium *u = luaL_checkudata(L, 1, MEDIUM_MT);
+    if (!u->medium)
+        return released(L, 1, "medium");
     const char *k = luaL_checkstring(L, 2);
     if (strcmp(k, "sigma_s") == 0)
         lutil_push_vec3(L, u->medium->sigma_s);
@@ -968,23 +998,23 @@ static void scene_set(lua_State *L, int scene_idx, struct scene *s, const char *
         s->ambient = lutil_check_vec3(L, v, "scene", k);
     } else if (strcmp(k, "environment") == 0) {
         if (lua_isnil(L, v)) {
-            s->environment = NULL;
+            scene_set_environment(s, NULL);
         } else {
             struct l_environment *e = luaL_testudata(L, v, ENVIRONMENT_MT);
-            if (!e)
+            if (!e || !e->env)
                 lutil_field_error(L, "scene", k, "environment (c.cubemap \"folder\")", v);
-            s->environment = e->env;
+            scene_set_environment(s, e->env);
         }
         lua_pushvalue(L, v);
         lua_setiuservalue(L, scene_idx, 2); /* keep it alive */
     } else if (strcmp(k, "medium") == 0) {
         if (lua_isnil(L, v)) {
-            s->medium = NULL;
+            scene_set_medium(s, NULL);
         } else {
             struct l_medium *m = luaL_testudata(L, v, MEDIUM_MT);
-            if (!m)
+            if (!m || !m->medium)
                 lutil_field_error(L, "scene", k, "medium (c.medium{...})", v);
-            s->medium = m->medium;
+            scene_set_medium(s, m->medium);
         }
         /* keep it alive in the members table */
         lua_getiuservalue(L, scene_idx, 1);
@@ -1055,14 +1085,7 @@ static int scene_remove(lua_State *L)
     if (luaL_testudata(L, 2, OBJECT_MT)) {
         scene_object_remove(s, check_object(L, 2));
     } else {
-        struct light *l = check_light(L, 2);
-        for (int i = 0; i < s->light_count; i++)
-            if (s->lights[i] == l) {
-                memmove(s->lights + i, s->lights + i + 1, (size_t)(s->light_count - i - 1) * sizeof *s->lights);
-                s->light_count--;
-                s->version++;
-                break;
-            }
+        scene_light_remove(s, check_light(L, 2));
     }
     lua_getiuservalue(L, 1, 1);
     lua_pushvalue(L, 2);
@@ -1136,11 +1159,10 @@ static int quat_mul_l(lua_State *L)
 }
 
 struct scene *lscene_check(lua_State *L, int idx) { return check_scene(L, idx); }
-struct light *llight_check(lua_State *L, int idx) { return check_light(L, idx); }
 struct object *lobject_test(lua_State *L, int idx)
 {
     struct l_object *u = luaL_testudata(L, idx, OBJECT_MT);
-    return u ? u->obj : NULL;
+    return u ? u->obj : NULL; /* NULL too when released */
 }
 
 struct light *llight_test(lua_State *L, int idx)
@@ -1149,10 +1171,14 @@ struct light *llight_test(lua_State *L, int idx)
     return u ? u->light : NULL;
 }
 
+/* Protected (__metatable): getmetatable(x) gives a string, so a script
+ * cannot reach __gc and free what the scene still uses. */
 static void new_metatable(lua_State *L, const char *name, const luaL_Reg *methods)
 {
     luaL_newmetatable(L, name);
     luaL_setfuncs(L, methods, 0);
+    lua_pushstring(L, name);
+    lua_setfield(L, -2, "__metatable");
     lua_pop(L, 1);
 }
 

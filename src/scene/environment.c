@@ -15,6 +15,8 @@ static const char *face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 struct environment *environment_load(const char *folder, struct error *err)
 {
     struct environment *env = calloc(1, sizeof *env);
+    if (env)
+        env->references = 1;
     if (!env) {
         error_set(err, "out of memory");
         return NULL;
@@ -118,8 +120,16 @@ vec3 environment_lookup(const struct environment *env, vec3 d)
     return out;
 }
 
+void environment_retain(struct environment *env)
+{
+    if (env)
+        env->references++;
+}
+
 void environment_destroy(struct environment *env)
 {
+    if (env && --env->references > 0)
+        return;
     if (!env)
         return;
     gl_texture_destroy(&env->texture);

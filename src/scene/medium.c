@@ -7,6 +7,8 @@
 struct medium *medium_create(void)
 {
     struct medium *m = calloc(1, sizeof *m);
+    if (m)
+        m->references = 1;
     if (!m)
         return NULL;
     m->sigma_s = vec3_make(0.1f, 0.1f, 0.1f);
@@ -18,8 +20,16 @@ struct medium *medium_create(void)
     return m;
 }
 
+void medium_retain(struct medium *m)
+{
+    if (m)
+        m->references++;
+}
+
 void medium_destroy(struct medium *m)
 {
+    if (m && --m->references > 0)
+        return;
     if (!m)
         return;
     free(m->grid);

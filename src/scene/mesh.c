@@ -11,6 +11,8 @@ struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *
                                      uint32_t *indices, size_t index_count, struct error *err)
 {
     struct mesh *m = calloc(1, sizeof *m);
+    if (m)
+        m->references = 1;
     if (!m || !positions || !normals || !indices) {
         free(m);
         free(positions);
@@ -207,6 +209,8 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
         return NULL;
     }
     struct mesh *m = calloc(1, sizeof *m);
+    if (m)
+        m->references = 1;
     if (!m) {
         gltf_mesh_free(&g);
         error_set(err, "%s: out of memory", path);
@@ -271,9 +275,15 @@ bool mesh_upload(struct mesh *m, struct error *err)
     return true;
 }
 
+void mesh_retain(struct mesh *m)
+{
+    if (m)
+        m->references++;
+}
+
 void mesh_destroy(struct mesh *m)
 {
-    if (!m)
+    if (!m || --m->references > 0)
         return;
     if (gl_api_ready()) {
         GLuint buffers[6] = {m->buffer_positions, m->buffer_normals, m->buffer_indices,

@@ -24,7 +24,9 @@ struct object *object_create(struct mesh *mesh)
     struct object *obj = calloc(1, sizeof *obj);
     if (!obj)
         return NULL;
+    obj->references = 1;
     obj->mesh = mesh;
+    mesh_retain(mesh);
     obj->material.kind = MATERIAL_DIFFUSE;
     obj->material.color = vec3_make(0.8f, 0.8f, 0.8f);
     obj->material.ior = 1.5f;
@@ -42,9 +44,15 @@ struct object *object_create(struct mesh *mesh)
     return obj;
 }
 
+void object_retain(struct object *obj)
+{
+    if (obj)
+        obj->references++;
+}
+
 void object_destroy(struct object *obj)
 {
-    if (!obj)
+    if (!obj || --obj->references > 0)
         return;
     if (gl_api_ready()) {
         GLuint buffers[2] = {obj->buffer_deformed_positions, obj->buffer_deformed_normals};
@@ -57,6 +65,7 @@ void object_destroy(struct object *obj)
         water_release(obj->water);
         free(obj->water);
     }
+    mesh_destroy(obj->mesh);
     free(obj);
 }
 
@@ -123,10 +132,21 @@ struct light *light_create(enum light_kind kind)
     l->samples = 8;
     l->cast_shadows = true;
     l->version = 1;
+    l->references = 1;
     return l;
 }
 
-void light_destroy(struct light *light) { free(light); }
+void light_retain(struct light *light)
+{
+    if (light)
+        light->references++;
+}
+
+void light_destroy(struct light *light)
+{
+    if (light && --light->references <= 0)
+        free(light);
+}
 
 const char *light_kind_name(enum light_kind kind)
 {
@@ -155,6 +175,13 @@ void scene_init(struct scene *scene)
 
 void scene_release(struct scene *scene)
 {
+    for (int i = 0; i < scene->object_count; i++)
+        object_destroy(scene->objects[i]);
+    for (int i = 0; i < scene->light_count; i++)
+        light_destroy(scene->lights[i]);
+    scene_set_environment(scene, NULL);
+    scene_set_medium(scene, NULL);
+    scene->object_capacity = scene->light_capacity = 0;
     free(scene->objects);
     free(scene->lights);
     scene->objects = NULL;
@@ -183,6 +210,7 @@ bool scene_object_add(struct scene *scene, struct object *obj, struct error *err
     if (!grow((void **)&scene->objects, &scene->object_capacity, scene->object_count, sizeof(struct object *), err))
         return false;
     obj->id = scene->next_object_id++;
+    object_retain(obj);
     scene->objects[scene->object_count++] = obj;
     scene->version++;
     return true;
@@ -195,6 +223,7 @@ bool scene_light_add(struct scene *scene, struct light *light, struct error *err
             return true;
     if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count, sizeof(struct light *), err))
         return false;
+    light_retain(light);
     scene->lights[scene->light_count++] = light;
     scene->version++;
     return true;
@@ -208,6 +237,7 @@ void scene_object_remove(struct scene *scene, struct object *obj)
                     (size_t)(scene->object_count - i - 1) * sizeof *scene->objects);
             scene->object_count--;
             scene->version++;
+            object_destroy(obj);
             return;
         }
 }
@@ -260,4 +290,30 @@ uint64_t scene_geometry_version(const struct scene *scene)
     for (int i = 0; i < scene->object_count; i++)
         v = v * 31u + scene->objects[i]->version;
     return v;
+}
+
+void scene_light_remove(struct scene *scene, struct light *light)
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i] == light) {
+            memmove(scene->lights + i, scene->lights + i + 1, (size_t)(scene->light_count - i - 1) * sizeof *scene->lights);
+            scene->light_count--;
+            scene->version++;
+            light_destroy(light);
+            return;
+        }
+}
+
+void scene_set_environment(struct scene *scene, struct environment *env)
+{
+    environment_retain(env);
+    environment_destroy(scene->environment);
+    scene->environment = env;
+}
+
+void scene_set_medium(struct scene *scene, struct medium *medium)
+{
+    medium_retain(medium);
+    medium_destroy(scene->medium);
+    scene->medium = medium;
 }

@@ -1,5 +1,9 @@
 /* The scene: meshes, objects, materials, lights, camera and environment.
- * Lua owns meshes, objects and lights (userdata); the scene borrows them.
+ * Meshes, objects, lights, environments and media are reference counted:
+ * the Lua userdata holds one reference, and whatever keeps a pointer
+ * (an object its mesh, the scene its members, a pass its light) holds
+ * another, so that no order of release, a script calling a __gc early
+ * included, frees one that is still in use.
  * Every live change bumps a version, which is how the graph knows what it
  * can reuse from the last frame. */
 #ifndef CAUSTICA_SCENE_H
@@ -27,6 +31,7 @@ struct material {
 };
 
 struct mesh {
+    int references;
     char name[512]; /* the file it came from, or the procedural kind */
     bool has_material;      /* the file gave one: objects use it unless the script picks another */
     struct material material;
@@ -58,6 +63,8 @@ void mesh_compute_bounds(struct mesh *mesh);
 bool mesh_upload(struct mesh *mesh, struct error *err);
 /* d_N per vertex (scene/thickness.c, Embree), and its GPU buffer. */
 bool mesh_compute_thickness(struct mesh *mesh, struct error *err);
+void mesh_retain(struct mesh *mesh);
+/* Drops one reference; the last one frees the mesh and its GL buffers. */
 void mesh_destroy(struct mesh *mesh);
 
 const char *material_kind_name(enum material_kind kind);
@@ -76,9 +83,10 @@ struct deformer {
 struct water;
 
 struct object {
+    int references;
     int id;
     struct water *water; /* owned: a simulated water surface drives this object's vertices */
-    struct mesh *mesh; /* borrowed (Lua keeps the mesh alive) */
+    struct mesh *mesh; /* a reference */
     struct material material;
     vec3 position, scale;
     quat rotation;
@@ -96,7 +104,10 @@ struct object {
     mat4 model;
 };
 
+/* One reference to the new object; it takes one to `mesh`. */
 struct object *object_create(struct mesh *mesh);
+void object_retain(struct object *obj);
+/* Drops one reference; the last one frees it (and its mesh reference). */
 void object_destroy(struct object *obj);
 /* Morphs or deforms this frame? */
 bool object_is_animated_geometry(const struct object *obj);
@@ -106,6 +117,7 @@ void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
 
 struct light {
+    int references;
     enum light_kind kind;
     vec3 position;  /* point, spot; start of a linear light */
     vec3 end;       /* linear: end of the segment */
@@ -119,6 +131,8 @@ struct light {
 };
 
 struct light *light_create(enum light_kind kind);
+void light_retain(struct light *light);
+/* Drops one reference; the last one frees it. */
 void light_destroy(struct light *light);
 const char *light_kind_name(enum light_kind kind);
 
@@ -129,6 +143,7 @@ struct camera {
 };
 
 struct environment {
+    int references;
     char path[512];
     int size;
     float *faces[6]; /* owned: linear RGB float, size*size*3 each, +X -X +Y -Y +Z -Z */
@@ -139,6 +154,8 @@ struct environment *environment_load(const char *folder, struct error *err);
 bool environment_upload(struct environment *env, struct error *err);
 /* Radiance the environment sends along `dir`. */
 vec3 environment_lookup(const struct environment *env, vec3 dir);
+void environment_retain(struct environment *env);
+/* Drops one reference; the last one frees it. */
 void environment_destroy(struct environment *env);
 
 /* A participating medium filling an axis-aligned box (outside dielectric
@@ -146,6 +163,7 @@ void environment_destroy(struct environment *env);
  * a Henyey-Greenstein phase function, and a density that is a constant or
  * a grid over the box (trilinear). */
 struct medium {
+    int references;
     vec3 sigma_s, sigma_a; /* per unit length at density 1 */
     float g;               /* Henyey-Greenstein asymmetry, -1 < g < 1 (0 = isotropic) */
     vec3 box_min, box_max;
@@ -157,29 +175,36 @@ struct medium {
 };
 
 struct medium *medium_create(void);
+void medium_retain(struct medium *m);
+/* Drops one reference; the last one frees it. */
 void medium_destroy(struct medium *m);
 /* Density at world point p (0 outside the box). */
 float medium_density(const struct medium *m, vec3 p);
 
 struct scene {
     struct camera camera;
-    struct medium *medium;     /* borrowed (Lua owns), may be NULL */
+    struct medium *medium;     /* a reference, may be NULL */
     vec3 background;           /* radiance of the background when there is no environment */
     vec3 ambient;              /* radiance of a uniform ambient sky, unoccluded */
-    struct environment *environment; /* borrowed (Lua owns), may be NULL */
-    struct object **objects;   /* borrowed */
+    struct environment *environment; /* a reference, may be NULL */
+    struct object **objects;   /* a reference each */
     int object_count, object_capacity;
-    struct light **lights;     /* borrowed */
+    struct light **lights;     /* a reference each */
     int light_count, light_capacity;
     uint64_t version;          /* bumped when objects/lights are added or removed */
     int next_object_id;
 };
 
 void scene_init(struct scene *scene);
+/* Drops the scene's references and leaves it empty (safe to call twice). */
 void scene_release(struct scene *scene);
 bool scene_object_add(struct scene *scene, struct object *obj, struct error *err);
 bool scene_light_add(struct scene *scene, struct light *light, struct error *err);
 void scene_object_remove(struct scene *scene, struct object *obj);
+void scene_light_remove(struct scene *scene, struct light *light);
+/* Replace the environment or medium (NULL for none), moving the references. */
+void scene_set_environment(struct scene *scene, struct environment *env);
+void scene_set_medium(struct scene *scene, struct medium *medium);
 /* Bounds of every visible object, after its transform (morphs included
  * conservatively). Returns false for an empty scene. */
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);

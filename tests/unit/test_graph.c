@@ -12,7 +12,7 @@ static struct pass *make(const char *kind, const char *param, const char *value,
     struct pass *p = pass_create(d);
     if (light) {
         int i = pass_param_index(d, "light");
-        p->values[i].light = light;
+        pass_set_light(p, i, light);
         p->values[i].set = true;
     }
     if (param) {
