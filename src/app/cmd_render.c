@@ -61,6 +61,9 @@ int cmd_render(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
+    char out_dir[4096];
+    path_dirname(out, out_dir, sizeof out_dir);
+    path_remove_stale_temporaries(out_dir);
     /* The script itself may write nowhere (--allow-write DIR aside): the
      * output image is written by caustica, not by the script. */
     struct session *s;
@@ -101,8 +104,13 @@ int cmd_record(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
+    /* An earlier record killed mid-write left its temporaries here. */
+    int stale = path_remove_stale_temporaries(cli->output);
+    if (stale)
+        log_info("removed %d stale temporary file%s of an earlier run from %s", stale, stale == 1 ? "" : "s",
+                 cli->output);
     struct session *s;
-    if (!open_session(app, cli, cli->output, &s))
+    if (!open_session(app, cli, app->allow_write ? app->allow_write : cli->output, &s))
         return EXIT_SCENE_ERROR;
     int from = cli->frames_set ? cli->frames_from : 0;
     int to = cli->frames_set ? cli->frames_to : s->frames - 1;

@@ -273,6 +273,20 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
     }
     if (!image_path_is_png(path))
         return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+    /* An 8-bit PNG cannot hold NaN (the conversion makes it 0), but a pass
+     * that produced some should not go unnoticed. */
+    struct image linear;
+    if (!session_read_linear(s, &linear, err))
+        return false;
+    long nonfinite = 0;
+    for (size_t i = 0; i < (size_t)linear.width * (size_t)linear.height; i++) {
+        const float *p = linear.rgba + i * 4;
+        nonfinite += !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]);
+    }
+    image_destroy(&linear);
+    if (nonfinite)
+        fprintf(stderr, "caustica: warning: %s: %ld pixel%s had NaN or Inf values, written as 0\n", path, nonfinite,
+                nonfinite == 1 ? "" : "s");
     uint8_t *bytes;
     if (!session_read_srgb(s, &bytes, err))
         return false;

@@ -1,7 +1,9 @@
 #define _POSIX_C_SOURCE 200809L
 #include "core/fileio.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <signal.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +16,12 @@ bool file_read_all(const char *path, char **data, size_t *size, struct error *er
     FILE *f = fopen(path, "rb");
     if (!f)
         return error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    /* A folder opens and "seeks" to a huge size: only regular files. */
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f);
+        return error_set(err, "%s: not a regular file%s", path, S_ISDIR(st.st_mode) ? " (it is a folder)" : "");
+    }
     if (fseek(f, 0, SEEK_END) != 0) {
         fclose(f);
         return error_set(err, "%s: cannot seek", path);
@@ -80,9 +88,41 @@ void path_join(const char *dir, const char *rel, char *out, size_t outlen)
         snprintf(out, outlen, "%s/%s", dir, rel);
 }
 
+/* ".<name>.caustica-tmp.<pid>" beside the file: hidden, and named so that
+ * path_remove_stale_temporaries can tell a dead writer's leftovers. */
 void path_temporary(const char *path, char *out, size_t outlen)
 {
-    snprintf(out, outlen, "%s.tmp.%ld", path, (long)getpid());
+    const char *slash = strrchr(path, '/');
+    int dir_len = slash ? (int)(slash - path + 1) : 0;
+    snprintf(out, outlen, "%.*s.%s" PATH_TEMPORARY_MARK "%ld", dir_len, path, path + dir_len, (long)getpid());
+}
+
+int path_remove_stale_temporaries(const char *dir)
+{
+    DIR *d = opendir(dir && dir[0] ? dir : ".");
+    if (!d)
+        return 0;
+    int removed = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        const char *mark = e->d_name[0] == '.' ? strstr(e->d_name, PATH_TEMPORARY_MARK) : NULL;
+        if (!mark)
+            continue;
+        char *end;
+        long pid = strtol(mark + strlen(PATH_TEMPORARY_MARK), &end, 10);
+        if (*end || pid <= 0)
+            continue;
+        /* A writer that still runs keeps its file (kill(pid, 0) succeeds
+         * or says EPERM); only a dead one's is stale. */
+        if (pid == (long)getpid() || kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue;
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir && dir[0] ? dir : ".", e->d_name);
+        if (unlink(path) == 0)
+            removed++;
+    }
+    closedir(d);
+    return removed;
 }
 
 bool path_check_writable_dir(const char *path, struct error *err)

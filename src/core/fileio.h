@@ -17,8 +17,13 @@ long long file_mtime_ns(const char *path);
 void path_dirname(const char *path, char *out, size_t outlen);
 /* `rel` resolved against directory `dir` unless it is absolute. */
 void path_join(const char *dir, const char *rel, char *out, size_t outlen);
-/* `path` + ".tmp.<pid>": where an atomic writer puts data before renaming. */
+/* Where an atomic writer puts data before renaming: ".<name>.caustica-tmp.<pid>"
+ * in the same folder. */
+#define PATH_TEMPORARY_MARK ".caustica-tmp."
 void path_temporary(const char *path, char *out, size_t outlen);
+/* Removes the temporaries of writers that no longer run (a record killed
+ * with SIGKILL) from `dir`; returns how many. */
+int path_remove_stale_temporaries(const char *dir);
 /* Checks that the folder that would hold `path` exists and is writable. */
 bool path_check_writable_dir(const char *path, struct error *err);
 /* Creates a directory (one level) when it does not exist. */

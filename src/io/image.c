@@ -10,6 +10,7 @@
 #include <png.h>
 
 #include "core/fileio.h"
+#include "core/log.h"
 
 bool image_create(struct image *img, int width, int height, struct error *err)
 {
@@ -77,6 +78,8 @@ bool image_path_is_pfm(const char *path)
 /* Writes through a temporary file and renames it into place. */
 static bool finish_atomic(FILE *f, const char *tmp, const char *path, bool ok, struct error *err)
 {
+    if (ok && fflush(f) != 0)
+        ok = error_set(err, "%s: write failed: %s", path, strerror(errno));
     if (fclose(f) != 0 && ok)
         ok = error_set(err, "%s: write failed: %s", path, strerror(errno));
     if (ok && rename(tmp, path) != 0)
@@ -84,6 +87,28 @@ static bool finish_atomic(FILE *f, const char *tmp, const char *path, bool ok, s
     if (!ok)
         remove(tmp);
     return ok;
+}
+
+/* libpng reports through these: the message goes into caustica's error
+ * (with errno's reason for a failed write: "No space left on device")
+ * instead of libpng printing "libpng error: Write Error" itself. */
+struct png_failure {
+    char message[256];
+    int saved_errno;
+};
+
+static void png_failed(png_structp png, png_const_charp message)
+{
+    struct png_failure *f = png_get_error_ptr(png);
+    f->saved_errno = errno;
+    snprintf(f->message, sizeof f->message, "%s", message);
+    png_longjmp(png, 1);
+}
+
+static void png_warned(png_structp png, png_const_charp message)
+{
+    (void)png;
+    (void)message;
 }
 
 bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err)
@@ -95,7 +120,9 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
     FILE *f = fopen(tmp, "wb");
     if (!f)
         return error_set(err, "%s: cannot write: %s", path, strerror(errno));
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    struct png_failure failure = {"", 0};
+    errno = 0;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, png_failed, png_warned);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
@@ -105,7 +132,11 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
     if (!rows || setjmp(png_jmpbuf(png))) {
         free(rows);
         png_destroy_write_struct(&png, &info);
-        return finish_atomic(f, tmp, path, error_set(err, "%s: PNG encoding failed", path), err);
+        if (failure.saved_errno)
+            error_set(err, "%s: write failed: %s", path, strerror(failure.saved_errno));
+        else
+            error_set(err, "%s: PNG encoding failed: %s", path, failure.message[0] ? failure.message : "out of memory");
+        return finish_atomic(f, tmp, path, false, err);
     }
     png_init_io(png, f);
     png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
@@ -181,15 +212,25 @@ bool image_write_pfm(const char *path, const struct image *img, struct error *er
     bool ok = fprintf(f, "PF\n%d %d\n-1.0\n", img->width, img->height) > 0;
     float *row = malloc((size_t)img->width * 3 * sizeof(float));
     ok = ok && row;
+    /* No file caustica writes holds NaN or Inf: such values are written as
+     * 0 and counted in a warning (a pass that makes them is a bug to find,
+     * not a reason to poison every comparison made with the file). */
+    long nonfinite = 0;
     for (int y = img->height - 1; ok && y >= 0; y--) {
-        for (int x = 0; x < img->width; x++)
+        for (int x = 0; x < img->width; x++) {
+            const float *p = img->rgba + ((size_t)y * (size_t)img->width + (size_t)x) * 4;
+            bool bad = !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]);
+            nonfinite += bad;
             for (int c = 0; c < 3; c++)
-                row[x * 3 + c] = img->rgba[((size_t)y * (size_t)img->width + (size_t)x) * 4 + (size_t)c];
+                row[x * 3 + c] = bad ? 0.0f : p[c];
+        }
         ok = fwrite(row, sizeof(float), (size_t)img->width * 3, f) == (size_t)img->width * 3;
     }
     free(row);
     if (!ok)
-        error_set(err, "%s: write failed", path);
+        error_set(err, "%s: write failed: %s", path, errno ? strerror(errno) : "out of memory");
+    else if (nonfinite)
+        log_warn("%s: %ld pixel%s had NaN or Inf values, written as 0", path, nonfinite, nonfinite == 1 ? "" : "s");
     return finish_atomic(f, tmp, path, ok, err);
 }
 

@@ -2,6 +2,7 @@
 /* caustica.graph: the render graph and the pass constructors. Every
  * descriptor in the registry becomes `c.pass.<name>`, checked here against
  * its parameter list, with no per-pass binding code. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -100,7 +101,7 @@ static void read_map(lua_State *L, int idx, struct pass_value *v, const struct p
         v->vector_sizes[at] = 0;
         if (d->type == PASS_PARAM_UNIFORM_MAP) {
             if (lua_isnumber(L, -1)) {
-                v->vectors[at][0] = (float)lua_tonumber(L, -1);
+                v->vectors[at][0] = lutil_check_number(L, -1, fn, d->name);
                 v->vector_sizes[at] = 1;
             } else if (lua_istable(L, -1)) {
                 int m = (int)lua_rawlen(L, -1);
@@ -108,7 +109,7 @@ static void read_map(lua_State *L, int idx, struct pass_value *v, const struct p
                     luaL_error(L, "bad argument '%s' to '%s' (uniform '%s': 1 to 4 numbers expected)", d->name, fn, key);
                 for (int i = 0; i < m; i++) {
                     lua_rawgeti(L, -1, i + 1);
-                    v->vectors[at][i] = (float)luaL_checknumber(L, -1);
+                    v->vectors[at][i] = lutil_check_number(L, -1, fn, d->name);
                     lua_pop(L, 1);
                 }
                 v->vector_sizes[at] = m;
@@ -141,11 +142,13 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
         if (t != LUA_TNUMBER)
             lutil_field_error(L, fn, d->name, "number", idx);
         v->number = lua_tonumber(L, idx);
+        if (!isfinite(v->number))
+            lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", d->name, fn, v->number);
         if (d->type == PASS_PARAM_INTEGER && !lua_isinteger(L, idx))
-            luaL_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, v->number);
+            lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, v->number);
         if (d->min < d->max && (v->number < d->min || v->number > d->max))
-            luaL_error(L, "bad argument '%s' to '%s' (%g is out of range %g..%g)", d->name, fn, v->number, d->min,
-                       d->max);
+            lutil_error(L, "bad argument '%s' to '%s' (%g is out of range %g..%g)", d->name, fn, v->number, d->min,
+                        d->max);
         break;
     case PASS_PARAM_BOOLEAN:
         if (t != LUA_TBOOLEAN)
@@ -225,9 +228,7 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
         read_map(L, idx, v, d, fn);
         break;
     case PASS_PARAM_COLOR: {
-        vec3 c;
-        if (!lutil_to_vec3(L, idx, &c))
-            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        vec3 c = lutil_check_color(L, idx, fn, d->name);
         v->color[0] = c.x;
         v->color[1] = c.y;
         v->color[2] = c.z;

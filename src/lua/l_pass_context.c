@@ -9,6 +9,7 @@
 
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "lua/l_util.h"
 #include "lua/lua_host.h"
 
 #define CONTEXT_MT "caustica.PassContext"
@@ -52,26 +53,33 @@ static int context_clear(lua_State *L)
     return 0;
 }
 
-/* ctx:fullscreen{shader = "x.frag", output = "color" | {...}, inputs = {name = "slot"}, uniforms = {...}} */
+/* ctx:fullscreen{shader = "x.frag", output = "color" | {...}, inputs = {name = "slot"}, uniforms = {...}}
+ * Every argument is read and checked before the framebuffer exists, so a
+ * Lua error (which unwinds past this C frame) cannot leak it. */
+#define CONTEXT_MAX_INPUTS 16
+#define CONTEXT_MAX_UNIFORMS 32
+
 static int context_fullscreen(lua_State *L)
 {
     struct pass_context *c = check_context(L);
     luaL_checktype(L, 2, LUA_TTABLE);
     struct renderer *r = c->frame->renderer;
     lua_getfield(L, 2, "shader");
-    if (!lua_isstring(L, -1))
+    if (lua_type(L, -1) != LUA_TSTRING)
         return luaL_error(L, "bad argument 'shader' to 'fullscreen' (string expected, got %s)", luaL_typename(L, -1));
     char path[4096];
     lua_host_resolve_path(L, lua_tostring(L, -1), path, sizeof path);
     lua_pop(L, 1);
-    struct gl_program *prog;
     struct error err;
+    if (!lua_host_check_read(L, path, &err))
+        return luaL_error(L, "%s", err.message);
+    struct gl_program *prog;
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", path, NULL, &prog, &err))
         return luaL_error(L, "%s", err.message);
     const struct gl_texture *targets[PASS_MAX_OUTPUTS];
     int ntargets = 0;
     lua_getfield(L, 2, "output");
-    if (lua_isstring(L, -1)) {
+    if (lua_type(L, -1) == LUA_TSTRING) {
         targets[ntargets++] = &find_texture(L, c, lua_tostring(L, -1), true)->texture;
     } else if (lua_istable(L, -1)) {
         int n = (int)lua_rawlen(L, -1);
@@ -85,6 +93,61 @@ static int context_fullscreen(lua_State *L)
                           luaL_typename(L, -1));
     }
     lua_pop(L, 1);
+    if (ntargets == 0)
+        return luaL_error(L, "bad argument 'output' to 'fullscreen' (at least one output expected)");
+    struct { GLint location; GLuint texture; } inputs[CONTEXT_MAX_INPUTS];
+    int ninputs = 0;
+    if (lua_getfield(L, 2, "inputs") == LUA_TTABLE) {
+        lua_pushnil(L);
+        while (lua_next(L, -2)) {
+            if (lua_type(L, -2) != LUA_TSTRING)
+                return luaL_error(L, "bad argument 'inputs' to 'fullscreen' ({sampler = \"input\"} expected)");
+            if (ninputs >= CONTEXT_MAX_INPUTS)
+                return luaL_error(L, "bad argument 'inputs' to 'fullscreen' (at most %d inputs)", CONTEXT_MAX_INPUTS);
+            inputs[ninputs].location = gl_program_uniform(prog, lua_tostring(L, -2));
+            inputs[ninputs].texture = find_texture(L, c, luaL_checkstring(L, -1), false)->texture.id;
+            ninputs++;
+            lua_pop(L, 1);
+        }
+    }
+    lua_pop(L, 1);
+    struct { GLint location; int n; float v[4]; } uniforms[CONTEXT_MAX_UNIFORMS];
+    int nuniforms = 0;
+    if (lua_getfield(L, 2, "uniforms") == LUA_TTABLE) {
+        lua_pushnil(L);
+        while (lua_next(L, -2)) {
+            if (lua_type(L, -2) != LUA_TSTRING)
+                return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' ({name = number or vector} expected)");
+            if (nuniforms >= CONTEXT_MAX_UNIFORMS)
+                return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' (at most %d uniforms)",
+                                  CONTEXT_MAX_UNIFORMS);
+            const char *name = lua_tostring(L, -2);
+            uniforms[nuniforms].location = gl_program_uniform(prog, name);
+            memset(uniforms[nuniforms].v, 0, sizeof uniforms[nuniforms].v);
+            if (lua_type(L, -1) == LUA_TNUMBER) {
+                uniforms[nuniforms].n = 1;
+                uniforms[nuniforms].v[0] = lutil_check_number(L, -1, "fullscreen", name);
+            } else if (lua_istable(L, -1)) {
+                int n = (int)lua_rawlen(L, -1);
+                if (n < 1 || n > 4)
+                    return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' ('%s': 1 to 4 numbers expected)", name);
+                for (int i = 0; i < n; i++) {
+                    lua_rawgeti(L, -1, i + 1);
+                    uniforms[nuniforms].v[i] = lutil_check_number(L, -1, "fullscreen", name);
+                    lua_pop(L, 1);
+                }
+                uniforms[nuniforms].n = n;
+            } else {
+                return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' ('%s': number or vector expected, got %s)",
+                                  name, luaL_typename(L, -1));
+            }
+            nuniforms++;
+            lua_pop(L, 1);
+        }
+    }
+    lua_pop(L, 1);
+
+    /* From here on nothing raises a Lua error. */
     struct gl_framebuffer fb;
     if (!gl_framebuffer_create(&fb, &err) || !gl_framebuffer_attach(&fb, targets, NULL, ntargets, NULL, -1, &err)) {
         gl_framebuffer_destroy(&fb);
@@ -94,44 +157,22 @@ static int context_fullscreen(lua_State *L)
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb.id);
     gl.Viewport(0, 0, targets[0]->width, targets[0]->height);
     gl.UseProgram(prog->id);
-    int unit = 0;
-    if (lua_getfield(L, 2, "inputs") == LUA_TTABLE) {
-        lua_pushnil(L);
-        while (lua_next(L, -2)) {
-            const char *sampler = lua_tostring(L, -2);
-            struct graph_resource *in = find_texture(L, c, luaL_checkstring(L, -1), false);
-            gl.BindTextureUnit((GLuint)unit, in->texture.id);
-            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, sampler), unit);
-            unit++;
-            lua_pop(L, 1);
-        }
+    for (int i = 0; i < ninputs; i++) {
+        gl.BindTextureUnit((GLuint)i, inputs[i].texture);
+        gl.ProgramUniform1i(prog->id, inputs[i].location, i);
     }
-    lua_pop(L, 1);
-    if (lua_getfield(L, 2, "uniforms") == LUA_TTABLE) {
-        lua_pushnil(L);
-        while (lua_next(L, -2)) {
-            GLint loc = gl_program_uniform(prog, lua_tostring(L, -2));
-            if (lua_isnumber(L, -1)) {
-                gl.ProgramUniform1f(prog->id, loc, (float)lua_tonumber(L, -1));
-            } else if (lua_istable(L, -1)) {
-                float v[4] = {0, 0, 0, 0};
-                int n = (int)lua_rawlen(L, -1);
-                for (int i = 0; i < n && i < 4; i++) {
-                    lua_rawgeti(L, -1, i + 1);
-                    v[i] = (float)luaL_checknumber(L, -1);
-                    lua_pop(L, 1);
-                }
-                if (n == 2)
-                    gl.ProgramUniform2f(prog->id, loc, v[0], v[1]);
-                else if (n == 3)
-                    gl.ProgramUniform3f(prog->id, loc, v[0], v[1], v[2]);
-                else
-                    gl.ProgramUniform4f(prog->id, loc, v[0], v[1], v[2], v[3]);
-            }
-            lua_pop(L, 1);
-        }
+    for (int i = 0; i < nuniforms; i++) {
+        const float *v = uniforms[i].v;
+        GLint loc = uniforms[i].location;
+        if (uniforms[i].n == 1)
+            gl.ProgramUniform1f(prog->id, loc, v[0]);
+        else if (uniforms[i].n == 2)
+            gl.ProgramUniform2f(prog->id, loc, v[0], v[1]);
+        else if (uniforms[i].n == 3)
+            gl.ProgramUniform3f(prog->id, loc, v[0], v[1], v[2]);
+        else
+            gl.ProgramUniform4f(prog->id, loc, v[0], v[1], v[2], v[3]);
     }
-    lua_pop(L, 1);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_time"), (float)c->frame->time);
     renderer_draw_fullscreen(r);
     renderer_reset_state(r);

@@ -198,12 +198,12 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
         static const char *const diffuse_fields[] = {"color", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", NULL};
         lutil_check_fields(L, 1, fn, kind == MATERIAL_DIFFUSE || kind == MATERIAL_MIRROR ? diffuse_fields : glass_fields);
-        lutil_opt_vec3(L, 1, fn, "color", &m.color);
+        lutil_opt_color(L, 1, fn, "color", &m.color);
         lutil_opt_number(L, 1, fn, "ior", &m.ior);
-        lutil_opt_vec3(L, 1, fn, "absorption", &m.absorption);
+        lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
     }
     if (!(m.ior > 0.0f) || !isfinite(m.ior))
-        return luaL_error(L, "bad argument 'ior' to '%s' (a positive number expected, got %f)", fn, (double)m.ior);
+        return lutil_error(L, "bad argument 'ior' to '%s' (a positive number expected, got %g)", fn, (double)m.ior);
     if (m.absorption.x < 0 || m.absorption.y < 0 || m.absorption.z < 0)
         return luaL_error(L, "bad argument 'absorption' to '%s' (non-negative coefficients expected)", fn);
     struct material *u = lua_newuserdatauv(L, sizeof *u, 0);
@@ -430,7 +430,7 @@ static int water_new(lua_State *L)
     lutil_opt_number(L, 1, "water", "ior", &ior);
     lutil_opt_number(L, 1, "water", "damping", &damping);
     lutil_opt_number(L, 1, "water", "wave_speed", &speed);
-    lutil_opt_vec3(L, 1, "water", "attenuation", &attenuation);
+    lutil_opt_color(L, 1, "water", "attenuation", &attenuation);
     bool fixed = false;
     if (lua_getfield(L, 1, "boundary") != LUA_TNIL) {
         const char *b = lua_tostring(L, -1);
@@ -493,8 +493,11 @@ static struct water *check_water(lua_State *L, const char *fn)
 static int water_drop_l(lua_State *L)
 {
     struct water *w = check_water(L, "drop");
-    water_drop(w, (float)luaL_checknumber(L, 2), (float)luaL_checknumber(L, 3), (float)luaL_checknumber(L, 4),
-               (float)luaL_checknumber(L, 5));
+    float x = lutil_check_number(L, 2, "drop", "x"), z = lutil_check_number(L, 3, "drop", "z");
+    float radius = lutil_check_number(L, 4, "drop", "radius"), strength = lutil_check_number(L, 5, "drop", "strength");
+    if (!(radius > 0.0f))
+        return lutil_error(L, "bad argument 'radius' to 'drop' (a positive number expected, got %g)", (double)radius);
+    water_drop(w, x, z, radius, strength);
     check_object(L, 1)->version++;
     return 0;
 }
@@ -634,18 +637,21 @@ static void light_set(lua_State *L, struct light *l, const char *k, int v)
     else if (strcmp(k, "intensity") == 0)
         vec = &l->intensity;
     if (vec) {
-        vec3 x = lutil_check_vec3(L, v, fn, k);
-        if (!math_finite3(x))
-            luaL_error(L, "bad argument '%s' to '%s' (finite numbers expected)", k, fn);
+        vec3 x = vec == &l->intensity ? lutil_check_color(L, v, fn, k) : lutil_check_vec3(L, v, fn, k);
+        if (vec == &l->direction && vec3_dot(x, x) < 1e-20f)
+            lutil_error(L, "bad argument 'direction' to '%s' (a non-zero vector expected)", fn);
         if (memcmp(&x, vec, sizeof x) != 0)
             l->version++;
         *vec = x;
         return;
     }
     if (strcmp(k, "angle") == 0 || strcmp(k, "softness") == 0) {
-        if (!lua_isnumber(L, v))
-            lutil_field_error(L, fn, k, "number", v);
-        float x = (float)lua_tonumber(L, v);
+        float x = lutil_check_number(L, v, fn, k);
+        if (k[0] == 'a' && !(x > 0.0f && x <= 90.0f))
+            lutil_error(L, "bad argument 'angle' to '%s' (a half-angle in (0, 90] degrees expected, got %g)", fn,
+                        (double)x);
+        if (k[0] == 's' && !(x >= 0.0f && x <= 1.0f))
+            lutil_error(L, "bad argument 'softness' to '%s' (a fraction in [0, 1] expected, got %g)", fn, (double)x);
         float *f = k[0] == 'a' ? &l->angle : &l->softness;
         if (*f != x)
             l->version++;
@@ -750,15 +756,13 @@ static void camera_set(lua_State *L, struct camera *c, const char *k, int v)
     else if (strcmp(k, "up") == 0)
         c->up = lutil_check_vec3(L, v, "camera", k);
     else if (strcmp(k, "fov") == 0 || strcmp(k, "near") == 0 || strcmp(k, "far") == 0) {
-        if (!lua_isnumber(L, v))
-            lutil_field_error(L, "camera", k, "number", v);
-        float x = (float)lua_tonumber(L, v);
+        float x = lutil_check_number(L, v, "camera", k);
         if (k[0] == 'f' && k[1] == 'o') {
             if (!(x > 0.5f && x < 179.5f))
-                luaL_error(L, "bad argument 'fov' to 'camera' (degrees in (0.5, 179.5) expected, got %f)", (double)x);
+                lutil_error(L, "bad argument 'fov' to 'camera' (degrees in (0.5, 179.5) expected, got %g)", (double)x);
             c->fov = x;
-        } else if (!(x > 0.0f) || !isfinite(x)) {
-            luaL_error(L, "bad argument '%s' to 'camera' (a positive distance expected)", k);
+        } else if (!(x > 0.0f)) {
+            lutil_error(L, "bad argument '%s' to 'camera' (a positive distance expected, got %g)", k, (double)x);
         } else if (k[0] == 'n') {
             c->znear = x;
         } else {
@@ -768,6 +772,14 @@ static void camera_set(lua_State *L, struct camera *c, const char *k, int v)
         luaL_error(L, "camera has no field '%s' (fields: eye, target, up, fov, near, far)", k);
     }
     c->version++;
+}
+
+/* near >= far leaves no depth range; checked once all fields are set. */
+static void check_clip_range(lua_State *L, const struct camera *c)
+{
+    if (!(c->znear < c->zfar))
+        lutil_error(L, "bad argument 'near' to 'camera' (near %g must be less than far %g)", (double)c->znear,
+                    (double)c->zfar);
 }
 
 static int camera_new(lua_State *L)
@@ -788,6 +800,7 @@ static int camera_new(lua_State *L)
         lua_pop(L, 1);
     }
     lua_settop(L, idx);
+    check_clip_range(L, u->cam);
     return 1;
 }
 
@@ -816,7 +829,13 @@ static int camera_index(lua_State *L)
 static int camera_newindex(lua_State *L)
 {
     struct l_camera *u = luaL_checkudata(L, 1, CAMERA_MT);
+    struct camera before = *u->cam;
     camera_set(L, u->cam, luaL_checkstring(L, 2), 3);
+    if (!(u->cam->znear < u->cam->zfar)) {
+        struct camera wanted = *u->cam;
+        *u->cam = before;
+        check_clip_range(L, &wanted);
+    }
     return 0;
 }
 
@@ -864,11 +883,11 @@ static int medium_new(lua_State *L)
         return luaL_error(L, "out of memory");
     int idx = lua_gettop(L);
     struct medium *m = u->medium;
-    lutil_opt_vec3(L, 1, "medium", "sigma_s", &m->sigma_s);
-    lutil_opt_vec3(L, 1, "medium", "sigma_a", &m->sigma_a);
+    lutil_opt_color(L, 1, "medium", "sigma_s", &m->sigma_s);
+    lutil_opt_color(L, 1, "medium", "sigma_a", &m->sigma_a);
     lutil_opt_number(L, 1, "medium", "g", &m->g);
     if (!(m->g > -0.99f && m->g < 0.99f))
-        return luaL_error(L, "bad argument 'g' to 'medium' (a number in (-0.99, 0.99) expected, got %f)", (double)m->g);
+        return lutil_error(L, "bad argument 'g' to 'medium' (a number in (-0.99, 0.99) expected, got %g)", (double)m->g);
     if (m->sigma_s.x < 0 || m->sigma_s.y < 0 || m->sigma_s.z < 0 || m->sigma_a.x < 0 || m->sigma_a.y < 0 ||
         m->sigma_a.z < 0 || !math_finite3(m->sigma_s) || !math_finite3(m->sigma_a))
         return luaL_error(L, "bad argument 'sigma_s'/'sigma_a' to 'medium' (non-negative finite coefficients expected)");
@@ -993,9 +1012,9 @@ static void scene_set(lua_State *L, int scene_idx, struct scene *s, const char *
         s->camera = *c->cam;
         s->camera.version = version + 1;
     } else if (strcmp(k, "background") == 0) {
-        s->background = lutil_check_vec3(L, v, "scene", k);
+        s->background = lutil_check_color(L, v, "scene", k);
     } else if (strcmp(k, "ambient") == 0) {
-        s->ambient = lutil_check_vec3(L, v, "scene", k);
+        s->ambient = lutil_check_color(L, v, "scene", k);
     } else if (strcmp(k, "environment") == 0) {
         if (lua_isnil(L, v)) {
             scene_set_environment(s, NULL);

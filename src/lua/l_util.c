@@ -1,7 +1,20 @@
 #include "lua/l_util.h"
 
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+
+int lutil_error(lua_State *L, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return luaL_error(L, "%s", msg);
+}
 
 int lutil_field_error(lua_State *L, const char *fn, const char *field, const char *expected, int idx)
 {
@@ -61,12 +74,39 @@ bool lutil_to_vec3(lua_State *L, int idx, vec3 *out)
     return true;
 }
 
-vec3 lutil_check_vec3(lua_State *L, int idx, const char *fn, const char *field)
+/* The first non-finite (or negative) component of a vector at idx, for the
+ * message; NAN when the value is not a vector at all. */
+static vec3 check_vector(lua_State *L, int idx, const char *fn, const char *field, bool nonnegative)
 {
     vec3 v;
     if (!lutil_to_vec3(L, idx, &v))
-        lutil_field_error(L, fn, field, "{x, y, z}", idx);
+        lutil_field_error(L, fn, field, nonnegative ? "{r, g, b}" : "{x, y, z}", idx);
+    const float c[3] = {v.x, v.y, v.z};
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(c[i]) || (nonnegative && c[i] < 0.0f))
+            lutil_error(L, "bad argument '%s' to '%s' (finite numbers%s expected, got %g)", field, fn,
+                        nonnegative ? " >= 0" : "", (double)c[i]);
     return v;
+}
+
+vec3 lutil_check_vec3(lua_State *L, int idx, const char *fn, const char *field)
+{
+    return check_vector(L, idx, fn, field, false);
+}
+
+vec3 lutil_check_color(lua_State *L, int idx, const char *fn, const char *field)
+{
+    return check_vector(L, idx, fn, field, true);
+}
+
+float lutil_check_number(lua_State *L, int idx, const char *fn, const char *field)
+{
+    if (!lua_isnumber(L, idx))
+        lutil_field_error(L, fn, field, "number", idx);
+    double d = lua_tonumber(L, idx);
+    if (!isfinite(d) || fabs(d) > 3.4e38)
+        lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", field, fn, d);
+    return (float)d;
 }
 
 quat lutil_check_quat(lua_State *L, int idx, const char *fn, const char *field)
@@ -80,8 +120,13 @@ quat lutil_check_quat(lua_State *L, int idx, const char *fn, const char *field)
         if (!lua_isnumber(L, -1))
             lutil_field_error(L, fn, field, "quaternion {x, y, z, w}", idx);
         c[i] = (float)lua_tonumber(L, -1);
+        if (!isfinite(c[i]))
+            lutil_error(L, "bad argument '%s' to '%s' (finite numbers expected, got %g)", field, fn, (double)c[i]);
         lua_pop(L, 1);
     }
+    /* A zero quaternion has no rotation to normalise to. */
+    if (c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3] < 1e-30f)
+        lutil_error(L, "bad argument '%s' to '%s' (a non-zero quaternion expected)", field, fn);
     return quat_normalize((quat){c[0], c[1], c[2], c[3]});
 }
 
@@ -111,11 +156,8 @@ void lutil_push_quat(lua_State *L, quat q)
 
 void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, float *out)
 {
-    if (lua_getfield(L, t, field) != LUA_TNIL) {
-        if (!lua_isnumber(L, -1))
-            lutil_field_error(L, fn, field, "number", -1);
-        *out = (float)lua_tonumber(L, -1);
-    }
+    if (lua_getfield(L, t, field) != LUA_TNIL)
+        *out = lutil_check_number(L, -1, fn, field);
     lua_pop(L, 1);
 }
 
@@ -124,21 +166,15 @@ void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, i
     if (lua_getfield(L, t, field) != LUA_TNIL) {
         if (!lua_isinteger(L, -1)) {
             if (lua_isnumber(L, -1))
-                luaL_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", field, fn,
-                           (double)lua_tonumber(L, -1));
+                lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", field, fn,
+                            (double)lua_tonumber(L, -1));
             lutil_field_error(L, fn, field, "integer", -1);
         }
-        *out = (int)lua_tointeger(L, -1);
-    }
-    lua_pop(L, 1);
-}
-
-void lutil_opt_boolean(lua_State *L, int t, const char *fn, const char *field, bool *out)
-{
-    if (lua_getfield(L, t, field) != LUA_TNIL) {
-        if (!lua_isboolean(L, -1))
-            lutil_field_error(L, fn, field, "boolean", -1);
-        *out = lua_toboolean(L, -1);
+        lua_Integer v = lua_tointeger(L, -1);
+        if (v < INT_MIN || v > INT_MAX)
+            lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %lld, which does not fit)", field, fn,
+                        (long long)v);
+        *out = (int)v;
     }
     lua_pop(L, 1);
 }
@@ -147,6 +183,13 @@ void lutil_opt_vec3(lua_State *L, int t, const char *fn, const char *field, vec3
 {
     if (lua_getfield(L, t, field) != LUA_TNIL)
         *out = lutil_check_vec3(L, -1, fn, field);
+    lua_pop(L, 1);
+}
+
+void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out)
+{
+    if (lua_getfield(L, t, field) != LUA_TNIL)
+        *out = lutil_check_color(L, -1, fn, field);
     lua_pop(L, 1);
 }
 

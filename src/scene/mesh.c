@@ -56,7 +56,7 @@ void mesh_compute_bounds(struct mesh *m)
 
 struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
 {
-    if (!(radius > 0.0f) || segments < 3 || segments > 2048) {
+    if (!(radius > 0.0f) || !isfinite(radius) || segments < 3 || segments > 2048) {
         error_set(err, "sphere: radius must be > 0 and segments in 3..2048 (got %g, %d)", (double)radius, segments);
         return NULL;
     }
@@ -91,7 +91,7 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
 
 struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
 {
-    if (!(size > 0.0f) || resolution < 1 || resolution > 4096) {
+    if (!(size > 0.0f) || !isfinite(size) || resolution < 1 || resolution > 4096) {
         error_set(err, "grid: size must be > 0 and resolution in 1..4096 (got %g, %d)", (double)size, resolution);
         return NULL;
     }
@@ -123,8 +123,8 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
 
 struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides, struct error *err)
 {
-    if (!(radius > 0.0f) || !(tube > 0.0f) || tube >= radius || segments < 3 || sides < 3 || segments > 4096 ||
-        sides > 4096) {
+    if (!(radius > 0.0f) || !(tube > 0.0f) || !isfinite(radius) || tube >= radius || segments < 3 || sides < 3 ||
+        segments > 4096 || sides > 4096) {
         error_set(err, "torus: radius > tube > 0 and segments, sides in 3..4096 expected");
         return NULL;
     }
@@ -165,8 +165,8 @@ struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err)
 
 struct mesh *mesh_create_box(vec3 size, struct error *err)
 {
-    if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
-        error_set(err, "box: every side must be > 0");
+    if (!(size.x > 0 && size.y > 0 && size.z > 0) || !math_finite3(size)) {
+        error_set(err, "box: every side must be finite and > 0");
         return NULL;
     }
     static const float normals[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
