@@ -100,6 +100,7 @@ int cmd_record(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct error err;
+    bool existed = file_exists(cli->output);
     if (!dir_ensure(cli->output, &err)) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
@@ -110,8 +111,11 @@ int cmd_record(struct app *app, struct cli *cli)
         log_info("removed %d stale temporary file%s of an earlier run from %s", stale, stale == 1 ? "" : "s",
                  cli->output);
     struct session *s;
-    if (!open_session(app, cli, app->allow_write ? app->allow_write : cli->output, &s))
+    if (!open_session(app, cli, app->allow_write ? app->allow_write : cli->output, &s)) {
+        if (!existed)
+            rmdir(cli->output); /* made for this run, and still empty: nothing left behind */
         return EXIT_SCENE_ERROR;
+    }
     int from = cli->frames_set ? cli->frames_from : 0;
     int to = cli->frames_set ? cli->frames_to : s->frames - 1;
     int total = to - from + 1;

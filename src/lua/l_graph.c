@@ -143,7 +143,8 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
             lutil_field_error(L, fn, d->name, "number", idx);
         v->number = lua_tonumber(L, idx);
         if (!isfinite(v->number))
-            lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", d->name, fn, v->number);
+            lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", d->name, fn,
+                        isnan(v->number) ? NAN : v->number);
         if (d->type == PASS_PARAM_INTEGER && !lua_isinteger(L, idx))
             lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, v->number);
         if (d->min < d->max && (v->number < d->min || v->number > d->max))

@@ -85,7 +85,7 @@ static vec3 check_vector(lua_State *L, int idx, const char *fn, const char *fiel
     for (int i = 0; i < 3; i++)
         if (!isfinite(c[i]) || (nonnegative && c[i] < 0.0f))
             lutil_error(L, "bad argument '%s' to '%s' (finite numbers%s expected, got %g)", field, fn,
-                        nonnegative ? " >= 0" : "", (double)c[i]);
+                        nonnegative ? " >= 0" : "", isnan(c[i]) ? NAN : (double)c[i]); /* "nan", not "-nan" */
     return v;
 }
 
@@ -105,7 +105,7 @@ float lutil_check_number(lua_State *L, int idx, const char *fn, const char *fiel
         lutil_field_error(L, fn, field, "number", idx);
     double d = lua_tonumber(L, idx);
     if (!isfinite(d) || fabs(d) > 3.4e38)
-        lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", field, fn, d);
+        lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", field, fn, isnan(d) ? NAN : d);
     return (float)d;
 }
 
@@ -121,7 +121,8 @@ quat lutil_check_quat(lua_State *L, int idx, const char *fn, const char *field)
             lutil_field_error(L, fn, field, "quaternion {x, y, z, w}", idx);
         c[i] = (float)lua_tonumber(L, -1);
         if (!isfinite(c[i]))
-            lutil_error(L, "bad argument '%s' to '%s' (finite numbers expected, got %g)", field, fn, (double)c[i]);
+            lutil_error(L, "bad argument '%s' to '%s' (finite numbers expected, got %g)", field, fn,
+                        isnan(c[i]) ? NAN : (double)c[i]);
         lua_pop(L, 1);
     }
     /* A zero quaternion has no rotation to normalise to. */

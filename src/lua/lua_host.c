@@ -373,7 +373,7 @@ static int sandbox_lua_searcher(lua_State *L)
                 if (!lua_host_check_read(L, candidate, &err))
                     return raise_error(L, &err);
                 if (luaL_loadfilex(L, candidate, "t") != LUA_OK)
-                    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name, candidate,
+                    return luaL_error(L, "error loading module '%s' from file '%s': %s", name, candidate,
                                       lua_tostring(L, -1));
                 lua_pushstring(L, candidate);
                 return 2;
@@ -442,15 +442,16 @@ static void apply_sandbox(lua_State *L)
 }
 
 /* The time limit: a count hook looks at the clock every 10,000 VM
- * instructions. The error it raises can be caught by a pcall in the script,
- * so once the deadline has passed it fires every 100 instructions until the
- * error reaches the top. */
+ * instructions. The error it raises can be caught by a pcall in the script
+ * (`while true do pcall(loop) end`), so once the deadline has passed it
+ * fires on every instruction: the first one run after a pcall caught the
+ * error raises it again, one level further out, until it reaches the top. */
 static void timeout_hook(lua_State *L, lua_Debug *ar)
 {
     struct host_state *h = host_of(L);
     if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
         return;
-    lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 100);
+    lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 1);
     lua_getinfo(L, "Sl", ar);
     if (ar->currentline > 0)
         lua_pushfstring(L, "%s:%d: ", ar->short_src, ar->currentline);

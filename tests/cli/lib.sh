@@ -28,6 +28,8 @@ expect_error() {
     fail "$name" "first line of stderr '$first' lacks '$text'"
   elif [ "$output" != "-" ] && ls "$output"* >/dev/null 2>&1; then
     fail "$name" "left output behind: $(ls "$output"*)"
+  elif [ "$output" != "-" ] && ls "$(dirname "$output")/.$(basename "$output")"* >/dev/null 2>&1; then
+    fail "$name" "left a temporary behind: $(ls "$(dirname "$output")/.$(basename "$output")"*)"
   elif grep -qiE "segmentation|abort|core dumped" "$err"; then
     fail "$name" "crashed: $(cat "$err")"
   else

@@ -1,0 +1,301 @@
+# Hardening (issue 9): each reproducer of a sandbox escape, a crash or a hang
+# is refused with a one-line error (exit 1) and writes nothing, or, where
+# the input is legal, renders without a crash.
+source "$(dirname "$0")/lib.sh"
+O="$WORK/out.png"
+
+# scene NAME BODY: a script in $WORK that runs BODY, then returns a tiny
+# environment-only frame (so that what BODY does is all that is tested).
+scene() {
+  cat >"$WORK/$1.lua" <<EOF
+local c = require "caustica"
+local dir = c.param("dir", "")
+$2
+local scene = c.scene {}
+local g = c.graph()
+g:add("env", c.pass.environment {})
+g:output("env.color")
+return { scene = scene, graph = g, size = {8, 8} }
+EOF
+}
+
+# ---- the sandbox: writing -------------------------------------------------
+scene save_anywhere 'c.image.new(4, 4):save("/tmp/caustica-escape-save.png")'
+expect_error "image:save to an absolute path" 1 "save_anywhere.lua:3:" "/tmp/caustica-escape-save.png" -- \
+  "$CAUSTICA" render "$WORK/save_anywhere.lua" -o "$O"
+
+mkdir -p "$WORK/tree" && echo original >"$WORK/tree/Makefile"
+scene rewrite 'local f = io.open("Makefile", "w") f:write("pwned") f:close()'
+(cd "$WORK/tree" && "$CAUSTICA" render "$WORK/rewrite.lua" -o out.png 2>"$WORK/err")
+rc=$?
+if [ $rc = 1 ] && [ "$(cat "$WORK/tree/Makefile")" = original ] && grep -q "may not write" "$WORK/err"; then
+  pass "render with the default -o cannot rewrite ./Makefile"
+else
+  fail "render with the default -o cannot rewrite ./Makefile" "exit $rc, Makefile: $(cat "$WORK/tree/Makefile"), $(head -1 "$WORK/err")"
+fi
+
+mkdir -p "$WORK/rec"
+scene parent_write 'io.open(dir .. "/../escaped.txt", "w")'
+expect_error "record may not write beside its folder" 1 "may write only inside" "$WORK/escaped.txt" -- \
+  "$CAUSTICA" record "$WORK/parent_write.lua" -o "$WORK/rec" --set dir="$WORK/rec"
+
+mkdir -p "$WORK/elsewhere"
+ln -s "$WORK/elsewhere/target.txt" "$WORK/rec/link"
+ln -s "$WORK/elsewhere" "$WORK/rec/linkdir"
+scene link_write 'local f = assert(io.open(dir .. "/link", "w")) f:write("x") f:close()'
+expect_error "no write through a link in the output folder" 1 "symbolic link" "$WORK/elsewhere/target.txt" -- \
+  "$CAUSTICA" record "$WORK/link_write.lua" -o "$WORK/rec" --set dir="$WORK/rec"
+scene linkdir_write 'local f = assert(io.open(dir .. "/linkdir/f.txt", "w")) f:write("x") f:close()'
+expect_error "no write into a linked folder" 1 "may write only inside" "$WORK/elsewhere/f.txt" -- \
+  "$CAUSTICA" record "$WORK/linkdir_write.lua" -o "$WORK/rec" --set dir="$WORK/rec"
+rm -f "$WORK/rec/link" "$WORK/rec/linkdir"
+
+scene own_write 'local f = assert(io.open(dir .. "/note.txt", "w")) f:write("x") f:close()'
+"$CAUSTICA" record "$WORK/own_write.lua" -o "$WORK/rec" --set dir="$WORK/rec" >/dev/null 2>"$WORK/err" \
+  && test -f "$WORK/rec/note.txt" && pass "record may write inside its folder" \
+  || fail "record may write inside its folder" "$(head -1 "$WORK/err")"
+mkdir -p "$WORK/allowed"
+scene allowed_write 'local f = assert(io.open(dir .. "/note.txt", "w")) f:write("x") f:close()'
+"$CAUSTICA" render "$WORK/allowed_write.lua" -o "$O" --allow-write "$WORK/allowed" --set dir="$WORK/allowed" \
+  2>"$WORK/err" && test -f "$WORK/allowed/note.txt" && pass "--allow-write DIR opens a folder" \
+  || fail "--allow-write DIR opens a folder" "$(head -1 "$WORK/err")"
+rm -f "$O"
+
+# ---- the sandbox: binary chunks, by every route ----------------------------
+scene dump 'local f = assert(io.open(dir .. "/m.lua", "wb")) f:write(string.dump(function() return 1 end)) f:close()'
+"$CAUSTICA" record "$WORK/dump.lua" -o "$WORK/rec" --set dir="$WORK/rec" >/dev/null 2>&1
+test -s "$WORK/rec/m.lua" && pass "(a binary chunk was written for the next cases)" || fail "binary chunk" "not written"
+scene require_binary 'package.path = dir .. "/?.lua"; require "m"'
+expect_error "require refuses a binary chunk" 1 "binary chunk" - -- \
+  "$CAUSTICA" record "$WORK/require_binary.lua" -o "$WORK/rec2" --set dir="$WORK/rec"
+scene loadfile_binary 'assert(loadfile(dir .. "/m.lua"))'
+expect_error "loadfile refuses a binary chunk" 1 "binary chunk" - -- \
+  "$CAUSTICA" record "$WORK/loadfile_binary.lua" -o "$WORK/rec2" --set dir="$WORK/rec"
+scene dofile_binary 'dofile(dir .. "/m.lua")'
+expect_error "dofile refuses a binary chunk" 1 "binary chunk" - -- \
+  "$CAUSTICA" record "$WORK/dofile_binary.lua" -o "$WORK/rec2" --set dir="$WORK/rec"
+scene searcher_binary 'table.insert(package.searchers, 1, function(name)
+  local f = io.open(dir .. "/m.lua", "rb") local bytes = f:read("a") f:close()
+  return assert(load(bytes)) end); require "anything"'
+expect_error "a searcher of the script's own refuses a binary chunk" 1 "binary chunk" - -- \
+  "$CAUSTICA" record "$WORK/searcher_binary.lua" -o "$WORK/rec2" --set dir="$WORK/rec"
+scene load_binary 'assert(load(string.dump(function() end)))'
+expect_error "load refuses a binary chunk" 1 "binary chunk" "$O" -- "$CAUSTICA" render "$WORK/load_binary.lua" -o "$O"
+
+# ---- the sandbox: metatables and early __gc --------------------------------
+scene gc_early 'local ball = c.object { mesh = c.mesh.sphere {} }
+getmetatable(ball).__gc(ball)'
+expect_error "userdata metatables are protected" 1 "gc_early.lua:4:" "$O" -- \
+  "$CAUSTICA" render "$WORK/gc_early.lua" -o "$O"
+for what in object mesh light scene graph pass environment medium; do
+  cat >"$WORK/gc_$what.lua" <<EOF
+local c = require "caustica"
+local scene = c.scene { environment = c.cubemap "$ROOT/scenes/assets/env/room",
+                        medium = c.medium { sigma_s = {0.1, 0.1, 0.1}, box = {{-1, -1, -1}, {1, 1, 1}} } }
+local mesh = c.mesh.sphere {}
+local ball = scene:add(c.object { mesh = mesh, position = {0, 0.5, 0} })
+local lamp = scene:add(c.light.point { position = {1, 2, 1} })
+local g = c.graph()
+local shadow = g:add("shadow", c.pass.shadow_map { light = lamp, size = 64 })
+g:add("shade", c.pass.shade { shadow = "shadow.depth" })
+g:output("shade.color")
+local victims = { object = ball, mesh = mesh, light = lamp, scene = scene, graph = g, pass = shadow,
+                  environment = scene.environment, medium = scene.medium }
+local v = victims["$what"]
+debug.getmetatable(v).__gc(v)
+debug.getmetatable(v).__gc(v) -- twice: idempotent
+collectgarbage()
+return { scene = scene, graph = g, size = {16, 16} }
+EOF
+  "$CAUSTICA" render "$WORK/gc_$what.lua" --trusted -o "$O" >/dev/null 2>"$WORK/err"
+  rc=$?
+  if [ $rc -le 1 ] && ! grep -qiE "segmentation|abort|sanitizer" "$WORK/err"; then
+    pass "a $what released early by a trusted script: no crash (exit $rc)"
+  else
+    fail "a $what released early" "exit $rc: $(head -3 "$WORK/err")"
+  fi
+done
+rm -f "$O"
+
+# ---- the sandbox: reading ------------------------------------------------
+scene read_shadow 'io.open("/etc/passwd"):read("a")'
+expect_error "reading outside the allowed folders" 1 "may read only" "$O" -- \
+  "$CAUSTICA" render "$WORK/read_shadow.lua" -o "$O"
+scene read_lines 'for l in io.lines("/etc/passwd") do end'
+expect_error "io.lines outside the allowed folders" 1 "may read only" "$O" -- \
+  "$CAUSTICA" render "$WORK/read_lines.lua" -o "$O"
+scene read_mesh 'c.mesh.load "/etc/passwd"'
+expect_error "a mesh from outside the allowed folders" 1 "may read only" "$O" -- \
+  "$CAUSTICA" render "$WORK/read_mesh.lua" -o "$O"
+scene getenv 'print(os.getenv("HOME"))'
+expect_error "no environment variables" 1 "os.getenv is not available" "$O" -- \
+  "$CAUSTICA" render "$WORK/getenv.lua" -o "$O"
+echo "return 42" >"$WORK/mine.lua"
+scene read_own 'assert(dofile("'"$WORK"'/mine.lua") == 42); assert(io.open("'"$WORK"'/mine.lua")):close()
+local ok = c.mesh.load "'"$ROOT"'/scenes/assets/teapot.glb"'
+"$CAUSTICA" render "$WORK/read_own.lua" -o "$O" 2>"$WORK/err" && pass "the script's folder and the project's assets are readable" \
+  || fail "own folder readable" "$(head -1 "$WORK/err")"
+echo "return 42" >"$WORK/elsewhere/other.lua"
+scene read_allowed 'assert(dofile("'"$WORK"'/elsewhere/other.lua") == 42)'
+mkdir -p "$WORK/sub" && mv "$WORK/read_allowed.lua" "$WORK/sub/"
+"$CAUSTICA" render "$WORK/sub/read_allowed.lua" -o "$O" --allow-read "$WORK/elsewhere" 2>"$WORK/err" \
+  && pass "--allow-read DIR opens a folder" || fail "--allow-read" "$(head -1 "$WORK/err")"
+rm -f "$O"
+
+# ---- crashes and hangs ----------------------------------------------------
+printf 'local c = require "caustica"\nreturn { scene = c.scene {}, graph = c.graph(), size = "64x64" }\n' >"$WORK/size_string.lua"
+expect_error "size as a string" 1 "'size' must be {width, height}" "$O" -- "$CAUSTICA" render "$WORK/size_string.lua" -o "$O"
+printf 'local c = require "caustica"\nreturn { scene = c.scene {}, graph = c.graph(), size = 64 }\n' >"$WORK/size_number.lua"
+expect_error "size as a number" 1 "'size' must be {width, height}" "$O" -- "$CAUSTICA" render "$WORK/size_number.lua" -o "$O"
+printf 'local c = require "caustica"\nreturn { scene = c.scene {}, graph = c.graph(), frames = 0/0 }\n' >"$WORK/frames_nan.lua"
+expect_error "frames = NaN" 1 "'frames' must be a finite number" "$WORK/rec3" -- \
+  "$CAUSTICA" record "$WORK/frames_nan.lua" -o "$WORK/rec3"
+expect_error "--frame far past the script's frames" 1 "past the script's last frame" "$O" -- \
+  "$CAUSTICA" render scenes/demo.lua --frame 1000000000 -o "$O"
+
+cat >"$WORK/adds_passes.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("fill", c.pass.custom { outputs = { color = "rgba32f" }, run = function(ctx)
+  for i = 1, 100 do g:add("more" .. i, c.pass.environment {}) end
+  collectgarbage()
+end })
+g:output("fill.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+expect_error "a custom pass adding passes while the graph runs" 1 "the graph is rendering a frame" "$O" -- \
+  "$CAUSTICA" render "$WORK/adds_passes.lua" -o "$O"
+
+scene render_self 'c.image.render("'"$WORK"'/render_self.lua")'
+expect_error "a script rendering itself" 1 "nest deeper than" "$O" -- "$CAUSTICA" render "$WORK/render_self.lua" -o "$O"
+
+scene loop_top 'while true do end'
+expect_error "an endless loop at top level" 1 "loop_top.lua:3: script ran longer than 1 s" "$O" -- \
+  "$CAUSTICA" render "$WORK/loop_top.lua" -o "$O" --script-timeout 1
+scene loop_pcall 'while true do pcall(function() while true do end end) end'
+expect_error "an endless loop that catches the timeout" 1 "script ran longer than 1 s" "$O" -- \
+  "$CAUSTICA" render "$WORK/loop_pcall.lua" -o "$O" --script-timeout 1
+cat >"$WORK/loop_update.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("env", c.pass.environment {})
+g:output("env.color")
+return { scene = c.scene {}, graph = g, size = {8, 8}, frames = 10,
+         update = function(t, dt) if t > 0.1 then while true do end end end }
+EOF
+expect_error "an endless loop in update" 1 "script ran longer than 1 s (raise --script-timeout, 0 = no limit) (in update, frame 4)" \
+  "$O" -- "$CAUSTICA" render "$WORK/loop_update.lua" --frame 6 -o "$O" --script-timeout 1
+cat >"$WORK/loop_pass.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("fill", c.pass.custom { outputs = { color = "rgba32f" }, run = function(ctx) while true do end end })
+g:output("fill.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+expect_error "an endless loop in a custom pass" 1 "(in run of custom pass 'fill')" "$O" -- \
+  "$CAUSTICA" render "$WORK/loop_pass.lua" -o "$O" --script-timeout 1
+scene bomb 'local t = {} for i = 1, 1e9 do t[i] = {i, i, i} end'
+expect_error "a table bomb" 1 "the script used more than 64 MB" "$O" -- \
+  "$CAUSTICA" render "$WORK/bomb.lua" -o "$O" --script-memory 64
+scene string_bomb 'local s = "x" for i = 1, 40 do s = s .. s end'
+expect_error "a string bomb" 1 "the script used more than 64 MB" "$O" -- \
+  "$CAUSTICA" render "$WORK/string_bomb.lua" -o "$O" --script-memory 64
+
+scene shadow_size_zero 'c.pass.shadow_map { light = c.light.point {}, size = 0 }'
+expect_error "an out-of-range pass parameter names its range" 1 "bad argument 'size' to 'shadow_map' (0 is out of range" \
+  "$O" -- "$CAUSTICA" render "$WORK/shadow_size_zero.lua" -o "$O"
+scene segments_float 'c.mesh.sphere { segments = 1e9 }'
+expect_error "a float where an integer goes" 1 "bad argument 'segments' to 'sphere' (integer expected, got 1e+09)" \
+  "$O" -- "$CAUSTICA" render "$WORK/segments_float.lua" -o "$O"
+scene segments_wrap 'c.mesh.sphere { segments = 4294967328 }'
+expect_error "an integer that does not fit" 1 "got 4294967328, which does not fit" "$O" -- \
+  "$CAUSTICA" render "$WORK/segments_wrap.lua" -o "$O"
+for bad in "damping = -100" "depth = -1" "wave_speed = 0" "wave_speed = 1/0" "wave_speed = 0/0"; do
+  scene water_bad "c.water { $bad }"
+  expect_error "c.water { $bad } says why" 1 "water" "$O" -- "$CAUSTICA" render "$WORK/water_bad.lua" -o "$O"
+  grep -q "out of memory" "$WORK/stderr" && fail "c.water { $bad }" "says out of memory"
+done
+mkdir -p "$WORK/shader.frag"
+cat >"$WORK/shader_dir.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("full", c.pass.fullscreen { shader = "shader.frag" })
+g:output("full.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+expect_error "a shader path that is a folder" 1 "it is a folder" "$O" -- "$CAUSTICA" render "$WORK/shader_dir.lua" -o "$O"
+printf '#version 450 core\nout vec4 color;\nvoid main() { color = vec4(1.0); }\n' >"$WORK/flat.frag"
+cat >"$WORK/context_error.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+local errors = 0
+g:add("fill", c.pass.custom { outputs = { color = "rgba32f" }, run = function(ctx)
+  for i = 1, 200 do
+    if not pcall(ctx.fullscreen, ctx, { shader = "flat.frag", output = "color", inputs = { image = "nosuch" } }) then
+      errors = errors + 1
+    end
+  end
+  assert(errors == 200)
+  ctx:clear("color", {0.5, 0.5, 0.5, 1})
+end })
+g:output("fill.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+"$CAUSTICA" render "$WORK/context_error.lua" -o "$O" 2>"$WORK/err" \
+  && pass "a pass context that raised errors keeps working" || fail "pass context errors" "$(head -2 "$WORK/err")"
+rm -f "$O"
+
+# ---- output ---------------------------------------------------------------
+mkdir -p "$WORK/frames"
+touch "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" "$WORK/frames/.frame_0005.png.caustica-tmp.$$"
+"$CAUSTICA" record scenes/demo.lua -o "$WORK/frames" --frames 0:1 --size 16x16 >/dev/null 2>&1
+if [ ! -e "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" ] && [ -e "$WORK/frames/.frame_0005.png.caustica-tmp.$$" ]; then
+  pass "a killed run's temporaries are removed, a running writer's kept"
+else
+  fail "stale temporaries" "$(ls -a "$WORK/frames")"
+fi
+# SIGKILL mid-record, then a second run: nothing of the first run stays behind.
+"$CAUSTICA" record scenes/demo.lua -o "$WORK/killed" --frames 0:200 --size 64x64 >/dev/null 2>&1 &
+pid=$!
+sleep 2
+kill -9 $pid 2>/dev/null
+wait $pid 2>/dev/null
+"$CAUSTICA" record scenes/demo.lua -o "$WORK/killed" --frames 0:0 --size 16x16 >/dev/null 2>&1
+leftovers=$(ls -a "$WORK/killed" | grep -c caustica-tmp)
+[ "$leftovers" = 0 ] && pass "record killed with SIGKILL leaves nothing after the next run" \
+  || fail "SIGKILL leftovers" "$(ls -a "$WORK/killed")"
+
+# A write that fails (the file size limit stands in for a full disk: the
+# same short write, EFBIG instead of ENOSPC).
+(ulimit -f 1; trap '' XFSZ; exec "$CAUSTICA" render scenes/demo.lua --size 256x256 -o "$WORK/big.png") 2>"$WORK/err"
+rc=$?
+first=$(head -1 "$WORK/err")
+if [ $rc = 1 ] && grep -q "big.png: write failed: File too large" <<<"$first" && ! grep -q "libpng error" "$WORK/err" \
+   && ! ls -a "$WORK" | grep -q "big.png"; then
+  pass "a failed PNG write says why in caustica's words and leaves nothing"
+else
+  fail "failed PNG write" "exit $rc: $first"
+fi
+(ulimit -f 1; trap '' XFSZ; exec "$CAUSTICA" render scenes/demo.lua --size 256x256 -o "$WORK/big.pfm") 2>"$WORK/err"
+rc=$?
+first=$(head -1 "$WORK/err")
+[ $rc = 1 ] && grep -q "big.pfm: write failed: File too large" <<<"$first" && pass "a failed PFM write says why" \
+  || fail "failed PFM write" "exit $rc: $first"
+
+# NaN from a shader is never written: counted in a warning, written as 0.
+printf '#version 450 core\nout vec4 color;\nuniform float zero;\nvoid main() { color = vec4(zero / zero, 1.0 / zero, 0.5, 1.0); }\n' >"$WORK/nan.frag"
+cat >"$WORK/nan.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("full", c.pass.fullscreen { shader = "nan.frag", uniforms = { zero = 0 } })
+g:output("full.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+"$CAUSTICA" render "$WORK/nan.lua" -o "$WORK/nan.pfm" 2>"$WORK/err"
+line=$("$CAUSTICA" compare "$WORK/nan.pfm" "$WORK/nan.pfm" 2>&1)
+if grep -q "64 pixels had NaN or Inf values, written as 0" "$WORK/err" && [ "$(metric nan "$line")" = 0 ]; then
+  pass "NaN and Inf are never written (counted in a warning)"
+else
+  fail "NaN in output" "$(head -1 "$WORK/err") / $line"
+fi
+finish
