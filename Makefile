@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES = cmake make gcc g++ pkg-config liblua5.4-dev libglfw3-dev libosmesa6-dev libegl-dev \
            libegl-mesa0 libgl1-mesa-dri libgl1 libglx-mesa0 libtinygltf-dev libpng-dev libembree-dev xvfb xauth
 
-.PHONY: all deps build demo test clean
+.PHONY: all deps build demo test fuzz clean
 
 all: build
 
@@ -35,6 +35,32 @@ demo: build
 test: build
 	@cd $(BUILD) && { ctest --output-on-failure -j $(JOBS); echo $$? > ctest.rc; } 2>&1 | tee ctest.log; \
 	 grep -E 'tests passed|No tests were found' ctest.log | tail -n 1; exit $$(cat ctest.rc)
+
+# libFuzzer harnesses (tests/fuzz): a clang build with ASan + UBSan, each
+# harness run FUZZ_SECONDS on a copy of its seed corpus. A crash input is
+# copied into tests/fuzz/crashes_<harness>/, where ctest replays it in every
+# build from then on. Skipped, with a message, where clang is missing.
+FUZZ_SECONDS ?= 60
+FUZZ_BUILD ?= build-fuzz
+fuzz: deps
+	@if ! command -v clang >/dev/null 2>&1; then echo "make fuzz: skipped (clang is missing: apt-get install clang)"; exit 0; fi; \
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCAUSTICA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null && \
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_gltf fuzz_script >/dev/null || exit 1; \
+	status=0; \
+	for h in gltf script; do \
+	  rm -rf $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; mkdir -p $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; \
+	  cp tests/fuzz/corpus_$$h/* $(FUZZ_BUILD)/corpus_$$h/; \
+	  echo "fuzz_$$h: $(FUZZ_SECONDS) s"; \
+	  ASAN_OPTIONS=detect_leaks=0 CAUSTICA_ROOT=$(CURDIR) $(FUZZ_BUILD)/fuzz_$$h -max_total_time=$(FUZZ_SECONDS) \
+	    -max_len=65536 -timeout=60 -rss_limit_mb=3072 -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts_$$h/ $(FUZZ_BUILD)/corpus_$$h >$(FUZZ_BUILD)/fuzz_$$h.log 2>&1; \
+	  grep -E "^stat::number_of_executed_units|^Done" $(FUZZ_BUILD)/fuzz_$$h.log | sed "s/^/  /"; \
+	  for a in $(FUZZ_BUILD)/artifacts_$$h/*; do \
+	    [ -e "$$a" ] || continue; status=1; cp "$$a" tests/fuzz/crashes_$$h/; \
+	    echo "  found $$(basename $$a): kept as tests/fuzz/crashes_$$h/$$(basename $$a) (log: $(FUZZ_BUILD)/fuzz_$$h.log)"; \
+	  done; \
+	done; \
+	[ $$status = 0 ] && echo "fuzz: no crashes"; exit $$status
 
 clean:
 	rm -rf $(BUILD) out

@@ -261,7 +261,7 @@ sleep 2
 kill -9 $pid 2>/dev/null
 wait $pid 2>/dev/null
 "$CAUSTICA" record scenes/demo.lua -o "$WORK/killed" --frames 0:0 --size 16x16 >/dev/null 2>&1
-leftovers=$(ls -a "$WORK/killed" | grep -c caustica-tmp)
+leftovers=$(ls -a "$WORK/killed" | grep -cE 'caustica-tmp|\.tmp\.')
 [ "$leftovers" = 0 ] && pass "record killed with SIGKILL leaves nothing after the next run" \
   || fail "SIGKILL leftovers" "$(ls -a "$WORK/killed")"
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
 #include <unistd.h>
 
 #include "app/app.h"
@@ -25,6 +26,13 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     if (system(cmd) != 0)
         return 1;
     app_init(&app);
+    /* The seed scripts name assets as "scenes/assets/...": a link beside the
+     * script to the project's scenes/ (readable to a sandboxed script). */
+    char link[600], target[4200];
+    snprintf(link, sizeof link, "%s/scenes", dir);
+    snprintf(target, sizeof target, "%s/scenes", app.root);
+    if (symlink(target, link) != 0 && errno != EEXIST)
+        return 1;
     app.backend = GL_BACKEND_OSMESA;
     app.script_timeout = 1.0;
     app.script_memory = 256.0 * 1024 * 1024;

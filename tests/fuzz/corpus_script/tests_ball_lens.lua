@@ -1,0 +1,54 @@
+-- A glass ball lens over a floor under a directional light (Issue 3's
+-- closed-form checks): --set ior=, floor=<height of the floor below the
+-- ball's centre>, hide=true, light=directional|point, elevation=degrees.
+local c = require "caustica"
+local ior = c.param("ior", 1.5)
+local radius = c.param("radius", 0.5)
+local floor_depth = c.param("floor", 1.0)      -- distance from the ball's centre down to the floor
+local hide = c.param("hide", false)
+local elevation = c.param("elevation", 90)
+local size = c.param("size", 64)
+local aperture = c.param("aperture", 0)
+local view = c.param("view", "side")            -- "side", or "down": from just above the floor, looking straight down          -- > 0: an opaque plate above the ball with a square hole of this half-width
+
+local scene = c.scene {
+  -- low and from the side, so the floor under the ball is seen past it
+  camera = view == "down"
+    and c.camera { eye = {0, -floor_depth + c.param("camera_height", 0.08), 0}, target = {0, -floor_depth, 0},
+                   up = {0, 0, -1}, fov = 60 }
+    or c.camera { eye = {0, -floor_depth + 0.5, 3}, target = {0, -floor_depth, 0}, fov = 20 },
+  background = {0, 0, 0},
+}
+local e = math.rad(elevation)
+local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, position = {0, -floor_depth, 0},
+                     material = c.material.diffuse { color = {1, 1, 1} } })
+local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
+                                  material = c.material.glass { ior = ior } })
+ball.visible = not hide
+if aperture > 0 then
+  -- Four slabs around a square hole: only paraxial rays reach the ball.
+  local w, plate = 10, c.material.diffuse { color = {0, 0, 0} }
+  local y = radius + 0.1
+  for _, s in ipairs {
+    { pos = {-(w + aperture) / 2, y, 0}, size = {w - aperture, 0.02, 2 * w} },
+    { pos = { (w + aperture) / 2, y, 0}, size = {w - aperture, 0.02, 2 * w} },
+    { pos = {0, y, -(w + aperture) / 2}, size = {2 * aperture, 0.02, w - aperture} },
+    { pos = {0, y,  (w + aperture) / 2}, size = {2 * aperture, 0.02, w - aperture} },
+  } do
+    scene:add(c.object { mesh = c.mesh.box { size = s.size }, position = s.pos, material = plate })
+  end
+end
+ball.cast_shadows = true
+local g = c.graph()
+if c.param("techniques", false) then
+  -- Hu & Qin's photon caustics on the GPU (the scene's sun is the only light)
+  g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
+  g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),
+                                             k = c.param("k", 2) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+else
+  g:add("shade", c.pass.shade {})
+end
+g:output("shade.color")
+return { scene = scene, graph = g, size = {size, size} }
