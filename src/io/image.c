@@ -292,15 +292,21 @@ bool image_write(const char *path, const struct image *img, struct error *err)
     if (!image_path_is_png(path))
         return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
     size_t n = (size_t)img->width * (size_t)img->height;
-    uint8_t *bytes = malloc(n * 4);
+    uint8_t *bytes = calloc(n ? n * 4 : 4, 1);
     if (!bytes)
         return error_set(err, "%s: out of memory", path);
+    long nonfinite = 0;
     for (size_t i = 0; i < n; i++) {
+        const float *p = img->rgba + i * 4;
+        bool bad = !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]);
+        nonfinite += bad;
         for (int c = 0; c < 3; c++)
-            bytes[i * 4 + (size_t)c] = (uint8_t)lrintf(image_srgb_encode(img->rgba[i * 4 + (size_t)c]) * 255.0f);
+            bytes[i * 4 + (size_t)c] = bad ? 0 : (uint8_t)lrintf(image_srgb_encode(p[c]) * 255.0f);
         bytes[i * 4 + 3] = 255;
     }
     bool ok = image_write_png_rgba8(path, bytes, img->width, img->height, err);
+    if (ok && nonfinite)
+        log_warn("%s: %ld pixel%s had NaN or Inf values, written as 0", path, nonfinite, nonfinite == 1 ? "" : "s");
     free(bytes);
     return ok;
 }

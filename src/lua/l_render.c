@@ -70,11 +70,24 @@ static void read_options(lua_State *L, char *path, size_t pathlen, struct sessio
     }
 }
 
-int limage_render(lua_State *L)
+/* Rendering other scripts is the test harness's tool: a sandboxed scene
+ * script may not start renders (or a reference, a long C computation no
+ * script time limit can interrupt). */
+static struct app *check_render_allowed(lua_State *L, const char *fn)
 {
     struct app *app = lua_host_app(L);
+    const struct lua_host_options *o = lua_host_options_of(L);
     if (!app)
-        return luaL_error(L, "render: not available here");
+        luaL_error(L, "%s: not available here", fn);
+    if (o && !o->trusted)
+        luaL_error(L, "c.image.%s is not available to a sandboxed scene script (it is for tests; run with --trusted "
+                      "to allow it)", fn);
+    return app;
+}
+
+int limage_render(lua_State *L)
+{
+    struct app *app = check_render_allowed(L, "render");
     char path[4096];
     struct session_options o;
     int frame;
@@ -115,9 +128,7 @@ int limage_render(lua_State *L)
  * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
 int limage_reference(lua_State *L)
 {
-    struct app *app = lua_host_app(L);
-    if (!app)
-        return luaL_error(L, "reference: not available here");
+    struct app *app = check_render_allowed(L, "reference");
     char path[4096];
     struct session_options o;
     int frame;

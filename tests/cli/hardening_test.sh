@@ -20,6 +20,7 @@ EOF
 }
 
 # ---- the sandbox: writing -------------------------------------------------
+rm -f /tmp/caustica-escape-save.png
 scene save_anywhere 'c.image.new(4, 4):save("/tmp/caustica-escape-save.png")'
 expect_error "image:save to an absolute path" 1 "save_anywhere.lua:3:" "/tmp/caustica-escape-save.png" -- \
   "$CAUSTICA" render "$WORK/save_anywhere.lua" -o "$O"
@@ -167,7 +168,23 @@ expect_error "a custom pass adding passes while the graph runs" 1 "the graph is 
   "$CAUSTICA" render "$WORK/adds_passes.lua" -o "$O"
 
 scene render_self 'c.image.render("'"$WORK"'/render_self.lua")'
-expect_error "a script rendering itself" 1 "nest deeper than" "$O" -- "$CAUSTICA" render "$WORK/render_self.lua" -o "$O"
+expect_error "a sandboxed script may not start renders" 1 "c.image.render is not available to a sandboxed" "$O" -- \
+  "$CAUSTICA" render "$WORK/render_self.lua" -o "$O"
+expect_error "a trusted script rendering itself" 1 "nest deeper than" "$O" -- \
+  "$CAUSTICA" render "$WORK/render_self.lua" -o "$O" --trusted
+cat >"$WORK/collects.lua" <<'EOF'
+local c = require "caustica"
+local g = c.graph()
+g:add("fill", c.pass.custom { outputs = { color = "rgba32f" }, run = function(ctx)
+  collectgarbage() collectgarbage()
+  ctx:clear("color", {0.5, 0.5, 0.5, 1})
+end })
+g:output("fill.color")
+return { scene = c.scene {}, graph = g, size = {8, 8} }
+EOF
+"$CAUSTICA" render "$WORK/collects.lua" -o "$O" 2>"$WORK/err" && pass "a custom pass that collects garbage while the graph runs" \
+  || fail "collect in run" "$(head -1 "$WORK/err")"
+rm -f "$O"
 
 scene loop_top 'while true do end'
 expect_error "an endless loop at top level" 1 "loop_top.lua:3: script ran longer than 1 s" "$O" -- \
