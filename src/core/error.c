@@ -31,8 +31,4 @@ bool error_prefix(struct error *err, const char *fmt, ...)
     return false;
 }
 
-void error_clear(struct error *err)
-{
-    if (err)
-        err->message[0] = '\0';
-}
+

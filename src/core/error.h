@@ -25,7 +25,6 @@ bool error_set(struct error *err, const char *fmt, ...)
 bool error_prefix(struct error *err, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
-void error_clear(struct error *err);
 
 #ifdef __cplusplus
 }

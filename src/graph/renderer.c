@@ -22,7 +22,7 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     if (!gl_texture_create(&r->dummy_2d, GL_TEXTURE_2D, GL_RGBA16F, 1, 1, 1, err) ||
         !gl_texture_create(&r->dummy_cube, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, 1, 1, 6, err) ||
         !gl_texture_create(&r->dummy_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 1, 1, 1, err) ||
-        !gl_framebuffer_create(&r->present_fb, err) || !gl_framebuffer_create(&r->scratch_fb, err)) {
+        !gl_framebuffer_create(&r->present_fb, err)) {
         renderer_destroy(r);
         return false;
     }
@@ -50,7 +50,6 @@ void renderer_destroy(struct renderer *r)
     gl_texture_destroy(&r->dummy_depth);
     gl_texture_destroy(&r->present_texture);
     gl_framebuffer_destroy(&r->present_fb);
-    gl_framebuffer_destroy(&r->scratch_fb);
     r->frame_ubo = r->empty_vao = 0;
     r->deform_queries[0] = r->deform_queries[1] = 0;
 }

@@ -53,7 +53,6 @@ struct renderer {
     /* presenting */
     struct gl_texture present_texture;
     struct gl_framebuffer present_fb;
-    struct gl_framebuffer scratch_fb;
     float exposure;
     enum tonemap_operator tonemap;
     GLuint deform_queries[2];

@@ -246,7 +246,7 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
     }
 }
 
-static int pass_new(lua_State *L)
+static int lpass_new(lua_State *L)
 {
     const struct pass_desc *desc = lua_touserdata(L, lua_upvalueindex(1));
     if (lua_isnoneornil(L, 1)) {
@@ -349,7 +349,7 @@ static struct graph *check_graph(lua_State *L, int idx)
 
 struct graph *lgraph_check(lua_State *L, int idx) { return check_graph(L, idx); }
 
-static int graph_new(lua_State *L)
+static int lgraph_new(lua_State *L)
 {
     struct l_graph *u = lua_newuserdatauv(L, sizeof *u, 1);
     graph_init(&u->graph);
@@ -484,13 +484,13 @@ int luaopen_caustica_graph(lua_State *L)
     lua_setfield(L, -2, "__metatable");
     lua_pop(L, 1);
     lua_newtable(L);
-    lua_pushcfunction(L, graph_new);
+    lua_pushcfunction(L, lgraph_new);
     lua_setfield(L, -2, "graph");
     lua_newtable(L);
     for (int i = 0; i < pass_registry_count(); i++) {
         const struct pass_desc *d = pass_registry_get(i);
         lua_pushlightuserdata(L, (void *)d);
-        lua_pushcclosure(L, pass_new, 1);
+        lua_pushcclosure(L, lpass_new, 1);
         lua_setfield(L, -2, d->name);
     }
     lua_newtable(L);

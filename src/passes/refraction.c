@@ -105,7 +105,8 @@ static bool is_refractive(const struct object *o)
     return o->visible && material_is_specular(&o->material);
 }
 
-/* Left out when no refractive object is visible: the image passes through. */
+/* Never left out (its output is read later): with no refractive object in
+ * the scene it only copies its input through. */
 static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     (void)p;
@@ -113,7 +114,7 @@ static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, ch
         if (is_refractive(f->scene->objects[i]))
             return PASS_RUN;
     snprintf(why, whylen, "passes the image through: no refractive object in the scene");
-    return PASS_RUN; /* still copies its input; cheap */
+    return PASS_RUN;
 }
 
 /* Draws each refractive object alone (its d_N buffer bound for Wyman's). */

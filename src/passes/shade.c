@@ -11,7 +11,8 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 
-#define SHADE_MAX_SHADOWS 4
+#define SHADE_MAX_SHADOWS 4  /* shadow map inputs (sampler units 1-4 and 5-8 in shade.frag) */
+#define SHADE_MAX_CAUSTICS 4 /* caustics inputs (sampler units 9-12) */
 
 struct shade_state {
     struct gl_framebuffer fb;
@@ -44,8 +45,8 @@ static bool shade_declare(struct pass *p, struct error *err)
     if (bg && !pass_declare_input(p, "background", bg, err))
         return false;
     const struct pass_value *caustics = pass_value(p, "caustics");
-    if (caustics->list_count > SHADE_MAX_SHADOWS)
-        return error_set(err, "bad argument 'caustics' to 'shade' (at most %d inputs, got %d)", SHADE_MAX_SHADOWS,
+    if (caustics->list_count > SHADE_MAX_CAUSTICS)
+        return error_set(err, "bad argument 'caustics' to 'shade' (at most %d inputs, got %d)", SHADE_MAX_CAUSTICS,
                          caustics->list_count);
     for (int i = 0; i < caustics->list_count; i++) {
         char slot[32];
@@ -146,7 +147,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);
     int ncaustics = 0;
-    for (int i = 0; i < SHADE_MAX_SHADOWS; i++) {
+    for (int i = 0; i < SHADE_MAX_CAUSTICS; i++) {
         char slot[32];
         snprintf(slot, sizeof slot, "caustics%d", i);
         struct graph_resource *c = pass_frame_input(p, f, slot);

@@ -768,12 +768,6 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
         }
 }
 
-bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
-                struct ref_stats *stats, struct error *err)
-{
-    return ref_render_parts(r, scene, o, out, NULL, stats, err);
-}
-
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                       struct image *caustic_out, struct ref_stats *stats, struct error *err)
 {

@@ -35,11 +35,9 @@ struct ref_stats {
 
 void ref_options_default(struct ref_options *o);
 /* Renders the scene as set up by renderer_begin_frame for this frame (the
- * deformed vertex buffers are read back from the GPU). */
-bool ref_render(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
-                struct ref_stats *stats, struct error *err);
-/* The same, also returning the caustic (light -> specular+ -> diffuse)
- * part of the image on its own (may be NULL). */
+ * deformed vertex buffers are read back from the GPU), also returning the
+ * caustic (light -> specular+ -> diffuse) part of the image on its own
+ * (`caustic` may be NULL). */
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
                       struct image *caustic, struct ref_stats *stats, struct error *err);
 

@@ -99,7 +99,6 @@ struct object {
     GLuint buffer_deformed_positions, buffer_deformed_normals;
     size_t deformed_vertices;
     GLuint vao;
-    bool vao_uses_deformed;
     GLuint vao_mesh_positions; /* which buffers the VAO was built for */
     mat4 model;
 };
