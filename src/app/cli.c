@@ -18,6 +18,7 @@ void cli_usage(FILE *out)
           "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
           "  caustica compare A B [--mask M]\n"
           "  caustica convert IN.pfm OUT.png [--exposure E]\n"
+          "  caustica help [passes | PASS] [--markdown]\n"
           "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
           "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
           "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"

@@ -51,5 +51,7 @@ int cmd_compare(struct app *app, struct cli *cli);
 int cmd_reference(struct app *app, struct cli *cli);
 int cmd_bench(struct app *app, struct cli *cli);
 int cmd_convert(struct app *app, struct cli *cli);
+/* `caustica help [passes | PASS] [--markdown]`: the pass reference from the descriptors. */
+int cmd_help(int argc, char **argv);
 
 #endif
