@@ -85,7 +85,8 @@ int cmd_test(struct app *app, struct cli *cli)
     }
     long passed = 0, failed = 0;
     for (int i = 0; i < count; i++) {
-        struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true, .app = app,
+        struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true,
+                                      .render = session_render_service, .render_context = app,
                                       .update_refs = cli->update_refs, .filter = cli->filter};
         struct error err;
         lua_State *L = lua_host_create(&ho, &err);

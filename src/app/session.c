@@ -12,8 +12,6 @@
 #include "lua/lua_host.h"
 #include "reference/reference.h"
 
-struct scene *lscene_check(lua_State *L, int idx);
-struct graph *lgraph_check(lua_State *L, int idx);
 
 static bool field_number(lua_State *L, int t, const char *script, const char *name, double *out, struct error *err)
 {
@@ -44,16 +42,16 @@ static bool read_result(struct session *s, struct error *err)
                          script, luaL_typename(L, -1));
     int t = lua_gettop(L);
     lua_getfield(L, t, "scene");
-    if (!luaL_testudata(L, -1, "caustica.Scene"))
+    s->scene = lua_host_to_scene(L, -1);
+    if (!s->scene)
         return error_set(err, "%s: the returned table's 'scene' must be a scene (c.scene{...}), got %s", script,
                          luaL_typename(L, -1));
-    s->scene = lscene_check(L, -1);
     lua_pop(L, 1);
     lua_getfield(L, t, "graph");
-    if (!luaL_testudata(L, -1, "caustica.Graph"))
+    s->graph = lua_host_to_graph(L, -1);
+    if (!s->graph)
         return error_set(err, "%s: the returned table's 'graph' must be a graph (c.graph()), got %s", script,
                          luaL_typename(L, -1));
-    s->graph = lgraph_check(L, -1);
     lua_pop(L, 1);
     int type = lua_getfield(L, t, "update");
     if (type == LUA_TFUNCTION) {
@@ -120,7 +118,8 @@ static bool load(struct session *s, struct error *err)
         .params = &s->options.params,
         .trusted = s->app->trusted,
         .write_dir = s->options.write_dir ? s->options.write_dir : s->app->allow_write,
-        .app = s->app,
+        .render = session_render_service,
+        .render_context = s->app,
         .timeout = s->app->script_timeout,
         .memory_limit = s->app->script_memory,
         .read_dirs = s->app->allow_read,
@@ -354,4 +353,47 @@ bool session_set_pass_param(struct session *s, const char *key, double value, st
         return true;
     }
     return error_set(err, "%s: no pass named '%s' in the graph", s->script, pass_name);
+}
+
+/* c.image.render and c.image.reference (the test harness's tools): another
+ * script in its own session, on the same GL context. Nesting is capped: a
+ * script that renders itself would recurse until the C stack ends. */
+#define SESSION_RENDER_MAX_DEPTH 4
+
+bool session_render_service(void *context, const struct lua_render_request *request, struct image *out,
+                            struct lua_render_reply *reply, struct error *err)
+{
+    struct app *app = context;
+    memset(reply, 0, sizeof *reply);
+    if (app->render_depth >= SESSION_RENDER_MAX_DEPTH)
+        return error_set(err, "scripts rendering scripts nest deeper than %d (does '%s' render itself?)",
+                         SESSION_RENDER_MAX_DEPTH, request->script);
+    struct session_options o = {.script = request->script, .params = request->params, .width = request->width,
+                                .height = request->height};
+    struct session *s = NULL;
+    app->render_depth++;
+    bool ok = session_open(app, &o, &s, err);
+    if (ok && request->reference) {
+        struct ref_stats st;
+        ok = session_reference(s, request->frame, request->reference, out, &st, err);
+        if (ok) {
+            reply->iterations = st.iterations;
+            reply->photons = st.photons;
+            reply->caustic_photons = st.caustic_photons;
+            for (int k = 0; k < 3; k++)
+                reply->caustic_power[k] = st.caustic_power[k];
+            reply->seconds = st.seconds;
+        }
+    } else if (ok) {
+        ok = session_render(s, request->frame, err) && session_read_linear(s, out, err);
+        for (int i = 0; ok && i < s->graph->count && reply->pass_count < LUA_RENDER_MAX_PASSES; i++)
+            if (s->graph->entries[i].state == GRAPH_PASS_KEPT) {
+                snprintf(reply->pass_names[reply->pass_count], sizeof reply->pass_names[0], "%s",
+                         s->graph->entries[i].pass->name);
+                reply->pass_ms[reply->pass_count++] = s->graph->entries[i].last_ms;
+            }
+    }
+    app->render_depth--;
+    session_close(s);
+    return ok;
 }

@@ -61,6 +61,10 @@ bool session_reference(struct session *s, int frame, const struct ref_options *o
 /* ... also giving the caustic part alone (`caustic` may be NULL). */
 bool session_reference_parts(struct session *s, int frame, const struct ref_options *options, struct image *out,
                              struct image *caustic, struct ref_stats *stats, struct error *err);
+/* The Lua host's render service (lua_render_service) for c.image.render
+ * and c.image.reference; `context` is the app. */
+bool session_render_service(void *context, const struct lua_render_request *request, struct image *out,
+                            struct lua_render_reply *reply, struct error *err);
 /* Writes the rendered frame: .png tone mapped, .pfm linear. */
 bool session_write_image(struct session *s, const char *path, struct error *err);
 

@@ -134,7 +134,10 @@ struct pass {
     int output_count;
     bool created;
     void *state;               /* owned by the pass's create/destroy */
-    void *lua;                 /* lua_State* for passes that call back into the script */
+    /* A pass that calls back into the script (custom): set by the bindings,
+     * so that the pass needs nothing of the Lua layer above it. */
+    bool (*script_run)(struct pass *p, struct pass_frame *f, struct error *err);
+    void *script_state;        /* the bindings' (the lua_State) */
 };
 
 /* Creation and release of instances (values filled by the Lua binding).

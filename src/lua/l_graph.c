@@ -272,7 +272,8 @@ static int lpass_new(lua_State *L)
     lua_pushvalue(L, 1);
     lua_setiuservalue(L, idx, 1); /* keeps lights and functions alive */
     struct pass *p = u->pass;
-    p->lua = L;
+    p->script_run = lua_host_run_custom_pass;
+    p->script_state = L;
     lutil_where(L, p->origin, sizeof p->origin);
     for (int i = 0; i < desc->param_count; i++) {
         const struct pass_param_desc *d = &desc->params[i];
@@ -347,7 +348,11 @@ static struct graph *check_graph(lua_State *L, int idx)
     return &((struct l_graph *)luaL_checkudata(L, idx, GRAPH_MT))->graph;
 }
 
-struct graph *lgraph_check(lua_State *L, int idx) { return check_graph(L, idx); }
+struct graph *lua_host_to_graph(lua_State *L, int idx)
+{
+    struct l_graph *u = luaL_testudata(L, idx, GRAPH_MT);
+    return u ? &u->graph : NULL;
+}
 
 static int lgraph_new(lua_State *L)
 {

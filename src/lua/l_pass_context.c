@@ -203,7 +203,7 @@ static int context_index(lua_State *L)
 
 bool lua_host_run_custom_pass(struct pass *p, struct pass_frame *f, struct error *err)
 {
-    lua_State *L = p->lua;
+    lua_State *L = p->script_state;
     const struct pass_value *run = pass_value(p, "run");
     if (!L || !run || run->lua_ref < 0)
         return error_set(err, "custom pass has no run function");

@@ -1177,7 +1177,11 @@ static int quat_mul_l(lua_State *L)
     return 1;
 }
 
-struct scene *lscene_check(lua_State *L, int idx) { return check_scene(L, idx); }
+struct scene *lua_host_to_scene(lua_State *L, int idx)
+{
+    struct l_scene *u = luaL_testudata(L, idx, SCENE_MT);
+    return u ? &u->scene : NULL;
+}
 struct object *lobject_test(lua_State *L, int idx)
 {
     struct l_object *u = luaL_testudata(L, idx, OBJECT_MT);

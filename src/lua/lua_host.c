@@ -554,10 +554,10 @@ const struct lua_host_options *lua_host_options_of(lua_State *L)
     return h ? &h->options : NULL;
 }
 
-struct app *lua_host_app(lua_State *L)
+const char *lua_host_root(lua_State *L)
 {
     struct host_state *h = host_of(L);
-    return h ? h->options.app : NULL;
+    return h ? h->root : ".";
 }
 
 void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen)

@@ -13,7 +13,10 @@
 
 struct pass;
 struct pass_frame;
-struct app;
+struct scene;
+struct graph;
+struct image;
+struct ref_options;
 
 #define LUA_PARAMS_MAX 64
 
@@ -26,13 +29,39 @@ struct lua_params {
 /* Adds "k=v"; false with a message when malformed or too many. */
 bool lua_params_add(struct lua_params *params, const char *assignment, struct error *err);
 
+/* What c.image.render and c.image.reference ask of the application (the
+ * Lua layer cannot open sessions itself: they live above it). */
+#define LUA_RENDER_MAX_PASSES 64
+struct lua_render_request {
+    const char *script; /* resolved path */
+    struct lua_params params;
+    int width, height;  /* 0: the script's size */
+    int frame;
+    const struct ref_options *reference; /* NULL: render the graph on the GPU */
+};
+
+struct lua_render_reply {
+    int pass_count; /* kept passes and their milliseconds (GPU renders) */
+    char pass_names[LUA_RENDER_MAX_PASSES][64];
+    double pass_ms[LUA_RENDER_MAX_PASSES];
+    int iterations; /* reference renders */
+    long long photons, caustic_photons;
+    double caustic_power[3];
+    double seconds;
+};
+
+/* Renders `request` into `out` (created by the service); false with a message. */
+typedef bool (*lua_render_service)(void *context, const struct lua_render_request *request, struct image *out,
+                                   struct lua_render_reply *reply, struct error *err);
+
 struct lua_host_options {
     const char *root;        /* project folder: lua/ and shaders/ */
     const char *script_path; /* the scene or test script */
     const struct lua_params *params;
     bool trusted;            /* no sandbox */
     const char *write_dir;   /* where a sandboxed script may write (NULL: nowhere) */
-    struct app *app;         /* for rendering from scripts (tests) */
+    lua_render_service render; /* for c.image.render/reference (tests); NULL: not available */
+    void *render_context;
     bool update_refs;        /* caustica test --update-refs */
     const char *filter;      /* caustica test --filter */
     double timeout;          /* seconds one call into the script may run (0: no limit) */
@@ -57,7 +86,11 @@ bool lua_host_check_read(lua_State *L, const char *path, struct error *err);
 bool lua_host_check_write(lua_State *L, const char *path, struct error *err);
 /* `rel` against the running script's folder (absolute paths unchanged). */
 void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen);
-struct app *lua_host_app(lua_State *L);
+/* The project folder the host was made with. */
+const char *lua_host_root(lua_State *L);
+/* The scene or graph userdata at `idx`, or NULL when it is something else. */
+struct scene *lua_host_to_scene(lua_State *L, int idx);
+struct graph *lua_host_to_graph(lua_State *L, int idx);
 const struct lua_host_options *lua_host_options_of(lua_State *L);
 /* Parameters given with --set that the script never asked for. */
 void lua_host_unused_params(lua_State *L, char *out, size_t outlen);

@@ -1,8 +1,8 @@
 /* custom: a pass written in Lua. Its `run(ctx)` function is called each
- * frame with a context that clears outputs and runs fullscreen shaders
- * (src/lua/l_pass_context.c translates those calls). */
+ * frame, through the script_run callback the bindings set, with a context
+ * that clears outputs and runs fullscreen shaders (src/lua/l_pass_context.c
+ * translates those calls). */
 #include "graph/pass.h"
-#include "lua/lua_host.h"
 
 bool fullscreen_declare_io(struct pass *p, struct error *err);
 
@@ -14,7 +14,9 @@ static const struct pass_param_desc params[] = {
 
 static bool custom_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
-    return lua_host_run_custom_pass(p, f, err);
+    if (!p->script_run)
+        return error_set(err, "custom pass '%s' has no script to run", p->name);
+    return p->script_run(p, f, err);
 }
 
 const struct pass_desc custom_pass = {
