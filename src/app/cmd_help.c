@@ -106,7 +106,7 @@ static void pass_outputs(const struct pass_desc *desc, char *out, size_t outlen)
             decided_by_script = true;
         }
     }
-    bool declared = p && !decided_by_script && desc->declare && desc->declare(p, &err);
+    bool declared = p && !decided_by_script && pass_declare(p, &err);
     if (declared) {
         size_t used = 0;
         for (int i = 0; i < p->output_count && used < outlen; i++) {

@@ -330,24 +330,13 @@ bool session_set_pass_param(struct session *s, const char *key, double value, st
         struct pass *p = s->graph->entries[i].pass;
         if (strcmp(p->name, pass_name) != 0)
             continue;
-        int k = pass_param_index(p->desc, dot + 1);
-        if (k < 0)
+        if (pass_param_index(p->desc, dot + 1) < 0)
             return error_set(err, "%s: pass '%s' (%s) has no parameter '%s'", s->script, pass_name, p->desc->name, dot + 1);
-        const struct pass_param_desc *d = &p->desc->params[k];
-        if (d->type != PASS_PARAM_NUMBER && d->type != PASS_PARAM_INTEGER && d->type != PASS_PARAM_BOOLEAN)
-            return error_set(err, "%s: %s is not a number parameter", s->script, key);
-        if (d->type == PASS_PARAM_INTEGER && value != floor(value))
-            return error_set(err, "%s: %s needs an integer, got %g", s->script, key, value);
-        if (d->min < d->max && (value < d->min || value > d->max))
-            return error_set(err, "%s: %s = %g is out of range %g..%g", s->script, key, value, d->min, d->max);
         if (p->created)
             return error_set(err, "%s: %s: the pass already ran; set parameters before rendering", s->script, key);
-        p->values[k].number = value;
-        p->values[k].set = true;
-        /* Outputs may depend on the value (a shadow map's size): declare again. */
-        p->input_count = 0;
-        p->output_count = 0;
-        if (p->desc->declare && !p->desc->declare(p, err))
+        /* Validated where the bindings validate; outputs may depend on the
+         * value (a shadow map's size): declare again. */
+        if (!pass_set_number(p, dot + 1, value, err) || !pass_declare(p, err))
             return error_prefix(err, "%s: %s", s->script, key);
         s->graph->compiled = false;
         return true;

@@ -1,9 +1,13 @@
+#define _POSIX_C_SOURCE 200809L
 #include "graph/pass.h"
 #include "scene/scene.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+static int choice_index(const char *choices, const char *choice);
 
 struct pass *pass_create(const struct pass_desc *desc)
 {
@@ -20,6 +24,8 @@ struct pass *pass_create(const struct pass_desc *desc)
     for (int i = 0; i < desc->param_count; i++) {
         p->values[i].lua_ref = -1;
         p->values[i].number = desc->params[i].default_number;
+        if (desc->params[i].type == PASS_PARAM_ENUM && desc->params[i].default_string)
+            p->values[i].number = choice_index(desc->params[i].choices, desc->params[i].default_string);
     }
     snprintf(p->name, sizeof p->name, "%s", desc->name);
     return p;
@@ -83,38 +89,167 @@ const struct pass_value *pass_value(const struct pass *p, const char *name)
     return i >= 0 ? &p->values[i] : NULL;
 }
 
-double pass_number(const struct pass *p, const char *name)
+static const char *type_word(enum pass_param_type t)
 {
-    const struct pass_value *v = pass_value(p, name);
-    return v ? v->number : 0.0;
+    switch (t) {
+    case PASS_PARAM_NUMBER: return "number";
+    case PASS_PARAM_INTEGER: return "integer";
+    case PASS_PARAM_BOOLEAN: return "boolean";
+    case PASS_PARAM_ENUM: return "enum";
+    case PASS_PARAM_STRING: return "string";
+    case PASS_PARAM_INPUT: return "input";
+    case PASS_PARAM_INPUT_LIST: return "input list";
+    case PASS_PARAM_LIGHT: return "light";
+    case PASS_PARAM_OBJECT: return "object";
+    default: return "table";
+    }
 }
 
-const char *pass_string(const struct pass *p, const char *name)
+static int find_param(struct pass *p, const char *name, struct error *err)
 {
     int i = pass_param_index(p->desc, name);
     if (i < 0)
-        return NULL;
-    if (p->values[i].string)
-        return p->values[i].string;
-    return p->desc->params[i].default_string;
+        error_set(err, "pass '%s' (%s) has no parameter '%s'", p->name, p->desc->name, name);
+    return i;
 }
 
-struct light *pass_light(const struct pass *p, const char *name)
+bool pass_set_number(struct pass *p, const char *name, double value, struct error *err)
 {
-    const struct pass_value *v = pass_value(p, name);
-    return v ? v->light : NULL;
+    int i = find_param(p, name, err);
+    if (i < 0)
+        return false;
+    const struct pass_param_desc *d = &p->desc->params[i];
+    const char *fn = p->desc->name;
+    if (d->type == PASS_PARAM_BOOLEAN && (value == 0.0 || value == 1.0))
+        return pass_set_boolean(p, name, value != 0.0, err);
+    if (d->type != PASS_PARAM_NUMBER && d->type != PASS_PARAM_INTEGER)
+        return error_set(err, "bad argument '%s' to '%s' (%s parameter: not a number parameter)", name, fn,
+                         type_word(d->type));
+    if (!isfinite(value))
+        return error_set(err, "bad argument '%s' to '%s' (a finite number expected, got %g)", name, fn,
+                         isnan(value) ? NAN : value);
+    if (d->type == PASS_PARAM_INTEGER && value != floor(value))
+        return error_set(err, "bad argument '%s' to '%s' (integer expected, got %g)", name, fn, value);
+    if (d->min < d->max && (value < d->min || value > d->max))
+        return error_set(err, "bad argument '%s' to '%s' (%g is out of range %g..%g)", name, fn, value, d->min, d->max);
+    p->values[i].number = value;
+    p->values[i].set = true;
+    return true;
 }
 
-struct object *pass_object(const struct pass *p, const char *name)
+bool pass_set_boolean(struct pass *p, const char *name, bool value, struct error *err)
 {
-    const struct pass_value *v = pass_value(p, name);
-    return v ? v->object : NULL;
+    int i = find_param(p, name, err);
+    if (i < 0)
+        return false;
+    if (p->desc->params[i].type != PASS_PARAM_BOOLEAN)
+        return error_set(err, "bad argument '%s' to '%s' (%s expected, got boolean)", name, p->desc->name,
+                         type_word(p->desc->params[i].type));
+    p->values[i].number = value ? 1.0 : 0.0;
+    p->values[i].set = true;
+    return true;
 }
 
-const float *pass_color(const struct pass *p, const char *name)
+/* Index of `choice` in "a|b|c", or -1. */
+static int choice_index(const char *choices, const char *choice)
 {
-    const struct pass_value *v = pass_value(p, name);
-    return v && v->set ? v->color : NULL;
+    size_t n = strlen(choice);
+    int index = 0;
+    for (const char *c = choices; c && *c; index++) {
+        const char *bar = strchr(c, '|');
+        size_t len = bar ? (size_t)(bar - c) : strlen(c);
+        if (len == n && strncmp(c, choice, n) == 0)
+            return index;
+        c = bar ? bar + 1 : NULL;
+    }
+    return -1;
+}
+
+static bool store_string(struct pass_value *v, const char *value, struct error *err)
+{
+    char *copy = strdup(value);
+    if (!copy)
+        return error_set(err, "out of memory");
+    free(v->string);
+    v->string = copy;
+    v->set = true;
+    return true;
+}
+
+bool pass_set_enum(struct pass *p, const char *name, const char *choice, struct error *err)
+{
+    int i = find_param(p, name, err);
+    if (i < 0)
+        return false;
+    const struct pass_param_desc *d = &p->desc->params[i];
+    if (d->type != PASS_PARAM_ENUM)
+        return error_set(err, "bad argument '%s' to '%s' (%s expected, got string)", name, p->desc->name,
+                         type_word(d->type));
+    int k = choice_index(d->choices, choice);
+    if (k < 0)
+        return error_set(err, "bad argument '%s' to '%s' (one of %s expected, got '%s')", name, p->desc->name,
+                         d->choices, choice);
+    p->values[i].number = k;
+    return store_string(&p->values[i], choice, err);
+}
+
+bool pass_set_string(struct pass *p, const char *name, const char *value, struct error *err)
+{
+    int i = find_param(p, name, err);
+    if (i < 0)
+        return false;
+    const struct pass_param_desc *d = &p->desc->params[i];
+    if (d->type == PASS_PARAM_ENUM)
+        return pass_set_enum(p, name, value, err);
+    if (d->type != PASS_PARAM_STRING && d->type != PASS_PARAM_INPUT)
+        return error_set(err, "bad argument '%s' to '%s' (%s expected, got string)", name, p->desc->name,
+                         type_word(d->type));
+    return store_string(&p->values[i], value, err);
+}
+
+double pass_real(const struct pass *p, int param) { return p->values[param].number; }
+int pass_int(const struct pass *p, int param) { return (int)p->values[param].number; }
+bool pass_flag(const struct pass *p, int param) { return p->values[param].number != 0.0; }
+int pass_choice(const struct pass *p, int param) { return (int)p->values[param].number; }
+
+const char *pass_text(const struct pass *p, int param)
+{
+    return p->values[param].string ? p->values[param].string : p->desc->params[param].default_string;
+}
+
+struct light *pass_light_at(const struct pass *p, int param) { return p->values[param].light; }
+struct object *pass_object_at(const struct pass *p, int param) { return p->values[param].object; }
+
+bool pass_declare(struct pass *p, struct error *err)
+{
+    p->input_count = 0;
+    p->output_count = 0;
+    const struct pass_desc *d = p->desc;
+    for (int i = 0; i < d->param_count; i++) {
+        const struct pass_param_desc *pd = &d->params[i];
+        if (pd->type != PASS_PARAM_INPUT)
+            continue;
+        const char *source = p->values[i].string;
+        char derived[RESOURCE_NAME_MAX];
+        if (!source && pd->default_beside) {
+            int b = pass_param_index(d, pd->default_beside);
+            const char *beside = b >= 0 ? p->values[b].string : NULL;
+            const char *dot = beside ? strchr(beside, '.') : NULL;
+            if (dot) {
+                snprintf(derived, sizeof derived, "%.*s.%s", (int)(dot - beside), beside, pd->default_output);
+                source = derived;
+            }
+        }
+        if (!source) {
+            if (pd->required)
+                return error_set(err, "bad argument '%s' to '%s' (input \"pass.output\" expected, got no value)",
+                                 pd->name, d->name);
+            continue;
+        }
+        if (!pass_declare_input(p, pd->name, source, err))
+            return false;
+    }
+    return !d->declare || d->declare(p, err);
 }
 
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err)

@@ -44,12 +44,16 @@ struct pass_param_desc {
     const char *choices;   /* enum: "a|b|c" */
     bool required;
     bool is_path; /* string: a file path, resolved against the script's folder */
+    /* input: when the script gives none, read output `default_output` of
+     * the pass that makes input `default_beside` (refraction's depth is the
+     * depth of the pass that made its colour). */
+    const char *default_beside, *default_output;
     const char *help;
 };
 
 struct pass_value {
     bool set;
-    double number;
+    double number;         /* number, integer, boolean (0/1), enum (index into choices) */
     char *string;          /* owned */
     struct light *light;   /* borrowed (Lua keeps it alive) */
     struct object *object; /* borrowed (Lua keeps it alive) */
@@ -150,14 +154,37 @@ void pass_destroy(struct pass *p);
 void pass_set_light(struct pass *p, int param, struct light *light);
 void pass_set_object(struct pass *p, int param, struct object *object);
 
-/* Typed access to parameter values, by name (the descriptor must have it). */
-double pass_number(const struct pass *p, const char *name);
-const char *pass_string(const struct pass *p, const char *name);
-struct light *pass_light(const struct pass *p, const char *name);
-struct object *pass_object(const struct pass *p, const char *name);
-const float *pass_color(const struct pass *p, const char *name);
+/* Setting parameters: the one place values are validated (type, finite,
+ * integer, range, enum choice), used by the Lua bindings, `bench --sweep`
+ * and the unit tests. False with "bad argument 'size' to 'shadow_map'
+ * (0 is out of range 16..8192)" and the like. Enums are stored as their
+ * index into `choices`. */
+bool pass_set_number(struct pass *p, const char *name, double value, struct error *err);
+bool pass_set_boolean(struct pass *p, const char *name, bool value, struct error *err);
+bool pass_set_enum(struct pass *p, const char *name, const char *choice, struct error *err);
+/* STRING and INPUT parameters (a path is stored as given: resolve it first). */
+bool pass_set_string(struct pass *p, const char *name, const char *value, struct error *err);
+
+/* Reading them, by the parameter's index in the descriptor's `params`
+ * (a pass names its indices with an enum and fills `params` with
+ * designated initializers, so the two cannot drift apart): no lookup by
+ * name and no cast in the frame loop. */
+double pass_real(const struct pass *p, int param);
+int pass_int(const struct pass *p, int param);
+bool pass_flag(const struct pass *p, int param);
+int pass_choice(const struct pass *p, int param); /* an enum's index into its choices */
+const char *pass_text(const struct pass *p, int param); /* string/input, or its default (may be NULL) */
+struct light *pass_light_at(const struct pass *p, int param);
+struct object *pass_object_at(const struct pass *p, int param);
+
+/* By name: for generic code (bindings, tools), not for passes. */
 const struct pass_value *pass_value(const struct pass *p, const char *name);
 int pass_param_index(const struct pass_desc *desc, const char *name);
+
+/* Declares the pass's inputs and outputs from its values: every INPUT
+ * parameter that is set (or has a default_beside) becomes an input slot of
+ * its own name, then desc->declare adds the rest. Call after setting values. */
+bool pass_declare(struct pass *p, struct error *err);
 
 /* Used by declare(). */
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err);

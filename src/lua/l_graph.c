@@ -138,55 +138,44 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
     v->set = true;
     switch (d->type) {
     case PASS_PARAM_NUMBER:
-    case PASS_PARAM_INTEGER:
+    case PASS_PARAM_INTEGER: {
         if (t != LUA_TNUMBER)
             lutil_field_error(L, fn, d->name, "number", idx);
-        v->number = lua_tonumber(L, idx);
-        if (!isfinite(v->number))
-            lutil_error(L, "bad argument '%s' to '%s' (a finite number expected, got %g)", d->name, fn,
-                        isnan(v->number) ? NAN : v->number);
-        if (d->type == PASS_PARAM_INTEGER && !lua_isinteger(L, idx))
-            lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, v->number);
-        if (d->min < d->max && (v->number < d->min || v->number > d->max))
-            lutil_error(L, "bad argument '%s' to '%s' (%g is out of range %g..%g)", d->name, fn, v->number, d->min,
-                        d->max);
+        /* An integer-valued float (2.0) is an integer; 2^53 and up cannot be
+         * told from its neighbours, so a Lua integer is what counts. */
+        if (d->type == PASS_PARAM_INTEGER && !lua_isinteger(L, idx) && isfinite(lua_tonumber(L, idx)))
+            lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", d->name, fn, lua_tonumber(L, idx));
+        struct error err;
+        if (!pass_set_number(p, d->name, lua_tonumber(L, idx), &err))
+            lutil_error(L, "%s", err.message);
         break;
-    case PASS_PARAM_BOOLEAN:
+    }
+    case PASS_PARAM_BOOLEAN: {
         if (t != LUA_TBOOLEAN)
             lutil_field_error(L, fn, d->name, "boolean", idx);
-        v->number = lua_toboolean(L, idx);
+        struct error err;
+        if (!pass_set_boolean(p, d->name, lua_toboolean(L, idx), &err))
+            lutil_error(L, "%s", err.message);
         break;
+    }
     case PASS_PARAM_STRING:
     case PASS_PARAM_ENUM:
-    case PASS_PARAM_INPUT:
+    case PASS_PARAM_INPUT: {
         if (t != LUA_TSTRING)
             lutil_field_error(L, fn, d->name, type_name(d->type), idx);
-        if (d->type == PASS_PARAM_ENUM) {
-            const char *s = lua_tostring(L, idx);
-            size_t n = strlen(s);
-            const char *c = d->choices;
-            bool ok = false;
-            while (c && *c) {
-                const char *bar = strchr(c, '|');
-                size_t len = bar ? (size_t)(bar - c) : strlen(c);
-                if (len == n && strncmp(c, s, n) == 0)
-                    ok = true;
-                c = bar ? bar + 1 : NULL;
-            }
-            if (!ok)
-                luaL_error(L, "bad argument '%s' to '%s' (one of %s expected, got '%s')", d->name, fn, d->choices, s);
-        }
+        char path[4096];
+        const char *value = lua_tostring(L, idx);
+        struct error err;
         if (d->is_path) {
-            char path[4096];
-            lua_host_resolve_path(L, lua_tostring(L, idx), path, sizeof path);
-            struct error err;
+            lua_host_resolve_path(L, value, path, sizeof path);
             if (!lua_host_check_read(L, path, &err))
                 luaL_error(L, "bad argument '%s' to '%s' (%s)", d->name, fn, err.message);
-            v->string = dup_string(L, path);
-        } else {
-            v->string = dup_string(L, lua_tostring(L, idx));
+            value = path;
         }
+        if (!pass_set_string(p, d->name, value, &err))
+            lutil_error(L, "%s", err.message);
         break;
+    }
     case PASS_PARAM_LIGHT:
         if (!llight_test(L, idx))
             lutil_field_error(L, fn, d->name, "light", idx);
@@ -287,7 +276,7 @@ static int lpass_new(lua_State *L)
         lua_pop(L, 1);
     }
     struct error err;
-    if (desc->declare && !desc->declare(p, &err))
+    if (!pass_declare(p, &err))
         return luaL_error(L, "%s", err.message);
     lua_settop(L, idx);
     return 1;

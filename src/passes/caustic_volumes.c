@@ -34,22 +34,32 @@ struct caustic_volumes_state {
     size_t capacity;     /* volumes it holds */
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+enum caustic_volumes_param {
+    VOLUMES_LIGHT,
+    VOLUMES_WATER,
+    VOLUMES_CAP,
+    VOLUMES_RESOLUTION,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "a directional or point light"},
-    {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
-    {.name = "cap", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 1e6,
+    [VOLUMES_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "a directional or point light"},
+    [VOLUMES_WATER] = {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
+    [VOLUMES_CAP] = {.name = "cap", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 1e6,
      .help = "largest flux ratio F_P (0: a quarter of the generator grid's resolution)"},
-    {.name = "resolution", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4096,
+    [VOLUMES_RESOLUTION] = {.name = "resolution", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4096,
      .help = "generator grid, vertices per side, resampled from the surface (0: the water's own grid)"},
 };
 
 static bool caustic_volumes_declare(struct pass *p, struct error *err)
 {
-    struct object *w = pass_object(p, "water");
+    struct object *w = pass_object_at(p, VOLUMES_WATER);
     if (!w->water)
         return error_set(err, "bad argument 'water' to 'caustic_volumes' (a water surface from c.water{...} expected, got "
                               "an ordinary object)");
-    struct light *l = pass_light(p, "light");
+    struct light *l = pass_light_at(p, VOLUMES_LIGHT);
     if (l->kind != LIGHT_DIRECTIONAL && l->kind != LIGHT_POINT)
         return error_set(err, "bad argument 'light' to 'caustic_volumes' (a directional or point light expected, got a "
                               "%s light)", light_kind_name(l->kind));
@@ -88,8 +98,8 @@ static void caustic_volumes_destroy(struct pass *p)
 static enum pass_need caustic_volumes_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     (void)f;
-    struct object *water = pass_object(p, "water");
-    struct light *light = pass_light(p, "light");
+    struct object *water = pass_object_at(p, VOLUMES_WATER);
+    struct light *light = pass_light_at(p, VOLUMES_LIGHT);
     if (!water->visible) {
         snprintf(why, whylen, "left out: the water surface is hidden");
         return PASS_SKIP;
@@ -105,8 +115,8 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
 {
     struct caustic_volumes_state *s = p->state;
     struct renderer *r = f->renderer;
-    struct object *water = pass_object(p, "water");
-    struct light *light = pass_light(p, "light");
+    struct object *water = pass_object_at(p, VOLUMES_WATER);
+    struct light *light = pass_light_at(p, VOLUMES_LIGHT);
     int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
@@ -134,7 +144,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     /* The caustic volumes, built on the GPU from this frame's surface,
      * resampled (bilinearly) onto the generator grid. */
     int water_res = water->water->resolution;
-    int gen_res = (int)pass_number(p, "resolution") >= 2 ? (int)pass_number(p, "resolution") : water_res;
+    int gen_res = pass_int(p, VOLUMES_RESOLUTION) >= 2 ? pass_int(p, VOLUMES_RESOLUTION) : water_res;
     size_t triangles = (size_t)(gen_res - 1) * (size_t)(gen_res - 1) * 2;
     if (s->capacity < triangles) {
         if (s->volumes)
@@ -146,7 +156,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     vec3 lo, hi;
     scene_bounds(f->scene, &lo, &hi);
     float bottom = lo.y - 0.01f - 0.01f * (hi.y - lo.y); /* just below the deepest receiver (§3.5) */
-    double cap = pass_number(p, "cap") > 0 ? pass_number(p, "cap") : 0.25 * gen_res;
+    double cap = pass_real(p, VOLUMES_CAP) > 0 ? pass_real(p, VOLUMES_CAP) : 0.25 * gen_res;
     struct gl_program *build;
     if (!gl_program_get_compute(&r->programs, "caustic_volumes/build.comp", NULL, NULL, &build, err))
         return false;

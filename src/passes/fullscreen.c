@@ -13,12 +13,22 @@ struct fullscreen_state {
     struct gl_framebuffer fb;
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+enum fullscreen_param {
+    FULLSCREEN_SHADER,
+    FULLSCREEN_INPUTS,
+    FULLSCREEN_OUTPUTS,
+    FULLSCREEN_UNIFORMS,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "shader", .type = PASS_PARAM_STRING, .required = true, .is_path = true,
+    [FULLSCREEN_SHADER] = {.name = "shader", .type = PASS_PARAM_STRING, .required = true, .is_path = true,
      .help = "fragment shader file (GLSL 450, may #include \"common/frame.glsl\")"},
-    {.name = "inputs", .type = PASS_PARAM_INPUT_MAP, .help = "{sampler_name = \"pass.output\", ...}"},
-    {.name = "outputs", .type = PASS_PARAM_OUTPUT_MAP, .help = "{name = \"rgba32f\", ...}; default {color = \"rgba32f\"}"},
-    {.name = "uniforms", .type = PASS_PARAM_UNIFORM_MAP, .help = "{name = number or {x, y, z, w}, ...}"},
+    [FULLSCREEN_INPUTS] = {.name = "inputs", .type = PASS_PARAM_INPUT_MAP, .help = "{sampler_name = \"pass.output\", ...}"},
+    [FULLSCREEN_OUTPUTS] = {.name = "outputs", .type = PASS_PARAM_OUTPUT_MAP, .help = "{name = \"rgba32f\", ...}; default {color = \"rgba32f\"}"},
+    [FULLSCREEN_UNIFORMS] = {.name = "uniforms", .type = PASS_PARAM_UNIFORM_MAP, .help = "{name = number or {x, y, z, w}, ...}"},
 };
 
 bool fullscreen_declare_io(struct pass *p, struct error *err);
@@ -26,6 +36,7 @@ bool fullscreen_declare_io(struct pass *p, struct error *err);
 /* Shared with the custom pass: named inputs and outputs from the maps. */
 bool fullscreen_declare_io(struct pass *p, struct error *err)
 {
+    /* By name: the custom pass's parameters have other indices. */
     const struct pass_value *in = pass_value(p, "inputs");
     for (int i = 0; in && i < in->list_count; i++)
         if (!pass_declare_input(p, in->keys[i], in->list[i], err))
@@ -58,7 +69,7 @@ static bool fullscreen_create(struct pass *p, struct renderer *r, struct error *
         return false;
     /* Compile now so a broken shader is reported before the first frame. */
     struct gl_program *prog;
-    return gl_program_get(&r->programs, "common/fullscreen.vert", pass_string(p, "shader"), NULL, &prog, err);
+    return gl_program_get(&r->programs, "common/fullscreen.vert", pass_text(p, FULLSCREEN_SHADER), NULL, &prog, err);
 }
 
 static void fullscreen_destroy(struct pass *p)
@@ -75,7 +86,7 @@ static bool fullscreen_execute(struct pass *p, struct pass_frame *f, struct erro
 {
     struct fullscreen_state *s = p->state;
     struct gl_program *prog;
-    if (!gl_program_get(&f->renderer->programs, "common/fullscreen.vert", pass_string(p, "shader"), NULL, &prog, err))
+    if (!gl_program_get(&f->renderer->programs, "common/fullscreen.vert", pass_text(p, FULLSCREEN_SHADER), NULL, &prog, err))
         return false;
     const struct gl_texture *colors[PASS_MAX_OUTPUTS];
     for (int o = 0; o < p->output_count; o++)
@@ -89,7 +100,7 @@ static bool fullscreen_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.BindTextureUnit((GLuint)i, f->inputs[i]->texture.id);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, p->inputs[i].name), i);
     }
-    const struct pass_value *u = pass_value(p, "uniforms");
+    const struct pass_value *u = &p->values[FULLSCREEN_UNIFORMS];
     for (int i = 0; u && i < u->list_count; i++) {
         GLint loc = gl_program_uniform(prog, u->keys[i]);
         const float *v = u->vectors[i];

@@ -37,20 +37,37 @@ struct photon_state {
     float fixed_point; /* flux -> integer count scale */
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+/* Choices of `mode`, in the order of its `choices`. */
+enum { PHOTON_MODE_REFRACT, PHOTON_MODE_REFLECT };
+
+enum photon_caustics_param {
+    PHOTON_LIGHT,
+    PHOTON_BUFFER,
+    PHOTON_K,
+    PHOTON_S,
+    PHOTON_TEXTURE,
+    PHOTON_ITERATIONS,
+    PHOTON_BIAS,
+    PHOTON_MODE,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light the photons come from"},
-    {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 2048,
+    [PHOTON_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light the photons come from"},
+    [PHOTON_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 2048,
      .help = "photon buffer size (photons = buffer^2 at most), 64-512 in the paper"},
-    {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8, .help = "filter radius (§3.2)"},
-    {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
+    [PHOTON_K] = {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8, .help = "filter radius (§3.2)"},
+    [PHOTON_S] = {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
      .help = "filter scale; 1 keeps the photons' energy (irradiance)"},
-    {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+    [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "caustic texture size per receiver"},
-    {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
+    [PHOTON_ITERATIONS] = {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
      .help = "iterations of d_T and of the impostor correction (Fig. 9, 16)"},
-    {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
+    [PHOTON_BIAS] = {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
      .help = "depth tolerance of the caustic mapping test, scene units"},
-    {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
+    [PHOTON_MODE] = {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
 };
 
@@ -161,15 +178,15 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
 {
     struct photon_state *s = p->state;
     struct renderer *r = f->renderer;
-    struct light *light = pass_light(p, "light");
+    struct light *light = pass_light_at(p, PHOTON_LIGHT);
     int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
     vec3 oc = {0, 0, 0};
     float orad = 1.0f; /* photon_needed left the pass out when nothing is specular */
     specular_bounds(f->scene, &oc, &orad);
-    int buffer = (int)pass_number(p, "buffer"), texture = (int)pass_number(p, "texture");
-    int iterations = (int)pass_number(p, "iterations");
+    int buffer = pass_int(p, PHOTON_BUFFER), texture = pass_int(p, PHOTON_TEXTURE);
+    int iterations = pass_int(p, PHOTON_ITERATIONS);
     uint64_t gv = scene_geometry_version(f->scene);
     bool reuse = s->valid && s->light_version == light->version && s->geometry_version == gv && s->buffer == buffer &&
                  s->texture == texture;
@@ -248,7 +265,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
          * buffers (mirror or index of refraction, tint or absorption, water's
          * one interface): several specular objects may share the view */
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_reflect_glass"),
-                            strcmp(pass_string(p, "mode"), "reflect") == 0);
+                            pass_choice(p, PHOTON_MODE) == PHOTON_MODE_REFLECT);
         gl.Viewport(0, 0, buffer, buffer);
         renderer_draw_fullscreen(r);
 
@@ -280,8 +297,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             gl.BindImageTexture(0, s->counts.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
             gl.BindImageTexture(1, s->caustics.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
-            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_number(p, "k"));
-            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_number(p, "s"));
+            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
+            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
             gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
             gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
             gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -309,7 +326,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.UseProgram(map->id);
     bind_impostors(s, map);
     gl.BindTextureUnit(7, s->caustics.id);
-    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_number(p, "bias"));
+    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
     for (int k = 0; k < s->impostors.count; k++) {
         char name[48];
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);

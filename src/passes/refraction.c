@@ -35,34 +35,54 @@ struct refraction_state {
     int width, height;
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+/* Choices of `method`, in the order of its `choices`. */
+enum { REFRACTION_METHOD_HUQIN, REFRACTION_METHOD_WYMAN };
+
+enum refraction_param {
+    REFRACTION_METHOD,
+    REFRACTION_COLOR,
+    REFRACTION_DEPTH,
+    REFRACTION_ITERATIONS,
+    REFRACTION_TOLERANCE,
+    REFRACTION_SEARCH_STEPS,
+    REFRACTION_REFLECTION,
+    REFRACTION_NEARBY,
+    REFRACTION_IMPOSTOR,
+    REFRACTION_CORRECTION,
+    REFRACTION_RECURSION,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "method", .type = PASS_PARAM_ENUM, .default_string = "huqin", .choices = "huqin|wyman",
+    [REFRACTION_METHOD] = {.name = "method", .type = PASS_PARAM_ENUM, .default_string = "huqin", .choices = "huqin|wyman",
      .help = "huqin (Hu & Qin 2007) or wyman (Wyman 2005, the baseline)"},
-    {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene image to draw over"},
-    {.name = "depth", .type = PASS_PARAM_INPUT, .required = true, .help = "its depth (the refractors' front surfaces)"},
-    {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = MAX_ITERATIONS,
+    [REFRACTION_COLOR] = {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene image to draw over"},
+    [REFRACTION_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
+     .help = "its depth (the refractors' front surfaces); default: the depth output of the pass that made color"},
+    [REFRACTION_ITERATIONS] = {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = MAX_ITERATIONS,
      .help = "iterations of the d_T lookup (Fig. 9); 0 keeps the first estimate"},
-    {.name = "tolerance", .type = PASS_PARAM_NUMBER, .default_number = 1e-4, .min = 0, .max = 1,
+    [REFRACTION_TOLERANCE] = {.name = "tolerance", .type = PASS_PARAM_NUMBER, .default_number = 1e-4, .min = 0, .max = 1,
      .help = "stop the d_T iteration when a step is below this (scene units)"},
-    {.name = "search_steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = MAX_SEARCH_STEPS,
+    [REFRACTION_SEARCH_STEPS] = {.name = "search_steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = MAX_SEARCH_STEPS,
      .help = "binary search steps for the dividing pixel p_e (Fig. 7)"},
-    {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+    [REFRACTION_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "add the Fresnel-weighted reflection (Fig. 24 a-e show refraction alone)"},
-    {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+    [REFRACTION_NEARBY] = {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "reflect and refract nearby objects through impostors (§2.2), not only the environment"},
-    {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+    [REFRACTION_IMPOSTOR] = {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "impostor texture size"},
-    {.name = "correction", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
+    [REFRACTION_CORRECTION] = {.name = "correction", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
      .help = "iterations of the impostor correction (Fig. 16); 0 uses the rectangle's point"},
-    {.name = "recursion", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4,
+    [REFRACTION_RECURSION] = {.name = "recursion", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4,
      .help = "levels of recursive reflection/refraction through the reflectors' own impostors (Fig. 1b, 24g)"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
 {
-    return pass_declare_input(p, "color", pass_string(p, "color"), err) &&
-           pass_declare_input(p, "depth", pass_string(p, "depth"), err) &&
-           pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+    /* color and depth are declared from the descriptor (pass_declare). */
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }
 
 static bool refraction_create(struct pass *p, struct renderer *r, struct error *err)
@@ -163,11 +183,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
 {
     struct refraction_state *s = p->state;
     struct renderer *r = f->renderer;
-    bool wyman = strcmp(pass_string(p, "method"), "wyman") == 0;
+    bool wyman = pass_choice(p, REFRACTION_METHOD) == REFRACTION_METHOD_WYMAN;
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
-    bool nearby = pass_number(p, "nearby") != 0.0;
+    bool nearby = pass_flag(p, REFRACTION_NEARBY);
     const char *defines = wyman ? (nearby ? "#define WYMAN 1\n#define NEARBY 1\n" : "#define WYMAN 1\n")
                                 : (nearby ? "#define NEARBY 1\n" : "");
     if (nearby) {
@@ -181,9 +201,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         for (int i = 0; i < f->scene->object_count; i++)
             animated = animated || object_is_animated_geometry(f->scene->objects[i]);
         if (!s->impostors_valid || animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
-            s->impostors.size != (int)pass_number(p, "impostor") || pass_number(p, "recursion") > 0) {
-            int levels = (int)pass_number(p, "recursion");
-            if (!impostors_build(&s->impostors, r, f->scene, centre, (int)pass_number(p, "impostor"), levels > 0, err))
+            s->impostors.size != pass_int(p, REFRACTION_IMPOSTOR) || pass_real(p, REFRACTION_RECURSION) > 0) {
+            int levels = pass_int(p, REFRACTION_RECURSION);
+            if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, err))
                 return false;
             for (int level = 0; level < levels; level++)
                 if (!impostors_recurse(&s->impostors, r, f->scene, err))
@@ -234,17 +254,17 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.BindTextureUnit(2, s->back_normal.id);
     gl.BindTextureUnit(3, s->front_depth.id);
     gl.BindTextureUnit(4, s->back_depth.id);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_number(p, "iterations"));
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_number(p, "tolerance"));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_number(p, "search_steps"));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
     if (nearby && s->impostors.count > 0) {
         gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s->impostors.ubo);
         gl.BindTextureUnit(6, s->impostors.depth.id);
         gl.BindTextureUnit(8, s->impostors.color.id);
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_number(p, "correction"));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_number(p, "reflection") != 0.0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_int(p, REFRACTION_CORRECTION));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, REFRACTION_REFLECTION));
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);

@@ -18,20 +18,30 @@ struct shade_state {
     struct gl_framebuffer fb;
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+enum shade_param {
+    SHADE_SHADOW,
+    SHADE_BACKGROUND,
+    SHADE_CAUSTICS,
+    SHADE_SPECULAR,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+    [SHADE_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
      .help = "shadow map(s) from shadow_map passes, e.g. \"shadow.depth\" or {\"s1.depth\", \"s2.depth\"}"},
-    {.name = "background", .type = PASS_PARAM_INPUT,
+    [SHADE_BACKGROUND] = {.name = "background", .type = PASS_PARAM_INPUT,
      .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},
-    {.name = "caustics", .type = PASS_PARAM_INPUT_LIST,
+    [SHADE_CAUSTICS] = {.name = "caustics", .type = PASS_PARAM_INPUT_LIST,
      .help = "screen-space caustic irradiance added on diffuse surfaces (one or a list, summed: several lights)"},
-    {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+    [SHADE_SPECULAR] = {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "draw glass, water and mirrors (false: leave them to a later pass)"},
 };
 
 static bool shade_declare(struct pass *p, struct error *err)
 {
-    const struct pass_value *shadows = pass_value(p, "shadow");
+    const struct pass_value *shadows = &p->values[SHADE_SHADOW];
     if (shadows->list_count > SHADE_MAX_SHADOWS)
         return error_set(err, "bad argument 'shadow' to 'shade' (at most %d shadow maps, got %d)", SHADE_MAX_SHADOWS,
                          shadows->list_count);
@@ -41,10 +51,8 @@ static bool shade_declare(struct pass *p, struct error *err)
         if (!pass_declare_input(p, slot, shadows->list[i], err))
             return false;
     }
-    const char *bg = pass_string(p, "background");
-    if (bg && !pass_declare_input(p, "background", bg, err))
-        return false;
-    const struct pass_value *caustics = pass_value(p, "caustics");
+    /* background (an INPUT) is declared from the descriptor (pass_declare). */
+    const struct pass_value *caustics = &p->values[SHADE_CAUSTICS];
     if (caustics->list_count > SHADE_MAX_CAUSTICS)
         return error_set(err, "bad argument 'caustics' to 'shade' (at most %d inputs, got %d)", SHADE_MAX_CAUSTICS,
                          caustics->list_count);
@@ -157,7 +165,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), ncaustics);
     gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, prog, pass_number(p, "specular") != 0.0 ? DRAW_ALL : DRAW_DIFFUSE);
+    renderer_draw_objects(r, f->scene, prog, pass_flag(p, SHADE_SPECULAR) ? DRAW_ALL : DRAW_DIFFUSE);
     return true;
 }
 

@@ -20,11 +20,20 @@ struct shadow_state {
     int width, height;
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+enum shadow_map_param {
+    SHADOW_LIGHT,
+    SHADOW_SIZE,
+    SHADOW_BIAS,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light whose shadows to render"},
-    {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 1024, .min = 16, .max = 8192,
+    [SHADOW_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light whose shadows to render"},
+    [SHADOW_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 1024, .min = 16, .max = 8192,
      .help = "width and height of the map in texels"},
-    {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.003, .min = 0, .max = 1,
+    [SHADOW_BIAS] = {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.003, .min = 0, .max = 1,
      .help = "depth bias in scene units against self-shadowing"},
 };
 
@@ -32,8 +41,8 @@ static bool is_cube(const struct light *l) { return l->kind == LIGHT_POINT || l-
 
 static bool shadow_declare(struct pass *p, struct error *err)
 {
-    struct light *l = pass_light(p, "light");
-    int size = (int)pass_number(p, "size");
+    struct light *l = pass_light_at(p, SHADOW_LIGHT);
+    int size = pass_int(p, SHADOW_SIZE);
     if (is_cube(l))
         return pass_declare_output(p, "depth", GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
     return pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size, err);
@@ -48,8 +57,8 @@ static bool shadow_create(struct pass *p, struct renderer *r, struct error *err)
     p->state = s;
     if (!gl_framebuffer_create(&s->fb, err))
         return false;
-    if (is_cube(pass_light(p, "light"))) {
-        int size = (int)pass_number(p, "size");
+    if (is_cube(pass_light_at(p, SHADOW_LIGHT))) {
+        int size = pass_int(p, SHADOW_SIZE);
         if (!gl_texture_create(&s->cube_depth, GL_TEXTURE_CUBE_MAP, GL_DEPTH_COMPONENT32F, size, size, 6, err))
             return false;
     }
@@ -78,7 +87,7 @@ static bool any_animated(const struct scene *scene)
 static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     struct shadow_state *s = p->state;
-    struct light *l = pass_light(p, "light");
+    struct light *l = pass_light_at(p, SHADOW_LIGHT);
     /* Hu & Qin §4: in a static scene shadow maps are reused, not redrawn. */
     if (s->valid && s->light_version == l->version && s->geometry_version == scene_geometry_version(f->scene) &&
         !any_animated(f->scene) && s->width == f->width && s->height == f->height) {
@@ -97,7 +106,7 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
 {
     struct shadow_state *s = p->state;
     struct renderer *r = f->renderer;
-    struct light *l = pass_light(p, "light");
+    struct light *l = pass_light_at(p, SHADOW_LIGHT);
     struct graph_resource *out = f->outputs[0];
     int size = out->texture.width;
     if (scene_light_index(f->scene, l) < 0)
@@ -109,7 +118,7 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     scene_bounds(f->scene, &lo, &hi);
     vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
     float radius = 0.5f * vec3_length(vec3_sub(hi, lo)) + 1e-3f;
-    float bias = (float)pass_number(p, "bias");
+    float bias = (float)pass_real(p, SHADOW_BIAS);
 
     struct gl_program *prog;
     const char *defines = is_cube(l) ? "#define SHADOW_DISTANCE 1\n" : "";

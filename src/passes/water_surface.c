@@ -17,24 +17,38 @@ struct water_surface_state {
     struct gl_framebuffer fb;
 };
 
+/* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
+ * below is filled with these as designated initializers, so the two cannot
+ * drift apart. */
+/* Choices of `mapping`, in the order of its `choices`. */
+enum { SURFACE_MAPPING_PLANE, SURFACE_MAPPING_REFRACT };
+
+enum water_surface_param {
+    SURFACE_WATER,
+    SURFACE_COLOR,
+    SURFACE_DEPTH,
+    SURFACE_POSITION,
+    SURFACE_MAPPING,
+};
+
 static const struct pass_param_desc params[] = {
-    {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
-    {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene without the water surface"},
-    {.name = "depth", .type = PASS_PARAM_INPUT, .required = true, .help = "its depth buffer"},
-    {.name = "position", .type = PASS_PARAM_INPUT, .required = true, .help = "its world positions (for absorption)"},
-    {.name = "mapping", .type = PASS_PARAM_ENUM, .default_string = "plane", .choices = "plane|refract",
+    [SURFACE_WATER] = {.name = "water", .type = PASS_PARAM_OBJECT, .required = true, .help = "the water surface (c.water{...})"},
+    [SURFACE_COLOR] = {.name = "color", .type = PASS_PARAM_INPUT, .required = true, .help = "the scene without the water surface"},
+    [SURFACE_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
+     .help = "its depth buffer; default: the depth output of the pass that made color"},
+    [SURFACE_POSITION] = {.name = "position", .type = PASS_PARAM_INPUT, .default_beside = "color",
+     .default_output = "position",
+     .help = "its world positions (for absorption); default: the position output of the pass that made color"},
+    [SURFACE_MAPPING] = {.name = "mapping", .type = PASS_PARAM_ENUM, .default_string = "plane", .choices = "plane|refract",
      .help = "plane: the paper's texture coordinates from a virtual plane at the mean water level; refract: "
              "follow the refracted ray down to the pool floor"},
 };
 
 static bool water_surface_declare(struct pass *p, struct error *err)
 {
-    if (!pass_object(p, "water")->water)
+    if (!pass_object_at(p, SURFACE_WATER)->water)
         return error_set(err, "bad argument 'water' to 'water_surface' (a water surface from c.water{...} expected)");
-    return pass_declare_input(p, "color", pass_string(p, "color"), err) &&
-           pass_declare_input(p, "depth", pass_string(p, "depth"), err) &&
-           pass_declare_input(p, "position", pass_string(p, "position"), err) &&
-           pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }
 
 static bool water_surface_create(struct pass *p, struct renderer *r, struct error *err)
@@ -61,7 +75,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
 {
     struct water_surface_state *s = p->state;
     struct renderer *r = f->renderer;
-    struct object *water = pass_object(p, "water");
+    struct object *water = pass_object_at(p, SURFACE_WATER);
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth"),
                           *in_pos = pass_frame_input(p, f, "position"), *out = f->outputs[0];
     const struct gl_texture *targets[1] = {&out->texture};
@@ -86,7 +100,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),
-                        strcmp(pass_string(p, "mapping"), "refract") == 0);
+                        pass_choice(p, SURFACE_MAPPING) == SURFACE_MAPPING_REFRACT);
     renderer_draw_object(r, f->scene, prog, water);
     return true;
 }

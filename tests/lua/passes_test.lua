@@ -41,3 +41,12 @@ t.case("errors from scripts carry the script's file and line", function()
   t.expect_error(function() t.render("tests/scenes/passes.lua", { set = { mode = "late_input" } }) end,
     "move 'shade' before 'invert'")
 end)
+
+t.case("the documented refraction example needs no depth: it defaults to the colour pass's depth", function()
+  local c = require "caustica"
+  local p = c.pass.refraction { method = "huqin", color = "shade.color", iterations = 3 }
+  t.expect(p.kind == "refraction", "a refraction pass")
+  local with = t.render("tests/scenes/refract.lua")
+  local without = t.render("tests/scenes/refract.lua", { set = { default_depth = true } })
+  t.expect_close(with, without, { rmse = 0 })
+end)

@@ -1,5 +1,5 @@
 -- A glass sphere in the environment for the refraction pass's stability
--- tests: --set ior=, method=, hide=true, view=front|grazing|near
+-- tests: --set ior=, method=, hide=true, view=front|grazing|near, default_depth=true (no depth given)
 local c = require "caustica"
 local ior = c.param("ior", 1.5)
 local method = c.param("method", "huqin")
@@ -15,7 +15,8 @@ local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = 0.6, segments 
 ball.visible = not c.param("hide", false)
 local g = c.graph()
 g:add("shade", c.pass.shade {})
-g:add("glass", c.pass.refraction { method = method, color = "shade.color", depth = "shade.depth",
+g:add("glass", c.pass.refraction { method = method, color = "shade.color",
+                                    depth = (not c.param("default_depth", false)) and "shade.depth" or nil,
                                     iterations = c.param("iterations", 3) })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {64, 64} }

@@ -28,13 +28,54 @@ static struct pass *make(const char *kind, const char *param, const char *value,
         }
     }
     struct error err;
-    if (!d->declare(p, &err))
+    if (!pass_declare(p, &err))
         fprintf(stderr, "declare failed: %s\n", err.message);
     return p;
 }
 
+/* The parameter setters: the one place values are validated. */
+static void test_setters(void)
+{
+    struct error err;
+    struct light *lamp = light_create(LIGHT_POINT);
+    struct pass *shadow = make("shadow_map", NULL, NULL, lamp);
+    CHECK(pass_set_number(shadow, "size", 512, &err));
+    CHECK(pass_int(shadow, pass_param_index(shadow->desc, "size")) == 512);
+    CHECK(!pass_set_number(shadow, "size", 0, &err));
+    CHECK_CONTAINS(err.message, "bad argument 'size' to 'shadow_map' (0 is out of range 16..8192)");
+    CHECK(!pass_set_number(shadow, "size", 100.5, &err));
+    CHECK_CONTAINS(err.message, "integer expected, got 100.5");
+    CHECK(!pass_set_number(shadow, "bias", NAN, &err));
+    CHECK_CONTAINS(err.message, "a finite number expected, got nan");
+    CHECK(!pass_set_number(shadow, "light", 1, &err));
+    CHECK_CONTAINS(err.message, "not a number parameter");
+    CHECK(!pass_set_number(shadow, "nosuch", 1, &err));
+    CHECK_CONTAINS(err.message, "has no parameter 'nosuch'");
+    CHECK(pass_int(shadow, pass_param_index(shadow->desc, "size")) == 512); /* a refused value changes nothing */
+
+    /* Enums are stored as their index into the choices; the default too. */
+    struct pass *refr = pass_create(pass_registry_find("refraction"));
+    int method = pass_param_index(refr->desc, "method");
+    CHECK(pass_choice(refr, method) == 0);
+    CHECK(pass_set_enum(refr, "method", "wyman", &err));
+    CHECK(pass_choice(refr, method) == 1);
+    CHECK(!pass_set_enum(refr, "method", "snell", &err));
+    CHECK_CONTAINS(err.message, "one of huqin|wyman expected, got 'snell'");
+    /* An input with a default beside another: depth follows color's pass. */
+    CHECK(pass_set_string(refr, "color", "shade.color", &err));
+    CHECK(pass_declare(refr, &err));
+    CHECK(refr->input_count == 2 && strcmp(refr->inputs[1].name, "depth") == 0 &&
+          strcmp(refr->inputs[1].source, "shade.depth") == 0);
+    CHECK(pass_set_string(refr, "depth", "other.depth", &err) && pass_declare(refr, &err));
+    CHECK(strcmp(refr->inputs[1].source, "other.depth") == 0);
+    pass_destroy(refr);
+    pass_destroy(shadow);
+    light_destroy(lamp);
+}
+
 int main(void)
 {
+    test_setters();
     struct error err;
     struct light *sun = light_create(LIGHT_DIRECTIONAL);
 
