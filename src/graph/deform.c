@@ -5,30 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_buffer.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
-
-static bool ensure_buffers(struct object *o, struct error *err)
-{
-    size_t n = o->mesh->vertex_count;
-    if (o->buffer_deformed_positions && o->deformed_vertices == n)
-        return true;
-    if (o->buffer_deformed_positions) {
-        GLuint b[2] = {o->buffer_deformed_positions, o->buffer_deformed_normals};
-        gl.DeleteBuffers(2, b);
-    }
-    gl.CreateBuffers(1, &o->buffer_deformed_positions);
-    gl.CreateBuffers(1, &o->buffer_deformed_normals);
-    gl.NamedBufferStorage(o->buffer_deformed_positions, (GLsizeiptr)(n * 3 * sizeof(float)), NULL,
-                          GL_DYNAMIC_STORAGE_BIT);
-    gl.NamedBufferStorage(o->buffer_deformed_normals, (GLsizeiptr)(n * 3 * sizeof(float)), NULL,
-                          GL_DYNAMIC_STORAGE_BIT);
-    o->deformed_vertices = n;
-    o->vao_mesh_positions = 0; /* rebind the VAO */
-    if (o->water)
-        o->water->dirty = true; /* new buffers: fill them */
-    return gl_check("allocating deformed vertex buffers", err);
-}
 
 bool deform_update(struct renderer *r, struct scene *scene, double time, struct error *err)
 {
@@ -37,8 +16,12 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         struct object *o = scene->objects[i];
         if (!object_is_animated_geometry(o))
             continue;
-        if (!ensure_buffers(o, err))
+        struct gpu_object *g;
+        bool created;
+        if (!mesh_cache_deformed(&r->meshes, o, &g, &created, err))
             return false;
+        if (created && o->water)
+            o->water->dirty = true; /* new buffers: fill them */
         if (o->water) {
             /* The simulation runs on the CPU (its step is cheap and must be
              * exact for the tests); its heights go to the same buffers. */
@@ -51,10 +34,12 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
                     return error_set(err, "out of memory for the water surface");
                 }
                 water_fill_vertices(o->water, pos, nrm);
-                gl.NamedBufferSubData(o->buffer_deformed_positions, 0, (GLsizeiptr)(n * 3 * sizeof(float)), pos);
-                gl.NamedBufferSubData(o->buffer_deformed_normals, 0, (GLsizeiptr)(n * 3 * sizeof(float)), nrm);
+                bool ok = gl_buffer_update(g->deformed_positions, pos, n * 3 * sizeof(float), err) &&
+                          gl_buffer_update(g->deformed_normals, nrm, n * 3 * sizeof(float), err);
                 free(pos);
                 free(nrm);
+                if (!ok)
+                    return false;
                 o->water->dirty = false;
             }
             continue;
@@ -74,13 +59,16 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         if (!gl_program_get_compute(&r->programs, "deform/deform.comp", defines, origin, &prog, err))
             return false;
         struct mesh *m = o->mesh;
+        struct gpu_mesh *gm = mesh_cache_mesh(&r->meshes, m, err);
+        if (!gm)
+            return false;
         gl.UseProgram(prog->id);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m->buffer_positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m->buffer_normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m->target_count ? m->buffer_target_positions : m->buffer_positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m->target_count ? m->buffer_target_normals : m->buffer_normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, o->buffer_deformed_positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, o->buffer_deformed_normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gm->positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gm->normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m->target_count ? gm->target_positions : gm->positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m->target_count ? gm->target_normals : gm->normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->deformed_positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, g->deformed_normals);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_vertex_count"), (GLint)m->vertex_count);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_target_count"), m->target_count);
         for (int t = 0; t < SCENE_MAX_MORPH_TARGETS; t++) {

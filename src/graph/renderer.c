@@ -12,6 +12,7 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     char shader_root[1100];
     snprintf(shader_root, sizeof shader_root, "%s/shaders", root);
     gl_program_cache_init(&r->programs, shader_root);
+    mesh_cache_init(&r->meshes);
     gl.CreateBuffers(1, &r->frame_ubo);
     gl.NamedBufferStorage(r->frame_ubo, sizeof r->uniforms, NULL, GL_DYNAMIC_STORAGE_BIT);
     gl.CreateVertexArrays(1, &r->empty_vao);
@@ -37,6 +38,7 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
 void renderer_destroy(struct renderer *r)
 {
     gl_program_cache_destroy(&r->programs);
+    mesh_cache_release(&r->meshes);
     if (gl_api_ready()) {
         if (r->frame_ubo)
             gl.DeleteBuffers(1, &r->frame_ubo);
@@ -105,9 +107,8 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     r->height = height;
     r->frame = frame;
     r->time = time;
-    for (int i = 0; i < scene->object_count; i++)
-        if (!mesh_upload(scene->objects[i]->mesh, err))
-            return false;
+    if (!mesh_cache_begin_frame(&r->meshes, scene, err))
+        return false;
     if (scene->environment && !environment_upload(scene->environment, err))
         return false;
     gl.QueryCounter(r->deform_queries[0], GL_TIMESTAMP);
@@ -175,34 +176,9 @@ void renderer_reset_state(struct renderer *r)
     gl.BindVertexArray(0);
 }
 
-/* One VAO per object, over the deformed buffers when it has them. */
-static void object_bind(struct object *obj)
-{
-    bool deformed = obj->buffer_deformed_positions != 0 && object_is_animated_geometry(obj);
-    GLuint pos = deformed ? obj->buffer_deformed_positions : obj->mesh->buffer_positions;
-    GLuint nrm = deformed ? obj->buffer_deformed_normals : obj->mesh->buffer_normals;
-    if (!obj->vao) {
-        gl.CreateVertexArrays(1, &obj->vao);
-        gl.EnableVertexArrayAttrib(obj->vao, 0);
-        gl.EnableVertexArrayAttrib(obj->vao, 1);
-        gl.VertexArrayAttribFormat(obj->vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        gl.VertexArrayAttribFormat(obj->vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
-        gl.VertexArrayAttribBinding(obj->vao, 0, 0);
-        gl.VertexArrayAttribBinding(obj->vao, 1, 1);
-    }
-    if (obj->vao_mesh_positions != pos) {
-        gl.VertexArrayVertexBuffer(obj->vao, 0, pos, 0, 3 * sizeof(float));
-        gl.VertexArrayVertexBuffer(obj->vao, 1, nrm, 0, 3 * sizeof(float));
-        gl.VertexArrayElementBuffer(obj->vao, obj->mesh->buffer_indices);
-        obj->vao_mesh_positions = pos;
-    }
-    gl.BindVertexArray(obj->vao);
-}
-
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter)
 {
-    (void)r;
     GLint loc_model = gl_program_uniform(program, "u_model");
     GLint loc_normal = gl_program_uniform(program, "u_normal_matrix");
     GLint loc_kind = gl_program_uniform(program, "u_material_kind");
@@ -233,7 +209,9 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform3f(program->id, loc_abs, o->material.absorption.x, o->material.absorption.y,
                             o->material.absorption.z);
         gl.ProgramUniform1i(program->id, loc_id, o->id);
-        object_bind(o);
+        struct error err;
+        if (!mesh_cache_bind(&r->meshes, o, &err))
+            continue; /* out of memory: the object is not drawn (mesh_cache_begin_frame said so first) */
         gl.DrawElements(GL_TRIANGLES, (GLsizei)o->mesh->index_count, GL_UNSIGNED_INT, NULL);
     }
     gl.BindVertexArray(0);

@@ -11,6 +11,7 @@
 #include "core/vecmath.h"
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
+#include "graph/mesh_cache.h"
 #include "scene/scene.h"
 
 #define RENDERER_FRAME_BINDING 0
@@ -57,6 +58,7 @@ struct renderer {
     enum tonemap_operator tonemap;
     GLuint deform_queries[2];
     double deform_ms; /* GPU time of the last frame's morphs and deformers */
+    struct mesh_cache meshes; /* the GPU copies of meshes and objects */
 };
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err);
@@ -94,7 +96,7 @@ bool renderer_present_window(struct renderer *r, const struct gl_texture *linear
                              struct error *err);
 bool tonemap_parse(const char *name, enum tonemap_operator *out);
 
-/* scene/deform.c: morphs and deformers into each object's buffers. */
+/* graph/deform.c: morphs and deformers into each object's buffers. */
 bool deform_update(struct renderer *r, struct scene *scene, double time, struct error *err);
 
 #endif

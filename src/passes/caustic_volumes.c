@@ -160,9 +160,13 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     struct gl_program *build;
     if (!gl_program_get_compute(&r->programs, "caustic_volumes/build.comp", NULL, NULL, &build, err))
         return false;
+    /* The water's vertices of this frame (the simulation fills them). */
+    struct gpu_object *surface = mesh_cache_object(&r->meshes, water, err);
+    if (!surface)
+        return false;
     gl.UseProgram(build->id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, water->buffer_deformed_positions);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, water->buffer_deformed_normals);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, surface->deformed_positions);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, surface->deformed_normals);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->volumes);
     gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, water->model.m);
     mat4 inv, nm;

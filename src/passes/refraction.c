@@ -149,11 +149,10 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
         if (wyman) {
             if (!mesh_compute_thickness(m, err))
                 return false;
-            if (!m->buffer_thickness) {
-                gl.CreateBuffers(1, &m->buffer_thickness);
-                gl.NamedBufferStorage(m->buffer_thickness, (GLsizeiptr)(m->vertex_count * sizeof(float)), m->thickness, 0);
-            }
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m->buffer_thickness);
+            GLuint thickness;
+            if (!mesh_cache_thickness(&r->meshes, m, &thickness, err))
+                return false;
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, thickness);
         }
         if (impostors)
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));

@@ -1,5 +1,7 @@
 #include "reference/ref_scene.h"
 
+#include "gl/gl_buffer.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,14 +19,13 @@ static dvec3 from_vec3(vec3 v) { return dv(v.x, v.y, v.z); }
 
 /* Object-space vertices of this frame: the deformed GPU buffers when the
  * object morphs or deforms, else the mesh's own arrays. */
-static bool frame_vertices(const struct object *o, float *pos, float *nrm, struct error *err)
+static bool frame_vertices(struct renderer *r, const struct object *o, float *pos, float *nrm, struct error *err)
 {
     size_t bytes = o->mesh->vertex_count * 3 * sizeof(float);
-    if (object_is_animated_geometry(o) && o->buffer_deformed_positions) {
-        gl.GetNamedBufferSubData(o->buffer_deformed_positions, 0, (GLsizeiptr)bytes, pos);
-        gl.GetNamedBufferSubData(o->buffer_deformed_normals, 0, (GLsizeiptr)bytes, nrm);
-        return gl_check("reading back deformed geometry", err);
-    }
+    struct gpu_object *g = object_is_animated_geometry(o) ? mesh_cache_object(&r->meshes, o, err) : NULL;
+    if (g && g->deformed_positions)
+        return gl_buffer_read(g->deformed_positions, pos, bytes, err) &&
+               gl_buffer_read(g->deformed_normals, nrm, bytes, err);
     memcpy(pos, o->mesh->positions, bytes);
     memcpy(nrm, o->mesh->normals, bytes);
     return true;
@@ -62,7 +63,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
             ref_scene_release(rs);
             return error_set(err, "reference: out of memory for %zu vertices", n);
         }
-        if (!frame_vertices(o, ro->positions, ro->normals, err)) {
+        if (!frame_vertices(r, o, ro->positions, ro->normals, err)) {
             free(ro->positions);
             free(ro->normals);
             ref_scene_release(rs);

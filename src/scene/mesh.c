@@ -7,12 +7,20 @@
 #include "io/gltf.h"
 #include "scene/scene.h"
 
+static uint64_t mesh_next_serial(void)
+{
+    static uint64_t next = 1;
+    return next++;
+}
+
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err)
 {
     struct mesh *m = calloc(1, sizeof *m);
-    if (m)
+    if (m) {
         m->references = 1;
+        m->serial = mesh_next_serial();
+    }
     if (!m || !positions || !normals || !indices) {
         free(m);
         free(positions);
@@ -209,8 +217,10 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
         return NULL;
     }
     struct mesh *m = calloc(1, sizeof *m);
-    if (m)
+    if (m) {
         m->references = 1;
+        m->serial = mesh_next_serial();
+    }
     if (!m) {
         gltf_mesh_free(&g);
         error_set(err, "%s: out of memory", path);
@@ -250,31 +260,6 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
     return m;
 }
 
-static GLuint make_buffer(const void *data, size_t bytes)
-{
-    GLuint b = 0;
-    gl.CreateBuffers(1, &b);
-    gl.NamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, 0);
-    return b;
-}
-
-bool mesh_upload(struct mesh *m, struct error *err)
-{
-    if (m->buffer_positions)
-        return true;
-    size_t vbytes = m->vertex_count * 3 * sizeof(float);
-    m->buffer_positions = make_buffer(m->positions, vbytes);
-    m->buffer_normals = make_buffer(m->normals, vbytes);
-    m->buffer_indices = make_buffer(m->indices, m->index_count * sizeof(uint32_t));
-    if (m->target_count > 0) {
-        m->buffer_target_positions = make_buffer(m->target_positions, vbytes * (size_t)m->target_count);
-        m->buffer_target_normals = make_buffer(m->target_normals, vbytes * (size_t)m->target_count);
-    }
-    if (!gl_check("uploading a mesh", err))
-        return error_prefix(err, "%s", m->name);
-    return true;
-}
-
 void mesh_retain(struct mesh *m)
 {
     if (m)
@@ -285,11 +270,6 @@ void mesh_destroy(struct mesh *m)
 {
     if (!m || --m->references > 0)
         return;
-    if (gl_api_ready()) {
-        GLuint buffers[6] = {m->buffer_positions, m->buffer_normals, m->buffer_indices,
-                             m->buffer_target_positions, m->buffer_target_normals, m->buffer_thickness};
-        gl.DeleteBuffers(6, buffers);
-    }
     free(m->positions);
     free(m->normals);
     free(m->indices);

@@ -24,7 +24,9 @@ struct object *object_create(struct mesh *mesh)
     struct object *obj = calloc(1, sizeof *obj);
     if (!obj)
         return NULL;
+    static uint64_t next_serial = 1;
     obj->references = 1;
+    obj->serial = next_serial++;
     obj->mesh = mesh;
     mesh_retain(mesh);
     obj->material.kind = MATERIAL_DIFFUSE;
@@ -54,12 +56,6 @@ void object_destroy(struct object *obj)
 {
     if (!obj || --obj->references > 0)
         return;
-    if (gl_api_ready()) {
-        GLuint buffers[2] = {obj->buffer_deformed_positions, obj->buffer_deformed_normals};
-        gl.DeleteBuffers(2, buffers);
-        if (obj->vao)
-            gl.DeleteVertexArrays(1, &obj->vao);
-    }
     free(obj->deform.glsl);
     if (obj->water) {
         water_release(obj->water);

@@ -32,6 +32,7 @@ struct material {
 
 struct mesh {
     int references;
+    uint64_t serial;        /* unique for the process: the renderer's mesh cache keys its GPU copy by it */
     char name[512]; /* the file it came from, or the procedural kind */
     bool has_material;      /* the file gave one: objects use it unless the script picks another */
     struct material material;
@@ -44,9 +45,7 @@ struct mesh {
     vec3 bounds_min, bounds_max; /* of the base shape */
     float morph_extent;          /* largest |delta| over the targets, to bound morphs */
     float *thickness;          /* per-vertex d_N for Wyman's refraction, made on demand (owned) */
-    /* GPU copies, created by mesh_upload (owned). */
-    GLuint buffer_positions, buffer_normals, buffer_indices, buffer_target_positions, buffer_target_normals;
-    GLuint buffer_thickness;
+    /* The GPU copies live in the renderer's mesh cache (graph/mesh_cache.c). */
 };
 
 /* Procedural meshes. Each returns a mesh owned by the caller (mesh_destroy). */
@@ -60,8 +59,7 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err);
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err);
 void mesh_compute_bounds(struct mesh *mesh);
-bool mesh_upload(struct mesh *mesh, struct error *err);
-/* d_N per vertex (scene/thickness.c, Embree), and its GPU buffer. */
+/* d_N per vertex into mesh->thickness (scene/thickness.c, Embree). */
 bool mesh_compute_thickness(struct mesh *mesh, struct error *err);
 void mesh_retain(struct mesh *mesh);
 /* Drops one reference; the last one frees the mesh and its GL buffers. */
@@ -84,6 +82,7 @@ struct water;
 
 struct object {
     int references;
+    uint64_t serial; /* unique for the process (the mesh cache's key) */
     int id;
     struct water *water; /* owned: a simulated water surface drives this object's vertices */
     struct mesh *mesh; /* a reference */
@@ -94,12 +93,8 @@ struct object {
     float morph_weights[SCENE_MAX_MORPH_TARGETS];
     struct deformer deform;
     uint64_t version;
-    /* Per-frame geometry after morphs and deformers (owned GL buffers);
-     * when the object has neither, passes draw the mesh's own buffers. */
-    GLuint buffer_deformed_positions, buffer_deformed_normals;
-    size_t deformed_vertices;
-    GLuint vao;
-    GLuint vao_mesh_positions; /* which buffers the VAO was built for */
+    /* Per-frame geometry after morphs and deformers lives in the renderer's
+     * mesh cache; passes draw through renderer_draw_object(s). */
     mat4 model;
 };
 
