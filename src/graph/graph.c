@@ -255,6 +255,7 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         memset(&f, 0, sizeof f);
         f.renderer = r;
         f.scene = scene;
+        f.snapshot = &r->frame;
         f.width = g->width;
         f.height = g->height;
         f.frame = frame;

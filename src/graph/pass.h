@@ -98,9 +98,12 @@ struct graph_resource {
 };
 
 /* What a pass sees while it runs. */
+struct frame;
+
 struct pass_frame {
     struct renderer *renderer;
     struct scene *scene;
+    const struct frame *snapshot; /* this frame's lights, matrices, objects (graph/frame.h) */
     int width, height;
     int frame;
     double time;

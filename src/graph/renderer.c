@@ -39,6 +39,7 @@ void renderer_destroy(struct renderer *r)
 {
     gl_program_cache_destroy(&r->programs);
     mesh_cache_release(&r->meshes);
+    frame_release(&r->frame);
     if (gl_api_ready()) {
         if (r->frame_ubo)
             gl.DeleteBuffers(1, &r->frame_ubo);
@@ -58,55 +59,36 @@ void renderer_destroy(struct renderer *r)
 
 static void copy_mat(float *dst, mat4 m) { memcpy(dst, m.m, sizeof m.m); }
 
-/* The lights as the shaders see them. A linear light becomes `samples`
- * point lights spread along its segment, each with 1/samples of the
- * intensity (the "linear = N point lights" of the design). */
-static void fill_lights(struct renderer *r, const struct scene *scene)
+/* The uniform block's lights from the snapshot (kind as a float: 0 point,
+ * 1 directional, 2 spot, as shaders/common/frame.glsl reads it). */
+static void fill_lights(struct renderer *r, const struct frame *f)
 {
-    int n = 0;
-    for (int i = 0; i < scene->light_count && i < SCENE_MAX_GPU_LIGHTS; i++) {
-        const struct light *l = scene->lights[i];
-        r->light_first[i] = n;
-        int count = l->kind == LIGHT_LINEAR ? (l->samples < 1 ? 1 : l->samples) : 1;
-        int made = 0;
-        for (int s = 0; s < count && n < SCENE_MAX_GPU_LIGHTS; s++, made++) {
-            struct renderer_gpu_light *g = &r->uniforms.lights[n++];
-            vec3 pos = l->position;
-            float kind = l->kind == LIGHT_DIRECTIONAL ? 1.0f : l->kind == LIGHT_SPOT ? 2.0f : 0.0f;
-            vec3 intensity = l->intensity;
-            if (l->kind == LIGHT_LINEAR) {
-                float u = ((float)s + 0.5f) / (float)count;
-                pos = vec3_add(l->position, vec3_scale(vec3_sub(l->end, l->position), u));
-                intensity = vec3_scale(l->intensity, 1.0f / (float)count);
-            }
-            vec3 dir = vec3_normalize_or(l->direction, vec3_make(0, -1, 0));
-            float outer = fminf(fmaxf(l->angle, 0.1f), 89.9f) * (float)MATH_PI / 180.0f;
-            float inner = outer * (1.0f - fminf(fmaxf(l->softness, 0.0f), 1.0f));
-            g->position[0] = pos.x;
-            g->position[1] = pos.y;
-            g->position[2] = pos.z;
-            g->position[3] = kind;
-            g->direction[0] = dir.x;
-            g->direction[1] = dir.y;
-            g->direction[2] = dir.z;
-            g->direction[3] = cosf(outer);
-            g->intensity[0] = intensity.x;
-            g->intensity[1] = intensity.y;
-            g->intensity[2] = intensity.z;
-            g->intensity[3] = cosf(inner);
-        }
-        r->light_entries[i] = made;
+    for (int n = 0; n < f->light_count; n++) {
+        const struct frame_light *l = &f->lights[n];
+        struct renderer_gpu_light *g = &r->uniforms.lights[n];
+        float kind = l->kind == LIGHT_DIRECTIONAL ? 1.0f : l->kind == LIGHT_SPOT ? 2.0f : 0.0f;
+        g->position[0] = l->position.x;
+        g->position[1] = l->position.y;
+        g->position[2] = l->position.z;
+        g->position[3] = kind;
+        g->direction[0] = l->direction.x;
+        g->direction[1] = l->direction.y;
+        g->direction[2] = l->direction.z;
+        g->direction[3] = l->cos_outer;
+        g->intensity[0] = l->intensity.x;
+        g->intensity[1] = l->intensity.y;
+        g->intensity[2] = l->intensity.z;
+        g->intensity[3] = l->cos_inner;
     }
-    r->uniforms.counts[0] = n;
+    r->uniforms.counts[0] = f->light_count;
 }
 
 bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, int height, int frame, double time,
                           struct error *err)
 {
-    r->width = width;
-    r->height = height;
-    r->frame = frame;
-    r->time = time;
+    if (!frame_build(&r->frame, scene, width, height, frame, time, err))
+        return false;
+    const struct frame *f = &r->frame;
     if (!mesh_cache_begin_frame(&r->meshes, scene, err))
         return false;
     if (scene->environment && !environment_upload(scene->environment, err))
@@ -120,25 +102,15 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     gl.GetQueryObjectui64v(r->deform_queries[0], GL_QUERY_RESULT, &t0);
     gl.GetQueryObjectui64v(r->deform_queries[1], GL_QUERY_RESULT, &t1);
     r->deform_ms = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
-    for (int i = 0; i < scene->object_count; i++)
-        scene->objects[i]->model = object_model_matrix(scene->objects[i]);
-
-    const struct camera *c = &scene->camera;
-    r->view = mat4_look_at(c->eye, c->target, c->up);
-    float znear = c->znear > 1e-4f ? c->znear : 1e-4f;
-    float zfar = c->zfar > znear * 2 ? c->zfar : znear * 2;
-    r->proj = mat4_perspective(c->fov, (float)width / (float)height, znear, zfar);
-    mat4 vp = mat4_mul(r->proj, r->view), inv;
-    mat4_inverse(vp, &inv);
     struct renderer_frame_uniforms *u = &r->uniforms;
     memset(u, 0, sizeof *u);
-    copy_mat(u->view, r->view);
-    copy_mat(u->proj, r->proj);
-    copy_mat(u->view_proj, vp);
-    copy_mat(u->inv_view_proj, inv);
-    u->camera_pos[0] = c->eye.x;
-    u->camera_pos[1] = c->eye.y;
-    u->camera_pos[2] = c->eye.z;
+    copy_mat(u->view, f->view);
+    copy_mat(u->proj, f->proj);
+    copy_mat(u->view_proj, f->view_proj);
+    copy_mat(u->inv_view_proj, f->inv_view_proj);
+    u->camera_pos[0] = f->eye.x;
+    u->camera_pos[1] = f->eye.y;
+    u->camera_pos[2] = f->eye.z;
     u->camera_pos[3] = (float)time;
     u->viewport[0] = (float)width;
     u->viewport[1] = (float)height;
@@ -152,7 +124,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     u->ambient[1] = scene->ambient.y;
     u->ambient[2] = scene->ambient.z;
     u->counts[1] = frame;
-    fill_lights(r, scene);
+    fill_lights(r, f);
     gl.NamedBufferSubData(r->frame_ubo, 0, sizeof *u, u);
     renderer_reset_state(r);
     /* The environment stays bound for every pass. */
@@ -198,11 +170,11 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
             continue;
         if ((filter & DRAW_SPECULAR) && !specular)
             continue;
-        mat4 inv, nm;
-        mat4_inverse(o->model, &inv);
-        nm = mat4_transpose(inv);
-        gl.ProgramUniformMatrix4fv(program->id, loc_model, 1, GL_FALSE, o->model.m);
-        gl.ProgramUniformMatrix4fv(program->id, loc_normal, 1, GL_FALSE, nm.m);
+        const struct frame_object *fo = frame_object_of(&r->frame, o);
+        if (!fo)
+            continue; /* not in the scene this frame was built for */
+        gl.ProgramUniformMatrix4fv(program->id, loc_model, 1, GL_FALSE, fo->model.m);
+        gl.ProgramUniformMatrix4fv(program->id, loc_normal, 1, GL_FALSE, fo->normal_matrix.m);
         gl.ProgramUniform1i(program->id, loc_kind, (GLint)o->material.kind);
         gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
@@ -230,7 +202,7 @@ void renderer_draw_object(struct renderer *r, const struct scene *scene, const s
 int renderer_light_slot(const struct renderer *r, const struct scene *scene, const struct light *light)
 {
     int index = scene_light_index(scene, light);
-    return index >= 0 && index < SCENE_MAX_GPU_LIGHTS ? r->light_first[index] : -1;
+    return index >= 0 && index < SCENE_MAX_GPU_LIGHTS ? r->frame.light_first[index] : -1;
 }
 
 void renderer_draw_fullscreen(struct renderer *r)

@@ -11,6 +11,7 @@
 #include "core/vecmath.h"
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
+#include "graph/frame.h"
 #include "graph/mesh_cache.h"
 #include "scene/scene.h"
 
@@ -42,15 +43,8 @@ struct renderer {
     GLuint frame_ubo;
     GLuint empty_vao;
     struct gl_texture dummy_2d, dummy_cube, dummy_depth;
-    struct renderer_frame_uniforms uniforms;
-    mat4 view, proj;
-    int width, height;
-    int frame;
-    double time;
-    /* Index of each scene light's first entry in uniforms.lights (a
-     * linear light takes `samples` entries). */
-    int light_first[SCENE_MAX_GPU_LIGHTS];
-    int light_entries[SCENE_MAX_GPU_LIGHTS];
+    struct renderer_frame_uniforms uniforms; /* uploaded from `frame` */
+    struct frame frame;                      /* this frame's snapshot (graph/frame.h) */
     /* presenting */
     struct gl_texture present_texture;
     struct gl_framebuffer present_fb;
@@ -63,8 +57,9 @@ struct renderer {
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err);
 void renderer_destroy(struct renderer *r);
-/* Uploads what the scene needs, runs morphs and deformers, fills the frame
- * uniforms. Call once per frame before graph_execute. */
+/* Builds the frame snapshot, uploads what the scene needs, runs morphs and
+ * deformers, fills the frame uniforms from the snapshot. Call once per
+ * frame before graph_execute. */
 bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, int height, int frame, double time,
                           struct error *err);
 /* Back to a known GL state between passes. */

@@ -168,11 +168,12 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, surface->deformed_positions);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, surface->deformed_normals);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->volumes);
-    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, water->model.m);
-    mat4 inv, nm;
-    mat4_inverse(water->model, &inv);
-    nm = mat4_transpose(inv);
-    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE, nm.m);
+    const struct frame_object *fw = frame_object_of(f->snapshot, water);
+    if (!fw)
+        return error_set(err, "caustic_volumes: the water surface is not in the scene (scene:add it)");
+    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, fw->model.m);
+    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE,
+                               fw->normal_matrix.m);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_triangles"), (GLint)triangles);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_water_resolution"), water_res);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_resolution"), gen_res);

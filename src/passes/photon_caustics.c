@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/impostors.h"
@@ -190,10 +191,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     uint64_t gv = scene_geometry_version(f->scene);
     bool reuse = s->valid && s->light_version == light->version && s->geometry_version == gv && s->buffer == buffer &&
                  s->texture == texture;
-    bool animated = false;
-    for (int i = 0; i < f->scene->object_count; i++)
-        animated = animated || (f->scene->objects[i]->visible && object_is_animated_geometry(f->scene->objects[i]));
-    reuse = reuse && !animated;
+    reuse = reuse && !f->snapshot->geometry_animated;
     if (!reuse) {
         if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
@@ -207,8 +205,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             view = mat4_look_at(light_pos, oc, vec3_make(0, 1, 0));
             proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
         } else {
-            light_pos = light->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(light->position, light->end), 0.5f)
-                                                    : light->position;
+            light_pos = light_center(light);
             float dist = vec3_length(vec3_sub(oc, light_pos));
             float half = dist > orad ? asinf(fminf(orad / dist, 1.0f)) : 1.2f;
             float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.05f, 170.0f);

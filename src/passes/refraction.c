@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/impostors.h"
@@ -194,12 +195,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         vec3 lo, hi;
         vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
         uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
-        bool animated = false;
         for (int i = 0; i < f->scene->light_count; i++)
             lights = lights * 31u + f->scene->lights[i]->version;
-        for (int i = 0; i < f->scene->object_count; i++)
-            animated = animated || object_is_animated_geometry(f->scene->objects[i]);
-        if (!s->impostors_valid || animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
+        if (!s->impostors_valid || f->snapshot->geometry_animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
             s->impostors.size != pass_int(p, REFRACTION_IMPOSTOR) || pass_real(p, REFRACTION_RECURSION) > 0) {
             int levels = pass_int(p, REFRACTION_RECURSION);
             if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, err))

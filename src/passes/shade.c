@@ -138,8 +138,8 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         gl.BindTextureUnit((GLuint)(5 + i), cube ? sh->texture.id : r->dummy_cube.id);
         int entries = sh->light_index >= 0 ? 1 : 0;
         for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
-            if (r->light_first[li] == sh->light_index)
-                entries = r->light_entries[li];
+            if (r->frame.light_first[li] == sh->light_index)
+                entries = r->frame.light_entries[li];
         snprintf(name, sizeof name, "u_shadow_first[%d]", nshadow);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), sh->light_index);
         snprintf(name, sizeof name, "u_shadow_count[%d]", nshadow);

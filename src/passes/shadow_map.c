@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/scene.h"
@@ -76,30 +77,17 @@ static void shadow_destroy(struct pass *p)
     p->state = NULL;
 }
 
-static bool any_animated(const struct scene *scene)
-{
-    for (int i = 0; i < scene->object_count; i++)
-        if (scene->objects[i]->visible && scene->objects[i]->cast_shadows && object_is_animated_geometry(scene->objects[i]))
-            return true;
-    return false;
-}
-
 static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     struct shadow_state *s = p->state;
     struct light *l = pass_light_at(p, SHADOW_LIGHT);
     /* Hu & Qin §4: in a static scene shadow maps are reused, not redrawn. */
     if (s->valid && s->light_version == l->version && s->geometry_version == scene_geometry_version(f->scene) &&
-        !any_animated(f->scene) && s->width == f->width && s->height == f->height) {
+        !f->snapshot->casters_animated && s->width == f->width && s->height == f->height) {
         snprintf(why, whylen, "reused: the light and the casters did not change since the last frame");
         return PASS_REUSE;
     }
     return PASS_RUN;
-}
-
-static vec3 light_center(const struct light *l)
-{
-    return l->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(l->position, l->end), 0.5f) : l->position;
 }
 
 static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *err)

@@ -69,12 +69,12 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
             ref_scene_release(rs);
             return false;
         }
-        mat4 inv, nm;
-        mat4_inverse(o->model, &inv);
-        nm = mat4_transpose(inv);
+        /* The world and normal matrices of the frame snapshot. */
+        const struct frame_object *fo = frame_object_of(&r->frame, o);
+        mat4 model = fo ? fo->model : object_model_matrix(o), nm = fo ? fo->normal_matrix : mat4_identity();
         for (size_t v = 0; v < n; v++) {
             float *p = ro->positions + v * 3, *q = ro->normals + v * 3;
-            vec3 w = mat4_transform_point(o->model, vec3_make(p[0], p[1], p[2]));
+            vec3 w = mat4_transform_point(model, vec3_make(p[0], p[1], p[2]));
             vec3 wn = vec3_normalize_or(mat4_transform_dir(nm, vec3_make(q[0], q[1], q[2])), vec3_make(0, 1, 0));
             if (!math_finite3(w))
                 w = vec3_make(0, 0, 0); /* a deformer gone wrong: the GPU collapses it too */
@@ -120,20 +120,21 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         rs->specular_center = dv_scale(dv_add(slo, shi), 0.5);
         rs->specular_radius = 0.5 * sqrt(dv_dot(dv_sub(shi, slo), dv_sub(shi, slo))) * 1.001 + rs->epsilon;
     }
-    /* Lights exactly as the shaders see them (linear lights already split). */
-    rs->light_count = r->uniforms.counts[0];
+    /* Lights exactly as the shaders see them: the frame snapshot's (linear
+     * lights already split into their samples). */
+    const struct frame *f = &r->frame;
+    rs->light_count = f->light_count;
     for (int i = 0; i < rs->light_count; i++) {
-        const struct renderer_gpu_light *g = &r->uniforms.lights[i];
+        const struct frame_light *g = &f->lights[i];
         struct ref_light *l = &rs->lights[i];
-        l->kind = (int)lrintf(g->position[3]);
-        l->position = dv(g->position[0], g->position[1], g->position[2]);
-        l->direction = dv_normalize_or(dv(g->direction[0], g->direction[1], g->direction[2]), dv(0, -1, 0));
-        l->intensity = dv(g->intensity[0], g->intensity[1], g->intensity[2]);
-        l->cos_outer = g->direction[3];
-        l->cos_inner = g->intensity[3];
+        l->kind = g->kind == LIGHT_DIRECTIONAL ? 1 : g->kind == LIGHT_SPOT ? 2 : 0;
+        l->position = from_vec3(g->position);
+        l->direction = dv_normalize_or(from_vec3(g->direction), dv(0, -1, 0));
+        l->intensity = from_vec3(g->intensity);
+        l->cos_outer = g->cos_outer;
+        l->cos_inner = g->cos_inner;
     }
-    mat4 vp = mat4_mul(r->proj, r->view);
-    mat4_inverse(vp, &rs->inv_view_proj);
+    rs->inv_view_proj = f->inv_view_proj;
     rs->eye = from_vec3(scene->camera.eye);
     rs->environment = scene->environment;
     rs->background = from_vec3(scene->background);

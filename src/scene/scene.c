@@ -42,7 +42,6 @@ struct object *object_create(struct mesh *mesh)
     for (int t = 0; t < SCENE_MAX_MORPH_TARGETS && mesh; t++)
         obj->morph_weights[t] = mesh->default_weights[t];
     obj->version = 1;
-    obj->model = mat4_identity();
     return obj;
 }
 
@@ -130,6 +129,11 @@ struct light *light_create(enum light_kind kind)
     l->version = 1;
     l->references = 1;
     return l;
+}
+
+vec3 light_center(const struct light *l)
+{
+    return l->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(l->position, l->end), 0.5f) : l->position;
 }
 
 void light_retain(struct light *light)

@@ -93,9 +93,8 @@ struct object {
     float morph_weights[SCENE_MAX_MORPH_TARGETS];
     struct deformer deform;
     uint64_t version;
-    /* Per-frame geometry after morphs and deformers lives in the renderer's
-     * mesh cache; passes draw through renderer_draw_object(s). */
-    mat4 model;
+    /* This frame's matrices are in the frame snapshot (graph/frame.h), its
+     * animated vertices in the renderer's mesh cache. */
 };
 
 /* One reference to the new object; it takes one to `mesh`. */
@@ -126,6 +125,9 @@ struct light {
 
 struct light *light_create(enum light_kind kind);
 void light_retain(struct light *light);
+/* Where a light's shadow map and photons start: its position, a linear
+ * light's midpoint. */
+vec3 light_center(const struct light *light);
 /* Drops one reference; the last one frees it. */
 void light_destroy(struct light *light);
 const char *light_kind_name(enum light_kind kind);
