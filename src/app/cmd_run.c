@@ -164,7 +164,7 @@ int cmd_run(struct app *app, struct cli *cli)
         int fw, fh;
         glfwGetFramebufferSize(window, &fw, &fh);
         struct graph_resource *res = graph_output(s->graph);
-        if (have_frame && res && !renderer_present_window(&app->renderer, &res->texture, fw, fh, &err))
+        if (have_frame && res && !renderer_present_window(&app->renderer, &res->texture, s->exposure, s->tonemap, fw, fh, &err))
             cli_print_error(&err);
         shown++;
         frame++;

@@ -218,8 +218,6 @@ bool session_render(struct session *s, int frame, struct error *err)
         return error_prefix(err, "%s", s->script);
     if (!graph_execute(s->graph, r, s->scene, frame, (double)frame / s->fps, err))
         return error_prefix(err, "%s", s->script);
-    r->exposure = s->exposure;
-    r->tonemap = s->tonemap;
     return true;
 }
 
@@ -250,9 +248,7 @@ bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err)
     uint8_t *buf = malloc((size_t)res->texture.width * (size_t)res->texture.height * 4);
     if (!buf)
         return error_set(err, "out of memory");
-    s->app->renderer.exposure = s->exposure;
-    s->app->renderer.tonemap = s->tonemap;
-    if (!renderer_present_bytes(&s->app->renderer, &res->texture, buf, err)) {
+    if (!renderer_present_bytes(&s->app->renderer, &res->texture, s->exposure, s->tonemap, buf, err)) {
         free(buf);
         return false;
     }

@@ -17,8 +17,6 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     gl.NamedBufferStorage(r->frame_ubo, sizeof r->uniforms, NULL, GL_DYNAMIC_STORAGE_BIT);
     gl.CreateVertexArrays(1, &r->empty_vao);
     gl.GenQueries(2, r->deform_queries);
-    r->exposure = 1.0f;
-    r->tonemap = TONEMAP_CLAMP;
     /* Dummy textures stand in for optional inputs a script did not give. */
     if (!gl_texture_create(&r->dummy_2d, GL_TEXTURE_2D, GL_RGBA16F, 1, 1, 1, err) ||
         !gl_texture_create(&r->dummy_cube, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, 1, 1, 6, err) ||
@@ -225,14 +223,15 @@ bool tonemap_parse(const char *name, enum tonemap_operator *out)
     return true;
 }
 
-static bool tonemap_draw(struct renderer *r, const struct gl_texture *linear, struct error *err)
+static bool tonemap_draw(struct renderer *r, const struct gl_texture *linear, float exposure,
+                         enum tonemap_operator op, struct error *err)
 {
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "tonemap/tonemap.frag", NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_exposure"), r->exposure);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_operator"), (GLint)r->tonemap);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_exposure"), exposure);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_operator"), (GLint)op);
     gl.BindTextureUnit(0, linear->id);
     renderer_draw_fullscreen(r);
     return true;
@@ -249,7 +248,8 @@ static bool ensure_present_target(struct renderer *r, int w, int h, struct error
     return gl_framebuffer_attach(&r->present_fb, colors, NULL, 1, NULL, -1, err);
 }
 
-bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, uint8_t *rgba, struct error *err)
+bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, float exposure,
+                            enum tonemap_operator op, uint8_t *rgba, struct error *err)
 {
     int w = linear->width, h = linear->height;
     renderer_reset_state(r);
@@ -257,7 +257,7 @@ bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear,
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
     gl.Viewport(0, 0, w, h);
-    if (!tonemap_draw(r, linear, err))
+    if (!tonemap_draw(r, linear, exposure, op, err))
         return false;
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->present_fb.id);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -277,7 +277,8 @@ bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear,
     return gl_check("presenting the image", err);
 }
 
-bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, int fb_width, int fb_height,
+bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, float exposure,
+                             enum tonemap_operator op, int fb_width, int fb_height,
                              struct error *err)
 {
     int w = linear->width, h = linear->height;
@@ -286,7 +287,7 @@ bool renderer_present_window(struct renderer *r, const struct gl_texture *linear
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
     gl.Viewport(0, 0, w, h);
-    if (!tonemap_draw(r, linear, err))
+    if (!tonemap_draw(r, linear, exposure, op, err))
         return false;
     /* Letterbox into the window, keeping the aspect ratio; at equal sizes
      * the blit copies pixels exactly. */

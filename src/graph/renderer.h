@@ -48,8 +48,6 @@ struct renderer {
     /* presenting */
     struct gl_texture present_texture;
     struct gl_framebuffer present_fb;
-    float exposure;
-    enum tonemap_operator tonemap;
     GLuint deform_queries[2];
     double deform_ms; /* GPU time of the last frame's morphs and deformers */
     struct mesh_cache meshes; /* the GPU copies of meshes and objects */
@@ -85,9 +83,11 @@ void renderer_draw_fullscreen(struct renderer *r);
 int renderer_light_slot(const struct renderer *r, const struct scene *scene, const struct light *light);
 
 /* Tone maps a linear texture into 8-bit sRGB and reads it back (rows top to bottom). */
-bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, uint8_t *rgba, struct error *err);
+bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, float exposure,
+                            enum tonemap_operator op, uint8_t *rgba, struct error *err);
 /* Tone maps into the window's framebuffer (size fb_width x fb_height). */
-bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, int fb_width, int fb_height,
+bool renderer_present_window(struct renderer *r, const struct gl_texture *linear, float exposure,
+                             enum tonemap_operator op, int fb_width, int fb_height,
                              struct error *err);
 bool tonemap_parse(const char *name, enum tonemap_operator *out);
 
