@@ -1,3 +1,4 @@
+#include "common/bindings.glsl"
 // One caustic volume (std430): the generator triangle's corners, the unit
 // refracted light rays at them, the rays' ends below the deepest receiver,
 // and the light power through the triangle (rgb) with its area (w).
@@ -7,4 +8,4 @@ struct CausticVolume {
     vec4 bottom[3];
     vec4 flux;
 };
-layout(std430, binding = 3) buffer Volumes { CausticVolume volumes[]; };
+layout(std430, binding = VOLUMES_SSBO_VOLUMES) buffer Volumes { CausticVolume volumes[]; };

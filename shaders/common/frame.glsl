@@ -1,3 +1,4 @@
+#include "common/bindings.glsl"
 // Per-frame data shared by every pass: one std140 block at binding 0
 // (mirrored by struct renderer_frame_uniforms in src/graph/renderer.h) and
 // the environment cube map at unit 15.
@@ -7,7 +8,7 @@ struct GpuLight {
     vec4 intensity;  // rgb, w = cos(inner)
 };
 
-layout(std140, binding = 0) uniform Frame {
+layout(std140, binding = BINDING_FRAME) uniform Frame {
     mat4 u_view;
     mat4 u_proj;
     mat4 u_view_proj;
@@ -20,7 +21,7 @@ layout(std140, binding = 0) uniform Frame {
     GpuLight u_lights[32];
 };
 
-layout(binding = 15) uniform samplerCube u_environment;
+layout(binding = UNIT_ENVIRONMENT) uniform samplerCube u_environment;
 
 const float PI = 3.14159265358979;
 

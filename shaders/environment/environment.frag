@@ -1,11 +1,12 @@
 #version 450 core
+#include "common/bindings.glsl"
 // The background: the environment seen along each pixel's view ray, or a
 // given image (FROM_TEXTURE).
 #include "common/frame.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 #ifdef FROM_TEXTURE
-layout(binding = 0) uniform sampler2D u_image;
+layout(binding = UNIT_IMAGE) uniform sampler2D u_image;
 #endif
 void main()
 {

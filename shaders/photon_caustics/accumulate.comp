@@ -1,10 +1,11 @@
 #version 450 core
+#include "common/bindings.glsl"
 // Hu & Qin §3.2: each photon adds its flux to its receiver's caustic
 // texture at (u, v), on the GPU (integer atomics on a fixed-point scale).
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D u_photons;
-layout(binding = 1) uniform sampler2D u_flux;
-layout(r32ui, binding = 0) uniform uimage2DArray u_counts;
+layout(binding = PHOTON_UNIT_PHOTONS) uniform sampler2D u_photons;
+layout(binding = PHOTON_UNIT_FLUX) uniform sampler2D u_flux;
+layout(r32ui, binding = PHOTON_IMAGE_COUNTS) uniform uimage2DArray u_counts;
 uniform float u_fixed_point;
 uniform int u_texture;
 void main()

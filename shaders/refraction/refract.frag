@@ -1,4 +1,5 @@
 #version 450 core
+#include "common/bindings.glsl"
 // Hu & Qin §2.1 (or Wyman 2005 with WYMAN): refraction of the environment
 // through two interfaces, per fragment of the visible front surface.
 #include "common/frame.glsl"
@@ -11,10 +12,10 @@ in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
 layout(location = 0) out vec4 o_color;
-layout(binding = 1) uniform sampler2D u_front_normal;
-layout(binding = 2) uniform sampler2D u_back_normal;
-layout(binding = 3) uniform sampler2D u_front_depth;
-layout(binding = 4) uniform sampler2D u_back_depth;
+layout(binding = REFRACTION_UNIT_FRONT_NORMAL) uniform sampler2D u_front_normal;
+layout(binding = REFRACTION_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
+layout(binding = REFRACTION_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
+layout(binding = REFRACTION_UNIT_BACK_DEPTH) uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror

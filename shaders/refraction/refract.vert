@@ -1,4 +1,5 @@
 #version 450 core
+#include "common/bindings.glsl"
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -8,7 +9,7 @@ out vec3 v_normal;
 out vec3 v_world;
 out float v_thickness;
 #ifdef WYMAN
-layout(std430, binding = 4) readonly buffer Thickness { float thickness[]; };
+layout(std430, binding = REFRACTION_SSBO_THICKNESS) readonly buffer Thickness { float thickness[]; };
 #endif
 void main()
 {

@@ -1,4 +1,5 @@
 #version 450 core
+#include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
@@ -21,9 +22,9 @@ uniform int u_shadow_count[4];
 uniform int u_shadow_cube[4];
 uniform mat4 u_shadow_matrix[4];
 uniform vec4 u_shadow_params[4]; // range, bias, 1/size
-layout(binding = 1) uniform sampler2D u_shadow_2d[4];
-layout(binding = 5) uniform samplerCube u_shadow_cubes[4];
-layout(binding = 9) uniform sampler2D u_caustics[4];
+layout(binding = SHADE_UNIT_SHADOW_2D) uniform sampler2D u_shadow_2d[4];
+layout(binding = SHADE_UNIT_SHADOW_CUBE) uniform samplerCube u_shadow_cubes[4];
+layout(binding = SHADE_UNIT_CAUSTICS) uniform sampler2D u_caustics[4];
 uniform int u_has_caustics; // how many caustic irradiance images to add
 
 // Fraction of light reaching p from the light of shadow map k (3x3 PCF).

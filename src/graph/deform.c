@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "gl/gl_buffer.h"
+#include "graph/bindings.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
 
@@ -63,12 +64,12 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         if (!gm)
             return false;
         gl.UseProgram(prog->id);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gm->positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gm->normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m->target_count ? gm->target_positions : gm->positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m->target_count ? gm->target_normals : gm->normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->deformed_positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, g->deformed_normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_BASE_POSITIONS, gm->positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_BASE_NORMALS, gm->normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_TARGET_POSITIONS, m->target_count ? gm->target_positions : gm->positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_TARGET_NORMALS, m->target_count ? gm->target_normals : gm->normals);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_OUT_POSITIONS, g->deformed_positions);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_OUT_NORMALS, g->deformed_normals);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_vertex_count"), (GLint)m->vertex_count);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_target_count"), m->target_count);
         for (int t = 0; t < SCENE_MAX_MORPH_TARGETS; t++) {

@@ -1,3 +1,4 @@
+#include "graph/bindings.h"
 #include "graph/renderer.h"
 
 #include <math.h>
@@ -126,7 +127,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     gl.NamedBufferSubData(r->frame_ubo, 0, sizeof *u, u);
     renderer_reset_state(r);
     /* The environment stays bound for every pass. */
-    gl.BindTextureUnit(RENDERER_ENVIRONMENT_UNIT,
+    gl.BindTextureUnit(UNIT_ENVIRONMENT,
                        scene->environment ? scene->environment->texture.id : r->dummy_cube.id);
     return gl_check("frame set-up", err);
 }
@@ -141,7 +142,7 @@ void renderer_reset_state(struct renderer *r)
     gl.DepthMask(GL_TRUE);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.DepthFunc(GL_LESS);
-    gl.BindBufferBase(GL_UNIFORM_BUFFER, RENDERER_FRAME_BINDING, r->frame_ubo);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, r->frame_ubo);
     gl.UseProgram(0);
     gl.BindVertexArray(0);
 }
@@ -232,7 +233,7 @@ static bool tonemap_draw(struct renderer *r, const struct gl_texture *linear, fl
     gl.UseProgram(prog->id);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_exposure"), exposure);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_operator"), (GLint)op);
-    gl.BindTextureUnit(0, linear->id);
+    gl.BindTextureUnit(UNIT_IMAGE, linear->id);
     renderer_draw_fullscreen(r);
     return true;
 }

@@ -1,5 +1,5 @@
 /* What every pass shares: the shader programs, the per-frame uniform block
- * (camera, time, lights at binding 0), the environment at texture unit 15,
+ * (camera, time, lights at BINDING_FRAME), the environment at UNIT_ENVIRONMENT,
  * drawing the scene's objects, and presenting (tone mapping) the result. */
 #ifndef CAUSTICA_RENDERER_H
 #define CAUSTICA_RENDERER_H
@@ -15,8 +15,6 @@
 #include "graph/mesh_cache.h"
 #include "scene/scene.h"
 
-#define RENDERER_FRAME_BINDING 0
-#define RENDERER_ENVIRONMENT_UNIT 15
 
 /* std140 mirror of `Frame` in shaders/common/frame.glsl. */
 struct renderer_gpu_light {

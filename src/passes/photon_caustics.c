@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -170,8 +171,8 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
 
 static void bind_impostors(struct photon_state *s, const struct gl_program *prog)
 {
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s->impostors.ubo);
-    gl.BindTextureUnit(6, s->impostors.depth.id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
+    gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
 }
 
@@ -246,11 +247,11 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 1, zero);
         gl.UseProgram(trace->id);
         bind_impostors(s, trace);
-        gl.BindTextureUnit(1, s->light_normal[0].id);
-        gl.BindTextureUnit(2, s->light_normal[1].id);
-        gl.BindTextureUnit(3, s->light_depth[0].id);
-        gl.BindTextureUnit(4, s->light_depth[1].id);
-        gl.BindTextureUnit(5, s->light_material[0].id);
+        gl.BindTextureUnit(PHOTON_UNIT_FRONT_NORMAL, s->light_normal[0].id);
+        gl.BindTextureUnit(PHOTON_UNIT_BACK_NORMAL, s->light_normal[1].id);
+        gl.BindTextureUnit(PHOTON_UNIT_FRONT_DEPTH, s->light_depth[0].id);
+        gl.BindTextureUnit(PHOTON_UNIT_BACK_DEPTH, s->light_depth[1].id);
+        gl.BindTextureUnit(PHOTON_UNIT_FRONT_MATERIAL, s->light_material[0].id);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
                                    s->light_view_proj.m);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
@@ -279,9 +280,9 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             if (!gl_program_get_compute(&r->programs, "photon_caustics/accumulate.comp", NULL, NULL, &acc, err))
                 return false;
             gl.UseProgram(acc->id);
-            gl.BindTextureUnit(0, s->photons.id);
-            gl.BindTextureUnit(1, s->photon_flux.id);
-            gl.BindImageTexture(0, s->counts.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+            gl.BindTextureUnit(PHOTON_UNIT_PHOTONS, s->photons.id);
+            gl.BindTextureUnit(PHOTON_UNIT_FLUX, s->photon_flux.id);
+            gl.BindImageTexture(PHOTON_IMAGE_COUNTS, s->counts.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
             gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
@@ -291,8 +292,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                 return false;
             gl.UseProgram(filt->id);
             bind_impostors(s, filt);
-            gl.BindImageTexture(0, s->counts.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-            gl.BindImageTexture(1, s->caustics.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            gl.BindImageTexture(PHOTON_IMAGE_COUNTS, s->counts.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+            gl.BindImageTexture(PHOTON_IMAGE_CAUSTICS, s->caustics.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
@@ -322,7 +323,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         return false;
     gl.UseProgram(map->id);
     bind_impostors(s, map);
-    gl.BindTextureUnit(7, s->caustics.id);
+    gl.BindTextureUnit(PHOTON_UNIT_CAUSTICS, s->caustics.id);
     gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
     for (int k = 0; k < s->impostors.count; k++) {
         char name[48];

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -153,7 +154,7 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
             GLuint thickness;
             if (!mesh_cache_thickness(&r->meshes, m, &thickness, err))
                 return false;
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, thickness);
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, REFRACTION_SSBO_THICKNESS, thickness);
         }
         if (impostors)
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
@@ -242,22 +243,22 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         return false;
     gl.Disable(GL_DEPTH_TEST);
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(0, in_color->texture.id);
+    gl.BindTextureUnit(REFRACTION_UNIT_COLOR, in_color->texture.id);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;
-    gl.BindTextureUnit(1, s->front_normal.id);
-    gl.BindTextureUnit(2, s->back_normal.id);
-    gl.BindTextureUnit(3, s->front_depth.id);
-    gl.BindTextureUnit(4, s->back_depth.id);
+    gl.BindTextureUnit(REFRACTION_UNIT_FRONT_NORMAL, s->front_normal.id);
+    gl.BindTextureUnit(REFRACTION_UNIT_BACK_NORMAL, s->back_normal.id);
+    gl.BindTextureUnit(REFRACTION_UNIT_FRONT_DEPTH, s->front_depth.id);
+    gl.BindTextureUnit(REFRACTION_UNIT_BACK_DEPTH, s->back_depth.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
     if (nearby && s->impostors.count > 0) {
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s->impostors.ubo);
-        gl.BindTextureUnit(6, s->impostors.depth.id);
-        gl.BindTextureUnit(8, s->impostors.color.id);
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
+        gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
+        gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, s->impostors.color.id);
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_int(p, REFRACTION_CORRECTION));

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/bindings.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 
@@ -112,7 +113,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         return false;
     gl.UseProgram(bgprog->id);
     if (bg)
-        gl.BindTextureUnit(0, bg->texture.id);
+        gl.BindTextureUnit(SHADE_UNIT_BACKGROUND, bg->texture.id);
     /* Only the colour attachment: the background has no normal or position. */
     const GLenum background_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -134,8 +135,8 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         if (!sh)
             continue;
         bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
-        gl.BindTextureUnit((GLuint)(1 + i), cube ? r->dummy_depth.id : sh->texture.id);
-        gl.BindTextureUnit((GLuint)(5 + i), cube ? sh->texture.id : r->dummy_cube.id);
+        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_2D + i), cube ? r->dummy_depth.id : sh->texture.id);
+        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_CUBE + i), cube ? sh->texture.id : r->dummy_cube.id);
         int entries = sh->light_index >= 0 ? 1 : 0;
         for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
             if (r->frame.light_first[li] == sh->light_index)
@@ -159,7 +160,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         char slot[32];
         snprintf(slot, sizeof slot, "caustics%d", i);
         struct graph_resource *c = pass_frame_input(p, f, slot);
-        gl.BindTextureUnit((GLuint)(9 + i), c ? c->texture.id : r->dummy_2d.id);
+        gl.BindTextureUnit((GLuint)(SHADE_UNIT_CAUSTICS + i), c ? c->texture.id : r->dummy_2d.id);
         if (c)
             ncaustics = i + 1;
     }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "graph/bindings.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
@@ -89,14 +90,14 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
                         &copy, err))
         return false;
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(0, in_color->texture.id);
+    gl.BindTextureUnit(SURFACE_UNIT_SCENE, in_color->texture.id);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "water_surface/surface.vert", "water_surface/surface.frag", NULL, &prog, err))
         return false;
-    gl.BindTextureUnit(0, in_color->texture.id);
-    gl.BindTextureUnit(1, in_depth->texture.id);
-    gl.BindTextureUnit(2, in_pos->texture.id);
+    gl.BindTextureUnit(SURFACE_UNIT_SCENE, in_color->texture.id);
+    gl.BindTextureUnit(SURFACE_UNIT_DEPTH, in_depth->texture.id);
+    gl.BindTextureUnit(SURFACE_UNIT_POSITION, in_pos->texture.id);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),

@@ -1,0 +1,62 @@
+// Texture units, image units and buffer binding points, by name: mirrors
+// src/graph/bindings.h (tests/cli/bindings_test.sh keeps the two equal).
+#ifndef CAUSTICA_BINDINGS_GLSL
+#define CAUSTICA_BINDINGS_GLSL
+
+// Shared by every pass
+#define BINDING_FRAME 0                     // uniform block Frame (common/frame.glsl)
+#define UNIT_ENVIRONMENT 15                 // samplerCube u_environment, bound for every pass
+#define UNIT_IMAGE 0                        // the image a fullscreen pass reads (tonemap, environment copy)
+
+// Morphs and deformers (deform/deform.comp)
+#define DEFORM_SSBO_BASE_POSITIONS 0
+#define DEFORM_SSBO_BASE_NORMALS 1
+#define DEFORM_SSBO_TARGET_POSITIONS 2
+#define DEFORM_SSBO_TARGET_NORMALS 3
+#define DEFORM_SSBO_OUT_POSITIONS 4
+#define DEFORM_SSBO_OUT_NORMALS 5
+
+// shade (SHADE_MAX_SHADOWS and SHADE_MAX_CAUSTICS units each)
+#define SHADE_UNIT_BACKGROUND 0
+#define SHADE_UNIT_SHADOW_2D 1              // 1..4
+#define SHADE_UNIT_SHADOW_CUBE 5            // 5..8
+#define SHADE_UNIT_CAUSTICS 9               // 9..12
+
+// refraction
+#define REFRACTION_UNIT_COLOR 0
+#define REFRACTION_UNIT_FRONT_NORMAL 1
+#define REFRACTION_UNIT_BACK_NORMAL 2
+#define REFRACTION_UNIT_FRONT_DEPTH 3
+#define REFRACTION_UNIT_BACK_DEPTH 4
+#define REFRACTION_SSBO_THICKNESS 4         // Wyman's per-vertex d_N
+
+// Impostors of nearby geometry (impostors.glsl, refraction and photon_caustics)
+#define IMPOSTOR_SSBO 5
+#define IMPOSTOR_UNIT_DEPTH 6
+#define IMPOSTOR_UNIT_COLOR 8
+
+// photon_caustics
+#define PHOTON_UNIT_FRONT_NORMAL 1
+#define PHOTON_UNIT_BACK_NORMAL 2
+#define PHOTON_UNIT_FRONT_DEPTH 3
+#define PHOTON_UNIT_BACK_DEPTH 4
+#define PHOTON_UNIT_FRONT_MATERIAL 5
+#define PHOTON_UNIT_PHOTONS 0
+#define PHOTON_UNIT_FLUX 1
+#define PHOTON_IMAGE_COUNTS 0
+#define PHOTON_IMAGE_CAUSTICS 1
+#define PHOTON_UNIT_CAUSTICS 7
+
+// caustic_volumes
+#define VOLUMES_SSBO_POSITIONS 0
+#define VOLUMES_SSBO_NORMALS 1
+#define VOLUMES_SSBO_VOLUMES 3
+#define VOLUMES_UNIT_POSITIONS 0
+#define VOLUMES_UNIT_NORMALS 1
+
+// water_surface
+#define SURFACE_UNIT_SCENE 0
+#define SURFACE_UNIT_DEPTH 1
+#define SURFACE_UNIT_POSITION 2
+
+#endif
