@@ -142,3 +142,8 @@ bool gl_framebuffer_attach(struct gl_framebuffer *fb, const struct gl_texture *c
         return error_set(err, "framebuffer incomplete (status 0x%04x)", (unsigned)status);
     return gl_check("framebuffer set-up", err);
 }
+
+void gl_texture_clear(const struct gl_texture *texture, const float rgba[4])
+{
+    gl.ClearTexImage(texture->id, 0, GL_RGBA, GL_FLOAT, rgba);
+}

@@ -38,4 +38,7 @@ bool gl_framebuffer_attach(struct gl_framebuffer *fb, const struct gl_texture *c
                            const int *color_layers, int ncolors, const struct gl_texture *depth,
                            int depth_layer, struct error *err);
 
+/* Fills level 0 of a colour texture with `rgba`. */
+void gl_texture_clear(const struct gl_texture *texture, const float rgba[4]);
+
 #endif

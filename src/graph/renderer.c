@@ -204,6 +204,31 @@ int renderer_light_slot(const struct renderer *r, const struct scene *scene, con
     return index >= 0 && index < SCENE_MAX_GPU_LIGHTS ? r->frame.light_first[index] : -1;
 }
 
+void renderer_run_fullscreen(struct renderer *r, const struct gl_program *program, GLuint framebuffer, int width,
+                             int height, const struct renderer_shader_input *inputs, int input_count,
+                             const struct renderer_shader_uniform *uniforms, int uniform_count, double time)
+{
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.Viewport(0, 0, width, height);
+    gl.UseProgram(program->id);
+    for (int i = 0; i < input_count && i < RENDERER_MAX_SHADER_INPUTS; i++) {
+        gl.BindTextureUnit((GLuint)i, inputs[i].texture);
+        gl.ProgramUniform1i(program->id, gl_program_uniform(program, inputs[i].sampler), i);
+    }
+    for (int i = 0; i < uniform_count; i++) {
+        GLint loc = gl_program_uniform(program, uniforms[i].name);
+        const float *v = uniforms[i].value;
+        switch (uniforms[i].size) {
+        case 1: gl.ProgramUniform1f(program->id, loc, v[0]); break;
+        case 2: gl.ProgramUniform2f(program->id, loc, v[0], v[1]); break;
+        case 3: gl.ProgramUniform3f(program->id, loc, v[0], v[1], v[2]); break;
+        default: gl.ProgramUniform4f(program->id, loc, v[0], v[1], v[2], v[3]); break;
+        }
+    }
+    gl.ProgramUniform1f(program->id, gl_program_uniform(program, "u_time"), (float)time);
+    renderer_draw_fullscreen(r);
+}
+
 void renderer_draw_fullscreen(struct renderer *r)
 {
     gl.BindVertexArray(r->empty_vao);

@@ -76,6 +76,24 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
 void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                           struct object *object);
 void renderer_draw_fullscreen(struct renderer *r);
+
+/* A user fragment shader over the whole of `fb` (its targets attached):
+ * inputs on texture units 0.. with their samplers set, uniforms by name
+ * (1 to 4 floats), u_time. What c.pass.fullscreen and a custom pass's
+ * ctx:fullscreen both draw with. */
+#define RENDERER_MAX_SHADER_INPUTS 16
+struct renderer_shader_input {
+    const char *sampler;
+    GLuint texture;
+};
+struct renderer_shader_uniform {
+    const char *name;
+    int size;
+    float value[4];
+};
+void renderer_run_fullscreen(struct renderer *r, const struct gl_program *program, GLuint framebuffer, int width,
+                             int height, const struct renderer_shader_input *inputs, int input_count,
+                             const struct renderer_shader_uniform *uniforms, int uniform_count, double time);
 /* First GPU light slot of `light` (an area light fills several), or -1 when
  * it is not in the scene or past SCENE_MAX_GPU_LIGHTS. */
 int renderer_light_slot(const struct renderer *r, const struct scene *scene, const struct light *light);

@@ -1,7 +1,7 @@
 /* The context a custom pass's run(ctx) receives: frame facts, and the two
  * draw calls such a pass needs (clear an output, run a fullscreen shader
- * into outputs with inputs bound). Translation only: drawing is done by
- * the renderer. */
+ * into outputs with inputs bound). Translation only: the drawing is
+ * renderer_run_fullscreen, the same as c.pass.fullscreen's. */
 #include <stdio.h>
 #include <string.h>
 
@@ -49,7 +49,7 @@ static int context_clear(lua_State *L)
             lua_pop(L, 1);
         }
     }
-    gl.ClearTexImage(r->texture.id, 0, GL_RGBA, GL_FLOAT, color);
+    gl_texture_clear(&r->texture, color);
     return 0;
 }
 
@@ -95,7 +95,7 @@ static int context_fullscreen(lua_State *L)
     lua_pop(L, 1);
     if (ntargets == 0)
         return luaL_error(L, "bad argument 'output' to 'fullscreen' (at least one output expected)");
-    struct { GLint location; GLuint texture; } inputs[CONTEXT_MAX_INPUTS];
+    struct renderer_shader_input inputs[CONTEXT_MAX_INPUTS];
     int ninputs = 0;
     if (lua_getfield(L, 2, "inputs") == LUA_TTABLE) {
         lua_pushnil(L);
@@ -104,14 +104,14 @@ static int context_fullscreen(lua_State *L)
                 return luaL_error(L, "bad argument 'inputs' to 'fullscreen' ({sampler = \"input\"} expected)");
             if (ninputs >= CONTEXT_MAX_INPUTS)
                 return luaL_error(L, "bad argument 'inputs' to 'fullscreen' (at most %d inputs)", CONTEXT_MAX_INPUTS);
-            inputs[ninputs].location = gl_program_uniform(prog, lua_tostring(L, -2));
+            inputs[ninputs].sampler = lua_tostring(L, -2); /* the table keeps the string alive */
             inputs[ninputs].texture = find_texture(L, c, luaL_checkstring(L, -1), false)->texture.id;
             ninputs++;
             lua_pop(L, 1);
         }
     }
     lua_pop(L, 1);
-    struct { GLint location; int n; float v[4]; } uniforms[CONTEXT_MAX_UNIFORMS];
+    struct renderer_shader_uniform uniforms[CONTEXT_MAX_UNIFORMS];
     int nuniforms = 0;
     if (lua_getfield(L, 2, "uniforms") == LUA_TTABLE) {
         lua_pushnil(L);
@@ -122,21 +122,21 @@ static int context_fullscreen(lua_State *L)
                 return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' (at most %d uniforms)",
                                   CONTEXT_MAX_UNIFORMS);
             const char *name = lua_tostring(L, -2);
-            uniforms[nuniforms].location = gl_program_uniform(prog, name);
-            memset(uniforms[nuniforms].v, 0, sizeof uniforms[nuniforms].v);
+            uniforms[nuniforms].name = name; /* the table keeps the string alive */
+            memset(uniforms[nuniforms].value, 0, sizeof uniforms[nuniforms].value);
             if (lua_type(L, -1) == LUA_TNUMBER) {
-                uniforms[nuniforms].n = 1;
-                uniforms[nuniforms].v[0] = lutil_check_number(L, -1, "fullscreen", name);
+                uniforms[nuniforms].size = 1;
+                uniforms[nuniforms].value[0] = lutil_check_number(L, -1, "fullscreen", name);
             } else if (lua_istable(L, -1)) {
                 int n = (int)lua_rawlen(L, -1);
                 if (n < 1 || n > 4)
                     return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' ('%s': 1 to 4 numbers expected)", name);
                 for (int i = 0; i < n; i++) {
                     lua_rawgeti(L, -1, i + 1);
-                    uniforms[nuniforms].v[i] = lutil_check_number(L, -1, "fullscreen", name);
+                    uniforms[nuniforms].value[i] = lutil_check_number(L, -1, "fullscreen", name);
                     lua_pop(L, 1);
                 }
-                uniforms[nuniforms].n = n;
+                uniforms[nuniforms].size = n;
             } else {
                 return luaL_error(L, "bad argument 'uniforms' to 'fullscreen' ('%s': number or vector expected, got %s)",
                                   name, luaL_typename(L, -1));
@@ -154,27 +154,8 @@ static int context_fullscreen(lua_State *L)
         return luaL_error(L, "%s", err.message);
     }
     renderer_reset_state(r);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fb.id);
-    gl.Viewport(0, 0, targets[0]->width, targets[0]->height);
-    gl.UseProgram(prog->id);
-    for (int i = 0; i < ninputs; i++) {
-        gl.BindTextureUnit((GLuint)i, inputs[i].texture);
-        gl.ProgramUniform1i(prog->id, inputs[i].location, i);
-    }
-    for (int i = 0; i < nuniforms; i++) {
-        const float *v = uniforms[i].v;
-        GLint loc = uniforms[i].location;
-        if (uniforms[i].n == 1)
-            gl.ProgramUniform1f(prog->id, loc, v[0]);
-        else if (uniforms[i].n == 2)
-            gl.ProgramUniform2f(prog->id, loc, v[0], v[1]);
-        else if (uniforms[i].n == 3)
-            gl.ProgramUniform3f(prog->id, loc, v[0], v[1], v[2]);
-        else
-            gl.ProgramUniform4f(prog->id, loc, v[0], v[1], v[2], v[3]);
-    }
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_time"), (float)c->frame->time);
-    renderer_draw_fullscreen(r);
+    renderer_run_fullscreen(r, prog, fb.id, targets[0]->width, targets[0]->height, inputs, ninputs, uniforms, nuniforms,
+                            c->frame->time);
     renderer_reset_state(r);
     gl_framebuffer_destroy(&fb);
     return 0;

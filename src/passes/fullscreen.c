@@ -93,26 +93,22 @@ static bool fullscreen_execute(struct pass *p, struct pass_frame *f, struct erro
         colors[o] = &f->outputs[o]->texture;
     if (!gl_framebuffer_attach(&s->fb, colors, NULL, p->output_count, NULL, -1, err))
         return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.UseProgram(prog->id);
-    for (int i = 0; i < p->input_count; i++) {
-        gl.BindTextureUnit((GLuint)i, f->inputs[i]->texture.id);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, p->inputs[i].name), i);
-    }
+    struct renderer_shader_input inputs[RENDERER_MAX_SHADER_INPUTS];
+    int ninputs = 0;
+    for (int i = 0; i < p->input_count && ninputs < RENDERER_MAX_SHADER_INPUTS; i++)
+        inputs[ninputs++] = (struct renderer_shader_input){p->inputs[i].name, f->inputs[i]->texture.id};
     const struct pass_value *u = &p->values[FULLSCREEN_UNIFORMS];
-    for (int i = 0; u && i < u->list_count; i++) {
-        GLint loc = gl_program_uniform(prog, u->keys[i]);
-        const float *v = u->vectors[i];
-        switch (u->vector_sizes[i]) {
-        case 1: gl.ProgramUniform1f(prog->id, loc, v[0]); break;
-        case 2: gl.ProgramUniform2f(prog->id, loc, v[0], v[1]); break;
-        case 3: gl.ProgramUniform3f(prog->id, loc, v[0], v[1], v[2]); break;
-        default: gl.ProgramUniform4f(prog->id, loc, v[0], v[1], v[2], v[3]); break;
-        }
+    struct renderer_shader_uniform *uniforms = calloc((size_t)u->list_count + 1, sizeof *uniforms);
+    if (!uniforms)
+        return error_set(err, "out of memory");
+    for (int i = 0; i < u->list_count; i++) {
+        uniforms[i].name = u->keys[i];
+        uniforms[i].size = u->vector_sizes[i];
+        memcpy(uniforms[i].value, u->vectors[i], sizeof uniforms[i].value);
     }
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_time"), (float)f->time);
-    renderer_draw_fullscreen(f->renderer);
+    renderer_run_fullscreen(f->renderer, prog, s->fb.id, f->width, f->height, inputs, ninputs, uniforms, u->list_count,
+                            f->time);
+    free(uniforms);
     return true;
 }
 
