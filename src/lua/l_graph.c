@@ -11,6 +11,7 @@
 #include <lua.h>
 
 #include "graph/graph.h"
+#include "lua/l_scene.h"
 #include "lua/l_util.h"
 #include "lua/lua_host.h"
 
@@ -20,8 +21,6 @@
 struct l_pass { struct pass *pass; };
 struct l_graph { struct graph graph; };
 
-struct light *llight_test(lua_State *L, int idx);
-struct object *lobject_test(lua_State *L, int idx);
 
 static const char *type_name(enum pass_param_type t)
 {
@@ -304,22 +303,26 @@ static struct l_pass *check_pass(lua_State *L, int idx)
     return u;
 }
 
-static int pass_index(lua_State *L)
+static int pass_get_kind(lua_State *L)
 {
-    struct l_pass *u = check_pass(L, 1);
-    const char *k = luaL_checkstring(L, 2);
-    if (strcmp(k, "kind") == 0)
-        lua_pushstring(L, u->pass->desc->name);
-    else if (strcmp(k, "name") == 0)
-        lua_pushstring(L, u->pass->name);
-    else if (strcmp(k, "outputs") == 0) {
-        lua_createtable(L, u->pass->output_count, 0);
-        for (int i = 0; i < u->pass->output_count; i++) {
-            lua_pushstring(L, u->pass->outputs[i].name);
-            lua_rawseti(L, -2, i + 1);
-        }
-    } else
-        lua_pushnil(L);
+    lua_pushstring(L, check_pass(L, 1)->pass->desc->name);
+    return 1;
+}
+
+static int pass_get_name(lua_State *L)
+{
+    lua_pushstring(L, check_pass(L, 1)->pass->name);
+    return 1;
+}
+
+static int pass_get_outputs(lua_State *L)
+{
+    struct pass *p = check_pass(L, 1)->pass;
+    lua_createtable(L, p->output_count, 0);
+    for (int i = 0; i < p->output_count; i++) {
+        lua_pushstring(L, p->outputs[i].name);
+        lua_rawseti(L, -2, i + 1);
+    }
     return 1;
 }
 
@@ -423,21 +426,6 @@ static int graph_passes_l(lua_State *L)
     return 1;
 }
 
-static int graph_index(lua_State *L)
-{
-    check_graph(L, 1);
-    const char *k = luaL_checkstring(L, 2);
-    static const luaL_Reg methods[] = {{"add", graph_add_l}, {"output", graph_output_l}, {"timings", graph_timings_l},
-                                       {"passes", graph_passes_l}, {NULL, NULL}};
-    for (int i = 0; methods[i].name; i++)
-        if (strcmp(methods[i].name, k) == 0) {
-            lua_pushcfunction(L, methods[i].func);
-            return 1;
-        }
-    lua_pushnil(L);
-    return 1;
-}
-
 static int graph_tostring(lua_State *L)
 {
     struct graph *g = check_graph(L, 1);
@@ -462,21 +450,14 @@ static int pass_table_index(lua_State *L)
 
 int luaopen_caustica_graph(lua_State *L)
 {
-    static const luaL_Reg pass_meta[] = {{"__gc", pass_gc}, {"__index", pass_index}, {"__tostring", pass_tostring},
-                                         {NULL, NULL}};
-    static const luaL_Reg graph_meta[] = {{"__gc", graph_gc}, {"__index", graph_index}, {"__tostring", graph_tostring},
-                                          {NULL, NULL}};
-    /* Protected (__metatable): a script cannot reach __gc. */
-    luaL_newmetatable(L, PASS_MT);
-    luaL_setfuncs(L, pass_meta, 0);
-    lua_pushstring(L, PASS_MT);
-    lua_setfield(L, -2, "__metatable");
-    lua_pop(L, 1);
-    luaL_newmetatable(L, GRAPH_MT);
-    luaL_setfuncs(L, graph_meta, 0);
-    lua_pushstring(L, GRAPH_MT);
-    lua_setfield(L, -2, "__metatable");
-    lua_pop(L, 1);
+    static const luaL_Reg pass_meta[] = {{"__gc", pass_gc}, {"__tostring", pass_tostring}, {NULL, NULL}};
+    static const luaL_Reg pass_getters[] = {{"kind", pass_get_kind}, {"name", pass_get_name},
+                                            {"outputs", pass_get_outputs}, {NULL, NULL}};
+    lutil_class(L, PASS_MT, "pass", pass_meta, NULL, pass_getters, NULL);
+    static const luaL_Reg graph_meta[] = {{"__gc", graph_gc}, {"__tostring", graph_tostring}, {NULL, NULL}};
+    static const luaL_Reg graph_methods[] = {{"add", graph_add_l}, {"output", graph_output_l},
+                                             {"timings", graph_timings_l}, {"passes", graph_passes_l}, {NULL, NULL}};
+    lutil_class(L, GRAPH_MT, "graph", graph_meta, graph_methods, NULL, NULL);
     lua_newtable(L);
     lua_pushcfunction(L, lgraph_new);
     lua_setfield(L, -2, "graph");

@@ -9,6 +9,7 @@
 
 #include "io/image.h"
 #include "lua/l_image.h"
+#include "lua/l_util.h"
 #include "lua/lua_host.h"
 #include "reference/image_metrics.h"
 
@@ -164,24 +165,15 @@ static int image_clamped_l(lua_State *L)
     return 1;
 }
 
-static int image_index(lua_State *L)
+static int image_get_width(lua_State *L)
 {
-    struct image *img = limage_check(L, 1);
-    const char *k = luaL_checkstring(L, 2);
-    if (strcmp(k, "width") == 0)
-        lua_pushinteger(L, img->width);
-    else if (strcmp(k, "height") == 0)
-        lua_pushinteger(L, img->height);
-    else if (strcmp(k, "save") == 0)
-        lua_pushcfunction(L, image_save_l);
-    else if (strcmp(k, "pixel") == 0)
-        lua_pushcfunction(L, image_pixel_l);
-    else if (strcmp(k, "stats") == 0)
-        lua_pushcfunction(L, image_stats_l);
-    else if (strcmp(k, "clamped") == 0)
-        lua_pushcfunction(L, image_clamped_l);
-    else
-        lua_pushnil(L);
+    lua_pushinteger(L, limage_check(L, 1)->width);
+    return 1;
+}
+
+static int image_get_height(lua_State *L)
+{
+    lua_pushinteger(L, limage_check(L, 1)->height);
     return 1;
 }
 
@@ -194,13 +186,11 @@ static int image_tostring(lua_State *L)
 
 int luaopen_caustica_image(lua_State *L)
 {
-    static const luaL_Reg meta[] = {{"__gc", image_gc}, {"__index", image_index}, {"__tostring", image_tostring},
-                                    {NULL, NULL}};
-    luaL_newmetatable(L, IMAGE_MT);
-    luaL_setfuncs(L, meta, 0);
-    lua_pushstring(L, IMAGE_MT); /* protected: a script cannot reach __gc */
-    lua_setfield(L, -2, "__metatable");
-    lua_pop(L, 1);
+    static const luaL_Reg meta[] = {{"__gc", image_gc}, {"__tostring", image_tostring}, {NULL, NULL}};
+    static const luaL_Reg methods[] = {{"save", image_save_l}, {"pixel", image_pixel_l}, {"stats", image_stats_l},
+                                       {"clamped", image_clamped_l}, {NULL, NULL}};
+    static const luaL_Reg getters[] = {{"width", image_get_width}, {"height", image_get_height}, {NULL, NULL}};
+    lutil_class(L, IMAGE_MT, "image", meta, methods, getters, NULL);
     static const luaL_Reg funcs[] = {{"load", image_load_l}, {"new", image_new_l}, {"compare", image_compare_l},
                                      {"render", limage_render}, {"reference", limage_reference}, {NULL, NULL}};
     luaL_newlib(L, funcs);

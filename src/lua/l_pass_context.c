@@ -161,24 +161,27 @@ static int context_fullscreen(lua_State *L)
     return 0;
 }
 
-static int context_index(lua_State *L)
+static int context_get_frame(lua_State *L)
 {
-    struct pass_context *c = check_context(L);
-    const char *k = luaL_checkstring(L, 2);
-    if (strcmp(k, "frame") == 0)
-        lua_pushinteger(L, c->frame->frame);
-    else if (strcmp(k, "time") == 0)
-        lua_pushnumber(L, c->frame->time);
-    else if (strcmp(k, "width") == 0)
-        lua_pushinteger(L, c->frame->width);
-    else if (strcmp(k, "height") == 0)
-        lua_pushinteger(L, c->frame->height);
-    else if (strcmp(k, "clear") == 0)
-        lua_pushcfunction(L, context_clear);
-    else if (strcmp(k, "fullscreen") == 0)
-        lua_pushcfunction(L, context_fullscreen);
-    else
-        lua_pushnil(L);
+    lua_pushinteger(L, check_context(L)->frame->frame);
+    return 1;
+}
+
+static int context_get_time(lua_State *L)
+{
+    lua_pushnumber(L, check_context(L)->frame->time);
+    return 1;
+}
+
+static int context_get_width(lua_State *L)
+{
+    lua_pushinteger(L, check_context(L)->frame->width);
+    return 1;
+}
+
+static int context_get_height(lua_State *L)
+{
+    lua_pushinteger(L, check_context(L)->frame->height);
     return 1;
 }
 
@@ -188,11 +191,12 @@ bool lua_host_run_custom_pass(struct pass *p, struct pass_frame *f, struct error
     const struct pass_value *run = pass_value(p, "run");
     if (!L || !run || run->lua_ref < 0)
         return error_set(err, "custom pass has no run function");
-    if (luaL_newmetatable(L, CONTEXT_MT)) {
-        lua_pushcfunction(L, context_index);
-        lua_setfield(L, -2, "__index");
-        lua_pushstring(L, CONTEXT_MT);
-        lua_setfield(L, -2, "__metatable");
+    if (luaL_getmetatable(L, CONTEXT_MT) == LUA_TNIL) {
+        static const luaL_Reg methods[] = {{"clear", context_clear}, {"fullscreen", context_fullscreen}, {NULL, NULL}};
+        static const luaL_Reg getters[] = {{"frame", context_get_frame}, {"time", context_get_time},
+                                           {"width", context_get_width}, {"height", context_get_height},
+                                           {NULL, NULL}};
+        lutil_class(L, CONTEXT_MT, "pass context", NULL, methods, getters, NULL);
     }
     lua_pop(L, 1);
     lua_rawgeti(L, LUA_REGISTRYINDEX, run->lua_ref);

@@ -6,6 +6,22 @@
 #include <stdio.h>
 #include <string.h>
 
+/* "file:line: " of the innermost Lua code on the stack: a setter runs
+ * under __newindex (and a constructor's lutil_assign_fields), so the level
+ * luaL_where(L, 1) sees is C; the script line is further out. */
+static void push_where(lua_State *L)
+{
+    lua_Debug ar;
+    for (int level = 1; lua_getstack(L, level, &ar); level++) {
+        lua_getinfo(L, "Sl", &ar);
+        if (ar.currentline > 0) {
+            lua_pushfstring(L, "%s:%d: ", ar.short_src, ar.currentline);
+            return;
+        }
+    }
+    lua_pushliteral(L, "");
+}
+
 int lutil_error(lua_State *L, const char *fmt, ...)
 {
     char msg[1024];
@@ -13,13 +29,16 @@ int lutil_error(lua_State *L, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return luaL_error(L, "%s", msg);
+    push_where(L);
+    lua_pushstring(L, msg);
+    lua_concat(L, 2);
+    return lua_error(L);
 }
 
 int lutil_field_error(lua_State *L, const char *fn, const char *field, const char *expected, int idx)
 {
-    return luaL_error(L, "bad argument '%s' to '%s' (%s expected, got %s)", field, fn, expected,
-                      luaL_typename(L, idx));
+    return lutil_error(L, "bad argument '%s' to '%s' (%s expected, got %s)", field, fn, expected,
+                       luaL_typename(L, idx));
 }
 
 void lutil_check_fields(lua_State *L, int idx, const char *fn, const char *const *allowed)
@@ -187,6 +206,31 @@ void lutil_opt_vec3(lua_State *L, int t, const char *fn, const char *field, vec3
     lua_pop(L, 1);
 }
 
+int lutil_opt_option(lua_State *L, int t, const char *fn, const char *field, const char *const *options,
+                     int default_index)
+{
+    int index = default_index;
+    if (lua_getfield(L, t, field) != LUA_TNIL) {
+        const char *s = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
+        index = -1;
+        for (int i = 0; s && options[i]; i++)
+            if (strcmp(options[i], s) == 0)
+                index = i;
+        if (index < 0) {
+            char expected[256] = "";
+            size_t used = 0;
+            for (int i = 0; options[i] && used < sizeof expected; i++) {
+                int w = snprintf(expected + used, sizeof expected - used, "%s\"%s\"", i ? " or " : "", options[i]);
+                if (w > 0)
+                    used += (size_t)w;
+            }
+            lutil_field_error(L, fn, field, expected, -1);
+        }
+    }
+    lua_pop(L, 1);
+    return index;
+}
+
 void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out)
 {
     if (lua_getfield(L, t, field) != LUA_TNIL)
@@ -202,4 +246,83 @@ void lutil_where(lua_State *L, char *out, size_t outlen)
     /* luaL_where gives "file:line: " */
     snprintf(out, outlen, "%.*s", (int)(n >= 2 ? n - 2 : n), w);
     lua_pop(L, 1);
+}
+
+static int class_index(lua_State *L)
+{
+    /* upvalues: 1 methods, 2 getters */
+    lua_pushvalue(L, 2);
+    if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL)
+        return 1;
+    lua_pop(L, 1);
+    lua_pushvalue(L, 2);
+    if (lua_rawget(L, lua_upvalueindex(2)) == LUA_TFUNCTION) {
+        lua_pushvalue(L, 1);
+        lua_call(L, 1, 1);
+        return 1;
+    }
+    lua_pushnil(L);
+    return 1;
+}
+
+static int class_newindex(lua_State *L)
+{
+    /* upvalues: 1 setters, 2 the class's name, 3 the settable fields, in order, for messages */
+    lua_pushvalue(L, 2);
+    if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TFUNCTION) {
+        lua_pushvalue(L, 1);
+        lua_pushvalue(L, 2);
+        lua_pushvalue(L, 3);
+        lua_call(L, 3, 0);
+        return 0;
+    }
+    return lutil_error(L, "%s has no field '%s' (fields: %s)", lua_tostring(L, lua_upvalueindex(2)),
+                       luaL_tolstring(L, 2, NULL), lua_tostring(L, lua_upvalueindex(3)));
+}
+
+static void new_table_of(lua_State *L, const luaL_Reg *funcs)
+{
+    lua_newtable(L);
+    if (funcs)
+        luaL_setfuncs(L, funcs, 0);
+}
+
+void lutil_class(lua_State *L, const char *name, const char *what, const luaL_Reg *meta, const luaL_Reg *methods,
+                 const luaL_Reg *getters, const luaL_Reg *setters)
+{
+    luaL_newmetatable(L, name);
+    if (meta)
+        luaL_setfuncs(L, meta, 0);
+    new_table_of(L, methods);
+    new_table_of(L, getters);
+    lua_pushcclosure(L, class_index, 2);
+    lua_setfield(L, -2, "__index");
+    new_table_of(L, setters);
+    lua_pushstring(L, what);
+    char fields[512] = "";
+    size_t used = 0;
+    for (int i = 0; setters && setters[i].name && used < sizeof fields; i++) {
+        int w = snprintf(fields + used, sizeof fields - used, "%s%s", i ? ", " : "", setters[i].name);
+        if (w > 0)
+            used += (size_t)w;
+    }
+    lua_pushstring(L, fields);
+    lua_pushcclosure(L, class_newindex, 3);
+    lua_setfield(L, -2, "__newindex");
+    lua_pushstring(L, name);
+    lua_setfield(L, -2, "__metatable");
+    lua_pop(L, 1);
+}
+
+void lutil_assign_fields(lua_State *L, int object, int options, const char *const *fields)
+{
+    object = lua_absindex(L, object);
+    options = lua_absindex(L, options);
+    for (int i = 0; fields[i]; i++) {
+        if (lua_getfield(L, options, fields[i]) == LUA_TNIL) {
+            lua_pop(L, 1);
+            continue;
+        }
+        lua_setfield(L, object, fields[i]);
+    }
 }

@@ -32,8 +32,24 @@ void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, fl
 void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, int *out);
 void lutil_opt_vec3(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
 void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
+/* An enum field: the index of its string in `options` (NULL-terminated),
+ * `default_index` when absent; luaL_checkoption's rule with the field's name. */
+int lutil_opt_option(lua_State *L, int t, const char *fn, const char *field, const char *const *options,
+                     int default_index);
 /* A finite number (every number a script gives is checked with isfinite). */
 float lutil_check_number(lua_State *L, int idx, const char *fn, const char *field);
+/* A userdata class as Lua's own libraries make them: the metatable `name`
+ * with the metamethods `meta` (__gc, __tostring, ...), an __index that
+ * finds `methods` first and then calls the getter of `getters` for the key
+ * (getter(self) -> value), an __newindex that calls the setter of `setters`
+ * (setter(self, key, value)) or says which fields there are, and a
+ * __metatable field so that a script cannot reach __gc. Any table may be
+ * NULL. `what` names the class in messages ("object has no field 'x'"). */
+void lutil_class(lua_State *L, const char *name, const char *what, const luaL_Reg *meta, const luaL_Reg *methods,
+                 const luaL_Reg *getters, const luaL_Reg *setters);
+/* Assigns each field of the option table at `options` that `fields` names
+ * (in that order) to the userdata at `object`, through its setters. */
+void lutil_assign_fields(lua_State *L, int object, int options, const char *const *fields);
 /* "script.lua:12" of the Lua code that called the running C function. */
 void lutil_where(lua_State *L, char *out, size_t outlen);
 

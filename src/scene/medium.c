@@ -61,3 +61,33 @@ float medium_density(const struct medium *m, vec3 p)
     float c0 = c00 * (1 - ty) + c10 * ty, c1 = c01 * (1 - ty) + c11 * ty;
     return c0 * (1 - tz) + c1 * tz;
 }
+
+bool medium_sample_grid(struct medium *m, int nx, int ny, int nz, double (*density)(void *user, vec3 p), void *user,
+                        struct error *err)
+{
+    if (nx < 2 || ny < 2 || nz < 2 || nx > 256 || ny > 256 || nz > 256)
+        return error_set(err, "bad argument 'resolution' to 'medium' (2..256 per axis expected)");
+    free(m->grid);
+    m->grid = malloc((size_t)nx * (size_t)ny * (size_t)nz * sizeof(float));
+    if (!m->grid)
+        return error_set(err, "out of memory for a %dx%dx%d density grid", nx, ny, nz);
+    m->nx = nx;
+    m->ny = ny;
+    m->nz = nz;
+    m->max_density = 0;
+    for (int z = 0; z < nz; z++)
+        for (int y = 0; y < ny; y++)
+            for (int x = 0; x < nx; x++) {
+                vec3 p = {m->box_min.x + (m->box_max.x - m->box_min.x) * (float)x / (float)(nx - 1),
+                          m->box_min.y + (m->box_max.y - m->box_min.y) * (float)y / (float)(ny - 1),
+                          m->box_min.z + (m->box_max.z - m->box_min.z) * (float)z / (float)(nz - 1)};
+                float d = (float)density(user, p);
+                if (!(d >= 0) || !isfinite(d))
+                    return error_set(err, "medium density function returned %f at (%f, %f, %f): non-negative finite "
+                                          "values expected", (double)d, (double)p.x, (double)p.y, (double)p.z);
+                m->grid[((size_t)z * (size_t)ny + (size_t)y) * (size_t)nx + (size_t)x] = d;
+                if (d > m->max_density)
+                    m->max_density = d;
+            }
+    return true;
+}

@@ -90,11 +90,7 @@ void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi)
     if (obj->deform.kind == DEFORM_WAVE)
         grow += fabsf(obj->deform.amplitude);
     if (obj->water) {
-        double hmax = 0.0;
-        size_t n = (size_t)obj->water->resolution * (size_t)obj->water->resolution;
-        for (size_t i = 0; i < n; i++)
-            hmax = fmax(hmax, fabs(obj->water->height[i]));
-        grow += (float)hmax;
+        grow += (float)water_max_height(obj->water);
     }
     else if (obj->deform.kind == DEFORM_GLSL)
         grow += 0.5f * vec3_length(vec3_sub(b, a)); /* unknown function: be generous */

@@ -174,6 +174,11 @@ struct medium *medium_create(void);
 void medium_retain(struct medium *m);
 /* Drops one reference; the last one frees it. */
 void medium_destroy(struct medium *m);
+/* A density grid of nx*ny*nz corner samples over the box from
+ * density(user, p); false with a message when a value is negative or not
+ * finite. Sets max_density. */
+bool medium_sample_grid(struct medium *m, int nx, int ny, int nz, double (*density)(void *user, vec3 p), void *user,
+                        struct error *err);
 /* Density at world point p (0 outside the box). */
 float medium_density(const struct medium *m, vec3 p);
 

@@ -182,3 +182,30 @@ void water_fill_vertices(const struct water *w, float *positions, float *normals
             normals[k * 3 + 2] = (float)(-sz / len);
         }
 }
+
+double water_max_height(const struct water *w)
+{
+    double hmax = 0.0;
+    for (size_t i = 0; i < (size_t)w->resolution * (size_t)w->resolution; i++)
+        hmax = fmax(hmax, fabs(w->height[i]));
+    return hmax;
+}
+
+bool water_set_heights(struct water *w, double (*height)(void *user, double x, double z), void *user,
+                       struct error *err)
+{
+    int n = w->resolution;
+    double dx = (double)w->size / (n - 1), half = 0.5 * w->size;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double x = -half + i * dx, z = -half + j * dx;
+            double h = height(user, x, z);
+            if (!isfinite(h))
+                return error_set(err, "set_heights: the function returned a non-finite height at (%g, %g)", x, z);
+            w->height[(size_t)j * (size_t)n + (size_t)i] = h;
+            w->velocity[(size_t)j * (size_t)n + (size_t)i] = 0.0;
+        }
+    w->dirty = true;
+    w->dirty_energy = true;
+    return true;
+}

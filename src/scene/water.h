@@ -38,5 +38,11 @@ double water_stable_step(const struct water *w);
 double water_energy(const struct water *w);
 /* Fills vertex positions (object space, grid centred at the origin) and normals. */
 void water_fill_vertices(const struct water *w, float *positions, float *normals);
+/* The largest |height| of the surface. */
+double water_max_height(const struct water *w);
+/* Sets every height from height(user, x, z) (velocities to 0); false with a
+ * message naming the point when it returns a non-finite height. */
+bool water_set_heights(struct water *w, double (*height)(void *user, double x, double z), void *user,
+                       struct error *err);
 
 #endif

@@ -1,0 +1,82 @@
+/* c.material.diffuse / glass / mirror / water: materials as plain values
+ * (an object keeps a copy). */
+#include <math.h>
+
+#include "lua/l_scene.h"
+#include "lua/l_util.h"
+
+static int push_material(lua_State *L, enum material_kind kind, const char *fn)
+{
+    struct material m = {.kind = kind, .color = {0.8f, 0.8f, 0.8f}, .ior = kind == MATERIAL_WATER ? 1.33f : 1.5f};
+    if (kind == MATERIAL_MIRROR)
+        m.color = vec3_make(1, 1, 1);
+    if (!lua_isnoneornil(L, 1)) {
+        luaL_checktype(L, 1, LUA_TTABLE);
+        static const char *const diffuse_fields[] = {"color", NULL};
+        static const char *const glass_fields[] = {"ior", "absorption", NULL};
+        lutil_check_fields(L, 1, fn, kind == MATERIAL_DIFFUSE || kind == MATERIAL_MIRROR ? diffuse_fields : glass_fields);
+        lutil_opt_color(L, 1, fn, "color", &m.color);
+        lutil_opt_number(L, 1, fn, "ior", &m.ior);
+        lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
+    }
+    if (!(m.ior > 0.0f) || !isfinite(m.ior))
+        return lutil_error(L, "bad argument 'ior' to '%s' (a positive number expected, got %g)", fn, (double)m.ior);
+    lmaterial_push(L, &m);
+    return 1;
+}
+
+void lmaterial_push(lua_State *L, const struct material *m)
+{
+    struct material *u = lua_newuserdatauv(L, sizeof *u, 0);
+    *u = *m;
+    luaL_setmetatable(L, MATERIAL_MT);
+}
+
+static int material_diffuse(lua_State *L) { return push_material(L, MATERIAL_DIFFUSE, "diffuse"); }
+static int material_glass(lua_State *L) { return push_material(L, MATERIAL_GLASS, "glass"); }
+static int material_mirror(lua_State *L) { return push_material(L, MATERIAL_MIRROR, "mirror"); }
+static int material_water(lua_State *L) { return push_material(L, MATERIAL_WATER, "water"); }
+
+static struct material *check_material(lua_State *L) { return luaL_checkudata(L, 1, MATERIAL_MT); }
+
+static int get_kind(lua_State *L)
+{
+    lua_pushstring(L, material_kind_name(check_material(L)->kind));
+    return 1;
+}
+
+static int get_color(lua_State *L)
+{
+    lutil_push_vec3(L, check_material(L)->color);
+    return 1;
+}
+
+static int get_ior(lua_State *L)
+{
+    lua_pushnumber(L, check_material(L)->ior);
+    return 1;
+}
+
+static int get_absorption(lua_State *L)
+{
+    lutil_push_vec3(L, check_material(L)->absorption);
+    return 1;
+}
+
+static int material_tostring(lua_State *L)
+{
+    lua_pushfstring(L, "Material(%s)", material_kind_name(check_material(L)->kind));
+    return 1;
+}
+
+void lmaterial_open(lua_State *L)
+{
+    static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {NULL, NULL}};
+    static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
+                                       {"absorption", get_absorption}, {NULL, NULL}};
+    lutil_class(L, MATERIAL_MT, "material", meta, NULL, getters, NULL);
+    static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},
+                                         {"mirror", material_mirror}, {"water", material_water}, {NULL, NULL}};
+    luaL_newlib(L, materials);
+    lua_setfield(L, -2, "material");
+}

@@ -1,0 +1,46 @@
+/* What the scene bindings (l_scene.c, l_object.c, l_light.c, l_material.c,
+ * l_medium.c) share: the userdata types and their metatable names, the
+ * checks, and each file's registration into the caustica.scene module. */
+#ifndef CAUSTICA_L_SCENE_H
+#define CAUSTICA_L_SCENE_H
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "scene/scene.h"
+
+#define MESH_MT "caustica.Mesh"
+#define MATERIAL_MT "caustica.Material"
+#define OBJECT_MT "caustica.Object"
+#define LIGHT_MT "caustica.Light"
+#define CAMERA_MT "caustica.Camera"
+#define ENVIRONMENT_MT "caustica.Environment"
+#define DEFORMER_MT "caustica.Deformer"
+#define SCENE_MT "caustica.Scene"
+#define MEDIUM_MT "caustica.Medium"
+
+struct l_mesh { struct mesh *mesh; };
+struct l_object { struct object *obj; };
+struct l_light { struct light *light; };
+struct l_environment { struct environment *env; };
+struct l_medium { struct medium *medium; };
+
+/* luaL_argerror for a userdata whose __gc already ran (a trusted script can
+ * reach __gc through debug): an error, never a NULL dereference. */
+int lscene_released(lua_State *L, int idx, const char *what);
+struct mesh *lmesh_check(lua_State *L, int idx);
+struct object *lobject_check(lua_State *L, int idx);
+struct light *llight_check(lua_State *L, int idx);
+/* NULL when the value is something else (or released). */
+struct object *lobject_test(lua_State *L, int idx);
+struct light *llight_test(lua_State *L, int idx);
+/* A copy of `m` as a new material userdata. */
+void lmaterial_push(lua_State *L, const struct material *m);
+
+/* Each file's classes and constructors, into the module table at the top. */
+void lobject_open(lua_State *L);
+void llight_open(lua_State *L);
+void lmaterial_open(lua_State *L);
+void lmedium_open(lua_State *L);
+
+#endif
