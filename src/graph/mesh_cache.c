@@ -1,6 +1,8 @@
 #include "graph/mesh_cache.h"
 
 #include <stdlib.h>
+
+#include "core/array.h"
 #include <string.h>
 
 #include "gl/gl_buffer.h"
@@ -37,18 +39,6 @@ void mesh_cache_release(struct mesh_cache *c)
     mesh_cache_init(c);
 }
 
-static bool grow(void **items, int *capacity, int count, size_t elem, struct error *err)
-{
-    if (count < *capacity)
-        return true;
-    int cap = *capacity ? *capacity * 2 : 16;
-    void *p = realloc(*items, (size_t)cap * elem);
-    if (!p)
-        return error_set(err, "out of memory");
-    *items = p;
-    *capacity = cap;
-    return true;
-}
 
 static struct gpu_mesh *find_mesh(struct mesh_cache *c, uint64_t serial)
 {
@@ -71,7 +61,7 @@ struct gpu_mesh *mesh_cache_mesh(struct mesh_cache *c, const struct mesh *m, str
     struct gpu_mesh *g = find_mesh(c, m->serial);
     if (g)
         return g;
-    if (!grow((void **)&c->meshes, &c->mesh_capacity, c->mesh_count, sizeof *c->meshes, err))
+    if (!array_grow((void **)&c->meshes, &c->mesh_capacity, c->mesh_count, sizeof *c->meshes, err))
         return NULL;
     g = &c->meshes[c->mesh_count];
     memset(g, 0, sizeof *g);
@@ -97,7 +87,7 @@ struct gpu_object *mesh_cache_object(struct mesh_cache *c, const struct object *
     struct gpu_object *g = find_object(c, o->serial);
     if (g)
         return g;
-    if (!grow((void **)&c->objects, &c->object_capacity, c->object_count, sizeof *c->objects, err))
+    if (!array_grow((void **)&c->objects, &c->object_capacity, c->object_count, sizeof *c->objects, err))
         return NULL;
     g = &c->objects[c->object_count++];
     memset(g, 0, sizeof *g);

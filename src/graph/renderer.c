@@ -274,16 +274,23 @@ static bool ensure_present_target(struct renderer *r, int w, int h, struct error
     return gl_framebuffer_attach(&r->present_fb, colors, NULL, 1, NULL, -1, err);
 }
 
+/* Tone maps `linear` into the 8-bit present target of its size. */
+static bool tonemap_to_present(struct renderer *r, const struct gl_texture *linear, float exposure,
+                               enum tonemap_operator op, struct error *err)
+{
+    renderer_reset_state(r);
+    if (!ensure_present_target(r, linear->width, linear->height, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
+    gl.Viewport(0, 0, linear->width, linear->height);
+    return tonemap_draw(r, linear, exposure, op, err);
+}
+
 bool renderer_present_bytes(struct renderer *r, const struct gl_texture *linear, float exposure,
                             enum tonemap_operator op, uint8_t *rgba, struct error *err)
 {
     int w = linear->width, h = linear->height;
-    renderer_reset_state(r);
-    if (!ensure_present_target(r, w, h, err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
-    gl.Viewport(0, 0, w, h);
-    if (!tonemap_draw(r, linear, exposure, op, err))
+    if (!tonemap_to_present(r, linear, exposure, op, err))
         return false;
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->present_fb.id);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -308,12 +315,7 @@ bool renderer_present_window(struct renderer *r, const struct gl_texture *linear
                              struct error *err)
 {
     int w = linear->width, h = linear->height;
-    renderer_reset_state(r);
-    if (!ensure_present_target(r, w, h, err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, r->present_fb.id);
-    gl.Viewport(0, 0, w, h);
-    if (!tonemap_draw(r, linear, exposure, op, err))
+    if (!tonemap_to_present(r, linear, exposure, op, err))
         return false;
     /* Letterbox into the window, keeping the aspect ratio; at equal sizes
      * the blit copies pixels exactly. */

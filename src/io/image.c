@@ -75,7 +75,20 @@ bool image_path_is_pfm(const char *path)
     return n > 4 && (strcmp(path + n - 4, ".pfm") == 0 || strcmp(path + n - 4, ".PFM") == 0);
 }
 
-/* Writes through a temporary file and renames it into place. */
+/* Writes go to a temporary file beside `path` (path_temporary), renamed
+ * into place by finish_atomic: an interrupted write never leaves a partial
+ * image under the real name. */
+static FILE *start_atomic(const char *path, char *tmp, size_t tmplen, struct error *err)
+{
+    if (!path_check_writable_dir(path, err))
+        return NULL;
+    path_temporary(path, tmp, tmplen);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return f;
+}
+
 static bool finish_atomic(FILE *f, const char *tmp, const char *path, bool ok, struct error *err)
 {
     if (ok && fflush(f) != 0)
@@ -113,13 +126,10 @@ static void png_warned(png_structp png, png_const_charp message)
 
 bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err)
 {
-    if (!path_check_writable_dir(path, err))
-        return false;
     char tmp[4096];
-    path_temporary(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
+    FILE *f = start_atomic(path, tmp, sizeof tmp, err);
     if (!f)
-        return error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        return false;
     struct png_failure failure = {"", 0};
     errno = 0;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, png_failed, png_warned);
@@ -201,13 +211,10 @@ bool image_read_png(const char *path, struct image *img, struct error *err)
 
 bool image_write_pfm(const char *path, const struct image *img, struct error *err)
 {
-    if (!path_check_writable_dir(path, err))
-        return false;
     char tmp[4096];
-    path_temporary(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
+    FILE *f = start_atomic(path, tmp, sizeof tmp, err);
     if (!f)
-        return error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        return false;
     /* PFM: "PF", size, scale < 0 for little-endian, rows bottom to top. */
     bool ok = fprintf(f, "PF\n%d %d\n-1.0\n", img->width, img->height) > 0;
     float *row = malloc((size_t)img->width * 3 * sizeof(float));

@@ -4,6 +4,8 @@
 
 #include <math.h>
 #include <stdlib.h>
+
+#include "core/array.h"
 #include <string.h>
 
 const char *material_kind_name(enum material_kind kind)
@@ -185,25 +187,13 @@ void scene_release(struct scene *scene)
     scene->object_count = scene->light_count = 0;
 }
 
-static bool grow(void **items, int *capacity, int count, size_t elem, struct error *err)
-{
-    if (count < *capacity)
-        return true;
-    int cap = *capacity ? *capacity * 2 : 16;
-    void *p = realloc(*items, (size_t)cap * elem);
-    if (!p)
-        return error_set(err, "out of memory");
-    *items = p;
-    *capacity = cap;
-    return true;
-}
 
 bool scene_object_add(struct scene *scene, struct object *obj, struct error *err)
 {
     for (int i = 0; i < scene->object_count; i++)
         if (scene->objects[i] == obj)
             return true;
-    if (!grow((void **)&scene->objects, &scene->object_capacity, scene->object_count, sizeof(struct object *), err))
+    if (!array_grow((void **)&scene->objects, &scene->object_capacity, scene->object_count, sizeof(struct object *), err))
         return false;
     obj->id = scene->next_object_id++;
     object_retain(obj);
@@ -217,7 +207,7 @@ bool scene_light_add(struct scene *scene, struct light *light, struct error *err
     for (int i = 0; i < scene->light_count; i++)
         if (scene->lights[i] == light)
             return true;
-    if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count, sizeof(struct light *), err))
+    if (!array_grow((void **)&scene->lights, &scene->light_capacity, scene->light_count, sizeof(struct light *), err))
         return false;
     light_retain(light);
     scene->lights[scene->light_count++] = light;
