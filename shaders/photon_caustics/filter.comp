@@ -3,7 +3,7 @@
 // Hu & Qin §3.2: c(u, v) = s * sum p(u + i, v + j) sqrt(1 + 2k^2 - (i^2 + j^2)),
 // |i|, |j| <= k. We divide by the sum of the weights, so that s = 1 keeps
 // the photons' energy, and by the texel's area: the result is irradiance.
-#include "photon_caustics/impostors.glsl"
+#include "impostors/impostors.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(r32ui, binding = PHOTON_IMAGE_COUNTS) readonly uniform uimage2DArray u_counts;
 layout(rgba32f, binding = PHOTON_IMAGE_CAUSTICS) writeonly uniform image2DArray u_caustics;

@@ -5,7 +5,7 @@
 // impostor saw there (within the bias), it gets that texel's caustic
 // irradiance.
 #include "common/frame.glsl"
-#include "photon_caustics/impostors.glsl"
+#include "impostors/impostors.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 layout(location = 0) out vec4 o_irradiance;

@@ -9,7 +9,7 @@
 // the two transmittances and Beer-Lambert absorption.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
-#include "photon_caustics/impostors.glsl"
+#include "impostors/impostors.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_photon;
 layout(location = 1) out vec4 o_flux;

@@ -5,7 +5,7 @@
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
 #ifdef NEARBY
-#include "photon_caustics/impostors.glsl"
+#include "impostors/impostors.glsl"
 uniform int u_correction;
 #endif
 in vec3 v_world;

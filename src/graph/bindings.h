@@ -9,7 +9,7 @@
 /* Shared by every pass */
 #define BINDING_FRAME 0                     /* uniform block Frame (common/frame.glsl) */
 #define UNIT_ENVIRONMENT 15                 /* samplerCube u_environment, bound for every pass */
-#define UNIT_IMAGE 0                        /* the image a fullscreen pass reads (tonemap, environment copy) */
+#define UNIT_IMAGE 0                        /* the image a fullscreen pass reads (tonemap, common/copy.frag) */
 
 /* Morphs and deformers (deform/deform.comp) */
 #define DEFORM_SSBO_BASE_POSITIONS 0
@@ -20,13 +20,11 @@
 #define DEFORM_SSBO_OUT_NORMALS 5
 
 /* shade (SHADE_MAX_SHADOWS and SHADE_MAX_CAUSTICS units each) */
-#define SHADE_UNIT_BACKGROUND 0
 #define SHADE_UNIT_SHADOW_2D 1              /* 1..4 */
 #define SHADE_UNIT_SHADOW_CUBE 5            /* 5..8 */
 #define SHADE_UNIT_CAUSTICS 9               /* 9..12 */
 
 /* refraction */
-#define REFRACTION_UNIT_COLOR 0
 #define REFRACTION_UNIT_FRONT_NORMAL 1
 #define REFRACTION_UNIT_BACK_NORMAL 2
 #define REFRACTION_UNIT_FRONT_DEPTH 3

@@ -91,7 +91,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     gl.NamedBufferSubData(set->ubo, 0, sizeof gpu, gpu);
 
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "photon_caustics/impostor.vert", "photon_caustics/impostor.frag", NULL, &prog,
+    if (!gl_program_get(&r->programs, "impostors/impostor.vert", "impostors/impostor.frag", NULL, &prog,
                         err))
         return false;
     gl.Enable(GL_DEPTH_TEST);
@@ -122,7 +122,7 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
     gl.CopyImageSubData(set->color.id, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, set->color_previous.id, GL_TEXTURE_2D_ARRAY, 0, 0,
                         0, 0, set->size, set->size, set->count);
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "photon_caustics/impostor.vert", "photon_caustics/impostor_recursive.frag", NULL,
+    if (!gl_program_get(&r->programs, "impostors/impostor.vert", "impostors/impostor_recursive.frag", NULL,
                         &prog, err))
         return false;
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, set->ubo);

@@ -25,7 +25,7 @@ struct impostor {
     float half;            /* d_i: half the rectangle's side */
 };
 
-/* std430 mirror of `Impostor` in shaders/photon_caustics/impostors.glsl */
+/* std430 mirror of `Impostor` in shaders/impostors/impostors.glsl */
 struct impostor_gpu {
     float center[4]; /* xyz, w = half side */
     float axis[4];

@@ -238,12 +238,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
     struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag", "#define FROM_TEXTURE 1\n",
-                        &copy, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
         return false;
     gl.Disable(GL_DEPTH_TEST);
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(REFRACTION_UNIT_COLOR, in_color->texture.id);
+    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))

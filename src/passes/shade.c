@@ -108,12 +108,12 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     /* Background: the given image, or the environment. */
     struct graph_resource *bg = pass_frame_input(p, f, "background");
     struct gl_program *bgprog;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag",
-                        bg ? "#define FROM_TEXTURE 1\n" : "", &bgprog, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", bg ? "common/copy.frag" : "environment/environment.frag",
+                        NULL, &bgprog, err))
         return false;
     gl.UseProgram(bgprog->id);
     if (bg)
-        gl.BindTextureUnit(SHADE_UNIT_BACKGROUND, bg->texture.id);
+        gl.BindTextureUnit(UNIT_IMAGE, bg->texture.id);
     /* Only the colour attachment: the background has no normal or position. */
     const GLenum background_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};

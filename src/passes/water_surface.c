@@ -86,11 +86,10 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.Viewport(0, 0, f->width, f->height);
     /* the scene as it is, then the surface over it */
     struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "environment/environment.frag", "#define FROM_TEXTURE 1\n",
-                        &copy, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
         return false;
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(SURFACE_UNIT_SCENE, in_color->texture.id);
+    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "water_surface/surface.vert", "water_surface/surface.frag", NULL, &prog, err))

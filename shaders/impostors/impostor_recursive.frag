@@ -5,7 +5,7 @@
 // objects, or the environment where none is hit.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
-#include "photon_caustics/impostors.glsl"
+#include "impostors/impostors.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
