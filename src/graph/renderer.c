@@ -51,6 +51,8 @@ void renderer_destroy(struct renderer *r)
     gl_texture_destroy(&r->dummy_cube);
     gl_texture_destroy(&r->dummy_depth);
     gl_texture_destroy(&r->present_texture);
+    gl_texture_destroy(&r->environment);
+    r->environment_serial = 0;
     gl_framebuffer_destroy(&r->present_fb);
     r->frame_ubo = r->empty_vao = 0;
     r->deform_queries[0] = r->deform_queries[1] = 0;
@@ -82,6 +84,33 @@ static void fill_lights(struct renderer *r, const struct frame *f)
     r->uniforms.counts[0] = f->light_count;
 }
 
+/* The scene's environment as a cube map, uploaded when it is not the one
+ * the renderer already holds (one at a time: scenes have one). */
+static bool upload_environment(struct renderer *r, const struct environment *env, struct error *err)
+{
+    if (r->environment.id && r->environment_serial == env->serial)
+        return true;
+    gl_texture_destroy(&r->environment);
+    r->environment_serial = 0;
+    if (!gl_texture_create(&r->environment, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
+        return false;
+    float *rgba = malloc((size_t)env->size * (size_t)env->size * 4 * sizeof(float));
+    if (!rgba)
+        return error_set(err, "out of memory");
+    for (int f = 0; f < 6; f++) {
+        for (size_t i = 0; i < (size_t)env->size * (size_t)env->size; i++) {
+            memcpy(rgba + i * 4, env->faces[f] + i * 3, 3 * sizeof(float));
+            rgba[i * 4 + 3] = 1.0f;
+        }
+        /* Cube map faces are stored with their first row at the top of the
+         * image as OpenGL expects (t grows downward in face space). */
+        gl.TextureSubImage3D(r->environment.id, 0, 0, 0, f, env->size, env->size, 1, GL_RGBA, GL_FLOAT, rgba);
+    }
+    free(rgba);
+    r->environment_serial = env->serial;
+    return gl_check("uploading the environment", err);
+}
+
 bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, int height, int frame, double time,
                           struct error *err)
 {
@@ -90,7 +119,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     const struct frame *f = &r->frame;
     if (!mesh_cache_begin_frame(&r->meshes, scene, err))
         return false;
-    if (scene->environment && !environment_upload(scene->environment, err))
+    if (scene->environment && !upload_environment(r, scene->environment, err))
         return false;
     gl.QueryCounter(r->deform_queries[0], GL_TIMESTAMP);
     bool deformed = deform_update(r, scene, time, err);
@@ -128,7 +157,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     renderer_reset_state(r);
     /* The environment stays bound for every pass. */
     gl.BindTextureUnit(UNIT_ENVIRONMENT,
-                       scene->environment ? scene->environment->texture.id : r->dummy_cube.id);
+                       scene->environment ? r->environment.id : r->dummy_cube.id);
     return gl_check("frame set-up", err);
 }
 

@@ -49,6 +49,8 @@ struct renderer {
     GLuint deform_queries[2];
     double deform_ms; /* GPU time of the last frame's morphs and deformers */
     struct mesh_cache meshes; /* the GPU copies of meshes and objects */
+    struct gl_texture environment; /* the cube map of the scene's environment ... */
+    uint64_t environment_serial;   /* ... of this serial (0: none uploaded) */
 };
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err);

@@ -14,9 +14,12 @@ static const char *face_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 struct environment *environment_load(const char *folder, struct error *err)
 {
+    static uint64_t next_serial = 1;
     struct environment *env = calloc(1, sizeof *env);
-    if (env)
+    if (env) {
         env->references = 1;
+        env->serial = next_serial++;
+    }
     if (!env) {
         error_set(err, "out of memory");
         return NULL;
@@ -51,28 +54,6 @@ struct environment *environment_load(const char *folder, struct error *err)
         image_destroy(&img);
     }
     return env;
-}
-
-bool environment_upload(struct environment *env, struct error *err)
-{
-    if (env->texture.id)
-        return true;
-    if (!gl_texture_create(&env->texture, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
-        return false;
-    float *rgba = malloc((size_t)env->size * (size_t)env->size * 4 * sizeof(float));
-    if (!rgba)
-        return error_set(err, "out of memory");
-    for (int f = 0; f < 6; f++) {
-        for (size_t i = 0; i < (size_t)env->size * (size_t)env->size; i++) {
-            memcpy(rgba + i * 4, env->faces[f] + i * 3, 3 * sizeof(float));
-            rgba[i * 4 + 3] = 1.0f;
-        }
-        /* Cube map faces are stored with their first row at the top of the
-         * image as OpenGL expects (t grows downward in face space). */
-        gl.TextureSubImage3D(env->texture.id, 0, 0, 0, f, env->size, env->size, 1, GL_RGBA, GL_FLOAT, rgba);
-    }
-    free(rgba);
-    return gl_check("uploading the environment", err);
 }
 
 vec3 environment_lookup(const struct environment *env, vec3 d)
@@ -132,7 +113,6 @@ void environment_destroy(struct environment *env)
         return;
     if (!env)
         return;
-    gl_texture_destroy(&env->texture);
     for (int f = 0; f < 6; f++)
         free(env->faces[f]);
     free(env);

@@ -15,8 +15,6 @@
 
 #include "core/error.h"
 #include "core/vecmath.h"
-#include "gl/gl_api.h"
-#include "gl/gl_texture.h"
 
 #define SCENE_MAX_MORPH_TARGETS 8
 #define SCENE_MAX_GPU_LIGHTS 32
@@ -140,14 +138,13 @@ struct camera {
 
 struct environment {
     int references;
+    uint64_t serial; /* unique for the process: the renderer keys its cube map by it */
     char path[512];
     int size;
     float *faces[6]; /* owned: linear RGB float, size*size*3 each, +X -X +Y -Y +Z -Z */
-    struct gl_texture texture;
 };
 
 struct environment *environment_load(const char *folder, struct error *err);
-bool environment_upload(struct environment *env, struct error *err);
 /* Radiance the environment sends along `dir`. */
 vec3 environment_lookup(const struct environment *env, vec3 dir);
 void environment_retain(struct environment *env);
