@@ -1,31 +1,52 @@
 #include "app/cli.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/log.h"
 
-void cli_usage(FILE *out)
+static const char usage_text[] =
+"usage:\n"
+    "  caustica render SCENE.lua [-o OUT.png|OUT.pfm] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
+    "  caustica record SCENE.lua -o DIR [--frames A:B] [--size WxH] [--set k=v ...]\n"
+    "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
+    "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
+    "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
+    "  caustica reference SCENE.lua -o OUT.pfm [--frame N] [--size WxH] [--photons N] [--spp N]\n"
+    "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
+    "  caustica compare A B [--mask M]\n"
+    "  caustica convert IN.pfm OUT.png [--exposure E]\n"
+    "  caustica help [passes | PASS] [--markdown]\n"
+    "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
+    "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
+    "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
+    "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
+    "  --script-memory MB (Lua heap, default 4096, 0 = none),\n"
+    "  --allow-read DIR (repeatable), --allow-write DIR (folders a sandboxed script may also use)\n";
+
+void cli_usage(FILE *out) { fputs(usage_text, out); }
+
+void cli_usage_verb(FILE *out, const char *verb)
 {
-    fputs("usage:\n"
-          "  caustica render SCENE.lua [-o OUT.png|OUT.pfm] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
-          "  caustica record SCENE.lua -o DIR [--frames A:B] [--size WxH] [--set k=v ...]\n"
-          "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
-          "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
-          "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
-          "  caustica reference SCENE.lua -o OUT.pfm [--frame N] [--size WxH] [--photons N] [--spp N]\n"
-          "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
-          "  caustica compare A B [--mask M]\n"
-          "  caustica convert IN.pfm OUT.png [--exposure E]\n"
-          "  caustica help [passes | PASS] [--markdown]\n"
-          "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
-          "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
-          "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
-          "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
-          "  --script-memory MB (Lua heap, default 4096, 0 = none),\n"
-          "  --allow-read DIR (repeatable), --allow-write DIR (folders a sandboxed script may also use)\n",
-          out);
+    char prefix[64];
+    snprintf(prefix, sizeof prefix, "  caustica %s ", verb);
+    fputs("usage:\n", out);
+    bool in_verb = false;
+    for (const char *line = usage_text; *line;) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line + 1) : strlen(line);
+        bool verb_line = strncmp(line, "  caustica ", 11) == 0;
+        bool options = strncmp(line, "options", 7) == 0 || (strncmp(line, "  --", 4) == 0);
+        if (verb_line)
+            in_verb = strncmp(line, prefix, strlen(prefix)) == 0;
+        else if (strncmp(line, "    ", 4) != 0)
+            in_verb = false;
+        if (in_verb || options)
+            fwrite(line, 1, n, out);
+        line += n;
+    }
 }
 
 void cli_print_error(const struct error *err) { fprintf(stderr, "caustica: %s\n", err->message); }

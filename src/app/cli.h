@@ -51,6 +51,8 @@ int cmd_compare(struct app *app, struct cli *cli);
 int cmd_reference(struct app *app, struct cli *cli);
 int cmd_bench(struct app *app, struct cli *cli);
 int cmd_convert(struct app *app, struct cli *cli);
+/* The usage lines of one verb (its line, continuation lines, the common options). */
+void cli_usage_verb(FILE *out, const char *verb);
 /* `caustica help [passes | PASS] [--markdown]`: the pass reference from the descriptors. */
 int cmd_help(int argc, char **argv);
 

@@ -116,6 +116,11 @@ int cmd_test(struct app *app, struct cli *cli)
     free(files);
     if (count == 0)
         printf("no test files found\n");
+    /* A filter that selects nothing is a typo, not a green run. */
+    bool none_ran = count > 0 && passed == 0 && failed == 0;
+    if (none_ran)
+        fprintf(stderr, "caustica: test: no case matches --filter '%s' in %d file%s\n", cli->filter ? cli->filter : "",
+                count, count == 1 ? "" : "s");
     printf("%ld passed, %ld failed\n", passed, failed);
-    return failed == 0 && count > 0 ? 0 : EXIT_SCENE_ERROR;
+    return failed == 0 && count > 0 && !none_ran ? 0 : EXIT_SCENE_ERROR;
 }

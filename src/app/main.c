@@ -9,6 +9,10 @@ int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "help") == 0)
         return cmd_help(argc - 2, argv + 2);
+    if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+        printf("caustica %s\n", CAUSTICA_VERSION);
+        return 0;
+    }
     if (argc < 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         cli_usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? EXIT_USAGE : 0;
@@ -25,6 +29,10 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++) {
         if (strcmp(argv[1], verbs[i].name) != 0)
             continue;
+        if (argc >= 3 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
+            cli_usage_verb(stdout, verbs[i].name);
+            return 0;
+        }
         static struct app app;
         static struct cli cli;
         app_init(&app);

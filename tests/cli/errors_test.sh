@@ -65,4 +65,15 @@ expect_error "bad --set" 2 "--set needs name=value" - -- "$CAUSTICA" render scen
 expect_error "bad --backend" 2 "--backend must be osmesa or egl" - -- "$CAUSTICA" render scenes/demo.lua --backend vulkan
 expect_error "bad output extension" 2 "must end in .png or .pfm" - -- "$CAUSTICA" render scenes/demo.lua -o x.jpg
 expect_error "record without -o" 2 "record needs" - -- "$CAUSTICA" record scenes/demo.lua
+
+# --version, VERB --help, and a test filter that selects nothing.
+"$CAUSTICA" --version | grep -qE "^caustica [0-9]+\.[0-9]+\.[0-9]+$" && pass "--version" || fail "--version" "$("$CAUSTICA" --version)"
+for verb in render record run test info reference compare bench convert; do
+  out=$("$CAUSTICA" $verb --help 2>&1)
+  rc=$?
+  [ $rc = 0 ] && grep -q "^  caustica $verb " <<<"$out" && ! grep -q "^  caustica [a-z]" <<<"$(grep -v "^  caustica $verb " <<<"$out")" \
+    && pass "$verb --help shows its own usage" || fail "$verb --help" "exit $rc: $out"
+done
+expect_error "a --filter that matches no case" 1 "no case matches --filter 'no such case'" - -- \
+  "$CAUSTICA" test tests/lua/values_test.lua --filter "no such case"
 finish
