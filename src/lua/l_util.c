@@ -98,6 +98,12 @@ bool lutil_to_vec3(lua_State *L, int idx, vec3 *out)
 static vec3 check_vector(lua_State *L, int idx, const char *fn, const char *field, bool nonnegative)
 {
     vec3 v;
+    /* A colour may be one number (a grey); a position, direction or scale
+     * given as one number is a mistake ({x, y, z} was meant), not a
+     * broadcast. */
+    if (!nonnegative && lua_type(L, idx) == LUA_TNUMBER)
+        lutil_error(L, "bad argument '%s' to '%s' ({x, y, z} expected, got a single number %g)", field, fn,
+                    lua_tonumber(L, idx));
     if (!lutil_to_vec3(L, idx, &v))
         lutil_field_error(L, fn, field, nonnegative ? "{r, g, b}" : "{x, y, z}", idx);
     const float c[3] = {v.x, v.y, v.z};

@@ -17,9 +17,9 @@ int lutil_error(lua_State *L, const char *fmt, ...) __attribute__((format(printf
 int lutil_field_error(lua_State *L, const char *fn, const char *field, const char *expected, int idx);
 /* Checks that every key of the table at `idx` is in `allowed` (NULL-terminated). */
 void lutil_check_fields(lua_State *L, int idx, const char *fn, const char *const *allowed);
-/* Reads {x, y, z} (or a single number, repeated) at `idx`. */
+/* Reads {x, y, z} (or a single number, repeated: colours) at `idx`. */
 bool lutil_to_vec3(lua_State *L, int idx, vec3 *out);
-/* {x, y, z} of finite numbers: positions, directions, scales. */
+/* {x, y, z} of finite numbers: positions, directions, scales (one number is refused). */
 vec3 lutil_check_vec3(lua_State *L, int idx, const char *fn, const char *field);
 /* {r, g, b} of finite numbers >= 0: colours, intensities, coefficients. */
 vec3 lutil_check_color(lua_State *L, int idx, const char *fn, const char *field);
