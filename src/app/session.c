@@ -205,6 +205,15 @@ bool session_goto_frame(struct session *s, int frame, struct error *err)
     return true;
 }
 
+/* "script.lua: message", unless the message already starts with the
+ * script (a graph error that names the script line). */
+static bool script_error(const struct session *s, struct error *err)
+{
+    if (strncmp(err->message, s->script, strlen(s->script)) == 0)
+        return false;
+    return error_prefix(err, "%s", s->script);
+}
+
 bool session_render(struct session *s, int frame, struct error *err)
 {
     if (!session_goto_frame(s, frame, err))
@@ -213,11 +222,11 @@ bool session_render(struct session *s, int frame, struct error *err)
         return false;
     struct renderer *r = &s->app->renderer;
     if (!graph_compile(s->graph, r, s->width, s->height, err))
-        return error_prefix(err, "%s", s->script);
+        return script_error(s, err);
     if (!renderer_begin_frame(r, s->scene, s->width, s->height, frame, (double)frame / s->fps, err))
-        return error_prefix(err, "%s", s->script);
+        return script_error(s, err);
     if (!graph_execute(s->graph, r, s->scene, frame, (double)frame / s->fps, err))
-        return error_prefix(err, "%s", s->script);
+        return script_error(s, err);
     return true;
 }
 

@@ -131,9 +131,26 @@ bool graph_check(struct graph *g, struct error *err)
                                           "makes only later: move '%s' before '%s'",
                                      p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
                                      g->entries[later].pass->name, later + 1, g->entries[later].pass->name, p->name);
-                return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s",
-                                 p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
-                                 producers[0] ? "; outputs of that name: " : "", producers);
+                /* Say what the named pass does make ("shade.colour": shade makes color, ...). */
+                char made[512] = "";
+                const char *dot = strchr(p->inputs[k].source, '.');
+                for (int j = 0; dot && j < g->count; j++) {
+                    const struct pass *q = g->entries[j].pass;
+                    if (strlen(q->name) != (size_t)(dot - p->inputs[k].source) ||
+                        strncmp(q->name, p->inputs[k].source, (size_t)(dot - p->inputs[k].source)) != 0)
+                        continue;
+                    size_t used = (size_t)snprintf(made, sizeof made, "; pass '%s' makes ", q->name);
+                    for (int o = 0; o < q->output_count && used < sizeof made; o++) {
+                        int w = snprintf(made + used, sizeof made - used, "%s'%s.%s'", o ? ", " : "", q->name,
+                                         q->outputs[o].name);
+                        if (w > 0)
+                            used += (size_t)w;
+                    }
+                }
+                return error_set(err, "%s%spass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s%s",
+                                 p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                                 i + 1, p->inputs[k].name, p->inputs[k].source,
+                                 producers[0] ? "; outputs of that name: " : "", producers, made);
             }
         }
     }

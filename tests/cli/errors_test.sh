@@ -74,6 +74,10 @@ for verb in render record run test info reference compare bench convert; do
   [ $rc = 0 ] && grep -q "^  caustica $verb " <<<"$out" && ! grep -q "^  caustica [a-z]" <<<"$(grep -v "^  caustica $verb " <<<"$out")" \
     && pass "$verb --help shows its own usage" || fail "$verb --help" "exit $rc: $out"
 done
+printf 'local c = require "caustica"\nlocal g = c.graph()\ng:add("shade", c.pass.shade {})\ng:add("glass", c.pass.refraction { color = "shade.colour" })\ng:output("glass.color")\nreturn { scene = c.scene{}, graph = g, size = {8,8} }\n' >"$WORK/colour.lua"
+expect_error "an input no pass makes names the line and what the pass makes" 1 \
+  "colour.lua:4: pass 'glass' (refraction, pass 2) reads color = 'shade.colour', which no earlier pass makes; pass 'shade' makes 'shade.color', 'shade.depth'" \
+  "$O" -- "$CAUSTICA" render "$WORK/colour.lua" -o "$O"
 expect_error "a --filter that matches no case" 1 "no case matches --filter 'no such case'" - -- \
   "$CAUSTICA" test tests/lua/values_test.lua --filter "no such case"
 finish
