@@ -13,6 +13,7 @@
 #include <lualib.h>
 
 #include "core/fileio.h"
+#include "core/log.h"
 
 #define HOST_KEY "caustica.host"
 
@@ -588,6 +589,12 @@ static void format_error(const char *raw, const char *context, struct error *err
     const char *nl = strchr(raw, '\n');
     size_t first = nl ? (size_t)(nl - raw) : strlen(raw);
     int used = snprintf(out, sizeof out, "%.*s%s%s", (int)first, raw, context ? " " : "", context ? context : "");
+    if (log_verbose() && nl && used > 0 && (size_t)used < sizeof out) {
+        /* --verbose: Lua's whole traceback, C frames included. */
+        snprintf(out + used, sizeof out - (size_t)used, "%s", nl);
+        error_set(err, "%s", out);
+        return;
+    }
     int frames = 0;
     char trace[ERROR_MESSAGE_MAX] = "";
     size_t tused = 0;

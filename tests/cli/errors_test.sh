@@ -78,6 +78,10 @@ printf 'local c = require "caustica"\nlocal g = c.graph()\ng:add("shade", c.pass
 expect_error "an input no pass makes names the line and what the pass makes" 1 \
   "colour.lua:4: pass 'glass' (refraction, pass 2) reads color = 'shade.colour', which no earlier pass makes; pass 'shade' makes 'shade.color', 'shade.depth'" \
   "$O" -- "$CAUSTICA" render "$WORK/colour.lua" -o "$O"
+printf 'local c = require "caustica"\nerror("deliberate")\n' >"$WORK/raise.lua"
+"$CAUSTICA" render "$WORK/raise.lua" -o "$O" 2>"$WORK/quiet"; "$CAUSTICA" render "$WORK/raise.lua" -o "$O" --verbose 2>"$WORK/loud"
+! grep -q "stack traceback" "$WORK/quiet" && grep -q "stack traceback" "$WORK/loud" && grep -q "raise.lua:2: deliberate" "$WORK/loud" \
+  && pass "--verbose prints the Lua traceback" || fail "--verbose traceback" "$(cat "$WORK/loud")"
 expect_error "a --filter that matches no case" 1 "no case matches --filter 'no such case'" - -- \
   "$CAUSTICA" test tests/lua/values_test.lua --filter "no such case"
 finish
