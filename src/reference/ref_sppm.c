@@ -866,9 +866,15 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         }
         double elapsed = log_now() - start;
         if (tty) {
-            double left = elapsed / (it + 1) * (o->iterations - it - 1);
-            fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left   ", it + 1, o->iterations,
-                    emitted, left);
+            /* Under a time budget the iteration count is open-ended: show the
+             * clock against the budget instead of a count that will never be
+             * reached. */
+            if (o->time_budget > 0)
+                fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s   ", it + 1, emitted, elapsed,
+                        o->time_budget);
+            else
+                fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left   ", it + 1, o->iterations,
+                        emitted, elapsed / (it + 1) * (o->iterations - it - 1));
             fflush(stderr);
         }
         if (o->time_budget > 0 && elapsed >= o->time_budget) {
