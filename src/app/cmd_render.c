@@ -87,7 +87,10 @@ int cmd_render(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    if (!cli->timings)
+    /* Without -o the user did not say where: say it (always). */
+    if (!cli->output && !cli->timings)
+        printf("wrote %s\n", out);
+    else if (!cli->timings)
         log_info("wrote %s", out);
     return 0;
 }

@@ -82,6 +82,9 @@ printf 'local c = require "caustica"\nerror("deliberate")\n' >"$WORK/raise.lua"
 "$CAUSTICA" render "$WORK/raise.lua" -o "$O" 2>"$WORK/quiet"; "$CAUSTICA" render "$WORK/raise.lua" -o "$O" --verbose 2>"$WORK/loud"
 ! grep -q "stack traceback" "$WORK/quiet" && grep -q "stack traceback" "$WORK/loud" && grep -q "raise.lua:2: deliberate" "$WORK/loud" \
   && pass "--verbose prints the Lua traceback" || fail "--verbose traceback" "$(cat "$WORK/loud")"
+(cd "$WORK" && "$CAUSTICA" render "$ROOT/tests/scenes/glass.lua" >"$WORK/said" 2>&1) && grep -qx "wrote out.png" "$WORK/said" \
+  && test -f "$WORK/out.png" && pass "render without -o says where it wrote" || fail "render without -o" "$(cat "$WORK/said")"
+rm -f "$WORK/out.png"
 expect_error "a --filter that matches no case" 1 "no case matches --filter 'no such case'" - -- \
   "$CAUSTICA" test tests/lua/values_test.lua --filter "no such case"
 finish
