@@ -19,7 +19,10 @@ end
 --- Renders a scene script and returns its linear image (and per-pass ms).
 --- opts: set = {k = v}, size = {w, h}, frame = n
 function t.render(script, opts)
-  return image.render(script, opts)
+  -- Called through pcall so that a failure names the test's line, not this file's.
+  local ok, img, ms = pcall(image.render, script, opts)
+  if not ok then error(img, 2) end
+  return img, ms
 end
 
 local function fail(message, level)
@@ -29,7 +32,9 @@ end
 --- Renders the ground truth (the CPU reference) of a scene script.
 --- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius
 function t.reference(script, opts)
-  return image.reference(script, opts)
+  local ok, img, stats = pcall(image.reference, script, opts)
+  if not ok then error(img, 2) end
+  return img, stats
 end
 
 --- Fails unless `cond` holds.

@@ -85,6 +85,10 @@ printf 'local c = require "caustica"\nerror("deliberate")\n' >"$WORK/raise.lua"
 (cd "$WORK" && "$CAUSTICA" render "$ROOT/tests/scenes/glass.lua" >"$WORK/said" 2>&1) && grep -qx "wrote out.png" "$WORK/said" \
   && test -f "$WORK/out.png" && pass "render without -o says where it wrote" || fail "render without -o" "$(cat "$WORK/said")"
 rm -f "$WORK/out.png"
+printf 'local t = require "caustica.test"\nt.case("fails", function()\n  t.render("tests/scenes/nosuch.lua")\nend)\n' >"$WORK/user_test.lua"
+"$CAUSTICA" test "$WORK/user_test.lua" >"$WORK/said" 2>&1
+grep -q "user_test.lua:3: " "$WORK/said" && ! grep -q "lua/caustica/test.lua" "$WORK/said" \
+  && pass "a harness helper's error points at the user's test line" || fail "harness error line" "$(cat "$WORK/said")"
 expect_error "a --filter that matches no case" 1 "no case matches --filter 'no such case'" - -- \
   "$CAUSTICA" test tests/lua/values_test.lua --filter "no such case"
 finish
