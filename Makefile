@@ -49,7 +49,8 @@ fuzz: deps
 	status=0; \
 	for h in gltf script; do \
 	  rm -rf $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; mkdir -p $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; \
-	  cp tests/fuzz/corpus_$$h/* $(FUZZ_BUILD)/corpus_$$h/; \
+	  if [ $$h = script ]; then tests/fuzz/script_corpus.sh $(FUZZ_BUILD)/corpus_$$h; \
+	  else cp tests/fuzz/corpus_$$h/* $(FUZZ_BUILD)/corpus_$$h/; fi; \
 	  echo "fuzz_$$h: $(FUZZ_SECONDS) s"; \
 	  ASAN_OPTIONS=detect_leaks=0 CAUSTICA_ROOT=$(CURDIR) $(FUZZ_BUILD)/fuzz_$$h -max_total_time=$(FUZZ_SECONDS) \
 	    -max_len=65536 -timeout=60 -rss_limit_mb=3072 -print_final_stats=1 \

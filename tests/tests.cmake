@@ -26,7 +26,12 @@ endforeach()
 foreach(name gltf script)
   add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
   target_link_libraries(replay_${name} PRIVATE caustica_core)
-  add_test(NAME fuzz_${name}_regressions COMMAND replay_${name}
-           ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_${name} ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_${name})
-  set_tests_properties(fuzz_${name}_regressions PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
 endforeach()
+add_test(NAME fuzz_gltf_regressions COMMAND replay_gltf
+         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_gltf ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_gltf)
+# The script corpus is made from the scene scripts (tests/fuzz/script_corpus.sh).
+add_test(NAME fuzz_script_regressions COMMAND sh -c
+         "${CMAKE_SOURCE_DIR}/tests/fuzz/script_corpus.sh ${CMAKE_BINARY_DIR}/corpus_script && \
+          $<TARGET_FILE:replay_script> ${CMAKE_BINARY_DIR}/corpus_script ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_script")
+set_tests_properties(fuzz_gltf_regressions fuzz_script_regressions PROPERTIES
+                     ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
