@@ -242,8 +242,7 @@ static int lpass_new(lua_State *L)
         lua_newtable(L);
     }
     if (!lua_istable(L, 1))
-        return luaL_error(L, "bad argument #1 to '%s' (table of parameters expected, got %s)", desc->name,
-                          luaL_typename(L, 1));
+        return luaL_typeerror(L, 1, "table of parameters");
     const char *allowed[PASS_MAX_INPUTS * 2 + 1];
     int na = 0;
     for (int i = 0; i < desc->param_count && na < PASS_MAX_INPUTS * 2; i++)

@@ -100,7 +100,7 @@ static int host_param(lua_State *L)
     struct host_state *h = host_of(L);
     const char *name = luaL_checkstring(L, 1);
     if (lua_isnone(L, 2))
-        return luaL_error(L, "bad argument #2 to 'param' (a default value expected)");
+        return luaL_argerror(L, 2, "a default value expected");
     for (int i = 0; i < h->params.count; i++) {
         if (strcmp(h->params.keys[i], name) != 0)
             continue;
@@ -311,7 +311,7 @@ static int sandbox_load(lua_State *L)
 {
     int n = lua_gettop(L);
     if (n < 1)
-        return luaL_error(L, "bad argument #1 to 'load' (value expected)");
+        return luaL_argerror(L, 1, "value expected");
     lua_settop(L, 4);
     lua_pushstring(L, "t");
     lua_replace(L, 3);
