@@ -566,51 +566,28 @@ static int water_set_heights_l(lua_State *L)
 }
 
 /* Read-only facts of a water surface; nil on other objects. */
-static int get_energy(lua_State *L)
+static int push_water_fact(lua_State *L, double (*fact)(const struct water *w))
 {
     struct object *o = lobject_check(L, 1);
     if (o->water)
-        lua_pushnumber(L, water_energy(o->water));
+        lua_pushnumber(L, fact(o->water));
     else
         lua_pushnil(L);
     return 1;
 }
 
-static int get_stable_step(lua_State *L)
-{
-    struct object *o = lobject_check(L, 1);
-    if (o->water)
-        lua_pushnumber(L, water_stable_step(o->water));
-    else
-        lua_pushnil(L);
-    return 1;
-}
+static double water_depth(const struct water *w) { return w->depth; }
+
+static int get_energy(lua_State *L) { return push_water_fact(L, water_energy); }
+static int get_stable_step(lua_State *L) { return push_water_fact(L, water_stable_step); }
+static int get_max_height(lua_State *L) { return push_water_fact(L, water_max_height); }
+static int get_depth(lua_State *L) { return push_water_fact(L, water_depth); }
 
 static int get_substeps(lua_State *L)
 {
     struct object *o = lobject_check(L, 1);
     if (o->water)
-        lua_pushinteger(L, o->water->substeps);
-    else
-        lua_pushnil(L);
-    return 1;
-}
-
-static int get_max_height(lua_State *L)
-{
-    struct object *o = lobject_check(L, 1);
-    if (o->water)
-        lua_pushnumber(L, water_max_height(o->water));
-    else
-        lua_pushnil(L);
-    return 1;
-}
-
-static int get_depth(lua_State *L)
-{
-    struct object *o = lobject_check(L, 1);
-    if (o->water)
-        lua_pushnumber(L, o->water->depth);
+        lua_pushinteger(L, o->water->substeps); /* a count: an integer */
     else
         lua_pushnil(L);
     return 1;
