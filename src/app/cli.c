@@ -9,15 +9,15 @@
 
 static const char usage_text[] =
 "usage:\n"
-    "  caustica render SCENE.lua [-o OUT.png|OUT.pfm] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
+    "  caustica render SCENE.lua [-o OUT.png|OUT.pfm|OUT.hdr] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
     "  caustica record SCENE.lua -o DIR [--frames A:B] [--size WxH] [--set k=v ...]\n"
     "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
     "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
-    "  caustica reference SCENE.lua -o OUT.pfm [--frame N] [--size WxH] [--photons N] [--spp N]\n"
+    "  caustica reference SCENE.lua -o OUT.pfm|OUT.hdr [--frame N] [--size WxH] [--photons N] [--spp N]\n"
     "                     [--time-budget S] [--seed S] [--radius R] [--set k=v ...]\n"
     "  caustica compare A B [--mask M]\n"
-    "  caustica convert IN.pfm OUT.png [--exposure E]\n"
+    "  caustica convert IN.pfm|IN.hdr OUT.png [--exposure E]\n"
     "  caustica help [passes | PASS] [--markdown]\n"
     "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
     "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"

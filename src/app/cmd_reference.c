@@ -1,4 +1,5 @@
-/* `caustica reference`: the ground truth of one frame as linear PFM. */
+/* `caustica reference`: the ground truth of one frame as linear radiance
+ * (PFM or Radiance HDR). */
 #include <stdio.h>
 
 #include "app/cli.h"
@@ -12,8 +13,8 @@ int cmd_reference(struct app *app, struct cli *cli)
         cli_usage(stderr);
         return EXIT_USAGE;
     }
-    if (!image_path_is_pfm(cli->output)) {
-        fprintf(stderr, "caustica: -o %s: the reference is linear radiance, write it as .pfm\n", cli->output);
+    if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output)) {
+        fprintf(stderr, "caustica: -o %s: the reference is linear radiance, write it as .pfm or .hdr\n", cli->output);
         return EXIT_USAGE;
     }
     struct error err;

@@ -52,8 +52,8 @@ int cmd_render(struct app *app, struct cli *cli)
     }
     const char *out = cli->output ? cli->output : "out.png";
     struct error err;
-    if (!image_path_is_png(out) && !image_path_is_pfm(out)) {
-        fprintf(stderr, "caustica: -o %s: the output must end in .png or .pfm\n", out);
+    if (!image_path_is_png(out) && !image_path_is_pfm(out) && !image_path_is_hdr(out)) {
+        fprintf(stderr, "caustica: -o %s: the output must end in .png, .pfm or .hdr\n", out);
         return EXIT_USAGE;
     }
     /* Check the destination before any work, so a bad path costs nothing. */

@@ -267,16 +267,16 @@ bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err)
 
 bool session_write_image(struct session *s, const char *path, struct error *err)
 {
-    if (image_path_is_pfm(path)) {
+    if (image_path_is_pfm(path) || image_path_is_hdr(path)) {
         struct image img;
         if (!session_read_linear(s, &img, err))
             return false;
-        bool ok = image_write_pfm(path, &img, err);
+        bool ok = image_write(path, &img, err);
         image_destroy(&img);
         return ok;
     }
     if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+        return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
     /* An 8-bit PNG cannot hold NaN (the conversion makes it 0), but a pass
      * that produced some should not go unnoticed. */
     struct image linear;

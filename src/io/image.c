@@ -69,6 +69,12 @@ bool image_path_is_png(const char *path)
     return n > 4 && (strcmp(path + n - 4, ".png") == 0 || strcmp(path + n - 4, ".PNG") == 0);
 }
 
+bool image_path_is_hdr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && (strcmp(path + n - 4, ".hdr") == 0 || strcmp(path + n - 4, ".HDR") == 0);
+}
+
 bool image_path_is_pfm(const char *path)
 {
     size_t n = strlen(path);
@@ -78,7 +84,7 @@ bool image_path_is_pfm(const char *path)
 /* Writes go to a temporary file beside `path` (path_temporary), renamed
  * into place by finish_atomic: an interrupted write never leaves a partial
  * image under the real name. */
-static FILE *start_atomic(const char *path, char *tmp, size_t tmplen, struct error *err)
+FILE *image_file_begin(const char *path, char *tmp, size_t tmplen, struct error *err)
 {
     if (!path_check_writable_dir(path, err))
         return NULL;
@@ -89,7 +95,7 @@ static FILE *start_atomic(const char *path, char *tmp, size_t tmplen, struct err
     return f;
 }
 
-static bool finish_atomic(FILE *f, const char *tmp, const char *path, bool ok, struct error *err)
+bool image_file_finish(FILE *f, const char *tmp, const char *path, bool ok, struct error *err)
 {
     if (ok && fflush(f) != 0)
         ok = error_set(err, "%s: write failed: %s", path, strerror(errno));
@@ -127,7 +133,7 @@ static void png_warned(png_structp png, png_const_charp message)
 bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err)
 {
     char tmp[4096];
-    FILE *f = start_atomic(path, tmp, sizeof tmp, err);
+    FILE *f = image_file_begin(path, tmp, sizeof tmp, err);
     if (!f)
         return false;
     struct png_failure failure = {"", 0};
@@ -136,7 +142,7 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
-        return finish_atomic(f, tmp, path, error_set(err, "%s: libpng initialisation failed", path), err);
+        return image_file_finish(f, tmp, path, error_set(err, "%s: libpng initialisation failed", path), err);
     }
     png_bytep *rows = malloc((size_t)height * sizeof *rows);
     if (!rows || setjmp(png_jmpbuf(png))) {
@@ -146,7 +152,7 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
             error_set(err, "%s: write failed: %s", path, strerror(failure.saved_errno));
         else
             error_set(err, "%s: PNG encoding failed: %s", path, failure.message[0] ? failure.message : "out of memory");
-        return finish_atomic(f, tmp, path, false, err);
+        return image_file_finish(f, tmp, path, false, err);
     }
     png_init_io(png, f);
     png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
@@ -159,7 +165,7 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     free(rows);
-    return finish_atomic(f, tmp, path, true, err);
+    return image_file_finish(f, tmp, path, true, err);
 }
 
 bool image_read_png_rgba8(const char *path, uint8_t **out, int *width, int *height, struct error *err)
@@ -212,7 +218,7 @@ bool image_read_png(const char *path, struct image *img, struct error *err)
 bool image_write_pfm(const char *path, const struct image *img, struct error *err)
 {
     char tmp[4096];
-    FILE *f = start_atomic(path, tmp, sizeof tmp, err);
+    FILE *f = image_file_begin(path, tmp, sizeof tmp, err);
     if (!f)
         return false;
     /* PFM: "PF", size, scale < 0 for little-endian, rows bottom to top. */
@@ -238,7 +244,7 @@ bool image_write_pfm(const char *path, const struct image *img, struct error *er
         error_set(err, "%s: write failed: %s", path, errno ? strerror(errno) : "out of memory");
     else if (nonfinite)
         log_warn("%s: %ld pixel%s had NaN or Inf values, written as 0", path, nonfinite, nonfinite == 1 ? "" : "s");
-    return finish_atomic(f, tmp, path, ok, err);
+    return image_file_finish(f, tmp, path, ok, err);
 }
 
 bool image_read_pfm(const char *path, struct image *img, struct error *err)
@@ -289,15 +295,19 @@ bool image_read(const char *path, struct image *img, struct error *err)
         return image_read_pfm(path, img, err);
     if (image_path_is_png(path))
         return image_read_png(path, img, err);
-    return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+    if (image_path_is_hdr(path))
+        return image_read_hdr(path, img, err);
+    return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
 }
 
 bool image_write(const char *path, const struct image *img, struct error *err)
 {
     if (image_path_is_pfm(path))
         return image_write_pfm(path, img, err);
+    if (image_path_is_hdr(path))
+        return image_write_hdr(path, img, err);
     if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png or .pfm)", path);
+        return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
     size_t n = (size_t)img->width * (size_t)img->height;
     uint8_t *bytes = calloc(n ? n * 4 : 4, 1);
     if (!bytes)

@@ -1,10 +1,12 @@
 /* Float RGBA images in linear radiance, rows top to bottom, and their files:
- * PNG (8-bit sRGB, libpng) and PFM (linear float RGB). */
+ * PNG (8-bit sRGB, libpng), PFM (linear float RGB) and Radiance HDR (RGBE,
+ * image_hdr.c). */
 #ifndef CAUSTICA_IMAGE_H
 #define CAUSTICA_IMAGE_H
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "core/error.h"
 
@@ -29,11 +31,20 @@ bool image_read_png(const char *path, struct image *img, struct error *err);
 bool image_read_png_rgba8(const char *path, uint8_t **rgba, int *width, int *height, struct error *err);
 bool image_write_pfm(const char *path, const struct image *img, struct error *err);
 bool image_read_pfm(const char *path, struct image *img, struct error *err);
-/* Picks the format by extension (.png or .pfm). PNG gets a plain clamp and
+/* Picks the format by extension (.png, .pfm or .hdr). PNG gets a plain clamp and
  * sRGB encoding; tone-mapped output comes from the GPU path instead. */
 bool image_read(const char *path, struct image *img, struct error *err);
 bool image_write(const char *path, const struct image *img, struct error *err);
+/* Radiance RGBE (.hdr): what POV-Ray (+FH) and most HDR tools write. Reads
+ * flat and run-length encoded scanlines; writes flat ones. */
+bool image_write_hdr(const char *path, const struct image *img, struct error *err);
+bool image_read_hdr(const char *path, struct image *img, struct error *err);
 bool image_path_is_png(const char *path);
+bool image_path_is_hdr(const char *path);
+/* Every image file is written to a hidden temporary beside `path` and
+ * renamed into place when complete (`ok`); begin returns NULL with `err` set. */
+FILE *image_file_begin(const char *path, char *tmp, size_t tmplen, struct error *err);
+bool image_file_finish(FILE *f, const char *tmp, const char *path, bool ok, struct error *err);
 bool image_path_is_pfm(const char *path);
 
 #endif

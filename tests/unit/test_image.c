@@ -49,6 +49,49 @@ int main(void)
     CHECK_NEAR(b.rgba[2], 1.0, 1e-6); /* 2.5 clamps to 1 */
     image_destroy(&b);
 
+    /* HDR (RGBE): 8-bit mantissas under an exponent shared by the pixel's
+     * channels, so each value is within 1/256 of the pixel's largest one,
+     * rounded to the mantissa's centre (2.5 is kept) */
+    char hdr[256];
+    snprintf(hdr, sizeof hdr, "%s/a.hdr", dir);
+    CHECK(image_write(hdr, &a, &err));
+    CHECK(image_read(hdr, &b, &err));
+    CHECK(b.width == 16 && b.height == 8);
+    int hdr_bad = 0;
+    for (int i = 0; i < 16 * 8; i++)
+        for (int c = 0; c < 3; c++)
+            hdr_bad += fabsf(b.rgba[i * 4 + c] - a.rgba[i * 4 + c]) > 2.5f / 256.0f;
+    CHECK(hdr_bad == 0);
+    image_destroy(&b);
+    unlink(hdr);
+
+    /* HDR run-length encoded scanlines, as POV-Ray writes them: a 9-pixel
+     * row whose red run is 9 x 128, green 9 literal values, blue a run,
+     * exponent a run of 129 (values k/256 * 2 in green). */
+    {
+        FILE *f = fopen(hdr, "wb");
+        CHECK(f != NULL);
+        fputs("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 9\n", f);
+        const unsigned char row[] = {2, 2, 0, 9, 128 + 9, 128, 9, 0, 16, 32, 48, 64, 80, 96, 112, 128, 128 + 9, 0,
+                                     128 + 9, 129};
+        fwrite(row, 1, sizeof row, f);
+        fclose(f);
+        CHECK(image_read_hdr(hdr, &b, &err));
+        CHECK(b.width == 9 && b.height == 1);
+        CHECK_NEAR(b.rgba[0], (128 + 0.5) / 256.0 * 2.0, 1e-6);
+        CHECK_NEAR(b.rgba[4 * 3 + 1], (48 + 0.5) / 256.0 * 2.0, 1e-6);
+        CHECK_NEAR(b.rgba[4 * 8 + 2], 0.5 / 256.0 * 2.0, 1e-6);
+        image_destroy(&b);
+        /* a truncated file is an error, not a partial image */
+        f = fopen(hdr, "wb");
+        fputs("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 9\n", f);
+        fwrite(row, 1, sizeof row, f);
+        fclose(f);
+        CHECK(!image_read_hdr(hdr, &b, &err));
+        CHECK_CONTAINS(err.message, "truncated");
+        unlink(hdr);
+    }
+
     /* no temporary files are left behind */
     char tmp[300];
     path_temporary(png, tmp, sizeof tmp);
