@@ -23,6 +23,7 @@ struct cli {
     const char *screenshot;
     const char *mask;
     bool timings, update_refs, no_render;
+    bool report;             /* --report: the reference's noise estimate per iteration */
     const char *filter;
     long photons;            /* --photons (reference) */
     int spp;                 /* --spp: SPPM iterations (reference) */

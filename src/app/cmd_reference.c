@@ -44,12 +44,13 @@ int cmd_reference(struct app *app, struct cli *cli)
         o.seed = (uint64_t)cli->seed;
     o.initial_radius = cli->radius;
     o.progress = true;
+    o.report = cli->report;
     struct image img = {0};
     struct ref_stats st;
-    bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write_pfm(cli->output, &img, &err);
+    bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);
     if (ok)
-        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s -> %s\n", s->script, st.iterations,
-               st.photons, st.caustic_photons, st.seconds, cli->output);
+        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s, noise ~%.2g%% -> %s\n", s->script,
+               st.iterations, st.photons, st.caustic_photons, st.seconds, 100.0 * st.noise, cli->output);
     image_destroy(&img);
     session_close(s);
     if (!ok) {

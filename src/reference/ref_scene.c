@@ -235,3 +235,13 @@ void ref_scene_camera_ray(const struct ref_scene *rs, double px, double py, int 
     *origin = dv(a.x, a.y, a.z); /* from the near plane, as the rasterizer clips */
     *dir = dv_normalize_or(dv(b.x - a.x, b.y - a.y, b.z - a.z), dv(0, 0, -1));
 }
+
+double ref_light_spot(const struct ref_light *l, dvec3 out)
+{
+    if (l->kind != 2)
+        return 1.0;
+    double ca = dv_dot(out, l->direction);
+    double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
+    double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
+    return x * x * (3.0 - 2.0 * x);
+}

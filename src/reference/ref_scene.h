@@ -71,6 +71,10 @@ struct ref_hit {
     dvec3 shading_normal;   /* unit, on the same side as the geometric normal */
 };
 
+/* The spot falloff the shaders use (smoothstep over the cone's edge) for
+ * light leaving in unit direction `out`; 1 for other lights. */
+double ref_light_spot(const struct ref_light *l, dvec3 out);
+
 bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err);
 void ref_scene_release(struct ref_scene *rs);
 bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit);

@@ -13,6 +13,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +21,7 @@
 
 #include "core/log.h"
 #include "core/vecmath.h"
+#include "reference/ref_emit.h"
 #include "reference/ref_media.h"
 #include "reference/ref_rng.h"
 #include "reference/ref_scene.h"
@@ -177,6 +179,12 @@ struct visible_point {
 
 struct pixel {
     dvec3 direct;           /* sum over iterations of what the eye path gathered */
+    int samples;            /* eye paths traced (an iteration cut short by the budget leaves some pixels one ahead) */
+    dvec3 volume;           /* sum of the volume caustic estimates */
+    int volume_samples;
+    /* the noise estimate: sums of the even and the odd iterations' own
+     * estimates (eye path + volume + this iteration's photons / pi R^2) */
+    dvec3 direct_seen, volume_seen, half[2];
     dvec3 tau;              /* SPPM flux */
     double radius, n;
     struct visible_point vp;
@@ -189,19 +197,6 @@ struct pixel {
     } segments[MAX_SEGMENTS];
     int segment_count;
 };
-
-/* Direct light at a diffuse point with normal n (facing the viewer). */
-/* The spot falloff the shaders use (smoothstep over the cone's edge) for
- * light leaving in direction `out`; 1 for other lights. */
-static double spot_factor(const struct ref_light *l, dvec3 out)
-{
-    if (l->kind != 2)
-        return 1.0;
-    double ca = dv_dot(out, l->direction);
-    double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
-    double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
-    return x * x * (3.0 - 2.0 * x);
-}
 
 /* Light arriving at p from light l, unshadowed: the irradiance a surface
  * facing it would get, the unit direction towards it and its distance. */
@@ -217,7 +212,7 @@ static bool light_arrival(const struct ref_light *l, dvec3 p, dvec3 *e, dvec3 *w
     double d2 = fmax(dv_dot(d, d), 1e-16);
     *dist = sqrt(d2);
     *wi = dv_scale(d, 1.0 / *dist);
-    double spot = spot_factor(l, dv_scale(*wi, -1.0));
+    double spot = ref_light_spot(l, dv_scale(*wi, -1.0));
     if (spot <= 0.0)
         return false;
     *e = dv_scale(l->intensity, spot / d2);
@@ -267,6 +262,37 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
     return e;
 }
 
+/* What the threads of one render share: the clock they all stop by. */
+struct budget {
+    double deadline;        /* log_now() time; 0: none */
+    double photon_deadline; /* when photons stop: the deadline less the time the volume gather after them needs */
+    atomic_int cut;         /* set when an eye or gather pass stopped early for the deadline */
+    atomic_int photons_cut; /* set when the photon pass did */
+    long chunk_reached[PHOTON_CHUNKS]; /* where each chunk's photons stopped (its end, unless cut) */
+    double start, last_print;
+    bool tty;
+    int iteration;
+    long long emitted_before;
+};
+
+static bool budget_photons_spent(struct budget *b)
+{
+    if (b->photon_deadline > 0 && log_now() >= b->photon_deadline) {
+        atomic_store(&b->photons_cut, 1);
+        return true;
+    }
+    return atomic_load(&b->photons_cut) != 0;
+}
+
+static bool budget_spent(struct budget *b)
+{
+    if (b->deadline > 0 && log_now() >= b->deadline) {
+        atomic_store(&b->cut, 1);
+        return true;
+    }
+    return atomic_load(&b->cut) != 0;
+}
+
 struct job {
     const struct ref_scene *rs;
     const struct ref_options *o;
@@ -279,8 +305,13 @@ struct job {
     /* volume photons */
     struct volume_photons *volume_chunks;
     struct volume_grid *volume_grid;
-    /* photons */
-    long photons_per_light;
+    struct budget *budget;
+    /* photons: light l emits photons_of[l] of them, photon k of the
+     * iteration belongs to the light whose range [first_of[l], first_of[l] +
+     * photons_of[l]) holds it */
+    const struct ref_emitter *emitters;
+    long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
+    long photons_total;
     struct grid *grid;
     struct photon_hits *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
@@ -302,6 +333,7 @@ static void trace_eye(struct job *j, int x, int y)
     dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye))));
     px->vp.valid = false;
     px->segment_count = 0;
+    px->samples++;
     const struct ref_medium *rm = j->medium;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
@@ -361,12 +393,19 @@ static void trace_eye(struct job *j, int x, int y)
     }
 }
 
+/* Rows interleaved over the threads. After the first iteration the clock
+ * is checked per row: an eye pass cut short leaves the pixels it reached
+ * one sample ahead (each pixel averages its own samples) and no photon
+ * pass follows it. */
 static void *camera_thread(void *arg)
 {
     struct job *j = arg;
-    for (int y = j->thread; y < j->o->height; y += j->threads)
+    for (int y = j->thread; y < j->o->height; y += j->threads) {
+        if (j->iteration > 0 && budget_spent(j->budget))
+            return NULL;
         for (int x = 0; x < j->o->width; x++)
             trace_eye(j, x, y);
+    }
     return NULL;
 }
 
@@ -443,7 +482,7 @@ static void grid_release(struct grid *g)
 }
 
 struct photon_hit {
-    int pixel;
+    int pixel, light;
     float flux[3];
 };
 
@@ -452,7 +491,7 @@ struct photon_hits {
     size_t count, capacity;
 };
 
-static void hits_push(struct photon_hits *h, int pixel, dvec3 flux)
+static void hits_push(struct photon_hits *h, int pixel, int light, dvec3 flux)
 {
     if (h->count == h->capacity) {
         size_t cap = h->capacity ? h->capacity * 2 : 1024;
@@ -462,13 +501,14 @@ static void hits_push(struct photon_hits *h, int pixel, dvec3 flux)
         h->items = p;
         h->capacity = cap;
     }
-    h->items[h->count++] = (struct photon_hit){pixel, {(float)flux.x, (float)flux.y, (float)flux.z}};
+    h->items[h->count++] = (struct photon_hit){pixel, light, {(float)flux.x, (float)flux.y, (float)flux.z}};
 }
 
 /* Volume caustic photons: where light that went through specular
  * surfaces scattered in the medium (flux already weighted by sigma_s). */
 struct volume_photon {
     float position[3], dir[3], flux[3];
+    int light;
 };
 
 struct volume_photons {
@@ -476,7 +516,7 @@ struct volume_photons {
     size_t count, capacity;
 };
 
-static void volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux)
+static void volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux, int light)
 {
     if (v->count == v->capacity) {
         size_t cap = v->capacity ? v->capacity * 2 : 1024;
@@ -488,7 +528,7 @@ static void volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux)
     }
     v->items[v->count++] = (struct volume_photon){{(float)p.x, (float)p.y, (float)p.z},
                                                   {(float)d.x, (float)d.y, (float)d.z},
-                                                  {(float)flux.x, (float)flux.y, (float)flux.z}};
+                                                  {(float)flux.x, (float)flux.y, (float)flux.z}, light};
 }
 
 /* A hash grid over volume photons, cell = the gather radius. */
@@ -579,6 +619,7 @@ static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 
 static void gather_volume(struct job *j, int x, int y)
 {
     struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    px->volume_samples++;
     if (px->segment_count == 0)
         return;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 3u,
@@ -596,64 +637,23 @@ static void gather_volume(struct job *j, int x, int y)
                 continue;
             sum = dv_add(sum, dv_mul(ref_medium_transmittance(rm, o, d, t, &rng), l));
         }
-        px->direct = dv_add(px->direct, dv_mul(px->segments[k].beta, dv_scale(sum, step)));
+        px->volume = dv_add(px->volume, dv_mul(px->segments[k].beta, dv_scale(sum, step)));
     }
 }
 
 static void *volume_thread(void *arg)
 {
     struct job *j = arg;
-    for (int y = j->thread; y < j->o->height; y += j->threads)
+    for (int y = j->thread; y < j->o->height; y += j->threads) {
+        if (j->iteration > 0 && budget_spent(j->budget))
+            return NULL;
         for (int x = 0; x < j->o->width; x++)
             gather_volume(j, x, y);
+    }
     return NULL;
 }
 
-/* An orthonormal basis around unit w. */
-static void basis(dvec3 w, dvec3 *u, dvec3 *v)
-{
-    dvec3 a = fabs(w.x) > 0.9 ? dv(0, 1, 0) : dv(1, 0, 0);
-    *u = dv_normalize_or(dv_cross(a, w), dv(1, 0, 0));
-    *v = dv_cross(w, *u);
-}
-
-/* Emits photon `index` of light `l` towards the bounding sphere of the
- * specular objects (only photons whose first hit is specular can make a
- * caustic, so no other direction contributes) and returns its flux. */
-static bool emit(const struct ref_scene *rs, const struct ref_light *l, long per_light, struct ref_rng *rng,
-                 dvec3 *origin, dvec3 *dir, dvec3 *flux)
-{
-    dvec3 c = rs->specular_center;
-    double radius = rs->specular_radius;
-    double u1 = ref_rng_uniform(rng), u2 = ref_rng_uniform(rng);
-    if (l->kind == 1) {
-        /* a disk across the sphere, perpendicular to the light, far upstream */
-        dvec3 u, v;
-        basis(l->direction, &u, &v);
-        double r = radius * sqrt(u1), phi = 2.0 * MATH_PI * u2;
-        double back = radius + sqrt(dv_dot(dv_sub(rs->bounds_hi, rs->bounds_lo), dv_sub(rs->bounds_hi, rs->bounds_lo))) + 1.0;
-        *origin = dv_add(dv_sub(c, dv_scale(l->direction, back)), dv_add(dv_scale(u, r * cos(phi)), dv_scale(v, r * sin(phi))));
-        *dir = l->direction;
-        *flux = dv_scale(l->intensity, MATH_PI * radius * radius / (double)per_light);
-        return true;
-    }
-    dvec3 to = dv_sub(c, l->position);
-    double dist = sqrt(dv_dot(to, to));
-    double cos_max = dist > radius ? sqrt(fmax(0.0, 1.0 - (radius / dist) * (radius / dist))) : -1.0;
-    dvec3 w = dv_normalize_or(to, dv(0, -1, 0)), u, v;
-    basis(w, &u, &v);
-    double cos_t = 1.0 - u1 * (1.0 - cos_max), sin_t = sqrt(fmax(0.0, 1.0 - cos_t * cos_t)), phi = 2.0 * MATH_PI * u2;
-    *dir = dv_normalize_or(dv_add(dv_scale(w, cos_t), dv_add(dv_scale(u, sin_t * cos(phi)), dv_scale(v, sin_t * sin(phi)))), w);
-    *origin = l->position;
-    double solid_angle = 2.0 * MATH_PI * (1.0 - cos_max);
-    double spot = spot_factor(l, *dir);
-    if (spot <= 0.0)
-        return false;
-    *flux = dv_scale(l->intensity, spot * solid_angle / (double)per_light);
-    return true;
-}
-
-static void gather(struct job *j, struct photon_hits *hits, dvec3 p, dvec3 n_surface, dvec3 dir, dvec3 flux)
+static void gather(struct job *j, struct photon_hits *hits, int light, dvec3 p, dvec3 n_surface, dvec3 dir, dvec3 flux)
 {
     const struct grid *g = j->grid;
     dvec3 q = dv_sub(p, g->origin);
@@ -667,7 +667,7 @@ static void gather(struct job *j, struct photon_hits *hits, dvec3 p, dvec3 n_sur
         /* same side of the same kind of surface, arriving from the lit side */
         if (dv_dot(px->vp.normal, dir) >= 0.0 || fabs(dv_dot(px->vp.normal, n_surface)) < 0.5)
             continue;
-        hits_push(hits, i, dv_mul(px->vp.weight, flux));
+        hits_push(hits, i, light, dv_mul(px->vp.weight, flux));
     }
 }
 
@@ -678,13 +678,21 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
     struct ref_rng rng = ref_rng_seed(j->o->seed, 7919u * (uint64_t)j->iteration + 2u + (uint64_t)light * 104729u,
                                       (uint64_t)index);
     dvec3 origin, dir, flux;
-    if (!emit(rs, &rs->lights[light], j->photons_per_light, &rng, &origin, &dir, &flux))
+    int target_object;
+    unsigned target_primitive;
+    if (!ref_emitter_sample(&j->emitters[light], rs, &rs->lights[light], j->photons_of[light], &rng, &origin, &dir,
+                            &flux, &target_object, &target_primitive))
         return;
     struct media media = {.count = 0}; /* lights are outside every dielectric */
     int specular = 0;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
         bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
+        /* Aimed at one triangle: if another surface comes first, this
+         * direction belongs to that surface's own photons (or to direct
+         * light, for an opaque one) and this photon carries nothing. */
+        if (depth == 0 && (!hit || h.object != target_object || h.primitive != target_primitive))
+            return;
         if (media.count == 0 && j->medium->present) {
             double ts = 0;
             dvec3 w = dv(1, 1, 1);
@@ -696,7 +704,7 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
                  * that scatters before any specular surface is direct
                  * single scattering, which the eye paths estimate. */
                 if (specular > 0)
-                    volume_push(volume, dv_add(origin, dv_scale(dir, ts)), dir, dv_mul(flux, w));
+                    volume_push(volume, dv_add(origin, dv_scale(dir, ts)), dir, dv_mul(flux, w), light);
                 return;
             }
             flux = dv_mul(flux, w);
@@ -711,7 +719,7 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
                 power[0] += flux.x;
                 power[1] += flux.y;
                 power[2] += flux.z;
-                gather(j, hits, h.position, h.geometric_normal, dir, flux);
+                gather(j, hits, light, h.position, h.geometric_normal, dir, flux);
             }
             return; /* L D paths are direct light, gathered by shadow rays */
         }
@@ -722,15 +730,61 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
     }
 }
 
+static void chunk_range(const struct job *j, int c, long *begin, long *end)
+{
+    *begin = (long)((long long)j->photons_total * c / PHOTON_CHUNKS);
+    *end = (long)((long long)j->photons_total * (c + 1) / PHOTON_CHUNKS);
+}
+
+/* Progress while photons are traced (thread 0 only), at most 4 times a
+ * second: with millions of photons an iteration can take many seconds. */
+static void photon_progress(const struct job *j, int chunks_done)
+{
+    struct budget *b = j->budget;
+    double now = log_now();
+    if (!b->tty || now - b->last_print < 0.25)
+        return;
+    b->last_print = now;
+    if (b->deadline > 0)
+        fprintf(stderr, "\rreference: iteration %d (%d%% of its photons), %.1f s of %.1f s   ", b->iteration + 1,
+                100 * chunks_done / PHOTON_CHUNKS, now - b->start, b->deadline - b->start);
+    else
+        fprintf(stderr, "\rreference: iteration %d/%d (%d%% of its photons), %.1f s   ", b->iteration + 1,
+                j->o->iterations, 100 * chunks_done / PHOTON_CHUNKS, now - b->start);
+    fflush(stderr);
+}
+
+/* Photons in 64 fixed chunks (so the sums do not depend on the thread
+ * count). The clock is checked every PHOTON_BATCH photons, after each
+ * thread's first batch: a budget ends within a batch's time whatever the
+ * photon count, and the photons traced are counted per light. */
+#define PHOTON_BATCH 1024
 static void *photon_thread(void *arg)
 {
     struct job *j = arg;
-    long total = j->photons_per_light * j->rs->light_count;
+    int done = 0;
+    bool first = true;
     for (int c = j->thread; c < PHOTON_CHUNKS; c += j->threads) {
-        long begin = total * c / PHOTON_CHUNKS, end = total * (c + 1) / PHOTON_CHUNKS;
-        for (long k = begin; k < end; k++)
-            trace_photon(j, (int)(k / j->photons_per_light), k % j->photons_per_light, &j->chunks[c],
-                         &j->caustic_photons[c], j->caustic_power[c], &j->volume_chunks[c]);
+        long begin, end;
+        chunk_range(j, c, &begin, &end);
+        j->budget->chunk_reached[c] = begin;
+        int light = 0;
+        for (long k = begin; k < end; k++) {
+            if ((k - begin) % PHOTON_BATCH == 0) {
+                if (!first && budget_photons_spent(j->budget))
+                    return NULL;
+                j->budget->chunk_reached[c] = k;
+                if (j->thread == 0)
+                    photon_progress(j, done);
+            }
+            first = false;
+            while (light + 1 < j->rs->light_count && k >= j->first_of[light + 1])
+                light++;
+            trace_photon(j, light, k - j->first_of[light], &j->chunks[c], &j->caustic_photons[c],
+                         j->caustic_power[c], &j->volume_chunks[c]);
+            j->budget->chunk_reached[c] = k + 1;
+        }
+        done += j->threads;
     }
     return NULL;
 }
@@ -768,6 +822,61 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
         }
 }
 
+/* Shares the iteration's photons between the lights in proportion to the
+ * power each sends towards its specular targets (every light that has
+ * targets gets at least one). */
+static long share_photons(struct job *job, const struct ref_scene *rs, const struct ref_emitter *emitters, long photons)
+{
+    double power = 0.0;
+    for (int l = 0; l < rs->light_count; l++)
+        power += emitters[l].power;
+    long total = 0;
+    for (int l = 0; l < rs->light_count; l++) {
+        long n = 0;
+        if (emitters[l].power > 0.0 && power > 0.0)
+            n = (long)fmax(1.0, floor((double)photons * emitters[l].power / power + 0.5));
+        job->first_of[l] = total;
+        job->photons_of[l] = n;
+        total += n;
+    }
+    job->photons_total = total;
+    return total;
+}
+
+/* How many of light l's photons the finished chunks traced. */
+static long photons_traced(const struct job *j, const struct budget *b, int l)
+{
+    long n = 0;
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        long begin, end;
+        chunk_range(j, c, &begin, &end);
+        end = b->chunk_reached[c];
+        long lo = begin > j->first_of[l] ? begin : j->first_of[l];
+        long hi = end < j->first_of[l] + j->photons_of[l] ? end : j->first_of[l] + j->photons_of[l];
+        if (hi > lo)
+            n += hi - lo;
+    }
+    return n;
+}
+
+/* Half the RMS difference of the even and odd iterations' means over the
+ * RMS of the image, in grey (struct ref_stats.noise). */
+static double noise_estimate(const struct pixel *pixels, size_t npix, int iterations)
+{
+    int n_even = (iterations + 1) / 2, n_odd = iterations / 2;
+    if (n_odd == 0)
+        return 0.0;
+    double diff = 0.0, level = 0.0;
+    for (size_t i = 0; i < npix; i++) {
+        const struct pixel *px = &pixels[i];
+        double a = (px->half[0].x + px->half[0].y + px->half[0].z) / (3.0 * n_even);
+        double b = (px->half[1].x + px->half[1].y + px->half[1].z) / (3.0 * n_odd);
+        diff += (a - b) * (a - b);
+        level += 0.25 * (a + b) * (a + b);
+    }
+    return level > 0.0 ? 0.5 * sqrt(diff / level) : 0.0;
+}
+
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                       struct image *caustic_out, struct ref_stats *stats, struct error *err)
 {
@@ -775,14 +884,28 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct ref_scene rs;
     if (!ref_scene_build(&rs, r, scene, err))
         return false;
+    struct ref_emitter emitters[SCENE_MAX_GPU_LIGHTS];
+    memset(emitters, 0, sizeof emitters);
+    bool caustics = rs.has_specular_bounds && rs.light_count > 0 && o->photons > 0;
+    for (int l = 0; caustics && l < rs.light_count; l++)
+        if (!ref_emitter_build(&emitters[l], &rs, &rs.lights[l], err)) {
+            for (int k = 0; k < l; k++)
+                ref_emitter_release(&emitters[k]);
+            ref_scene_release(&rs);
+            return false;
+        }
     size_t npix = (size_t)o->width * (size_t)o->height;
     struct pixel *pixels = calloc(npix, sizeof *pixels);
     struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
-    if (!pixels || !chunks || !image_create(out, o->width, o->height, err) ||
+    struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
+    if (!pixels || !chunks || !volume_chunks || !image_create(out, o->width, o->height, err) ||
         (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
         image_destroy(out);
         free(pixels);
         free(chunks);
+        free(volume_chunks);
+        for (int l = 0; l < rs.light_count; l++)
+            ref_emitter_release(&emitters[l]);
         ref_scene_release(&rs);
         return err && err->message[0] ? false : error_set(err, "reference: out of memory");
     }
@@ -793,7 +916,6 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         threads = 1;
     struct ref_medium medium;
     ref_medium_init(&medium, scene->medium);
-    struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
     double volume_radius = 0.0;
     if (medium.present) {
         dvec3 ext = dv_sub(medium.hi, medium.lo);
@@ -804,38 +926,104 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     ref_scene_camera_ray(&rs, o->width * 0.5, o->height * 0.5, o->width, o->height, &cam_origin, &cam_dir);
     media_at(&rs, cam_origin, &camera_media);
 
-    bool caustics = rs.has_specular_bounds && rs.light_count > 0 && o->photons > 0;
-    long per_light = caustics ? (o->photons + rs.light_count - 1) / rs.light_count : 0;
+    static struct budget budget_zero;
+    struct budget *budget = malloc(sizeof *budget);
+    if (!budget) {
+        image_destroy(out);
+        if (caustic_out)
+            image_destroy(caustic_out);
+        free(pixels);
+        free(chunks);
+        free(volume_chunks);
+        for (int l = 0; l < rs.light_count; l++)
+            ref_emitter_release(&emitters[l]);
+        ref_scene_release(&rs);
+        return error_set(err, "reference: out of memory");
+    }
+    *budget = budget_zero;
+    atomic_init(&budget->cut, 0);
+    atomic_init(&budget->photons_cut, 0);
+    budget->start = start;
+    budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
+    budget->tty = o->progress && isatty(STDERR_FILENO);
+    struct job job = {.rs = &rs, .o = o, .pixels = pixels, .camera_media = &camera_media, .medium = &medium,
+                      .volume_chunks = volume_chunks, .pixel_angle = pixel_angle, .chunks = chunks,
+                      .budget = budget, .emitters = emitters};
+    if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
+        caustics = false;
     long long emitted = 0, caustic_total = 0;
     double caustic_power[3] = {0, 0, 0};
+    int photon_passes = 0;   /* iterations whose photons were traced (in full, or rescaled) */
+    double gather_seconds = 0.0, gather_photons = 0.0; /* the last volume gather's cost */
     int it = 0;
-    bool tty = o->progress && isatty(STDERR_FILENO);
+    bool tty = budget->tty;
     for (; it < o->iterations; it++) {
-        struct job job = {.rs = &rs, .o = o, .pixels = pixels, .iteration = it, .camera_media = &camera_media,
-                          .medium = &medium, .volume_chunks = volume_chunks,
-                          .pixel_angle = pixel_angle, .photons_per_light = per_light, .chunks = chunks};
+        job.iteration = it;
+        budget->iteration = it;
+        memset(job.caustic_photons, 0, sizeof job.caustic_photons);
+        memset(job.caustic_power, 0, sizeof job.caustic_power);
         run_threads(&job, threads, camera_thread);
+        if (atomic_load(&budget->cut))
+            break; /* the eye pass ran out of time: no photons for a half-traced set of visible points */
         if (caustics) {
             struct grid grid;
             grid_build(&grid, pixels, (int)npix);
             job.grid = &grid;
+            /* With a medium, the volume gather after the photons must fit in
+             * the budget too: reserve what the last one cost per photon for
+             * this iteration's photons (the first iteration, with nothing to
+             * go by, gives photons half of what is left). */
+            budget->photon_deadline = budget->deadline;
+            atomic_store(&budget->photons_cut, 0);
+            if (budget->deadline > 0 && medium.present) {
+                double now = log_now(), left = budget->deadline - now;
+                double reserve = gather_photons > 0 ? gather_seconds * (double)job.photons_total / gather_photons
+                                                    : 0.5 * left;
+                budget->photon_deadline = now + fmax(left - reserve, 0.1 * left);
+            }
+            for (int c = 0; c < PHOTON_CHUNKS; c++) {
+                long begin, end;
+                chunk_range(&job, c, &begin, &end);
+                budget->chunk_reached[c] = begin; /* a chunk no thread reached traced nothing */
+            }
             run_threads(&job, threads, photon_thread);
+            /* An iteration cut short by the budget traced only some chunks:
+             * each light's photons are scaled up by (its photons) / (those
+             * traced), so the iteration still carries the lights' power and
+             * the estimate stays unbiased. Without a budget every scale is 1. */
+            double scale[SCENE_MAX_GPU_LIGHTS];
+            long long traced = 0;
+            for (int l = 0; l < rs.light_count; l++) {
+                long n = photons_traced(&job, budget, l);
+                traced += n;
+                scale[l] = n > 0 ? (double)job.photons_of[l] / (double)n : 0.0;
+            }
             /* Reduce in chunk order: the same sums whatever the thread count. */
             for (int c = 0; c < PHOTON_CHUNKS; c++) {
                 for (size_t k = 0; k < chunks[c].count; k++) {
-                    struct pixel *px = &pixels[chunks[c].items[k].pixel];
-                    px->phi = dv_add(px->phi, dv(chunks[c].items[k].flux[0], chunks[c].items[k].flux[1],
-                                                  chunks[c].items[k].flux[2]));
+                    const struct photon_hit *hit = &chunks[c].items[k];
+                    struct pixel *px = &pixels[hit->pixel];
+                    double f = scale[hit->light];
+                    px->phi = dv_add(px->phi, dv(hit->flux[0] * f, hit->flux[1] * f, hit->flux[2] * f));
                     px->m++;
                 }
                 chunks[c].count = 0;
                 caustic_total += job.caustic_photons[c];
+                /* (the power statistic is scaled for the whole pass, exact
+                 * unless several lights share a pass the budget cut short) */
                 for (int k = 0; k < 3; k++)
-                    caustic_power[k] += job.caustic_power[c][k];
+                    caustic_power[k] += job.caustic_power[c][k] * (traced > 0 ? (double)job.photons_total / (double)traced : 0.0);
             }
             grid_release(&grid);
-            emitted += (long long)per_light * rs.light_count;
+            emitted += traced;
+            photon_passes++;
             if (medium.present) {
+                for (int c = 0; c < PHOTON_CHUNKS; c++)
+                    for (size_t k = 0; k < volume_chunks[c].count; k++) {
+                        struct volume_photon *vp = &volume_chunks[c].items[k];
+                        for (int q = 0; q < 3; q++)
+                            vp->flux[q] = (float)(vp->flux[q] * scale[vp->light]);
+                    }
                 /* Volume caustics: gather this iteration's volume photons with
                  * the current radius, which shrinks as r^3 ~ i^(alpha - 1)
                  * (Knaus & Zwicker 2011), so the average over iterations
@@ -843,7 +1031,10 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
                 struct volume_grid vgrid;
                 volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, volume_radius);
                 job.volume_grid = &vgrid;
+                double gather_start = log_now();
                 run_threads(&job, threads, volume_thread);
+                gather_seconds = log_now() - gather_start;
+                gather_photons = (double)traced;
                 volume_grid_release(&vgrid);
                 for (int c = 0; c < PHOTON_CHUNKS; c++)
                     volume_chunks[c].count = 0;
@@ -852,6 +1043,10 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
             /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
             for (size_t i = 0; i < npix; i++) {
                 struct pixel *px = &pixels[i];
+                if (px->m > 0 && px->radius > 0) {
+                    dvec3 e = dv_scale(px->phi, 1.0 / (MATH_PI * px->radius * px->radius));
+                    px->half[it % 2] = dv_add(px->half[it % 2], e);
+                }
                 if (px->m > 0) {
                     double n_new = px->n + SPPM_ALPHA * (double)px->m;
                     double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
@@ -864,20 +1059,41 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
                 px->m = 0;
             }
         }
+        /* this iteration's eye-path and volume estimates, for the noise report */
+        for (size_t i = 0; i < npix; i++) {
+            struct pixel *px = &pixels[i];
+            dvec3 d = dv_add(dv_sub(px->direct, px->direct_seen), dv_sub(px->volume, px->volume_seen));
+            px->half[it % 2] = dv_add(px->half[it % 2], d);
+            px->direct_seen = px->direct;
+            px->volume_seen = px->volume;
+        }
+        if (o->report) {
+            double noise = noise_estimate(pixels, npix, it + 1);
+            if (tty)
+                fputc('\n', stderr);
+            if (it == 0)
+                fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)\n",
+                        emitted, log_now() - start);
+            else
+                fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)\n",
+                        it + 1, emitted, log_now() - start, 100.0 * noise);
+        }
         double elapsed = log_now() - start;
         if (tty) {
             /* Under a time budget the iteration count is open-ended: show the
              * clock against the budget instead of a count that will never be
              * reached. */
             if (o->time_budget > 0)
-                fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s   ", it + 1, emitted, elapsed,
-                        o->time_budget);
+                fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s                ", it + 1,
+                        emitted, elapsed, o->time_budget);
             else
-                fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left   ", it + 1, o->iterations,
-                        emitted, elapsed / (it + 1) * (o->iterations - it - 1));
+                fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left                  ", it + 1,
+                        o->iterations, emitted, elapsed / (it + 1) * (o->iterations - it - 1));
             fflush(stderr);
         }
-        if (o->time_budget > 0 && elapsed >= o->time_budget) {
+        /* (photons stopped early only to leave the gather its time do not
+         * end the render: the next iteration may still fit) */
+        if (atomic_load(&budget->cut) || (o->time_budget > 0 && elapsed >= o->time_budget)) {
             it++;
             break;
         }
@@ -885,15 +1101,18 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     if (tty)
         fputc('\n', stderr);
     int iterations = it > 0 ? it : 1;
+    int passes = photon_passes > 0 ? photon_passes : 1;
     for (size_t i = 0; i < npix; i++) {
         const struct pixel *px = &pixels[i];
-        dvec3 l = dv_scale(px->direct, 1.0 / iterations);
-        /* Each iteration's photons carry the lights' power between them
+        dvec3 l = px->samples > 0 ? dv_scale(px->direct, 1.0 / px->samples) : dv(0, 0, 0);
+        if (px->volume_samples > 0)
+            l = dv_add(l, dv_scale(px->volume, 1.0 / px->volume_samples));
+        /* Each photon pass carries the lights' power between its photons
          * (flux per photon = power / photons), so tau averages over the
-         * iterations: L = tau / (iterations pi R^2). */
+         * passes: L = tau / (passes pi R^2). */
         dvec3 lc = dv(0, 0, 0);
         if (emitted > 0 && px->radius > 0 && px->n > 0)
-            lc = dv_scale(px->tau, 1.0 / ((double)iterations * MATH_PI * px->radius * px->radius));
+            lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
         l = dv_add(l, lc);
         if (caustic_out) {
             float *cd = caustic_out->rgba + i * 4;
@@ -909,20 +1128,24 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         dst[3] = 1.0f;
     }
     if (stats) {
+        stats->noise = noise_estimate(pixels, npix, photon_passes > 0 ? photon_passes : (it > 0 ? it : 1));
         stats->iterations = iterations;
         stats->photons = emitted;
         stats->caustic_photons = caustic_total;
         stats->seconds = log_now() - start;
         for (int k = 0; k < 3; k++)
-            stats->caustic_power[k] = caustic_power[k] / iterations;
+            stats->caustic_power[k] = caustic_power[k] / passes;
     }
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         free(chunks[c].items);
         free(volume_chunks[c].items);
     }
+    free(budget);
     free(volume_chunks);
     free(chunks);
     free(pixels);
+    for (int l = 0; l < rs.light_count; l++)
+        ref_emitter_release(&emitters[l]);
     ref_scene_release(&rs);
     return true;
 }

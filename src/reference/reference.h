@@ -22,6 +22,7 @@ struct ref_options {
     double initial_radius; /* 0: from the scene size */
     double volume_radius;  /* initial volume gather radius; 0: 1% of the medium box diagonal */
     bool progress;       /* print progress with time left on stderr */
+    bool report;         /* print the noise estimate after every iteration on stderr */
     int threads;         /* 0: all cores */
 };
 
@@ -31,6 +32,11 @@ struct ref_stats {
     long long caustic_photons; /* photons that reached a diffuse surface after a specular one */
     double caustic_power[3]; /* W reaching diffuse surfaces by light-specular+-diffuse paths */
     double seconds;
+    /* Relative noise of the image: half the RMS difference of the means of
+     * the even and the odd iterations' own estimates, over the RMS of the
+     * image (the standard error of the mean; it measures variance, not the
+     * kernel's bias, which shrinks with the radius). 0 with one iteration. */
+    double noise;
 };
 
 void ref_options_default(struct ref_options *o);

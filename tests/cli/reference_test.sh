@@ -1,0 +1,37 @@
+# `caustica reference` from the command line: time budgets hold at any
+# photon count, the noise report, HDR output.
+source "$(dirname "$0")/lib.sh"
+
+# A budget of 2 s with far more photons than 2 s can trace: the clock is
+# checked every 1024 photons, so the whole command (start-up and the file
+# included) ends in under 2.5 s. The fog scene also reserves time for the
+# volume gather that follows its photons.
+for scene in "tests/scenes/ball_lens.lua" "tests/scenes/fog.lua --set ball=true"; do
+  start=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  "$CAUSTICA" reference $scene -o "$WORK/budget.pfm" --size 128x128 --photons 500000000 --time-budget 2 \
+    >"$WORK/out.txt" 2>"$WORK/err.txt"
+  rc=$?
+  took=$(awk "BEGIN { print $(date +%s.%N) - $start }")
+  if [ $rc != 0 ]; then
+    fail "budget on $scene" "exit $rc: $(cat "$WORK/err.txt")"
+  elif awk "BEGIN { exit !($took < 2.5 && $took > 1.9) }"; then
+    pass "--time-budget 2 with 5e8 photons took $took s ($scene)"
+  else
+    fail "budget on $scene" "took $took s"
+  fi
+done
+"$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm" | grep -q "nan=0" && pass "the cut-short image is finite" \
+  || fail "finite" "$("$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm")"
+
+# --report: one line per iteration, the noise estimate falling
+"$CAUSTICA" reference tests/scenes/ball_lens.lua -o "$WORK/r.hdr" --size 32x32 --photons 20000 --spp 6 --report \
+  >"$WORK/out.txt" 2>"$WORK/err.txt"
+n=$(grep -c "noise ~" "$WORK/err.txt")
+first=$(grep "noise ~" "$WORK/err.txt" | head -1 | sed 's/.*noise ~\([0-9.e+-]*\)%.*/\1/')
+last=$(grep "noise ~" "$WORK/err.txt" | tail -1 | sed 's/.*noise ~\([0-9.e+-]*\)%.*/\1/')
+[ "$n" = 5 ] && awk "BEGIN { exit !($last < $first) }" && pass "--report: 5 estimates, falling ($first% -> $last%)" \
+  || fail "--report" "$(cat "$WORK/err.txt")"
+[ -s "$WORK/r.hdr" ] && head -c 10 "$WORK/r.hdr" | grep -q "#?RADIANCE" && pass "reference writes .hdr" \
+  || fail "hdr" "no Radiance file"
+finish
