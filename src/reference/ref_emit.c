@@ -19,9 +19,8 @@ static dvec3 vertex(const struct ref_object *o, uint32_t i)
  * dielectric, so a light ray enters one through a triangle whose outward
  * normal faces it; a closed mesh's far side is never a first hit), a
  * mirror on either side (it may be an open sheet). */
-static double triangle_weight(const struct ref_light *l, const struct ref_object *o, const uint32_t *tri)
+static double triangle_weight(const struct ref_light *l, const struct material *m, dvec3 a, dvec3 b, dvec3 c)
 {
-    dvec3 a = vertex(o, tri[0]), b = vertex(o, tri[1]), c = vertex(o, tri[2]);
     dvec3 n2 = dv_cross(dv_sub(b, a), dv_sub(c, a)); /* twice the area times the unit normal */
     double area = 0.5 * sqrt(dv_dot(n2, n2));
     if (!(area > 0.0) || !isfinite(area))
@@ -43,24 +42,100 @@ static double triangle_weight(const struct ref_light *l, const struct ref_object
          * weight keeps the estimate unbiased; this one keeps it efficient). */
         falloff = fmax(ref_light_spot(l, dv_scale(to_light, -1.0 / sqrt(d2))), 0.02) / d2;
     }
-    if (!is_dielectric(&o->material))
+    if (!is_dielectric(m))
         facing = fabs(facing);
     return facing > 0.0 ? area * facing * falloff : 0.0;
+}
+
+static void build_guide(struct ref_emitter *e)
+{
+    size_t k = 0;
+    for (size_t m = 0; m <= e->count; m++) {
+        double u = (double)m / (double)e->count;
+        while (k + 1 < e->count && e->cdf[k] <= u)
+            k++;
+        e->guide[m] = (uint32_t)k;
+    }
+}
+
+static double triangle_area(dvec3 a, dvec3 b, dvec3 c)
+{
+    dvec3 n2 = dv_cross(dv_sub(b, a), dv_sub(c, a));
+    return 0.5 * sqrt(dv_dot(n2, n2));
+}
+
+/* Large triangles (a water surface of a few quads, a box) are split into
+ * 4^level pieces for emission, so that the adaptation can tell the part
+ * of a triangle that lights what the camera sees from the rest. */
+#define EMIT_PIECES 2048.0 /* pieces the specular surface is split into, about */
+#define EMIT_MAX_LEVEL 6
+
+static int split_level(double area, double piece_area)
+{
+    int level = 0;
+    while (level < EMIT_MAX_LEVEL && area > piece_area * 1.5) {
+        area *= 0.25;
+        level++;
+    }
+    return level;
+}
+
+/* Piece k (of 4^level) of triangle abc, by repeated midpoint splits. */
+static void piece(dvec3 a, dvec3 b, dvec3 c, int level, size_t k, dvec3 out[3])
+{
+    for (int d = 0; d < level; d++) {
+        dvec3 ab = dv_scale(dv_add(a, b), 0.5), bc = dv_scale(dv_add(b, c), 0.5), ca = dv_scale(dv_add(c, a), 0.5);
+        switch ((k >> (2 * d)) & 3u) {
+        case 0: b = ab; c = ca; break;
+        case 1: a = ab; c = bc; break;
+        case 2: a = ca; b = bc; break;
+        default: a = ab; b = bc; c = ca; break;
+        }
+    }
+    out[0] = a;
+    out[1] = b;
+    out[2] = c;
 }
 
 bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const struct ref_light *l, struct error *err)
 {
     memset(e, 0, sizeof *e);
+    double total_area = 0.0;
+    for (int i = 0; i < rs->object_count; i++) {
+        const struct ref_object *o = &rs->objects[i];
+        if (!material_is_specular(&o->material))
+            continue;
+        for (size_t t = 0; t < o->triangle_count; t++) {
+            const uint32_t *tri = o->indices + t * 3;
+            double a = triangle_area(vertex(o, tri[0]), vertex(o, tri[1]), vertex(o, tri[2]));
+            total_area += isfinite(a) ? a : 0.0;
+        }
+    }
+    double piece_area = total_area / EMIT_PIECES;
     size_t n = 0;
-    for (int i = 0; i < rs->object_count; i++)
-        if (material_is_specular(&rs->objects[i].material))
-            n += rs->objects[i].triangle_count;
+    for (int i = 0; i < rs->object_count; i++) {
+        const struct ref_object *o = &rs->objects[i];
+        if (!material_is_specular(&o->material))
+            continue;
+        for (size_t t = 0; t < o->triangle_count; t++) {
+            const uint32_t *tri = o->indices + t * 3;
+            double a = triangle_area(vertex(o, tri[0]), vertex(o, tri[1]), vertex(o, tri[2]));
+            n += (size_t)1 << (2 * split_level(isfinite(a) ? a : 0.0, piece_area));
+        }
+    }
     if (n == 0)
         return true;
+    e->corners = malloc(n * 9 * sizeof *e->corners);
+    if (n > UINT32_MAX - 1)
+        return error_set(err, "reference: too many specular triangles for the photon targets (%zu)", n);
     e->cdf = malloc(n * sizeof *e->cdf);
+    e->guide = malloc((n + 1) * sizeof *e->guide);
+    e->weight = malloc(n * sizeof *e->weight);
+    e->sampled = calloc(n, sizeof *e->sampled);
+    e->useful = calloc(n, sizeof *e->useful);
     e->object = malloc(n * sizeof *e->object);
     e->primitive = malloc(n * sizeof *e->primitive);
-    if (!e->cdf || !e->object || !e->primitive) {
+    if (!e->corners || !e->guide || !e->cdf || !e->weight || !e->sampled || !e->useful || !e->object || !e->primitive) {
         ref_emitter_release(e);
         return error_set(err, "reference: out of memory for the photon targets (%zu triangles)", n);
     }
@@ -70,14 +145,29 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
         if (!material_is_specular(&o->material))
             continue;
         for (size_t t = 0; t < o->triangle_count; t++) {
-            double w = triangle_weight(l, o, o->indices + t * 3);
-            if (!(w > 0.0))
-                continue;
-            sum += w;
-            e->cdf[e->count] = sum;
-            e->object[e->count] = i;
-            e->primitive[e->count] = (unsigned)t;
-            e->count++;
+            const uint32_t *tri = o->indices + t * 3;
+            dvec3 a = vertex(o, tri[0]), b = vertex(o, tri[1]), c = vertex(o, tri[2]);
+            double area = triangle_area(a, b, c);
+            int level = split_level(isfinite(area) ? area : 0.0, piece_area);
+            for (size_t k = 0; k < (size_t)1 << (2 * level); k++) {
+                dvec3 p[3];
+                piece(a, b, c, level, k, p);
+                double w = triangle_weight(l, &o->material, p[0], p[1], p[2]);
+                if (!(w > 0.0))
+                    continue;
+                sum += w;
+                float *q = e->corners + e->count * 9;
+                for (int v = 0; v < 3; v++) {
+                    q[v * 3 + 0] = (float)p[v].x;
+                    q[v * 3 + 1] = (float)p[v].y;
+                    q[v * 3 + 2] = (float)p[v].z;
+                }
+                e->weight[e->count] = w;
+                e->cdf[e->count] = sum;
+                e->object[e->count] = i;
+                e->primitive[e->count] = (unsigned)t;
+                e->count++;
+            }
         }
     }
     e->total = sum;
@@ -85,46 +175,95 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
         e->cdf[k] /= sum;
     if (e->count)
         e->cdf[e->count - 1] = 1.0;
+    build_guide(e);
     double grey = (l->intensity.x + l->intensity.y + l->intensity.z) / 3.0;
     e->power = e->count ? grey * sum : 0.0;
     return true;
 }
 
+void ref_emitter_adapt(struct ref_emitter *e)
+{
+    /* Each piece's useful fraction as the posterior mean under a uniform
+     * prior, (useful + 1) / (sampled + 2): optimistic where few photons
+     * were tried (an untried piece counts as half useful), so a piece is
+     * starved only once many of its photons were seen to miss. A photon's
+     * flux is inverse to its piece's density, so a piece whose estimate
+     * tracks its true fraction r contributes variance ~ r / estimate,
+     * bounded, instead of the unbounded fireflies of a piece judged
+     * useless on too few photons. */
+    if (e->count == 0)
+        return;
+    double sum = 0.0;
+    for (size_t k = 0; k < e->count; k++) {
+        sum += e->weight[k] * (e->useful[k] + 1.0) / (e->sampled[k] + 2.0);
+        e->cdf[k] = sum;
+    }
+    for (size_t k = 0; k < e->count; k++)
+        e->cdf[k] /= sum;
+    e->cdf[e->count - 1] = 1.0;
+    build_guide(e);
+}
+
+static double radical_inverse(uint64_t index, unsigned base)
+{
+    double inv = 1.0 / base, f = inv, r = 0.0;
+    while (index > 0) {
+        r += (double)(index % base) * f;
+        index /= base;
+        f *= inv;
+    }
+    return r;
+}
+
+void ref_emit_point(uint64_t index, const double shift[3], double u[3])
+{
+    static const unsigned bases[3] = {2, 3, 5};
+    for (int k = 0; k < 3; k++) {
+        double v = radical_inverse(index, bases[k]) + shift[k];
+        v -= floor(v);
+        u[k] = v < 1.0 ? v : 0.0;
+    }
+}
+
 void ref_emitter_release(struct ref_emitter *e)
 {
+    free(e->corners);
+    free(e->guide);
     free(e->cdf);
+    free(e->weight);
+    free(e->sampled);
+    free(e->useful);
     free(e->object);
     free(e->primitive);
     memset(e, 0, sizeof *e);
 }
 
 bool ref_emitter_sample(const struct ref_emitter *e, const struct ref_scene *rs, const struct ref_light *l,
-                        long photons, struct ref_rng *rng, dvec3 *origin, dvec3 *dir, dvec3 *flux, int *object,
-                        unsigned *primitive)
+                        long photons, const double point[3], dvec3 *origin, dvec3 *dir, dvec3 *flux, int *object,
+                        unsigned *primitive, size_t *entry)
 {
     if (e->count == 0 || photons <= 0)
         return false;
-    double u = ref_rng_uniform(rng);
-    size_t lo = 0, hi = e->count - 1;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (e->cdf[mid] > u)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
+    /* The first coordinate picks the piece by the inverse CDF (monotone, so
+     * a well-spread first coordinate gives each piece its share of photons
+     * to within one), the other two the point on it. */
+    double u = point[0];
+    size_t m = (size_t)(u * (double)e->count);
+    size_t lo = e->guide[m < e->count ? m : e->count - 1];
+    while (lo + 1 < e->count && e->cdf[lo] <= u)
+        lo++;
     double p_tri = e->cdf[lo] - (lo ? e->cdf[lo - 1] : 0.0);
-    const struct ref_object *o = &rs->objects[e->object[lo]];
-    const uint32_t *tri = o->indices + (size_t)e->primitive[lo] * 3;
-    dvec3 a = vertex(o, tri[0]), b = vertex(o, tri[1]), c = vertex(o, tri[2]);
+    const float *q = e->corners + lo * 9;
+    dvec3 a = dv(q[0], q[1], q[2]), b = dv(q[3], q[4], q[5]), c = dv(q[6], q[7], q[8]);
     /* a uniform point on the triangle */
-    double s = sqrt(ref_rng_uniform(rng)), t = ref_rng_uniform(rng);
+    double s = sqrt(point[1]), t = point[2];
     dvec3 x = dv_add(dv_scale(a, 1.0 - s), dv_add(dv_scale(b, s * (1.0 - t)), dv_scale(c, s * t)));
     dvec3 n2 = dv_cross(dv_sub(b, a), dv_sub(c, a));
     double area = 0.5 * sqrt(dv_dot(n2, n2));
     if (!(p_tri > 0.0) || !(area > 0.0))
         return false;
     dvec3 n = dv_scale(n2, 0.5 / area);
+    *entry = lo;
     *object = e->object[lo];
     *primitive = e->primitive[lo];
     if (l->kind == 1) {

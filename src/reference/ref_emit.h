@@ -14,13 +14,19 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "core/error.h"
 #include "reference/ref_rng.h"
 #include "reference/ref_scene.h"
 
 struct ref_emitter {
+    float *corners;       /* per entry: the 3 corners of the triangle, or of the piece of it, aimed at */
     double *cdf;          /* count entries, increasing, the last = 1 */
+    uint32_t *guide;      /* count + 1 entries: guide[m] = the first entry whose cdf exceeds m / count (Chen & Asau's
+                           * guide table: the inverse CDF in O(1) expected, still monotone) */
+    double *weight;       /* per entry: its share of the light's view (the first iteration's pdf, unnormalised) */
+    double *sampled, *useful; /* per entry: photons aimed at it so far, and those of them that reached a visible point */
     int *object;          /* per entry: the object and triangle */
     unsigned *primitive;
     size_t count;
@@ -33,11 +39,29 @@ struct ref_emitter {
 bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const struct ref_light *l, struct error *err);
 void ref_emitter_release(struct ref_emitter *e);
 
-/* One photon of `photons` emitted by l: origin, unit direction, flux, and
- * the triangle it is aimed at (its first hit must be that one). False when
- * it carries nothing (outside a spot's cone, a grazing triangle). */
+/* Adaptive emission (Issue 15, "photons only where they matter"): after
+ * each iteration, each entry's pdf becomes its share of the light's view
+ * times the fraction of its photons so far that reached a visible point,
+ * estimated as (useful + 1) / (tried + 2) (never 0: no direction a caustic
+ * can come from is ever given density 0). Every iteration samples from a
+ * pdf fixed before it starts and divides by it, so each iteration's
+ * estimate stays unbiased (adaptive importance sampling). */
+void ref_emitter_adapt(struct ref_emitter *e);
+
+/* The three numbers in [0, 1) that place photon `index` of a light: the
+ * Halton sequence in bases 2, 3 and 5, shifted by `shift` modulo 1
+ * (Cranley-Patterson rotation). Photons spread over the light's view like
+ * a jittered grid, as POV-Ray spaces its photons, instead of clumping as
+ * independent random points do: the density estimate's noise falls much
+ * faster, and the random shift keeps each iteration's estimate unbiased. */
+void ref_emit_point(uint64_t index, const double shift[3], double u[3]);
+
+/* One photon of `photons` emitted by l at the point u of ref_emit_point:
+ * origin, unit direction, flux, and the triangle it is aimed at (its first
+ * hit must be that one). False when it carries nothing (outside a spot's
+ * cone, a grazing triangle). */
 bool ref_emitter_sample(const struct ref_emitter *e, const struct ref_scene *rs, const struct ref_light *l,
-                        long photons, struct ref_rng *rng, dvec3 *origin, dvec3 *dir, dvec3 *flux, int *object,
-                        unsigned *primitive);
+                        long photons, const double u[3], dvec3 *origin, dvec3 *dir, dvec3 *flux, int *object,
+                        unsigned *primitive, size_t *entry);
 
 #endif

@@ -181,7 +181,7 @@ struct pixel {
     dvec3 direct;           /* sum over iterations of what the eye path gathered */
     int samples;            /* eye paths traced (an iteration cut short by the budget leaves some pixels one ahead) */
     dvec3 volume;           /* sum of the volume caustic estimates */
-    int volume_samples;
+    double volume_samples;  /* the gathers' weights: their passes' fractions */
     /* the noise estimate: sums of the even and the odd iterations' own
      * estimates (eye path + volume + this iteration's photons / pi R^2) */
     dvec3 direct_seen, volume_seen, half[2];
@@ -309,7 +309,12 @@ struct job {
     /* photons: light l emits photons_of[l] of them, photon k of the
      * iteration belongs to the light whose range [first_of[l], first_of[l] +
      * photons_of[l]) holds it */
-    const struct ref_emitter *emitters;
+    struct ref_emitter *emitters;
+    struct aim_log *aims;     /* PHOTON_CHUNKS of them */
+    long gathered;            /* this thread's photon-to-pixel deposits so far (tells a useful photon) */
+    atomic_uint *pilot_counts; /* during the pilot: photons per pixel, and no flux kept */
+    double pass_fraction;     /* of the photons of the pass just traced (1 unless the budget cut it) */
+    double emit_shift[SCENE_MAX_GPU_LIGHTS][3]; /* each light's random rotation of its emission sequence */
     long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
     long photons_total;
     struct grid *grid;
@@ -619,7 +624,7 @@ static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 
 static void gather_volume(struct job *j, int x, int y)
 {
     struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
-    px->volume_samples++;
+    px->volume_samples += j->pass_fraction;
     if (px->segment_count == 0)
         return;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 3u,
@@ -667,12 +672,41 @@ static void gather(struct job *j, struct photon_hits *hits, int light, dvec3 p, 
         /* same side of the same kind of surface, arriving from the lit side */
         if (dv_dot(px->vp.normal, dir) >= 0.0 || fabs(dv_dot(px->vp.normal, n_surface)) < 0.5)
             continue;
-        hits_push(hits, i, light, dv_mul(px->vp.weight, flux));
+        j->gathered++;
+        if (j->pilot_counts)
+            atomic_fetch_add_explicit(&j->pilot_counts[i], 1u, memory_order_relaxed);
+        else
+            hits_push(hits, i, light, dv_mul(px->vp.weight, flux));
     }
 }
 
+/* What each chunk's photons were aimed at, and whether they reached a
+ * visible point: (light << 40) | (entry << 1) | useful, for the adaptive
+ * emission (ref_emitter_adapt). */
+struct aim_log {
+    uint64_t *items;
+    size_t count, capacity;
+};
+
+static void aim_push(struct aim_log *log, int light, size_t entry, bool useful)
+{
+    if (log->count == log->capacity) {
+        size_t cap = log->capacity ? log->capacity * 2 : 4096;
+        uint64_t *p = realloc(log->items, cap * sizeof *p);
+        if (!p)
+            return; /* the adaptation sees one photon fewer: it stays valid */
+        log->items = p;
+        log->capacity = cap;
+    }
+    log->items[log->count++] = ((uint64_t)light << 40) | ((uint64_t)entry << 1) | (useful ? 1u : 0u);
+}
+
+static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
+                              int target_object, unsigned target_primitive, struct photon_hits *hits,
+                              long long *caustic, double *power, struct volume_photons *volume);
+
 static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic,
-                         double *power, struct volume_photons *volume)
+                         double *power, struct volume_photons *volume, struct aim_log *aims)
 {
     const struct ref_scene *rs = j->rs;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 7919u * (uint64_t)j->iteration + 2u + (uint64_t)light * 104729u,
@@ -680,9 +714,29 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
     dvec3 origin, dir, flux;
     int target_object;
     unsigned target_primitive;
-    if (!ref_emitter_sample(&j->emitters[light], rs, &rs->lights[light], j->photons_of[light], &rng, &origin, &dir,
-                            &flux, &target_object, &target_primitive))
+    size_t entry;
+    /* Photon `index` of this iteration is point (iteration x photons +
+     * index) of the light's sequence: each iteration takes the next stretch
+     * of it (the pilot one far beyond the rest). */
+    uint64_t sequence = j->iteration < 0 ? ((uint64_t)-j->iteration << 40) + (uint64_t)index
+                                         : (uint64_t)j->iteration * (uint64_t)j->photons_of[light] + (uint64_t)index;
+    double point[3];
+    ref_emit_point(sequence, j->emit_shift[light], point);
+    if (!ref_emitter_sample(&j->emitters[light], rs, &rs->lights[light], j->photons_of[light], point, &origin, &dir,
+                            &flux, &target_object, &target_primitive, &entry))
         return;
+    long gathered_before = j->gathered;
+    size_t volume_before = volume->count;
+    trace_photon_path(j, light, &rng, origin, dir, flux, target_object, target_primitive, hits, caustic, power, volume);
+    aim_push(aims, light, entry, j->gathered > gathered_before || volume->count > volume_before);
+}
+
+static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
+                              int target_object, unsigned target_primitive, struct photon_hits *hits,
+                              long long *caustic, double *power, struct volume_photons *volume)
+{
+    const struct ref_scene *rs = j->rs;
+    struct ref_rng rng = *rng_in;
     struct media media = {.count = 0}; /* lights are outside every dielectric */
     int specular = 0;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
@@ -781,7 +835,7 @@ static void *photon_thread(void *arg)
             while (light + 1 < j->rs->light_count && k >= j->first_of[light + 1])
                 light++;
             trace_photon(j, light, k - j->first_of[light], &j->chunks[c], &j->caustic_photons[c],
-                         j->caustic_power[c], &j->volume_chunks[c]);
+                         j->caustic_power[c], &j->volume_chunks[c], &j->aims[c]);
             j->budget->chunk_reached[c] = k + 1;
         }
         done += j->threads;
@@ -820,6 +874,103 @@ static void run_threads(struct job *base, int threads, void *(*fn)(void *))
             for (int k = 0; k < 3; k++)
                 base->caustic_power[c][k] += jobs[t].caustic_power[c][k];
         }
+}
+
+/* Adapts each light's emission to where its photons were useful (what
+ * the chunks logged, in chunk order: deterministic). */
+/* Returns the fraction of the logged photons that were useful. */
+static double adapt_emission(struct aim_log *aims, struct ref_emitter *emitters, int light_count)
+{
+    double logged = 0.0, useful = 0.0;
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        for (size_t k = 0; k < aims[c].count; k++) {
+            uint64_t a = aims[c].items[k];
+            logged += 1.0;
+            useful += (double)(a & 1u);
+            struct ref_emitter *e = &emitters[a >> 40];
+            size_t entry = (size_t)((a >> 1) & ((1ull << 39) - 1));
+            e->sampled[entry] += 1.0;
+            e->useful[entry] += (double)(a & 1u);
+        }
+        aims[c].count = 0;
+    }
+    for (int l = 0; l < light_count; l++)
+        ref_emitter_adapt(&emitters[l]);
+    return logged > 0.0 ? useful / logged : 0.0;
+}
+
+#define PILOT_RADIUS 2.0   /* the pilot counts photons within this many first radii */
+#define GATHER_PHOTONS 40.0 /* photons a first radius is chosen to hold, about, per iteration */
+#define RADIUS_MIN 0.0625   /* the first radius stays within these multiples of two pixel footprints */
+#define RADIUS_MAX 4.0
+
+/* The pilot: before the first photon pass, rounds of a quarter of its
+ * photons each are traced only to learn where photons are useful and how
+ * dense they fall (their light is thrown away), so that no iteration of
+ * the estimate is spent on the first, unadapted pdf: where few photons
+ * reach what the camera sees (a pool seen close up), that iteration's
+ * noise would dominate the average. Rounds go on, each aimed by the last,
+ * until a fifth of a round's photons are useful (at most PILOT_ROUNDS). */
+#define PILOT_ROUNDS 4
+#define PILOT_USEFUL 0.2
+static long share_photons(struct job *job, const struct ref_scene *rs, const struct ref_emitter *emitters, long photons);
+
+static void pilot_photons(struct job *job, int threads, struct budget *budget, struct volume_photons *volume_chunks,
+                          long photons, struct pixel *pixels, size_t npix)
+{
+    int light_count = job->rs->light_count;
+    long pilot = photons / 4 > 1 ? photons / 4 : 1;
+    share_photons(job, job->rs, job->emitters, pilot);
+    /* The pilot counts photons within PILOT_RADIUS times each pixel's
+     * first radius (the last round's, the best aimed). */
+    for (size_t i = 0; i < npix; i++)
+        pixels[i].radius *= PILOT_RADIUS;
+    struct grid grid;
+    grid_build(&grid, pixels, (int)npix);
+    job->grid = &grid;
+    atomic_uint *counts = calloc(npix, sizeof *counts);
+    budget->photon_deadline = budget->deadline;
+    for (int round = 0; counts && round < PILOT_ROUNDS; round++) {
+        for (size_t i = 0; i < npix; i++)
+            atomic_store(&counts[i], 0u);
+        job->pilot_counts = counts;
+        job->iteration = -1 - round;
+        run_threads(job, threads, photon_thread);
+        for (int c = 0; c < PHOTON_CHUNKS; c++)
+            volume_chunks[c].count = 0;
+        atomic_store(&budget->photons_cut, 0);
+        if (adapt_emission(job->aims, job->emitters, light_count) >= PILOT_USEFUL || budget_spent(budget))
+            break;
+    }
+    grid_release(&grid);
+    job->grid = NULL;
+    job->pilot_counts = NULL;
+    for (size_t i = 0; i < npix; i++)
+        pixels[i].m = counts ? (long)atomic_load(&counts[i]) : 0;
+    free(counts);
+    /* A first radius for the photon density (Issue 15, "a gather that
+     * adapts", a k-nearest-neighbour choice): where the last round's m
+     * photons fell within R_c = PILOT_RADIUS x R0, an iteration's photons
+     * (4 times as many) put about GATHER_PHOTONS within
+     * R_c sqrt(GATHER_PHOTONS / 4m). Kept within [R0 / 16, 4 R0] (R0: two
+     * pixel footprints): a bright caustic is gathered tightly (little
+     * blur), a dim region widely (little noise). SPPM accepts any starting
+     * radius and shrinks it from there. The constants were chosen on the
+     * four closed-form scenes of examples/reference_vs_povray (docs/REFERENCE.md). */
+    for (size_t i = 0; i < npix; i++) {
+        struct pixel *px = &pixels[i];
+        if (px->radius <= 0.0)
+            continue;
+        double r0 = px->radius / PILOT_RADIUS, r = RADIUS_MAX * r0;
+        if (px->m > 0)
+            r = PILOT_RADIUS * r0 * sqrt(GATHER_PHOTONS / (4.0 * (double)px->m));
+        px->radius = fmin(fmax(r, RADIUS_MIN * r0), RADIUS_MAX * r0);
+        px->m = 0;
+    }
+    share_photons(job, job->rs, job->emitters, photons);
+    job->iteration = 0;
+    memset(job->caustic_photons, 0, sizeof job->caustic_photons);
+    memset(job->caustic_power, 0, sizeof job->caustic_power);
 }
 
 /* Shares the iteration's photons between the lights in proportion to the
@@ -898,12 +1049,14 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct pixel *pixels = calloc(npix, sizeof *pixels);
     struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
     struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
-    if (!pixels || !chunks || !volume_chunks || !image_create(out, o->width, o->height, err) ||
+    struct aim_log *aims = calloc(PHOTON_CHUNKS, sizeof *aims);
+    if (!pixels || !chunks || !volume_chunks || !aims || !image_create(out, o->width, o->height, err) ||
         (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
         image_destroy(out);
         free(pixels);
         free(chunks);
         free(volume_chunks);
+        free(aims);
         for (int l = 0; l < rs.light_count; l++)
             ref_emitter_release(&emitters[l]);
         ref_scene_release(&rs);
@@ -935,6 +1088,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         free(pixels);
         free(chunks);
         free(volume_chunks);
+        free(aims);
         for (int l = 0; l < rs.light_count; l++)
             ref_emitter_release(&emitters[l]);
         ref_scene_release(&rs);
@@ -948,12 +1102,17 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     budget->tty = o->progress && isatty(STDERR_FILENO);
     struct job job = {.rs = &rs, .o = o, .pixels = pixels, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = volume_chunks, .pixel_angle = pixel_angle, .chunks = chunks,
-                      .budget = budget, .emitters = emitters};
+                      .budget = budget, .emitters = emitters, .aims = aims};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
         caustics = false;
+    for (int l = 0; l < rs.light_count; l++) {
+        struct ref_rng shift_rng = ref_rng_seed(o->seed, 11u, (uint64_t)l);
+        for (int k = 0; k < 3; k++)
+            job.emit_shift[l][k] = ref_rng_uniform(&shift_rng);
+    }
     long long emitted = 0, caustic_total = 0;
     double caustic_power[3] = {0, 0, 0};
-    int photon_passes = 0;   /* iterations whose photons were traced (in full, or rescaled) */
+    double photon_passes = 0; /* iterations whose photons were traced, a cut-short one counting as its fraction */
     double gather_seconds = 0.0, gather_photons = 0.0; /* the last volume gather's cost */
     int it = 0;
     bool tty = budget->tty;
@@ -966,6 +1125,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         if (atomic_load(&budget->cut))
             break; /* the eye pass ran out of time: no photons for a half-traced set of visible points */
         if (caustics) {
+            if (it == 0)
+                pilot_photons(&job, threads, budget, volume_chunks, o->photons, pixels, npix);
             struct grid grid;
             grid_build(&grid, pixels, (int)npix);
             job.grid = &grid;
@@ -987,17 +1148,24 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
                 budget->chunk_reached[c] = begin; /* a chunk no thread reached traced nothing */
             }
             run_threads(&job, threads, photon_thread);
-            /* An iteration cut short by the budget traced only some chunks:
-             * each light's photons are scaled up by (its photons) / (those
-             * traced), so the iteration still carries the lights' power and
-             * the estimate stays unbiased. Without a budget every scale is 1. */
-            double scale[SCENE_MAX_GPU_LIGHTS];
+            /* An iteration cut short by the budget traced a fraction f of
+             * its photons: it counts as f of an iteration (the estimate
+             * divides the flux by the photons traced, as a photon map does),
+             * rather than being scaled up to a whole one, which would give
+             * its few photons a weight they cannot carry. Each light's
+             * photons are scaled by f x (its photons) / (those traced), 1
+             * unless the cut left the lights unevenly traced; without a
+             * budget every scale is 1 and f = 1. */
+            long traced_of[SCENE_MAX_GPU_LIGHTS];
             long long traced = 0;
             for (int l = 0; l < rs.light_count; l++) {
-                long n = photons_traced(&job, budget, l);
-                traced += n;
-                scale[l] = n > 0 ? (double)job.photons_of[l] / (double)n : 0.0;
+                traced_of[l] = photons_traced(&job, budget, l);
+                traced += traced_of[l];
             }
+            double pass_fraction = job.photons_total > 0 ? (double)traced / (double)job.photons_total : 0.0;
+            double scale[SCENE_MAX_GPU_LIGHTS];
+            for (int l = 0; l < rs.light_count; l++)
+                scale[l] = traced_of[l] > 0 ? pass_fraction * (double)job.photons_of[l] / (double)traced_of[l] : 0.0;
             /* Reduce in chunk order: the same sums whatever the thread count. */
             for (int c = 0; c < PHOTON_CHUNKS; c++) {
                 for (size_t k = 0; k < chunks[c].count; k++) {
@@ -1012,11 +1180,13 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
                 /* (the power statistic is scaled for the whole pass, exact
                  * unless several lights share a pass the budget cut short) */
                 for (int k = 0; k < 3; k++)
-                    caustic_power[k] += job.caustic_power[c][k] * (traced > 0 ? (double)job.photons_total / (double)traced : 0.0);
+                    caustic_power[k] += job.caustic_power[c][k];
             }
             grid_release(&grid);
+            adapt_emission(aims, emitters, rs.light_count);
             emitted += traced;
-            photon_passes++;
+            photon_passes += pass_fraction;
+            job.pass_fraction = pass_fraction;
             if (medium.present) {
                 for (int c = 0; c < PHOTON_CHUNKS; c++)
                     for (size_t k = 0; k < volume_chunks[c].count; k++) {
@@ -1043,8 +1213,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
             /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
             for (size_t i = 0; i < npix; i++) {
                 struct pixel *px = &pixels[i];
-                if (px->m > 0 && px->radius > 0) {
-                    dvec3 e = dv_scale(px->phi, 1.0 / (MATH_PI * px->radius * px->radius));
+                if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
+                    dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
                     px->half[it % 2] = dv_add(px->half[it % 2], e);
                 }
                 if (px->m > 0) {
@@ -1101,12 +1271,13 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     if (tty)
         fputc('\n', stderr);
     int iterations = it > 0 ? it : 1;
-    int passes = photon_passes > 0 ? photon_passes : 1;
+    double passes = photon_passes > 0 ? photon_passes : 1;
     for (size_t i = 0; i < npix; i++) {
         const struct pixel *px = &pixels[i];
         dvec3 l = px->samples > 0 ? dv_scale(px->direct, 1.0 / px->samples) : dv(0, 0, 0);
         if (px->volume_samples > 0)
             l = dv_add(l, dv_scale(px->volume, 1.0 / px->volume_samples));
+        /* (volume_samples sums the gathers' pass fractions) */
         /* Each photon pass carries the lights' power between its photons
          * (flux per photon = power / photons), so tau averages over the
          * passes: L = tau / (passes pi R^2). */
@@ -1128,7 +1299,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         dst[3] = 1.0f;
     }
     if (stats) {
-        stats->noise = noise_estimate(pixels, npix, photon_passes > 0 ? photon_passes : (it > 0 ? it : 1));
+        stats->noise = noise_estimate(pixels, npix, photon_passes > 0 ? (int)ceil(photon_passes) : (it > 0 ? it : 1));
         stats->iterations = iterations;
         stats->photons = emitted;
         stats->caustic_photons = caustic_total;
@@ -1139,7 +1310,9 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         free(chunks[c].items);
         free(volume_chunks[c].items);
+        free(aims[c].items);
     }
+    free(aims);
     free(budget);
     free(volume_chunks);
     free(chunks);

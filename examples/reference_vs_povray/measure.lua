@@ -1,0 +1,122 @@
+-- caustica's reference against POV-Ray 3.7's photon mapping, error
+-- against the closed form (closed_form.lua) against wall time, on the same
+-- machine in the same sitting. Run from the project root:
+--   build/caustica test examples/reference_vs_povray/measure.lua
+-- (POV_COUNTS, REF_BUDGETS and SCENES in the environment override the
+-- lists below; the table goes to stdout and to results.md here.)
+local t = require "caustica.test"
+local c = require "caustica"
+local cf = dofile("examples/reference_vs_povray/closed_form.lua")
+
+local dir = "examples/reference_vs_povray"
+local out = os.getenv("OUT") or "/tmp/caustica-vs-povray"
+os.execute("mkdir -p " .. out)
+local size, block = 128, 4
+local function list(env, default)
+  local s = os.getenv(env)
+  if not s then return default end
+  local l = {}
+  for v in s:gmatch("[^,]+") do l[#l + 1] = tonumber(v) or v end
+  return l
+end
+local pov_counts = list("POV_COUNTS", { 30000, 100000, 300000, 1000000 })
+local ref_budgets = list("REF_BUDGETS", { 1, 2, 4, 8 })
+
+local function fresnel_t(deg, n) return 1 - cf.fresnel(math.cos(math.rad(deg)), 1 / n) end
+local scenes = {
+  ball_lens = function()
+    return cf.ball_lens { radius = 0.5, ior = 1.5, depth = 0.75, height = 0.2, fov = 60, size = size, block = block }
+  end,
+  tir_cube = function()
+    return cf.tir_cube { ior = 2.42, angle = 30, floor_y = -1.0, height = 0.4, cx = 0.25, fov = 90, size = size,
+                         block = block }
+  end,
+  flat_water = function()
+    local e = math.cos(math.rad(30)) * fresnel_t(30, 1.33)
+    local b = { n = size // block }
+    for i = 1, b.n * b.n do b[i] = e end
+    return b
+  end,
+  sine_water = function()
+    local A, L = 0.06, 0.5
+    return cf.water { ior = 1.33, floor_y = -0.5, height = 0.3, fov = 40, size = size, block = block, cx = 0.000853,
+                      height_fn = function(x) return A * math.cos(2 * math.pi * x / L) end,
+                      slope_fn = function(x) return -A * 2 * math.pi / L * math.sin(2 * math.pi * x / L) end }
+  end,
+}
+local order = list("SCENES", { "ball_lens", "tir_cube", "flat_water", "sine_water" })
+
+-- relative RMS error of the block means of `img` (scaled by `scale` into
+-- irradiance) against the closed form's
+local function block_error(img, truth, scale)
+  local n, num, den = truth.n, 0, 0
+  for by = 0, n - 1 do
+    for bx = 0, n - 1 do
+      local sum = 0
+      for y = by * block, by * block + block - 1 do
+        for x = bx * block, bx * block + block - 1 do
+          local r, g, b = img:pixel(x, y)
+          sum = sum + (r + g + b) / 3
+        end
+      end
+      local est = scale * sum / (block * block)
+      local want = truth[by * n + bx + 1]
+      num = num + (est - want) ^ 2
+      den = den + want * want
+    end
+  end
+  return math.sqrt(num / den)
+end
+
+-- the closed form's block means as a PFM image (radiance, albedo 1), to look at
+local function save_truth(truth, path)
+  local f = io.open(path, "wb")
+  local n = truth.n
+  f:write(string.format("PF\n%d %d\n-1.0\n", n, n))
+  for by = n - 1, 0, -1 do
+    for bx = 0, n - 1 do
+      local v = truth[by * n + bx + 1] / math.pi
+      f:write(string.pack("<fff", v, v, v))
+    end
+  end
+  f:close()
+end
+
+local function timed(cmd)
+  local p = io.popen("s=$(date +%s.%N); " .. cmd .. " >/dev/null 2>&1; rc=$?; e=$(date +%s.%N); echo $rc $s $e")
+  local rc, s, e = p:read("*a"):match("(%d+) (%S+) (%S+)")
+  p:close()
+  return tonumber(rc), tonumber(e) - tonumber(s)
+end
+
+local lines = { "| scene | renderer | setting | seconds | error |", "|---|---|---|---|---|" }
+local function row(...) lines[#lines + 1] = "| " .. table.concat({ ... }, " | ") .. " |"; print(lines[#lines]) end
+
+t.case("caustica reference vs POV-Ray on closed-form scenes", function()
+  for _, name in ipairs(order) do
+    local truth = scenes[name]()
+    save_truth(truth, string.format("%s/%s_closed_form.pfm", out, name))
+    -- POV-Ray: photon counts (its photon shooting is single-threaded, the
+    -- trace uses both cores: +WT2); it reports radiance = irradiance x
+    -- albedo (no 1/pi), caustica albedo / pi x irradiance.
+    for _, count in ipairs(pov_counts) do
+      local file = string.format("%s/%s_pov_%d.hdr", out, name, count)
+      local rc, secs = timed(string.format("povray -D +I%s/%s.pov +O%s +FH +W%d +H%d +WT2 -A Declare=Count=%d",
+        dir, name, file, size, size, count))
+      t.expect(rc == 0, "povray failed on " .. name)
+      row(name, "POV-Ray 3.7", "count " .. count, string.format("%.2f", secs),
+        string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, 1)))
+    end
+    for _, budget in ipairs(ref_budgets) do
+      local file = string.format("%s/%s_ref_%g.hdr", out, name, budget)
+      local rc, secs = timed(string.format("build/caustica reference %s/%s.lua -o %s --time-budget %g --photons %d",
+        dir, name, file, budget, tonumber(os.getenv("REF_PHOTONS") or 200000)))
+      t.expect(rc == 0, "caustica reference failed on " .. name)
+      row(name, "caustica reference", "budget " .. budget .. " s", string.format("%.2f", secs),
+        string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, math.pi)))
+    end
+  end
+  local f = io.open(out .. "/results.md", "w")
+  f:write(table.concat(lines, "\n"), "\n")
+  f:close()
+end)
