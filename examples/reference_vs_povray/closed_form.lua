@@ -77,8 +77,12 @@ local function branches(solid, px, py, dx, dy, weight, inside, key, floor_y, lan
   local hit = solid(px, py, dx, dy, inside)
   if not hit then
     if not inside and dy < 0 then
-      local t = (floor_y - py) / dy
-      land(key, px + t * dx, weight)
+      if floor_y then
+        local t = (floor_y - py) / dy
+        land(key, px + t * dx, weight)
+      else
+        land(key, px, py, dx, dy, weight) -- the ray as it leaves (fog_lens)
+      end
     end
     return
   end
@@ -249,6 +253,136 @@ function M.water(p)
   return camera_blocks(p.size, p.block, cx, half, function(x)
     return hist.power(x - hist.width / 2, x + hist.width / 2) / hist.width
   end)
+end
+
+-- The ball lens above a box of fog (fog_lens.lua): single scattering of
+-- the sun, direct where the ball does not shadow the fog and focused by
+-- the ball (every Fresnel branch leaving it downwards), seen by a camera
+-- at `eye` looking along -z. The fluence rate of the focused light is
+-- tabulated per height slice and radius (power / |cos| over ring areas,
+-- attenuated along each ray's path in the fog); each pixel integrates
+-- sigma_s / (4 pi) x fluence x view transmittance along its ray, in steps
+-- that shrink near the axis (where the fluence of the axial caustic grows
+-- as 1 / r; no pixel's ray meets the axis).
+function M.fog_lens(p)
+  local R, n, yc = p.radius, p.ior, p.centre
+  local ss, st = p.sigma_s, p.sigma_s + p.sigma_a
+  local ny, nr, rmax = p.slices or 200, p.bins or 4000, 1.0
+  local dr = rmax / nr
+  local slices = {}
+  for k = 1, ny do
+    local h = {}
+    for j = 1, nr do h[j] = 0 end
+    slices[k] = h
+  end
+  local solid = function(px, py, dx, dy, inside)
+    local ox, oy = px, py - yc
+    local b = ox * dx + oy * dy
+    local c = ox * ox + oy * oy - R * R
+    local disc = b * b - c
+    if disc < 0 then return nil end
+    local s = math.sqrt(disc)
+    local t = inside and (-b + s) or (-b - s)
+    if t <= 1e-9 then
+      t = -b + s
+      if t <= 1e-9 then return nil end
+    end
+    return { t = t, nx = (ox + t * dx) / R, ny = (oy + t * dy) / R, ior = n, face = "" }
+  end
+  local function deposit(h, a, b, w)
+    if a > b then a, b = b, a end
+    if a >= rmax then return end
+    local i0, i1 = math.floor(a / dr) + 1, math.min(nr, math.floor(b / dr) + 1)
+    if i0 == i1 or b - a < 1e-12 then h[i0] = h[i0] + w; return end
+    local density = w / (b - a)
+    for i = i0, i1 do
+      local overlap = math.min(b, i * dr) - math.max(a, (i - 1) * dr)
+      if overlap > 0 then h[i] = h[i] + density * overlap end
+    end
+  end
+  local samples = p.samples or 20000
+  local prev
+  for i = 0, samples do
+    local b = R * i / samples
+    local now = {}
+    branches(solid, b, yc + R + 1, 0, -1, 1, false, "", nil,
+      function(key, px, py, dx, dy, w) now[key] = { px = px, py = py, dx = dx, dy = dy, w = w } end, 0)
+    local weight = 2 * math.pi * b * (R / samples)
+    if prev then
+      for key, r1 in pairs(now) do
+        local r0 = prev.rays[key]
+        if r0 then
+          local w = 0.5 * (r0.w * prev.weight + r1.w * weight)
+          local cos_a = 0.5 * (math.abs(r0.dy) + math.abs(r1.dy))
+          for k = 1, ny do
+            local y = (k - 0.5) / ny
+            local xa = r0.px + r0.dx / r0.dy * (y - r0.py)
+            local xb = r1.px + r1.dx / r1.dy * (y - r1.py)
+            local atten = math.exp(-st * (1 - y) / cos_a)
+            deposit(slices[k], math.abs(xa), math.abs(xb), w * atten / cos_a)
+          end
+        end
+      end
+    end
+    prev = { rays = now, weight = weight }
+  end
+  for k = 1, ny do
+    local h = slices[k]
+    for j = 1, nr do h[j] = h[j] / (math.pi * ((j * dr) ^ 2 - ((j - 1) * dr) ^ 2)) end
+  end
+  local function fluence(x, y, z)
+    local r = math.sqrt(x * x + z * z)
+    local direct = r >= R and math.exp(-st * (1 - y)) or 0
+    local k = math.min(ny, math.max(1, math.floor(y * ny) + 1))
+    local j = math.floor(r / dr) + 1
+    return direct + (j <= nr and slices[k][j] or 0)
+  end
+  local ex, ey, ez = p.eye[1], p.eye[2], p.eye[3]
+  local tanh = math.tan(math.rad(p.fov / 2))
+  local size, block = p.size, p.block
+  local radiance = {}
+  for y = 0, size - 1 do
+    for x = 0, size - 1 do
+      local u, v = (2 * (x + 0.5) / size - 1) * tanh, (1 - 2 * (y + 0.5) / size) * tanh
+      local dx, dy, dz = u, v, -1
+      local len = math.sqrt(dx * dx + dy * dy + dz * dz)
+      dx, dy, dz = dx / len, dy / len, dz / len
+      -- the ray's span inside the box [-1,1] x [0,1] x [-1,1]
+      local t0, t1 = 0, math.huge
+      for _, a in ipairs { { ex, dx, -1, 1 }, { ey, dy, 0, 1 }, { ez, dz, -1, 1 } } do
+        if math.abs(a[2]) < 1e-12 then
+          if a[1] < a[3] or a[1] > a[4] then t1 = -1 end
+        else
+          local ta, tb = (a[3] - a[1]) / a[2], (a[4] - a[1]) / a[2]
+          if ta > tb then ta, tb = tb, ta end
+          t0, t1 = math.max(t0, ta), math.min(t1, tb)
+        end
+      end
+      local L = 0
+      local t = t0
+      while t < t1 do
+        local px, pz = ex + t * dx, ez + t * dz
+        local r = math.sqrt(px * px + pz * pz)
+        local step = math.min(math.max(0.1 * r, 2e-4), 0.01, t1 - t)
+        local tm = t + 0.5 * step
+        L = L + ss / (4 * math.pi) * fluence(ex + tm * dx, ey + tm * dy, ez + tm * dz) * math.exp(-st * (tm - t0)) * step
+        t = t + step
+      end
+      radiance[y * size + x + 1] = L
+    end
+  end
+  local nb = size // block
+  local out = { n = nb, block = block, radiance = radiance }
+  for by = 0, nb - 1 do
+    for bx = 0, nb - 1 do
+      local sum = 0
+      for y = by * block, by * block + block - 1 do
+        for x = bx * block, bx * block + block - 1 do sum = sum + radiance[y * size + x + 1] end
+      end
+      out[by * nb + bx + 1] = sum / (block * block)
+    end
+  end
+  return out
 end
 
 return M
