@@ -959,6 +959,11 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
      * four closed-form scenes of examples/reference_vs_povray (docs/REFERENCE.md). */
     for (size_t i = 0; i < npix; i++) {
         struct pixel *px = &pixels[i];
+        if (job->o->initial_radius > 0.0) {
+            px->radius /= PILOT_RADIUS; /* the user's radius (--radius) stands */
+            px->m = 0;
+            continue;
+        }
         if (px->radius <= 0.0)
             continue;
         double r0 = px->radius / PILOT_RADIUS, r = RADIUS_MAX * r0;
