@@ -178,6 +178,29 @@ t.case("flat water: uniform floor irradiance E cos(ti) T exp(-c d / cos(tt)), pe
   end
 end)
 
+for _, kind in ipairs { "point", "spot" } do
+  t.case("photons aimed at a " .. kind .. " light's targets: IOR-1.0 water passes I cos / d^2 to the floor", function()
+    -- All the floor's light comes by photons (the shadow rays stop at the
+    -- surface), aimed at the water's pieces by solid angle, adapted to what
+    -- the camera sees and placed by the Halton sequence; through water of
+    -- IOR 1.0 the floor must get exactly the light's direct irradiance.
+    local img = t.reference("tests/scenes/flat_water.lua",
+      { set = { light = kind, ior = 1.0, absorb = false }, photons = 200000, spp = 8 })
+    t.expect_finite(img)
+    local lx, ly, lz = 0.5, 2.0, 0.2
+    local tan_half = math.tan(math.rad(20))
+    local ratio = mean_ratio(img, 1, 8, 8, 56, 56, function(x, y)
+      -- the floor point under pixel (x, y): camera at (0, -0.2, 0) looking down, up = -z
+      local u, v = (2 * (x + 0.5) / 64 - 1) * tan_half, (1 - 2 * (y + 0.5) / 64) * tan_half
+      local px, pz = u * 0.3, -v * 0.3
+      local dx, dy, dz = lx - px, ly + 0.5, lz - pz
+      local d2 = dx * dx + dy * dy + dz * dz
+      return 4 * (dy / math.sqrt(d2)) / d2 / math.pi
+    end)
+    t.expect(math.abs(ratio - 1) < 0.02, string.format("measured / I cos / (pi d^2) = %.4f", ratio))
+  end)
+end
+
 for _, ior in ipairs { 0.8, 1.0, 2.42 } do
   t.case("IOR " .. ior .. ": no NaN or Inf anywhere (total internal reflection included)", function()
     local img = t.reference("tests/scenes/glass.lua", { set = { ior = ior }, photons = 0, spp = 2 })

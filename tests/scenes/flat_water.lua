@@ -1,6 +1,6 @@
 -- A flat water surface over a floor under a directional light, seen by a
 -- camera under water looking straight down (Issue 3's closed form):
--- --set depth=, elevation=degrees, ior=, camera_height=
+-- --set depth=, elevation=degrees, ior=, camera_height=, light=directional|point|spot
 local c = require "caustica"
 local depth = c.param("depth", 0.5)
 local elevation = c.param("elevation", 60)
@@ -16,6 +16,10 @@ local scene = c.scene {
 local sun
 if c.param("light", "directional") == "point" then
   sun = scene:add(c.light.point { position = {0.5, 2.0, 0.2}, intensity = {4, 4, 4} })
+elseif c.param("light", "directional") == "spot" then
+  -- a cone (angle = its half-angle) whose fully lit core covers the floor the camera sees
+  sun = scene:add(c.light.spot { position = {0.5, 2.0, 0.2}, direction = {-0.5, -2.5, -0.2}, angle = 40,
+                                 softness = 0.2, intensity = {4, 4, 4} })
 else
   sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 end
@@ -42,7 +46,12 @@ elseif wave > 0 then
 end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("cv", c.pass.caustic_volumes { light = sun, water = water, resolution = c.param("generator", 0) })
-g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
+if c.param("light", "directional") == "spot" then
+  -- (caustic volumes take directional and point lights; the spot is for the reference)
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = false })
+else
+  g:add("cv", c.pass.caustic_volumes { light = sun, water = water, resolution = c.param("generator", 0) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
+end
 g:output("shade.color")
 return { scene = scene, graph = g, size = {size, size} }
