@@ -10,7 +10,7 @@ local scene = c.scene {
   camera = c.camera { eye = {0, 0.4, 2.6}, target = {0, 0, 0}, fov = 40 },
   environment = c.cubemap "assets/env/room",
 }
-scene:add(c.object { mesh = c.mesh.sphere { radius = 0.7, segments = 96 }, material = c.material.glass { ior = ior } })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.7, segments = 96 }, material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 local g = c.graph()
 g:add("shade", c.pass.shade {})
 g:add("glass", c.pass.refraction { method = method, color = "shade.color", depth = "shade.depth", iterations = iterations })

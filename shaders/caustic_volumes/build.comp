@@ -18,6 +18,7 @@ uniform int u_water_resolution; // the simulation's vertices per side
 uniform int u_resolution;       // the generator grid's
 uniform int u_light;
 uniform float u_ior;
+uniform float u_ideal;
 uniform float u_bottom;
 
 vec3 fetch(int v, bool normal)
@@ -96,7 +97,7 @@ void main()
         vec3 d = centre - light.position.xyz;
         e /= max(dot(d, d), 1e-8);
     }
-    float transmit = 1.0 - fresnel_dielectric(cos_i, 1.0 / u_ior);
+    float transmit = 1.0 - fresnel_of(cos_i, 1.0 / u_ior, u_ideal);
     for (int k = 0; k < 3; k++) {
         float t = (u_bottom - p[k].y) / r[k].y;
         volumes[id].top[k] = vec4(p[k], 1.0);

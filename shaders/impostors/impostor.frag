@@ -13,6 +13,7 @@ uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
 uniform int u_material_kind;
 uniform float u_ior;
+uniform float u_ideal;
 layout(location = 0) out vec4 o_depth;
 layout(location = 1) out vec4 o_color;
 void main()
@@ -31,7 +32,7 @@ void main()
         // a reflector/refractor seen along the axis: level 0 of the recursion
         // reflects and refracts (one interface) the environment only
         vec3 v = u_impostor_axis;
-        float f = u_material_kind == 2 ? 1.0 : fresnel_dielectric(-dot(v, n), 1.0 / u_ior);
+        float f = u_material_kind == 2 ? 1.0 : fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
         vec3 t = refract_or_reflect(v, n, 1.0 / u_ior);
         vec3 tint = u_material_kind == 2 ? u_color : vec3(1.0);
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);

@@ -13,6 +13,7 @@ uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
 uniform int u_material_kind;
 uniform float u_ior;
+uniform float u_ideal;
 layout(location = 0) out vec4 o_depth;
 layout(location = 1) out vec4 o_color;
 
@@ -36,7 +37,7 @@ void main()
         o_color = vec4(u_color * reflected, 1.0);
         return;
     }
-    float f = fresnel_dielectric(-dot(v, n), 1.0 / u_ior);
+    float f = fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
     vec3 t = refract_or_reflect(v, n, 1.0 / u_ior);
     o_color = vec4(f * reflected + (1.0 - f) * look(v_world, t), 1.0);
 }

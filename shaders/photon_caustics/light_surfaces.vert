@@ -1,5 +1,6 @@
 #version 450 core
 // The refractors seen from the light (front or back faces, by culling).
+#include "common/fresnel.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model;
@@ -7,6 +8,7 @@ uniform mat4 u_normal_matrix;
 uniform mat4 u_light_view_proj;
 uniform int u_material_kind; // set per object by the renderer
 uniform float u_ior;
+uniform float u_ideal;
 out vec3 v_normal;
 out float v_thickness;
 void main()
@@ -14,6 +16,6 @@ void main()
     v_normal = mat3(u_normal_matrix) * a_normal;
     // w of the normal buffer: which material the photon meets here
     // (-1 a mirror, else the index of refraction)
-    v_thickness = u_material_kind == 2 ? -1.0 : u_ior;
+    v_thickness = u_material_kind == 2 ? -1.0 : u_ior + (u_ideal > 0.5 ? IDEAL_IOR_OFFSET : 0.0);
     gl_Position = u_light_view_proj * (u_model * vec4(a_position, 1.0));
 }

@@ -72,7 +72,8 @@ void main()
     // the material of the object this photon meets (several may be in view)
     vec4 material = texelFetch(u_front_material, px, 0);
     bool is_mirror = front.w < 0.0;
-    float ior = is_mirror ? 1.5 : front.w;
+    float ideal = !is_mirror && front.w >= IDEAL_IOR_OFFSET ? 1.0 : 0.0;
+    float ior = is_mirror ? 1.5 : front.w - ideal * IDEAL_IOR_OFFSET;
     vec3 absorption = is_mirror ? vec3(0.0) : material.rgb;
     vec3 tint = is_mirror ? material.rgb : vec3(1.0);
     bool single = int(material.w + 0.5) == 3; // water: one interface (Fig. 28)
@@ -83,9 +84,9 @@ void main()
     if (is_mirror || u_reflect_glass == 1) {
         dir = reflect(ldir, n1); // reflective caustics (Fig. 19 bottom)
         origin = p1 + n1 * eps;
-        flux *= is_mirror ? tint : vec3(fresnel_dielectric(-dot(ldir, n1), 1.0 / ior));
+        flux *= is_mirror ? tint : vec3(fresnel_of(-dot(ldir, n1), 1.0 / ior, ideal));
     } else {
-        float f1 = fresnel_dielectric(-dot(ldir, n1), 1.0 / ior);
+        float f1 = fresnel_of(-dot(ldir, n1), 1.0 / ior, ideal);
         vec3 t1 = refract(ldir, n1, 1.0 / ior);
         if (dot(t1, t1) == 0.0) {
             nothing(); // an IOR below 1 reflecting everything at the entry
@@ -121,7 +122,7 @@ void main()
         }
         n2 = normalize(n2);
         vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
-        float f2 = fresnel_dielectric(-dot(t1, m), ior);
+        float f2 = fresnel_of(-dot(t1, m), ior, ideal);
         vec3 t2 = refract(t1, m, ior);
         if (dot(t2, t2) == 0.0) {
             nothing(); // total internal reflection at the exit: the photon is not followed further

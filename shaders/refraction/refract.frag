@@ -17,6 +17,7 @@ layout(binding = REFRACTION_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
 layout(binding = REFRACTION_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
 layout(binding = REFRACTION_UNIT_BACK_DEPTH) uniform sampler2D u_back_depth;
 uniform float u_ior;
+uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror
 uniform vec3 u_color;
@@ -78,7 +79,7 @@ void main()
         return;
     }
     float eta = 1.0 / u_ior;
-    float f1 = fresnel_dielectric(-dot(v, n1), eta);
+    float f1 = fresnel_of(-dot(v, n1), eta, u_ideal);
     vec3 reflected = trace_out(v_world, reflect(v, n1));
     vec3 t1 = refract(v, n1, eta);
     if (dot(t1, t1) == 0.0) { // total internal reflection at the entry (an IOR below 1)
@@ -159,7 +160,7 @@ void main()
     n2 = normalize(n2);
     // leaving: the normal facing against the ray is -n2 (n2 is outward)
     vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
-    float f2 = fresnel_dielectric(-dot(t1, m), u_ior);
+    float f2 = fresnel_of(-dot(t1, m), u_ior, u_ideal);
     vec3 t2 = refract(t1, m, u_ior);
     vec3 exit_dir = dot(t2, t2) > 0.0 ? normalize(t2) : reflect(t1, m); // TIR: the reflected ray (approximation)
     vec3 transmitted = trace_out(p2, exit_dir) * exp(-u_absorption * dT);

@@ -13,6 +13,7 @@ layout(location = 2) out vec4 o_position; // world position, w = 1 on geometry
 uniform int u_material_kind; // 0 diffuse, 1 glass, 2 mirror, 3 water
 uniform vec3 u_color;
 uniform float u_ior;
+uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_object_id;
 
@@ -84,7 +85,7 @@ void main()
         bool entering = dot(n, view) < 0.0;
         vec3 nn = entering ? n : -n;
         float eta = entering ? 1.0 / u_ior : u_ior;
-        float f = fresnel_dielectric(dot(-view, nn), eta);
+        float f = fresnel_of(dot(-view, nn), eta, u_ideal);
         vec3 t = refract_or_reflect(view, nn, eta);
         radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * environment_radiance(t);
     }

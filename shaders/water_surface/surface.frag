@@ -13,6 +13,7 @@ layout(binding = SURFACE_UNIT_SCENE) uniform sampler2D u_scene;
 layout(binding = SURFACE_UNIT_DEPTH) uniform sampler2D u_scene_depth;
 layout(binding = SURFACE_UNIT_POSITION) uniform sampler2D u_scene_position;
 uniform float u_ior;
+uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform float u_depth;
 uniform float u_level;
@@ -45,13 +46,13 @@ void main()
     vec3 color;
     if (dot(v, n) < 0.0) {
         // from above: reflect the sky, refract into the pool
-        float f = fresnel_dielectric(-dot(v, n), 1.0 / u_ior);
+        float f = fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
         vec3 t = refract(v, n, 1.0 / u_ior);
         color = f * environment_radiance(reflect(v, n)) + (1.0 - f) * through_water(v_world, t);
     } else {
         // from below: out into the air, or total internal reflection
         vec3 nn = -n;
-        float f = fresnel_dielectric(-dot(v, nn), u_ior);
+        float f = fresnel_of(-dot(v, nn), u_ior, u_ideal);
         vec3 t = refract(v, nn, u_ior);
         vec3 reflected = through_water(v_world, reflect(v, nn));
         color = dot(t, t) > 0.0 ? (1.0 - f) * environment_radiance(normalize(t)) + f * reflected : reflected;

@@ -13,11 +13,16 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
         static const char *const diffuse_fields[] = {"color", NULL};
-        static const char *const glass_fields[] = {"ior", "absorption", NULL};
+        static const char *const glass_fields[] = {"ior", "absorption", "fresnel", NULL};
         lutil_check_fields(L, 1, fn, kind == MATERIAL_DIFFUSE || kind == MATERIAL_MIRROR ? diffuse_fields : glass_fields);
         lutil_opt_color(L, 1, fn, "color", &m.color);
         lutil_opt_number(L, 1, fn, "ior", &m.ior);
         lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
+        if (kind == MATERIAL_GLASS || kind == MATERIAL_WATER) {
+            bool fresnel = true;
+            lutil_opt_boolean(L, 1, fn, "fresnel", &fresnel);
+            m.ideal = !fresnel;
+        }
     }
     if (!(m.ior > 0.0f) || !isfinite(m.ior))
         return lutil_error(L, "bad argument 'ior' to '%s' (a positive number expected, got %g)", fn, (double)m.ior);
@@ -63,6 +68,12 @@ static int get_absorption(lua_State *L)
     return 1;
 }
 
+static int get_fresnel(lua_State *L)
+{
+    lua_pushboolean(L, !check_material(L)->ideal);
+    return 1;
+}
+
 static int material_tostring(lua_State *L)
 {
     lua_pushfstring(L, "Material(%s)", material_kind_name(check_material(L)->kind));
@@ -73,7 +84,7 @@ void lmaterial_open(lua_State *L)
 {
     static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {NULL, NULL}};
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
-                                       {"absorption", get_absorption}, {NULL, NULL}};
+                                       {"absorption", get_absorption}, {"fresnel", get_fresnel}, {NULL, NULL}};
     lutil_class(L, MATERIAL_MT, "material", meta, NULL, getters, NULL);
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},
                                          {"mirror", material_mirror}, {"water", material_water}, {NULL, NULL}};

@@ -459,7 +459,7 @@ static int object_tostring(lua_State *L)
 static int water_new(lua_State *L)
 {
     luaL_checktype(L, 1, LUA_TTABLE);
-    static const char *const fields[] = {"size", "resolution", "depth", "attenuation", "ior", "damping",
+    static const char *const fields[] = {"size", "resolution", "depth", "attenuation", "ior", "fresnel", "damping",
                                          "wave_speed", "boundary", "position", "visible", "cast_shadows", NULL};
     lutil_check_fields(L, 1, "water", fields);
     float size = 2.0f, depth = 1.0f, ior = 1.33f, damping = 0.0f, speed = 1.0f;
@@ -472,6 +472,8 @@ static int water_new(lua_State *L)
     lutil_opt_number(L, 1, "water", "damping", &damping);
     lutil_opt_number(L, 1, "water", "wave_speed", &speed);
     lutil_opt_color(L, 1, "water", "attenuation", &attenuation);
+    bool fresnel = true;
+    lutil_opt_boolean(L, 1, "water", "fresnel", &fresnel);
     static const char *const boundaries[] = {"reflective", "fixed", NULL};
     bool fixed = lutil_opt_option(L, 1, "water", "boundary", boundaries, 0) == 1;
     if (!(ior > 0))
@@ -503,6 +505,7 @@ static int water_new(lua_State *L)
     o->material.kind = MATERIAL_WATER;
     o->material.ior = ior;
     o->material.absorption = attenuation;
+    o->material.ideal = !fresnel;
     o->material.color = vec3_make(1, 1, 1);
     static const char *const passthrough[] = {"position", "visible", "cast_shadows", NULL};
     lutil_assign_fields(L, obj_idx, 1, passthrough);

@@ -187,6 +187,16 @@ void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, fl
     lua_pop(L, 1);
 }
 
+void lutil_opt_boolean(lua_State *L, int t, const char *fn, const char *field, bool *out)
+{
+    if (lua_getfield(L, t, field) != LUA_TNIL) {
+        if (!lua_isboolean(L, -1))
+            lutil_field_error(L, fn, field, "boolean", -1);
+        *out = lua_toboolean(L, -1);
+    }
+    lua_pop(L, 1);
+}
+
 void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, int *out)
 {
     if (lua_getfield(L, t, field) != LUA_TNIL) {

@@ -30,6 +30,7 @@ void lutil_push_quat(lua_State *L, quat q);
  * absent. Numbers must be finite; integers must fit an int. */
 void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, float *out);
 void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, int *out);
+void lutil_opt_boolean(lua_State *L, int t, const char *fn, const char *field, bool *out);
 void lutil_opt_vec3(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
 void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
 /* An enum field: the index of its string in `options` (NULL-terminated),

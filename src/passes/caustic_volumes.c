@@ -180,6 +180,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_resolution"), gen_res);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ideal"), water->material.ideal ? 1.0f : 0.0f);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_bottom"), bottom);
     gl.DispatchCompute((GLuint)((triangles + 63) / 64), 1, 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -60,6 +60,17 @@ static double fresnel(double cos_i, double eta)
     return fmin(fmax(0.5 * (rs * rs + rp * rp), 0.0), 1.0);
 }
 
+/* The material's reflectance: Fresnel's, or for an ideal interface
+ * (fresnel = false) 0, and 1 where refraction is impossible (the shaders'
+ * fresnel_of). */
+static double fresnel_of(const struct material *m, double cos_i, double eta)
+{
+    if (!m->ideal)
+        return fresnel(cos_i, eta);
+    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
+    return eta * eta * (1.0 - cos_i * cos_i) >= 1.0 ? 1.0 : 0.0;
+}
+
 static dvec3 reflect(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n, 2.0 * dv_dot(d, n))); }
 
 /* Snell refraction of unit d about unit n facing against d; false under TIR. */
@@ -156,7 +167,7 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
     }
     double eta = entering ? 1.0 / m->ior : m->ior;
     double cos_i = -dv_dot(*dir, nn);
-    double f = fresnel(cos_i, eta);
+    double f = fresnel_of(m, cos_i, eta);
     dvec3 t;
     bool can_refract = refract(*dir, nn, eta, &t);
     if (!can_refract || ref_rng_uniform(rng) < f) {

@@ -178,6 +178,25 @@ t.case("flat water: uniform floor irradiance E cos(ti) T exp(-c d / cos(tt)), pe
   end
 end)
 
+t.case("an ideal interface: all the light through the ball's silhouette reaches the floor (pi R^2)", function()
+  -- fresnel = false: no reflection on entry, and inside a sphere the exit
+  -- angle equals the entry's refracted angle, always below the critical
+  -- angle, so every ray leaves downwards after two refractions.
+  local _, stats = t.reference("tests/scenes/ball_lens.lua",
+    { set = { floor = 1.0, view = "down", fresnel = false }, size = { 16, 16 }, photons = 400000, spp = 2 })
+  local want = math.pi * 0.5 * 0.5
+  t.expect(math.abs(stats.caustic_power[1] / want - 1) < 0.005,
+    string.format("caustic power %.6f W, pi R^2 = %.6f W", stats.caustic_power[1], want))
+end)
+
+t.case("fresnel = false: the material says so, and anything but a boolean is refused", function()
+  local c = require "caustica"
+  local ideal = c.material.glass { ior = 1.5, fresnel = false }
+  t.expect(ideal.fresnel == false and c.material.glass {}.fresnel == true, "material.fresnel")
+  t.expect_error(function() c.material.glass { fresnel = "no" } end, "bad argument 'fresnel' to 'glass' (boolean expected")
+  t.expect_error(function() c.material.diffuse { fresnel = false } end, "fresnel")
+end)
+
 for _, kind in ipairs { "point", "spot" } do
   t.case("photons aimed at a " .. kind .. " light's targets: IOR-1.0 water passes I cos / d^2 to the floor", function()
     -- All the floor's light comes by photons (the shadow rays stop at the

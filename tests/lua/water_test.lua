@@ -64,6 +64,29 @@ t.case("caustic volumes: a flat surface gives the closed-form uniform floor irra
   t.expect(s.max <= flat_floor_irradiance(60, 1.33, 0.5, 0.2) / math.pi * 1.02, "uniform: max " .. s.max)
 end)
 
+t.case("an ideal interface (fresnel = false): caustic volumes and the reference give E cos(ti) exp(-c d / cos(tt))", function()
+  -- No reflection at the surface: the floor gets all the light the surface
+  -- intercepts, attenuated on the way down. The GPU and the reference are
+  -- both held to the closed form (2% and 3%), and so to each other.
+  local ti = math.rad(30)
+  local tt = math.asin(math.sin(ti) / 1.33)
+  local gpu = t.render("tests/scenes/flat_water.lua", { set = { fresnel = false } })
+  local ref = t.reference("tests/scenes/flat_water.lua", { set = { fresnel = false }, photons = 200000, spp = 8 })
+  t.expect_finite(ref)
+  for channel, c_abs in ipairs { 0.2, 0.5, 1.0 } do
+    local want = math.cos(ti) * math.exp(-c_abs * 0.5 / math.cos(tt)) / math.pi
+    local g = gpu:stats(4, 4, 60, 60).mean[channel]
+    t.expect(math.abs(g / want - 1) < 0.02, string.format("GPU channel %d: %.6g vs %.6g", channel, g, want))
+    -- the reference's camera also looks through 0.3 of the water: centre pixel
+    local r = select(channel, ref:pixel(32, 32)) / math.exp(-c_abs * 0.3)
+    t.expect(math.abs(r / want - 1) < 0.03, string.format("reference channel %d: %.6g vs %.6g", channel, r, want))
+  end
+  -- and with Fresnel the floor is darker by T(30 deg): the flag is honoured
+  local with = t.render("tests/scenes/flat_water.lua")
+  local ratio = with:stats(4, 4, 60, 60).mean[1] / gpu:stats(4, 4, 60, 60).mean[1]
+  t.expect(math.abs(ratio - (1 - fresnel(math.cos(ti), 1 / 1.33))) < 0.005, "Fresnel / ideal = " .. ratio)
+end)
+
 t.case("caustic volumes: focusing waves stay finite and conserve the flux through the surface (5%)", function()
   -- Ridges of wavelength 0.364 and amplitude 0.019 focus the light about
   -- 0.7 below the surface, so refracted rays cross before the floor 1.5

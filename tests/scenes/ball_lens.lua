@@ -1,6 +1,6 @@
 -- A glass ball lens over a floor under a directional light (Issue 3's
 -- closed-form checks): --set ior=, floor=<height of the floor below the
--- ball's centre>, hide=true, light=directional|point, elevation=degrees.
+-- ball's centre>, hide=true, elevation=degrees, fresnel=false (an ideal interface).
 local c = require "caustica"
 local ior = c.param("ior", 1.5)
 local radius = c.param("radius", 0.5)
@@ -24,7 +24,7 @@ local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(
 scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, position = {0, -floor_depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
-                                  material = c.material.glass { ior = ior } })
+                                  material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 ball.visible = not hide
 if aperture > 0 then
   -- Four slabs around a square hole: only paraxial rays reach the ball.

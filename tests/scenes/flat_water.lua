@@ -1,6 +1,7 @@
 -- A flat water surface over a floor under a directional light, seen by a
 -- camera under water looking straight down (Issue 3's closed form):
--- --set depth=, elevation=degrees, ior=, camera_height=, light=directional|point|spot
+-- --set depth=, elevation=degrees, ior=, camera_height=, light=directional|point|spot,
+-- fresnel=false (an ideal interface)
 local c = require "caustica"
 local depth = c.param("depth", 0.5)
 local elevation = c.param("elevation", 60)
@@ -28,7 +29,8 @@ scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -depth, 0}
 local absorb = c.param("absorb", true)    -- false: clear water (what the bench compares: the GPU shading
                                           -- here does not absorb along the under-water view path)
 local water = scene:add(c.water { size = 3, resolution = c.param("grid", 9), depth = depth, ior = ior,
-                                  attenuation = absorb and {0.2, 0.5, 1.0} or {0, 0, 0} })
+                                  attenuation = absorb and {0.2, 0.5, 1.0} or {0, 0, 0},
+                                  fresnel = c.param("fresnel", true) })
 local wave = c.param("wave", 0.0)          -- amplitude of a sinusoidal surface (0: flat)
 local wavelength = c.param("wavelength", 0.75)
 local shape = c.param("shape", "waves")     -- "waves" (2D), "ridges" (along x only), "spikes" (every other vertex)
