@@ -9,7 +9,7 @@ layout(location = 1) out vec4 o_normal;
 void main()
 {
     vec3 n = normalize(v_normal);
-    if (dot(n, v_world - u_camera_pos.xyz) > 0.0)
+    if (dot(n, view_direction(v_world)) > 0.0)
         n = -n;
     o_position = vec4(v_world, 1.0);
     o_normal = vec4(n, 1.0);

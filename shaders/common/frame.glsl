@@ -25,6 +25,24 @@ layout(binding = UNIT_ENVIRONMENT) uniform samplerCube u_environment;
 
 const float PI = 3.14159265358979;
 
+// An orthographic projection has no perspective divide (its [2][3] is 0,
+// a perspective one's -1): c.camera { ortho = { width = W } }.
+bool camera_is_ortho() { return u_proj[2][3] == 0.0; }
+vec3 camera_forward() { return -vec3(u_view[0][2], u_view[1][2], u_view[2][2]); }
+
+// The unit direction in which the camera sees world point p: from the eye,
+// or the one direction every ray of an orthographic camera has.
+vec3 view_direction(vec3 p) { return camera_is_ortho() ? camera_forward() : normalize(p - u_camera_pos.xyz); }
+
+// Eye-space distance (along the view axis) of a window depth d in [0, 1].
+float view_depth(float d)
+{
+    float z = d * 2.0 - 1.0;
+    if (camera_is_ortho())
+        return (u_proj[3][2] - z) / u_proj[2][2]; // z_ndc = P22 z_eye + P32
+    return u_proj[3][2] / (z + u_proj[2][2]);
+}
+
 // Radiance arriving from direction `dir` (world space) from far away.
 vec3 environment_radiance(vec3 dir)
 {

@@ -45,12 +45,9 @@ vec3 project(vec3 p)
     return c.xyz / max(c.w, 1e-6) * 0.5 + 0.5;
 }
 
-// window depth at uv -> eye-space distance along -z (positive)
-float linear_depth(float d)
-{
-    float z = d * 2.0 - 1.0;
-    return u_proj[3][2] / (z + u_proj[2][2]); // for a standard perspective matrix: -z_eye
-}
+// window depth at uv -> eye-space distance along -z (positive), for a
+// perspective or an orthographic camera
+float linear_depth(float d) { return view_depth(d); }
 
 float eye_depth(vec3 p) { return -(u_view * vec4(p, 1.0)).z; }
 
@@ -71,7 +68,7 @@ vec3 unproject(vec2 uv, float d)
 void main()
 {
     vec3 n1 = normalize(v_normal);
-    vec3 v = normalize(v_world - u_camera_pos.xyz);
+    vec3 v = view_direction(v_world);
     if (dot(v, n1) > 0.0)
         n1 = -n1;
     if (u_material_kind == 2) { // a mirror: reflection alone, of nearby objects too

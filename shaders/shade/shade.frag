@@ -62,7 +62,7 @@ float visibility(int light, vec3 p, vec3 n, vec3 to_light)
 void main()
 {
     vec3 n = normalize(v_normal);
-    vec3 view = normalize(v_world - u_camera_pos.xyz);
+    vec3 view = view_direction(v_world);
     if (dot(n, view) > 0.0 && u_material_kind == 0)
         n = -n; // two-sided diffuse surfaces
     vec3 radiance;

@@ -42,7 +42,7 @@ void main()
     if (gl_FragCoord.z > scene_depth)
         discard;
     vec3 n = normalize(v_normal);
-    vec3 v = normalize(v_world - u_camera_pos.xyz);
+    vec3 v = view_direction(v_world);
     vec3 color;
     if (dot(v, n) < 0.0) {
         // from above: reflect the sky, refract into the pool

@@ -66,7 +66,12 @@ bool frame_build(struct frame *f, const struct scene *scene, int width, int heig
     f->view = mat4_look_at(c->eye, c->target, c->up);
     float znear = c->znear > 1e-4f ? c->znear : 1e-4f;
     float zfar = c->zfar > znear * 2 ? c->zfar : znear * 2;
-    f->proj = mat4_perspective(c->fov, (float)width / (float)height, znear, zfar);
+    if (c->ortho_width > 0.0f) {
+        float hw = 0.5f * c->ortho_width, hh = hw * (float)height / (float)width;
+        f->proj = mat4_ortho(-hw, hw, -hh, hh, znear, zfar);
+    } else {
+        f->proj = mat4_perspective(c->fov, (float)width / (float)height, znear, zfar);
+    }
     f->view_proj = mat4_mul(f->proj, f->view);
     mat4_inverse(f->view_proj, &f->inv_view_proj);
     expand_lights(f, scene);

@@ -90,6 +90,43 @@ static int set_distance(lua_State *L, float *field, const char *name)
 static int set_near(lua_State *L) { return set_distance(L, &check_camera(L)->znear, "near"); }
 static int set_far(lua_State *L) { return set_distance(L, &check_camera(L)->zfar, "far"); }
 
+/* ortho = { width = W } makes the camera orthographic, ortho = false
+ * perspective again. */
+static int set_ortho(lua_State *L)
+{
+    struct camera *c = check_camera(L);
+    struct camera before = *c;
+    float width = 0.0f;
+    if (lua_istable(L, 3)) {
+        static const char *const fields[] = {"width", NULL};
+        lutil_check_fields(L, 3, "camera.ortho", fields);
+        if (lua_getfield(L, 3, "width") == LUA_TNIL)
+            lutil_error(L, "bad argument 'ortho' to 'camera' (a table { width = W } expected, and it has no width)");
+        lua_pop(L, 1);
+        lutil_opt_number(L, 3, "camera.ortho", "width", &width);
+        if (!(width > 0.0f) || !isfinite(width))
+            lutil_error(L, "bad argument 'width' to 'camera.ortho' (a positive width expected, got %g)", (double)width);
+    } else if (!(lua_isboolean(L, 3) && !lua_toboolean(L, 3))) {
+        return luaL_typeerror(L, 3, "table { width = W } or false");
+    }
+    c->ortho_width = width;
+    camera_changed(L, c, &before);
+    return 0;
+}
+
+static int get_ortho(lua_State *L)
+{
+    const struct camera *c = check_camera(L);
+    if (!(c->ortho_width > 0.0f)) {
+        lua_pushboolean(L, 0);
+        return 1;
+    }
+    lua_createtable(L, 0, 1);
+    lua_pushnumber(L, c->ortho_width);
+    lua_setfield(L, -2, "width");
+    return 1;
+}
+
 static int get_eye(lua_State *L)
 {
     lutil_push_vec3(L, check_camera(L)->eye);
@@ -126,7 +163,7 @@ static int get_far(lua_State *L)
     return 1;
 }
 
-static const char *const camera_fields[] = {"eye", "target", "up", "fov", "near", "far", NULL};
+static const char *const camera_fields[] = {"eye", "target", "up", "fov", "near", "far", "ortho", NULL};
 
 static int camera_new(lua_State *L)
 {
@@ -397,9 +434,11 @@ static int quat_mul_l(lua_State *L)
 int luaopen_caustica_scene(lua_State *L)
 {
     static const luaL_Reg camera_getters[] = {{"eye", get_eye}, {"target", get_target}, {"up", get_up},
-                                              {"fov", get_fov}, {"near", get_near}, {"far", get_far}, {NULL, NULL}};
+                                              {"fov", get_fov}, {"near", get_near}, {"far", get_far},
+                                              {"ortho", get_ortho}, {NULL, NULL}};
     static const luaL_Reg camera_setters[] = {{"eye", set_eye}, {"target", set_target}, {"up", set_up},
-                                              {"fov", set_fov}, {"near", set_near}, {"far", set_far}, {NULL, NULL}};
+                                              {"fov", set_fov}, {"near", set_near}, {"far", set_far},
+                                              {"ortho", set_ortho}, {NULL, NULL}};
     lutil_class(L, CAMERA_MT, "camera", NULL, NULL, camera_getters, camera_setters);
     static const luaL_Reg environment_meta[] = {{"__gc", environment_gc}, {NULL, NULL}};
     lutil_class(L, ENVIRONMENT_MT, "environment", environment_meta, NULL, NULL, NULL);

@@ -136,6 +136,8 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
     }
     rs->inv_view_proj = f->inv_view_proj;
     rs->eye = from_vec3(scene->camera.eye);
+    rs->ortho = scene->camera.ortho_width > 0.0f;
+    rs->znear = scene->camera.znear;
     rs->environment = scene->environment;
     rs->background = from_vec3(scene->background);
     rs->ambient = from_vec3(scene->ambient);

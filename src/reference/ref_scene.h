@@ -53,6 +53,8 @@ struct ref_scene {
     int light_count;
     mat4 inv_view_proj;
     dvec3 eye;
+    bool ortho;        /* an orthographic camera: parallel rays from the near plane */
+    double znear;
     const struct environment *environment; /* borrowed */
     dvec3 background, ambient;
     dvec3 bounds_lo, bounds_hi;

@@ -313,6 +313,7 @@ struct job {
     const struct media *camera_media;
     const struct ref_medium *medium;
     double pixel_angle; /* radians a pixel spans at the image centre */
+    double pixel_size;  /* an orthographic camera's pixel, in scene units */
     /* volume photons */
     struct volume_photons *volume_chunks;
     struct volume_grid *volume_grid;
@@ -346,7 +347,9 @@ static void trace_eye(struct job *j, int x, int y)
     struct media media = *j->camera_media;
     /* The ray starts on the near plane (what the rasterizer clips), but the
      * camera sits at the eye: the medium around it absorbs from there. */
-    dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye))));
+    double from_eye = rs->ortho ? rs->znear /* from the eye's plane */
+                                : sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye)));
+    dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), from_eye);
     px->vp.valid = false;
     px->segment_count = 0;
     px->samples++;
@@ -394,7 +397,7 @@ static void trace_eye(struct job *j, int x, int y)
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */
                 dvec3 eye_to = dv_sub(h.position, rs->eye);
-                double footprint = sqrt(dv_dot(eye_to, eye_to)) * j->pixel_angle;
+                double footprint = rs->ortho ? j->pixel_size : sqrt(dv_dot(eye_to, eye_to)) * j->pixel_angle;
                 px->radius = j->o->initial_radius > 0 ? j->o->initial_radius : fmax(RADIUS_PIXELS * footprint, 1e-6);
             }
             px->vp.valid = true;
@@ -1080,6 +1083,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     }
     double fov = (double)scene->camera.fov * MATH_PI / 180.0;
     double pixel_angle = 2.0 * tan(0.5 * fov) / o->height;
+    double pixel_size = (double)scene->camera.ortho_width / (double)o->width;
     int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
     if (threads < 1)
         threads = 1;
@@ -1117,7 +1121,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
     budget->tty = o->progress && isatty(STDERR_FILENO);
     struct job job = {.rs = &rs, .o = o, .pixels = pixels, .camera_media = &camera_media, .medium = &medium,
-                      .volume_chunks = volume_chunks, .pixel_angle = pixel_angle, .chunks = chunks,
+                      .volume_chunks = volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size, .chunks = chunks,
                       .budget = budget, .emitters = emitters, .aims = aims};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
         caustics = false;

@@ -134,6 +134,8 @@ const char *light_kind_name(enum light_kind kind);
 struct camera {
     vec3 eye, target, up;
     float fov, znear, zfar;
+    float ortho_width;  /* > 0: an orthographic camera this wide (scene units; the height follows the
+                         * image's aspect), looking along target - eye; 0: perspective with `fov` */
     uint64_t version;
 };
 
