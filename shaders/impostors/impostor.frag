@@ -11,6 +11,7 @@ in vec3 v_normal;
 uniform vec3 u_impostor_center;
 uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
+uniform vec3 u_emission; // a diffuse surface's own radiance
 uniform int u_material_kind;
 uniform float u_ior;
 uniform float u_ideal;
@@ -38,5 +39,5 @@ void main()
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
         return;
     }
-    o_color = vec4(u_color / PI * e + u_color * u_ambient.rgb, 1.0);
+    o_color = vec4(u_color / PI * e + u_color * u_ambient.rgb + u_emission, 1.0);
 }

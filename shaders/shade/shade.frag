@@ -12,6 +12,7 @@ layout(location = 2) out vec4 o_position; // world position, w = 1 on geometry
 
 uniform int u_material_kind; // 0 diffuse, 1 glass, 2 mirror, 3 water
 uniform vec3 u_color;
+uniform vec3 u_emission; // a diffuse surface's own radiance (seen; it lights nothing)
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;
@@ -77,7 +78,7 @@ void main()
         }
         for (int k = 0; k < u_has_caustics; k++)
             e += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
-        radiance = u_color / PI * e + u_color * u_ambient.rgb;
+        radiance = u_color / PI * e + u_color * u_ambient.rgb + u_emission;
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {

@@ -185,6 +185,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_color = gl_program_uniform(program, "u_color");
     GLint loc_ior = gl_program_uniform(program, "u_ior");
     GLint loc_ideal = gl_program_uniform(program, "u_ideal");
+    GLint loc_emission = gl_program_uniform(program, "u_emission");
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
     GLint loc_id = gl_program_uniform(program, "u_object_id");
     gl.UseProgram(program->id);
@@ -208,6 +209,8 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
         gl.ProgramUniform1f(program->id, loc_ideal, o->material.ideal ? 1.0f : 0.0f);
+        gl.ProgramUniform3f(program->id, loc_emission, o->material.emission.x, o->material.emission.y,
+                            o->material.emission.z);
         gl.ProgramUniform3f(program->id, loc_abs, o->material.absorption.x, o->material.absorption.y,
                             o->material.absorption.z);
         gl.ProgramUniform1i(program->id, loc_id, o->id);

@@ -24,6 +24,7 @@ struct gltf_material {
     float transmission;         /* KHR_materials_transmission */
     float attenuation_color[3]; /* KHR_materials_volume */
     float attenuation_distance; /* 0 = infinite (no absorption) */
+    float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
 };
 
 struct gltf_mesh {

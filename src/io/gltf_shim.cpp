@@ -277,6 +277,12 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
                 m.attenuation_color[i] = (float)c.Get(i).GetNumberAsDouble();
         }
     }
+    float strength = 1.0f;
+    ext = mat.extensions.find("KHR_materials_emissive_strength");
+    if (ext != mat.extensions.end() && ext->second.Has("emissiveStrength"))
+        strength = (float)ext->second.Get("emissiveStrength").GetNumberAsDouble();
+    for (int c = 0; c < 3; c++)
+        m.emission[c] = (mat.emissiveFactor.size() == 3 ? (float)mat.emissiveFactor[(size_t)c] : 0.0f) * strength;
     m.glass = m.transmission > 0.0f;
     // The rules c.material.glass applies (finite, IOR > 0, colours in
     // [0, 1]): a file must not slip past them into NaN or negative absorption.
@@ -286,6 +292,8 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             throw Fail{name + ": baseColorFactor must be finite and >= 0"};
         if (!std::isfinite(m.attenuation_color[c]) || m.attenuation_color[c] < 0.0f || m.attenuation_color[c] > 1.0f)
             throw Fail{name + ": KHR_materials_volume attenuationColor must be in [0, 1]"};
+        if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
+            throw Fail{name + ": emissiveFactor x KHR_materials_emissive_strength must be finite and >= 0"};
     }
     if (!std::isfinite(m.ior) || !(m.ior > 0.0f))
         throw Fail{name + ": KHR_materials_ior ior must be a positive finite number, got " + std::to_string(m.ior)};

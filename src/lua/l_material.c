@@ -1,21 +1,52 @@
 /* c.material.diffuse / glass / mirror / water: materials as plain values
  * (an object keeps a copy). */
 #include <math.h>
+#include <string.h>
 
 #include "lua/l_scene.h"
 #include "lua/l_util.h"
 
+/* emission = {r, g, b}: a radiance, so any finite value >= 0 (above 1 too). */
+static void opt_emission(lua_State *L, int t, const char *fn, vec3 *out)
+{
+    lutil_opt_vec3(L, t, fn, "emission", out);
+    if (!(out->x >= 0 && out->y >= 0 && out->z >= 0) || !isfinite(out->x + out->y + out->z))
+        lutil_error(L, "bad argument 'emission' to '%s' (a radiance >= 0 per channel expected, got {%g, %g, %g})", fn,
+                    (double)out->x, (double)out->y, (double)out->z);
+}
+
 static int push_material(lua_State *L, enum material_kind kind, const char *fn)
 {
+    bool emissive = strcmp(fn, "emissive") == 0;
     struct material m = {.kind = kind, .color = {0.8f, 0.8f, 0.8f}, .ior = kind == MATERIAL_WATER ? 1.33f : 1.5f};
     if (kind == MATERIAL_MIRROR)
         m.color = vec3_make(1, 1, 1);
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
-        static const char *const diffuse_fields[] = {"color", NULL};
+        static const char *const diffuse_fields[] = {"color", "emission", NULL};
+        static const char *const mirror_fields[] = {"color", NULL};
+        static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", NULL};
-        lutil_check_fields(L, 1, fn, kind == MATERIAL_DIFFUSE || kind == MATERIAL_MIRROR ? diffuse_fields : glass_fields);
-        lutil_opt_color(L, 1, fn, "color", &m.color);
+        lutil_check_fields(L, 1, fn, emissive ? emissive_fields : kind == MATERIAL_DIFFUSE ? diffuse_fields
+                                     : kind == MATERIAL_MIRROR ? mirror_fields : glass_fields);
+        if (emissive) {
+            /* c.material.emissive { color, strength = 1, albedo = 0 }: a
+             * diffuse surface that emits color x strength */
+            float strength = 1.0f;
+            vec3 color = vec3_make(1, 1, 1);
+            lutil_opt_color(L, 1, fn, "color", &color);
+            lutil_opt_number(L, 1, fn, "strength", &strength);
+            if (!(strength >= 0.0f) || !isfinite(strength))
+                return lutil_error(L, "bad argument 'strength' to '%s' (a number >= 0 expected, got %g)", fn,
+                                   (double)strength);
+            m.emission = vec3_scale(color, strength);
+            m.color = vec3_make(0, 0, 0);
+            lutil_opt_color(L, 1, fn, "albedo", &m.color);
+        } else {
+            lutil_opt_color(L, 1, fn, "color", &m.color);
+        }
+        if (kind == MATERIAL_DIFFUSE && !emissive)
+            opt_emission(L, 1, fn, &m.emission);
         lutil_opt_number(L, 1, fn, "ior", &m.ior);
         lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
         if (kind == MATERIAL_GLASS || kind == MATERIAL_WATER) {
@@ -39,6 +70,7 @@ void lmaterial_push(lua_State *L, const struct material *m)
 
 static int material_diffuse(lua_State *L) { return push_material(L, MATERIAL_DIFFUSE, "diffuse"); }
 static int material_glass(lua_State *L) { return push_material(L, MATERIAL_GLASS, "glass"); }
+static int material_emissive(lua_State *L) { return push_material(L, MATERIAL_DIFFUSE, "emissive"); }
 static int material_mirror(lua_State *L) { return push_material(L, MATERIAL_MIRROR, "mirror"); }
 static int material_water(lua_State *L) { return push_material(L, MATERIAL_WATER, "water"); }
 
@@ -68,6 +100,12 @@ static int get_absorption(lua_State *L)
     return 1;
 }
 
+static int get_emission(lua_State *L)
+{
+    lutil_push_vec3(L, check_material(L)->emission);
+    return 1;
+}
+
 static int get_fresnel(lua_State *L)
 {
     lua_pushboolean(L, !check_material(L)->ideal);
@@ -84,10 +122,12 @@ void lmaterial_open(lua_State *L)
 {
     static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {NULL, NULL}};
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
-                                       {"absorption", get_absorption}, {"fresnel", get_fresnel}, {NULL, NULL}};
+                                       {"absorption", get_absorption}, {"fresnel", get_fresnel},
+                                       {"emission", get_emission}, {NULL, NULL}};
     lutil_class(L, MATERIAL_MT, "material", meta, NULL, getters, NULL);
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},
-                                         {"mirror", material_mirror}, {"water", material_water}, {NULL, NULL}};
+                                         {"mirror", material_mirror}, {"water", material_water},
+                                         {"emissive", material_emissive}, {NULL, NULL}};
     luaL_newlib(L, materials);
     lua_setfield(L, -2, "material");
 }

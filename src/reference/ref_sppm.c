@@ -393,6 +393,8 @@ static void trace_eye(struct job *j, int x, int y)
             dvec3 e = direct_light(rs, rm, &rng, h.position, n);
             dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
             px->direct = dv_add(px->direct, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
+            /* its own radiance, seen along the path (emissive surfaces light nothing: no interreflection) */
+            px->direct = dv_add(px->direct, dv_mul(beta, dv(m->emission.x, m->emission.y, m->emission.z)));
             if (px->radius <= 0.0) {
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */

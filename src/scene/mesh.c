@@ -244,6 +244,8 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
         m->material.color = vec3_make(g.material.base_color[0], g.material.base_color[1], g.material.base_color[2]);
         m->material.ior = g.material.ior; /* validated by the loader */
         m->material.kind = g.material.glass ? MATERIAL_GLASS : MATERIAL_DIFFUSE;
+        if (!g.material.glass)
+            m->material.emission = vec3_make(g.material.emission[0], g.material.emission[1], g.material.emission[2]);
         if (g.material.glass && g.material.attenuation_distance > 0.0f) {
             float *c = g.material.attenuation_color;
             float d = g.material.attenuation_distance;

@@ -26,6 +26,7 @@ struct material {
     vec3 color;      /* diffuse albedo, or the tint of a mirror */
     float ior;       /* glass, water */
     vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
+    vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
 };
 
