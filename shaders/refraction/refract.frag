@@ -12,6 +12,8 @@ in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
 layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_tir;  // r: total internal reflections at the two interfaces
+layout(location = 2) out vec4 o_exit; // rgb: the direction the path leaves in, a = 1
 layout(binding = REFRACTION_UNIT_FRONT_NORMAL) uniform sampler2D u_front_normal;
 layout(binding = REFRACTION_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
 layout(binding = REFRACTION_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
@@ -71,6 +73,8 @@ void main()
     vec3 v = view_direction(v_world);
     if (dot(v, n1) > 0.0)
         n1 = -n1;
+    o_tir = vec4(0.0);
+    o_exit = vec4(reflect(v, n1), 1.0);
     if (u_material_kind == 2) { // a mirror: reflection alone, of nearby objects too
         o_color = vec4(u_color * trace_out(v_world, reflect(v, n1)), 1.0);
         return;
@@ -80,6 +84,7 @@ void main()
     vec3 reflected = trace_out(v_world, reflect(v, n1));
     vec3 t1 = refract(v, n1, eta);
     if (dot(t1, t1) == 0.0) { // total internal reflection at the entry (an IOR below 1)
+        o_tir = vec4(1.0, 0.0, 0.0, 1.0);
         o_color = vec4(reflected, 1.0);
         return;
     }
@@ -160,6 +165,8 @@ void main()
     float f2 = fresnel_of(-dot(t1, m), u_ior, u_ideal);
     vec3 t2 = refract(t1, m, u_ior);
     vec3 exit_dir = dot(t2, t2) > 0.0 ? normalize(t2) : reflect(t1, m); // TIR: the reflected ray (approximation)
+    o_tir = vec4(dot(t2, t2) > 0.0 ? 0.0 : 1.0, 0.0, 0.0, 1.0);
+    o_exit = vec4(exit_dir, 1.0);
     vec3 transmitted = trace_out(p2, exit_dir) * exp(-u_absorption * dT);
     if (dot(t2, t2) > 0.0)
         transmitted *= (1.0 - f2);

@@ -15,7 +15,8 @@ static const char usage_text[] =
     "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
     "  caustica reference SCENE.lua -o OUT.pfm|OUT.hdr [--frame N] [--size WxH] [--photons N] [--spp N]\n"
-    "                     [--time-budget S] [--report] [--seed S] [--radius R] [--set k=v ...]\n"
+    "                     [--time-budget S] [--report] [--aov tir|exit] [--seed S] [--radius R]\n"
+    "                     [--set k=v ...]\n"
     "  caustica compare A B [--mask M]\n"
     "  caustica convert IN.pfm|IN.hdr OUT.png [--exposure E]\n"
     "  caustica help [passes | PASS] [--markdown]\n"
@@ -155,6 +156,14 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
                 cli->time_budget = v;
             else
                 cli->radius = v;
+        } else if (strcmp(a, "--aov") == 0) {
+            NEED_VALUE();
+            if (strcmp(next, "tir") == 0)
+                cli->aov = 1;
+            else if (strcmp(next, "exit") == 0)
+                cli->aov = 2;
+            else
+                return usage_error("--aov needs tir or exit, got '%s'", next);
         } else if (strcmp(a, "--report") == 0) {
             cli->report = true;
         } else if (strcmp(a, "--seed") == 0) {

@@ -24,6 +24,7 @@ struct cli {
     const char *mask;
     bool timings, update_refs, no_render;
     bool report;             /* --report: the reference's noise estimate per iteration */
+    int aov;                 /* --aov tir|exit: enum ref_aov (reference) */
     const char *filter;
     long photons;            /* --photons (reference) */
     int spp;                 /* --spp: SPPM iterations (reference) */

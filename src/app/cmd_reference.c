@@ -45,6 +45,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.initial_radius = cli->radius;
     o.progress = true;
     o.report = cli->report;
+    o.aov = cli->aov;
     struct image img = {0};
     struct ref_stats st;
     bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);

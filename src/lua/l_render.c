@@ -107,7 +107,7 @@ int limage_render(lua_State *L)
     return 2;
 }
 
-/* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget})
+/* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget, aov = "tir" | "exit"})
  * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
 int limage_reference(lua_State *L)
 {
@@ -130,7 +130,11 @@ int limage_reference(lua_State *L)
             ro.time_budget = luaL_checknumber(L, -1);
         if (lua_getfield(L, 2, "threads") != LUA_TNIL)
             ro.threads = (int)luaL_checkinteger(L, -1);
-        lua_pop(L, 6);
+        if (lua_getfield(L, 2, "aov") != LUA_TNIL) {
+            static const char *const aovs[] = {"none", "tir", "exit", NULL};
+            ro.aov = (enum ref_aov)luaL_checkoption(L, -1, NULL, aovs);
+        }
+        lua_pop(L, 7);
     }
     if (ro.photons < 0 || ro.iterations < 1)
         return luaL_error(L, "reference: photons must be >= 0 and spp >= 1");

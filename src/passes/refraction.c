@@ -84,7 +84,14 @@ static const struct pass_param_desc params[] = {
 static bool refraction_declare(struct pass *p, struct error *err)
 {
     /* color and depth are declared from the descriptor (pass_declare). */
-    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+    /* tir: r = total internal reflections the pixel's path met at its two
+     * interfaces (0, 1 or 2; 0 off the refractors); exit: rgb = the
+     * direction the path leaves the refractor in, a = 1 on a refractor.
+     * Debug outputs to hold against theory and against `reference --aov
+     * tir`, which traces the same two interfaces exactly. */
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "tir", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "exit", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }
 
 static bool refraction_create(struct pass *p, struct renderer *r, struct error *err)
@@ -233,10 +240,16 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
 
     /* Rendering pass: the input image, then the refractors' visible front
      * surfaces refracting the environment (depth-tested against the input). */
-    const struct gl_texture *oc[1] = {&f->outputs[0]->texture};
-    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, &in_depth->texture, -1, err))
+    const struct gl_texture *oc[3] = {&f->outputs[0]->texture, &f->outputs[1]->texture, &f->outputs[2]->texture};
+    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 3, &in_depth->texture, -1, err))
         return false;
+    gl_texture_clear(&f->outputs[1]->texture, zero);
+    gl_texture_clear(&f->outputs[2]->texture, zero);
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    /* the copy of the input writes the colour only; the refractors all three */
+    static const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    static const GLenum all_outputs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, color_only);
     struct gl_program *copy;
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
         return false;
@@ -247,6 +260,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;
+    gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, all_outputs);
     gl.BindTextureUnit(REFRACTION_UNIT_FRONT_NORMAL, s->front_normal.id);
     gl.BindTextureUnit(REFRACTION_UNIT_BACK_NORMAL, s->back_normal.id);
     gl.BindTextureUnit(REFRACTION_UNIT_FRONT_DEPTH, s->front_depth.id);

@@ -1052,6 +1052,13 @@ static double noise_estimate(const struct pixel *pixels, size_t npix, int iterat
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                       struct image *caustic_out, struct ref_stats *stats, struct error *err)
 {
+    if (o->aov != REF_AOV_NONE) {
+        if (caustic_out)
+            memset(caustic_out, 0, sizeof *caustic_out);
+        if (stats)
+            memset(stats, 0, sizeof *stats);
+        return ref_render_aov(r, scene, o, out, err);
+    }
     double start = log_now();
     struct ref_scene rs;
     if (!ref_scene_build(&rs, r, scene, err))

@@ -13,6 +13,13 @@
 struct renderer;
 struct scene;
 
+/* What `reference` computes: the image, or a debug output traced exactly
+ * through the same two interfaces the refraction pass models
+ * (src/reference/ref_aov.c): `tir` (r = total internal reflections met, 0
+ * to 2; a = 1 on a refractor or mirror) or `exit` (rgb = the direction the
+ * path leaves in), to hold the pass's outputs of the same names against. */
+enum ref_aov { REF_AOV_NONE, REF_AOV_TIR, REF_AOV_EXIT };
+
 struct ref_options {
     int width, height;
     long photons;        /* photons emitted per iteration */
@@ -24,6 +31,7 @@ struct ref_options {
     bool progress;       /* print progress with time left on stderr */
     bool report;         /* print the noise estimate after every iteration on stderr */
     int threads;         /* 0: all cores */
+    enum ref_aov aov;    /* REF_AOV_NONE: the image */
 };
 
 struct ref_stats {
@@ -44,6 +52,9 @@ void ref_options_default(struct ref_options *o);
  * deformed vertex buffers are read back from the GPU), also returning the
  * caustic (light -> specular+ -> diffuse) part of the image on its own
  * (`caustic` may be NULL). */
+/* The debug output `aov` of the frame (ref_aov.c). */
+bool ref_render_aov(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
+                    struct error *err);
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
                       struct image *caustic, struct ref_stats *stats, struct error *err);
 
