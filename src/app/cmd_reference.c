@@ -49,7 +49,10 @@ int cmd_reference(struct app *app, struct cli *cli)
     struct image img = {0};
     struct ref_stats st;
     bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);
-    if (ok)
+    if (ok && o.aov != REF_AOV_NONE)
+        printf("%s: the %s output (two interfaces, traced exactly) -> %s\n", s->script,
+               o.aov == REF_AOV_TIR ? "tir" : "exit", cli->output);
+    else if (ok)
         printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s, noise ~%.2g%% -> %s\n", s->script,
                st.iterations, st.photons, st.caustic_photons, st.seconds, 100.0 * st.noise, cli->output);
     image_destroy(&img);
