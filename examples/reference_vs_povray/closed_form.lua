@@ -13,14 +13,7 @@
 -- lies.
 local M = {}
 
-local function fresnel(cos_i, eta)
-  local sin2_t = eta * eta * (1 - cos_i * cos_i)
-  if sin2_t >= 1 then return 1 end
-  local cos_t = math.sqrt(1 - sin2_t)
-  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
-  return 0.5 * (rs * rs + rp * rp)
-end
+local fresnel = require("caustica.test").fresnel
 M.fresnel = fresnel
 
 -- 2D refraction of unit (dx, dy) about unit (nx, ny) facing against it.
@@ -148,17 +141,13 @@ local function camera_blocks(size, block, cx, half, irradiance_at)
   return out
 end
 
--- The ball lens: R, n, floor `depth` below the centre, vertical sun of
--- irradiance 1; camera `height` above the floor with vertical fov `fov`.
-function M.ball_lens(p)
-  local R, n, depth = p.radius, p.ior, p.depth
-  local half = p.height * math.tan(math.rad(p.fov / 2))
-  local rmax = half * math.sqrt(2) * 1.01
-  local hist = histogram(0, rmax, p.bins or 40000)
-  local solid = function(px, py, dx, dy, inside)
-    -- the circle of radius R at the origin: nearest hit ahead
-    local b = px * dx + py * dy
-    local c = px * px + py * py - R * R
+-- A circle of radius R centred at (0, cy), IOR n, as a solid for branches():
+-- the nearest hit ahead, from outside or from inside.
+local function circle(R, cy, n)
+  return function(px, py, dx, dy, inside)
+    local ox, oy = px, py - cy
+    local b = ox * dx + oy * dy
+    local c = ox * ox + oy * oy - R * R
     local disc = b * b - c
     if disc < 0 then return nil end
     local s = math.sqrt(disc)
@@ -167,9 +156,18 @@ function M.ball_lens(p)
       t = -b + s
       if t <= 1e-9 then return nil end
     end
-    local hx, hy = px + t * dx, py + t * dy
-    return { t = t, nx = hx / R, ny = hy / R, ior = n, face = "" }
+    return { t = t, nx = (ox + t * dx) / R, ny = (oy + t * dy) / R, ior = n, face = "" }
   end
+end
+
+-- The ball lens: R, n, floor `depth` below the centre, vertical sun of
+-- irradiance 1; camera `height` above the floor with vertical fov `fov`.
+function M.ball_lens(p)
+  local R, n, depth = p.radius, p.ior, p.depth
+  local half = p.height * math.tan(math.rad(p.fov / 2))
+  local rmax = half * math.sqrt(2) * 1.01
+  local hist = histogram(0, rmax, p.bins or 40000)
+  local solid = circle(R, 0, n)
   local samples = p.samples or 400000
   trace_family(solid, samples, function(i)
     local b = R * i / samples
@@ -275,20 +273,7 @@ function M.fog_lens(p)
     for j = 1, nr do h[j] = 0 end
     slices[k] = h
   end
-  local solid = function(px, py, dx, dy, inside)
-    local ox, oy = px, py - yc
-    local b = ox * dx + oy * dy
-    local c = ox * ox + oy * oy - R * R
-    local disc = b * b - c
-    if disc < 0 then return nil end
-    local s = math.sqrt(disc)
-    local t = inside and (-b + s) or (-b - s)
-    if t <= 1e-9 then
-      t = -b + s
-      if t <= 1e-9 then return nil end
-    end
-    return { t = t, nx = (ox + t * dx) / R, ny = (oy + t * dy) / R, ior = n, face = "" }
-  end
+  local solid = circle(R, yc, n)
   local function deposit(h, a, b, w)
     if a > b then a, b = b, a end
     if a >= rmax then return end

@@ -5,27 +5,8 @@
  * and `exit` outputs can be counted against an exact tracer of the same
  * model. Entering a dielectric, total internal reflection is possible only
  * for an IOR below 1; leaving it, beyond the critical angle. */
-#include <math.h>
-#include <string.h>
-
 #include "reference/ref_scene.h"
 #include "reference/reference.h"
-
-static bool is_dielectric(const struct material *m) { return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER; }
-
-static dvec3 reflect_about(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n, 2.0 * dv_dot(d, n))); }
-
-/* Snell refraction of unit d about unit n facing against d; false under TIR. */
-static bool refract_about(dvec3 d, dvec3 n, double eta, dvec3 *t)
-{
-    double cos_i = -dv_dot(d, n);
-    double sin2_t = eta * eta * fmax(0.0, 1.0 - cos_i * cos_i);
-    if (sin2_t >= 1.0)
-        return false;
-    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
-    *t = dv_normalize_or(dv_add(dv_scale(d, eta), dv_scale(n, eta * cos_i - cos_t)), d);
-    return true;
-}
 
 /* One pixel: out[0] = TIR events (0 to 2), out[1..3] = exit direction,
  * covered = the pixel sees a refractor or a mirror first. */
@@ -45,16 +26,16 @@ static void trace_pixel(const struct ref_scene *rs, int x, int y, int w, int h, 
     dvec3 ng = dv_dot(dir, hit.geometric_normal) < 0.0 ? hit.geometric_normal : dv_scale(hit.geometric_normal, -1.0);
     if (m->kind == MATERIAL_MIRROR) {
         *covered = true;
-        *exit_dir = reflect_about(dir, n);
+        *exit_dir = ref_reflect(dir, n);
         return;
     }
-    if (!is_dielectric(m))
+    if (!ref_is_dielectric(m))
         return;
     *covered = true;
     dvec3 t1;
-    if (!refract_about(dir, n, 1.0 / m->ior, &t1)) {
+    if (!ref_refract(dir, n, 1.0 / m->ior, &t1)) {
         *tir = 1.0;
-        *exit_dir = reflect_about(dir, n);
+        *exit_dir = ref_reflect(dir, n);
         return;
     }
     /* the back surface: the next hit of the refracted ray */
@@ -66,11 +47,11 @@ static void trace_pixel(const struct ref_scene *rs, int x, int y, int w, int h, 
     }
     dvec3 m2 = dv_dot(t1, back.shading_normal) < 0.0 ? back.shading_normal : dv_scale(back.shading_normal, -1.0);
     dvec3 t2;
-    if (refract_about(t1, m2, m->ior, &t2)) {
+    if (ref_refract(t1, m2, m->ior, &t2)) {
         *exit_dir = t2;
     } else {
         *tir += 1.0;
-        *exit_dir = reflect_about(t1, m2);
+        *exit_dir = ref_reflect(t1, m2);
     }
 }
 

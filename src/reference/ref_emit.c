@@ -6,8 +6,6 @@
 #include "core/vecmath.h"
 #include "reference/ref_emit.h"
 
-static bool is_dielectric(const struct material *m) { return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER; }
-
 static dvec3 vertex(const struct ref_object *o, uint32_t i)
 {
     const float *p = o->positions + (size_t)i * 3;
@@ -42,7 +40,7 @@ static double triangle_weight(const struct ref_light *l, const struct material *
          * weight keeps the estimate unbiased; this one keeps it efficient). */
         falloff = fmax(ref_light_spot(l, dv_scale(to_light, -1.0 / sqrt(d2))), 0.02) / d2;
     }
-    if (!is_dielectric(m))
+    if (!ref_is_dielectric(m))
         facing = fabs(facing);
     return facing > 0.0 ? area * facing * falloff : 0.0;
 }
@@ -97,37 +95,40 @@ static void piece(dvec3 a, dvec3 b, dvec3 c, int level, size_t k, dvec3 out[3])
     out[2] = c;
 }
 
+/* The specular surface's total area, and the pieces it splits into for
+ * `piece_area` (0: no count). */
+static size_t count_pieces(const struct ref_scene *rs, double piece_area, double *total_area)
+{
+    size_t n = 0;
+    *total_area = 0.0;
+    for (int i = 0; i < rs->object_count; i++) {
+        const struct ref_object *o = &rs->objects[i];
+        if (!material_is_specular(&o->material))
+            continue;
+        for (size_t t = 0; t < o->triangle_count; t++) {
+            const uint32_t *tri = o->indices + t * 3;
+            double a = triangle_area(vertex(o, tri[0]), vertex(o, tri[1]), vertex(o, tri[2]));
+            a = isfinite(a) ? a : 0.0;
+            *total_area += a;
+            if (piece_area > 0.0)
+                n += (size_t)1 << (2 * split_level(a, piece_area));
+        }
+    }
+    return n;
+}
+
 bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const struct ref_light *l, struct error *err)
 {
     memset(e, 0, sizeof *e);
-    double total_area = 0.0;
-    for (int i = 0; i < rs->object_count; i++) {
-        const struct ref_object *o = &rs->objects[i];
-        if (!material_is_specular(&o->material))
-            continue;
-        for (size_t t = 0; t < o->triangle_count; t++) {
-            const uint32_t *tri = o->indices + t * 3;
-            double a = triangle_area(vertex(o, tri[0]), vertex(o, tri[1]), vertex(o, tri[2]));
-            total_area += isfinite(a) ? a : 0.0;
-        }
-    }
+    double total_area;
+    count_pieces(rs, 0.0, &total_area);
+    size_t n = count_pieces(rs, total_area / EMIT_PIECES, &total_area);
     double piece_area = total_area / EMIT_PIECES;
-    size_t n = 0;
-    for (int i = 0; i < rs->object_count; i++) {
-        const struct ref_object *o = &rs->objects[i];
-        if (!material_is_specular(&o->material))
-            continue;
-        for (size_t t = 0; t < o->triangle_count; t++) {
-            const uint32_t *tri = o->indices + t * 3;
-            double a = triangle_area(vertex(o, tri[0]), vertex(o, tri[1]), vertex(o, tri[2]));
-            n += (size_t)1 << (2 * split_level(isfinite(a) ? a : 0.0, piece_area));
-        }
-    }
     if (n == 0)
         return true;
-    e->corners = malloc(n * 9 * sizeof *e->corners);
     if (n > UINT32_MAX - 1)
         return error_set(err, "reference: too many specular triangles for the photon targets (%zu)", n);
+    e->corners = malloc(n * 9 * sizeof *e->corners);
     e->cdf = malloc(n * sizeof *e->cdf);
     e->guide = malloc((n + 1) * sizeof *e->guide);
     e->weight = malloc(n * sizeof *e->weight);

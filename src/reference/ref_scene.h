@@ -5,6 +5,7 @@
 #ifndef CAUSTICA_REF_SCENE_H
 #define CAUSTICA_REF_SCENE_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -27,6 +28,27 @@ static inline dvec3 dv_cross(dvec3 a, dvec3 b)
     return dv(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 dvec3 dv_normalize_or(dvec3 a, dvec3 fallback);
+
+/* Mirror reflection of d about unit n. */
+static inline dvec3 ref_reflect(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n, 2.0 * dv_dot(d, n))); }
+
+/* Snell refraction of unit d about unit n facing against d (eta = n_from /
+ * n_to); false under total internal reflection, never a NaN. */
+static inline bool ref_refract(dvec3 d, dvec3 n, double eta, dvec3 *t)
+{
+    double cos_i = -dv_dot(d, n);
+    double sin2_t = eta * eta * (1.0 - cos_i * cos_i > 0.0 ? 1.0 - cos_i * cos_i : 0.0);
+    if (sin2_t >= 1.0)
+        return false;
+    double cos_t = sqrt(1.0 - sin2_t > 0.0 ? 1.0 - sin2_t : 0.0);
+    *t = dv_normalize_or(dv_add(dv_scale(d, eta), dv_scale(n, eta * cos_i - cos_t)), d);
+    return true;
+}
+
+static inline bool ref_is_dielectric(const struct material *m)
+{
+    return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER;
+}
 
 struct ref_object {
     float *positions; /* world space, vertex_count * 3 (+ padding for Embree), owned */

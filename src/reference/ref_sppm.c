@@ -71,21 +71,6 @@ static double fresnel_of(const struct material *m, double cos_i, double eta)
     return eta * eta * (1.0 - cos_i * cos_i) >= 1.0 ? 1.0 : 0.0;
 }
 
-static dvec3 reflect(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n, 2.0 * dv_dot(d, n))); }
-
-/* Snell refraction of unit d about unit n facing against d; false under TIR. */
-static bool refract(dvec3 d, dvec3 n, double eta, dvec3 *t)
-{
-    double cos_i = -dv_dot(d, n);
-    double sin2_t = eta * eta * fmax(0.0, 1.0 - cos_i * cos_i);
-    if (sin2_t >= 1.0)
-        return false;
-    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
-    *t = dv_normalize_or(dv_add(dv_scale(d, eta), dv_scale(n, eta * cos_i - cos_t)), d);
-    return true;
-}
-
-static bool is_dielectric(const struct material *m) { return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER; }
 
 /* The media a path is inside: a small stack of object indices. */
 struct media {
@@ -141,7 +126,7 @@ static void media_at(const struct ref_scene *rs, dvec3 p, struct media *m)
             known = known || seen[i] == h.object;
         if (!known && nseen < 64) {
             seen[nseen++] = h.object;
-            if (is_dielectric(&rs->objects[h.object].material) && dv_dot(dir, h.geometric_normal) > 0.0)
+            if (ref_is_dielectric(&rs->objects[h.object].material) && dv_dot(dir, h.geometric_normal) > 0.0)
                 media_toggle(m, h.object, true);
         }
         o = dv_add(h.position, dv_scale(dir, rs->epsilon * 4));
@@ -160,7 +145,7 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
     dvec3 nn = entering ? n : dv_scale(n, -1.0);
     dvec3 ngo = entering ? ng : dv_scale(ng, -1.0);
     if (m->kind == MATERIAL_MIRROR) {
-        *dir = dv_normalize_or(reflect(*dir, nn), reflect(*dir, ngo));
+        *dir = dv_normalize_or(ref_reflect(*dir, nn), ref_reflect(*dir, ngo));
         *beta = dv_mul(*beta, dv(m->color.x, m->color.y, m->color.z));
         *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
         return;
@@ -169,9 +154,9 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
     double cos_i = -dv_dot(*dir, nn);
     double f = fresnel_of(m, cos_i, eta);
     dvec3 t;
-    bool can_refract = refract(*dir, nn, eta, &t);
+    bool can_refract = ref_refract(*dir, nn, eta, &t);
     if (!can_refract || ref_rng_uniform(rng) < f) {
-        *dir = dv_normalize_or(reflect(*dir, nn), reflect(*dir, ngo));
+        *dir = dv_normalize_or(ref_reflect(*dir, nn), ref_reflect(*dir, ngo));
         *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
     } else {
         *dir = t;
@@ -1078,13 +1063,15 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
     struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
     struct aim_log *aims = calloc(PHOTON_CHUNKS, sizeof *aims);
-    if (!pixels || !chunks || !volume_chunks || !aims || !image_create(out, o->width, o->height, err) ||
+    struct budget *budget = calloc(1, sizeof *budget);
+    if (!pixels || !chunks || !volume_chunks || !aims || !budget || !image_create(out, o->width, o->height, err) ||
         (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
         image_destroy(out);
         free(pixels);
         free(chunks);
         free(volume_chunks);
         free(aims);
+        free(budget);
         for (int l = 0; l < rs.light_count; l++)
             ref_emitter_release(&emitters[l]);
         ref_scene_release(&rs);
@@ -1108,22 +1095,6 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     ref_scene_camera_ray(&rs, o->width * 0.5, o->height * 0.5, o->width, o->height, &cam_origin, &cam_dir);
     media_at(&rs, cam_origin, &camera_media);
 
-    static struct budget budget_zero;
-    struct budget *budget = malloc(sizeof *budget);
-    if (!budget) {
-        image_destroy(out);
-        if (caustic_out)
-            image_destroy(caustic_out);
-        free(pixels);
-        free(chunks);
-        free(volume_chunks);
-        free(aims);
-        for (int l = 0; l < rs.light_count; l++)
-            ref_emitter_release(&emitters[l]);
-        ref_scene_release(&rs);
-        return error_set(err, "reference: out of memory");
-    }
-    *budget = budget_zero;
     atomic_init(&budget->cut, 0);
     atomic_init(&budget->photons_cut, 0);
     budget->start = start;
