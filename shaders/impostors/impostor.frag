@@ -6,6 +6,7 @@
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
+#include "common/material.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
@@ -23,6 +24,9 @@ void main()
     vec3 n = normalize(v_normal);
     if (dot(n, u_impostor_axis) > 0.0)
         n = -n; // the side the refractor sees
+    vec3 mapped = material_normal(n, v_world);
+    if (u_material_kind == 0)
+        n = mapped;
     vec3 e = vec3(0.0);
     for (int i = 0; i < u_counts.x; i++) {
         vec3 to_light;
@@ -39,5 +43,6 @@ void main()
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
         return;
     }
-    o_color = vec4(u_color / PI * e + u_color * u_ambient.rgb + u_emission, 1.0);
+    vec3 albedo = material_albedo(u_color);
+    o_color = vec4(albedo / PI * e + albedo * u_ambient.rgb + material_emission(u_emission), 1.0);
 }

@@ -3,6 +3,7 @@
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
+#include "common/material.glsl"
 
 in vec3 v_world;
 in vec3 v_normal;
@@ -66,8 +67,10 @@ void main()
     vec3 view = view_direction(v_world);
     if (dot(n, view) > 0.0 && u_material_kind == 0)
         n = -n; // two-sided diffuse surfaces
+    vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
     vec3 radiance;
     if (u_material_kind == 0) {
+        n = mapped;
         vec3 e = vec3(0.0);
         for (int i = 0; i < u_counts.x; i++) {
             vec3 to_light;
@@ -78,7 +81,8 @@ void main()
         }
         for (int k = 0; k < u_has_caustics; k++)
             e += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
-        radiance = u_color / PI * e + u_color * u_ambient.rgb + u_emission;
+        vec3 albedo = material_albedo(u_color);
+        radiance = albedo / PI * e + albedo * u_ambient.rgb + material_emission(u_emission);
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {

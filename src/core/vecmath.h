@@ -28,6 +28,8 @@ float vec3_length(vec3 a);
 /* Unit vector along `a`, or `fallback` when `a` has (near) zero length. */
 vec3 vec3_normalize_or(vec3 a, vec3 fallback);
 vec3 vec3_min(vec3 a, vec3 b);
+/* a + (b - a) t */
+vec3 vec3_lerp(vec3 a, vec3 b, float t);
 vec3 vec3_max(vec3 a, vec3 b);
 
 mat4 mat4_identity(void);

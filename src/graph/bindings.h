@@ -11,6 +11,11 @@
 #define UNIT_ENVIRONMENT 15                 /* samplerCube u_environment, bound for every pass */
 #define UNIT_IMAGE 0                        /* the image a fullscreen pass reads (tonemap, common/copy.frag) */
 
+/* Material textures (common/material.glsl), bound by renderer_draw_objects */
+#define MATERIAL_UNIT_BASE_COLOR 16
+#define MATERIAL_UNIT_NORMAL 17
+#define MATERIAL_UNIT_EMISSIVE 18
+
 /* Morphs and deformers (deform/deform.comp) */
 #define DEFORM_SSBO_BASE_POSITIONS 0
 #define DEFORM_SSBO_BASE_NORMALS 1

@@ -17,6 +17,8 @@ static void release_mesh(struct gpu_mesh *g)
     gl_buffer_destroy(&g->target_positions);
     gl_buffer_destroy(&g->target_normals);
     gl_buffer_destroy(&g->thickness);
+    gl_buffer_destroy(&g->texcoords[0]);
+    gl_buffer_destroy(&g->texcoords[1]);
 }
 
 static void release_object(struct gpu_object *g)
@@ -70,6 +72,9 @@ struct gpu_mesh *mesh_cache_mesh(struct mesh_cache *c, const struct mesh *m, str
     bool ok = gl_buffer_create(&g->positions, m->positions, vbytes, 0, err) &&
               gl_buffer_create(&g->normals, m->normals, vbytes, 0, err) &&
               gl_buffer_create(&g->indices, m->indices, m->index_count * sizeof(uint32_t), 0, err);
+    for (int set = 0; set < 2 && ok; set++)
+        if (m->texcoords[set])
+            ok = gl_buffer_create(&g->texcoords[set], m->texcoords[set], m->vertex_count * 2 * sizeof(float), 0, err);
     if (ok && m->target_count > 0)
         ok = gl_buffer_create(&g->target_positions, m->target_positions, vbytes * (size_t)m->target_count, 0, err) &&
              gl_buffer_create(&g->target_normals, m->target_normals, vbytes * (size_t)m->target_count, 0, err);
@@ -185,6 +190,16 @@ bool mesh_cache_bind(struct mesh_cache *c, const struct object *o, struct error 
         gl.VertexArrayAttribFormat(g->vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
         gl.VertexArrayAttribBinding(g->vao, 0, 0);
         gl.VertexArrayAttribBinding(g->vao, 1, 1);
+        /* Texture coordinates never animate: the mesh's own buffers. A
+         * set the mesh lacks stays disabled and reads (0, 0). */
+        for (GLuint set = 0; set < 2; set++) {
+            if (!m->texcoords[set])
+                continue;
+            gl.EnableVertexArrayAttrib(g->vao, 2 + set);
+            gl.VertexArrayAttribFormat(g->vao, 2 + set, 2, GL_FLOAT, GL_FALSE, 0);
+            gl.VertexArrayAttribBinding(g->vao, 2 + set, 2 + set);
+            gl.VertexArrayVertexBuffer(g->vao, 2 + set, m->texcoords[set], 0, 2 * sizeof(float));
+        }
     }
     if (g->vao_positions != pos) {
         gl.VertexArrayVertexBuffer(g->vao, 0, pos, 0, 3 * sizeof(float));

@@ -14,6 +14,7 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     snprintf(shader_root, sizeof shader_root, "%s/shaders", root);
     gl_program_cache_init(&r->programs, shader_root);
     mesh_cache_init(&r->meshes);
+    texture_cache_init(&r->textures);
     gl.CreateBuffers(1, &r->frame_ubo);
     gl.NamedBufferStorage(r->frame_ubo, sizeof r->uniforms, NULL, GL_DYNAMIC_STORAGE_BIT);
     gl.CreateVertexArrays(1, &r->empty_vao);
@@ -38,6 +39,7 @@ void renderer_destroy(struct renderer *r)
 {
     gl_program_cache_destroy(&r->programs);
     mesh_cache_release(&r->meshes);
+    texture_cache_release(&r->textures);
     frame_release(&r->frame);
     if (gl_api_ready()) {
         if (r->frame_ubo)
@@ -119,6 +121,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     const struct frame *f = &r->frame;
     if (!mesh_cache_begin_frame(&r->meshes, scene, err))
         return false;
+    texture_cache_begin_frame(&r->textures, scene);
     if (scene->environment && !upload_environment(r, scene->environment, err))
         return false;
     gl.QueryCounter(r->deform_queries[0], GL_TIMESTAMP);
@@ -176,9 +179,54 @@ void renderer_reset_state(struct renderer *r)
     gl.BindVertexArray(0);
 }
 
+/* The material's textures at MATERIAL_UNIT_* and the uniforms of
+ * common/material.glsl (a program without them ignores the locations -1). */
+struct material_locations {
+    GLint set[3], transform[6], normal_scale;
+};
+
+static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
+{
+    for (int s = 0; s < 3; s++) {
+        char name[64];
+        snprintf(name, sizeof name, "u_texture_set[%d]", s);
+        loc->set[s] = gl_program_uniform(program, name);
+    }
+    for (int row = 0; row < 6; row++) {
+        char name[64];
+        snprintf(name, sizeof name, "u_texture_transform[%d]", row);
+        loc->transform[row] = gl_program_uniform(program, name);
+    }
+    loc->normal_scale = gl_program_uniform(program, "u_normal_scale");
+}
+
+static void bind_material_textures(struct renderer *r, const struct gl_program *program,
+                                   const struct material_locations *loc, const struct object *o)
+{
+    static const GLuint units[3] = {MATERIAL_UNIT_BASE_COLOR, MATERIAL_UNIT_NORMAL, MATERIAL_UNIT_EMISSIVE};
+    const struct texture_ref *slots[3] = {&o->material.base_color, &o->material.normal, &o->material.emissive};
+    for (int s = 0; s < 3; s++) {
+        const struct texture_ref *ref = slots[s];
+        GLuint id = 0;
+        struct error err;
+        /* Textures apply to diffuse surfaces only, in both renderers; a set
+         * the mesh lacks reads nothing (the glTF loader refuses that case). */
+        bool on = ref->texture && o->material.kind == MATERIAL_DIFFUSE && o->mesh->texcoords[ref->texcoord] &&
+                  texture_cache_get(&r->textures, ref->texture, s != 1, &id, &err);
+        gl.BindTextureUnit(units[s], on ? id : r->dummy_2d.id);
+        gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
+        const float *m = ref->transform;
+        gl.ProgramUniform3f(program->id, loc->transform[s * 2], m[0], m[2], m[4]);
+        gl.ProgramUniform3f(program->id, loc->transform[s * 2 + 1], m[1], m[3], m[5]);
+    }
+    gl.ProgramUniform1f(program->id, loc->normal_scale, o->material.normal.scale);
+}
+
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter)
 {
+    struct material_locations material_loc;
+    material_locations_find(program, &material_loc);
     GLint loc_model = gl_program_uniform(program, "u_model");
     GLint loc_normal = gl_program_uniform(program, "u_normal_matrix");
     GLint loc_kind = gl_program_uniform(program, "u_material_kind");
@@ -214,6 +262,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform3f(program->id, loc_abs, o->material.absorption.x, o->material.absorption.y,
                             o->material.absorption.z);
         gl.ProgramUniform1i(program->id, loc_id, o->id);
+        bind_material_textures(r, program, &material_loc, o);
         struct error err;
         if (!mesh_cache_bind(&r->meshes, o, &err))
             continue; /* out of memory: the object is not drawn (mesh_cache_begin_frame said so first) */

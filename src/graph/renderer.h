@@ -13,6 +13,7 @@
 #include "gl/gl_texture.h"
 #include "graph/frame.h"
 #include "graph/mesh_cache.h"
+#include "graph/texture_cache.h"
 #include "scene/scene.h"
 
 
@@ -49,6 +50,7 @@ struct renderer {
     GLuint deform_queries[2];
     double deform_ms; /* GPU time of the last frame's morphs and deformers */
     struct mesh_cache meshes; /* the GPU copies of meshes and objects */
+    struct texture_cache textures; /* the GPU copies of material textures */
     struct gl_texture environment; /* the cube map of the scene's environment ... */
     uint64_t environment_serial;   /* ... of this serial (0: none uploaded) */
 };

@@ -16,6 +16,20 @@
 extern "C" {
 #endif
 
+/* A texture a material reads: the image file's bytes (PNG or JPEG, decoded
+ * by the caller), its sampler and the texture info's transform. */
+struct gltf_texture {
+    uint8_t *bytes; /* owned; NULL when the material has no such texture */
+    size_t size;
+    char name[96];  /* "image 2 'name'" for messages */
+    int texcoord;   /* TEXCOORD_n */
+    float transform[6]; /* KHR_texture_transform as a 3x2 matrix (see struct texture_ref) */
+    float scale;    /* normalTexture.scale */
+    int wrap_s, wrap_t; /* 0 repeat, 1 clamp, 2 mirrored repeat */
+    bool nearest;   /* magFilter NEAREST */
+    bool mipmaps;   /* minFilter one of the *_MIPMAP_* (or unset) */
+};
+
 struct gltf_material {
     bool present;
     float base_color[3];
@@ -25,6 +39,7 @@ struct gltf_material {
     float attenuation_color[3]; /* KHR_materials_volume */
     float attenuation_distance; /* 0 = infinite (no absorption) */
     float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
+    struct gltf_texture base_color_texture, normal_texture, emissive_texture;
 };
 
 struct gltf_mesh {
@@ -32,6 +47,7 @@ struct gltf_mesh {
     size_t index_count;
     float *positions; /* vertex_count * 3 */
     float *normals;   /* vertex_count * 3, generated when the file has none */
+    float *texcoords[2]; /* vertex_count * 2, TEXCOORD_0 and _1, or NULL when no primitive has that set */
     uint32_t *indices;
     int target_count;
     float *target_positions; /* target_count * vertex_count * 3 deltas */

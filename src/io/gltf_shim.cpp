@@ -241,13 +241,84 @@ std::vector<double> read_accessor(const tinygltf::Model &model, int index, int w
 
 struct Builder {
     std::vector<float> positions, normals;
+    std::vector<float> texcoords[2]; // zeros for primitives without the set
+    bool has_texcoords[2] = {false, false};
     std::vector<uint32_t> indices;
     int target_count = 0;
     std::vector<std::vector<float>> tpos, tnrm; // per target, grows with positions
     std::vector<float> weights;
     std::vector<std::string> target_names;
     gltf_material material{};
+    ~Builder()
+    {
+        std::free(material.base_color_texture.bytes);
+        std::free(material.normal_texture.bytes);
+        std::free(material.emissive_texture.bytes);
+    }
 };
+
+// The image bytes of texture `index` and its sampler into t; the bytes
+// stay undecoded here (keep_image_bytes put them in image.image).
+void read_texture(const tinygltf::Model &model, int index, int texcoord, const tinygltf::ExtensionMap &extensions,
+                  gltf_texture &t, const std::string &material)
+{
+    if (index < 0)
+        return;
+    if (index >= (int)model.textures.size())
+        throw Fail{material + ": texture index " + std::to_string(index) + " is out of range"};
+    const tinygltf::Texture &tex = model.textures[(size_t)index];
+    if (tex.source < 0 || tex.source >= (int)model.images.size())
+        throw Fail{material + ": texture " + std::to_string(index) + " has no image (source)"};
+    const tinygltf::Image &img = model.images[(size_t)tex.source];
+    if (img.image.empty())
+        throw Fail{material + ": image " + std::to_string(tex.source) + " has no data"};
+    t.size = img.image.size();
+    t.bytes = (uint8_t *)std::malloc(t.size);
+    if (!t.bytes)
+        throw Fail{"out of memory"};
+    std::memcpy(t.bytes, img.image.data(), t.size);
+    std::snprintf(t.name, sizeof t.name, "image %d '%.60s'", tex.source, img.name.c_str());
+    t.texcoord = texcoord;
+    t.transform[0] = t.transform[3] = 1.0f;
+    t.scale = 1.0f;
+    t.mipmaps = true;
+    if (tex.sampler >= 0 && tex.sampler < (int)model.samplers.size()) {
+        const tinygltf::Sampler &s = model.samplers[(size_t)tex.sampler];
+        auto wrap = [](int w) { return w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? 1
+                                       : w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? 2 : 0; };
+        t.wrap_s = wrap(s.wrapS);
+        t.wrap_t = wrap(s.wrapT);
+        t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        t.mipmaps = s.minFilter == -1 || (s.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+                                          s.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR);
+    }
+    auto ext = extensions.find("KHR_texture_transform");
+    if (ext != extensions.end()) {
+        const tinygltf::Value &v = ext->second;
+        double offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+        for (int i = 0; i < 2; i++) {
+            if (v.Has("offset") && v.Get("offset").ArrayLen() == 2)
+                offset[i] = v.Get("offset").Get(i).GetNumberAsDouble();
+            if (v.Has("scale") && v.Get("scale").ArrayLen() == 2)
+                scale[i] = v.Get("scale").Get(i).GetNumberAsDouble();
+        }
+        if (v.Has("rotation"))
+            rotation = v.Get("rotation").GetNumberAsDouble();
+        if (v.Has("texCoord"))
+            t.texcoord = v.Get("texCoord").GetNumberAsInt();
+        // T * R * S with the README's example as the check: offset [0, 1],
+        // rotation pi/2, scale 0.5 reads the lower left quadrant.
+        double c = std::cos(rotation), s = std::sin(rotation);
+        double m[6] = {c * scale[0], -s * scale[0], s * scale[1], c * scale[1], offset[0], offset[1]};
+        for (int i = 0; i < 6; i++) {
+            if (!std::isfinite(m[i]) || std::fabs(m[i]) > 1e6)
+                throw Fail{material + ": KHR_texture_transform must be finite (and below 1e6)"};
+            t.transform[i] = (float)m[i];
+        }
+    }
+    if (t.texcoord != 0 && t.texcoord != 1)
+        throw Fail{material + ": texCoord " + std::to_string(t.texcoord) + " (caustica reads TEXCOORD_0 and _1)"};
+}
 
 void read_material(const tinygltf::Model &model, int index, gltf_material &m)
 {
@@ -284,6 +355,18 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     for (int c = 0; c < 3; c++)
         m.emission[c] = (mat.emissiveFactor.size() == 3 ? (float)mat.emissiveFactor[(size_t)c] : 0.0f) * strength;
     m.glass = m.transmission > 0.0f;
+    {
+        std::string where = "material '" + mat.name + "'";
+        const tinygltf::TextureInfo &base = mat.pbrMetallicRoughness.baseColorTexture;
+        read_texture(model, base.index, base.texCoord, base.extensions, m.base_color_texture, where);
+        read_texture(model, mat.normalTexture.index, mat.normalTexture.texCoord, mat.normalTexture.extensions,
+                     m.normal_texture, where);
+        m.normal_texture.scale = (float)mat.normalTexture.scale;
+        if (!std::isfinite(m.normal_texture.scale) || std::fabs(m.normal_texture.scale) > 1e3)
+            throw Fail{where + ": normalTexture.scale must be finite"};
+        read_texture(model, mat.emissiveTexture.index, mat.emissiveTexture.texCoord, mat.emissiveTexture.extensions,
+                     m.emissive_texture, where);
+    }
     // The rules c.material.glass applies (finite, IOR > 0, colours in
     // [0, 1]): a file must not slip past them into NaN or negative absorption.
     std::string name = "material '" + mat.name + "'";
@@ -397,6 +480,21 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     }
     for (uint32_t i : idx)
         b.indices.push_back((uint32_t)base + i);
+    for (int set = 0; set < 2; set++) {
+        std::vector<float> &tc = b.texcoords[set];
+        tc.resize(base * 2, 0.0f);
+        auto it = prim.attributes.find(set == 0 ? "TEXCOORD_0" : "TEXCOORD_1");
+        if (it == prim.attributes.end()) {
+            tc.resize((base + nv) * 2, 0.0f);
+            continue;
+        }
+        std::vector<double> uv = read_accessor(model, it->second, 2, set == 0 ? "TEXCOORD_0" : "TEXCOORD_1");
+        if (uv.size() != nv * 2)
+            throw Fail{"TEXCOORD and POSITION counts differ in mesh '" + mesh.name + "'"};
+        for (double v : uv)
+            tc.push_back(std::isfinite(v) && std::fabs(v) < 1e6 ? (float)v : 0.0f);
+        b.has_texcoords[set] = true;
+    }
 
     // Morph targets: per target index across primitives (weights are per mesh).
     int nt = (int)prim.targets.size();
@@ -507,11 +605,15 @@ template <typename T> T *copy_out(const std::vector<T> &v)
     return p;
 }
 
-// caustica uses no glTF images: they are never decoded (a corrupt JPEG or an
-// image view past the BIN chunk reached stb_image's bugs before).
-bool skip_image(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
-                void *)
+// Images are kept as their file's bytes, never decoded by tinygltf (a
+// corrupt JPEG or an image view past the BIN chunk reached stb_image's bugs
+// before): the caller decodes the ones a material uses with libpng/libjpeg
+// (io/image_decode.c), which bound the size first.
+bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                      const unsigned char *bytes, int size, void *)
 {
+    if (bytes && size > 0)
+        image->image.assign(bytes, bytes + size);
     return true;
 }
 
@@ -669,7 +771,7 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
             scope.dir = "/";
         tinygltf::FsCallbacks fs = {scoped_file_exists, scoped_expand, scoped_read, scoped_write, &scope};
         loader.SetFsCallbacks(fs);
-        loader.SetImageLoader(skip_image, nullptr);
+        loader.SetImageLoader(keep_image_bytes, nullptr);
         bool ok = binary ? loader.LoadBinaryFromMemory(&model, &gerr, &gwarn, bytes.data(), (unsigned int)bytes.size(),
                                                        scope.dir)
                          : loader.LoadASCIIFromString(&model, &gerr, &gwarn, (const char *)bytes.data(),
@@ -711,7 +813,13 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->positions = copy_out(b.positions);
         out->normals = copy_out(b.normals);
         out->indices = copy_out(b.indices);
+        for (int set = 0; set < 2; set++)
+            if (b.has_texcoords[set]) {
+                b.texcoords[set].resize(b.positions.size() / 3 * 2, 0.0f);
+                out->texcoords[set] = copy_out(b.texcoords[set]);
+            }
         out->material = b.material;
+        b.material = gltf_material{}; // out owns the image bytes now
         out->target_count = b.target_count;
         if (b.target_count > 0) {
             std::vector<float> tp, tn;
@@ -743,6 +851,11 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
     std::free(mesh->positions);
     std::free(mesh->normals);
     std::free(mesh->indices);
+    std::free(mesh->texcoords[0]);
+    std::free(mesh->texcoords[1]);
+    std::free(mesh->material.base_color_texture.bytes);
+    std::free(mesh->material.normal_texture.bytes);
+    std::free(mesh->material.emissive_texture.bytes);
     std::free(mesh->target_positions);
     std::free(mesh->target_normals);
     std::free(mesh->weights);

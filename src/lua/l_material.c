@@ -1,5 +1,5 @@
 /* c.material.diffuse / glass / mirror / water: materials as plain values
- * (an object keeps a copy). */
+ * (an object keeps a copy; the textures a material names are shared). */
 #include <math.h>
 #include <string.h>
 
@@ -15,15 +15,26 @@ static void opt_emission(lua_State *L, int t, const char *fn, vec3 *out)
                     (double)out->x, (double)out->y, (double)out->z);
 }
 
+/* field = a Texture: the slot reads it (one more reference, taken when the
+ * material is pushed); the colour factor stays 1. */
+static bool opt_texture(lua_State *L, int t, const char *field, struct texture_ref *slot)
+{
+    lua_getfield(L, t, field);
+    const struct texture_ref *ref = ltexture_test(L, -1);
+    if (ref)
+        *slot = *ref;
+    lua_pop(L, 1);
+    return ref != NULL;
+}
+
 static int push_material(lua_State *L, enum material_kind kind, const char *fn)
 {
     bool emissive = strcmp(fn, "emissive") == 0;
-    struct material m = {.kind = kind, .color = {0.8f, 0.8f, 0.8f}, .ior = kind == MATERIAL_WATER ? 1.33f : 1.5f};
-    if (kind == MATERIAL_MIRROR)
-        m.color = vec3_make(1, 1, 1);
+    struct material m;
+    material_init(&m, kind);
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
-        static const char *const diffuse_fields[] = {"color", "emission", NULL};
+        static const char *const diffuse_fields[] = {"color", "emission", "normal", "normal_scale", NULL};
         static const char *const mirror_fields[] = {"color", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", NULL};
@@ -42,11 +53,25 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
             m.emission = vec3_scale(color, strength);
             m.color = vec3_make(0, 0, 0);
             lutil_opt_color(L, 1, fn, "albedo", &m.color);
+        } else if (kind == MATERIAL_DIFFUSE && opt_texture(L, 1, "color", &m.base_color)) {
+            m.color = vec3_make(1, 1, 1);
         } else {
             lutil_opt_color(L, 1, fn, "color", &m.color);
         }
-        if (kind == MATERIAL_DIFFUSE && !emissive)
-            opt_emission(L, 1, fn, &m.emission);
+        if (kind == MATERIAL_DIFFUSE && !emissive) {
+            if (opt_texture(L, 1, "emission", &m.emissive))
+                m.emission = vec3_make(1, 1, 1);
+            else
+                opt_emission(L, 1, fn, &m.emission);
+            lua_getfield(L, 1, "normal");
+            bool has_normal = !lua_isnil(L, -1);
+            lua_pop(L, 1);
+            if (has_normal && !opt_texture(L, 1, "normal", &m.normal))
+                return lutil_field_error(L, fn, "normal", "texture (c.texture)", 1);
+            float scale = 1.0f;
+            lutil_opt_number(L, 1, fn, "normal_scale", &scale);
+            m.normal.scale = scale;
+        }
         lutil_opt_number(L, 1, fn, "ior", &m.ior);
         lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
         if (kind == MATERIAL_GLASS || kind == MATERIAL_WATER) {
@@ -64,8 +89,15 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
 void lmaterial_push(lua_State *L, const struct material *m)
 {
     struct material *u = lua_newuserdatauv(L, sizeof *u, 0);
-    *u = *m;
+    material_init(u, m->kind);
     luaL_setmetatable(L, MATERIAL_MT);
+    material_assign(u, m);
+}
+
+static int material_gc(lua_State *L)
+{
+    material_release(luaL_checkudata(L, 1, MATERIAL_MT));
+    return 0;
 }
 
 static int material_diffuse(lua_State *L) { return push_material(L, MATERIAL_DIFFUSE, "diffuse"); }
@@ -112,6 +144,37 @@ static int get_fresnel(lua_State *L)
     return 1;
 }
 
+/* The Texture a slot reads, or nil. */
+static void push_texture_slot(lua_State *L, const struct texture_ref *slot)
+{
+    if (!slot->texture) {
+        lua_pushnil(L);
+        return;
+    }
+    struct texture_ref *u = lua_newuserdatauv(L, sizeof *u, 0);
+    *u = *slot;
+    texture_retain(u->texture);
+    luaL_setmetatable(L, TEXTURE_MT);
+}
+
+static int get_texture(lua_State *L)
+{
+    push_texture_slot(L, &check_material(L)->base_color);
+    return 1;
+}
+
+static int get_normal(lua_State *L)
+{
+    push_texture_slot(L, &check_material(L)->normal);
+    return 1;
+}
+
+static int get_emission_texture(lua_State *L)
+{
+    push_texture_slot(L, &check_material(L)->emissive);
+    return 1;
+}
+
 static int material_tostring(lua_State *L)
 {
     lua_pushfstring(L, "Material(%s)", material_kind_name(check_material(L)->kind));
@@ -120,10 +183,12 @@ static int material_tostring(lua_State *L)
 
 void lmaterial_open(lua_State *L)
 {
-    static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {NULL, NULL}};
+    static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {"__gc", material_gc}, {NULL, NULL}};
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
                                        {"absorption", get_absorption}, {"fresnel", get_fresnel},
-                                       {"emission", get_emission}, {NULL, NULL}};
+                                       {"emission", get_emission}, {"texture", get_texture},
+                                       {"normal", get_normal}, {"emission_texture", get_emission_texture},
+                                       {NULL, NULL}};
     lutil_class(L, MATERIAL_MT, "material", meta, NULL, getters, NULL);
     static const luaL_Reg materials[] = {{"diffuse", material_diffuse}, {"glass", material_glass},
                                          {"mirror", material_mirror}, {"water", material_water},

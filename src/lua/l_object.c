@@ -295,7 +295,7 @@ static int set_material(lua_State *L)
     struct material *m = luaL_testudata(L, 3, MATERIAL_MT);
     if (!m)
         lutil_field_error(L, "object", "material", "material (c.material.*)", 3);
-    o->material = *m;
+    material_assign(&o->material, m);
     o->version++;
     return 0;
 }

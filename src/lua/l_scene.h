@@ -18,6 +18,7 @@
 #define DEFORMER_MT "caustica.Deformer"
 #define SCENE_MT "caustica.Scene"
 #define MEDIUM_MT "caustica.Medium"
+#define TEXTURE_MT "caustica.Texture" /* userdata: struct texture_ref (l_texture.c) */
 
 struct l_mesh { struct mesh *mesh; };
 struct l_object { struct object *obj; };
@@ -42,5 +43,8 @@ void lobject_open(lua_State *L);
 void llight_open(lua_State *L);
 void lmaterial_open(lua_State *L);
 void lmedium_open(lua_State *L);
+void ltexture_open(lua_State *L);
+/* The texture reference of a Texture value, or NULL when it is something else. */
+const struct texture_ref *ltexture_test(lua_State *L, int idx);
 
 #endif

@@ -89,6 +89,8 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
             }
         }
         ro->indices = o->mesh->indices;
+        ro->texcoords[0] = o->mesh->texcoords[0];
+        ro->texcoords[1] = o->mesh->texcoords[1];
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;
@@ -183,6 +185,8 @@ bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, do
     const float *p0 = o->positions + tri[0] * 3, *p1 = o->positions + tri[1] * 3, *p2 = o->positions + tri[2] * 3;
     dvec3 a = dv(p0[0], p0[1], p0[2]), b = dv(p1[0], p1[1], p1[2]), c = dv(p2[0], p2[1], p2[2]);
     double u = rh.hit.u, v = rh.hit.v, w = 1.0 - u - v;
+    hit->bary_u = u;
+    hit->bary_v = v;
     hit->t = rh.ray.tfar;
     hit->object = (int)rs->geometry_object[rh.hit.geomID];
     hit->primitive = rh.hit.primID;

@@ -54,6 +54,7 @@ struct ref_object {
     float *positions; /* world space, vertex_count * 3 (+ padding for Embree), owned */
     float *normals;   /* world space, owned */
     uint32_t *indices; /* borrowed from the mesh */
+    const float *texcoords[2]; /* borrowed from the mesh (NULL where it has no such set) */
     size_t vertex_count, triangle_count;
     struct material material;
 };
@@ -93,7 +94,17 @@ struct ref_hit {
     dvec3 position;
     dvec3 geometric_normal; /* unit, outward (counter-clockwise winding) */
     dvec3 shading_normal;   /* unit, on the same side as the geometric normal */
+    double bary_u, bary_v;  /* Embree's barycentrics: the hit is (1-u-v) p0 + u p1 + v p2 */
 };
+
+/* What a diffuse surface shows at a hit: albedo and emission (times their
+ * textures) and the shading normal (a normal map applied to `n`, the
+ * face-forward shading normal), as common/material.glsl computes them on
+ * the GPU (ref_material.c). */
+struct ref_surface {
+    dvec3 albedo, emission, normal;
+};
+void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dvec3 n, struct ref_surface *out);
 
 /* The spot falloff the shaders use (smoothstep over the cone's edge) for
  * light leaving in unit direction `out`; 1 for other lights. */

@@ -374,12 +374,15 @@ static void trace_eye(struct job *j, int x, int y)
         const struct material *m = &rs->objects[h.object].material;
         if (m->kind == MATERIAL_DIFFUSE) {
             dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
-            dvec3 albedo = dv(m->color.x, m->color.y, m->color.z);
+            struct ref_surface surface;
+            ref_surface_diffuse(rs, &h, n, &surface);
+            n = surface.normal;
+            dvec3 albedo = surface.albedo;
             dvec3 e = direct_light(rs, rm, &rng, h.position, n);
             dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
             px->direct = dv_add(px->direct, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
             /* its own radiance, seen along the path (emissive surfaces light nothing: no interreflection) */
-            px->direct = dv_add(px->direct, dv_mul(beta, dv(m->emission.x, m->emission.y, m->emission.z)));
+            px->direct = dv_add(px->direct, dv_mul(beta, surface.emission));
             if (px->radius <= 0.0) {
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */

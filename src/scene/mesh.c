@@ -13,6 +13,19 @@ static uint64_t mesh_next_serial(void)
     return next++;
 }
 
+/* Texture coordinates for a procedural mesh (texcoord set 0); false, and
+ * the mesh destroyed, when out of memory. */
+static bool add_texcoords(struct mesh *m, struct error *err)
+{
+    m->texcoords[0] = malloc(m->vertex_count * 2 * sizeof(float));
+    if (!m->texcoords[0]) {
+        error_set(err, "%s: out of memory", m->name);
+        mesh_destroy(m);
+        return false;
+    }
+    return true;
+}
+
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err)
 {
@@ -30,6 +43,7 @@ struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *
         return NULL;
     }
     snprintf(m->name, sizeof m->name, "%s", name);
+    material_init(&m->material, MATERIAL_DIFFUSE);
     m->positions = positions;
     m->normals = normals;
     m->indices = indices;
@@ -94,7 +108,16 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
             idx[k++] = a; idx[k++] = b; idx[k++] = a + 1;
             idx[k++] = a + 1; idx[k++] = b; idx[k++] = b + 1;
         }
-    return mesh_create_from_arrays("sphere", p, n, nv, idx, ni, err);
+    struct mesh *m = mesh_create_from_arrays("sphere", p, n, nv, idx, ni, err);
+    if (!m || !add_texcoords(m, err))
+        return NULL;
+    /* u around the axis (from +x towards -z, as phi runs), v from the top pole down */
+    for (int r = 0, vi = 0; r <= rings; r++)
+        for (int s = 0; s <= segments; s++, vi++) {
+            m->texcoords[0][vi * 2] = (float)s / (float)segments;
+            m->texcoords[0][vi * 2 + 1] = (float)r / (float)rings;
+        }
+    return m;
 }
 
 struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
@@ -126,6 +149,15 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
             idx[k++] = a + 1; idx[k++] = b; idx[k++] = b + 1;
         }
     struct mesh *m = mesh_create_from_arrays("grid", p, n, nv, idx, ni, err);
+    if (!m || !add_texcoords(m, err))
+        return NULL;
+    /* u along +x, v along +z: [0,1]^2 over the whole grid, so a texture
+     * seen from above reads as its image with the top row at -z */
+    for (size_t j = 0; j < side; j++)
+        for (size_t i = 0; i < side; i++) {
+            m->texcoords[0][(j * side + i) * 2] = (float)i / (float)resolution;
+            m->texcoords[0][(j * side + i) * 2 + 1] = (float)j / (float)resolution;
+        }
     return m;
 }
 
@@ -160,7 +192,15 @@ struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides
             idx[k++] = a; idx[k++] = a + 1; idx[k++] = b;
             idx[k++] = b; idx[k++] = a + 1; idx[k++] = b + 1;
         }
-    return mesh_create_from_arrays("torus", p, n, nv, idx, ni, err);
+    struct mesh *m = mesh_create_from_arrays("torus", p, n, nv, idx, ni, err);
+    if (!m || !add_texcoords(m, err))
+        return NULL;
+    for (int i = 0, vi = 0; i <= segments; i++)
+        for (int j = 0; j <= sides; j++, vi++) {
+            m->texcoords[0][vi * 2] = (float)i / (float)segments;
+            m->texcoords[0][vi * 2 + 1] = (float)j / (float)sides;
+        }
+    return m;
 }
 
 struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err)
@@ -202,7 +242,16 @@ struct mesh *mesh_create_box(vec3 size, struct error *err)
             uint32_t *t = idx + f * 6;
             t[0] = b; t[1] = b + 1; t[2] = b + 2; t[3] = b; t[4] = b + 2; t[5] = b + 3;
         }
-    return mesh_create_from_arrays("box", p, n, 24, idx, 36, err);
+    struct mesh *m = mesh_create_from_arrays("box", p, n, 24, idx, 36, err);
+    if (!m || !add_texcoords(m, err))
+        return NULL;
+    /* Each face holds the whole [0,1]^2. */
+    static const float face_uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    for (int vi = 0; vi < 24; vi++) {
+        m->texcoords[0][vi * 2] = face_uv[vi % 4][0];
+        m->texcoords[0][vi * 2 + 1] = face_uv[vi % 4][1];
+    }
+    return m;
 }
 
 struct mesh *mesh_load_gltf(const char *path, struct error *err)
@@ -227,14 +276,21 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
         return NULL;
     }
     snprintf(m->name, sizeof m->name, "%s", path);
+    material_init(&m->material, MATERIAL_DIFFUSE);
     m->vertex_count = g.vertex_count;
     m->index_count = g.index_count;
     m->positions = g.positions;
     m->normals = g.normals;
     m->indices = g.indices;
+    m->texcoords[0] = g.texcoords[0];
+    m->texcoords[1] = g.texcoords[1];
     m->target_count = g.target_count;
     m->target_positions = g.target_positions;
     m->target_normals = g.target_normals;
+    /* The mesh owns these now: gltf_mesh_free(&g) frees only the rest. */
+    g.positions = g.normals = g.target_positions = g.target_normals = NULL;
+    g.indices = NULL;
+    g.texcoords[0] = g.texcoords[1] = NULL;
     for (int t = 0; t < g.target_count; t++)
         m->default_weights[t] = g.weights[t];
     if (g.material.present) {
@@ -253,11 +309,44 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
                                                -logf(fmaxf(c[2], 1e-6f)) / d);
         }
     }
-    free(g.weights);
-    if (g.target_names)
-        for (int t = 0; t < g.target_count; t++)
-            free(g.target_names[t]);
-    free(g.target_names);
+    if (g.material.present && !g.material.glass) {
+        /* Textures of diffuse materials (glass ignores them, as both renderers do). */
+        struct {
+            struct gltf_texture *from;
+            struct texture_ref *to;
+        } slots[3] = {{&g.material.base_color_texture, &m->material.base_color},
+                      {&g.material.normal_texture, &m->material.normal},
+                      {&g.material.emissive_texture, &m->material.emissive}};
+        for (int s = 0; s < 3; s++) {
+            struct gltf_texture *gt = slots[s].from;
+            if (!gt->bytes)
+                continue;
+            char name[700];
+            snprintf(name, sizeof name, "%s %s", path, gt->name);
+            struct texture *t = texture_decode(name, gt->bytes, gt->size, err);
+            if (!t) {
+                gltf_mesh_free(&g);
+                mesh_destroy(m);
+                return NULL;
+            }
+            t->wrap_s = (enum texture_wrap)gt->wrap_s;
+            t->wrap_t = (enum texture_wrap)gt->wrap_t;
+            t->nearest = gt->nearest;
+            t->mipmaps = gt->mipmaps;
+            struct texture_ref *ref = slots[s].to;
+            ref->texture = t;
+            ref->texcoord = gt->texcoord;
+            memcpy(ref->transform, gt->transform, sizeof ref->transform);
+            ref->scale = gt->scale;
+            if (!m->texcoords[gt->texcoord]) {
+                error_set(err, "%s: a material texture reads TEXCOORD_%d, which no primitive has", path, gt->texcoord);
+                gltf_mesh_free(&g);
+                mesh_destroy(m);
+                return NULL;
+            }
+        }
+    }
+    gltf_mesh_free(&g);
     mesh_compute_bounds(m);
     return m;
 }
@@ -278,5 +367,8 @@ void mesh_destroy(struct mesh *m)
     free(m->target_positions);
     free(m->target_normals);
     free(m->thickness);
+    free(m->texcoords[0]);
+    free(m->texcoords[1]);
+    material_release(&m->material);
     free(m);
 }

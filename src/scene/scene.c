@@ -31,11 +31,9 @@ struct object *object_create(struct mesh *mesh)
     obj->serial = next_serial++;
     obj->mesh = mesh;
     mesh_retain(mesh);
-    obj->material.kind = MATERIAL_DIFFUSE;
-    obj->material.color = vec3_make(0.8f, 0.8f, 0.8f);
-    obj->material.ior = 1.5f;
+    material_init(&obj->material, MATERIAL_DIFFUSE);
     if (mesh && mesh->has_material)
-        obj->material = mesh->material;
+        material_assign(&obj->material, &mesh->material);
     obj->scale = vec3_make(1, 1, 1);
     obj->rotation = quat_identity();
     obj->visible = true;
@@ -58,6 +56,7 @@ void object_destroy(struct object *obj)
     if (!obj || --obj->references > 0)
         return;
     free(obj->deform.glsl);
+    material_release(&obj->material);
     if (obj->water) {
         water_release(obj->water);
         free(obj->water);

@@ -21,6 +21,36 @@
 
 enum material_kind { MATERIAL_DIFFUSE, MATERIAL_GLASS, MATERIAL_MIRROR, MATERIAL_WATER };
 
+enum texture_wrap { TEXTURE_REPEAT, TEXTURE_CLAMP, TEXTURE_MIRROR };
+
+/* An 8-bit RGBA image a material samples (scene/texture.c): a PNG or JPEG
+ * file, a glTF image, or a procedural one (checker). Row 0 is the image's
+ * top row, at v = 0, as glTF's texture coordinates have it. Colour slots
+ * (base colour, emission) read the texels as sRGB and linearize them before
+ * filtering; the normal slot reads them as they are. The GPU uploads the
+ * same texels (graph/texture_cache.c) and the reference samples them with
+ * the same filter (texture_sample). */
+struct texture {
+    int references;
+    uint64_t serial; /* unique for the process: the renderer's texture cache keys its GPU copy by it */
+    char name[512];  /* the file, "checker", or "file.glb image 2" */
+    int width, height;
+    uint8_t *texels;  /* owned, width * height * 4 */
+    bool nearest;     /* magnification: nearest texel (else bilinear) */
+    bool mipmaps;     /* minification through mipmaps on the GPU (the reference samples level 0) */
+    enum texture_wrap wrap_s, wrap_t;
+};
+
+/* Where a material reads a texture: which texture coordinate set, and
+ * KHR_texture_transform's offset, rotation and scale as the 3x2 matrix
+ * uv' = (m[0] u + m[2] v + m[4], m[1] u + m[3] v + m[5]). */
+struct texture_ref {
+    struct texture *texture; /* a reference, or NULL */
+    int texcoord;            /* 0 or 1 */
+    float transform[6];
+    float scale;             /* normal maps: the normalTexture scale */
+};
+
 struct material {
     enum material_kind kind;
     vec3 color;      /* diffuse albedo, or the tint of a mirror */
@@ -28,7 +58,35 @@ struct material {
     vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
     vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
+    /* Textures (diffuse surfaces only): colour x base_color, the shading
+     * normal from a tangent-space normal map, emission x emissive. A
+     * material holds a reference to each: copy materials with
+     * material_assign and drop them with material_release. */
+    struct texture_ref base_color, normal, emissive;
 };
+
+struct texture *texture_create(const char *name, int width, int height, struct error *err);
+/* A checker of `squares` x `squares` squares over uv [0,1]^2, one texel
+ * each, sampled nearest and repeating: sharp edges on both renderers. */
+struct texture *texture_create_checker(int squares, vec3 a, vec3 b, struct error *err);
+/* Decodes a PNG or JPEG file (PNG: libpng, JPEG: libjpeg). */
+struct texture *texture_load(const char *path, struct error *err);
+/* Decodes PNG or JPEG bytes (by their signature); `name` for messages. */
+struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t size, struct error *err);
+void texture_retain(struct texture *t);
+void texture_destroy(struct texture *t);
+/* The identity transform, texcoord 0, scale 1, no texture. */
+void texture_ref_init(struct texture_ref *ref);
+/* The filtered value at uv, as the GPU samples level 0: bilinear (or
+ * nearest) with the wrap modes, colour texels linearized first when `srgb`. */
+vec3 texture_sample(const struct texture_ref *ref, const float uv[2], bool srgb);
+void texture_ref_apply(const struct texture_ref *ref, const float uv[2], float out[2]);
+
+void material_init(struct material *m, enum material_kind kind);
+/* *dst = *src, retaining src's textures and releasing dst's old ones. */
+void material_assign(struct material *dst, const struct material *src);
+void material_release(struct material *m);
+bool material_has_textures(const struct material *m);
 
 struct mesh {
     int references;
@@ -38,6 +96,7 @@ struct mesh {
     struct material material;
     size_t vertex_count, index_count;
     float *positions, *normals; /* vertex_count * 3 each */
+    float *texcoords[2];        /* vertex_count * 2 each, or NULL: glTF TEXCOORD_0/1, generated for procedural shapes */
     uint32_t *indices;
     int target_count;
     float *target_positions, *target_normals; /* target_count * vertex_count * 3 deltas */

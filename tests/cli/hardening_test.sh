@@ -128,6 +128,12 @@ expect_error "io.lines outside the allowed folders" 1 "may read only" "$O" -- \
 scene read_mesh 'c.mesh.load "/etc/passwd"'
 expect_error "a mesh from outside the allowed folders" 1 "may read only" "$O" -- \
   "$CAUSTICA" render "$WORK/read_mesh.lua" -o "$O"
+scene read_texture 'c.texture "/etc/passwd"'
+expect_error "a texture from outside the allowed folders" 1 "may read only" "$O" -- \
+  "$CAUSTICA" render "$WORK/read_texture.lua" -o "$O"
+scene read_texture_table 'c.texture { file = "/etc/passwd" }'
+expect_error "a texture (option table) from outside the allowed folders" 1 "may read only" "$O" -- \
+  "$CAUSTICA" render "$WORK/read_texture_table.lua" -o "$O"
 scene getenv 'print(os.getenv("HOME"))'
 expect_error "no environment variables" 1 "os.getenv is not available" "$O" -- \
   "$CAUSTICA" render "$WORK/getenv.lua" -o "$O"

@@ -91,6 +91,31 @@ int main(void)
     object_destroy(obj);
     mesh_destroy(mesh);
 
+    /* textures: BoxTextured's PNG in the BIN chunk with its sampler, and an
+     * external image with KHR_texture_transform */
+    struct mesh *box = mesh_load_gltf(asset("scenes/assets/khronos/BoxTextured/BoxTextured.glb"), &err);
+    CHECK(box != NULL);
+    if (box) {
+        CHECK(box->texcoords[0] != NULL && box->texcoords[1] == NULL);
+        CHECK(box->material.base_color.texture != NULL);
+        if (box->material.base_color.texture)
+            CHECK(box->material.base_color.texture->width == 256 && box->material.base_color.texture->height == 256);
+        CHECK(box->material.normal.texture == NULL);
+        mesh_destroy(box);
+    }
+    struct mesh *quad = mesh_load_gltf(asset("tests/data/transform_quad.gltf"), &err);
+    CHECK(quad != NULL);
+    if (quad) {
+        const struct texture_ref *ref = &quad->material.base_color;
+        CHECK(ref->texture && ref->texture->nearest && !ref->texture->mipmaps);
+        /* offset [0, 1], rotation pi/2, scale 0.5: uv (0, 0) -> (0, 1), (1, 1) -> (0.5, 0.5) */
+        float uv[2] = {1, 1}, out[2];
+        texture_ref_apply(ref, uv, out);
+        CHECK_NEAR(out[0], 0.5, 1e-5);
+        CHECK_NEAR(out[1], 0.5, 1e-5);
+        mesh_destroy(quad);
+    }
+
     /* bad input: errors that name the file, never a crash */
     CHECK(!gltf_load(asset("tests/data/bad_indices.gltf"), &m, &err));
     CHECK_CONTAINS(err.message, "bad_indices.gltf");

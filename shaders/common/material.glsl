@@ -1,0 +1,57 @@
+// Material textures of diffuse surfaces (struct material's base_color,
+// normal and emissive slots), bound by renderer_draw_objects. The vertex
+// shader passes the mesh's texture coordinate sets as v_texcoord0/1.
+// The reference renderer reads the same texels with the same filter and the
+// same tangent frame (src/reference/ref_material.c).
+#include "common/bindings.glsl"
+layout(binding = MATERIAL_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
+layout(binding = MATERIAL_UNIT_NORMAL) uniform sampler2D u_normal_texture;
+layout(binding = MATERIAL_UNIT_EMISSIVE) uniform sampler2D u_emissive_texture;
+uniform int u_texture_set[3];         // per slot (base, normal, emissive): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
+uniform vec3 u_texture_transform[6];  // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+uniform float u_normal_scale;
+in vec2 v_texcoord0;
+in vec2 v_texcoord1;
+
+vec2 material_uv(int slot)
+{
+    vec3 q = vec3(u_texture_set[slot] == 2 ? v_texcoord1 : v_texcoord0, 1.0);
+    return vec2(dot(u_texture_transform[slot * 2], q), dot(u_texture_transform[slot * 2 + 1], q));
+}
+
+vec3 material_albedo(vec3 color)
+{
+    return u_texture_set[0] > 0 ? color * texture(u_base_color_texture, material_uv(0)).rgb : color;
+}
+
+vec3 material_emission(vec3 emission)
+{
+    return u_texture_set[2] > 0 ? emission * texture(u_emissive_texture, material_uv(2)).rgb : emission;
+}
+
+// The shading normal from a tangent-space normal map, for the face-forward
+// normal n at world point p. The tangent is the direction of increasing u
+// on the triangle (solved from the screen derivatives of p and uv, exact for
+// a flat triangle) made perpendicular to n; the bitangent is n x t, as the
+// glTF sample viewer does without TANGENT data. A degenerate uv mapping
+// (zero area in uv) leaves n as it is. Call in uniform control flow.
+vec3 material_normal(vec3 n, vec3 p)
+{
+    if (u_texture_set[1] == 0)
+        return n;
+    vec2 uv = material_uv(1);
+    vec3 dp1 = dFdx(p), dp2 = dFdy(p);
+    vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+    float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    vec3 pu = dp1 * duv2.y - dp2 * duv1.y; // (dp/du) * det
+    vec3 t = pu - n * dot(n, pu);
+    float len = length(t);
+    vec3 m = texture(u_normal_texture, uv).rgb * 2.0 - 1.0;
+    if (!(abs(det) > 1e-20) || !(len > 1e-20 * max(abs(det), 1e-20)))
+        return n;
+    t = t * (sign(det) / len);
+    vec3 b = cross(n, t);
+    vec3 mapped = t * (m.x * u_normal_scale) + b * (m.y * u_normal_scale) + n * m.z;
+    float ml = length(mapped);
+    return ml > 1e-12 ? mapped / ml : n;
+}

@@ -1,0 +1,136 @@
+#include "io/image_decode.h"
+
+#include <setjmp.h>
+#include <stdio.h> /* before jpeglib.h, which uses FILE */
+#include <stdlib.h>
+#include <string.h>
+
+#include <jpeglib.h>
+#include <png.h>
+
+static bool size_ok(const char *name, unsigned long w, unsigned long h, struct error *err)
+{
+    if (w == 0 || h == 0 || w > IMAGE_DECODE_MAX_SIDE || h > IMAGE_DECODE_MAX_SIDE ||
+        (unsigned long long)w * h > IMAGE_DECODE_MAX_TEXELS)
+        return error_set(err, "%s: image of %lux%lu texels (at most %d per side and %u in all)", name, w, h,
+                         IMAGE_DECODE_MAX_SIDE, IMAGE_DECODE_MAX_TEXELS);
+    return true;
+}
+
+static bool decode_png(const char *name, const uint8_t *bytes, size_t size, uint8_t **out, int *width, int *height,
+                       struct error *err)
+{
+    png_image pi;
+    memset(&pi, 0, sizeof pi);
+    pi.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&pi, bytes, size))
+        return error_set(err, "%s: cannot read PNG: %s", name, pi.message);
+    if (!size_ok(name, pi.width, pi.height, err)) {
+        png_image_free(&pi);
+        return false;
+    }
+    /* 8-bit RGBA: sRGB-encoded as colour files are (the simplified API
+     * converts 16-bit and linear files to it). */
+    pi.format = PNG_FORMAT_RGBA;
+    uint8_t *buf = malloc(PNG_IMAGE_SIZE(pi));
+    if (!buf) {
+        png_image_free(&pi);
+        return error_set(err, "%s: out of memory for %ux%u texels", name, pi.width, pi.height);
+    }
+    if (!png_image_finish_read(&pi, NULL, buf, 0, NULL)) {
+        free(buf);
+        return error_set(err, "%s: cannot decode PNG: %s", name, pi.message);
+    }
+    *out = buf;
+    *width = (int)pi.width;
+    *height = (int)pi.height;
+    return true;
+}
+
+struct jpeg_failure {
+    struct jpeg_error_mgr mgr;
+    jmp_buf jump;
+    char message[JMSG_LENGTH_MAX];
+};
+
+static void jpeg_failed(j_common_ptr cinfo)
+{
+    struct jpeg_failure *f = (struct jpeg_failure *)cinfo->err;
+    f->mgr.format_message(cinfo, f->message);
+    longjmp(f->jump, 1);
+}
+
+static void jpeg_quiet(j_common_ptr cinfo, int level) { (void)cinfo, (void)level; }
+
+static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uint8_t **out, int *width, int *height,
+                        struct error *err)
+{
+    struct jpeg_decompress_struct cinfo;
+    struct jpeg_failure failure;
+    /* volatile: changed between setjmp and a longjmp back to it */
+    uint8_t *volatile buf = NULL;
+    uint8_t *volatile row = NULL;
+    cinfo.err = jpeg_std_error(&failure.mgr);
+    failure.mgr.error_exit = jpeg_failed;
+    failure.mgr.emit_message = jpeg_quiet; /* warnings of a damaged file are not printed by the library */
+    if (setjmp(failure.jump)) {
+        jpeg_destroy_decompress(&cinfo);
+        free(buf);
+        free(row);
+        return error_set(err, "%s: cannot decode JPEG: %s", name, failure.message);
+    }
+    jpeg_create_decompress(&cinfo);
+    jpeg_mem_src(&cinfo, bytes, (unsigned long)size);
+    jpeg_read_header(&cinfo, TRUE);
+    if (!size_ok(name, cinfo.image_width, cinfo.image_height, err)) {
+        jpeg_destroy_decompress(&cinfo);
+        return false;
+    }
+    cinfo.out_color_space = JCS_RGB; /* greyscale and YCbCr alike */
+    jpeg_start_decompress(&cinfo);
+    size_t w = cinfo.output_width, h = cinfo.output_height;
+    buf = malloc(w * h * 4);
+    row = malloc(w * 3);
+    if (!buf || !row) {
+        jpeg_destroy_decompress(&cinfo);
+        free(buf);
+        free(row);
+        return error_set(err, "%s: out of memory for %zux%zu texels", name, w, h);
+    }
+    while (cinfo.output_scanline < h) {
+        size_t y = cinfo.output_scanline;
+        JSAMPROW rows[1] = {row};
+        if (jpeg_read_scanlines(&cinfo, rows, 1) != 1)
+            break;
+        for (size_t x = 0; x < w; x++) {
+            buf[(y * w + x) * 4] = row[x * 3];
+            buf[(y * w + x) * 4 + 1] = row[x * 3 + 1];
+            buf[(y * w + x) * 4 + 2] = row[x * 3 + 2];
+            buf[(y * w + x) * 4 + 3] = 255;
+        }
+    }
+    bool complete = cinfo.output_scanline == h;
+    if (complete)
+        jpeg_finish_decompress(&cinfo);
+    jpeg_destroy_decompress(&cinfo);
+    free(row);
+    if (!complete) {
+        free(buf);
+        return error_set(err, "%s: JPEG ends early", name);
+    }
+    *out = buf;
+    *width = (int)w;
+    *height = (int)h;
+    return true;
+}
+
+bool image_decode_rgba8(const char *name, const uint8_t *bytes, size_t size, uint8_t **rgba, int *width,
+                        int *height, struct error *err)
+{
+    static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+    if (size >= 8 && memcmp(bytes, png_signature, 8) == 0)
+        return decode_png(name, bytes, size, rgba, width, height, err);
+    if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
+        return decode_jpeg(name, bytes, size, rgba, width, height, err);
+    return error_set(err, "%s: not a PNG or JPEG image (textures are PNG or JPEG)", name);
+}

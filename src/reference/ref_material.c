@@ -1,0 +1,83 @@
+/* Textured diffuse surfaces in the reference: the same texels, filter,
+ * texture transform and tangent frame as common/material.glsl. The GPU
+ * filters with mipmaps when a texture is minified; the reference samples
+ * level 0 (the pixel centre's point sample), so the two agree wherever a
+ * texel covers at least a pixel, and differ by the texture's own contrast
+ * at smaller scales (docs/LUA_API.md, Textures). */
+#include <math.h>
+
+#include "reference/ref_scene.h"
+
+static void hit_uv(const struct ref_object *o, const struct ref_hit *h, int set, float uv[2])
+{
+    const uint32_t *tri = o->indices + (size_t)h->primitive * 3;
+    const float *t = o->texcoords[set];
+    double w = 1.0 - h->bary_u - h->bary_v;
+    for (int k = 0; k < 2; k++)
+        uv[k] = (float)(w * t[tri[0] * 2 + k] + h->bary_u * t[tri[1] * 2 + k] + h->bary_v * t[tri[2] * 2 + k]);
+}
+
+static bool slot_active(const struct ref_object *o, const struct texture_ref *ref)
+{
+    return ref->texture && o->texcoords[ref->texcoord];
+}
+
+static dvec3 to_dvec3(vec3 v) { return dv(v.x, v.y, v.z); }
+
+/* The normal map at the hit, in the frame of material_normal(): t along
+ * increasing u on the triangle (made perpendicular to n), b = n x t. */
+static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, dvec3 n)
+{
+    const struct texture_ref *ref = &o->material.normal;
+    const uint32_t *tri = o->indices + (size_t)h->primitive * 3;
+    const float *tc = o->texcoords[ref->texcoord];
+    float uvs[3][2];
+    dvec3 p[3];
+    for (int k = 0; k < 3; k++) {
+        const float *q = o->positions + tri[k] * 3;
+        p[k] = dv(q[0], q[1], q[2]);
+        float raw[2] = {tc[tri[k] * 2], tc[tri[k] * 2 + 1]};
+        texture_ref_apply(ref, raw, uvs[k]);
+    }
+    /* dp = Pu du + Pv dv along the edges; Pu * det by Cramer's rule. */
+    dvec3 e1 = dv_sub(p[1], p[0]), e2 = dv_sub(p[2], p[0]);
+    double du1 = uvs[1][0] - uvs[0][0], dv1 = uvs[1][1] - uvs[0][1];
+    double du2 = uvs[2][0] - uvs[0][0], dv2 = uvs[2][1] - uvs[0][1];
+    double det = du1 * dv2 - dv1 * du2;
+    dvec3 pu = dv_sub(dv_scale(e1, dv2), dv_scale(e2, dv1));
+    dvec3 t = dv_sub(pu, dv_scale(n, dv_dot(n, pu)));
+    double len = sqrt(dv_dot(t, t));
+    if (!(fabs(det) > 1e-20) || !(len > 1e-20 * fmax(fabs(det), 1e-20)) || !isfinite(len))
+        return n; /* a triangle with no area in uv: no tangent frame */
+    t = dv_scale(t, (det > 0 ? 1.0 : -1.0) / len);
+    dvec3 b = dv_cross(n, t);
+    float uv[2];
+    hit_uv(o, h, ref->texcoord, uv);
+    vec3 m = texture_sample(ref, uv, false);
+    double s = ref->scale;
+    dvec3 mapped = dv_add(dv_add(dv_scale(t, (m.x * 2.0 - 1.0) * s), dv_scale(b, (m.y * 2.0 - 1.0) * s)),
+                          dv_scale(n, m.z * 2.0 - 1.0));
+    return dv_normalize_or(mapped, n);
+}
+
+void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dvec3 n, struct ref_surface *out)
+{
+    const struct ref_object *o = &rs->objects[h->object];
+    const struct material *m = &o->material;
+    out->albedo = to_dvec3(m->color);
+    out->emission = to_dvec3(m->emission);
+    out->normal = n;
+    if (m->kind != MATERIAL_DIFFUSE)
+        return;
+    float uv[2];
+    if (slot_active(o, &m->base_color)) {
+        hit_uv(o, h, m->base_color.texcoord, uv);
+        out->albedo = dv_mul(out->albedo, to_dvec3(texture_sample(&m->base_color, uv, true)));
+    }
+    if (slot_active(o, &m->emissive)) {
+        hit_uv(o, h, m->emissive.texcoord, uv);
+        out->emission = dv_mul(out->emission, to_dvec3(texture_sample(&m->emissive, uv, true)));
+    }
+    if (slot_active(o, &m->normal))
+        out->normal = mapped_normal(o, h, n);
+}
