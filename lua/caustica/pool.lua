@@ -1,5 +1,6 @@
 -- A tiled pool with a simulated water surface, as in Sandberg & Falemo's
--- figures: floor and four walls around a size x size basin `depth` deep,
+-- figures: floor and four walls around a basin `depth` deep, size x size
+-- or size[1] (x) by size[2] (z),
 -- the water's mean level at y = 0, drops at regular times, and the passes
 -- of §3.5 (shadow map, caustic volumes, shading, the surface).
 local c = require "caustica"
@@ -7,17 +8,25 @@ local c = require "caustica"
 local pool = {}
 
 --- Adds the pool to `scene`; returns the water object and a graph.
---- opts: size, depth, grid, light, attenuation, damping, wave_speed, tiles (material)
+--- opts: size (a number or {x, z}), depth, grid (vertices along the longer
+--- side), light, attenuation, damping, wave_speed, tiles (material)
+---
+--- The basin both renderers see: a floor plane exactly under the water (the
+--- same extent, `depth` below its mean level) and four walls 0.1 thick whose
+--- inner faces stand on the water's edges and rise 0.075 above it, so that
+--- every refracted ray ends on the floor or a wall, never in the void.
 function pool.build(scene, opts)
   local size, depth = opts.size or 2, opts.depth or 0.6
+  local sx, sz = size, size
+  if type(size) == "table" then sx, sz = size[1], size[2] end
   local tiles = opts.tiles or c.material.diffuse { color = { 0.55, 0.72, 0.78 } }
-  scene:add(c.object { mesh = c.mesh.plane { size = size }, position = { 0, -depth, 0 }, material = tiles })
-  local h, t = size / 2 + 0.05, 0.1
-  for _, w in ipairs { { h, 0, t, size + 2 * t }, { -h, 0, t, size + 2 * t }, { 0, h, size + 2 * t, t }, { 0, -h, size + 2 * t, t } } do
+  scene:add(c.object { mesh = c.mesh.plane { size = { sx, sz } }, position = { 0, -depth, 0 }, material = tiles })
+  local hx, hz, t = sx / 2 + 0.05, sz / 2 + 0.05, 0.1
+  for _, w in ipairs { { hx, 0, t, sz + 2 * t }, { -hx, 0, t, sz + 2 * t }, { 0, hz, sx + 2 * t, t }, { 0, -hz, sx + 2 * t, t } } do
     scene:add(c.object { mesh = c.mesh.box { size = { w[3], depth + 0.15, w[4] } }, material = tiles,
                          position = { w[1], -depth / 2 + 0.075, w[2] } })
   end
-  local water = scene:add(c.water { size = size, resolution = opts.grid or 64, depth = depth,
+  local water = scene:add(c.water { size = { sx, sz }, resolution = opts.grid or 64, depth = depth,
                                     attenuation = opts.attenuation or { 0.35, 0.12, 0.08 },
                                     damping = opts.damping or 0.3, wave_speed = opts.wave_speed or 0.6 })
   local g = c.graph()
@@ -41,8 +50,9 @@ function pool.drops(water, size, every, strength, seed)
   local next_drop = 0
   return function(t, dt)
     if t >= next_drop then
-      local r = 0.8 * size / 2
-      water:drop(2 * r * random() - r, 2 * r * random() - r, 0.12 + 0.1 * random(), strength or 0.02)
+      local rx, rz = 0.8 * size / 2, 0.8 * size / 2
+      if type(size) == "table" then rx, rz = 0.8 * size[1] / 2, 0.8 * size[2] / 2 end
+      water:drop(2 * rx * random() - rx, 2 * rz * random() - rz, 0.12 + 0.1 * random(), strength or 0.02)
       next_drop = next_drop + (every or 0.4)
     end
     water:step(dt)

@@ -14,8 +14,8 @@ layout(std430, binding = VOLUMES_SSBO_NORMALS) readonly buffer Normals { float n
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 uniform int u_triangles;
-uniform int u_water_resolution; // the simulation's vertices per side
-uniform int u_resolution;       // the generator grid's
+uniform ivec2 u_water_resolution; // the simulation's vertices along x and z
+uniform ivec2 u_resolution;       // the generator grid's
 uniform int u_light;
 uniform float u_ior;
 uniform float u_ideal;
@@ -31,11 +31,11 @@ vec3 fetch(int v, bool normal)
 // The surface at generator vertex (i, j): bilinear in the water's grid.
 vec3 surface(int i, int j, bool normal)
 {
-    float s = float(u_water_resolution - 1) / float(u_resolution - 1);
+    vec2 s = vec2(u_water_resolution - 1) / vec2(u_resolution - 1);
     vec2 f = vec2(float(i), float(j)) * s;
-    ivec2 a = min(ivec2(floor(f)), ivec2(u_water_resolution - 2));
+    ivec2 a = min(ivec2(floor(f)), u_water_resolution - 2);
     vec2 t = f - vec2(a);
-    int n = u_water_resolution;
+    int n = u_water_resolution.x;
     vec3 v00 = fetch(a.y * n + a.x, normal), v10 = fetch(a.y * n + a.x + 1, normal);
     vec3 v01 = fetch((a.y + 1) * n + a.x, normal), v11 = fetch((a.y + 1) * n + a.x + 1, normal);
     return mix(mix(v00, v10, t.x), mix(v01, v11, t.x), t.y);
@@ -60,7 +60,7 @@ void main()
     bool directional = int(light.position.w + 0.5) == 1;
     // triangle id of the generator grid, counter-clockwise seen from above
     // (as mesh_create_grid winds them): (a, b, a+1) and (a+1, b, b+1)
-    int cells = u_resolution - 1;
+    int cells = u_resolution.x - 1;
     int cell = int(id) / 2, ci = cell % cells, cj = cell / cells;
     ivec2 corner[3] = (int(id) % 2 == 0) ? ivec2[3](ivec2(ci, cj), ivec2(ci, cj + 1), ivec2(ci + 1, cj))
                                          : ivec2[3](ivec2(ci + 1, cj), ivec2(ci, cj + 1), ivec2(ci + 1, cj + 1));

@@ -59,17 +59,22 @@ static int mesh_sphere(lua_State *L)
     return push_mesh(L, mesh_create_sphere(radius, segments, &err), &err);
 }
 
+/* c.mesh.plane { size = s | {x, z}, subdivisions }: in the xz plane, +y up */
 static int mesh_plane(lua_State *L)
 {
-    float size = 1.0f;
+    float size_x = 1.0f, size_z = 1.0f;
     int subdivisions = 1;
     static const char *const fields[] = {"size", "subdivisions", NULL};
     if (options(L, "plane", fields)) {
-        lutil_opt_number(L, 1, "plane", "size", &size);
+        lutil_opt_extent(L, 1, "plane", "size", &size_x, &size_z);
         lutil_opt_integer(L, 1, "plane", "subdivisions", &subdivisions);
     }
     struct error err;
-    return push_mesh(L, mesh_create_plane(size, subdivisions, &err), &err);
+    struct mesh *m = size_x == size_z ? mesh_create_plane(size_x, subdivisions, &err)
+                                      : mesh_create_grid_xz(size_x, size_z, subdivisions, subdivisions, &err);
+    if (m)
+        snprintf(m->name, sizeof m->name, "plane");
+    return push_mesh(L, m, &err);
 }
 
 static int mesh_grid(lua_State *L)
@@ -453,19 +458,21 @@ static int object_tostring(lua_State *L)
 
 /* ---- water surfaces --------------------------------------------------- */
 
-/* c.water { size, resolution, depth, attenuation = {r,g,b}, ior, damping,
- * wave_speed, boundary = "reflective" | "fixed", position }: a water
- * surface object (material water) driven by a height-field simulation. */
+/* c.water { size = s | {w, d}, resolution, depth, attenuation = {r,g,b},
+ * ior, damping, wave_speed, boundary = "reflective" | "fixed", position }:
+ * a water surface object (material water) driven by a height-field
+ * simulation, square or w (along x) by d (along z); `resolution` vertices
+ * along the longer side. */
 static int water_new(lua_State *L)
 {
     luaL_checktype(L, 1, LUA_TTABLE);
     static const char *const fields[] = {"size", "resolution", "depth", "attenuation", "ior", "fresnel", "damping",
                                          "wave_speed", "boundary", "position", "visible", "cast_shadows", NULL};
     lutil_check_fields(L, 1, "water", fields);
-    float size = 2.0f, depth = 1.0f, ior = 1.33f, damping = 0.0f, speed = 1.0f;
+    float size_x = 2.0f, size_z = 2.0f, depth = 1.0f, ior = 1.33f, damping = 0.0f, speed = 1.0f;
     int resolution = 64;
     vec3 attenuation = {0.0f, 0.0f, 0.0f};
-    lutil_opt_number(L, 1, "water", "size", &size);
+    lutil_opt_extent(L, 1, "water", "size", &size_x, &size_z);
     lutil_opt_integer(L, 1, "water", "resolution", &resolution);
     lutil_opt_number(L, 1, "water", "depth", &depth);
     lutil_opt_number(L, 1, "water", "ior", &ior);
@@ -479,29 +486,36 @@ static int water_new(lua_State *L)
     if (!(ior > 0))
         return lutil_error(L, "bad argument 'ior' to 'water' (a positive number expected, got %g)", (double)ior);
     struct error err;
-    struct mesh *m = mesh_create_grid(size, resolution - 1, &err);
-    if (!m)
+    /* The simulation checks the values; the grid has its vertex counts. */
+    struct water *sim = calloc(1, sizeof *sim);
+    if (!sim)
+        return lutil_error(L, "water: out of memory");
+    if (!water_create(sim, resolution, size_x, size_z, depth, speed, damping, fixed, &err)) {
+        free(sim);
         return lutil_error(L, "water: %s", err.message);
-    snprintf(m->name, sizeof m->name, "water %dx%d", resolution, resolution);
+    }
+    struct mesh *m = mesh_create_grid_xz(size_x, size_z, sim->nx - 1, sim->nz - 1, &err);
+    if (!m) {
+        water_release(sim);
+        free(sim);
+        return lutil_error(L, "water: %s", err.message);
+    }
+    snprintf(m->name, sizeof m->name, "water %dx%d", sim->nx, sim->nz);
     push_mesh(L, m, &err);
     int mesh_idx = lua_gettop(L);
     struct l_object *u = lua_newuserdatauv(L, sizeof *u, 1);
     u->obj = object_create(m);
     luaL_setmetatable(L, OBJECT_MT);
-    if (!u->obj)
+    if (!u->obj) {
+        water_release(sim);
+        free(sim);
         return lutil_error(L, "out of memory");
+    }
     int obj_idx = lua_gettop(L);
     lua_pushvalue(L, mesh_idx);
     lua_setiuservalue(L, obj_idx, 1);
     struct object *o = u->obj;
-    o->water = calloc(1, sizeof *o->water);
-    if (!o->water)
-        return lutil_error(L, "water: out of memory");
-    if (!water_create(o->water, resolution, size, depth, speed, damping, fixed, &err)) {
-        free(o->water);
-        o->water = NULL;
-        return lutil_error(L, "water: %s", err.message);
-    }
+    o->water = sim;
     o->material.kind = MATERIAL_WATER;
     o->material.ior = ior;
     o->material.absorption = attenuation;
@@ -586,6 +600,22 @@ static int get_stable_step(lua_State *L) { return push_water_fact(L, water_stabl
 static int get_max_height(lua_State *L) { return push_water_fact(L, water_max_height); }
 static int get_depth(lua_State *L) { return push_water_fact(L, water_depth); }
 
+/* water.grid = {nx, nz}: the simulation's vertices along x and z (nil on other objects) */
+static int get_grid(lua_State *L)
+{
+    struct object *o = lobject_check(L, 1);
+    if (!o->water) {
+        lua_pushnil(L);
+        return 1;
+    }
+    lua_createtable(L, 2, 0);
+    lua_pushinteger(L, o->water->nx);
+    lua_rawseti(L, -2, 1);
+    lua_pushinteger(L, o->water->nz);
+    lua_rawseti(L, -2, 2);
+    return 1;
+}
+
 static int get_substeps(lua_State *L)
 {
     struct object *o = lobject_check(L, 1);
@@ -615,7 +645,8 @@ void lobject_open(lua_State *L)
                                               {"material", get_material}, {"morph_weights", get_morph_weights},
                                               {"id", get_id}, {"energy", get_energy},
                                               {"stable_step", get_stable_step}, {"substeps", get_substeps},
-                                              {"max_height", get_max_height}, {"depth", get_depth}, {NULL, NULL}};
+                                              {"max_height", get_max_height}, {"depth", get_depth},
+                                              {"grid", get_grid}, {NULL, NULL}};
     static const luaL_Reg object_setters[] = {{"position", set_position}, {"rotation", set_rotation},
                                               {"scale", set_scale}, {"visible", set_visible},
                                               {"cast_shadows", set_cast_shadows}, {"material", set_material},

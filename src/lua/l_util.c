@@ -247,6 +247,29 @@ int lutil_opt_option(lua_State *L, int t, const char *fn, const char *field, con
     return index;
 }
 
+void lutil_opt_extent(lua_State *L, int t, const char *fn, const char *field, float *x, float *z)
+{
+    static const char expected[] = "number or {x, z} (two numbers)";
+    int type = lua_getfield(L, t, field);
+    if (type == LUA_TNUMBER) {
+        *x = *z = lutil_check_number(L, -1, fn, field);
+    } else if (type == LUA_TTABLE) {
+        if (luaL_len(L, -1) != 2)
+            lutil_field_error(L, fn, field, expected, -1);
+        float *sides[2] = {x, z};
+        for (int i = 0; i < 2; i++) {
+            lua_geti(L, -1, i + 1);
+            if (lua_type(L, -1) != LUA_TNUMBER)
+                lutil_field_error(L, fn, field, expected, -2);
+            *sides[i] = lutil_check_number(L, -1, fn, field);
+            lua_pop(L, 1);
+        }
+    } else if (type != LUA_TNIL) {
+        lutil_field_error(L, fn, field, expected, -1);
+    }
+    lua_pop(L, 1);
+}
+
 void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out)
 {
     if (lua_getfield(L, t, field) != LUA_TNIL)

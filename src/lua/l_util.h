@@ -33,6 +33,8 @@ void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, i
 void lutil_opt_boolean(lua_State *L, int t, const char *fn, const char *field, bool *out);
 void lutil_opt_vec3(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
 void lutil_opt_color(lua_State *L, int t, const char *fn, const char *field, vec3 *out);
+/* A square or rectangular extent: one number s (both sides) or {x, z}. */
+void lutil_opt_extent(lua_State *L, int t, const char *fn, const char *field, float *x, float *z);
 /* An enum field: the index of its string in `options` (NULL-terminated),
  * `default_index` when absent; luaL_checkoption's rule with the field's name. */
 int lutil_opt_option(lua_State *L, int t, const char *fn, const char *field, const char *const *options,

@@ -51,7 +51,7 @@ static const struct pass_param_desc params[] = {
     [VOLUMES_CAP] = {.name = "cap", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 1e6,
      .help = "largest flux ratio F_P (0: a quarter of the generator grid's resolution)"},
     [VOLUMES_RESOLUTION] = {.name = "resolution", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4096,
-     .help = "generator grid, vertices per side, resampled from the surface (0: the water's own grid)"},
+     .help = "generator grid, vertices along the water's longer side, resampled from the surface (0: the water's own grid)"},
 };
 
 static bool caustic_volumes_declare(struct pass *p, struct error *err)
@@ -144,9 +144,12 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
 
     /* The caustic volumes, built on the GPU from this frame's surface,
      * resampled (bilinearly) onto the generator grid. */
-    int water_res = water->water->resolution;
-    int gen_res = pass_int(p, VOLUMES_RESOLUTION) >= 2 ? pass_int(p, VOLUMES_RESOLUTION) : water_res;
-    size_t triangles = (size_t)(gen_res - 1) * (size_t)(gen_res - 1) * 2;
+    const struct water *w = water->water;
+    int gen_x = w->nx, gen_z = w->nz;
+    if (pass_int(p, VOLUMES_RESOLUTION) >= 2) /* the same aspect as the water's own grid */
+        water_grid_counts(pass_int(p, VOLUMES_RESOLUTION), w->size_x, w->size_z, &gen_x, &gen_z);
+    int gen_res = gen_x > gen_z ? gen_x : gen_z;
+    size_t triangles = (size_t)(gen_x - 1) * (size_t)(gen_z - 1) * 2;
     if (s->capacity < triangles) {
         if (s->volumes)
             gl.DeleteBuffers(1, &s->volumes);
@@ -176,8 +179,8 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE,
                                fw->normal_matrix.m);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_triangles"), (GLint)triangles);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_water_resolution"), water_res);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_resolution"), gen_res);
+    gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_water_resolution"), w->nx, w->nz);
+    gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_resolution"), gen_x, gen_z);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ideal"), water->material.ideal ? 1.0f : 0.0f);

@@ -126,24 +126,35 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
         error_set(err, "grid: size must be > 0 and resolution in 1..4096 (got %g, %d)", (double)size, resolution);
         return NULL;
     }
-    size_t side = (size_t)resolution + 1;
-    size_t nv = side * side, ni = (size_t)resolution * (size_t)resolution * 6;
+    return mesh_create_grid_xz(size, size, resolution, resolution, err);
+}
+
+struct mesh *mesh_create_grid_xz(float size_x, float size_z, int cells_x, int cells_z, struct error *err)
+{
+    if (!(size_x > 0.0f) || !(size_z > 0.0f) || !isfinite(size_x) || !isfinite(size_z) || cells_x < 1 ||
+        cells_z < 1 || cells_x > 4096 || cells_z > 4096) {
+        error_set(err, "grid: sizes must be > 0 and cells in 1..4096 (got %g x %g, %d x %d)", (double)size_x,
+                  (double)size_z, cells_x, cells_z);
+        return NULL;
+    }
+    size_t side_x = (size_t)cells_x + 1, side_z = (size_t)cells_z + 1;
+    size_t nv = side_x * side_z, ni = (size_t)cells_x * (size_t)cells_z * 6;
     float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
     uint32_t *idx = malloc(ni * sizeof(uint32_t));
-    for (size_t j = 0; j < side && p && n; j++)
-        for (size_t i = 0; i < side; i++) {
-            size_t v = j * side + i;
-            p[v * 3] = size * ((float)i / (float)resolution - 0.5f);
+    for (size_t j = 0; j < side_z && p && n; j++)
+        for (size_t i = 0; i < side_x; i++) {
+            size_t v = j * side_x + i;
+            p[v * 3] = size_x * ((float)i / (float)cells_x - 0.5f);
             p[v * 3 + 1] = 0.0f;
-            p[v * 3 + 2] = size * ((float)j / (float)resolution - 0.5f);
+            p[v * 3 + 2] = size_z * ((float)j / (float)cells_z - 0.5f);
             n[v * 3] = 0.0f;
             n[v * 3 + 1] = 1.0f;
             n[v * 3 + 2] = 0.0f;
         }
     size_t k = 0;
-    for (size_t j = 0; j < (size_t)resolution && idx; j++)
-        for (size_t i = 0; i < (size_t)resolution; i++) {
-            uint32_t a = (uint32_t)(j * side + i), b = a + (uint32_t)side;
+    for (size_t j = 0; j < (size_t)cells_z && idx; j++)
+        for (size_t i = 0; i < (size_t)cells_x; i++) {
+            uint32_t a = (uint32_t)(j * side_x + i), b = a + (uint32_t)side_x;
             /* +Y faces up: counter-clockwise seen from above */
             idx[k++] = a; idx[k++] = b; idx[k++] = a + 1;
             idx[k++] = a + 1; idx[k++] = b; idx[k++] = b + 1;
@@ -153,10 +164,10 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err)
         return NULL;
     /* u along +x, v along +z: [0,1]^2 over the whole grid, so a texture
      * seen from above reads as its image with the top row at -z */
-    for (size_t j = 0; j < side; j++)
-        for (size_t i = 0; i < side; i++) {
-            m->texcoords[0][(j * side + i) * 2] = (float)i / (float)resolution;
-            m->texcoords[0][(j * side + i) * 2 + 1] = (float)j / (float)resolution;
+    for (size_t j = 0; j < side_z; j++)
+        for (size_t i = 0; i < side_x; i++) {
+            m->texcoords[0][(j * side_x + i) * 2] = (float)i / (float)cells_x;
+            m->texcoords[0][(j * side_x + i) * 2 + 1] = (float)j / (float)cells_z;
         }
     return m;
 }

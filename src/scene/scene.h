@@ -112,6 +112,8 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err);
 struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err);
 struct mesh *mesh_create_box(vec3 size, struct error *err);
 struct mesh *mesh_create_grid(float size, int resolution, struct error *err);
+/* A size_x by size_z grid of cells_x by cells_z cells in the xz plane, +y up. */
+struct mesh *mesh_create_grid_xz(float size_x, float size_z, int cells_x, int cells_z, struct error *err);
 struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides, struct error *err);
 struct mesh *mesh_load_gltf(const char *path, struct error *err);
 /* Takes ownership of the arrays (malloc'd). */

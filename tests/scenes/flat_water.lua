@@ -1,7 +1,8 @@
 -- A flat water surface over a floor under a directional light, seen by a
 -- camera under water looking straight down (Issue 3's closed form):
 -- --set depth=, elevation=degrees, ior=, camera_height=, light=directional|point|spot,
--- fresnel=false (an ideal interface)
+-- fresnel=false (an ideal interface), rect=true (the water and the floor
+-- 3 x 1.5 instead of 3 x 3)
 local c = require "caustica"
 local depth = c.param("depth", 0.5)
 local elevation = c.param("elevation", 60)
@@ -24,11 +25,12 @@ elseif c.param("light", "directional") == "spot" then
 else
   sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 end
-scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -depth, 0},
+local extent = c.param("rect", false) and {3, 1.5} or 3
+scene:add(c.object { mesh = c.mesh.plane { size = extent }, position = {0, -depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local absorb = c.param("absorb", true)    -- false: clear water (what the bench compares: the GPU shading
                                           -- here does not absorb along the under-water view path)
-local water = scene:add(c.water { size = 3, resolution = c.param("grid", 9), depth = depth, ior = ior,
+local water = scene:add(c.water { size = extent, resolution = c.param("grid", 9), depth = depth, ior = ior,
                                   attenuation = absorb and {0.2, 0.5, 1.0} or {0, 0, 0},
                                   fresnel = c.param("fresnel", true) })
 local wave = c.param("wave", 0.0)          -- amplitude of a sinusoidal surface (0: flat)
