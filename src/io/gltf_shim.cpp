@@ -270,13 +270,28 @@ void read_texture(const tinygltf::Model &model, int index, int texcoord, const t
     if (tex.source < 0 || tex.source >= (int)model.images.size())
         throw Fail{material + ": texture " + std::to_string(index) + " has no image (source)"};
     const tinygltf::Image &img = model.images[(size_t)tex.source];
-    if (img.image.empty())
+    const unsigned char *data = img.image.data();
+    size_t size = img.image.size();
+    if (img.bufferView >= 0) {
+        // the image's own bytes inside its buffer, bounds checked (see keep_image_bytes)
+        if (img.bufferView >= (int)model.bufferViews.size())
+            throw Fail{material + ": image " + std::to_string(tex.source) + ": bufferView out of range"};
+        const tinygltf::BufferView &view = model.bufferViews[(size_t)img.bufferView];
+        if (view.buffer < 0 || view.buffer >= (int)model.buffers.size())
+            throw Fail{material + ": image " + std::to_string(tex.source) + ": buffer out of range"};
+        const std::vector<unsigned char> &buf = model.buffers[(size_t)view.buffer].data;
+        if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset)
+            throw Fail{material + ": image " + std::to_string(tex.source) + ": its bufferView runs past the buffer"};
+        data = buf.data() + view.byteOffset;
+        size = view.byteLength;
+    }
+    if (size == 0)
         throw Fail{material + ": image " + std::to_string(tex.source) + " has no data"};
-    t.size = img.image.size();
+    t.size = size;
     t.bytes = (uint8_t *)std::malloc(t.size);
     if (!t.bytes)
         throw Fail{"out of memory"};
-    std::memcpy(t.bytes, img.image.data(), t.size);
+    std::memcpy(t.bytes, data, t.size);
     std::snprintf(t.name, sizeof t.name, "image %d '%.60s'", tex.source, img.name.c_str());
     t.texcoord = texcoord;
     t.transform[0] = t.transform[3] = 1.0f;
@@ -609,10 +624,16 @@ template <typename T> T *copy_out(const std::vector<T> &v)
 // corrupt JPEG or an image view past the BIN chunk reached stb_image's bugs
 // before): the caller decodes the ones a material uses with libpng/libjpeg
 // (io/image_decode.c), which bound the size first.
+//
+// tinygltf hands an image in a bufferView over with the view's byteLength
+// unchecked against its buffer (a view past the BIN chunk reads past the
+// allocation): those are left here and read from the buffer with bounds
+// checks by image_bytes(). URI images (data: or a file beside the glTF) come
+// with their real length.
 bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
                       const unsigned char *bytes, int size, void *)
 {
-    if (bytes && size > 0)
+    if (image->bufferView < 0 && bytes && size > 0)
         image->image.assign(bytes, bytes + size);
     return true;
 }

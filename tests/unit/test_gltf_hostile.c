@@ -139,6 +139,24 @@ int main(void)
         (void)ok; /* refused by tinygltf or loaded without the image: either, without a crash */
         CHECK(1);
     }
+    /* ... but a material's texture is read from its bufferView with bounds
+     * checks (tinygltf hands the view over unchecked). */
+    expect_refused("texture_view_past_end", NULL, NULL,
+                   "[{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 36}, "
+                   "{\"buffer\": 0, \"byteOffset\": 36, \"byteLength\": 6}, "
+                   "{\"buffer\": 0, \"byteOffset\": 40, \"byteLength\": 100000}]",
+                   "\"images\": [{\"bufferView\": 2, \"mimeType\": \"image/png\"}], \"textures\": [{\"source\": 0}], "
+                   MATERIAL("\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}"),
+                   NULL, "runs past the buffer");
+    expect_refused("texture_no_source", NULL, NULL, NULL,
+                   "\"textures\": [{\"source\": 7}], "
+                   MATERIAL("\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}"),
+                   NULL, "has no image");
+    expect_refused("texture_transform_inf", NULL, NULL, NULL,
+                   "\"images\": [{\"uri\": \"data:image/png;base64,AAAA\"}], \"textures\": [{\"source\": 0}], "
+                   MATERIAL("\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"extensions\": "
+                            "{\"KHR_texture_transform\": {\"scale\": [1e300, 1]}}}}"),
+                   NULL, "KHR_texture_transform");
 
     /* A DAG with fan-out: 25 nodes each listing the next twice = 2^24 visits. */
     {
