@@ -60,6 +60,24 @@
 #define VOLUMES_UNIT_POSITIONS 0
 #define VOLUMES_UNIT_NORMALS 1
 
+/* Depth layers (passes/layers.c, shaders/layers/): layered_refraction and layered_caustics */
+#define LAYERS_UNIT_BOUNDS 1
+#define LAYERS_UNIT_BITS 2
+#define LAYERS_UNIT_DEPTH 3
+#define LAYERS_UNIT_NORMAL 4
+#define LAYERS_UNIT_INFO 5
+#define LAYERS_IMAGE_DEPTH 0
+#define LAYERS_IMAGE_NORMAL 1
+#define LAYERS_IMAGE_INFO 2
+#define LAYERS_SSBO_RANGES 6
+#define LAYERS_SSBO_MATERIALS 7
+#define LAYERED_UNIT_SCENE 6                /* the scene a ray leaving the refractors sees (colour) */
+#define LAYERED_UNIT_SCENE_DEPTH 7          /* ... and its depth */
+#define LAYERED_UNIT_RECEIVER_NORMAL 8      /* layered_caustics: the receivers seen by the camera */
+#define LAYERED_IMAGE_FLUX 3                /* layered_caustics: r32ui array, fixed-point flux per channel */
+#define LAYERED_IMAGE_HITS 4                /* layered_caustics: where each photon lands (world xyz, w = 1) */
+#define LAYERED_IMAGE_PHOTONS 5             /* layered_caustics: the flux each photon carries */
+
 /* water_surface */
 #define SURFACE_UNIT_SCENE 0
 #define SURFACE_UNIT_DEPTH 1

@@ -41,7 +41,13 @@ if aperture > 0 then
 end
 ball.cast_shadows = true
 local g = c.graph()
-if c.param("techniques", false) then
+if c.param("technique", "") == "layered" then
+  -- Chaudhari's layered caustics (photons through every interface)
+  g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
+  g:add("lc", c.pass.layered_caustics { light = sun, buffer = c.param("buffer", 512), layers = c.param("layers", 8),
+                                        radius = c.param("radius_px", 2) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "lc.irradiance" })
+elseif c.param("techniques", false) then
   -- Hu & Qin's photon caustics on the GPU (the scene's sun is the only light)
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
   g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),

@@ -1,0 +1,73 @@
+#version 450 core
+// Chaudhari 2008 §4.1 (Figs. 4.5-4.6): photons from the light's view of the
+// refractors' depth layers, traced through every interface like the
+// camera's rays (layers/trace.glsl), then in the camera's image of the
+// receivers (Kruger et al. 2006's eye-space photon tracing, here a march
+// against the receivers' depth, layers/scene_trace.glsl). Each photon's
+// landing point and flux are stored for splat.comp, which sizes its
+// footprint from its neighbours'; the weak reflection off the first
+// interface is splatted here with the smallest kernel.
+#include "common/frame.glsl"
+#include "layers/trace.glsl"
+#include "layers/scene_trace.glsl"
+#include "layered_caustics/splat.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform writeonly image2D u_hits;
+layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform writeonly image2D u_photons;
+uniform int u_light;          // the light's entry in the frame's list
+uniform int u_light_ortho;    // a directional light: parallel photons
+uniform float u_texel_area;   // directional: the area a texel spans across the beam
+uniform float u_texel_tan;    // point/spot: a texel's side on the plane at distance 1
+uniform float u_min_radius;
+
+// Where the photon (world o, d) lands on a receiver the camera sees.
+bool land(vec3 o, vec3 d, out vec3 at, out ivec2 px)
+{
+    float t;
+    if (!scene_trace_at(o, d, px, t))
+        return false;
+    vec3 n = texelFetch(u_receiver_normal, px, 0).xyz;
+    at = o + d * t;
+    // light arriving at the side the camera does not see lights nothing it sees
+    return dot(n, d) < 0.0;
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, u_layer_size)))
+        return;
+    imageStore(u_hits, p, vec4(0.0));
+    if (layer_count(p) == 0)
+        return;
+    vec3 P0 = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
+    vec3 d0 = u_light_ortho == 1 ? vec3(0.0, 0.0, -1.0) : normalize(P0);
+    // the flux through this texel, before the surface
+    GpuLight light = u_lights[u_light];
+    vec3 flux;
+    if (u_light_ortho == 1) {
+        flux = light.intensity.rgb * u_texel_area;
+    } else {
+        // the texel's solid angle: side^2 cos^3 (a texel off the axis)
+        float c = max(-d0.z, 1e-6);
+        flux = light.intensity.rgb * u_texel_tan * u_texel_tan * c * c * c;
+        if (int(light.position.w + 0.5) == 2) {
+            vec3 world_d = normalize(mat3(u_layer_inv_view) * d0);
+            flux *= smoothstep(light.direction.w, max(light.intensity.w, light.direction.w + 1e-4),
+                               dot(world_d, normalize(light.direction.xyz)));
+        }
+    }
+    LayerPath path = layer_trace(p, d0);
+    mat3 to_world = mat3(u_layer_inv_view);
+    vec3 entry = (u_layer_inv_view * vec4(path.entry, 1.0)).xyz;
+    vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
+    vec3 at;
+    ivec2 px;
+    if (path.fresnel0 > 0.0 && land(entry + reflected * (1e-4 * u_layer_extent), reflected, at, px))
+        splat(vec2(px) + 0.5, flux * path.fresnel0, u_min_radius);
+    if (path.fresnel0 < 1.0 &&
+        land((u_layer_inv_view * vec4(path.origin, 1.0)).xyz, normalize(to_world * path.dir), at, px)) {
+        imageStore(u_hits, p, vec4(at, 1.0));
+        imageStore(u_photons, p, vec4(flux * (1.0 - path.fresnel0) * path.throughput, 0.0));
+    }
+}

@@ -1,0 +1,35 @@
+#version 450 core
+// Flux per pixel -> irradiance on the receiver: divided by the area the
+// pixel covers on the surface (its footprint at that depth over the cosine
+// between the view ray and the normal).
+#include "common/frame.glsl"
+layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
+layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_receiver_depth;
+layout(r32ui, binding = LAYERED_IMAGE_FLUX) uniform readonly uimage2DArray u_flux;
+uniform float u_fixed_point;
+uniform float u_pixel_tan;   // a pixel's side on the plane at distance 1 (perspective)
+uniform float u_pixel_size;  // a pixel's side (orthographic camera)
+layout(location = 0) out vec4 o_irradiance;
+void main()
+{
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 n = texelFetch(u_receiver_normal, p, 0);
+    if (n.w < 0.5) {
+        o_irradiance = vec4(0.0);
+        return;
+    }
+    float d = texelFetch(u_receiver_depth, p, 0).r;
+    vec2 ndc = (vec2(p) + 0.5) * u_viewport.zw * 2.0 - 1.0;
+    vec4 w = u_inv_view_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);
+    vec3 x = w.xyz / w.w;
+    vec3 v = view_direction(x);
+    float side = camera_is_ortho() ? u_pixel_size : view_depth(d) * u_pixel_tan;
+    // the pixel's footprint on the surface: its solid angle side^2 cos^3 /
+    // depth^2 (a ray off the axis) times the squared distance along the ray
+    // (depth / cos) over the cosine at the surface: side^2 cos / cos_n
+    float cos_axis = camera_is_ortho() ? 1.0 : max(dot(v, camera_forward()), 1e-3);
+    float area = side * side * cos_axis / max(abs(dot(v, n.xyz)), 0.05);
+    vec3 flux = vec3(imageLoad(u_flux, ivec3(p, 0)).r, imageLoad(u_flux, ivec3(p, 1)).r,
+                     imageLoad(u_flux, ivec3(p, 2)).r) / u_fixed_point;
+    o_irradiance = vec4(flux / max(area, 1e-20), 1.0);
+}

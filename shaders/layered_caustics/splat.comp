@@ -1,0 +1,86 @@
+#version 450 core
+// Each photon over its own footprint (a ray differential): its neighbours
+// one texel away in the light's view land at xp, xm, yp, ym; the
+// parallelogram spanned by the central differences ex, ey is the area its
+// light covers on the receiver. The flux is spread over that parallelogram
+// as the camera sees it (n x n sample points, each bilinearly into four
+// pixels), so a diverging photon spreads, a converging one stays sharp,
+// and the flux is kept exactly. A neighbour across a silhouette or a fold
+// (its landing point more than u_max_radius pixels away) is not used; a
+// photon with no usable neighbours on an axis is one pixel wide along it.
+#include "common/frame.glsl"
+#include "layered_caustics/splat.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform readonly image2D u_hits;
+layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform readonly image2D u_photons;
+uniform ivec2 u_buffer_size;
+uniform float u_max_radius; // pixels
+
+vec2 to_pixels(vec3 p)
+{
+    vec4 c = u_view_proj * vec4(p, 1.0);
+    return (c.xy / max(c.w, 1e-20) * 0.5 + 0.5) * u_viewport.xy;
+}
+
+// The screen offset to neighbour q's landing point, if it landed near.
+bool neighbour(ivec2 q, vec2 from, out vec2 offset)
+{
+    offset = vec2(0.0);
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_buffer_size)))
+        return false;
+    vec4 h = imageLoad(u_hits, q);
+    if (h.w < 0.5)
+        return false;
+    offset = to_pixels(h.xyz) - from;
+    return length(offset) <= 2.0 * u_max_radius;
+}
+
+vec2 axis(ivec2 p, ivec2 step, vec2 at)
+{
+    vec2 a, b;
+    bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
+    if (plus && minus)
+        return 0.5 * (a - b);
+    if (plus)
+        return a;
+    if (minus)
+        return -b;
+    return vec2(0.0);
+}
+
+void deposit(vec2 at, vec3 flux)
+{
+    // bilinear into the four pixels around `at` (pixel centres at +0.5)
+    vec2 f = at - 0.5;
+    ivec2 c = ivec2(floor(f));
+    vec2 t = f - vec2(c);
+    float w[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
+    ivec2 o[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(0, 1), ivec2(1, 1));
+    for (int i = 0; i < 4; i++) {
+        ivec2 q = c + o[i];
+        if (w[i] <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(u_viewport.xy))))
+            continue;
+        if (texelFetch(u_receiver_normal, q, 0).w < 0.5)
+            continue;
+        for (int k = 0; k < 3; k++)
+            imageAtomicAdd(u_flux, ivec3(q, k), uint(clamp(flux[k] * w[i] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+    }
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, u_buffer_size)))
+        return;
+    vec4 h = imageLoad(u_hits, p);
+    if (h.w < 0.5)
+        return;
+    vec3 flux = imageLoad(u_photons, p).rgb;
+    vec2 at = to_pixels(h.xyz);
+    vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
+    int nx = clamp(int(ceil(length(ex))), 1, 16), ny = clamp(int(ceil(length(ey))), 1, 16);
+    vec3 share = flux / float(nx * ny);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            deposit(at + ((float(i) + 0.5) / float(nx) - 0.5) * ex + ((float(j) + 0.5) / float(ny) - 0.5) * ey, share);
+}

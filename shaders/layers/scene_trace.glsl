@@ -1,0 +1,83 @@
+// What a ray leaving the refractors sees, found in the camera's image of
+// the scene without them (a `shade { specular = false }` colour and depth):
+// march the ray in steps, bisect the first step that passes behind the
+// depth buffer, and accept it where the ray is within a step of the
+// surface there (else it passed behind an occluder and marches on). Rays
+// that leave the image, turn towards the camera past the near plane or hit
+// nothing see the environment. Requires common/frame.glsl.
+layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
+uniform float u_scene_extent; // the longest a ray is marched (the scene's bounding diameter)
+uniform int u_scene_steps;
+
+// Eye depth of world point p, and its pixel (false: outside the image or
+// behind the camera).
+bool scene_project(vec3 p, out ivec2 px, out float depth)
+{
+    vec4 c = u_view_proj * vec4(p, 1.0);
+    if (c.w <= 1e-6)
+        return false;
+    vec2 uv = c.xy / c.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0))))
+        return false;
+    px = ivec2(floor(uv * u_viewport.xy));
+    depth = -(u_view * vec4(p, 1.0)).z;
+    return depth > 0.0;
+}
+
+// How far point p is behind the scene's surface at its pixel (> 0:
+// behind); false off the image or where the scene is empty there.
+bool scene_behind(vec3 p, out float behind, out ivec2 px)
+{
+    float depth;
+    if (!scene_project(p, px, depth))
+        return false;
+    float d = texelFetch(u_scene_depth, px, 0).r;
+    if (d >= 1.0) {
+        behind = -1e30; // background: never behind it
+        return true;
+    }
+    behind = depth - view_depth(d);
+    return true;
+}
+
+// The ray's first hit: its pixel and its ray parameter (the point is
+// o + dir * t_hit, on the surface within the bisection's precision).
+bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
+{
+    int steps = max(u_scene_steps, 1);
+    float step = u_scene_extent / float(steps), lo = 0.0;
+    for (int j = 1; j <= steps; j++) {
+        float t = step * float(j), behind;
+        ivec2 px;
+        if (!scene_behind(o + dir * t, behind, px))
+            return false;
+        if (behind > 0.0) {
+            float a = lo, b = t;
+            for (int i = 0; i < 8; i++) {
+                float m = 0.5 * (a + b);
+                float bm;
+                ivec2 pm;
+                if (scene_behind(o + dir * m, bm, pm) && bm > 0.0)
+                    b = m;
+                else
+                    a = m;
+            }
+            float bb;
+            scene_behind(o + dir * b, bb, px);
+            // within a step's depth change of the surface: a hit
+            if (bb < 2.0 * step + 1e-3 * t) {
+                hit_px = px;
+                t_hit = b;
+                return true;
+            }
+        }
+        lo = t;
+    }
+    return false;
+}
+
+bool scene_trace(vec3 o, vec3 dir, out ivec2 hit_px)
+{
+    float t;
+    return scene_trace_at(o, dir, hit_px, t);
+}

@@ -1,0 +1,283 @@
+/* layered_caustics: caustics through every interface (Chaudhari 2008
+ * §4.1, Figs. 4.5-4.6). The refractors' depth layers are taken from the
+ * light (passes/layers.c) and each texel of the first layer is a photon
+ * traced through all of them like the camera's rays; the photons that
+ * leave are traced in the camera's image of the receivers (eye-space
+ * photon tracing, Kruger et al. 2006) and splatted with a small
+ * normalised kernel into a screen-space flux image (Wyman & Davis 2006),
+ * which becomes irradiance for `shade { caustics = ... }`. Nothing is
+ * precomputed: the light, the refractors and their shapes may all move. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/bindings.h"
+#include "graph/frame.h"
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/layers.h"
+
+struct layered_caustics_state {
+    struct layer_set layers;
+    struct gl_framebuffer receivers_fb, out_fb;
+    struct gl_texture receiver_normal, receiver_depth, flux;
+    struct gl_texture hits, photons; /* per photon: where it lands, its flux */
+    int buffer;
+    int width, height;
+};
+
+enum layered_caustics_param {
+    LC_LIGHT,
+    LC_BUFFER,
+    LC_LAYERS,
+    LC_VOXELS,
+    LC_SEARCH,
+    LC_STEPS,
+    LC_RADIUS,
+    LC_MIN_RADIUS,
+};
+
+static const struct pass_param_desc params[] = {
+    [LC_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
+     .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
+    [LC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
+     .help = "the light's view of the refractors, buffer x buffer photons"},
+    [LC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
+     .help = "depth layers per photon texel"},
+    [LC_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128, .max = LAYERS_MAX_VOXELS,
+     .help = "slices per texel, a multiple of 128"},
+    [LC_SEARCH] = {.name = "search", .type = PASS_PARAM_INTEGER, .default_number = 5, .min = 0, .max = 16,
+     .help = "bisection steps per interface"},
+    [LC_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64,
+     .help = "linear steps along a photon before the bisection"},
+    [LC_RADIUS] = {.name = "radius", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0.5, .max = 32,
+     .help = "each photon is spread over its footprint from its neighbours' landing points (a ray differential); a neighbour farther than 2 x radius pixels (a fold, a silhouette) is not used"},
+    [LC_MIN_RADIUS] = {.name = "min_radius", .type = PASS_PARAM_NUMBER, .default_number = 1, .min = 0.5, .max = 8,
+     .help = "splat radius in pixels of the photons reflected off the first interface"},
+};
+
+static bool layered_caustics_declare(struct pass *p, struct error *err)
+{
+    return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool layered_caustics_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct layered_caustics_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    layers_init(&s->layers);
+    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->out_fb, err);
+}
+
+static void release_targets(struct layered_caustics_state *s)
+{
+    gl_texture_destroy(&s->receiver_normal);
+    gl_texture_destroy(&s->receiver_depth);
+    gl_texture_destroy(&s->flux);
+    gl_texture_destroy(&s->hits);
+    gl_texture_destroy(&s->photons);
+}
+
+static void layered_caustics_destroy(struct pass *p)
+{
+    struct layered_caustics_state *s = p->state;
+    if (!s)
+        return;
+    layers_release(&s->layers);
+    release_targets(s);
+    gl_framebuffer_destroy(&s->receivers_fb);
+    gl_framebuffer_destroy(&s->out_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static enum pass_need layered_caustics_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)p;
+    for (int i = 0; i < f->scene->object_count; i++)
+        if (layers_is_refractor(f->scene->objects[i]))
+            return PASS_RUN;
+    snprintf(why, whylen, "no glass or water in the scene: no caustics (zero irradiance)");
+    return PASS_RUN;
+}
+
+static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int buffer, struct error *err)
+{
+    if (s->flux.id && s->width == w && s->height == h && s->buffer == buffer)
+        return true;
+    release_targets(s);
+    s->width = w;
+    s->height = h;
+    s->buffer = buffer;
+    if (!gl_texture_create(&s->hits, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
+        !gl_texture_create(&s->photons, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err))
+        return false;
+    if (!gl_texture_create(&s->receiver_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+        !gl_texture_create(&s->receiver_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
+        !gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err))
+        return false;
+    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    const struct gl_texture *c[1] = {&s->receiver_normal};
+    return gl_framebuffer_attach(&s->receivers_fb, c, NULL, 1, &s->receiver_depth, -1, err);
+}
+
+static float diameter(vec3 lo, vec3 hi) { return vec3_length(vec3_sub(hi, lo)); }
+
+static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct layered_caustics_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct graph_resource *out = f->outputs[0];
+    const float zero[4] = {0, 0, 0, 0};
+    gl_texture_clear(&out->texture, zero);
+    struct light *light = pass_light_at(p, LC_LIGHT);
+    int slot = renderer_light_slot(r, f->scene, light);
+    vec3 lo, hi;
+    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
+        return true; /* the light is not in the scene, or nothing refracts: no caustics */
+    int voxels = pass_int(p, LC_VOXELS), buffer = pass_int(p, LC_BUFFER);
+    if (voxels % 128 != 0)
+        return error_set(err, "bad argument 'voxels' to 'layered_caustics' (a multiple of 128 expected, got %d)", voxels);
+    if (!ensure_targets(s, f->width, f->height, buffer, err))
+        return false;
+
+    /* The light's view of the refractors' bounding sphere (as photon_caustics). */
+    vec3 oc = vec3_scale(vec3_add(lo, hi), 0.5f);
+    float orad = fmaxf(0.5f * diameter(lo, hi), 1e-4f) * 1.02f;
+    const struct frame_light *fl = &f->snapshot->lights[slot];
+    bool ortho = fl->kind == LIGHT_DIRECTIONAL;
+    mat4 view, proj;
+    float texel_area = 0.0f, texel_tan = 0.0f;
+    vec3 up = vec3_make(0, 1, 0);
+    if (ortho) {
+        vec3 d = vec3_normalize_or(fl->direction, vec3_make(0, -1, 0));
+        if (fabsf(d.y) > 0.99f)
+            up = vec3_make(0, 0, 1);
+        vec3 eye = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
+        view = mat4_look_at(eye, oc, up);
+        proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
+        float side = 2.0f * orad / (float)buffer;
+        texel_area = side * side;
+    } else {
+        vec3 pos = fl->position;
+        vec3 to = vec3_sub(oc, pos);
+        float dist = vec3_length(to);
+        if (dist <= orad * 1.001f)
+            return error_set(err, "layered_caustics: the light is inside the refractors' bounding sphere "
+                                  "(move it out, or use a directional light)");
+        if (fabsf(to.y) > 0.99f * dist)
+            up = vec3_make(0, 0, 1);
+        float half = asinf(fminf(orad / dist, 1.0f));
+        float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.02f, 170.0f);
+        view = mat4_look_at(pos, oc, up);
+        proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.9f, dist + orad * 1.1f);
+        texel_tan = 2.0f * tanf(fov * 0.5f * (float)MATH_PI / 180.0f) / (float)buffer;
+    }
+    if (!layers_build(&s->layers, r, f->scene, view, proj, buffer, buffer, voxels, pass_int(p, LC_LAYERS), true, err))
+        return false;
+
+    /* The receivers as the camera sees them. */
+    struct gl_program *recv;
+    if (!gl_program_get(&r->programs, "layered_caustics/receivers.vert", "layered_caustics/receivers.frag", NULL,
+                        &recv, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
+    renderer_reset_state(r);
+
+    /* Photons: traced through the light's layers, then onto the receivers. */
+    vec3 slo, shi;
+    scene_bounds(f->scene, &slo, &shi);
+    double total = ortho ? (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * orad * orad
+                         : (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * MATH_PI;
+    /* No pixel can gather more than all the light through the refractors:
+     * that fits below 2^32 with room to spare. */
+    float fixed_point = (float)(1.0e9 / fmax(total, 1e-20));
+    const GLuint zero_u[4] = {0, 0, 0, 0};
+    gl.ClearTexImage(s->flux.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero_u);
+    struct gl_program *photons;
+    if (!gl_program_get_compute(&r->programs, "layered_caustics/photons.comp", NULL, NULL, &photons, err))
+        return false;
+    gl.UseProgram(photons->id);
+    layers_bind(&s->layers, photons);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->receiver_depth.id);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    int layers = pass_int(p, LC_LAYERS);
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_search"), pass_int(p, LC_SEARCH));
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_steps"), pass_int(p, LC_STEPS));
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_gradient"), 0);
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_max_interfaces"), 2 * layers + 2);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_layer_extent"), 2.0f * orad);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_extent"), fmaxf(diameter(slo, shi), 1e-4f) * 1.5f);
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_scene_steps"), 64);
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
+    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_fixed_point"), fixed_point);
+    float min_radius = (float)pass_real(p, LC_MIN_RADIUS), max_radius = fmaxf((float)pass_real(p, LC_RADIUS), min_radius);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_min_radius"), min_radius);
+    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    /* Each photon splatted over its own footprint. */
+    const struct camera *cam = &f->scene->camera;
+    float pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height;
+    float pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f;
+    struct gl_program *splat;
+    if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
+        return false;
+    gl.UseProgram(splat->id);
+    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    /* Flux per pixel -> irradiance. */
+    struct gl_program *resolve;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_caustics/resolve.frag", NULL, &resolve, err))
+        return false;
+    const struct gl_texture *oc_tex[1] = {&out->texture};
+    if (!gl_framebuffer_attach(&s->out_fb, oc_tex, NULL, 1, NULL, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.UseProgram(resolve->id);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->receiver_depth.id);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
+    renderer_draw_fullscreen(r);
+    return gl_check("layered_caustics", err);
+}
+
+const struct pass_desc layered_caustics_pass = {
+    .name = "layered_caustics",
+    .summary = "Chaudhari 2008: caustics through every interface, photons traced through the light's depth layers",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = layered_caustics_declare,
+    .create = layered_caustics_create,
+    .execute = layered_caustics_execute,
+    .needed = layered_caustics_needed,
+    .destroy = layered_caustics_destroy,
+};

@@ -1,0 +1,198 @@
+/* layered_refraction: refraction through every interface of deforming
+ * objects (Chaudhari 2008). Each frame the refractors are voxelized into
+ * bit slices between per-pixel depth bounds (§3.3), up to `layers` depth
+ * layers are peeled from the bits (§3.4.2), and per pixel of the first
+ * layer a ray is traced through them (§3.6-3.8, shaders/layers/trace.glsl):
+ * Snell's law at each interface, total internal reflection, absorption.
+ * The ray that leaves sees the scene behind (the input image and depth,
+ * searched in screen space) or the environment. No precomputation: a mesh
+ * that deforms, morphs or is replaced costs the same as a rigid one. The
+ * output is the input with the refractors drawn over it, like
+ * `refraction`, so a script swaps one for the other. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/bindings.h"
+#include "graph/frame.h"
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/layers.h"
+
+struct layered_refraction_state {
+    struct layer_set layers;
+    struct gl_framebuffer out_fb;
+};
+
+enum { LOOKUP_SCENE, LOOKUP_ENVIRONMENT };
+enum { NORMALS_MESH, NORMALS_GRADIENT };
+enum { DEPTHS_EXACT, DEPTHS_VOXEL };
+
+enum layered_refraction_param {
+    LR_COLOR,
+    LR_DEPTH,
+    LR_LAYERS,
+    LR_VOXELS,
+    LR_SEARCH,
+    LR_STEPS,
+    LR_NORMALS,
+    LR_DELTA,
+    LR_DEPTHS,
+    LR_LOOKUP,
+    LR_REFLECTION,
+    LR_INTERFACES,
+};
+
+static const struct pass_param_desc params[] = {
+    [LR_COLOR] = {.name = "color", .type = PASS_PARAM_INPUT, .required = true,
+     .help = "the scene to draw over; `shade { specular = false }` so that rays leaving the glass find what is behind it"},
+    [LR_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
+     .help = "its depth (default: the depth output of the pass that made color)"},
+    [LR_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = LAYERS_MAX,
+     .help = "depth layers kept per pixel (§3.4.2; surfaces past them are dropped and counted in `info`)"},
+    [LR_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128, .max = LAYERS_MAX_VOXELS,
+     .help = "slices per pixel between its depth bounds (§3.3), a multiple of 128"},
+    [LR_SEARCH] = {.name = "search", .type = PASS_PARAM_INTEGER, .default_number = 5, .min = 0, .max = 16,
+     .help = "bisection steps per interface (§3.6: 5)"},
+    [LR_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64,
+     .help = "linear steps along the ray before the bisection (finds the first crossing of a concave layer)"},
+    [LR_NORMALS] = {.name = "normals", .type = PASS_PARAM_ENUM, .default_string = "mesh", .choices = "mesh|gradient",
+     .help = "the mesh's interpolated normals, or eq. 3.2's perspective-corrected depth gradients"},
+    [LR_DELTA] = {.name = "delta", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 4,
+     .help = "pixel step of the depth gradients (eq. 3.2's delta, with normals = \"gradient\")"},
+    [LR_DEPTHS] = {.name = "depths", .type = PASS_PARAM_ENUM, .default_string = "exact", .choices = "exact|voxel",
+     .help = "each layer's depth: the fragment's own, or its voxel's centre (the thesis's)"},
+    [LR_LOOKUP] = {.name = "lookup", .type = PASS_PARAM_ENUM, .default_string = "scene", .choices = "scene|environment",
+     .help = "what a leaving ray sees: the input image (searched in screen space, then the environment) or the environment"},
+    [LR_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "add the Fresnel-weighted reflection at the first interface"},
+    [LR_INTERFACES] = {.name = "interfaces", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 66,
+     .help = "most interfaces a ray meets before it is stopped (0: 2 x layers + 2)"},
+};
+
+static bool layered_refraction_declare(struct pass *p, struct error *err)
+{
+    /* info: r = layers captured at the pixel, g = surfaces dropped past
+     * `layers`, b = interfaces the pixel's ray met, a = total internal
+     * reflections among them (+ 100 when the interface cap stopped it). */
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "info", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool layered_refraction_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct layered_refraction_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    layers_init(&s->layers);
+    return gl_framebuffer_create(&s->out_fb, err);
+}
+
+static void layered_refraction_destroy(struct pass *p)
+{
+    struct layered_refraction_state *s = p->state;
+    if (!s)
+        return;
+    layers_release(&s->layers);
+    gl_framebuffer_destroy(&s->out_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static enum pass_need layered_refraction_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)p;
+    for (int i = 0; i < f->scene->object_count; i++)
+        if (layers_is_refractor(f->scene->objects[i]))
+            return PASS_RUN;
+    snprintf(why, whylen, "passes the image through: no glass or water in the scene");
+    return PASS_RUN;
+}
+
+static float diameter(vec3 lo, vec3 hi) { return vec3_length(vec3_sub(hi, lo)); }
+
+static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct layered_refraction_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
+    int layers = pass_int(p, LR_LAYERS), voxels = pass_int(p, LR_VOXELS);
+    if (voxels % 128 != 0)
+        return error_set(err, "bad argument 'voxels' to 'layered_refraction' (a multiple of 128 expected, got %d)", voxels);
+    const float zero[4] = {0, 0, 0, 0};
+    gl_texture_clear(&f->outputs[1]->texture, zero);
+
+    /* the image as it is, then the refractors over it */
+    const struct gl_texture *oc[2] = {&f->outputs[0]->texture, &f->outputs[1]->texture};
+    struct gl_program *copy;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
+        return false;
+    vec3 lo, hi;
+    if (!scene_specular_bounds(f->scene, &lo, &hi)) {
+        if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+        gl.Viewport(0, 0, f->width, f->height);
+        gl.UseProgram(copy->id);
+        gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+        renderer_draw_fullscreen(r);
+        return true;
+    }
+    if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height, voxels,
+                      layers, pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, err))
+        return false;
+
+    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 2, NULL, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    static const GLenum color_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+    static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, color_only);
+    gl.UseProgram(copy->id);
+    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    renderer_draw_fullscreen(r);
+    gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, both);
+
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_refraction/refract.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    layers_bind(&s->layers, prog);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, in_depth->texture.id);
+    vec3 slo, shi;
+    scene_bounds(f->scene, &slo, &shi);
+    int interfaces = pass_int(p, LR_INTERFACES) > 0 ? pass_int(p, LR_INTERFACES) : 2 * layers + 2;
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search"), pass_int(p, LR_SEARCH));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_steps"), pass_int(p, LR_STEPS));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_gradient"),
+                        pass_choice(p, LR_NORMALS) == NORMALS_GRADIENT ? pass_int(p, LR_DELTA) : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_max_interfaces"), interfaces);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_layer_extent"), fmaxf(diameter(lo, hi), 1e-4f) * 1.01f);
+    /* the camera's depth range is the farthest a ray can usefully march */
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
+                        fmaxf(diameter(slo, shi), 1e-4f) * 1.5f);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
+                        pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
+    renderer_draw_fullscreen(r);
+    return gl_check("layered_refraction", err);
+}
+
+const struct pass_desc layered_refraction_pass = {
+    .name = "layered_refraction",
+    .summary = "Chaudhari 2008: refraction through every interface of deforming objects by voxelization and depth-layer peeling",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = layered_refraction_declare,
+    .create = layered_refraction_create,
+    .execute = layered_refraction_execute,
+    .needed = layered_refraction_needed,
+    .destroy = layered_refraction_destroy,
+};

@@ -1,0 +1,251 @@
+/* Depth layers by voxelization and peeling (Chaudhari 2008, §3.3-3.5).
+ * Where this departs from the thesis, and why:
+ * - Slice bits are ORed with GL's logic op on RGBA32UI targets, not added
+ *   with blending: two fragments in one slice set the bit once instead of
+ *   carrying into the next slice (§3.3's overflow), and 32-bit words need
+ *   no float conversion.
+ * - Peeling walks the set bits in order with findLSB rather than a binary
+ *   search for the n-th bit (§3.4.2): every bit is visited once per pixel.
+ * - A third draw writes each layer's interpolated mesh normal, exact depth
+ *   and refractor (the slice tells its layer index by a popcount of the
+ *   bits below it). The thesis's depth-gradient normals (eq. 3.2) remain
+ *   available to the tracer; the voxel depths too (`exact_depth` false).
+ *   The refractor index lets every object keep its own IOR and absorption
+ *   (§4.1 suggests bits per voxel per material).
+ * - Per-layer depth ranges for restricting the search (§3.7) are exact
+ *   atomic min/max over the layer, not a reduced MIP level. */
+#include "passes/layers.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/bindings.h"
+#include "graph/renderer.h"
+
+void layers_init(struct layer_set *ls) { memset(ls, 0, sizeof *ls); }
+
+static void release_targets(struct layer_set *ls)
+{
+    gl_texture_destroy(&ls->bounds);
+    gl_texture_destroy(&ls->bits);
+    gl_texture_destroy(&ls->depth);
+    gl_texture_destroy(&ls->normal);
+    gl_texture_destroy(&ls->info);
+}
+
+void layers_release(struct layer_set *ls)
+{
+    release_targets(ls);
+    gl_framebuffer_destroy(&ls->bounds_fb);
+    gl_framebuffer_destroy(&ls->bits_fb);
+    if (gl_api_ready()) {
+        if (ls->ranges)
+            gl.DeleteBuffers(1, &ls->ranges);
+        if (ls->materials)
+            gl.DeleteBuffers(1, &ls->materials);
+    }
+    layers_init(ls);
+}
+
+bool layers_is_refractor(const struct object *o)
+{
+    return o->visible && (o->material.kind == MATERIAL_GLASS || o->material.kind == MATERIAL_WATER);
+}
+
+static bool ensure_targets(struct layer_set *ls, int w, int h, int voxels, int layers, struct error *err)
+{
+    if (ls->bounds.id && ls->width == w && ls->height == h && ls->voxels == voxels && ls->layers == layers)
+        return true;
+    release_targets(ls);
+    if (!ls->bounds_fb.id && (!gl_framebuffer_create(&ls->bounds_fb, err) || !gl_framebuffer_create(&ls->bits_fb, err)))
+        return false;
+    if (!ls->ranges) {
+        gl.CreateBuffers(1, &ls->ranges);
+        gl.NamedBufferStorage(ls->ranges, (GLsizeiptr)((2 * LAYERS_MAX + 4) * sizeof(GLuint)), NULL,
+                              GL_DYNAMIC_STORAGE_BIT);
+        gl.CreateBuffers(1, &ls->materials);
+        gl.NamedBufferStorage(ls->materials, (GLsizeiptr)(LAYERS_MAX_SLOTS * sizeof(struct layers_material_gpu)), NULL,
+                              GL_DYNAMIC_STORAGE_BIT);
+    }
+    ls->width = w;
+    ls->height = h;
+    ls->voxels = voxels;
+    ls->layers = layers;
+    int words = voxels / 128;
+    if (!gl_texture_create(&ls->bounds, GL_TEXTURE_2D, GL_RG32F, w, h, 1, err) ||
+        !gl_texture_create(&ls->bits, GL_TEXTURE_2D_ARRAY, GL_RGBA32UI, w, h, words, err) ||
+        !gl_texture_create(&ls->depth, GL_TEXTURE_2D_ARRAY, GL_R32F, w, h, layers, err) ||
+        !gl_texture_create(&ls->normal, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, w, h, layers, err) ||
+        !gl_texture_create(&ls->info, GL_TEXTURE_2D, GL_RG32UI, w, h, 1, err))
+        return false;
+    /* The layer arrays are read texel by texel (a layer's neighbour may be
+     * another surface): no filtering. */
+    gl.TextureParameteri(ls->depth.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(ls->depth.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TextureParameteri(ls->normal.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(ls->normal.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TextureParameteri(ls->bounds.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(ls->bounds.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    const struct gl_texture *bc[1] = {&ls->bounds};
+    if (!gl_framebuffer_attach(&ls->bounds_fb, bc, NULL, 1, NULL, -1, err))
+        return false;
+    const struct gl_texture *wc[8];
+    int wl[8];
+    for (int i = 0; i < words; i++) {
+        wc[i] = &ls->bits;
+        wl[i] = i;
+    }
+    return gl_framebuffer_attach(&ls->bits_fb, wc, wl, words, NULL, -1, err);
+}
+
+static void set_view_uniforms(const struct layer_set *ls, const struct gl_program *prog)
+{
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_view"), 1, GL_FALSE, ls->view.m);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_proj"), 1, GL_FALSE, ls->proj.m);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_voxels"), ls->voxels);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layers"), ls->layers);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_exact_depth"), ls->exact_depth ? 1 : 0);
+}
+
+/* Each refractor alone, with its slot for the attribute pass. */
+static void draw_refractors(struct layer_set *ls, struct renderer *r, const struct scene *scene,
+                            const struct gl_program *prog)
+{
+    for (int s = 0; s < ls->slots; s++) {
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_slot"), s);
+        renderer_draw_object(r, scene, prog, ls->slot_objects[s]);
+        ls->draws++;
+        ls->triangles += (long)(ls->slot_objects[s]->mesh->index_count / 3);
+    }
+}
+
+bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
+                  int width, int height, int voxels, int layers, bool exact_depth, struct error *err)
+{
+    if (voxels < 128 || voxels > LAYERS_MAX_VOXELS || voxels % 128 != 0)
+        return error_set(err, "layers: voxels must be a multiple of 128 in 128..%d (got %d)", LAYERS_MAX_VOXELS,
+                         voxels);
+    if (layers < 1 || layers > LAYERS_MAX)
+        return error_set(err, "layers: layers must be in 1..%d (got %d)", LAYERS_MAX, layers);
+    if (!ensure_targets(ls, width, height, voxels, layers, err))
+        return false;
+    ls->exact_depth = exact_depth;
+    ls->view = view;
+    ls->proj = proj;
+    mat4_inverse(view, &ls->inv_view);
+    mat4_inverse(proj, &ls->inv_proj);
+    ls->ortho = proj.m[11] == 0.0f; /* [2][3]: -1 for a perspective projection */
+    ls->draws = 0;
+    ls->triangles = 0;
+    ls->slots = 0;
+    struct layers_material_gpu mats[LAYERS_MAX_SLOTS];
+    memset(mats, 0, sizeof mats);
+    for (int i = 0; i < scene->object_count && ls->slots < LAYERS_MAX_SLOTS; i++) {
+        struct object *o = scene->objects[i];
+        if (!layers_is_refractor(o))
+            continue;
+        struct layers_material_gpu *m = &mats[ls->slots];
+        m->ior = o->material.ior;
+        m->ideal = o->material.ideal ? 1.0f : 0.0f;
+        m->absorption[0] = o->material.absorption.x;
+        m->absorption[1] = o->material.absorption.y;
+        m->absorption[2] = o->material.absorption.z;
+        ls->slot_objects[ls->slots++] = o;
+    }
+    gl.NamedBufferSubData(ls->materials, 0, (GLsizeiptr)sizeof mats, mats);
+
+    struct gl_program *bounds, *voxelize, *attributes, *peel, *ranges;
+    if (!gl_program_get(&r->programs, "layers/layers.vert", "layers/bounds.frag", NULL, &bounds, err) ||
+        !gl_program_get(&r->programs, "layers/layers.vert", "layers/voxelize.frag", NULL, &voxelize, err) ||
+        !gl_program_get(&r->programs, "layers/layers.vert", "layers/attributes.frag", NULL, &attributes, err) ||
+        !gl_program_get_compute(&r->programs, "layers/peel.comp", NULL, NULL, &peel, err) ||
+        !gl_program_get_compute(&r->programs, "layers/ranges.comp", NULL, NULL, &ranges, err))
+        return false;
+    gl.Viewport(0, 0, width, height);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+
+    /* §3.3, first pass: per-pixel bounds by MAX blending of (d, -d). */
+    const float empty[4] = {-1e30f, -1e30f, 0, 0};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bounds_fb.id);
+    gl.ClearNamedFramebufferfv(ls->bounds_fb.id, GL_COLOR, 0, empty);
+    gl.Enable(GL_BLEND);
+    gl.BlendEquation(GL_MAX);
+    set_view_uniforms(ls, bounds);
+    draw_refractors(ls, r, scene, bounds);
+    gl.BlendEquation(GL_FUNC_ADD);
+    gl.Disable(GL_BLEND);
+
+    /* §3.3, second pass: one bit per fragment in its slice between the
+     * pixel's bounds, ORed into the words. */
+    const GLuint zero_u[4] = {0, 0, 0, 0};
+    gl.ClearTexImage(ls->bits.id, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero_u);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bits_fb.id);
+    gl.Enable(GL_COLOR_LOGIC_OP);
+    gl.LogicOp(GL_OR);
+    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
+    set_view_uniforms(ls, voxelize);
+    draw_refractors(ls, r, scene, voxelize);
+    gl.Disable(GL_COLOR_LOGIC_OP);
+    gl.LogicOp(GL_COPY);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+
+    /* §3.4.2: peel the set bits in order into the layer arrays. */
+    GLuint init[2 * LAYERS_MAX + 4];
+    for (int k = 0; k < LAYERS_MAX; k++) {
+        init[2 * k] = 0x7f7fffffu; /* FLT_MAX's bits: atomicMin from above */
+        init[2 * k + 1] = 0u;
+    }
+    init[2 * LAYERS_MAX] = 0u; /* the largest layer count */
+    init[2 * LAYERS_MAX + 1] = init[2 * LAYERS_MAX + 2] = init[2 * LAYERS_MAX + 3] = 0u;
+    gl.NamedBufferSubData(ls->ranges, 0, (GLsizeiptr)sizeof init, init);
+    const float zero_f[4] = {0, 0, 0, 0};
+    gl.ClearTexImage(ls->normal.id, 0, GL_RGBA, GL_FLOAT, zero_f);
+    gl.UseProgram(peel->id);
+    set_view_uniforms(ls, peel);
+    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
+    gl.BindTextureUnit(LAYERS_UNIT_BITS, ls->bits.id);
+    gl.BindImageTexture(LAYERS_IMAGE_DEPTH, ls->depth.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    gl.BindImageTexture(LAYERS_IMAGE_INFO, ls->info.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+
+    /* The attributes: each fragment's layer is the count of set bits below
+     * its slice; it writes its normal, refractor and exact depth there. */
+    struct gl_texture *sink[1] = {&ls->bounds};
+    (void)sink;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bounds_fb.id);
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
+    gl.BindTextureUnit(LAYERS_UNIT_BITS, ls->bits.id);
+    gl.BindImageTexture(LAYERS_IMAGE_DEPTH, ls->depth.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    gl.BindImageTexture(LAYERS_IMAGE_NORMAL, ls->normal.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    set_view_uniforms(ls, attributes);
+    draw_refractors(ls, r, scene, attributes);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+
+    /* §3.7: each layer's depth range, to bound the search along a ray. */
+    gl.UseProgram(ranges->id);
+    gl.BindTextureUnit(LAYERS_UNIT_DEPTH, ls->depth.id);
+    gl.BindTextureUnit(LAYERS_UNIT_INFO, ls->info.id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_RANGES, ls->ranges);
+    gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    renderer_reset_state(r);
+    return gl_check("depth layers", err);
+}
+
+void layers_bind(const struct layer_set *ls, const struct gl_program *prog)
+{
+    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
+    gl.BindTextureUnit(LAYERS_UNIT_DEPTH, ls->depth.id);
+    gl.BindTextureUnit(LAYERS_UNIT_NORMAL, ls->normal.id);
+    gl.BindTextureUnit(LAYERS_UNIT_INFO, ls->info.id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_RANGES, ls->ranges);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_MATERIALS, ls->materials);
+    set_view_uniforms(ls, prog);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_view"), 1, GL_FALSE, ls->inv_view.m);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_proj"), 1, GL_FALSE, ls->inv_proj.m);
+    gl.ProgramUniform2i(prog->id, gl_program_uniform(prog, "u_layer_size"), ls->width, ls->height);
+}

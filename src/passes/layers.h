@@ -1,0 +1,61 @@
+/* Depth layers of the refractors seen from one view (Chaudhari 2008, §3.3-
+ * 3.4): per-pixel depth bounds, surface voxelization into bit slices
+ * between them, the set bits peeled in order into a layered depth image
+ * (up to `layers` per pixel), and per layer the mesh's own normal, exact
+ * depth and which refractor it belongs to. Shared by layered_refraction
+ * (the camera's view) and layered_caustics (the light's view). Three
+ * geometry draws per view: bounds, voxels, attributes. */
+#ifndef CAUSTICA_LAYERS_H
+#define CAUSTICA_LAYERS_H
+
+#include <stdbool.h>
+
+#include "core/error.h"
+#include "core/vecmath.h"
+#include "gl/gl_program.h"
+#include "gl/gl_texture.h"
+#include "scene/scene.h"
+
+#define LAYERS_MAX 32        /* depth layers per pixel (the thesis's 32: 8 render targets x 4 channels) */
+#define LAYERS_MAX_VOXELS 1024 /* slices per pixel: 8 RGBA32UI words */
+#define LAYERS_MAX_SLOTS 64  /* refractive objects one view tells apart */
+
+struct renderer;
+
+/* std430 mirror of LayerMaterial in shaders/layers/layers.glsl */
+struct layers_material_gpu {
+    float ior, ideal, pad0, pad1;
+    float absorption[4];
+};
+
+struct layer_set {
+    int width, height, voxels, layers;
+    bool exact_depth;          /* depths from the attribute pass (else the voxels' slice centres) */
+    struct gl_texture bounds;  /* rg32f: max depth, max -depth (per-pixel Zmax and -Zmin, §3.3) */
+    struct gl_texture bits;    /* rgba32ui array: voxels / 128 words of slice bits (§3.3) */
+    struct gl_texture depth;   /* r32f array [layers]: eye depth of each layer (§3.4.2) */
+    struct gl_texture normal;  /* rgba32f array [layers]: world normal, w = refractor slot */
+    struct gl_texture info;    /* rg32ui: layers captured, surfaces dropped (more than `layers`) */
+    GLuint ranges;             /* ssbo: per layer min and max depth (float bits), then the largest count */
+    GLuint materials;          /* ssbo: per slot ior, ideal, absorption */
+    struct gl_framebuffer bounds_fb, bits_fb;
+    mat4 view, proj, inv_view, inv_proj;
+    bool ortho;
+    int slots;                 /* refractors in the set */
+    struct object *slot_objects[LAYERS_MAX_SLOTS]; /* borrowed */
+    int draws;                 /* geometry draws the last build made */
+    long triangles;            /* triangles those draws rasterized */
+};
+
+void layers_init(struct layer_set *ls);
+void layers_release(struct layer_set *ls);
+/* Builds the layers of every visible glass/water object seen through
+ * `view` and `proj` at width x height. */
+bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
+                  int width, int height, int voxels, int layers, bool exact_depth, struct error *err);
+/* Binds the textures and buffers shaders/layers/trace.glsl reads, and its
+ * uniforms on `program_id`. */
+void layers_bind(const struct layer_set *ls, const struct gl_program *program);
+bool layers_is_refractor(const struct object *o);
+
+#endif
