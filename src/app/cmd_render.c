@@ -26,7 +26,7 @@ static void print_timings(const struct session *s)
 {
     const struct graph *g = s->graph;
     double total = s->app->renderer.deform_ms;
-    printf("%-16s %-22s %10s\n", "pass", "kind", "ms");
+    printf("%-16s %-22s %10s %6s %12s\n", "pass", "kind", "ms", "draws", "triangles");
     printf("%-16s %-22s %10.3f\n", "(geometry)", "morphs and deformers", s->app->renderer.deform_ms);
     for (int i = 0; i < g->count; i++) {
         const struct graph_entry *e = &g->entries[i];
@@ -37,7 +37,10 @@ static void print_timings(const struct session *s)
         if (e->last_need != PASS_RUN)
             printf("%-16s %-22s %10s  (%s)\n", e->pass->name, e->pass->desc->name, "-", e->last_why);
         else
-            printf("%-16s %-22s %10.3f\n", e->pass->name, e->pass->desc->name, e->last_ms);
+            printf("%-16s %-22s %10.3f %6ld %12ld\n", e->pass->name, e->pass->desc->name, e->last_ms, e->last_draws,
+                   e->last_triangles);
+        for (int k = 0; e->last_need == PASS_RUN && k < e->pass->stages.count; k++)
+            printf("  %-14s %-22s %10.3f\n", e->pass->stages.names[k], "", e->pass->stages.ms[k]);
         total += e->last_ms;
     }
     printf("%-16s %-22s %10.3f\n", "total", "", total);

@@ -302,9 +302,13 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         /* Timestamps rather than GL_TIME_ELAPSED: Mesa's llvmpipe under EGL
          * loses the start of an elapsed-time query that follows a compute
          * dispatch (seen with the deformers), while timestamps hold. */
+        p->stages.count = 0;
+        long draws = r->draw_calls, triangles = r->draw_triangles;
         gl.QueryCounter(e->queries[0], GL_TIMESTAMP);
         bool ok = p->desc->execute(p, &f, err);
         gl.QueryCounter(e->queries[1], GL_TIMESTAMP);
+        e->last_draws = r->draw_calls - draws;
+        e->last_triangles = r->draw_triangles - triangles;
         if (!ok)
             return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
         if (!gl_check("executing the pass", err))
@@ -320,6 +324,7 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         gl.GetQueryObjectui64v(e->queries[0], GL_QUERY_RESULT, &t0);
         gl.GetQueryObjectui64v(e->queries[1], GL_QUERY_RESULT, &t1);
         e->last_ms = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
+        pass_stages_collect(e->pass);
     }
     return true;
 }

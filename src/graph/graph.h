@@ -25,6 +25,7 @@ struct graph_entry {
     enum pass_need last_need;
     char last_why[256];
     double last_ms;
+    long last_draws, last_triangles; /* object draws the pass made (renderer_draw_objects) */
     GLuint queries[2]; /* GL_TIMESTAMP before and after */
 };
 

@@ -51,10 +51,44 @@ void pass_set_object(struct pass *p, int param, struct object *object)
     p->values[param].object = object;
 }
 
+void pass_stage_begin(struct pass *p)
+{
+    if (!p->stages.queries[0])
+        gl.GenQueries(PASS_MAX_STAGES + 1, p->stages.queries);
+    p->stages.count = 0;
+    gl.QueryCounter(p->stages.queries[0], GL_TIMESTAMP);
+}
+
+void pass_stage_end(struct pass *p, const char *name)
+{
+    struct pass_stages *s = &p->stages;
+    if (!s->queries[0] || s->count >= PASS_MAX_STAGES)
+        return;
+    snprintf(s->names[s->count], sizeof s->names[s->count], "%s", name);
+    gl.QueryCounter(s->queries[s->count + 1], GL_TIMESTAMP);
+    s->count++;
+}
+
+void pass_stages_collect(struct pass *p)
+{
+    struct pass_stages *s = &p->stages;
+    GLuint64 prev = 0;
+    if (s->count > 0)
+        gl.GetQueryObjectui64v(s->queries[0], GL_QUERY_RESULT, &prev);
+    for (int i = 0; i < s->count; i++) {
+        GLuint64 t = 0;
+        gl.GetQueryObjectui64v(s->queries[i + 1], GL_QUERY_RESULT, &t);
+        s->ms[i] = t > prev ? (double)(t - prev) * 1e-6 : 0.0;
+        prev = t;
+    }
+}
+
 void pass_destroy(struct pass *p)
 {
     if (!p || --p->references > 0)
         return;
+    if (p->stages.queries[0] && gl_api_ready())
+        gl.DeleteQueries(PASS_MAX_STAGES + 1, p->stages.queries);
     if (p->created && p->desc->destroy)
         p->desc->destroy(p);
     for (int i = 0; i < p->desc->param_count; i++) {

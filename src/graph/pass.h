@@ -129,6 +129,17 @@ struct pass_desc {
     void (*destroy)(struct pass *p);
 };
 
+/* Named stages of one frame of a pass, timed with GL timestamps
+ * (`--timings` prints them under the pass): pass_stage_begin, then
+ * pass_stage_end("name") after each stage's commands. */
+#define PASS_MAX_STAGES 12
+struct pass_stages {
+    int count;
+    char names[PASS_MAX_STAGES][32];
+    double ms[PASS_MAX_STAGES];
+    GLuint queries[PASS_MAX_STAGES + 1];
+};
+
 struct pass {
     int references;            /* the Lua userdata's, and the graph's while it holds the pass */
     const struct pass_desc *desc;
@@ -145,7 +156,13 @@ struct pass {
      * so that the pass needs nothing of the Lua layer above it. */
     bool (*script_run)(struct pass *p, struct pass_frame *f, struct error *err);
     void *script_state;        /* the bindings' (the lua_State) */
+    struct pass_stages stages; /* the last frame's, empty for a pass that names none */
 };
+
+void pass_stage_begin(struct pass *p);
+void pass_stage_end(struct pass *p, const char *name);
+/* Reads the stages' timestamps (after the frame: graph_execute calls it). */
+void pass_stages_collect(struct pass *p);
 
 /* Creation and release of instances (values filled by the Lua binding).
  * A light or object value holds a reference to it: set them with

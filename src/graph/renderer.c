@@ -267,6 +267,8 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         if (!mesh_cache_bind(&r->meshes, o, &err))
             continue; /* out of memory: the object is not drawn (mesh_cache_begin_frame said so first) */
         gl.DrawElements(GL_TRIANGLES, (GLsizei)o->mesh->index_count, GL_UNSIGNED_INT, NULL);
+        r->draw_calls++;
+        r->draw_triangles += (long)(o->mesh->index_count / 3);
     }
     gl.BindVertexArray(0);
 }

@@ -51,6 +51,7 @@ struct renderer {
     double deform_ms; /* GPU time of the last frame's morphs and deformers */
     struct mesh_cache meshes; /* the GPU copies of meshes and objects */
     struct texture_cache textures; /* the GPU copies of material textures */
+    long draw_calls, draw_triangles; /* objects drawn by renderer_draw_objects, ever (passes take differences) */
     struct gl_texture environment; /* the cube map of the scene's environment ... */
     uint64_t environment_serial;   /* ... of this serial (0: none uploaded) */
 };

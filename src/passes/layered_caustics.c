@@ -178,7 +178,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.9f, dist + orad * 1.1f);
         texel_tan = 2.0f * tanf(fov * 0.5f * (float)MATH_PI / 180.0f) / (float)buffer;
     }
-    if (!layers_build(&s->layers, r, f->scene, view, proj, buffer, buffer, voxels, pass_int(p, LC_LAYERS), true, err))
+    pass_stage_begin(p);
+    if (!layers_build(&s->layers, r, f->scene, view, proj, buffer, buffer, voxels, pass_int(p, LC_LAYERS), true, p,
+                      err))
         return false;
 
     /* The receivers as the camera sees them. */
@@ -193,6 +195,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.Enable(GL_DEPTH_TEST);
     renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
     renderer_reset_state(r);
+    pass_stage_end(p, "receivers");
 
     /* Photons: traced through the light's layers, then onto the receivers. */
     vec3 slo, shi;
@@ -231,6 +234,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    pass_stage_end(p, "photons");
 
     /* Each photon splatted over its own footprint. */
     const struct camera *cam = &f->scene->camera;
@@ -249,6 +253,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    pass_stage_end(p, "splat");
 
     /* Flux per pixel -> irradiance. */
     struct gl_program *resolve;
@@ -267,6 +272,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
     renderer_draw_fullscreen(r);
+    pass_stage_end(p, "resolve");
     return gl_check("layered_caustics", err);
 }
 

@@ -141,8 +141,9 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         renderer_draw_fullscreen(r);
         return true;
     }
+    pass_stage_begin(p);
     if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height, voxels,
-                      layers, pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, err))
+                      layers, pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, p, err))
         return false;
 
     if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 2, NULL, -1, err))
@@ -182,6 +183,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
     renderer_draw_fullscreen(r);
+    pass_stage_end(p, "trace");
     return gl_check("layered_refraction", err);
 }
 

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "graph/bindings.h"
+#include "graph/pass.h"
 #include "graph/renderer.h"
 
 void layers_init(struct layer_set *ls) { memset(ls, 0, sizeof *ls); }
@@ -120,7 +121,8 @@ static void draw_refractors(struct layer_set *ls, struct renderer *r, const stru
 }
 
 bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
-                  int width, int height, int voxels, int layers, bool exact_depth, struct error *err)
+                  int width, int height, int voxels, int layers, bool exact_depth, struct pass *timed,
+                  struct error *err)
 {
     if (voxels < 128 || voxels > LAYERS_MAX_VOXELS || voxels % 128 != 0)
         return error_set(err, "layers: voxels must be a multiple of 128 in 128..%d (got %d)", LAYERS_MAX_VOXELS,
@@ -175,6 +177,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     draw_refractors(ls, r, scene, bounds);
     gl.BlendEquation(GL_FUNC_ADD);
     gl.Disable(GL_BLEND);
+    if (timed)
+        pass_stage_end(timed, "bounds");
 
     /* §3.3, second pass: one bit per fragment in its slice between the
      * pixel's bounds, ORed into the words. */
@@ -189,6 +193,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.Disable(GL_COLOR_LOGIC_OP);
     gl.LogicOp(GL_COPY);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    if (timed)
+        pass_stage_end(timed, "voxelize");
 
     /* §3.4.2: peel the set bits in order into the layer arrays. */
     GLuint init[2 * LAYERS_MAX + 4];
@@ -209,11 +215,11 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.BindImageTexture(LAYERS_IMAGE_INFO, ls->info.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
     gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (timed)
+        pass_stage_end(timed, "peel");
 
     /* The attributes: each fragment's layer is the count of set bits below
      * its slice; it writes its normal, refractor and exact depth there. */
-    struct gl_texture *sink[1] = {&ls->bounds};
-    (void)sink;
     gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bounds_fb.id);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
@@ -224,6 +230,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     draw_refractors(ls, r, scene, attributes);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (timed)
+        pass_stage_end(timed, "attributes");
 
     /* §3.7: each layer's depth range, to bound the search along a ray. */
     gl.UseProgram(ranges->id);
@@ -232,6 +240,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_RANGES, ls->ranges);
     gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (timed)
+        pass_stage_end(timed, "ranges");
     renderer_reset_state(r);
     return gl_check("depth layers", err);
 }

@@ -51,8 +51,11 @@ void layers_init(struct layer_set *ls);
 void layers_release(struct layer_set *ls);
 /* Builds the layers of every visible glass/water object seen through
  * `view` and `proj` at width x height. */
+/* `timed` (may be NULL): the pass whose stages (pass_stage_end) this names. */
+struct pass;
 bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
-                  int width, int height, int voxels, int layers, bool exact_depth, struct error *err);
+                  int width, int height, int voxels, int layers, bool exact_depth, struct pass *timed,
+                  struct error *err);
 /* Binds the textures and buffers shaders/layers/trace.glsl reads, and its
  * uniforms on `program_id`. */
 void layers_bind(const struct layer_set *ls, const struct gl_program *program);
