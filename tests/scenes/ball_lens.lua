@@ -47,6 +47,7 @@ if c.param("technique", "") == "layered" then
   g:add("lc", c.pass.layered_caustics { light = sun, buffer = c.param("buffer", 512), layers = c.param("layers", 8),
                                         radius = c.param("radius_px", 2) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "lc.irradiance" })
+  if c.param("output", "") == "irradiance" then g:output("lc.irradiance") end
 elseif c.param("techniques", false) then
   -- Hu & Qin's photon caustics on the GPU (the scene's sun is the only light)
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
@@ -56,5 +57,5 @@ elseif c.param("techniques", false) then
 else
   g:add("shade", c.pass.shade {})
 end
-g:output("shade.color")
+if c.param("output", "") ~= "irradiance" then g:output("shade.color") end
 return { scene = scene, graph = g, size = {size, size} }

@@ -3,15 +3,22 @@
 -- --set object=sphere|torus|bunny|bunnies|dragon, method=layered|huqin|wyman,
 -- ior=, absorption= (red and green, Fig. 4.4), layers=, voxels=, search=,
 -- normals=mesh|gradient, depths=exact|voxel, room=true (a floor and a back
--- wall with boxes, looked up in screen space) , hide=true (no refractor).
+-- wall with boxes, looked up in screen space), hide=true (no refractor),
+-- object=thin|inside_out, view=front|grazing|inside, interfaces=, output=glass.info,
+-- shadows=false (no shadow map in the room).
 local c = require "caustica"
 local ior = c.param("ior", 1.5)
 local method = c.param("method", "layered")
 local object = c.param("object", "sphere")
 local room = c.param("room", false)
 local absorption = c.param("absorption", 0.0)
+local views = {
+  front = c.camera { eye = {0, 0.35, 2.4}, target = {0, 0.05, 0}, fov = 40 },
+  grazing = c.camera { eye = {0, 0.05, 2.0}, target = {1.0, 0.0, 0.0}, fov = 60 },  -- the object at the image's edge
+  inside = c.camera { eye = {0, 0, 0.2}, target = {0, 0, -1}, fov = 60, near = 0.01 }, -- the camera inside it
+}
 local scene = c.scene {
-  camera = c.camera { eye = {0, 0.35, 2.4}, target = {0, 0.05, 0}, fov = 40 },
+  camera = views[c.param("view", "front")],
   environment = c.cubemap "../../scenes/assets/env/room",
   ambient = {0.15, 0.15, 0.15},
 }
@@ -33,6 +40,11 @@ elseif object == "bunnies" then   -- Fig. 4.3: two bunnies, one behind the other
   add(c.mesh.load "../../scenes/assets/bunny_15k.glb", {0.3, 0.05, -0.35}, 1.0, c.quat.axis_angle({0, 1, 0}, 2.0))
 elseif object == "dragon" then
   add(c.mesh.load "../../scenes/assets/dragon_40k.glb", {0, 0, 0}, 1.5, c.quat.axis_angle({0, 1, 0}, 0.6))
+elseif object == "thin" then      -- a slab thinner than one voxel: its two faces share a slice
+  add(c.mesh.box { size = {1.0, 0.8, 0.0005} }, {0, 0, 0}, 1, c.quat.axis_angle({0, 1, 0}, 0.4))
+elseif object == "inside_out" then -- a deformer that mirrors the sphere: inward normals, reversed winding
+  add(c.mesh.sphere { radius = 0.6, segments = 64 }, {0, 0, 0}, 1)
+  objects[1].deform = c.deform.glsl [[ vec3 deform(vec3 p, float t) { return vec3(-p.x, p.y, p.z); } ]]
 end
 if c.param("hide", false) then
   for _, o in ipairs(objects) do o.visible = false end
@@ -53,7 +65,7 @@ if room then
 end
 local g = c.graph()
 local shadow = nil
-if lamp then
+if lamp and c.param("shadows", true) then
   g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
   shadow = "shadow.depth"
 end
@@ -62,7 +74,8 @@ if method == "layered" then
   g:add("glass", c.pass.layered_refraction { color = "shade.color", layers = c.param("layers", 16),
                                              voxels = c.param("voxels", 256), search = c.param("search", 5),
                                              steps = c.param("steps", 8), normals = c.param("normals", "mesh"),
-                                             depths = c.param("depths", "exact") })
+                                             depths = c.param("depths", "exact"),
+                                             interfaces = c.param("interfaces", 0) })
 else
   g:add("shade", c.pass.shade { shadow = shadow })
   g:add("glass", c.pass.refraction { method = method, color = "shade.color" })
