@@ -18,6 +18,11 @@ grep -q "in  shadow0      <- shadow.depth" "$WORK/demo.txt" && pass "inputs list
 grep -q "cv .*left out: the light is below the horizon" "$WORK/water.txt" && pass "caustics left out when not needed" \
   || fail "caustics left out" "$(cat "$WORK/water.txt")"
 "$CAUSTICA" render scenes/demo.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
-grep -qE "^shade +shade +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
-  && pass "--timings prints per-pass milliseconds" || fail "--timings" "$(cat "$WORK/timings.txt")"
+grep -qE "^shade +shade +[0-9.]+ +[0-9]+ +[0-9]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
+  && pass "--timings prints per-pass milliseconds, draws and triangles" || fail "--timings" "$(cat "$WORK/timings.txt")"
+# the layered passes name their stages, and draw the refractor three times per view
+"$CAUSTICA" render scenes/chaudhari_fig45.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
+grep -qE "^glass +layered_refraction +[0-9.]+ +3 +" "$WORK/timings.txt" && grep -qE "^  trace +[0-9.]+$" "$WORK/timings.txt" \
+  && grep -qE "^  voxelize +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^caustics +layered_caustics +[0-9.]+ +4 +" "$WORK/timings.txt" \
+  && pass "--timings: the layered passes' draws and stages" || fail "--timings (layered)" "$(cat "$WORK/timings.txt")"
 finish
