@@ -6,6 +6,8 @@
 #include "common/frame.glsl"
 #include "layers/trace.glsl"
 #include "layers/scene_trace.glsl"
+#include "impostors/impostors.glsl"
+uniform int u_correction; // Fig. 16's iterations for the impostor lookup
 layout(binding = LAYERED_UNIT_SCENE) uniform sampler2D u_scene;
 uniform int u_lookup_scene;
 uniform int u_reflection;
@@ -13,12 +15,16 @@ uniform int u_camera_ortho;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_info; // layers, dropped, interfaces, total internal reflections (+100: capped)
 
-// What a ray from world point o along d sees.
+// What a ray from world point o along d sees: the scene behind the glass
+// in the input image, else an impostor (off screen), else the environment.
 vec3 look(vec3 o, vec3 d)
 {
     ivec2 px;
     if (u_lookup_scene == 1 && scene_trace(o, d, px))
         return texelFetch(u_scene, px, 0).rgb;
+    vec3 c;
+    if (u_lookup_scene == 1 && impostor_lookup(o, d, u_correction, c))
+        return c;
     return environment_radiance(d);
 }
 

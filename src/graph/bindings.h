@@ -71,9 +71,9 @@
 #define LAYERS_IMAGE_INFO 2
 #define LAYERS_SSBO_RANGES 6
 #define LAYERS_SSBO_MATERIALS 7
-#define LAYERED_UNIT_SCENE 6                /* the scene a ray leaving the refractors sees (colour) */
-#define LAYERED_UNIT_SCENE_DEPTH 7          /* ... and its depth */
-#define LAYERED_UNIT_RECEIVER_NORMAL 8      /* layered_caustics: the receivers seen by the camera */
+#define LAYERED_UNIT_SCENE 9                /* the scene a ray leaving the refractors sees (colour) */
+#define LAYERED_UNIT_SCENE_DEPTH 10         /* ... and its depth */
+#define LAYERED_UNIT_RECEIVER_NORMAL 11     /* layered_caustics: the receivers seen by the camera */
 #define LAYERED_IMAGE_FLUX 3                /* layered_caustics: r32ui array, fixed-point flux per channel */
 #define LAYERED_IMAGE_HITS 4                /* layered_caustics: where each photon lands (world xyz, w = 1) */
 #define LAYERED_IMAGE_PHOTONS 5             /* layered_caustics: the flux each photon carries */

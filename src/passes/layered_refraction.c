@@ -5,7 +5,9 @@
  * layer a ray is traced through them (§3.6-3.8, shaders/layers/trace.glsl):
  * Snell's law at each interface, total internal reflection, absorption.
  * The ray that leaves sees the scene behind (the input image and depth,
- * searched in screen space) or the environment. No precomputation: a mesh
+ * searched in screen space), else the nearby objects' impostors (Hu & Qin
+ * §2.2, shared with `refraction`: what is off screen), else the
+ * environment. No precomputation: a mesh
  * that deforms, morphs or is replaced costs the same as a rigid one. The
  * output is the input with the refractors drawn over it, like
  * `refraction`, so a script swaps one for the other. */
@@ -18,11 +20,15 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/impostors.h"
 #include "passes/layers.h"
 
 struct layered_refraction_state {
     struct layer_set layers;
     struct gl_framebuffer out_fb;
+    struct impostor_set impostors;
+    bool impostors_valid; /* a static scene reuses them (Hu & Qin §4) */
+    uint64_t impostor_geometry, impostor_lights;
 };
 
 enum { LOOKUP_SCENE, LOOKUP_ENVIRONMENT };
@@ -42,6 +48,8 @@ enum layered_refraction_param {
     LR_LOOKUP,
     LR_REFLECTION,
     LR_INTERFACES,
+    LR_NEARBY,
+    LR_IMPOSTOR,
 };
 
 static const struct pass_param_desc params[] = {
@@ -69,6 +77,10 @@ static const struct pass_param_desc params[] = {
      .help = "add the Fresnel-weighted reflection at the first interface"},
     [LR_INTERFACES] = {.name = "interfaces", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 66,
      .help = "most interfaces a ray meets before it is stopped (0: 2 x layers + 2)"},
+    [LR_NEARBY] = {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "where the screen has nothing (off screen, hidden), look up the nearby objects' impostors (Hu & Qin §2.2)"},
+    [LR_IMPOSTOR] = {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "impostor texture size"},
 };
 
 static bool layered_refraction_declare(struct pass *p, struct error *err)
@@ -97,6 +109,7 @@ static void layered_refraction_destroy(struct pass *p)
     if (!s)
         return;
     layers_release(&s->layers);
+    impostors_release(&s->impostors);
     gl_framebuffer_destroy(&s->out_fb);
     free(s);
     p->state = NULL;
@@ -145,6 +158,23 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height, voxels,
                       layers, pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, p, err))
         return false;
+    bool nearby = pass_flag(p, LR_NEARBY);
+    if (nearby) {
+        /* rebuilt only when geometry, lights or the size change, as refraction's */
+        uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
+        for (int i = 0; i < f->scene->light_count; i++)
+            lights = lights * 31u + f->scene->lights[i]->version;
+        if (!s->impostors_valid || f->snapshot->geometry_animated || geometry != s->impostor_geometry ||
+            lights != s->impostor_lights || s->impostors.size != pass_int(p, LR_IMPOSTOR)) {
+            if (!impostors_build(&s->impostors, r, f->scene, vec3_scale(vec3_add(lo, hi), 0.5f),
+                                 pass_int(p, LR_IMPOSTOR), false, err))
+                return false;
+            s->impostors_valid = true;
+            s->impostor_geometry = geometry;
+            s->impostor_lights = lights;
+        }
+        pass_stage_end(p, "impostors");
+    }
 
     if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 2, NULL, -1, err))
         return false;
@@ -182,6 +212,13 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
                         pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
+    if (nearby && s->impostors.count > 0) {
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
+        gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
+        gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, s->impostors.color.id);
+    }
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), 3);
     renderer_draw_fullscreen(r);
     pass_stage_end(p, "trace");
     return gl_check("layered_refraction", err);
