@@ -5,20 +5,19 @@
 // receivers (Kruger et al. 2006's eye-space photon tracing, here a march
 // against the receivers' depth, layers/scene_trace.glsl). Each photon's
 // landing point and flux are stored for splat.comp, which sizes its
-// footprint from its neighbours'; the weak reflection off the first
-// interface is splatted here with the smallest kernel.
+// footprint from its neighbours': layer 0 the light through the object,
+// layer 1 the light reflected off its first interface.
 #include "common/frame.glsl"
 #include "layers/trace.glsl"
 #include "layers/scene_trace.glsl"
-#include "layered_caustics/splat.glsl"
+layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform writeonly image2D u_hits;
-layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform writeonly image2D u_photons;
+layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform writeonly image2DArray u_hits;
+layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform writeonly image2DArray u_photons;
 uniform int u_light;          // the light's entry in the frame's list
 uniform int u_light_ortho;    // a directional light: parallel photons
 uniform float u_texel_area;   // directional: the area a texel spans across the beam
 uniform float u_texel_tan;    // point/spot: a texel's side on the plane at distance 1
-uniform float u_min_radius;
 
 // Where the photon (world o, d) lands on a receiver the camera sees.
 bool land(vec3 o, vec3 d, out vec3 at, out ivec2 px)
@@ -37,7 +36,8 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, u_layer_size)))
         return;
-    imageStore(u_hits, p, vec4(0.0));
+    imageStore(u_hits, ivec3(p, 0), vec4(0.0));
+    imageStore(u_hits, ivec3(p, 1), vec4(0.0));
     if (layer_count(p) == 0)
         return;
     vec3 P0 = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
@@ -63,11 +63,13 @@ void main()
     vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
     vec3 at;
     ivec2 px;
-    if (path.fresnel0 > 0.0 && land(entry + reflected * (1e-4 * u_layer_extent), reflected, at, px))
-        splat(vec2(px) + 0.5, flux * path.fresnel0, u_min_radius);
+    if (path.fresnel0 > 0.0 && land(entry + reflected * (1e-4 * u_layer_extent), reflected, at, px)) {
+        imageStore(u_hits, ivec3(p, 1), vec4(at, 1.0));
+        imageStore(u_photons, ivec3(p, 1), vec4(flux * path.fresnel0, 0.0));
+    }
     if (path.fresnel0 < 1.0 &&
         land((u_layer_inv_view * vec4(path.origin, 1.0)).xyz, normalize(to_world * path.dir), at, px)) {
-        imageStore(u_hits, p, vec4(at, 1.0));
-        imageStore(u_photons, p, vec4(flux * (1.0 - path.fresnel0) * path.throughput, 0.0));
+        imageStore(u_hits, ivec3(p, 0), vec4(at, 1.0));
+        imageStore(u_photons, ivec3(p, 0), vec4(flux * (1.0 - path.fresnel0) * path.throughput, 0.0));
     }
 }

@@ -5,14 +5,18 @@
 // light covers on the receiver. The flux is spread over that parallelogram
 // as the camera sees it (n x n sample points, each bilinearly into four
 // pixels), so a diverging photon spreads, a converging one stays sharp,
-// and the flux is kept exactly. A neighbour across a silhouette or a fold
-// (its landing point more than u_max_radius pixels away) is not used; a
-// photon with no usable neighbours on an axis is one pixel wide along it.
+// and the flux is kept exactly. A neighbour's offset is clamped to
+// 2 x u_max_radius pixels: light that diverges fast (a reflection off a
+// faceted surface) spreads that far and no farther, and a footprint torn by
+// a silhouette or a fold between neighbours smears no farther either. A
+// photon with no neighbour on an axis is one pixel wide along it.
 #include "common/frame.glsl"
-#include "layered_caustics/splat.glsl"
+layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
+layout(r32ui, binding = LAYERED_IMAGE_FLUX) uniform uimage2DArray u_flux;
+uniform float u_fixed_point;
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform readonly image2D u_hits;
-layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform readonly image2D u_photons;
+layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform readonly image2DArray u_hits;
+layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform readonly image2DArray u_photons;
 uniform ivec2 u_buffer_size;
 uniform float u_max_radius; // pixels
 
@@ -22,17 +26,22 @@ vec2 to_pixels(vec3 p)
     return (c.xy / max(c.w, 1e-20) * 0.5 + 0.5) * u_viewport.xy;
 }
 
+int branch; // 0: through the object, 1: reflected off its first interface (gl_GlobalInvocationID.z)
+
 // The screen offset to neighbour q's landing point, if it landed near.
 bool neighbour(ivec2 q, vec2 from, out vec2 offset)
 {
     offset = vec2(0.0);
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_buffer_size)))
         return false;
-    vec4 h = imageLoad(u_hits, q);
+    vec4 h = imageLoad(u_hits, ivec3(q, branch));
     if (h.w < 0.5)
         return false;
     offset = to_pixels(h.xyz) - from;
-    return length(offset) <= 2.0 * u_max_radius;
+    float len = length(offset), limit = 2.0 * u_max_radius;
+    if (len > limit)
+        offset *= limit / len;
+    return true;
 }
 
 vec2 axis(ivec2 p, ivec2 step, vec2 at)
@@ -70,15 +79,16 @@ void deposit(vec2 at, vec3 flux)
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    branch = int(gl_GlobalInvocationID.z);
     if (any(greaterThanEqual(p, u_buffer_size)))
         return;
-    vec4 h = imageLoad(u_hits, p);
+    vec4 h = imageLoad(u_hits, ivec3(p, branch));
     if (h.w < 0.5)
         return;
-    vec3 flux = imageLoad(u_photons, p).rgb;
+    vec3 flux = imageLoad(u_photons, ivec3(p, branch)).rgb;
     vec2 at = to_pixels(h.xyz);
     vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
-    int nx = clamp(int(ceil(length(ex))), 1, 16), ny = clamp(int(ceil(length(ey))), 1, 16);
+    int nx = clamp(int(ceil(length(ex))), 1, 32), ny = clamp(int(ceil(length(ey))), 1, 32);
     vec3 share = flux / float(nx * ny);
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)

@@ -171,12 +171,8 @@ static bool apply_overrides(struct session *s, const struct sweep *sweeps, int n
     for (int k = 0; k < nsweeps; k++) {
         if (!strchr(sweeps[k].key, '.'))
             continue;
-        char *end;
-        double v = strtod(sweeps[k].values[choice[k]], &end);
-        if (end == sweeps[k].values[choice[k]] || *end)
-            return error_set(err, "--sweep %s: '%s' is not a number", sweeps[k].key, sweeps[k].values[choice[k]]);
-        if (!session_set_pass_param(s, sweeps[k].key, v, err))
-            return false;
+        if (!session_set_pass_param(s, sweeps[k].key, sweeps[k].values[choice[k]], err))
+            return error_prefix(err, "--sweep %s", sweeps[k].key);
     }
     return true;
 }

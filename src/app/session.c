@@ -324,7 +324,30 @@ bool session_reference_parts(struct session *s, int frame, const struct ref_opti
     return true;
 }
 
-bool session_set_pass_param(struct session *s, const char *key, double value, struct error *err)
+/* The text as the parameter's type reads it. */
+static bool set_from_text(struct pass *p, const char *name, const char *text, struct error *err)
+{
+    int index = pass_param_index(p->desc, name);
+    switch (p->desc->params[index].type) {
+    case PASS_PARAM_BOOLEAN:
+        if (strcmp(text, "true") != 0 && strcmp(text, "false") != 0)
+            return error_set(err, "'%s' is not true or false", text);
+        return pass_set_boolean(p, name, strcmp(text, "true") == 0, err);
+    case PASS_PARAM_ENUM:
+        return pass_set_enum(p, name, text, err);
+    case PASS_PARAM_STRING:
+        return pass_set_string(p, name, text, err);
+    default: {
+        char *end;
+        double v = strtod(text, &end);
+        if (end == text || *end)
+            return error_set(err, "'%s' is not a number", text);
+        return pass_set_number(p, name, v, err);
+    }
+    }
+}
+
+bool session_set_pass_param(struct session *s, const char *key, const char *text, struct error *err)
 {
     const char *dot = strchr(key, '.');
     if (!dot)
@@ -341,7 +364,7 @@ bool session_set_pass_param(struct session *s, const char *key, double value, st
             return error_set(err, "%s: %s: the pass already ran; set parameters before rendering", s->script, key);
         /* Validated where the bindings validate; outputs may depend on the
          * value (a shadow map's size): declare again. */
-        if (!pass_set_number(p, dot + 1, value, err) || !pass_declare(p, err))
+        if (!set_from_text(p, dot + 1, text, err) || !pass_declare(p, err))
             return error_prefix(err, "%s: %s", s->script, key);
         s->graph->compiled = false;
         return true;

@@ -43,7 +43,9 @@ bool session_open(struct app *app, const struct session_options *options, struct
 void session_close(struct session *s);
 /* Overrides a number parameter of a pass: "pass.param" = value (what
  * `caustica bench --sweep shadow.size=512,1024` does). Before rendering. */
-bool session_set_pass_param(struct session *s, const char *key, double value, struct error *err);
+/* "pass.param" = text: a number, true/false, an enum's choice or a string,
+ * as the parameter's type says. */
+bool session_set_pass_param(struct session *s, const char *key, const char *text, struct error *err);
 /* Loads the script again from scratch (fresh Lua state, passes and caches). */
 bool session_reload(struct session *s, struct error *err);
 /* Runs update() up to `frame` (reloading the script to go back in time). */

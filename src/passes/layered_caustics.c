@@ -35,13 +35,12 @@ enum layered_caustics_param {
     LC_SEARCH,
     LC_STEPS,
     LC_RADIUS,
-    LC_MIN_RADIUS,
 };
 
 static const struct pass_param_desc params[] = {
     [LC_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
      .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
-    [LC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
+    [LC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "the light's view of the refractors, buffer x buffer photons"},
     [LC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
      .help = "depth layers per photon texel"},
@@ -52,9 +51,7 @@ static const struct pass_param_desc params[] = {
     [LC_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64,
      .help = "linear steps along a photon before the bisection"},
     [LC_RADIUS] = {.name = "radius", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0.5, .max = 32,
-     .help = "each photon is spread over its footprint from its neighbours' landing points (a ray differential); a neighbour farther than 2 x radius pixels (a fold, a silhouette) is not used"},
-    [LC_MIN_RADIUS] = {.name = "min_radius", .type = PASS_PARAM_NUMBER, .default_number = 1, .min = 0.5, .max = 8,
-     .help = "splat radius in pixels of the photons reflected off the first interface"},
+     .help = "each photon is spread over its footprint from its neighbours' landing points (a ray differential), at most 2 x radius pixels along each side"},
 };
 
 static bool layered_caustics_declare(struct pass *p, struct error *err)
@@ -113,8 +110,9 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
     s->width = w;
     s->height = h;
     s->buffer = buffer;
-    if (!gl_texture_create(&s->hits, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
-        !gl_texture_create(&s->photons, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err))
+    /* layer 0: photons through the object; 1: reflected off its first interface */
+    if (!gl_texture_create(&s->hits, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err) ||
+        !gl_texture_create(&s->photons, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err))
         return false;
     if (!gl_texture_create(&s->receiver_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->receiver_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
@@ -228,10 +226,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_fixed_point"), fixed_point);
-    float min_radius = (float)pass_real(p, LC_MIN_RADIUS), max_radius = fmaxf((float)pass_real(p, LC_RADIUS), min_radius);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_min_radius"), min_radius);
-    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    float max_radius = (float)pass_real(p, LC_RADIUS);
+    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     pass_stage_end(p, "photons");
@@ -244,14 +241,14 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
         return false;
     gl.UseProgram(splat->id);
-    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
     gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
     gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     pass_stage_end(p, "splat");
 
