@@ -78,6 +78,10 @@
 #define LAYERED_IMAGE_HITS 4                /* layered_caustics: where each photon lands (world xyz, w = 1) */
 #define LAYERED_IMAGE_PHOTONS 5             /* layered_caustics: the flux each photon carries */
 
+/* illumination_textures */
+#define ILLUM_UNIT_TARGET 1                 /* the virtual camera's normal map and depth */
+#define ILLUM_UNIT_TEXTURES 2               /* the illumination textures, one layer per virtual plane */
+
 /* water_surface */
 #define SURFACE_UNIT_SCENE 0
 #define SURFACE_UNIT_DEPTH 1

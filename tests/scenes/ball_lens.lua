@@ -41,7 +41,14 @@ if aperture > 0 then
 end
 ball.cast_shadows = true
 local g = c.graph()
-if c.param("technique", "") == "layered" then
+if c.param("technique", "") == "iwasaki" then
+  -- Iwasaki et al.'s illumination textures (light transport table, virtual planes)
+  g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
+  g:add("it", c.pass.illumination_textures { light = sun, planes = c.param("planes", 4), size = c.param("texture", 512),
+                                             table = c.param("table", 16) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "it.irradiance" })
+  if c.param("output", "") == "irradiance" then g:output("it.irradiance") end
+elseif c.param("technique", "") == "layered" then
   -- Chaudhari's layered caustics (photons through every interface)
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
   g:add("lc", c.pass.layered_caustics { light = sun, buffer = c.param("buffer", 512), layers = c.param("layers", 8),

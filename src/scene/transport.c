@@ -1,0 +1,266 @@
+/* The light transport table (Iwasaki et al. §3, [12]): traced with Embree. */
+#define _POSIX_C_SOURCE 200809L
+#include "scene/transport.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <embree3/rtcore.h>
+
+/* Octahedral map of the sphere onto [0, 1]^2 (Praun & Hoppe 2003): even
+ * sampling, no poles, a direction's cell found in constant time. */
+static void octahedral_encode(vec3 d, double *u, double *v)
+{
+    double s = fabs(d.x) + fabs(d.y) + fabs(d.z);
+    s = s > 1e-30 ? s : 1.0;
+    double x = d.x / s, y = d.y / s;
+    if (d.z < 0.0) {
+        double ox = x;
+        x = (1.0 - fabs(y)) * (ox >= 0.0 ? 1.0 : -1.0);
+        y = (1.0 - fabs(ox)) * (y >= 0.0 ? 1.0 : -1.0);
+    }
+    *u = x * 0.5 + 0.5;
+    *v = y * 0.5 + 0.5;
+}
+
+static vec3 octahedral_decode(double u, double v)
+{
+    double x = u * 2.0 - 1.0, y = v * 2.0 - 1.0, z = 1.0 - fabs(x) - fabs(y);
+    if (z < 0.0) {
+        double ox = x;
+        x = (1.0 - fabs(y)) * (ox >= 0.0 ? 1.0 : -1.0);
+        y = (1.0 - fabs(ox)) * (y >= 0.0 ? 1.0 : -1.0);
+    }
+    return vec3_normalize_or(vec3_make((float)x, (float)y, (float)z), vec3_make(0, 0, 1));
+}
+
+vec3 transport_direction(int resolution, double i, double j)
+{
+    return octahedral_decode((i + 0.5) / resolution, (j + 0.5) / resolution);
+}
+
+void transport_cell(int resolution, vec3 d, double *i, double *j)
+{
+    double u, v;
+    octahedral_encode(d, &u, &v);
+    *i = u * resolution - 0.5;
+    *j = v * resolution - 0.5;
+}
+
+void transport_table_release(struct transport_table *t)
+{
+    free(t->entries);
+    memset(t, 0, sizeof *t);
+}
+
+bool transport_table_matches(const struct transport_table *t, const struct mesh *m, const struct material *mat,
+                             int resolution, enum transport_internal internal)
+{
+    return t->entries && t->mesh_serial == m->serial && t->ior == mat->ior && t->ideal == mat->ideal &&
+           t->absorption.x == mat->absorption.x && t->absorption.y == mat->absorption.y &&
+           t->absorption.z == mat->absorption.z && t->resolution == resolution && t->internal == internal;
+}
+
+static double fresnel(double cos_i, double eta, bool ideal)
+{
+    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
+    double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0)
+        return 1.0;
+    if (ideal)
+        return 0.0;
+    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
+    double rs = (eta * cos_i - cos_t) / fmax(eta * cos_i + cos_t, 1e-12);
+    double rp = (cos_i - eta * cos_t) / fmax(cos_i + eta * cos_t, 1e-12);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* Refraction of unit d about unit n facing against it; false under TIR. */
+static bool refract3(vec3 d, vec3 n, double eta, vec3 *t)
+{
+    double c = -vec3_dot(d, n), k = 1.0 - eta * eta * (1.0 - c * c);
+    if (k < 0.0)
+        return false;
+    *t = vec3_normalize_or(vec3_add(vec3_scale(d, (float)eta), vec3_scale(n, (float)(eta * c - sqrt(k)))), d);
+    return true;
+}
+
+struct tracer {
+    RTCScene scene;
+    const struct mesh *m;
+    float eps;
+};
+
+/* The next surface from o along d inside the mesh: its point and the
+ * interpolated normal; false when the ray leaves through a hole. */
+static bool hit(const struct tracer *tr, vec3 o, vec3 d, float *t_hit, vec3 *p, vec3 *n)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = tr->eps;
+    rh.ray.tfar = 1e30f;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tr->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return false;
+    const uint32_t *tri = tr->m->indices + (size_t)rh.hit.primID * 3;
+    float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+    const float *n0 = tr->m->normals + tri[0] * 3, *n1 = tr->m->normals + tri[1] * 3, *n2 = tr->m->normals + tri[2] * 3;
+    vec3 ng = vec3_normalize_or(vec3_make(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), vec3_scale(d, -1.0f));
+    vec3 ns = vec3_make(w * n0[0] + u * n1[0] + v * n2[0], w * n0[1] + u * n1[1] + v * n2[1], w * n0[2] + u * n1[2] + v * n2[2]);
+    ns = vec3_normalize_or(ns, ng);
+    *t_hit = rh.ray.tfar;
+    *p = vec3_add(o, vec3_scale(d, rh.ray.tfar));
+    *n = ns;
+    return true;
+}
+
+/* The path of light along d entering at vertex v: entry, inside, exit. */
+static void trace_vertex(const struct tracer *tr, const struct material *mat, enum transport_internal internal,
+                         size_t vi, vec3 d, float *out)
+{
+    memset(out, 0, TRANSPORT_FLOATS * sizeof(float));
+    const struct mesh *m = tr->m;
+    vec3 p = vec3_make(m->positions[vi * 3], m->positions[vi * 3 + 1], m->positions[vi * 3 + 2]);
+    vec3 n = vec3_make(m->normals[vi * 3], m->normals[vi * 3 + 1], m->normals[vi * 3 + 2]);
+    double ior = mat->ior;
+    if (vec3_dot(d, n) >= 0.0f)
+        return; /* light from behind the vertex: it does not enter here */
+    vec3 t;
+    if (!refract3(d, n, 1.0 / ior, &t))
+        return; /* IOR < 1: totally reflected on the outside */
+    double transmit = 1.0 - fresnel(-vec3_dot(d, n), 1.0 / ior, mat->ideal), length = 0.0;
+    vec3 o = p, dir = t;
+    int reflections = internal == TRANSPORT_INTERNAL_FIRST ? 1 : 0;
+    for (int bounce = 0; bounce <= reflections; bounce++) {
+        float th;
+        vec3 q, nq;
+        if (!hit(tr, o, dir, &th, &q, &nq))
+            return;
+        length += th;
+        vec3 inward = vec3_dot(nq, dir) > 0.0f ? vec3_scale(nq, -1.0f) : nq; /* facing against dir */
+        vec3 out_dir;
+        if (refract3(dir, inward, ior, &out_dir)) {
+            transmit *= 1.0 - fresnel(-vec3_dot(dir, inward), ior, mat->ideal);
+            vec3 a = mat->absorption;
+            out[0] = q.x;
+            out[1] = q.y;
+            out[2] = q.z;
+            out[3] = out_dir.x;
+            out[4] = out_dir.y;
+            out[5] = out_dir.z;
+            out[6] = (float)(transmit * exp(-a.x * length));
+            out[7] = (float)(transmit * exp(-a.y * length));
+            out[8] = (float)(transmit * exp(-a.z * length));
+            return;
+        }
+        /* total internal reflection: followed once with `first`, else the path ends */
+        o = q;
+        dir = vec3_normalize_or(vec3_sub(dir, vec3_scale(inward, 2.0f * vec3_dot(dir, inward))), dir);
+    }
+}
+
+bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
+                           int resolution, enum transport_internal internal, struct error *err)
+{
+    transport_table_release(t);
+    if (resolution < 2 || resolution > 64)
+        return error_set(err, "transport table: resolution must be in 2..64 (got %d)", resolution);
+    size_t cells = (size_t)resolution * (size_t)resolution;
+    size_t count = m->vertex_count * cells * TRANSPORT_FLOATS;
+    if (m->vertex_count == 0 || count / TRANSPORT_FLOATS / cells != m->vertex_count || count > ((size_t)1 << 30))
+        return error_set(err, "%s: a transport table of %zu vertices x %zu directions is too large", m->name,
+                         m->vertex_count, cells);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    float *entries = malloc(count * sizeof(float));
+    RTCDevice device = entries ? rtcNewDevice(NULL) : NULL;
+    if (!device) {
+        free(entries);
+        return error_set(err, "%s: out of memory (or no Embree device) for the transport table", m->name);
+    }
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *verts = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                           m->vertex_count);
+    unsigned *tris = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                             m->index_count / 3);
+    if (verts && tris) {
+        memcpy(verts, m->positions, m->vertex_count * 3 * sizeof(float));
+        memcpy(tris, m->indices, m->index_count * sizeof(unsigned));
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene);
+    struct tracer tr = {scene, m, 1e-5f * fmaxf(vec3_length(vec3_sub(m->bounds_max, m->bounds_min)), 1e-6f)};
+    for (size_t c = 0; c < cells; c++) {
+        vec3 d = transport_direction(resolution, (double)(c % (size_t)resolution), (double)(c / (size_t)resolution));
+        for (size_t v = 0; v < m->vertex_count; v++)
+            trace_vertex(&tr, mat, internal, v, d, entries + (v * cells + c) * TRANSPORT_FLOATS);
+    }
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    t->mesh_serial = m->serial;
+    t->ior = mat->ior;
+    t->ideal = mat->ideal;
+    t->absorption = mat->absorption;
+    t->resolution = resolution;
+    t->internal = internal;
+    t->vertex_count = m->vertex_count;
+    t->entries = entries;
+    t->bytes = count * sizeof(float);
+    t->build_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    return true;
+}
+
+bool transport_lookup(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position, vec3 *direction,
+                      vec3 *transmittance)
+{
+    if (!t->entries || vertex >= t->vertex_count)
+        return false;
+    int r = t->resolution;
+    double ci, cj;
+    transport_cell(r, vec3_normalize_or(dir, vec3_make(0, -1, 0)), &ci, &cj);
+    double fi = floor(ci), fj = floor(cj);
+    double ai = ci - fi, aj = cj - fj;
+    vec3 p = {0, 0, 0}, d = {0, 0, 0}, tr = {0, 0, 0};
+    double wsum = 0.0;
+    const float *base = t->entries + vertex * (size_t)r * (size_t)r * TRANSPORT_FLOATS;
+    for (int dj = 0; dj < 2; dj++)
+        for (int di = 0; di < 2; di++) {
+            /* cells past the map's edge are clamped (the octahedral seam is
+             * approximated by its nearest cell) */
+            int i = (int)fi + di, j = (int)fj + dj;
+            i = i < 0 ? 0 : i >= r ? r - 1 : i;
+            j = j < 0 ? 0 : j >= r ? r - 1 : j;
+            double w = (di ? ai : 1.0 - ai) * (dj ? aj : 1.0 - aj);
+            const float *e = base + ((size_t)j * (size_t)r + (size_t)i) * TRANSPORT_FLOATS;
+            if (w <= 0.0 || (e[3] == 0.0f && e[4] == 0.0f && e[5] == 0.0f))
+                continue;
+            p = vec3_add(p, vec3_scale(vec3_make(e[0], e[1], e[2]), (float)w));
+            d = vec3_add(d, vec3_scale(vec3_make(e[3], e[4], e[5]), (float)w));
+            tr = vec3_add(tr, vec3_scale(vec3_make(e[6], e[7], e[8]), (float)w));
+            wsum += w;
+        }
+    if (wsum < 1e-6)
+        return false;
+    float inv = (float)(1.0 / wsum);
+    *position = vec3_scale(p, inv);
+    *direction = vec3_normalize_or(d, vec3_make(0, -1, 0));
+    *transmittance = vec3_scale(tr, inv);
+    return true;
+}

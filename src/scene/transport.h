@@ -1,0 +1,58 @@
+/* The light transport table of a transparent mesh (Iwasaki et al., §3,
+ * after their [12]): for each vertex and each incident light direction of
+ * a grid on the sphere (in the mesh's own frame), where the light that
+ * enters at the vertex leaves the object, in which direction, and with
+ * what transmittance (Fresnel at both interfaces, absorption inside).
+ * Traced once per mesh, IOR and resolution with Embree against the mesh
+ * itself; looking it up at render time makes any translation and rotation
+ * of the object and any light direction free of tracing. Rigid meshes
+ * only: a deformed or morphed object uses its base shape's table. */
+#ifndef CAUSTICA_TRANSPORT_H
+#define CAUSTICA_TRANSPORT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/vecmath.h"
+#include "scene/scene.h"
+
+enum transport_internal {
+    TRANSPORT_INTERNAL_NONE,  /* the paper's: only paths refracted in and out; a total internal reflection ends the path */
+    TRANSPORT_INTERNAL_FIRST, /* also follow the first total internal reflection */
+};
+
+#define TRANSPORT_FLOATS 9 /* exit position xyz, exit direction xyz (0 = no path), transmittance rgb */
+
+struct transport_table {
+    uint64_t mesh_serial;
+    float ior;
+    bool ideal;
+    vec3 absorption;
+    int resolution;                  /* directions: resolution^2 cells of an octahedral map */
+    enum transport_internal internal;
+    size_t vertex_count;
+    float *entries;                  /* owned: vertex_count * resolution^2 * TRANSPORT_FLOATS */
+    double build_seconds;
+    size_t bytes;
+};
+
+bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
+                           int resolution, enum transport_internal internal, struct error *err);
+void transport_table_release(struct transport_table *t);
+/* Whether a table was built for this mesh and material at these settings. */
+bool transport_table_matches(const struct transport_table *t, const struct mesh *m, const struct material *mat,
+                             int resolution, enum transport_internal internal);
+/* The unit direction at octahedral cell (i, j), and the continuous cell
+ * coordinates of a unit direction. */
+vec3 transport_direction(int resolution, double i, double j);
+void transport_cell(int resolution, vec3 d, double *i, double *j);
+/* The outgoing ray for light arriving along `dir` (object frame) at
+ * `vertex`, interpolated bilinearly over the valid neighbouring directions
+ * (a direction exactly on a sample reads that sample); false where no
+ * neighbour has a path. */
+bool transport_lookup(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position, vec3 *direction,
+                      vec3 *transmittance);
+
+#endif
