@@ -22,7 +22,7 @@
  * texture resolves, as caustic volumes cap theirs by the grid; an
  * intersection triangle smaller than a texel is drawn as a point holding
  * its flux, which rasterizing it could miss. The virtual camera's square
- * covers where 99% of the transmitted flux crosses the middle plane. */
+ * covers where 99% of the transmitted flux crosses the planes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,8 +62,8 @@ enum { INTERNAL_NONE, INTERNAL_FIRST };
 static const struct pass_param_desc params[] = {
     [IT_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
      .help = "the light (directional or point; a linear light as its point samples, accumulated, Fig. 6d)"},
-    [IT_PLANES] = {.name = "planes", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = ILLUM_MAX_PLANES,
-     .help = "virtual planes across the targets (§4.2; the paper uses 4)"},
+    [IT_PLANES] = {.name = "planes", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = ILLUM_MAX_PLANES,
+     .help = "virtual planes across the targets (§4.2; the paper uses 4, 8 is the knee of the bench)"},
     [IT_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
      .help = "illumination texture size (the paper's 512)"},
     [IT_TABLE] = {.name = "table", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 2, .max = 64,
@@ -282,6 +282,27 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
 
 static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 
+/* Whether the rasterizer would draw any fragment of the triangle with
+ * texture-space (texel unit) corners a, b, c: a texel centre inside it.
+ * Only asked of triangles a few texels across. */
+static bool covers_a_texel_centre(const float a[2], const float b[2], const float c[2])
+{
+    float x0 = fminf(a[0], fminf(b[0], c[0])), x1 = fmaxf(a[0], fmaxf(b[0], c[0]));
+    float y0 = fminf(a[1], fminf(b[1], c[1])), y1 = fmaxf(a[1], fmaxf(b[1], c[1]));
+    float area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if (area == 0.0f)
+        return false;
+    for (float y = floorf(y0 - 0.5f) + 0.5f; y <= y1; y += 1.0f)
+        for (float x = floorf(x0 - 0.5f) + 0.5f; x <= x1; x += 1.0f) {
+            float e0 = (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+            float e1 = (c[0] - b[0]) * (y - b[1]) - (c[1] - b[1]) * (x - b[0]);
+            float e2 = (a[0] - c[0]) * (y - c[1]) - (a[1] - c[1]) * (x - c[0]);
+            if (area > 0.0f ? (e0 >= 0 && e1 >= 0 && e2 >= 0) : (e0 <= 0 && e1 <= 0 && e2 <= 0))
+                return true;
+        }
+    return false;
+}
+
 struct weighted { float x, w; };
 
 static int compare_weighted(const void *a, const void *b)
@@ -382,25 +403,26 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     float pd[ILLUM_MAX_PLANES];
     for (int i = 0; i < planes; i++)
         pd[i] = planes == 1 ? 0.5f * (dmin + dmax) : dmin + (dmax - dmin) * (float)i / (float)(planes - 1);
-    /* the square where 99% of the flux crosses the middle plane */
+    /* the square where 99% of the flux crosses the planes */
     float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    struct weighted *wu = malloc(vols.count * sizeof *wu), *wv = malloc(vols.count * sizeof *wv);
+    struct weighted *wu = malloc(vols.count * (size_t)planes * sizeof *wu);
+    struct weighted *wv = malloc(vols.count * (size_t)planes * sizeof *wv);
     size_t nw = 0;
-    float mid = 0.5f * (pd[0] + pd[planes - 1]);
-    for (size_t i = 0; wu && wv && i < vols.count; i++) {
-        const struct volume *vol = &vols.items[i];
-        vec3 o = vec3_scale(vec3_add(vec3_add(vol->o[0], vol->o[1]), vol->o[2]), 1.0f / 3.0f);
-        vec3 dd = vec3_normalize_or(vec3_add(vec3_add(vol->d[0], vol->d[1]), vol->d[2]), d);
-        float cd = vec3_dot(dd, d);
-        float t = cd > 1e-4f ? (mid - vec3_dot(o, d)) / cd : -1.0f;
-        if (!(t >= 0.0f) || !isfinite(t))
-            continue;
-        vec3 q = vec3_add(o, vec3_scale(dd, t));
-        float w = vol->flux.x + vol->flux.y + vol->flux.z;
-        wu[nw] = (struct weighted){vec3_dot(q, u), w};
-        wv[nw] = (struct weighted){vec3_dot(q, v), w};
-        nw++;
-    }
+    for (size_t i = 0; wu && wv && i < vols.count; i++)
+        for (int pl = 0; pl < planes; pl++) {
+            const struct volume *vol = &vols.items[i];
+            vec3 o = vec3_scale(vec3_add(vec3_add(vol->o[0], vol->o[1]), vol->o[2]), 1.0f / 3.0f);
+            vec3 dd = vec3_normalize_or(vec3_add(vec3_add(vol->d[0], vol->d[1]), vol->d[2]), d);
+            float cd = vec3_dot(dd, d);
+            float t = cd > 1e-4f ? (pd[pl] - vec3_dot(o, d)) / cd : -1.0f;
+            if (!(t >= 0.0f) || !isfinite(t))
+                continue;
+            vec3 q = vec3_add(o, vec3_scale(dd, t));
+            float w = vol->flux.x + vol->flux.y + vol->flux.z;
+            wu[nw] = (struct weighted){vec3_dot(q, u), w};
+            wv[nw] = (struct weighted){vec3_dot(q, v), w};
+            nw++;
+        }
     if (nw > 0) {
         weighted_range(wu, nw, 0.005f, 0.995f, &umin, &umax);
         weighted_range(wv, nw, 0.005f, 0.995f, &vmin, &vmax);
@@ -422,11 +444,58 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     s->depth_near = dmin - pad, s->depth_far = dmax + pad;
     memcpy(s->plane_depth, pd, sizeof pd);
     s->planes = planes;
+    /* the targets' normal map and depth from the virtual camera */
+    struct gl_program *target, *illum;
+    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "illumination_textures/target.frag", NULL,
+                        &target, err) ||
+        !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
+                        "illumination_textures/illumination.frag", NULL, &illum, err))
+        return false;
+    struct gl_program *progs[2] = {target, illum};
+    for (int i = 0; i < 2; i++) {
+        GLuint id = progs[i]->id;
+        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_d"), d.x, d.y, d.z);
+        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_u"), u.x, u.y, u.z);
+        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_v"), v.x, v.y, v.z);
+        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_center"), cu, cv, 0.0f);
+        gl.ProgramUniform1f(id, gl_program_uniform(progs[i], "u_vc_half"), half);
+        gl.ProgramUniform2f(id, gl_program_uniform(progs[i], "u_vc_depth"), s->depth_near, s->depth_far);
+    }
+    const float no_target[4] = {0, 0, 0, 1e30f};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
+    gl.Viewport(0, 0, size, size);
+    gl.ClearNamedFramebufferfv(s->target_fb.id, GL_COLOR, 0, no_target);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    renderer_draw_objects(r, scene, target, DRAW_DIFFUSE);
+    renderer_reset_state(r);
+    /* The planes span the depths the virtual camera sees of the targets
+     * within its square (read back: size^2 texels), not the targets' whole
+     * bounds: a large receiver (a floor) seen at a slant would otherwise
+     * spread the planes over depths no caustic reaches. */
+    float *texels = malloc((size_t)size * (size_t)size * 4 * sizeof(float));
+    if (texels && gl_texture_read_rgba32f(&s->target, 0, texels, err)) {
+        float seen_min = INFINITY, seen_max = -INFINITY;
+        for (size_t i = 0; i < (size_t)size * (size_t)size; i++) {
+            float z = texels[i * 4 + 3];
+            if (z < 1e29f) {
+                seen_min = fminf(seen_min, z);
+                seen_max = fmaxf(seen_max, z);
+            }
+        }
+        if (seen_min <= seen_max)
+            for (int i = 0; i < planes; i++)
+                pd[i] = planes == 1 ? 0.5f * (seen_min + seen_max)
+                                    : seen_min + (seen_max - seen_min) * (float)i / (float)(planes - 1);
+    }
+    free(texels);
+    memcpy(s->plane_depth, pd, sizeof pd);
+    pass_stage_end(p, "targets");
     /* §4.2: intersection triangles, eq. 3 without cos(gamma) at each vertex */
     float texel = 2.0f * half / (float)size, texel_area = texel * texel;
     size_t nverts = vols.count * (size_t)planes * 3;
     float *buf = malloc(nverts * ILLUM_VERTEX_FLOATS * sizeof(float));
-    float *points = malloc(vols.count * (size_t)planes * ILLUM_VERTEX_FLOATS * sizeof(float));
+    float *points = malloc(vols.count * (size_t)planes * 3 * ILLUM_VERTEX_FLOATS * sizeof(float));
     size_t plane_first[ILLUM_MAX_PLANES], plane_count[ILLUM_MAX_PLANES], n = 0;
     size_t point_first[ILLUM_MAX_PLANES], point_count[ILLUM_MAX_PLANES], np = 0;
     if (!buf || !points) {
@@ -453,17 +522,33 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
             if (!valid)
                 continue; /* a ray parallel to the plane, or the plane behind where it leaves */
             float s0 = 0.5f * vec3_length(vec3_cross(vec3_sub(q[1], q[0]), vec3_sub(q[2], q[0])));
-            if (!(s0 >= texel_area)) {
-                /* S_0 -> 0 (a focus on the plane): smaller than a texel, the
-                 * triangle is a point of one texel holding all its flux */
-                float *o = points + np * ILLUM_VERTEX_FLOATS;
-                vec3 c = vec3_scale(vec3_add(vec3_add(q[0], q[1]), q[2]), 1.0f / 3.0f);
+            bool tiny = !(s0 >= texel_area);
+            if (!tiny && s0 < 16.0f * texel_area) {
+                /* a triangle a few texels across that no texel centre falls
+                 * in would be lost by the rasterizer: a point instead */
+                float t2[3][2];
+                for (int k = 0; k < 3; k++) {
+                    t2[k][0] = ((vec3_dot(q[k], u) - cu) / (2.0f * half) + 0.5f) * (float)size;
+                    t2[k][1] = ((vec3_dot(q[k], v) - cv) / (2.0f * half) + 0.5f) * (float)size;
+                }
+                tiny = !covers_a_texel_centre(t2[0], t2[1], t2[2]);
+            }
+            if (tiny) {
+                /* S_0 -> 0 (a focus on the plane), or a triangle the texels
+                 * miss: three points inside it, at barycentric (2/3, 1/6,
+                 * 1/6) and its turns, a third of its flux each, one texel
+                 * apiece (a sliver spanning several texels spreads along) */
                 vec3 dd = vec3_normalize_or(vec3_add(vec3_add(vol->d[0], vol->d[1]), vol->d[2]), d);
-                vec3 in = vec3_scale(vol->flux, 1.0f / (texel_area * fmaxf(vec3_dot(dd, d), 1e-4f)));
-                o[0] = c.x, o[1] = c.y, o[2] = c.z;
-                o[3] = in.x, o[4] = in.y, o[5] = in.z;
-                o[6] = dd.x, o[7] = dd.y, o[8] = dd.z;
-                np++;
+                vec3 in = vec3_scale(vol->flux, 1.0f / (3.0f * texel_area * fmaxf(vec3_dot(dd, d), 1e-4f)));
+                for (int k = 0; k < 3; k++) {
+                    float *o = points + np * ILLUM_VERTEX_FLOATS;
+                    vec3 c = vec3_add(vec3_scale(q[k], 2.0f / 3.0f),
+                                      vec3_scale(vec3_add(q[(k + 1) % 3], q[(k + 2) % 3]), 1.0f / 6.0f));
+                    o[0] = c.x, o[1] = c.y, o[2] = c.z;
+                    o[3] = in.x, o[4] = in.y, o[5] = in.z;
+                    o[6] = dd.x, o[7] = dd.y, o[8] = dd.z;
+                    np++;
+                }
                 continue;
             }
             for (int k = 0; k < 3; k++) {
@@ -499,32 +584,6 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     free(points);
     pass_stage_end(p, "volumes");
 
-    /* the targets' normal map and depth from the virtual camera */
-    struct gl_program *target, *illum;
-    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "illumination_textures/target.frag", NULL,
-                        &target, err) ||
-        !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
-                        "illumination_textures/illumination.frag", NULL, &illum, err))
-        return false;
-    struct gl_program *progs[2] = {target, illum};
-    for (int i = 0; i < 2; i++) {
-        GLuint id = progs[i]->id;
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_d"), d.x, d.y, d.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_u"), u.x, u.y, u.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_v"), v.x, v.y, v.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_center"), cu, cv, 0.0f);
-        gl.ProgramUniform1f(id, gl_program_uniform(progs[i], "u_vc_half"), half);
-        gl.ProgramUniform2f(id, gl_program_uniform(progs[i], "u_vc_depth"), s->depth_near, s->depth_far);
-    }
-    const float no_target[4] = {0, 0, 0, 1e30f};
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
-    gl.Viewport(0, 0, size, size);
-    gl.ClearNamedFramebufferfv(s->target_fb.id, GL_COLOR, 0, no_target);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, scene, target, DRAW_DIFFUSE);
-    renderer_reset_state(r);
-    pass_stage_end(p, "targets");
 
     /* each plane's illumination texture: its intersection triangles, added */
     gl.Viewport(0, 0, size, size);

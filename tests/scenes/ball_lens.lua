@@ -23,7 +23,7 @@ local e = math.rad(elevation)
 local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, position = {0, -floor_depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
-local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = 256 },
+local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = c.param("segments", 256) },
                                   material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 ball.visible = not hide
 if aperture > 0 then
