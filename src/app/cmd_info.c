@@ -35,6 +35,8 @@ int cmd_info(struct app *app, struct cli *cli)
                 printf("left out: %s\n", e->reason);
             else if (rendered && e->last_need != PASS_RUN)
                 printf("kept; on frame %d %s\n", 1 % s->frames, e->last_why);
+            else if (rendered && e->last_why[0])
+                printf("kept; runs every frame: %s\n", e->last_why);
             else
                 printf("kept; runs every frame\n");
             for (int k = 0; k < p->input_count; k++)

@@ -150,9 +150,25 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
 {
     struct illum_state *s = p->state;
     struct light *light = pass_light_at(p, IT_LIGHT);
-    if (s && s->valid && light && s->key == texture_key(p, f->scene, light))
-        snprintf(why, whylen, "runs every frame; its illumination textures are reused while the light, the glass "
-                              "and the targets stay (a camera-only change costs only the mapping)");
+    if (!s || !light)
+        return PASS_RUN;
+    char tables[256] = "";
+    size_t bytes = 0, vertices = 0;
+    double seconds = 0.0;
+    for (int i = 0; i < s->table_count; i++) {
+        bytes += s->tables[i].bytes;
+        vertices += s->tables[i].vertex_count;
+        seconds += s->tables[i].build_seconds;
+    }
+    if (s->table_count > 0)
+        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, traced in %.2f s",
+                 s->table_count, vertices, s->tables[0].resolution * s->tables[0].resolution, (double)bytes / 1048576.0,
+                 seconds);
+    bool reuse = s->valid && s->key == texture_key(p, f->scene, light) && !f->snapshot->geometry_animated;
+    snprintf(why, whylen, "%s%s",
+             reuse ? "the illumination textures are reused (light, glass and targets unchanged: only the mapping runs)"
+                   : "the illumination textures are made again (the light, the glass or a target changed)",
+             tables);
     return PASS_RUN;
 }
 

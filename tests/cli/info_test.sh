@@ -25,4 +25,14 @@ grep -qE "^shade +shade +[0-9.]+ +[0-9]+ +[0-9]+$" "$WORK/timings.txt" && grep -
 grep -qE "^glass +layered_refraction +[0-9.]+ +[34] +" "$WORK/timings.txt" && grep -qE "^  trace +[0-9.]+$" "$WORK/timings.txt" \
   && grep -qE "^  voxelize +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^caustics +layered_caustics +[0-9.]+ +4 +" "$WORK/timings.txt" \
   && pass "--timings: the layered passes' draws and stages" || fail "--timings (layered)" "$(cat "$WORK/timings.txt")"
+# illumination textures: reused on a camera orbit, made again when the light turns
+"$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 >"$WORK/info.txt" 2>&1
+grep -q "caustics .*illumination textures are reused (light, glass and targets unchanged" "$WORK/info.txt" \
+  && grep -q "transport tables: 1, 1225 vertices x 256 directions" "$WORK/info.txt" \
+  && pass "info: illumination textures reused when only the camera moves, with the table's size" \
+  || fail "info (illumination textures, camera)" "$(cat "$WORK/info.txt")"
+"$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 --set moving=light >"$WORK/info.txt" 2>&1
+grep -q "illumination textures are made again" "$WORK/info.txt" \
+  && pass "info: illumination textures made again when the light moves" \
+  || fail "info (illumination textures, light)" "$(cat "$WORK/info.txt")"
 finish
