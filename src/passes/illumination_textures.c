@@ -72,6 +72,18 @@ static const struct pass_param_desc params[] = {
      .help = "paths with total internal reflection: none (the paper's) or the first one followed"},
 };
 
+/* The uniforms of shaders/illumination_textures/virtual_camera.glsl. */
+static void set_virtual_camera(const struct gl_program *prog, const struct illum_state *s)
+{
+    GLuint id = prog->id;
+    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_d"), s->d.x, s->d.y, s->d.z);
+    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_u"), s->u.x, s->u.y, s->u.z);
+    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_v"), s->v.x, s->v.y, s->v.z);
+    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_center"), s->center[0], s->center[1], 0.0f);
+    gl.ProgramUniform1f(id, gl_program_uniform(prog, "u_vc_half"), s->half);
+    gl.ProgramUniform2f(id, gl_program_uniform(prog, "u_vc_depth"), s->depth_near, s->depth_far);
+}
+
 static bool illum_declare(struct pass *p, struct error *err)
 {
     return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
@@ -467,16 +479,8 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
                         "illumination_textures/illumination.frag", NULL, &illum, err))
         return false;
-    struct gl_program *progs[2] = {target, illum};
-    for (int i = 0; i < 2; i++) {
-        GLuint id = progs[i]->id;
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_d"), d.x, d.y, d.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_u"), u.x, u.y, u.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_v"), v.x, v.y, v.z);
-        gl.ProgramUniform3f(id, gl_program_uniform(progs[i], "u_vc_center"), cu, cv, 0.0f);
-        gl.ProgramUniform1f(id, gl_program_uniform(progs[i], "u_vc_half"), half);
-        gl.ProgramUniform2f(id, gl_program_uniform(progs[i], "u_vc_depth"), s->depth_near, s->depth_far);
-    }
+    set_virtual_camera(target, s);
+    set_virtual_camera(illum, s);
     const float no_target[4] = {0, 0, 0, 1e30f};
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
     gl.Viewport(0, 0, size, size);
@@ -655,12 +659,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
                         err))
         return false;
     GLuint id = map->id;
-    gl.ProgramUniform3f(id, gl_program_uniform(map, "u_vc_d"), s->d.x, s->d.y, s->d.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(map, "u_vc_u"), s->u.x, s->u.y, s->u.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(map, "u_vc_v"), s->v.x, s->v.y, s->v.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(map, "u_vc_center"), s->center[0], s->center[1], 0.0f);
-    gl.ProgramUniform1f(id, gl_program_uniform(map, "u_vc_half"), s->half);
-    gl.ProgramUniform2f(id, gl_program_uniform(map, "u_vc_depth"), s->depth_near, s->depth_far);
+    set_virtual_camera(map, s);
     gl.ProgramUniform1i(id, gl_program_uniform(map, "u_planes"), s->planes);
     for (int i = 0; i < s->planes; i++) {
         char name[32];

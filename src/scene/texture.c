@@ -15,16 +15,11 @@ static uint64_t texture_next_serial(void)
     return next++;
 }
 
-struct texture *texture_create(const char *name, int width, int height, struct error *err)
+/* A texture around `texels` (taken: freed here on failure). */
+static struct texture *wrap_texels(const char *name, int width, int height, uint8_t *texels, struct error *err)
 {
-    if (width < 1 || height < 1 || width > IMAGE_DECODE_MAX_SIDE || height > IMAGE_DECODE_MAX_SIDE) {
-        error_set(err, "%s: a texture of %dx%d texels", name, width, height);
-        return NULL;
-    }
-    struct texture *t = calloc(1, sizeof *t);
-    uint8_t *texels = calloc((size_t)width * (size_t)height, 4);
-    if (!t || !texels) {
-        free(t);
+    struct texture *t = texels ? calloc(1, sizeof *t) : NULL;
+    if (!t) {
         free(texels);
         error_set(err, "%s: out of memory for %dx%d texels", name, width, height);
         return NULL;
@@ -37,6 +32,15 @@ struct texture *texture_create(const char *name, int width, int height, struct e
     t->texels = texels;
     t->mipmaps = true;
     return t;
+}
+
+struct texture *texture_create(const char *name, int width, int height, struct error *err)
+{
+    if (width < 1 || height < 1 || width > IMAGE_DECODE_MAX_SIDE || height > IMAGE_DECODE_MAX_SIDE) {
+        error_set(err, "%s: a texture of %dx%d texels", name, width, height);
+        return NULL;
+    }
+    return wrap_texels(name, width, height, calloc((size_t)width * (size_t)height, 4), err);
 }
 
 static uint8_t to_byte_srgb(float linear)
@@ -79,20 +83,7 @@ struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t si
     int w, h;
     if (!image_decode_rgba8(name, bytes, size, &rgba, &w, &h, err))
         return NULL;
-    struct texture *t = calloc(1, sizeof *t);
-    if (!t) {
-        free(rgba);
-        error_set(err, "%s: out of memory", name);
-        return NULL;
-    }
-    t->references = 1;
-    t->serial = texture_next_serial();
-    snprintf(t->name, sizeof t->name, "%s", name);
-    t->width = w;
-    t->height = h;
-    t->texels = rgba;
-    t->mipmaps = true;
-    return t;
+    return wrap_texels(name, w, h, rgba, err);
 }
 
 struct texture *texture_load(const char *path, struct error *err)

@@ -9,35 +9,22 @@
 
 #include <embree3/rtcore.h>
 
+#include "scene/mesh_embree.h"
 #include "scene/scene.h"
 
 bool mesh_compute_thickness(struct mesh *m, struct error *err)
 {
     if (m->thickness)
         return true;
-    RTCDevice device = rtcNewDevice(NULL);
-    if (!device)
-        return error_set(err, "%s: Embree could not create a device", m->name);
-    RTCScene scene = rtcNewScene(device);
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *verts = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                           m->vertex_count);
-    unsigned *tris = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                             m->index_count / 3);
     float *out = malloc(m->vertex_count * sizeof(float));
-    if (!verts || !tris || !out) {
-        free(out);
-        rtcReleaseGeometry(geom);
-        rtcReleaseScene(scene);
-        rtcReleaseDevice(device);
+    if (!out)
         return error_set(err, "%s: out of memory for the thickness", m->name);
+    RTCDevice device;
+    RTCScene scene;
+    if (!mesh_embree_create(m, &device, &scene, err)) {
+        free(out);
+        return false;
     }
-    memcpy(verts, m->positions, m->vertex_count * 3 * sizeof(float));
-    memcpy(tris, m->indices, m->index_count * sizeof(unsigned));
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene);
     float extent = vec3_length(vec3_sub(m->bounds_max, m->bounds_min));
     for (size_t v = 0; v < m->vertex_count; v++) {
         const float *p = m->positions + v * 3, *n = m->normals + v * 3;
@@ -59,8 +46,7 @@ bool mesh_compute_thickness(struct mesh *m, struct error *err)
         /* an open mesh may let the ray out: fall back to no thickness */
         out[v] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? 0.0f : rh.ray.tfar + eps;
     }
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
+    mesh_embree_release(device, scene);
     m->thickness = out;
     return true;
 }

@@ -9,6 +9,8 @@
 
 #include <embree3/rtcore.h>
 
+#include "scene/mesh_embree.h"
+
 /* Octahedral map of the sphere onto [0, 1]^2 (Praun & Hoppe 2003): even
  * sampling, no poles, a direction's cell found in constant time. */
 static void octahedral_encode(vec3 d, double *u, double *v)
@@ -185,34 +187,21 @@ bool transport_table_build(struct transport_table *t, const struct mesh *m, cons
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     float *entries = malloc(count * sizeof(float));
-    RTCDevice device = entries ? rtcNewDevice(NULL) : NULL;
-    if (!device) {
+    if (!entries)
+        return error_set(err, "%s: out of memory for a transport table of %zu MB", m->name, (count * 4) >> 20);
+    RTCDevice device;
+    RTCScene scene;
+    if (!mesh_embree_create(m, &device, &scene, err)) {
         free(entries);
-        return error_set(err, "%s: out of memory (or no Embree device) for the transport table", m->name);
+        return false;
     }
-    RTCScene scene = rtcNewScene(device);
-    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *verts = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                           m->vertex_count);
-    unsigned *tris = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                             m->index_count / 3);
-    if (verts && tris) {
-        memcpy(verts, m->positions, m->vertex_count * 3 * sizeof(float));
-        memcpy(tris, m->indices, m->index_count * sizeof(unsigned));
-    }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene);
     struct tracer tr = {scene, m, 1e-5f * fmaxf(vec3_length(vec3_sub(m->bounds_max, m->bounds_min)), 1e-6f)};
     for (size_t c = 0; c < cells; c++) {
         vec3 d = transport_direction(resolution, (double)(c % (size_t)resolution), (double)(c / (size_t)resolution));
         for (size_t v = 0; v < m->vertex_count; v++)
             trace_vertex(&tr, mat, internal, v, d, entries + (v * cells + c) * TRANSPORT_FLOATS);
     }
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
+    mesh_embree_release(device, scene);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     t->mesh_serial = m->serial;
     t->ior = mat->ior;
