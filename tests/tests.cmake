@@ -4,21 +4,21 @@ foreach(name math image gltf gltf_hostile graph scene gl texture)
   add_executable(test_${name} tests/unit/test_${name}.c)
   target_link_libraries(test_${name} PRIVATE caustica_core)
   add_test(NAME unit_${name} COMMAND test_${name})
-  set_tests_properties(unit_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
+  set_tests_properties(unit_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR};CAUSTICA_CACHE=${CMAKE_BINARY_DIR}/cache")
 endforeach()
 
 file(GLOB CLI_TESTS ${CMAKE_SOURCE_DIR}/tests/cli/*_test.sh)
 foreach(script ${CLI_TESTS})
   get_filename_component(name ${script} NAME_WE)
   add_test(NAME cli_${name} COMMAND bash ${script} $<TARGET_FILE:caustica> ${CMAKE_SOURCE_DIR})
-  set_tests_properties(cli_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
+  set_tests_properties(cli_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR};CAUSTICA_CACHE=${CMAKE_BINARY_DIR}/cache")
 endforeach()
 
 file(GLOB LUA_TESTS ${CMAKE_SOURCE_DIR}/tests/lua/*_test.lua)
 foreach(script ${LUA_TESTS})
   get_filename_component(name ${script} NAME_WE)
   add_test(NAME lua_${name} COMMAND caustica test ${script} WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
-  set_tests_properties(lua_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
+  set_tests_properties(lua_${name} PROPERTIES ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR};CAUSTICA_CACHE=${CMAKE_BINARY_DIR}/cache")
 endforeach()
 
 # Fuzz inputs replayed in every build: the seed corpus and each crash kept
@@ -34,4 +34,4 @@ add_test(NAME fuzz_script_regressions COMMAND sh -c
          "${CMAKE_SOURCE_DIR}/tests/fuzz/script_corpus.sh ${CMAKE_BINARY_DIR}/corpus_script && \
           $<TARGET_FILE:replay_script> ${CMAKE_BINARY_DIR}/corpus_script ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_script")
 set_tests_properties(fuzz_gltf_regressions fuzz_script_regressions PROPERTIES
-                     ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR}")
+                     ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR};CAUSTICA_CACHE=${CMAKE_BINARY_DIR}/cache")

@@ -167,15 +167,17 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
     char tables[256] = "";
     size_t bytes = 0, vertices = 0;
     double seconds = 0.0;
+    bool all_cached = s->table_count > 0;
     for (int i = 0; i < s->table_count; i++) {
         bytes += s->tables[i].bytes;
         vertices += s->tables[i].vertex_count;
         seconds += s->tables[i].build_seconds;
+        all_cached = all_cached && s->tables[i].from_cache;
     }
     if (s->table_count > 0)
-        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, traced in %.2f s",
+        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, %s in %.2f s",
                  s->table_count, vertices, s->tables[0].resolution * s->tables[0].resolution, (double)bytes / 1048576.0,
-                 seconds);
+                 all_cached ? "read from the cache" : "traced", seconds);
     bool reuse = s->valid && s->key == texture_key(p, f->scene, light) && !f->snapshot->geometry_animated;
     snprintf(why, whylen, "%s%s",
              reuse ? "the illumination textures are reused (light, glass and targets unchanged: only the mapping runs)"

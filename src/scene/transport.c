@@ -3,12 +3,14 @@
 #include "scene/transport.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include <embree3/rtcore.h>
 
+#include "core/fileio.h"
 #include "scene/mesh_embree.h"
 
 /* Octahedral map of the sphere onto [0, 1]^2 (Praun & Hoppe 2003): even
@@ -173,6 +175,89 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
     }
 }
 
+/* FNV-1a over everything the table depends on. */
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 1099511628211ULL;
+    return h;
+}
+
+static uint64_t table_hash(const struct mesh *m, const struct material *mat, int resolution,
+                           enum transport_internal internal)
+{
+    uint64_t h = 14695981039346656037ULL;
+    h = fnv(h, m->positions, m->vertex_count * 3 * sizeof(float));
+    h = fnv(h, m->normals, m->vertex_count * 3 * sizeof(float));
+    h = fnv(h, m->indices, m->index_count * sizeof(uint32_t));
+    float values[5] = {mat->ior, mat->ideal ? 1.0f : 0.0f, mat->absorption.x, mat->absorption.y, mat->absorption.z};
+    h = fnv(h, values, sizeof values);
+    int settings[3] = {resolution, (int)internal, TRANSPORT_FLOATS};
+    return fnv(h, settings, sizeof settings);
+}
+
+/* The cache file for `hash`, creating its folders; false where there is
+ * no usable cache folder. */
+static bool cache_path(uint64_t hash, char *out, size_t outlen)
+{
+    char dir[3072];
+    const char *env = getenv("CAUSTICA_CACHE"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (env && *env)
+        snprintf(dir, sizeof dir, "%s", env);
+    else if (xdg && *xdg)
+        snprintf(dir, sizeof dir, "%s/caustica", xdg);
+    else if (home && *home)
+        snprintf(dir, sizeof dir, "%s/.cache/caustica", home);
+    else
+        return false;
+    struct error ignore;
+    char sub[3200];
+    snprintf(sub, sizeof sub, "%s/transport", dir);
+    if (!dir_ensure(dir, &ignore) || !dir_ensure(sub, &ignore))
+        return false;
+    snprintf(out, outlen, "%s/%016llx.table", sub, (unsigned long long)hash);
+    return true;
+}
+
+struct cache_header {
+    char magic[8];          /* "CAUSTTB1" */
+    uint64_t hash;
+    uint64_t vertex_count;
+    int32_t resolution, floats;
+    uint64_t checksum;      /* FNV-1a of the entries: a damaged file is traced again */
+};
+
+static bool cache_read(const char *path, uint64_t hash, size_t vertex_count, int resolution, float *entries,
+                       size_t count)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    struct cache_header h;
+    bool ok = fread(&h, sizeof h, 1, f) == 1 && memcmp(h.magic, "CAUSTTB1", 8) == 0 && h.hash == hash &&
+              h.vertex_count == vertex_count && h.resolution == resolution && h.floats == TRANSPORT_FLOATS &&
+              fread(entries, sizeof(float), count, f) == count;
+    fclose(f);
+    return ok && fnv(14695981039346656037ULL, entries, count * sizeof(float)) == h.checksum;
+}
+
+static void cache_write(const char *path, uint64_t hash, size_t vertex_count, int resolution, const float *entries,
+                        size_t count)
+{
+    char tmp[4200];
+    path_temporary(path, tmp, sizeof tmp);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return;
+    struct cache_header h = {{'C', 'A', 'U', 'S', 'T', 'T', 'B', '1'}, hash, vertex_count, resolution, TRANSPORT_FLOATS,
+                             fnv(14695981039346656037ULL, entries, count * sizeof(float))};
+    bool ok = fwrite(&h, sizeof h, 1, f) == 1 && fwrite(entries, sizeof(float), count, f) == count;
+    ok = fclose(f) == 0 && ok;
+    if (!ok || rename(tmp, path) != 0)
+        remove(tmp); /* the whole file or none */
+}
+
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err)
 {
@@ -181,14 +266,24 @@ bool transport_table_build(struct transport_table *t, const struct mesh *m, cons
         return error_set(err, "transport table: resolution must be in 2..64 (got %d)", resolution);
     size_t cells = (size_t)resolution * (size_t)resolution;
     size_t count = m->vertex_count * cells * TRANSPORT_FLOATS;
-    if (m->vertex_count == 0 || count / TRANSPORT_FLOATS / cells != m->vertex_count || count > ((size_t)1 << 30))
-        return error_set(err, "%s: a transport table of %zu vertices x %zu directions is too large", m->name,
-                         m->vertex_count, cells);
+    if (m->vertex_count == 0 || count / TRANSPORT_FLOATS / cells != m->vertex_count ||
+        count > TRANSPORT_MAX_BYTES / sizeof(float))
+        return error_set(err, "%s: a transport table of %zu vertices x %zu directions would take %zu MB (at most %zu): "
+                              "use a smaller `table` or a coarser mesh",
+                         m->name, m->vertex_count, cells, (count * sizeof(float)) >> 20, TRANSPORT_MAX_BYTES >> 20);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     float *entries = malloc(count * sizeof(float));
     if (!entries)
         return error_set(err, "%s: out of memory for a transport table of %zu MB", m->name, (count * 4) >> 20);
+    uint64_t hash = table_hash(m, mat, resolution, internal);
+    char path[4096];
+    bool cached = cache_path(hash, path, sizeof path);
+    if (cached && cache_read(path, hash, m->vertex_count, resolution, entries, count)) {
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        t->from_cache = true;
+        goto done;
+    }
     RTCDevice device;
     RTCScene scene;
     if (!mesh_embree_create(m, &device, &scene, err)) {
@@ -203,6 +298,9 @@ bool transport_table_build(struct transport_table *t, const struct mesh *m, cons
     }
     mesh_embree_release(device, scene);
     clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (cached)
+        cache_write(path, hash, m->vertex_count, resolution, entries, count);
+done:
     t->mesh_serial = m->serial;
     t->ior = mat->ior;
     t->ideal = mat->ideal;

@@ -36,7 +36,14 @@ struct transport_table {
     float *entries;                  /* owned: vertex_count * resolution^2 * TRANSPORT_FLOATS */
     double build_seconds;
     size_t bytes;
+    bool from_cache;                 /* read from the disk cache rather than traced */
 };
+
+/* The tables' disk cache: $CAUSTICA_CACHE, else $XDG_CACHE_HOME/caustica,
+ * else $HOME/.cache/caustica (its `transport` folder), one file per mesh,
+ * material and settings, named by a hash of all of them. A table that
+ * cannot be written there is simply not cached. */
+#define TRANSPORT_MAX_BYTES ((size_t)512 << 20)
 
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err);

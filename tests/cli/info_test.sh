@@ -35,4 +35,15 @@ grep -q "caustics .*illumination textures are reused (light, glass and targets u
 grep -q "illumination textures are made again" "$WORK/info.txt" \
   && pass "info: illumination textures made again when the light moves" \
   || fail "info (illumination textures, light)" "$(cat "$WORK/info.txt")"
+# the transport tables' disk cache: traced once, read back, traced again when damaged
+export CAUSTICA_CACHE="$WORK/cache"
+"$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 >"$WORK/info1.txt" 2>&1
+"$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 >"$WORK/info2.txt" 2>&1
+for f in "$WORK"/cache/transport/*.table; do printf 'garbage' | dd of="$f" bs=1 seek=100 conv=notrunc 2>/dev/null; done
+"$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 >"$WORK/info3.txt" 2>&1
+grep -q "10.8 MB, traced in" "$WORK/info1.txt" && grep -q "10.8 MB, read from the cache in" "$WORK/info2.txt" \
+  && grep -q "10.8 MB, traced in" "$WORK/info3.txt" \
+  && pass "transport tables: traced, then read from the disk cache, traced again when the file is damaged" \
+  || fail "transport table cache" "$(cat "$WORK/info1.txt" "$WORK/info2.txt" "$WORK/info3.txt" | grep transport)"
+unset CAUSTICA_CACHE
 finish
