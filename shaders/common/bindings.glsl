@@ -79,6 +79,12 @@
 #define ILLUM_UNIT_TARGET 1                 // the virtual camera's normal map and depth
 #define ILLUM_UNIT_TEXTURES 2               // the illumination textures, one layer per virtual plane
 
+// sliced_refraction
+#define SLICED_UNIT_SCENE 1                 // the camera's image of the scene (without the glass)
+#define SLICED_UNIT_SCENE_DEPTH 2           // ... and its depth
+#define SLICED_UNIT_SLICES 3                // the sliced object images
+#define SLICED_SSBO_EXITS 4                 // per glass vertex: the viewing ray leaving the object
+
 // water_surface
 #define SURFACE_UNIT_SCENE 0
 #define SURFACE_UNIT_DEPTH 1

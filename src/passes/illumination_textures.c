@@ -32,6 +32,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/virtual_camera.h"
 #include "scene/transport.h"
 
 #define ILLUM_MAX_REFRACTORS 8
@@ -49,8 +50,7 @@ struct illum_state {
     bool valid;
     uint64_t key;              /* what the textures were made from */
     /* the virtual camera and planes of the last build */
-    vec3 d, u, v;
-    float center[2], half, depth_near, depth_far;
+    struct virtual_camera vc;
     float plane_depth[ILLUM_MAX_PLANES];
     long triangles;            /* intersection triangles drawn */
     bool reused;
@@ -71,18 +71,6 @@ static const struct pass_param_desc params[] = {
     [IT_INTERNAL] = {.name = "internal", .type = PASS_PARAM_ENUM, .default_string = "none", .choices = "none|first",
      .help = "paths with total internal reflection: none (the paper's) or the first one followed"},
 };
-
-/* The uniforms of shaders/illumination_textures/virtual_camera.glsl. */
-static void set_virtual_camera(const struct gl_program *prog, const struct illum_state *s)
-{
-    GLuint id = prog->id;
-    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_d"), s->d.x, s->d.y, s->d.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_u"), s->u.x, s->u.y, s->u.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_v"), s->v.x, s->v.y, s->v.z);
-    gl.ProgramUniform3f(id, gl_program_uniform(prog, "u_vc_center"), s->center[0], s->center[1], 0.0f);
-    gl.ProgramUniform1f(id, gl_program_uniform(prog, "u_vc_half"), s->half);
-    gl.ProgramUniform2f(id, gl_program_uniform(prog, "u_vc_depth"), s->depth_near, s->depth_far);
-}
 
 static bool illum_declare(struct pass *p, struct error *err)
 {
@@ -421,8 +409,9 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         return true;
     }
     /* the virtual camera (§4.2): along d, U and V spanning its planes */
-    vec3 helper = fabsf(d.y) < 0.9f ? vec3_make(0, 1, 0) : vec3_make(1, 0, 0);
-    vec3 u = vec3_normalize_or(vec3_cross(helper, d), vec3_make(1, 0, 0)), v = vec3_cross(d, u);
+    struct virtual_camera axes;
+    virtual_camera_axes(&axes, d);
+    vec3 u = axes.u, v = axes.v;
     float dmin = INFINITY, dmax = -INFINITY;
     for (int c = 0; c < 8; c++) {
         vec3 corner = vec3_make(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
@@ -468,10 +457,10 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     float target_half = 0.5f * vec3_length(vec3_sub(hi, lo));
     float half = clampf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.05f, 1e-4f, fmaxf(target_half, 1e-4f));
     float cu = 0.5f * (umin + umax), cv = 0.5f * (vmin + vmax);
-    s->d = d, s->u = u, s->v = v;
-    s->center[0] = cu, s->center[1] = cv, s->half = half;
+    s->vc.d = d, s->vc.u = u, s->vc.v = v;
+    s->vc.center[0] = cu, s->vc.center[1] = cv, s->vc.half = half;
     float pad = 0.01f * (dmax - dmin) + 1e-4f;
-    s->depth_near = dmin - pad, s->depth_far = dmax + pad;
+    s->vc.near = dmin - pad, s->vc.far = dmax + pad;
     memcpy(s->plane_depth, pd, sizeof pd);
     s->planes = planes;
     /* the targets' normal map and depth from the virtual camera */
@@ -481,8 +470,8 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
                         "illumination_textures/illumination.frag", NULL, &illum, err))
         return false;
-    set_virtual_camera(target, s);
-    set_virtual_camera(illum, s);
+    virtual_camera_set(target, &s->vc);
+    virtual_camera_set(illum, &s->vc);
     const float no_target[4] = {0, 0, 0, 1e30f};
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
     gl.Viewport(0, 0, size, size);
@@ -661,7 +650,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
                         err))
         return false;
     GLuint id = map->id;
-    set_virtual_camera(map, s);
+    virtual_camera_set(map, &s->vc);
     gl.ProgramUniform1i(id, gl_program_uniform(map, "u_planes"), s->planes);
     for (int i = 0; i < s->planes; i++) {
         char name[32];
@@ -670,7 +659,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     }
     /* the shadow test's tolerance: a few texels of depth along a surface at 60 degrees */
     gl.ProgramUniform1f(id, gl_program_uniform(map, "u_bias"),
-                        4.0f * 2.0f * s->half / (float)s->size + 1e-3f * (s->depth_far - s->depth_near));
+                        4.0f * 2.0f * s->vc.half / (float)s->size + 1e-3f * (s->vc.far - s->vc.near));
     const struct gl_texture *oc[1] = {&out->texture};
     if (!gl_framebuffer_attach(&s->map_fb, oc, NULL, 1, &s->receiver_depth, -1, err))
         return false;

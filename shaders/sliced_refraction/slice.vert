@@ -1,0 +1,16 @@
+#version 450 core
+// A target drawn into one sliced object image (Iwasaki et al. [13]): an
+// orthographic view along the average transmitted viewing direction.
+#include "illumination_textures/virtual_camera.glsl"
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_model;
+uniform mat4 u_normal_matrix;
+out vec3 v_world;
+out vec3 v_normal;
+void main()
+{
+    v_world = (u_model * vec4(a_position, 1.0)).xyz;
+    v_normal = mat3(u_normal_matrix) * a_normal;
+    gl_Position = vc_clip(v_world);
+}
