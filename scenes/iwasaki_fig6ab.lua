@@ -1,7 +1,7 @@
 -- Iwasaki et al., Fig. 6(a)(b): a glass ball in front of the Happy Buddha
 -- casting caustics on it; the buddha, caustics included, seen through the
--- ball (here by layered_refraction: the caustics are in the image it
--- refracts). A point light. --set view=b for the second view.
+-- ball through sliced object images (§3, [13]: the caustics are in the image
+-- they are made from). A point light. --set view=b for the second view.
 local c = require "caustica"
 local scene = c.scene {
   camera = c.param("view", "a") == "b" and c.camera { eye = {-1.2, 0.6, 1.9}, target = {0, 0.25, 0}, fov = 40 }
@@ -20,6 +20,14 @@ local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
 g:add("caustics", c.pass.illumination_textures { light = lamp })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance", specular = false })
-g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+-- the refracted view: --set refraction=sliced (the paper's sliced object images), layered, or huqin
+local refraction = c.param("refraction", "sliced")
+if refraction == "sliced" then
+  g:add("glass", c.pass.sliced_refraction { color = "shade.color", slices = 6 })
+elseif refraction == "layered" then
+  g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+else
+  g:add("glass", c.pass.refraction { color = "shade.color" })
+end
 g:output("glass.color")
 return { scene = scene, graph = g, size = {640, 480} }

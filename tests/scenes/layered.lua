@@ -1,6 +1,6 @@
 -- Refraction through every interface (layered_refraction) against the
--- two-interface pass (refraction), on the shapes Chaudhari's figures use:
--- --set object=sphere|torus|bunny|bunnies|dragon, method=layered|huqin|wyman,
+-- two-interface pass (refraction) and the sliced object images (sliced_refraction), on the shapes Chaudhari's figures use:
+-- --set object=sphere|torus|bunny|bunnies|dragon, method=layered|huqin|wyman|sliced,
 -- ior=, absorption= (red and green, Fig. 4.4), layers=, voxels=, search=,
 -- normals=mesh|gradient, depths=exact|voxel, room=true (a floor and a back
 -- wall with boxes, looked up in screen space), hide=true (no refractor),
@@ -69,7 +69,11 @@ if lamp and c.param("shadows", true) then
   g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
   shadow = "shadow.depth"
 end
-if method == "layered" then
+if method == "sliced" then
+  -- Iwasaki et al.'s sliced object images
+  g:add("shade", c.pass.shade { specular = false, shadow = shadow })
+  g:add("glass", c.pass.sliced_refraction { color = "shade.color", slices = c.param("slices", 6) })
+elseif method == "layered" then
   g:add("shade", c.pass.shade { specular = false, shadow = shadow })
   g:add("glass", c.pass.layered_refraction { color = "shade.color", layers = c.param("layers", 16),
                                              voxels = c.param("voxels", 256), search = c.param("search", 5),

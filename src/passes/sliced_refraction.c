@@ -1,0 +1,283 @@
+/* sliced_refraction: the refracted view through glass by sliced object
+ * images (Iwasaki et al. §3, after their [13]). The viewing ray entering
+ * at each glass vertex is followed through the object by the same light
+ * transport table the illumination textures use (looked up in the
+ * object's frame for the direction from the eye), giving where and in
+ * which direction it leaves. Virtual planes perpendicular to the average
+ * leaving direction cut the targets (the diffuse objects) into slabs; each
+ * slab is drawn into its own sliced object image, projected on its nearer
+ * plane by an orthographic camera along that direction. Each pixel of the
+ * glass then follows its interpolated leaving ray to the planes in order
+ * and shows the first slice that holds a target there, else the
+ * environment. A slice's texel shows what the camera shows at that point
+ * where the camera sees it (caustics and shadows included, when the input
+ * has them), else the point's unshadowed Lambert shading. Rigid glass
+ * only (the table is the base shape's); the output is the input with the
+ * glass drawn over it, as `refraction`'s. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph/bindings.h"
+#include "graph/frame.h"
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/virtual_camera.h"
+#include "scene/transport.h"
+
+#define SLICED_MAX_REFRACTORS 8
+#define SLICED_MAX_SLICES 16
+
+struct sliced_state {
+    struct transport_table tables[SLICED_MAX_REFRACTORS];
+    GLuint exits[SLICED_MAX_REFRACTORS];
+    size_t exit_capacity[SLICED_MAX_REFRACTORS];
+    struct gl_texture slices, slice_depth;
+    struct gl_framebuffer slice_fb, out_fb;
+    int size, count;
+};
+
+enum sliced_param { SR_COLOR, SR_DEPTH, SR_SLICES, SR_SIZE, SR_TABLE, SR_REFLECTION };
+
+static const struct pass_param_desc params[] = {
+    [SR_COLOR] = {.name = "color", .type = PASS_PARAM_INPUT, .required = true,
+     .help = "the scene without the glass (`shade { specular = false }`, with caustics if it has them)"},
+    [SR_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
+     .help = "its depth (default: the depth output of the pass that made color)"},
+    [SR_SLICES] = {.name = "slices", .type = PASS_PARAM_INTEGER, .default_number = 6, .min = 1, .max = SLICED_MAX_SLICES,
+     .help = "sliced object images (the paper: 6, 1 for Fig. 1)"},
+    [SR_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
+     .help = "their size"},
+    [SR_TABLE] = {.name = "table", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 2, .max = 64,
+     .help = "the light transport table's directions per side (shared with illumination_textures' cache)"},
+    [SR_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "add the Fresnel reflection of the environment at the front surface"},
+};
+
+static bool sliced_declare(struct pass *p, struct error *err)
+{
+    return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool sliced_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct sliced_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    return gl_framebuffer_create(&s->slice_fb, err) && gl_framebuffer_create(&s->out_fb, err);
+}
+
+static void sliced_destroy(struct pass *p)
+{
+    struct sliced_state *s = p->state;
+    if (!s)
+        return;
+    for (int i = 0; i < SLICED_MAX_REFRACTORS; i++) {
+        transport_table_release(&s->tables[i]);
+        if (s->exits[i] && gl_api_ready())
+            gl.DeleteBuffers(1, &s->exits[i]);
+    }
+    gl_texture_destroy(&s->slices);
+    gl_texture_destroy(&s->slice_depth);
+    gl_framebuffer_destroy(&s->slice_fb);
+    gl_framebuffer_destroy(&s->out_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static bool is_refractor(const struct object *o) { return o->visible && o->material.kind == MATERIAL_GLASS; }
+
+/* Per glass vertex (std430 Exit in glass.vert): exit point (w = 1 where a
+ * path exists), direction, transmittance. */
+static bool viewing_rays(struct sliced_state *s, int k, const struct object *o, const struct frame *fr,
+                         const struct scene *scene, vec3 *dir_sum, struct error *err)
+{
+    const struct mesh *m = o->mesh;
+    const struct frame_object *fo = frame_object_of(fr, o);
+    mat4 model = fo ? fo->model : object_model_matrix(o), inverse;
+    if (!mat4_inverse(model, &inverse))
+        inverse = mat4_identity();
+    size_t n = m->vertex_count;
+    float *data = calloc(n * 12, sizeof(float));
+    if (!data)
+        return error_set(err, "sliced_refraction: out of memory");
+    bool ortho = scene->camera.ortho_width > 0.0f;
+    vec3 forward = vec3_normalize_or(vec3_sub(scene->camera.target, scene->camera.eye), vec3_make(0, 0, -1));
+    for (size_t v = 0; v < n; v++) {
+        vec3 pw = mat4_transform_point(model, vec3_make(m->positions[v * 3], m->positions[v * 3 + 1], m->positions[v * 3 + 2]));
+        vec3 dw = ortho ? forward : vec3_normalize_or(vec3_sub(pw, fr->eye), forward);
+        vec3 lp, ld, tr;
+        float *e = data + v * 12;
+        if (transport_lookup(&s->tables[k], v, vec3_normalize_or(mat4_transform_dir(inverse, dw), dw), &lp, &ld, &tr)) {
+            vec3 ep = mat4_transform_point(model, lp), ed = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
+            e[0] = ep.x, e[1] = ep.y, e[2] = ep.z, e[3] = 1.0f;
+            e[4] = ed.x, e[5] = ed.y, e[6] = ed.z;
+            e[8] = tr.x, e[9] = tr.y, e[10] = tr.z;
+            *dir_sum = vec3_add(*dir_sum, ed);
+        }
+    }
+    size_t bytes = n * 12 * sizeof(float);
+    if (bytes > s->exit_capacity[k]) {
+        if (s->exits[k])
+            gl.DeleteBuffers(1, &s->exits[k]);
+        gl.CreateBuffers(1, &s->exits[k]);
+        gl.NamedBufferStorage(s->exits[k], (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+        s->exit_capacity[k] = bytes;
+    }
+    gl.NamedBufferSubData(s->exits[k], 0, (GLsizeiptr)bytes, data);
+    free(data);
+    return true;
+}
+
+static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct sliced_state *s = p->state;
+    struct renderer *r = f->renderer;
+    const struct scene *scene = f->scene;
+    struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
+    struct graph_resource *out = f->outputs[0];
+    int count = pass_int(p, SR_SLICES), size = pass_int(p, SR_SIZE), resolution = pass_int(p, SR_TABLE);
+
+    /* the input as it is, then the glass over it */
+    struct gl_program *copy;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
+        return false;
+    const struct gl_texture *oc[1] = {&out->texture};
+    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, &in_depth->texture, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.UseProgram(copy->id);
+    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    renderer_draw_fullscreen(r);
+
+    /* the viewing rays through each glass object (§3: the table) */
+    pass_stage_begin(p);
+    vec3 dir_sum = {0, 0, 0};
+    int k = 0;
+    for (int i = 0; i < scene->object_count && k < SLICED_MAX_REFRACTORS; i++) {
+        struct object *o = scene->objects[i];
+        if (!is_refractor(o))
+            continue;
+        if (!transport_table_matches(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE) &&
+            !transport_table_build(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE, err))
+            return false;
+        if (!viewing_rays(s, k, o, f->snapshot, scene, &dir_sum, err))
+            return false;
+        k++;
+    }
+    pass_stage_end(p, "viewing rays");
+    if (k == 0)
+        return true;
+
+    /* the virtual planes along the average leaving direction, across the
+     * targets; the square over the targets' extent */
+    struct virtual_camera vc;
+    virtual_camera_axes(&vc, vec3_normalize_or(dir_sum, vec3_normalize_or(vec3_sub(scene->camera.target,
+                                                                                   scene->camera.eye), vec3_make(0, 0, -1))));
+    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
+    bool any = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible || o->material.kind != MATERIAL_DIFFUSE)
+            continue;
+        vec3 olo, ohi;
+        object_world_bounds(o, &olo, &ohi);
+        lo = any ? vec3_min(lo, olo) : olo;
+        hi = any ? vec3_max(hi, ohi) : ohi;
+        any = true;
+    }
+    float dmin = INFINITY, dmax = -INFINITY, umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+    for (int c = 0; any && c < 8; c++) {
+        vec3 corner = vec3_make(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+        float z = vec3_dot(corner, vc.d), cu = vec3_dot(corner, vc.u), cv = vec3_dot(corner, vc.v);
+        dmin = fminf(dmin, z), dmax = fmaxf(dmax, z);
+        umin = fminf(umin, cu), umax = fmaxf(umax, cu), vmin = fminf(vmin, cv), vmax = fmaxf(vmax, cv);
+    }
+    if (!any)
+        dmin = dmax = umin = umax = vmin = vmax = 0.0f;
+    vc.center[0] = 0.5f * (umin + umax), vc.center[1] = 0.5f * (vmin + vmax);
+    vc.half = fmaxf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.02f, 1e-4f);
+    float pad = 0.01f * (dmax - dmin) + 1e-4f;
+    vc.near = dmin - pad, vc.far = dmax + pad;
+    float planes[SLICED_MAX_SLICES + 1];
+    for (int i = 0; i <= count; i++)
+        planes[i] = vc.near + (vc.far - vc.near) * (float)i / (float)count;
+
+    /* the sliced object images */
+    if (!s->slices.id || s->size != size || s->count != count) {
+        gl_texture_destroy(&s->slices);
+        gl_texture_destroy(&s->slice_depth);
+        if (!gl_texture_create(&s->slices, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
+            !gl_texture_create(&s->slice_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err))
+            return false;
+        s->size = size;
+        s->count = count;
+    }
+    struct gl_program *slice, *glass;
+    if (!gl_program_get(&r->programs, "sliced_refraction/slice.vert", "sliced_refraction/slice.frag", NULL, &slice,
+                        err) ||
+        !gl_program_get(&r->programs, "sliced_refraction/glass.vert", "sliced_refraction/glass.frag", NULL, &glass, err))
+        return false;
+    virtual_camera_set(slice, &vc);
+    virtual_camera_set(glass, &vc);
+    gl.BindTextureUnit(SLICED_UNIT_SCENE, in_color->texture.id);
+    gl.BindTextureUnit(SLICED_UNIT_SCENE_DEPTH, in_depth->texture.id);
+    const float clear[4] = {0, 0, 0, 0};
+    for (int i = 0; i < count; i++) {
+        const struct gl_texture *layer[1] = {&s->slices};
+        int index[1] = {i};
+        if (!gl_framebuffer_attach(&s->slice_fb, layer, index, 1, &s->slice_depth, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->slice_fb.id);
+        gl.Viewport(0, 0, size, size);
+        gl.ClearNamedFramebufferfv(s->slice_fb.id, GL_COLOR, 0, clear);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.ProgramUniform2f(slice->id, gl_program_uniform(slice, "u_slab"), planes[i], planes[i + 1]);
+        renderer_draw_objects(r, scene, slice, DRAW_DIFFUSE);
+    }
+    renderer_reset_state(r);
+    pass_stage_end(p, "slices");
+
+    /* the glass: its front surface shows the slices along its leaving rays */
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_CULL_FACE);
+    gl.CullFace(GL_BACK);
+    gl.BindTextureUnit(SLICED_UNIT_SLICES, s->slices.id);
+    gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_slices_count"), count);
+    for (int i = 0; i < count; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "u_plane[%d]", i);
+        gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, name), planes[i]);
+    }
+    gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_reflection"), pass_flag(p, SR_REFLECTION));
+    k = 0;
+    for (int i = 0; i < scene->object_count && k < SLICED_MAX_REFRACTORS; i++) {
+        struct object *o = scene->objects[i];
+        if (!is_refractor(o))
+            continue;
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICED_SSBO_EXITS, s->exits[k++]);
+        renderer_draw_object(r, scene, glass, o);
+    }
+    pass_stage_end(p, "glass");
+    return gl_check("sliced_refraction", err);
+}
+
+const struct pass_desc sliced_refraction_pass = {
+    .name = "sliced_refraction",
+    .summary = "Iwasaki et al.: the refracted view through glass by sliced object images and the light transport table",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = sliced_declare,
+    .create = sliced_create,
+    .execute = sliced_execute,
+    .destroy = sliced_destroy,
+};
