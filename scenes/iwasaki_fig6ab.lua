@@ -29,5 +29,5 @@ elseif refraction == "layered" then
 else
   g:add("glass", c.pass.refraction { color = "shade.color" })
 end
-g:output("glass.color")
+g:output(c.param("output", "glass.color"))
 return { scene = scene, graph = g, size = {640, 480} }
