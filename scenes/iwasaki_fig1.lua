@@ -24,7 +24,7 @@ scene:add(c.object { mesh = c.mesh.sphere { radius = 0.22, segments = 48 }, posi
                      material = c.material.glass { ior = c.param("ior", 1.5) } })
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("caustics", c.pass.illumination_textures { light = sun, planes = c.param("planes", 8), size = 512 })
+g:add("caustics", c.pass.illumination_textures { light = sun, planes = c.param("planes", 16) })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance", specular = false })
 g:add("glass", c.pass.layered_refraction { color = "shade.color" })
 g:output("glass.color")
