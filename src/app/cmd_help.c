@@ -21,6 +21,7 @@ static const char *param_type_name(const struct pass_param_desc *d)
     case PASS_PARAM_ENUM: return "enum";
     case PASS_PARAM_LIGHT: return "light";
     case PASS_PARAM_OBJECT: return "object";
+    case PASS_PARAM_OBJECT_LIST: return "object list";
     case PASS_PARAM_INPUT: return "input \"pass.output\"";
     case PASS_PARAM_INPUT_LIST: return "input or list of inputs";
     case PASS_PARAM_COLOR: return "colour {r, g, b}";

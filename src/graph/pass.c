@@ -51,6 +51,31 @@ void pass_set_object(struct pass *p, int param, struct object *object)
     p->values[param].object = object;
 }
 
+static void release_objects(struct pass_value *v)
+{
+    for (int k = 0; k < v->object_count; k++)
+        object_destroy(v->objects[k]);
+    free(v->objects);
+    v->objects = NULL;
+    v->object_count = 0;
+}
+
+bool pass_set_objects(struct pass *p, int param, struct object *const *objects, int count)
+{
+    struct object **copy = count > 0 ? malloc((size_t)count * sizeof *copy) : NULL;
+    if (count > 0 && !copy)
+        return false;
+    for (int k = 0; k < count; k++) {
+        copy[k] = objects[k];
+        object_retain(copy[k]);
+    }
+    release_objects(&p->values[param]);
+    p->values[param].objects = copy;
+    p->values[param].object_count = count;
+    p->values[param].set = true;
+    return true;
+}
+
 void pass_stage_begin(struct pass *p)
 {
     if (!p->stages.queries[0])
@@ -104,6 +129,7 @@ void pass_destroy(struct pass *p)
         free(p->values[i].vector_sizes);
         light_destroy(p->values[i].light);
         object_destroy(p->values[i].object);
+        release_objects(&p->values[i]);
     }
     free(p->values);
     free(p);
@@ -135,6 +161,7 @@ static const char *type_word(enum pass_param_type t)
     case PASS_PARAM_INPUT_LIST: return "input list";
     case PASS_PARAM_LIGHT: return "light";
     case PASS_PARAM_OBJECT: return "object";
+    case PASS_PARAM_OBJECT_LIST: return "object list";
     default: return "table";
     }
 }

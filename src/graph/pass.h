@@ -25,6 +25,7 @@ enum pass_param_type {
     PASS_PARAM_ENUM,       /* a string from `choices` ("a|b|c") */
     PASS_PARAM_LIGHT,      /* a light of the scene */
     PASS_PARAM_OBJECT,     /* an object of the scene */
+    PASS_PARAM_OBJECT_LIST,/* {object, ...}: objects of the scene */
     PASS_PARAM_INPUT,      /* "pass.output": a texture made by an earlier pass */
     PASS_PARAM_INPUT_LIST, /* one such name or a list of them */
     PASS_PARAM_COLOR,      /* {r, g, b[, a]} */
@@ -57,6 +58,8 @@ struct pass_value {
     char *string;          /* owned */
     struct light *light;   /* borrowed (Lua keeps it alive) */
     struct object *object; /* borrowed (Lua keeps it alive) */
+    struct object **objects; /* an object list: a reference each (owned array) */
+    int object_count;
     float color[4];
     char **list;           /* owned strings: an input list, or a map's values */
     char **keys;           /* owned strings: a map's keys (same count as list) */
@@ -173,6 +176,8 @@ void pass_retain(struct pass *p);
 void pass_destroy(struct pass *p);
 void pass_set_light(struct pass *p, int param, struct light *light);
 void pass_set_object(struct pass *p, int param, struct object *object);
+/* Replaces an object list (a reference to each); false when out of memory. */
+bool pass_set_objects(struct pass *p, int param, struct object *const *objects, int count);
 
 /* Setting parameters: the one place values are validated (type, finite,
  * integer, range, enum choice), used by the Lua bindings, `bench --sweep`

@@ -32,6 +32,7 @@ static const char *type_name(enum pass_param_type t)
     case PASS_PARAM_ENUM: return "string";
     case PASS_PARAM_LIGHT: return "light";
     case PASS_PARAM_OBJECT: return "object";
+    case PASS_PARAM_OBJECT_LIST: return "list of objects";
     case PASS_PARAM_INPUT: return "string 'pass.output'";
     case PASS_PARAM_INPUT_LIST: return "string 'pass.output' or a list of them";
     case PASS_PARAM_INPUT_MAP: return "table {name = 'pass.output'}";
@@ -185,6 +186,24 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
             lutil_field_error(L, fn, d->name, "object", idx);
         pass_set_object(p, i, lobject_test(L, idx));
         break;
+    case PASS_PARAM_OBJECT_LIST: {
+        if (t != LUA_TTABLE)
+            lutil_field_error(L, fn, d->name, "list of objects", idx);
+        int n = (int)lua_rawlen(L, idx);
+        if (n > 256)
+            lutil_error(L, "bad argument '%s' to '%s' (at most 256 objects, got %d)", d->name, fn, n);
+        struct object *objects[256];
+        for (int k = 0; k < n; k++) {
+            lua_rawgeti(L, idx, k + 1);
+            objects[k] = lobject_test(L, -1);
+            if (!objects[k])
+                lutil_field_error(L, fn, d->name, "list of objects", -1);
+            lua_pop(L, 1);
+        }
+        if (!pass_set_objects(p, i, objects, n))
+            luaL_error(L, "out of memory");
+        break;
+    }
     case PASS_PARAM_INPUT_LIST:
         if (t == LUA_TSTRING) {
             v->list = calloc(1, sizeof *v->list);

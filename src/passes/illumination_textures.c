@@ -15,9 +15,11 @@
  * here depends on the camera: a camera-only change reuses the textures and
  * only the last step runs.
  *
- * Targets are every visible diffuse object, sharing one set of planes (the
- * paper sets planes per target object); the virtual camera's square covers
- * where the transmitted rays cross the planes. A focus on a plane (S_0 ->
+ * Targets are the objects of `targets`, or every visible diffuse object,
+ * sharing one set of planes (the paper sets planes per target object: one
+ * set keeps the occlusion between targets, a teapot shadowing the floor
+ * from the caustic light, which separate sets would lose); the virtual
+ * camera's square covers where the transmitted rays cross the planes. A focus on a plane (S_0 ->
  * 0) is capped at half a texel's area: no caustic can be sharper than the
  * texture resolves, as caustic volumes cap theirs by the grid; an
  * intersection triangle smaller than a texel is drawn as a point holding
@@ -56,7 +58,7 @@ struct illum_state {
     bool reused;
 };
 
-enum illum_param { IT_LIGHT, IT_PLANES, IT_SIZE, IT_TABLE, IT_INTERNAL };
+enum illum_param { IT_LIGHT, IT_PLANES, IT_SIZE, IT_TABLE, IT_INTERNAL, IT_TARGETS };
 enum { INTERNAL_NONE, INTERNAL_FIRST };
 
 static const struct pass_param_desc params[] = {
@@ -70,6 +72,8 @@ static const struct pass_param_desc params[] = {
      .help = "light transport table: incident directions per side of its octahedral map (table^2 directions per vertex)"},
     [IT_INTERNAL] = {.name = "internal", .type = PASS_PARAM_ENUM, .default_string = "none", .choices = "none|first",
      .help = "paths with total internal reflection: none (the paper's) or the first one followed"},
+    [IT_TARGETS] = {.name = "targets", .type = PASS_PARAM_OBJECT_LIST,
+     .help = "the diffuse objects that receive the caustics (default: every visible diffuse object)"},
 };
 
 static bool illum_declare(struct pass *p, struct error *err)
@@ -126,7 +130,28 @@ static void illum_destroy(struct pass *p)
 }
 
 static bool is_refractor(const struct object *o) { return o->visible && o->material.kind == MATERIAL_GLASS; }
-static bool is_target(const struct object *o) { return o->visible && o->material.kind == MATERIAL_DIFFUSE; }
+/* A receiver of the caustics: one of `targets` when given, else any visible diffuse object. */
+static bool is_target(const struct pass *p, const struct object *o)
+{
+    if (!o->visible || o->material.kind != MATERIAL_DIFFUSE)
+        return false;
+    const struct pass_value *v = &p->values[IT_TARGETS];
+    if (v->object_count == 0)
+        return true;
+    for (int k = 0; k < v->object_count; k++)
+        if (v->objects[k] == o)
+            return true;
+    return false;
+}
+
+/* The targets, each drawn with `prog`. */
+static void draw_targets(const struct pass *p, struct renderer *r, const struct scene *scene,
+                         const struct gl_program *prog)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (is_target(p, scene->objects[i]))
+            renderer_draw_object(r, scene, prog, scene->objects[i]);
+}
 
 static uint64_t mix(uint64_t h, uint64_t v) { return (h ^ v) * 1099511628211ULL; }
 
@@ -143,6 +168,8 @@ static uint64_t texture_key(struct pass *p, const struct scene *scene, const str
     }
     for (int k = IT_PLANES; k <= IT_INTERNAL; k++)
         h = mix(h, (uint64_t)(pass_real(p, k) * 1000.0) + (uint64_t)pass_choice(p, IT_INTERNAL));
+    for (int k = 0; k < p->values[IT_TARGETS].object_count; k++)
+        h = mix(h, p->values[IT_TARGETS].objects[k]->serial);
     return h;
 }
 
@@ -395,7 +422,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     bool any_target = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (!is_target(o))
+        if (!is_target(p, o))
             continue;
         vec3 olo, ohi;
         object_world_bounds(o, &olo, &ohi);
@@ -478,7 +505,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     gl.ClearNamedFramebufferfv(s->target_fb.id, GL_COLOR, 0, no_target);
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, scene, target, DRAW_DIFFUSE);
+    draw_targets(p, r, scene, target);
     renderer_reset_state(r);
     /* The planes span the depths the virtual camera sees of the targets
      * within its square (read back: size^2 texels), not the targets' whole
@@ -671,7 +698,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.BindTextureUnit(ILLUM_UNIT_TEXTURES, s->textures.id);
     /* glass objects are drawn too, writing depth only: what is behind them
      * is the refraction pass's to show, not this one's */
-    renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
+    draw_targets(p, r, f->scene, map);
     pass_stage_end(p, s->reused ? "mapping (textures reused)" : "mapping");
     return gl_check("illumination_textures", err);
 }

@@ -26,6 +26,7 @@ scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, p
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = c.param("segments", 256) },
                                   material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 ball.visible = not hide
+ball.rotation = c.quat.axis_angle({1, 0.3, 0.2}, c.param("turn", 0))  -- a turned ball: the same caustic
 if aperture > 0 then
   -- Four slabs around a square hole: only paraxial rays reach the ball.
   local w, plate = 10, c.material.diffuse { color = {0, 0, 0} }
