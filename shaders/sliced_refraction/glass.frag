@@ -28,8 +28,12 @@ vec3 through_slices(vec3 o, vec3 d)
         if (cd <= 1e-4)
             break;
         float t = (u_plane[i] - dot(o, u_vc_d)) / cd;
-        if (t < 0.0)
-            continue;
+        if (t < 0.0) {
+            // the ray leaves the glass inside this slab: it starts there
+            if (dot(o, u_vc_d) >= u_plane[i + 1])
+                continue;
+            t = 0.0;
+        }
         vec2 uv = vc_uv(o + d * t);
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
             continue;

@@ -93,7 +93,7 @@ static bool is_refractor(const struct object *o) { return o->visible && o->mater
 /* Per glass vertex (std430 Exit in glass.vert): exit point (w = 1 where a
  * path exists), direction, transmittance. */
 static bool viewing_rays(struct sliced_state *s, int k, const struct object *o, const struct frame *fr,
-                         const struct scene *scene, vec3 *dir_sum, struct error *err)
+                         const struct scene *scene, vec3 *dir_sum, vec3 *exit_sum, int *exit_count, struct error *err)
 {
     const struct mesh *m = o->mesh;
     const struct frame_object *fo = frame_object_of(fr, o);
@@ -117,6 +117,8 @@ static bool viewing_rays(struct sliced_state *s, int k, const struct object *o, 
             e[4] = ed.x, e[5] = ed.y, e[6] = ed.z;
             e[8] = tr.x, e[9] = tr.y, e[10] = tr.z;
             *dir_sum = vec3_add(*dir_sum, ed);
+            *exit_sum = vec3_add(*exit_sum, ep);
+            (*exit_count)++;
         }
     }
     size_t bytes = n * 12 * sizeof(float);
@@ -156,8 +158,8 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
 
     /* the viewing rays through each glass object (§3: the table) */
     pass_stage_begin(p);
-    vec3 dir_sum = {0, 0, 0};
-    int k = 0;
+    vec3 dir_sum = {0, 0, 0}, exit_sum = {0, 0, 0};
+    int k = 0, exit_count = 0;
     for (int i = 0; i < scene->object_count && k < SLICED_MAX_REFRACTORS; i++) {
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
@@ -165,7 +167,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         if (!transport_table_matches(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE) &&
             !transport_table_build(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE, err))
             return false;
-        if (!viewing_rays(s, k, o, f->snapshot, scene, &dir_sum, err))
+        if (!viewing_rays(s, k, o, f->snapshot, scene, &dir_sum, &exit_sum, &exit_count, err))
             return false;
         k++;
     }
@@ -203,6 +205,13 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     vc.half = fmaxf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.02f, 1e-4f);
     float pad = 0.01f * (dmax - dmin) + 1e-4f;
     vc.near = dmin - pad, vc.far = dmax + pad;
+    /* the slabs start where the viewing rays leave the glass: what lies in
+     * front of it is not seen through it */
+    if (exit_count > 0) {
+        float start = vec3_dot(vec3_scale(exit_sum, 1.0f / (float)exit_count), vc.d);
+        if (start > vc.near && start < vc.far)
+            vc.near = start;
+    }
     float planes[SLICED_MAX_SLICES + 1];
     for (int i = 0; i <= count; i++)
         planes[i] = vc.near + (vc.far - vc.near) * (float)i / (float)count;
@@ -253,7 +262,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.CullFace(GL_BACK);
     gl.BindTextureUnit(SLICED_UNIT_SLICES, s->slices.id);
     gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_slices_count"), count);
-    for (int i = 0; i < count; i++) {
+    for (int i = 0; i <= count; i++) {
         char name[32];
         snprintf(name, sizeof name, "u_plane[%d]", i);
         gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, name), planes[i]);
