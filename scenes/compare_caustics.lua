@@ -27,7 +27,7 @@ if technique == "photons" then
   g:add("caustics", c.pass.photon_caustics { light = sun })
   caustics = "caustics.irradiance"
 elseif technique == "illumination" then
-  g:add("caustics", c.pass.illumination_textures { light = sun })
+  g:add("caustics", c.pass.illumination_textures { light = sun, table = c.param("table", 16) })
   caustics = "caustics.irradiance"
 elseif technique == "layered" then
   g:add("caustics", c.pass.layered_caustics { light = sun })
