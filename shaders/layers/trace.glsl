@@ -258,9 +258,7 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     path.entry = P;
     path.interfaces = 1;
     if (through)
-        gap = 0;
-    else
-        path.tir = 0; // reflected off the outside: the reflection term, not internal
+        gap = 0; /* else reflected off the outside: the reflection term, not an internal reflection */
     int max_count = int(layer_ranges[2 * 32]);
     int cap = min(u_max_interfaces, LAYER_MAX_INTERFACES);
     for (int i = 0; i < LAYER_MAX_INTERFACES; i++) {

@@ -15,6 +15,7 @@
 #include "app/bench_plot.h"
 #include "app/cli.h"
 #include "core/fileio.h"
+#include "core/hash.h"
 #include "core/log.h"
 #include "graph/graph.h"
 #include "reference/image_metrics.h"
@@ -68,15 +69,8 @@ static bool parse_sweep(const char *text, struct sweep *s, struct error *err)
     return s->count > 0 ? true : error_set(err, "--sweep %s: no values", text);
 }
 
-/* FNV-1a over everything that determines a ground-truth image. */
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ p[i]) * 1099511628211ULL;
-    return h;
-}
 
+/* FNV-1a over everything that determines a ground-truth image. */
 static bool truth_key(const char *script, const struct lua_params *params, int frame, int w, int h,
                       const struct ref_options *ro, uint64_t *key, struct error *err)
 {
@@ -84,17 +78,17 @@ static bool truth_key(const char *script, const struct lua_params *params, int f
     size_t size;
     if (!file_read_all(script, &text, &size, err))
         return false;
-    uint64_t k = fnv(1469598103934665603ULL, text, size);
+    uint64_t k = hash_fnv1a(1469598103934665603ULL, text, size);
     free(text);
     for (int i = 0; i < params->count; i++) {
-        k = fnv(k, params->keys[i], strlen(params->keys[i]) + 1);
-        k = fnv(k, params->values[i], strlen(params->values[i]) + 1);
+        k = hash_fnv1a(k, params->keys[i], strlen(params->keys[i]) + 1);
+        k = hash_fnv1a(k, params->values[i], strlen(params->values[i]) + 1);
     }
     int ints[3] = {frame, w, h};
-    k = fnv(k, ints, sizeof ints);
-    k = fnv(k, &ro->photons, sizeof ro->photons);
-    k = fnv(k, &ro->iterations, sizeof ro->iterations);
-    k = fnv(k, &ro->seed, sizeof ro->seed);
+    k = hash_fnv1a(k, ints, sizeof ints);
+    k = hash_fnv1a(k, &ro->photons, sizeof ro->photons);
+    k = hash_fnv1a(k, &ro->iterations, sizeof ro->iterations);
+    k = hash_fnv1a(k, &ro->seed, sizeof ro->seed);
     *key = k;
     return true;
 }

@@ -30,6 +30,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/array.h"
+#include "core/hash.h"
 #include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
@@ -54,7 +56,6 @@ struct illum_state {
     /* the virtual camera and planes of the last build */
     struct virtual_camera vc;
     float plane_depth[ILLUM_MAX_PLANES];
-    long triangles;            /* intersection triangles drawn */
     bool reused;
 };
 
@@ -153,13 +154,13 @@ static void draw_targets(const struct pass *p, struct renderer *r, const struct 
             renderer_draw_object(r, scene, prog, scene->objects[i]);
 }
 
-static uint64_t mix(uint64_t h, uint64_t v) { return (h ^ v) * 1099511628211ULL; }
+static uint64_t mix(uint64_t h, uint64_t v) { return hash_fnv1a(h, &v, sizeof v); }
 
 /* Everything the textures depend on: the light, the glass, the targets and
  * the parameters; not the camera. */
 static uint64_t texture_key(struct pass *p, const struct scene *scene, const struct light *light)
 {
-    uint64_t h = 14695981039346656037ULL;
+    uint64_t h = HASH_FNV1A_BASIS;
     h = mix(h, light->version);
     h = mix(h, scene->version);
     for (int i = 0; i < scene->object_count; i++) {
@@ -230,22 +231,14 @@ struct volume {
 
 struct volume_list {
     struct volume *items;
-    size_t count, capacity;
+    int count, capacity;
 };
 
-static bool push_volume(struct volume_list *l, const struct volume *v)
-{
-    if (l->count == l->capacity) {
-        size_t cap = l->capacity ? l->capacity * 2 : 1024;
-        struct volume *n = realloc(l->items, cap * sizeof *n);
-        if (!n)
-            return false;
-        l->items = n;
-        l->capacity = cap;
-    }
-    l->items[l->count++] = *v;
-    return true;
-}
+/* One glass vertex this frame: where it is, and the light leaving for it. */
+struct vertex_path {
+    vec3 world, exit_position, exit_direction, transmittance;
+    bool ok;
+};
 
 /* §4.1: the volumes of every glass object for one light sample. */
 static bool collect_volumes(struct illum_state *s, const struct frame *fr, const struct scene *scene,
@@ -263,13 +256,9 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
             continue;
         const struct mesh *m = o->mesh;
         size_t nv = m->vertex_count;
-        vec3 *exit_p = malloc(nv * sizeof *exit_p), *exit_d = malloc(nv * sizeof *exit_d);
-        vec3 *trans = malloc(nv * sizeof *trans);
-        bool *ok = malloc(nv * sizeof *ok);
-        if (!exit_p || !exit_d || !trans || !ok) {
-            free(exit_p), free(exit_d), free(trans), free(ok);
+        struct vertex_path *vp = malloc(nv * sizeof *vp);
+        if (!vp)
             return error_set(err, "illumination_textures: out of memory");
-        }
         for (size_t v = 0; v < nv; v++) {
             vec3 pw = mat4_transform_point(model, vec3_make(m->positions[v * 3], m->positions[v * 3 + 1],
                                                             m->positions[v * 3 + 2]));
@@ -279,19 +268,18 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
              * translation of the object needs no new table */
             vec3 dl = vec3_normalize_or(mat4_transform_dir(inverse, dw), dw);
             vec3 lp, ld;
-            ok[v] = transport_lookup(table, v, dl, &lp, &ld, &trans[v]);
-            if (ok[v]) {
-                exit_p[v] = mat4_transform_point(model, lp);
-                exit_d[v] = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
+            vp[v].world = pw;
+            vp[v].ok = transport_lookup(table, v, dl, &lp, &ld, &vp[v].transmittance);
+            if (vp[v].ok) {
+                vp[v].exit_position = mat4_transform_point(model, lp);
+                vp[v].exit_direction = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
             }
         }
         for (size_t k = 0; k + 2 < m->index_count; k += 3) {
-            uint32_t a = m->indices[k], b = m->indices[k + 1], c = m->indices[k + 2];
-            if (!ok[a] || !ok[b] || !ok[c])
+            const struct vertex_path *a = &vp[m->indices[k]], *b = &vp[m->indices[k + 1]], *c = &vp[m->indices[k + 2]];
+            if (!a->ok || !b->ok || !c->ok)
                 continue;
-            vec3 pa = mat4_transform_point(model, vec3_make(m->positions[a * 3], m->positions[a * 3 + 1], m->positions[a * 3 + 2]));
-            vec3 pb = mat4_transform_point(model, vec3_make(m->positions[b * 3], m->positions[b * 3 + 1], m->positions[b * 3 + 2]));
-            vec3 pc = mat4_transform_point(model, vec3_make(m->positions[c * 3], m->positions[c * 3 + 1], m->positions[c * 3 + 2]));
+            vec3 pa = a->world, pb = b->world, pc = c->world;
             vec3 cr = vec3_cross(vec3_sub(pb, pa), vec3_sub(pc, pa));
             float area2 = vec3_length(cr);
             if (!(area2 > 1e-20f))
@@ -312,15 +300,17 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
                     e = vec3_scale(e, x * x * (3.0f - 2.0f * x));
                 }
             }
-            vec3 ft = vec3_scale(vec3_add(vec3_add(trans[a], trans[b]), trans[c]), 1.0f / 3.0f);
-            struct volume vol = {.o = {exit_p[a], exit_p[b], exit_p[c]}, .d = {exit_d[a], exit_d[b], exit_d[c]},
-                                 .flux = vec3_scale(vec3_mul(e, ft), 0.5f * area2 * cos_theta)};
-            if (!push_volume(out, &vol)) {
-                free(exit_p), free(exit_d), free(trans), free(ok);
-                return error_set(err, "illumination_textures: out of memory");
+            vec3 ft = vec3_scale(vec3_add(vec3_add(a->transmittance, b->transmittance), c->transmittance), 1.0f / 3.0f);
+            if (!array_grow((void **)&out->items, &out->capacity, out->count, sizeof *out->items, err)) {
+                free(vp);
+                return error_prefix(err, "illumination_textures");
             }
+            out->items[out->count++] = (struct volume){
+                .o = {a->exit_position, b->exit_position, c->exit_position},
+                .d = {a->exit_direction, b->exit_direction, c->exit_direction},
+                .flux = vec3_scale(vec3_mul(e, ft), 0.5f * area2 * cos_theta)};
         }
-        free(exit_p), free(exit_d), free(trans), free(ok);
+        free(vp);
     }
     return true;
 }
@@ -409,14 +399,13 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         }
     /* the average transmitted direction, weighted by flux */
     vec3 sum = {0, 0, 0};
-    for (size_t i = 0; i < vols.count; i++) {
+    for (int i = 0; i < vols.count; i++) {
         const struct volume *v = &vols.items[i];
         float w = v->flux.x + v->flux.y + v->flux.z;
         sum = vec3_add(sum, vec3_scale(vec3_add(vec3_add(v->d[0], v->d[1]), v->d[2]), w));
     }
     const float zero[4] = {0, 0, 0, 0};
     gl.ClearTexImage(s->textures.id, 0, GL_RGBA, GL_FLOAT, zero);
-    s->triangles = 0;
     vec3 d = vec3_normalize_or(sum, vec3_make(0, -1, 0));
     vec3 lo, hi;
     bool any_target = false;
@@ -454,7 +443,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     struct weighted *wu = malloc(vols.count * (size_t)planes * sizeof *wu);
     struct weighted *wv = malloc(vols.count * (size_t)planes * sizeof *wv);
     size_t nw = 0;
-    for (size_t i = 0; wu && wv && i < vols.count; i++)
+    for (int i = 0; wu && wv && i < vols.count; i++)
         for (int pl = 0; pl < planes; pl++) {
             const struct volume *vol = &vols.items[i];
             vec3 o = vec3_scale(vec3_add(vec3_add(vol->o[0], vol->o[1]), vol->o[2]), 1.0f / 3.0f);
@@ -545,7 +534,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     for (int pl = 0; pl < planes; pl++) {
         plane_first[pl] = n;
         point_first[pl] = np;
-        for (size_t i = 0; i < vols.count; i++) {
+        for (int i = 0; i < vols.count; i++) {
             const struct volume *vol = &vols.items[i];
             vec3 q[3];
             float cd[3];
@@ -602,7 +591,6 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         point_count[pl] = np - point_first[pl];
     }
     free(vols.items);
-    s->triangles = (long)(n / 3);
     /* the points after the triangles in one buffer */
     size_t tri_bytes = n * ILLUM_VERTEX_FLOATS * sizeof(float), point_bytes = np * ILLUM_VERTEX_FLOATS * sizeof(float);
     size_t bytes = tri_bytes + point_bytes;

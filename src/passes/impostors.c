@@ -18,6 +18,20 @@ void impostors_release(struct impostor_set *set)
     memset(set, 0, sizeof *set);
 }
 
+static uint64_t lights_version(const struct scene *scene)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < scene->light_count; i++)
+        v = v * 31u + scene->lights[i]->version;
+    return v;
+}
+
+bool impostors_current(const struct impostor_set *set, const struct scene *scene, int size, bool animated)
+{
+    return set->built && !animated && set->size == size && set->built_geometry == scene_geometry_version(scene) &&
+           set->built_lights == lights_version(scene);
+}
+
 int impostors_find(const struct impostor_set *set, const struct object *object)
 {
     for (int i = 0; i < set->count; i++)
@@ -43,6 +57,7 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
                      int size, bool include_specular, struct error *err)
 {
+    set->built = false; /* until this build completes */
     int count = 0;
     struct impostor items[IMPOSTOR_MAX];
     for (int i = 0; i < scene->object_count && count < IMPOSTOR_MAX; i++) {
@@ -111,7 +126,12 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         renderer_draw_object(r, scene, prog, im->object);
     }
     gl.Disable(GL_DEPTH_TEST);
-    return gl_check("building impostors", err);
+    if (!gl_check("building impostors", err))
+        return false;
+    set->built = true;
+    set->built_geometry = scene_geometry_version(scene);
+    set->built_lights = lights_version(scene);
+    return true;
 }
 
 bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err)

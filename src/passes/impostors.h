@@ -42,6 +42,9 @@ struct impostor_set {
     struct gl_texture depth_buffer; /* for rendering them */
     struct gl_framebuffer fb;
     GLuint ubo;                     /* the impostors' frames (std430 SSBO) */
+    /* what the last complete build was made from (§4: a static scene reuses it) */
+    bool built;
+    uint64_t built_geometry, built_lights;
 };
 
 /* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
@@ -55,6 +58,10 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
  * refracting the impostors of the previous level. */
 bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err);
 void impostors_release(struct impostor_set *set);
+/* Whether the last build still stands for `scene` at `size`: no geometry
+ * animates, and neither the geometry nor a light changed since (Hu & Qin
+ * §4's reuse in a static scene). */
+bool impostors_current(const struct impostor_set *set, const struct scene *scene, int size, bool animated);
 /* Index of the impostor standing in for `object`, or -1. */
 int impostors_find(const struct impostor_set *set, const struct object *object);
 

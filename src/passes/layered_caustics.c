@@ -124,8 +124,6 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
     return gl_framebuffer_attach(&s->receivers_fb, c, NULL, 1, &s->receiver_depth, -1, err);
 }
 
-static float diameter(vec3 lo, vec3 hi) { return vec3_length(vec3_sub(hi, lo)); }
-
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct layered_caustics_state *s = p->state;
@@ -146,7 +144,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
 
     /* The light's view of the refractors' bounding sphere (as photon_caustics). */
     vec3 oc = vec3_scale(vec3_add(lo, hi), 0.5f);
-    float orad = fmaxf(0.5f * diameter(lo, hi), 1e-4f) * 1.02f;
+    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
     const struct frame_light *fl = &f->snapshot->lights[slot];
     bool ortho = fl->kind == LIGHT_DIRECTIONAL;
     mat4 view, proj;
@@ -196,8 +194,6 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     pass_stage_end(p, "receivers");
 
     /* Photons: traced through the light's layers, then onto the receivers. */
-    vec3 slo, shi;
-    scene_bounds(f->scene, &slo, &shi);
     double total = ortho ? (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * orad * orad
                          : (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * MATH_PI;
     /* No pixel can gather more than all the light through the refractors:
@@ -209,23 +205,19 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (!gl_program_get_compute(&r->programs, "layered_caustics/photons.comp", NULL, NULL, &photons, err))
         return false;
     gl.UseProgram(photons->id);
-    layers_bind(&s->layers, photons);
+    struct layers_trace trace = {
+        .search = pass_int(p, LC_SEARCH),
+        .steps = pass_int(p, LC_STEPS),
+        .max_interfaces = 2 * pass_int(p, LC_LAYERS) + 2,
+        .layer_extent = 2.0f * orad,
+    };
+    layers_bind(&s->layers, photons, f->scene, &trace);
     gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->receiver_depth.id);
     gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
-    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    int layers = pass_int(p, LC_LAYERS);
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_search"), pass_int(p, LC_SEARCH));
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_steps"), pass_int(p, LC_STEPS));
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_gradient"), 0);
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_max_interfaces"), 2 * layers + 2);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_layer_extent"), 2.0f * orad);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_extent"), fmaxf(diameter(slo, shi), 1e-4f) * 1.5f);
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_scene_steps"), 64);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_fixed_point"), fixed_point);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);

@@ -27,8 +27,6 @@ struct layered_refraction_state {
     struct layer_set layers;
     struct gl_framebuffer out_fb;
     struct impostor_set impostors;
-    bool impostors_valid; /* a static scene reuses them (Hu & Qin §4) */
-    uint64_t impostor_geometry, impostor_lights;
 };
 
 enum { LOOKUP_SCENE, LOOKUP_ENVIRONMENT };
@@ -125,8 +123,6 @@ static enum pass_need layered_refraction_needed(struct pass *p, struct pass_fram
     return PASS_RUN;
 }
 
-static float diameter(vec3 lo, vec3 hi) { return vec3_length(vec3_sub(hi, lo)); }
-
 static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct layered_refraction_state *s = p->state;
@@ -160,19 +156,10 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         return false;
     bool nearby = pass_flag(p, LR_NEARBY);
     if (nearby) {
-        /* rebuilt only when geometry, lights or the size change, as refraction's */
-        uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
-        for (int i = 0; i < f->scene->light_count; i++)
-            lights = lights * 31u + f->scene->lights[i]->version;
-        if (!s->impostors_valid || f->snapshot->geometry_animated || geometry != s->impostor_geometry ||
-            lights != s->impostor_lights || s->impostors.size != pass_int(p, LR_IMPOSTOR)) {
-            if (!impostors_build(&s->impostors, r, f->scene, vec3_scale(vec3_add(lo, hi), 0.5f),
-                                 pass_int(p, LR_IMPOSTOR), false, err))
-                return false;
-            s->impostors_valid = true;
-            s->impostor_geometry = geometry;
-            s->impostor_lights = lights;
-        }
+        if (!impostors_current(&s->impostors, f->scene, pass_int(p, LR_IMPOSTOR), f->snapshot->geometry_animated) &&
+            !impostors_build(&s->impostors, r, f->scene, vec3_scale(vec3_add(lo, hi), 0.5f), pass_int(p, LR_IMPOSTOR),
+                             false, err))
+            return false;
         pass_stage_end(p, "impostors");
     }
 
@@ -192,22 +179,16 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_refraction/refract.frag", NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
-    layers_bind(&s->layers, prog);
+    struct layers_trace trace = {
+        .search = pass_int(p, LR_SEARCH),
+        .steps = pass_int(p, LR_STEPS),
+        .gradient = pass_choice(p, LR_NORMALS) == NORMALS_GRADIENT ? pass_int(p, LR_DELTA) : 0,
+        .max_interfaces = pass_int(p, LR_INTERFACES) > 0 ? pass_int(p, LR_INTERFACES) : 2 * layers + 2,
+        .layer_extent = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.01f,
+    };
+    layers_bind(&s->layers, prog, f->scene, &trace);
     gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
     gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, in_depth->texture.id);
-    vec3 slo, shi;
-    scene_bounds(f->scene, &slo, &shi);
-    int interfaces = pass_int(p, LR_INTERFACES) > 0 ? pass_int(p, LR_INTERFACES) : 2 * layers + 2;
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search"), pass_int(p, LR_SEARCH));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_steps"), pass_int(p, LR_STEPS));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_gradient"),
-                        pass_choice(p, LR_NORMALS) == NORMALS_GRADIENT ? pass_int(p, LR_DELTA) : 0);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_max_interfaces"), interfaces);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_layer_extent"), fmaxf(diameter(lo, hi), 1e-4f) * 1.01f);
-    /* the camera's depth range is the farthest a ray can usefully march */
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
-                        fmaxf(diameter(slo, shi), 1e-4f) * 1.5f);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
                         pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));

@@ -16,6 +16,7 @@
  *   atomic min/max over the layer, not a reduced MIP level. */
 #include "passes/layers.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -246,7 +247,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     return gl_check("depth layers", err);
 }
 
-void layers_bind(const struct layer_set *ls, const struct gl_program *prog)
+void layers_bind(const struct layer_set *ls, const struct gl_program *prog, const struct scene *scene,
+                 const struct layers_trace *trace)
 {
     gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
     gl.BindTextureUnit(LAYERS_UNIT_DEPTH, ls->depth.id);
@@ -258,4 +260,14 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *prog)
     gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_view"), 1, GL_FALSE, ls->inv_view.m);
     gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_proj"), 1, GL_FALSE, ls->inv_proj.m);
     gl.ProgramUniform2i(prog->id, gl_program_uniform(prog, "u_layer_size"), ls->width, ls->height);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search"), trace->search);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_steps"), trace->steps);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_gradient"), trace->gradient);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_max_interfaces"), trace->max_interfaces);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_layer_extent"), trace->layer_extent);
+    vec3 lo, hi;
+    scene_bounds(scene, &lo, &hi);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
+                        fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.5f);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
 }

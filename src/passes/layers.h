@@ -56,9 +56,20 @@ struct pass;
 bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
                   int width, int height, int voxels, int layers, bool exact_depth, struct pass *timed,
                   struct error *err);
-/* Binds the textures and buffers shaders/layers/trace.glsl reads, and its
- * uniforms on `program_id`. */
-void layers_bind(const struct layer_set *ls, const struct gl_program *program);
+/* The settings of shaders/layers/trace.glsl (and scene_trace.glsl). */
+struct layers_trace {
+    int search;          /* bisection steps per interface */
+    int steps;           /* linear steps before them */
+    int gradient;        /* 0: mesh normals; d > 0: eq. 3.2's depth gradients with delta d */
+    int max_interfaces;  /* the interface cap */
+    float layer_extent;  /* the longest a segment inside the layers can be */
+};
+
+/* Binds the textures and buffers the tracer reads, and sets its uniforms
+ * on `program`; rays leaving the layers are marched at most 1.5 times the
+ * scene's bounding diameter, in 64 steps. */
+void layers_bind(const struct layer_set *ls, const struct gl_program *program, const struct scene *scene,
+                 const struct layers_trace *trace);
 bool layers_is_refractor(const struct object *o);
 
 #endif

@@ -30,8 +30,6 @@
 
 struct refraction_state {
     struct impostor_set impostors;
-    bool impostors_valid;                 /* §4: a static scene reuses its impostors */
-    uint64_t impostor_geometry, impostor_lights;
     struct gl_framebuffer front_fb, back_fb, out_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
     int width, height;
@@ -202,20 +200,15 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
         vec3 lo, hi;
         vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
-        uint64_t geometry = scene_geometry_version(f->scene), lights = 0;
-        for (int i = 0; i < f->scene->light_count; i++)
-            lights = lights * 31u + f->scene->lights[i]->version;
-        if (!s->impostors_valid || f->snapshot->geometry_animated || geometry != s->impostor_geometry || lights != s->impostor_lights ||
-            s->impostors.size != pass_int(p, REFRACTION_IMPOSTOR) || pass_real(p, REFRACTION_RECURSION) > 0) {
+        /* recursion redraws the impostors' colours: made again every frame */
+        if (!impostors_current(&s->impostors, f->scene, pass_int(p, REFRACTION_IMPOSTOR), f->snapshot->geometry_animated) ||
+            pass_int(p, REFRACTION_RECURSION) > 0) {
             int levels = pass_int(p, REFRACTION_RECURSION);
             if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, err))
                 return false;
             for (int level = 0; level < levels; level++)
                 if (!impostors_recurse(&s->impostors, r, f->scene, err))
                     return false;
-            s->impostors_valid = true;
-            s->impostor_geometry = geometry;
-            s->impostor_lights = lights;
         }
     }
 

@@ -11,6 +11,7 @@
 #include <embree3/rtcore.h>
 
 #include "core/fileio.h"
+#include "core/hash.h"
 #include "scene/mesh_embree.h"
 
 /* Octahedral map of the sphere onto [0, 1]^2 (Praun & Hoppe 2003): even
@@ -175,26 +176,19 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
     }
 }
 
-/* FNV-1a over everything the table depends on. */
-static uint64_t fnv(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++)
-        h = (h ^ p[i]) * 1099511628211ULL;
-    return h;
-}
 
+/* Everything the table depends on. */
 static uint64_t table_hash(const struct mesh *m, const struct material *mat, int resolution,
                            enum transport_internal internal)
 {
-    uint64_t h = 14695981039346656037ULL;
-    h = fnv(h, m->positions, m->vertex_count * 3 * sizeof(float));
-    h = fnv(h, m->normals, m->vertex_count * 3 * sizeof(float));
-    h = fnv(h, m->indices, m->index_count * sizeof(uint32_t));
+    uint64_t h = HASH_FNV1A_BASIS;
+    h = hash_fnv1a(h, m->positions, m->vertex_count * 3 * sizeof(float));
+    h = hash_fnv1a(h, m->normals, m->vertex_count * 3 * sizeof(float));
+    h = hash_fnv1a(h, m->indices, m->index_count * sizeof(uint32_t));
     float values[5] = {mat->ior, mat->ideal ? 1.0f : 0.0f, mat->absorption.x, mat->absorption.y, mat->absorption.z};
-    h = fnv(h, values, sizeof values);
+    h = hash_fnv1a(h, values, sizeof values);
     int settings[3] = {resolution, (int)internal, TRANSPORT_FLOATS};
-    return fnv(h, settings, sizeof settings);
+    return hash_fnv1a(h, settings, sizeof settings);
 }
 
 /* The cache file for `hash`, creating its folders; false where there is
@@ -239,7 +233,7 @@ static bool cache_read(const char *path, uint64_t hash, size_t vertex_count, int
               h.vertex_count == vertex_count && h.resolution == resolution && h.floats == TRANSPORT_FLOATS &&
               fread(entries, sizeof(float), count, f) == count;
     fclose(f);
-    return ok && fnv(14695981039346656037ULL, entries, count * sizeof(float)) == h.checksum;
+    return ok && hash_fnv1a(HASH_FNV1A_BASIS, entries, count * sizeof(float)) == h.checksum;
 }
 
 static void cache_write(const char *path, uint64_t hash, size_t vertex_count, int resolution, const float *entries,
@@ -251,7 +245,7 @@ static void cache_write(const char *path, uint64_t hash, size_t vertex_count, in
     if (!f)
         return;
     struct cache_header h = {{'C', 'A', 'U', 'S', 'T', 'T', 'B', '1'}, hash, vertex_count, resolution, TRANSPORT_FLOATS,
-                             fnv(14695981039346656037ULL, entries, count * sizeof(float))};
+                             hash_fnv1a(HASH_FNV1A_BASIS, entries, count * sizeof(float))};
     bool ok = fwrite(&h, sizeof h, 1, f) == 1 && fwrite(entries, sizeof(float), count, f) == count;
     ok = fclose(f) == 0 && ok;
     if (!ok || rename(tmp, path) != 0)
