@@ -41,6 +41,8 @@ static void print_timings(const struct session *s)
                    e->last_triangles);
         for (int k = 0; e->last_need == PASS_RUN && k < e->pass->stages.count; k++)
             printf("  %-14s %-22s %10.3f\n", e->pass->stages.names[k], "", e->pass->stages.ms[k]);
+        if (e->last_need == PASS_RUN && e->pass->report[0])
+            printf("  %s\n", e->pass->report);
         total += e->last_ms;
     }
     printf("%-16s %-22s %10.3f\n", "total", "", total);

@@ -42,7 +42,7 @@ bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return error_set(err, "texture size %dx%d is out of range (1..16384)", width, height);
     gl.CreateTextures(target, 1, &tex->id);
-    if (target == GL_TEXTURE_2D_ARRAY)
+    if (target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_3D)
         gl.TextureStorage3D(tex->id, 1, format, width, height, layers > 0 ? layers : 1);
     else
         gl.TextureStorage2D(tex->id, 1, format, width, height);

@@ -93,4 +93,20 @@
 #define SURFACE_UNIT_DEPTH 1
 #define SURFACE_UNIT_POSITION 2
 
+/* The scene's participating medium (graph/medium_gpu.c, common/medium.glsl) */
+#define MEDIUM_UNIT_DENSITY 19
+
+/* beam_caustics */
+#define BEAMS_UNIT_DISTANCE 20              /* the distance impostor of the receivers (a cube map) */
+#define BEAMS_UNIT_SCENE_DEPTH 21           /* the camera's receivers: depth */
+#define BEAMS_UNIT_SCENE_NORMAL 22          /* ... and normal */
+#define BEAMS_SSBO_VERTICES 8               /* per lattice vertex: the traced edge rays */
+#define BEAMS_SSBO_CELLS 9                  /* the refinement's cell lists and counters */
+#define BEAMS_SSBO_BEAMS 10                 /* the beams: vertices, directions, area function, flux */
+#define BEAMS_SSBO_COUNTERS 11              /* counters, indirect dispatch and draw arguments */
+
+/* volume_light (the colour it attenuates at UNIT_IMAGE) */
+#define VOLUME_LIGHT_UNIT_DEPTH 13
+#define VOLUME_LIGHT_UNIT_ADD 23            /* 23..26: radiance images added (volume caustics) */
+
 #endif

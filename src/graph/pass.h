@@ -160,6 +160,7 @@ struct pass {
     bool (*script_run)(struct pass *p, struct pass_frame *f, struct error *err);
     void *script_state;        /* the bindings' (the lua_State) */
     struct pass_stages stages; /* the last frame's, empty for a pass that names none */
+    char report[256];          /* a line about the last frame (beam counts, fill rate), printed by --timings */
 };
 
 void pass_stage_begin(struct pass *p);

@@ -55,6 +55,9 @@ void renderer_destroy(struct renderer *r)
     gl_texture_destroy(&r->present_texture);
     gl_texture_destroy(&r->environment);
     r->environment_serial = 0;
+    gl_texture_destroy(&r->medium_density);
+    r->medium_uploaded = NULL;
+    r->medium_version = 0;
     gl_framebuffer_destroy(&r->present_fb);
     r->frame_ubo = r->empty_vao = 0;
     r->deform_queries[0] = r->deform_queries[1] = 0;

@@ -54,6 +54,9 @@ struct renderer {
     long draw_calls, draw_triangles; /* objects drawn by renderer_draw_objects, ever (passes take differences) */
     struct gl_texture environment; /* the cube map of the scene's environment ... */
     uint64_t environment_serial;   /* ... of this serial (0: none uploaded) */
+    struct gl_texture medium_density; /* the scene's medium's density grid (graph/medium_gpu.c) ... */
+    const struct medium *medium_uploaded; /* ... of this medium ... */
+    uint64_t medium_version;              /* ... at this version */
 };
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err);

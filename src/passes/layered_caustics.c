@@ -143,36 +143,19 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         return false;
 
     /* The light's view of the refractors' bounding sphere (as photon_caustics). */
-    vec3 oc = vec3_scale(vec3_add(lo, hi), 0.5f);
-    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
     const struct frame_light *fl = &f->snapshot->lights[slot];
-    bool ortho = fl->kind == LIGHT_DIRECTIONAL;
-    mat4 view, proj;
+    struct layers_light_view lv;
+    if (!layers_light_view(fl, lo, hi, &lv, "layered_caustics", err))
+        return false;
+    bool ortho = lv.ortho;
+    mat4 view = lv.view, proj = lv.proj;
+    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
     float texel_area = 0.0f, texel_tan = 0.0f;
-    vec3 up = vec3_make(0, 1, 0);
     if (ortho) {
-        vec3 d = vec3_normalize_or(fl->direction, vec3_make(0, -1, 0));
-        if (fabsf(d.y) > 0.99f)
-            up = vec3_make(0, 0, 1);
-        vec3 eye = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
-        view = mat4_look_at(eye, oc, up);
-        proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
         float side = 2.0f * orad / (float)buffer;
         texel_area = side * side;
     } else {
-        vec3 pos = fl->position;
-        vec3 to = vec3_sub(oc, pos);
-        float dist = vec3_length(to);
-        if (dist <= orad * 1.001f)
-            return error_set(err, "layered_caustics: the light is inside the refractors' bounding sphere "
-                                  "(move it out, or use a directional light)");
-        if (fabsf(to.y) > 0.99f * dist)
-            up = vec3_make(0, 0, 1);
-        float half = asinf(fminf(orad / dist, 1.0f));
-        float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.02f, 170.0f);
-        view = mat4_look_at(pos, oc, up);
-        proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.9f, dist + orad * 1.1f);
-        texel_tan = 2.0f * tanf(fov * 0.5f * (float)MATH_PI / 180.0f) / (float)buffer;
+        texel_tan = 2.0f * lv.half_extent / (float)buffer;
     }
     pass_stage_begin(p);
     if (!layers_build(&s->layers, r, f->scene, view, proj, buffer, buffer, voxels, pass_int(p, LC_LAYERS), true, p,

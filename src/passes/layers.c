@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "graph/bindings.h"
+#include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 
@@ -270,4 +271,37 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *prog, cons
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
                         fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.5f);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+}
+
+bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
+                       const char *pass_name, struct error *err)
+{
+    vec3 oc = vec3_scale(vec3_add(lo, hi), 0.5f);
+    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
+    vec3 up = vec3_make(0, 1, 0);
+    v->ortho = fl->kind == LIGHT_DIRECTIONAL;
+    if (v->ortho) {
+        vec3 d = vec3_normalize_or(fl->direction, vec3_make(0, -1, 0));
+        if (fabsf(d.y) > 0.99f)
+            up = vec3_make(0, 0, 1);
+        vec3 eye = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
+        v->view = mat4_look_at(eye, oc, up);
+        v->proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
+        v->half_extent = orad;
+        return true;
+    }
+    vec3 pos = fl->position;
+    vec3 to = vec3_sub(oc, pos);
+    float dist = vec3_length(to);
+    if (dist <= orad * 1.001f)
+        return error_set(err, "%s: the light is inside the refractors' bounding sphere "
+                              "(move it out, or use a directional light)", pass_name);
+    if (fabsf(to.y) > 0.99f * dist)
+        up = vec3_make(0, 0, 1);
+    float half = asinf(fminf(orad / dist, 1.0f));
+    float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.02f, 170.0f);
+    v->view = mat4_look_at(pos, oc, up);
+    v->proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.9f, dist + orad * 1.1f);
+    v->half_extent = tanf(fov * 0.5f * (float)MATH_PI / 180.0f);
+    return true;
 }

@@ -72,4 +72,19 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *program, c
                  const struct layers_trace *trace);
 bool layers_is_refractor(const struct object *o);
 
+/* A light's view of the refractors' bounding sphere (centre c, radius
+ * `radius`): orthographic along a directional light, else a perspective
+ * frustum from the light's position just wide enough. `half_extent` is
+ * the image's half side: in world units (orthographic) or as the tangent
+ * of the half angle (perspective). Shared by layered_caustics and
+ * beam_caustics. */
+struct layers_light_view {
+    mat4 view, proj;
+    bool ortho;
+    float half_extent;
+};
+struct frame_light;
+bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
+                       const char *pass_name, struct error *err);
+
 #endif

@@ -3,16 +3,19 @@
  * caustic irradiance; specular ones (glass, water, mirror) a single-
  * interface approximation (Fresnel-weighted environment reflection and
  * refraction) that the refraction passes replace. Also writes the depth,
- * normal and position buffers later passes read. */
+ * normal and position buffers later passes read. With a participating
+ * medium, direct light is attenuated on its way through it (the view path
+ * is volume_light's). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "graph/bindings.h"
 #include "graph/pass.h"
+#include "graph/medium_gpu.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 
-#define SHADE_MAX_SHADOWS 4  /* shadow map inputs (sampler units 1-4 and 5-8 in shade.frag) */
 #define SHADE_MAX_CAUSTICS 4 /* caustics inputs (sampler units 9-12) */
 
 struct shade_state {
@@ -42,16 +45,8 @@ static const struct pass_param_desc params[] = {
 
 static bool shade_declare(struct pass *p, struct error *err)
 {
-    const struct pass_value *shadows = &p->values[SHADE_SHADOW];
-    if (shadows->list_count > SHADE_MAX_SHADOWS)
-        return error_set(err, "bad argument 'shadow' to 'shade' (at most %d shadow maps, got %d)", SHADE_MAX_SHADOWS,
-                         shadows->list_count);
-    for (int i = 0; i < shadows->list_count; i++) {
-        char slot[32];
-        snprintf(slot, sizeof slot, "shadow%d", i);
-        if (!pass_declare_input(p, slot, shadows->list[i], err))
-            return false;
-    }
+    if (!shadow_inputs_declare(p, SHADE_SHADOW, err))
+        return false;
     /* background (an INPUT) is declared from the descriptor (pass_declare). */
     const struct pass_value *caustics = &p->values[SHADE_CAUSTICS];
     if (caustics->list_count > SHADE_MAX_CAUSTICS)
@@ -127,34 +122,9 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "shade/shade.vert", "shade/shade.frag", NULL, &prog, err))
         return false;
-    int nshadow = 0;
-    for (int i = 0; i < SHADE_MAX_SHADOWS; i++) {
-        char slot[32], name[64];
-        snprintf(slot, sizeof slot, "shadow%d", i);
-        struct graph_resource *sh = pass_frame_input(p, f, slot);
-        if (!sh)
-            continue;
-        bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
-        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_2D + i), cube ? r->dummy_depth.id : sh->texture.id);
-        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_CUBE + i), cube ? sh->texture.id : r->dummy_cube.id);
-        int entries = sh->light_index >= 0 ? 1 : 0;
-        for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
-            if (r->frame.light_first[li] == sh->light_index)
-                entries = r->frame.light_entries[li];
-        snprintf(name, sizeof name, "u_shadow_first[%d]", nshadow);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), sh->light_index);
-        snprintf(name, sizeof name, "u_shadow_count[%d]", nshadow);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), entries);
-        snprintf(name, sizeof name, "u_shadow_cube[%d]", nshadow);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), cube ? 1 : 0);
-        snprintf(name, sizeof name, "u_shadow_matrix[%d]", nshadow);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, sh->matrix.m);
-        snprintf(name, sizeof name, "u_shadow_params[%d]", nshadow);
-        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), sh->range, sh->bias,
-                            1.0f / (float)sh->texture.width, 0.0f);
-        nshadow++;
-    }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);
+    shadow_inputs_bind(p, f, prog);
+    if (!medium_gpu_bind(r, f->scene, prog, err))
+        return false;
     int ncaustics = 0;
     for (int i = 0; i < SHADE_MAX_CAUSTICS; i++) {
         char slot[32];

@@ -103,7 +103,12 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     out->kind = (int)l->kind;
 
     vec3 lo, hi;
-    scene_bounds(f->scene, &lo, &hi);
+    bool any = scene_bounds(f->scene, &lo, &hi);
+    if (f->scene->medium) {
+        /* the medium's box too: volume_light shadows the light in all of it */
+        lo = any ? vec3_min(lo, f->scene->medium->box_min) : f->scene->medium->box_min;
+        hi = any ? vec3_max(hi, f->scene->medium->box_max) : f->scene->medium->box_max;
+    }
     vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
     float radius = 0.5f * vec3_length(vec3_sub(hi, lo)) + 1e-3f;
     float bias = (float)pass_real(p, SHADOW_BIAS);

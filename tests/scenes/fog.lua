@@ -1,6 +1,9 @@
 -- A box of fog under a directional light, seen from the side: --set
 -- density=homogeneous|linear, g=, ball=true (a glass ball above the fog
--- focusing a volume caustic into it), ior=, hide=true.
+-- focusing a volume caustic into it), ior=, hide=true, technique=plain|beams
+-- (the GPU graph: plain shading, or beam_caustics and volume_light),
+-- ortho=true (an orthographic camera 2.4 wide: the image's sum is the
+-- power scattered towards it), grid=, refine=, volumes=tight|prism, output=color|inscatter|irradiance.
 local c = require "caustica"
 local mode = c.param("density", "homogeneous")
 local g = c.param("g", 0.0)
@@ -10,10 +13,11 @@ local size = c.param("size", 33)
 
 local scene = c.scene {
   -- looking along +x through the fog box [-1,1] x [0,1] x [-1,1] at height 0.5
-  camera = c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, fov = 30 },
+  camera = c.param("ortho", false) and c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, ortho = { width = 2.4 } }
+           or c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, fov = 30 },
   background = {0, 0, 0},
 }
-scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
 local density = 1.0
 if mode == "linear" then
   density = function(x, y, z) return 0.5 + 1.5 * y end   -- trilinear grids hold a linear function exactly
@@ -25,7 +29,21 @@ if ball then
                                       material = c.material.glass { ior = ior } })
   sphere.visible = not c.param("hide", false)
 end
+local technique = c.param("technique", "plain")
 local gr = c.graph()
-gr:add("shade", c.pass.shade {})
-gr:output("shade.color")
+if technique == "beams" then
+  local light = sun
+  gr:add("shadow", c.pass.shadow_map { light = light, size = 512 })
+  gr:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 3),
+                                         volumes = c.param("volumes", "tight"), max_focus = c.param("max_focus", 1000), reflection = c.param("reflection", true) })
+  gr:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance" })
+  gr:add("fog", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
+  local out = c.param("output", "color")
+  gr:output(out == "color" and "fog.color" or "beams." .. out)
+elseif technique == "plain" then
+  gr:add("shade", c.pass.shade {})
+  gr:output("shade.color")
+else
+  error("technique: plain or beams expected, got " .. tostring(technique))
+end
 return { scene = scene, graph = gr, size = {size, size} }

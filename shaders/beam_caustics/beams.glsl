@@ -1,0 +1,65 @@
+// Liktor & Dachsbacher 2011: the data the stages of beam_caustics share
+// (src/passes/beam_caustics.c mirrors the layouts and counter offsets).
+#include "common/bindings.glsl"
+
+// One vertex of the finest lattice of the light's projected grid (§4.1):
+// the edge rays of every beam that has it as a corner, traced once.
+struct BeamVertex {
+    vec4 exit_pos;   // transmitted ray: where it leaves the last interface (world), w = flags
+    vec4 exit_dir;   // its direction (unit), w = its extrusion length (distance to the receivers)
+    vec4 exit_weight;// its flux weight (Fresnel, absorption, spot, medium before the glass), w = path signature
+    vec4 refl_pos;   // reflected ray: the first interface's point, w = the first layer's eye depth
+    vec4 refl_dir;   // its direction, w = extrusion length
+    vec4 refl_weight;// Fresnel reflectance x the rest, w = unused
+    vec4 normal;     // the first interface's normal (world), w = unused
+    vec4 light_plane;// xy: the vertex on the light's image plane (world units, or tangents for a point/spot light)
+};
+
+const uint VERTEX_TRANSMITTED = 1u, VERTEX_REFLECTED = 2u, VERTEX_SURFACE = 4u;
+
+layout(std430, binding = BEAMS_SSBO_VERTICES) buffer BeamVertices { BeamVertex beam_vertices[]; };
+
+// A beam (§4.3): base triangle v[i] (world), edge directions d[i] scaled so
+// that dot(d, n) = 1 (Ernst et al. 2005's beam space: y along n), the area
+// function A(y) = 0.5 |c0 + c1 y + c2 y^2| of its cross-section parallel
+// to the base, and its bounding volume's top corners at height n.w.
+struct Beam {
+    vec4 v[3];       // w: the edge's end height (extrusion) in beam space
+    vec4 d[3];       // w: unused
+    vec4 weight[3];  // per edge: flux per unit light-plane area (rgb)
+    vec4 n;          // unit normal of the base, w = the bounding volume's top height
+    vec4 area;       // c0, c1, c2, w = the floor |A| is clamped to (a focus stays finite)
+    vec4 info;       // x = light-plane area x intensity scale, y = 1 prism / 0 tight, z = diagonal bits, w = 1 reflected
+    vec4 top[3];     // the bounding volume's top corners (world)
+};
+
+layout(std430, binding = BEAMS_SSBO_BEAMS) buffer Beams { Beam beams[]; };
+
+// Counters and indirect arguments (uint offsets).
+const int COUNT_DISPATCH = 0;   // x, y, z: the current cell list's dispatch
+const int COUNT_IN = 3;         // cells in the current list
+const int COUNT_NEXT = 4;       // cells appended to the next list
+const int COUNT_KEPT = 5;       // cells kept as beams' bases
+const int COUNT_BEAMS = 6;      // beams built
+const int COUNT_FRAGMENTS = 7;  // fragments the bounding volumes rasterized
+const int COUNT_DRAW = 8;       // count, instances, first, base instance
+const int COUNT_BUILD = 12;     // x, y, z: the beam builder's dispatch
+const int COUNT_OVERFLOW = 15;  // cells or beams past capacity (dropped)
+const int COUNT_PRISMS = 16;    // beams that fell back to the prism
+const int COUNT_SIZE = 20;
+layout(std430, binding = BEAMS_SSBO_COUNTERS) buffer BeamCounters { uint counters[]; };
+
+// Cells of the refinement: level (bits 28-31), x (14 bits), y (14 bits).
+layout(std430, binding = BEAMS_SSBO_CELLS) buffer BeamCells { uint cells[]; };
+uint cell_pack(int level, int x, int y) { return (uint(level) << 28) | (uint(x) << 14) | uint(y); }
+void cell_unpack(uint c, out int level, out int x, out int y)
+{
+    level = int(c >> 28);
+    x = int((c >> 14) & 0x3fffu);
+    y = int(c & 0x3fffu);
+}
+
+uniform int u_lattice;  // M: cells of the finest lattice per side (grid x 2^refine)
+uniform int u_refine;   // refinement steps
+
+int vertex_index(int i, int j) { return j * (u_lattice + 1) + i; }

@@ -1,0 +1,255 @@
+#version 450 core
+// Liktor & Dachsbacher 2011 §4.3: the beams of the kept cells. Each cell is
+// two base triangles (on the finest level, along the diagonal that keeps
+// more of them whole at a silhouette); each triangle whose three corners
+// carry the same kind of ray makes a transmitted beam and, with
+// u_reflection, a reflected one. Per beam: Ernst et al. 2005's beam space
+// (y along the base's normal, edge directions scaled to unit height), the
+// three coefficients of its area function A(y), and its bounding volume:
+// the paper's six triangles, one per edge of the base and the top with a
+// vertex of the opposite triangle (Fig. 5 right), or, where a side has
+// more than one candidate (near planar) or the two triangles of a side do
+// not meet along one diagonal, Ernst's bounding prism of touching planes.
+#include "beam_caustics/beams.glsl"
+layout(local_size_x = 64) in;
+uniform int u_kept_offset, u_beam_capacity, u_reflection;
+uniform int u_volumes;     // 0: tight (falling back to the prism), 1: the prism always
+uniform float u_cutoff;    // a diverging beam ends where its flux density is below this fraction of its base's
+uniform float u_max_focus; // the bound on focusing: |A| >= A_max / u_max_focus
+
+struct Ray {
+    vec3 o, d;
+    float len;
+    vec3 w;
+    uint flags;
+    float signature;
+};
+
+Ray vertex_ray(int i, int j, bool reflected)
+{
+    BeamVertex bv = beam_vertices[vertex_index(i, j)];
+    Ray r;
+    r.flags = uint(bv.exit_pos.w + 0.5);
+    if (reflected) {
+        r.o = bv.refl_pos.xyz;
+        r.d = bv.refl_dir.xyz;
+        r.len = bv.refl_dir.w;
+        r.w = bv.refl_weight.rgb;
+        r.signature = -1.0;
+    } else {
+        r.o = bv.exit_pos.xyz;
+        r.d = bv.exit_dir.xyz;
+        r.len = bv.exit_dir.w;
+        r.w = bv.exit_weight.rgb;
+        r.signature = bv.exit_weight.w;
+    }
+    return r;
+}
+
+bool ray_ok(Ray r, bool reflected)
+{
+    return (r.flags & (reflected ? VERTEX_REFLECTED : VERTEX_TRANSMITTED)) != 0u;
+}
+
+vec2 lattice_plane(ivec2 q) { return beam_vertices[vertex_index(q.x, q.y)].light_plane.xy; }
+
+// The plane through a, b, c with its normal turned away from `inside`.
+vec4 plane_away(vec3 a, vec3 b, vec3 c, vec3 inside)
+{
+    vec3 m = cross(b - a, c - a);
+    float len = length(m);
+    if (len < 1e-30)
+        return vec4(0.0);
+    m /= len;
+    if (dot(m, inside - a) > 0.0)
+        m = -m;
+    return vec4(m, -dot(m, a));
+}
+
+// How far the farthest of the six points lies outside plane pl (<= tol: it supports the beam).
+float violation(vec4 pl, vec3 pts[6])
+{
+    if (dot(pl.xyz, pl.xyz) == 0.0)
+        return 1e30;
+    float worst = -1e30;
+    for (int k = 0; k < 6; k++)
+        worst = max(worst, dot(pl.xyz, pts[k]) + pl.w);
+    return worst;
+}
+
+bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bool was_prism)
+{
+    Ray r[3] = Ray[3](vertex_ray(qa.x, qa.y, reflected), vertex_ray(qb.x, qb.y, reflected),
+                      vertex_ray(qc.x, qc.y, reflected));
+    // Beam space (Ernst et al. 2005) needs the base in the plane y = 0. The
+    // exit triangle itself can be steep to the rays (exits near a
+    // silhouette), which would tilt the scan plane of §5.1 along the beam;
+    // so the base is moved along the edge rays onto the plane across their
+    // mean direction, through the rearmost exit (the beam then starts a
+    // little inside the glass, where nothing scatters and nothing receives).
+    vec3 m = r[0].d + r[1].d + r[2].d;
+    if (dot(m, m) < 1e-12)
+        return false;
+    vec3 n = normalize(m);
+    float plane = min(min(dot(r[0].o, n), dot(r[1].o, n)), dot(r[2].o, n));
+    vec3 v[3], d[3];
+    float h[3], top = 0.0;
+    for (int i = 0; i < 3; i++) {
+        float dn = dot(r[i].d, n);
+        if (dn < 0.05)
+            return false; // an edge ray nearly across the beam's mean direction: not a beam to speak of
+        float back = (dot(r[i].o, n) - plane) / dn; // how far back along the ray the base plane is
+        v[i] = r[i].o - r[i].d * back;
+        d[i] = r[i].d / dn;
+        h[i] = max((r[i].len + back) * dn, 0.0);
+        top = max(top, h[i]);
+    }
+    float scale = max(max(distance(v[0], v[1]), distance(v[1], v[2])), distance(v[2], v[0]));
+    // the area function A(y) = 0.5 |c0 + c1 y + c2 y^2| (Ernst et al. 2005)
+    vec3 e1 = v[1] - v[0], e2 = v[2] - v[0], f1 = d[1] - d[0], f2 = d[2] - d[0];
+    float c0 = dot(cross(e1, e2), n), c1 = dot(cross(e1, f2) + cross(f1, e2), n), c2 = dot(cross(f1, f2), n);
+    float a0 = 0.5 * abs(c0);
+    // energy cut-off (§4.3): a beam that only diverges ends where its density falls below u_cutoff
+    if (u_cutoff > 0.0 && c0 * c1 >= 0.0 && c0 * c2 >= 0.0 && a0 > 0.0) {
+        float limit = a0 / u_cutoff;
+        float at_top = 0.5 * abs(c0 + c1 * top + c2 * top * top);
+        if (at_top > limit) {
+            float lo = 0.0, hi = top;
+            for (int it = 0; it < 16; it++) {
+                float m = 0.5 * (lo + hi);
+                if (0.5 * abs(c0 + c1 * m + c2 * m * m) > limit)
+                    hi = m;
+                else
+                    lo = m;
+            }
+            top = hi;
+            for (int i = 0; i < 3; i++)
+                h[i] = min(h[i], top);
+        }
+    }
+    if (!(top > 1e-6 * max(scale, 1e-6)))
+        return false;
+    float a_top = 0.5 * abs(c0 + c1 * top + c2 * top * top);
+    float a_floor = max(max(a0, a_top), 1e-30) / max(u_max_focus, 1.0);
+    // the flux: the light-plane area of the triangle (intensity and weights per edge)
+    vec2 l0 = lattice_plane(qa), l1 = lattice_plane(qb), l2 = lattice_plane(qc);
+    vec2 el1 = l1 - l0, el2 = l2 - l0;
+    float light_area = 0.5 * abs(el1.x * el2.y - el1.y * el2.x);
+
+    // the bounding volume
+    vec3 t[3];
+    for (int i = 0; i < 3; i++)
+        t[i] = v[i] + d[i] * top;
+    vec3 pts[6] = vec3[6](v[0], v[1], v[2], t[0], t[1], t[2]);
+    float tol = 1e-4 * max(scale, top);
+    bool prism = u_volumes == 1;
+    uint diagonals = 0u;
+    vec4 side[3]; // the touching plane of each base edge (for the prism)
+    for (int e = 0; e < 3; e++) {
+        int a = e, b = (e + 1) % 3, c = (e + 2) % 3;
+        // base edge (a, b) with a top vertex; top edge (a', b') with a base vertex
+        int base_pick = -1, base_count = 0, top_pick = -1, top_count = 0;
+        float best = 1e30;
+        for (int k = 0; k < 3; k++) {
+            vec4 pl = plane_away(v[a], v[b], t[k], v[c]);
+            float viol = violation(pl, pts);
+            if (viol < best) {
+                best = viol;
+                side[e] = pl;
+            }
+            if (viol <= tol) {
+                base_count++;
+                base_pick = k;
+            }
+            vec4 pt = plane_away(t[a], t[b], v[k], t[c]);
+            if (violation(pt, pts) <= tol) {
+                top_count++;
+                top_pick = k;
+            }
+        }
+        // the side's two triangles must share a diagonal: (a, b, b') + (a', b', a) or (a, b, a') + (a', b', b)
+        if (base_count != 1 || top_count != 1)
+            prism = true;
+        else if (base_pick == b && top_pick == a)
+            diagonals |= 0u << e;
+        else if (base_pick == a && top_pick == b)
+            diagonals |= 1u << e;
+        else
+            prism = true;
+    }
+    if (prism) {
+        // Ernst et al.'s prism: the three touching planes cut by the top plane y = top
+        for (int i = 0; i < 3; i++) {
+            vec3 u = cross(side[(i + 2) % 3].xyz, side[i].xyz); // the planes of the edges meeting at v[i]
+            float un = dot(u, n);
+            t[i] = abs(un) > 1e-8 ? v[i] + u * (top / un) : v[i] + d[i] * top;
+        }
+    }
+    was_prism = prism;
+    for (int i = 0; i < 3; i++) {
+        bm.v[i] = vec4(v[i], h[i]);
+        bm.d[i] = vec4(d[i], 0.0);
+        bm.weight[i] = vec4(r[i].w, 0.0);
+        bm.top[i] = vec4(t[i], 0.0);
+    }
+    bm.n = vec4(n, top);
+    bm.area = vec4(c0, c1, c2, a_floor);
+    bm.info = vec4(light_area, prism ? 1.0 : 0.0, float(diagonals), reflected ? 1.0 : 0.0);
+    return true;
+}
+
+bool whole(ivec2 a, ivec2 b, ivec2 c, bool reflected)
+{
+    Ray ra = vertex_ray(a.x, a.y, reflected), rb = vertex_ray(b.x, b.y, reflected), rc = vertex_ray(c.x, c.y, reflected);
+    return ray_ok(ra, reflected) && ray_ok(rb, reflected) && ray_ok(rc, reflected) &&
+           ra.signature == rb.signature && rb.signature == rc.signature;
+}
+
+void main()
+{
+    uint k = gl_GlobalInvocationID.x;
+    // up to four beams a cell: two triangles, transmitted and reflected
+    Beam made[4];
+    int count = 0, prisms = 0;
+    if (k < counters[COUNT_KEPT]) {
+        int level, x, y;
+        cell_unpack(cells[u_kept_offset + int(k)], level, x, y);
+        int step = 1 << (u_refine - level);
+        ivec2 q[4] = ivec2[4](ivec2(x, y) * step, ivec2(x + 1, y) * step, ivec2(x + 1, y + 1) * step,
+                              ivec2(x, y + 1) * step);
+        for (int kind = 0; kind < 2; kind++) {
+            bool reflected = kind == 1;
+            if (reflected && u_reflection == 0)
+                break;
+            // the diagonal that keeps more triangles whole
+            bool t0 = whole(q[0], q[1], q[2], reflected), t1 = whole(q[0], q[2], q[3], reflected);
+            bool t2 = whole(q[0], q[1], q[3], reflected), t3 = whole(q[1], q[2], q[3], reflected);
+            ivec2 tri[6];
+            int ntri = 0;
+            if (int(t0) + int(t1) >= int(t2) + int(t3)) {
+                if (t0) { tri[0] = q[0]; tri[1] = q[1]; tri[2] = q[2]; ntri = 1; }
+                if (t1) { tri[3 * ntri] = q[0]; tri[3 * ntri + 1] = q[2]; tri[3 * ntri + 2] = q[3]; ntri++; }
+            } else {
+                if (t2) { tri[0] = q[0]; tri[1] = q[1]; tri[2] = q[3]; ntri = 1; }
+                if (t3) { tri[3 * ntri] = q[1]; tri[3 * ntri + 1] = q[2]; tri[3 * ntri + 2] = q[3]; ntri++; }
+            }
+            for (int i = 0; i < ntri; i++) {
+                bool prism;
+                if (make_beam(tri[3 * i], tri[3 * i + 1], tri[3 * i + 2], reflected, made[count], prism)) {
+                    prisms += prism ? 1 : 0;
+                    count++;
+                }
+            }
+        }
+    }
+    // the appends in uniform control flow: every invocation adds (perhaps 0)
+    uint at = atomicAdd(counters[COUNT_BEAMS], uint(count));
+    atomicAdd(counters[COUNT_PRISMS], uint(prisms));
+    for (int i = 0; i < count; i++) {
+        if (at + uint(i) >= uint(u_beam_capacity)) {
+            atomicAdd(counters[COUNT_OVERFLOW], 1u);
+            break;
+        }
+        beams[at + uint(i)] = made[i];
+    }
+}

@@ -1,0 +1,42 @@
+// Approximate ray tracing against the receivers with a distance impostor
+// (Szirmay-Kalos et al. 2005, the exits of Liktor & Dachsbacher 2011 §4.3
+// and §6): a cube map around the refractors' centre holding, per
+// direction, the distance to the nearest diffuse surface. A ray is
+// marched until it passes the stored distance, then bisected.
+layout(binding = BEAMS_UNIT_DISTANCE) uniform samplerCube u_distance;
+uniform vec3 u_distance_center;
+uniform float u_distance_range;  // distances are stored over this range; the longest a ray is traced
+const int DISTANCE_STEPS = 48;
+
+// Is p beyond the receivers in its direction from the centre?
+bool distance_beyond(vec3 p)
+{
+    vec3 v = p - u_distance_center;
+    float stored = texture(u_distance, v).r * u_distance_range;
+    return dot(v, v) >= stored * stored;
+}
+
+// The distance along o + t d (d unit) to the first receiver, or the range
+// when the ray meets none.
+float distance_trace(vec3 o, vec3 d)
+{
+    float step = u_distance_range / float(DISTANCE_STEPS), lo = 0.0;
+    if (distance_beyond(o))
+        return 0.0;
+    for (int j = 1; j <= DISTANCE_STEPS; j++) {
+        float t = step * float(j);
+        if (distance_beyond(o + d * t)) {
+            float hi = t;
+            for (int i = 0; i < 8; i++) {
+                float m = 0.5 * (lo + hi);
+                if (distance_beyond(o + d * m))
+                    hi = m;
+                else
+                    lo = m;
+            }
+            return hi;
+        }
+        lo = t;
+    }
+    return u_distance_range;
+}

@@ -1,0 +1,90 @@
+#version 450 core
+// Liktor & Dachsbacher 2011 §4.1 and §6: the edge rays of the projected
+// grid. Each vertex of the finest lattice samples the light's view of the
+// specular surfaces (the light-space G-buffer: here the refractors' depth
+// layers, passes/layers.c, so the "two-sided refraction" of §6 follows the
+// ray through every interface, with total internal reflection, instead of
+// a distance impostor of the back faces), and keeps the transmitted ray
+// where it leaves the last interface and the ray reflected off the first.
+// Each ray's extrusion length is found by approximate ray tracing against
+// the receivers (§4.3: a distance impostor around the refractors'
+// centre, Szirmay-Kalos et al. 2005).
+#include "common/frame.glsl"
+#include "common/medium.glsl"
+#include "layers/trace.glsl"
+#include "beam_caustics/beams.glsl"
+#include "beam_caustics/distance.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+uniform int u_light;
+uniform int u_light_ortho;
+
+void main()
+{
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThan(ij, ivec2(u_lattice))))
+        return;
+    int idx = vertex_index(ij.x, ij.y);
+    BeamVertex bv;
+    bv.exit_pos = vec4(0.0);
+    bv.exit_dir = vec4(0.0);
+    bv.exit_weight = vec4(0.0);
+    bv.refl_pos = vec4(0.0);
+    bv.refl_dir = vec4(0.0);
+    bv.refl_weight = vec4(0.0);
+    bv.normal = vec4(0.0);
+    // the lattice spans the light's image, vertex i on texel round(i (B - 1) / M)
+    ivec2 p = ivec2(floor(vec2(ij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
+    vec3 P0 = layer_point(vec2(p) + 0.5, layer_count(p) > 0 ? layer_depth(p, 0) : 1.0);
+    vec3 d0 = u_light_ortho == 1 ? vec3(0.0, 0.0, -1.0) : normalize(P0);
+    bv.light_plane = u_light_ortho == 1 ? vec4(P0.xy, 0.0, 0.0) : vec4(d0.xy / max(-d0.z, 1e-6), 0.0, 0.0);
+    uint flags = 0u;
+    if (layer_count(p) > 0) {
+        flags |= VERTEX_SURFACE;
+        mat3 to_world = mat3(u_layer_inv_view);
+        GpuLight light = u_lights[u_light];
+        // the light arriving at the first interface: spot cone and the medium on the way
+        vec3 entry_world = (u_layer_inv_view * vec4(P0, 1.0)).xyz;
+        vec3 w = vec3(1.0);
+        vec3 to_light;
+        float dist;
+        if (u_light_ortho == 1) {
+            to_light = -normalize(light.direction.xyz);
+            dist = 1e30;
+        } else {
+            vec3 dl = light.position.xyz - entry_world;
+            dist = length(dl);
+            to_light = dl / max(dist, 1e-20);
+            if (int(light.position.w + 0.5) == 2)
+                w *= smoothstep(light.direction.w, max(light.intensity.w, light.direction.w + 1e-4),
+                                dot(-to_light, normalize(light.direction.xyz)));
+            // a point light's texels off the axis see less of the plane per solid angle: the
+            // light-plane area (tangents) times cos^3 is the solid angle
+            float c = max(-d0.z, 1e-6);
+            w *= c * c * c;
+        }
+        w *= medium_transmittance_ray(entry_world, to_light, dist);
+        LayerPath path = layer_trace(p, d0);
+        vec3 n0 = normalize(to_world * path.normal0);
+        bv.normal = vec4(n0, 0.0);
+        vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
+        bv.refl_pos = vec4(entry_world, layer_depth(p, 0));
+        if (path.fresnel0 > 0.0) {
+            flags |= VERTEX_REFLECTED;
+            float len = distance_trace(entry_world + reflected * (1e-4 * u_layer_extent), reflected);
+            bv.refl_dir = vec4(reflected, len);
+            bv.refl_weight = vec4(w * path.fresnel0, 0.0);
+        }
+        if (path.fresnel0 < 1.0 && path.entered && !path.capped) {
+            flags |= VERTEX_TRANSMITTED;
+            vec3 o = (u_layer_inv_view * vec4(path.origin, 1.0)).xyz;
+            vec3 d = normalize(to_world * path.dir);
+            bv.exit_pos = vec4(o, 0.0);
+            bv.exit_dir = vec4(d, distance_trace(o, d));
+            // the path's signature: rays through different interfaces do not share a beam
+            bv.exit_weight = vec4(w * (1.0 - path.fresnel0) * path.throughput,
+                                  float(path.interfaces + 64 * path.tir));
+        }
+    }
+    bv.exit_pos.w = float(flags);
+    beam_vertices[idx] = bv;
+}

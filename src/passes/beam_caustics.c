@@ -1,0 +1,537 @@
+/* beam_caustics: Liktor & Dachsbacher, "Real-Time Volume Caustics with
+ * Adaptive Beam Tracing" (I3D 2011). Light focused by glass or water into
+ * a participating medium (volume caustics) and onto surfaces (surface
+ * caustics), from beams of light rather than photons:
+ *   1. the light's view of the specular surfaces (§4.1: here the depth
+ *      layers of passes/layers.c, so each edge ray is traced through every
+ *      interface, with total internal reflection: §6's two-sided
+ *      refraction and more);
+ *   2. the edge rays of the finest lattice of a projected grid, traced
+ *      once (shaders/beam_caustics/trace.comp), with their extrusion
+ *      lengths against a distance impostor of the receivers (§4.3, §6);
+ *   3. the hierarchical projected grid (§4.2): `grid` x `grid` cells
+ *      refined `refine` times by the split oracle in compute shaders with
+ *      an append buffer and indirect dispatches (refine.comp);
+ *   4. the beams and their bounding volumes (§4.3, build.comp): beam
+ *      space, the area function, six-triangle tight volumes or prisms;
+ *   5. the volumes rasterized (§5, volume.vert/frag): inscattered radiance
+ *      (`inscatter`, for volume_light's `add`) and surface caustics
+ *      (`irradiance`, low-pass filtered, for shade's `caustics`).
+ * Nothing is precomputed; the light, the refractors and the medium may move.
+ * `--timings` prints the stages and a line with the beams, the prisms and
+ * the fragments the volumes rasterized (the paper's fill rate, §4.3). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl/gl_buffer.h"
+#include "graph/bindings.h"
+#include "graph/frame.h"
+#include "graph/medium_gpu.h"
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/layers.h"
+
+#define BEAMS_MAX_LATTICE 256     /* grid x 2^refine: the finest lattice's cells per side */
+#define BEAMS_VERTEX_BYTES 128    /* struct BeamVertex in shaders/beam_caustics/beams.glsl */
+#define BEAMS_BEAM_BYTES 240      /* struct Beam: 15 vec4 */
+#define BEAMS_DISTANCE_SIZE 256   /* the distance impostor's faces */
+/* Counter offsets of beams.glsl (uint index). */
+enum {
+    COUNT_DISPATCH = 0, COUNT_IN = 3, COUNT_NEXT = 4, COUNT_KEPT = 5, COUNT_BEAMS = 6, COUNT_FRAGMENTS = 7,
+    COUNT_DRAW = 8, COUNT_BUILD = 12, COUNT_OVERFLOW = 15, COUNT_PRISMS = 16, COUNT_SIZE = 20
+};
+
+struct beam_caustics_state {
+    struct layer_set layers;
+    GLuint vertices, cells, beams, counters;
+    int lattice, grid, refine, reflection; /* what the buffers were made for */
+    int cell_capacity, beam_capacity;
+    struct gl_texture distance, distance_depth; /* the receivers' distance impostor */
+    struct gl_texture receiver_normal, receiver_depth, irradiance_raw, irradiance_half;
+    struct gl_framebuffer receivers_fb, volumes_fb, blur_fb, distance_fb;
+    int width, height;
+};
+
+enum beam_caustics_param {
+    BC_LIGHT,
+    BC_GRID,
+    BC_REFINE,
+    BC_BUFFER,
+    BC_LAYERS,
+    BC_VOXELS,
+    BC_REFLECTION,
+    BC_VOLUMES,
+    BC_FOCUS,
+    BC_PIXELS,
+    BC_CUTOFF,
+    BC_MAX_FOCUS,
+    BC_SAMPLES,
+    BC_SURFACE,
+    BC_BLUR,
+};
+
+static const struct pass_param_desc params[] = {
+    [BC_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
+     .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
+    [BC_GRID] = {.name = "grid", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = BEAMS_MAX_LATTICE,
+     .help = "cells per side of the coarse projected grid in the light's view (§4.1)"},
+    [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 8,
+     .help = "adaptive refinement steps (§4.2); grid x 2^refine is at most 256"},
+    [BC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "the light's view of the specular surfaces, buffer x buffer texels (the G-buffer of §4.1)"},
+    [BC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
+     .help = "depth layers per texel of the light's view (interfaces an edge ray can cross)"},
+    [BC_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128,
+     .max = LAYERS_MAX_VOXELS, .help = "slices per texel of the light's view, a multiple of 128"},
+    [BC_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "beams reflected off the first interface too (§6)"},
+    [BC_VOLUMES] = {.name = "volumes", .type = PASS_PARAM_ENUM, .default_string = "tight", .choices = "tight|prism",
+     .help = "bounding volumes: the paper's six triangles (falling back to the prism where a side is ambiguous) "
+             "or Ernst et al.'s prism always (§4.3, Figs. 5-6)"},
+    [BC_FOCUS] = {.name = "focus", .type = PASS_PARAM_NUMBER, .default_number = 0.25, .min = 0, .max = 1,
+     .help = "split a beam whose cross-section shrinks below this fraction of its base (convergent first, §4.2)"},
+    [BC_PIXELS] = {.name = "pixels", .type = PASS_PARAM_NUMBER, .default_number = 24, .min = 1, .max = 1e6,
+     .help = "split a beam wider than this many pixels where its central ray passes nearest the camera (§4.2)"},
+    [BC_CUTOFF] = {.name = "cutoff", .type = PASS_PARAM_NUMBER, .default_number = 0.01, .min = 0, .max = 1,
+     .help = "a diverging beam ends where its flux density falls below this fraction of its base's (§4.3; 0: "
+             "at the receivers)"},
+    [BC_MAX_FOCUS] = {.name = "max_focus", .type = PASS_PARAM_NUMBER, .default_number = 1000, .min = 1, .max = 1e9,
+     .help = "the bound on a focus: a beam's flux density is at most this many times its density at its "
+             "wider end (A(y) -> 0 stays finite)"},
+    [BC_SAMPLES] = {.name = "samples", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 64,
+     .help = "samples along a view ray's interval in a beam (0: the paper's one midpoint in a homogeneous medium, "
+             "4 in a density grid)"},
+    [BC_SURFACE] = {.name = "surface", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "surface caustics from the same beams (§5.3)"},
+    [BC_BLUR] = {.name = "blur", .type = PASS_PARAM_NUMBER, .default_number = 1.5, .min = 0, .max = 32,
+     .help = "the surface caustics' low-pass filter: a Gaussian of this many pixels (0: none)"},
+};
+
+static bool beam_caustics_declare(struct pass *p, struct error *err)
+{
+    int lattice = pass_int(p, BC_GRID) << pass_int(p, BC_REFINE);
+    if (lattice > BEAMS_MAX_LATTICE)
+        return error_set(err, "bad argument 'refine' to 'beam_caustics' (grid x 2^refine = %d is more than %d: "
+                              "use fewer refinement steps or a coarser grid)", lattice, BEAMS_MAX_LATTICE);
+    if (pass_int(p, BC_VOXELS) % 128 != 0)
+        return error_set(err, "bad argument 'voxels' to 'beam_caustics' (a multiple of 128 expected, got %d)",
+                         pass_int(p, BC_VOXELS));
+    return pass_declare_output(p, "inscatter", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
+           pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
+}
+
+static bool beam_caustics_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct beam_caustics_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    p->state = s;
+    layers_init(&s->layers);
+    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->volumes_fb, err) &&
+           gl_framebuffer_create(&s->blur_fb, err) && gl_framebuffer_create(&s->distance_fb, err) &&
+           gl_texture_create(&s->distance, GL_TEXTURE_CUBE_MAP, GL_R32F, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE, 6,
+                             err) &&
+           gl_texture_create(&s->distance_depth, GL_TEXTURE_CUBE_MAP, GL_DEPTH_COMPONENT32F, BEAMS_DISTANCE_SIZE,
+                             BEAMS_DISTANCE_SIZE, 6, err);
+}
+
+static void release_buffers(struct beam_caustics_state *s)
+{
+    gl_buffer_destroy(&s->vertices);
+    gl_buffer_destroy(&s->cells);
+    gl_buffer_destroy(&s->beams);
+    gl_buffer_destroy(&s->counters);
+    s->lattice = 0;
+}
+
+static void release_targets(struct beam_caustics_state *s)
+{
+    gl_texture_destroy(&s->receiver_normal);
+    gl_texture_destroy(&s->receiver_depth);
+    gl_texture_destroy(&s->irradiance_raw);
+    gl_texture_destroy(&s->irradiance_half);
+    s->width = s->height = 0;
+}
+
+static void beam_caustics_destroy(struct pass *p)
+{
+    struct beam_caustics_state *s = p->state;
+    if (!s)
+        return;
+    layers_release(&s->layers);
+    release_buffers(s);
+    release_targets(s);
+    gl_texture_destroy(&s->distance);
+    gl_texture_destroy(&s->distance_depth);
+    gl_framebuffer_destroy(&s->receivers_fb);
+    gl_framebuffer_destroy(&s->volumes_fb);
+    gl_framebuffer_destroy(&s->blur_fb);
+    gl_framebuffer_destroy(&s->distance_fb);
+    free(s);
+    p->state = NULL;
+}
+
+static enum pass_need beam_caustics_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    (void)p;
+    bool specular = false;
+    for (int i = 0; i < f->scene->object_count; i++)
+        if (layers_is_refractor(f->scene->objects[i]))
+            specular = true;
+    if (!specular)
+        snprintf(why, whylen, "no glass or water in the scene: no beams (zero inscatter and irradiance)");
+    else if (!medium_gpu_present(f->scene))
+        snprintf(why, whylen, "no participating medium (scene.medium): surface caustics only, zero inscatter");
+    return PASS_RUN;
+}
+
+static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, bool reflection, struct error *err)
+{
+    int lattice = grid << refine;
+    if (s->vertices && s->lattice == lattice && s->grid == grid && s->refine == refine &&
+        s->reflection == (int)reflection)
+        return true;
+    release_buffers(s);
+    s->cell_capacity = lattice * lattice;
+    s->beam_capacity = 2 * s->cell_capacity * (reflection ? 2 : 1);
+    size_t vertices = (size_t)(lattice + 1) * (size_t)(lattice + 1);
+    if (!gl_buffer_create(&s->vertices, NULL, vertices * BEAMS_VERTEX_BYTES, 0, err) ||
+        !gl_buffer_create(&s->cells, NULL, (size_t)s->cell_capacity * 3 * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT,
+                          err) ||
+        !gl_buffer_create(&s->beams, NULL, (size_t)s->beam_capacity * BEAMS_BEAM_BYTES, 0, err) ||
+        !gl_buffer_create(&s->counters, NULL, COUNT_SIZE * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT, err))
+        return false;
+    s->lattice = lattice;
+    s->grid = grid;
+    s->refine = refine;
+    s->reflection = reflection;
+    return true;
+}
+
+static bool ensure_targets(struct beam_caustics_state *s, int w, int h, struct error *err)
+{
+    if (s->receiver_normal.id && s->width == w && s->height == h)
+        return true;
+    release_targets(s);
+    if (!gl_texture_create(&s->receiver_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+        !gl_texture_create(&s->receiver_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
+        !gl_texture_create(&s->irradiance_raw, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+        !gl_texture_create(&s->irradiance_half, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err))
+        return false;
+    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    s->width = w;
+    s->height = h;
+    const struct gl_texture *c[1] = {&s->receiver_normal};
+    return gl_framebuffer_attach(&s->receivers_fb, c, NULL, 1, &s->receiver_depth, -1, err);
+}
+
+/* The receivers' distance impostor around `center` (Szirmay-Kalos et al.
+ * 2005): six faces of the diffuse objects' distances over `range`. */
+static bool draw_distance_impostor(struct beam_caustics_state *s, struct renderer *r, const struct scene *scene,
+                                   vec3 center, float range, struct error *err)
+{
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "beam_caustics/distance.vert", "beam_caustics/distance.frag", NULL, &prog, err))
+        return false;
+    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-5f, 1e-5f), range);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_range"), range);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Viewport(0, 0, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE);
+    for (int face = 0; face < 6; face++) {
+        const struct gl_texture *colors[1] = {&s->distance};
+        int layers[1] = {face};
+        if (!gl_framebuffer_attach(&s->distance_fb, colors, layers, 1, &s->distance_depth, face, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->distance_fb.id);
+        const float far_value[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        gl.ClearNamedFramebufferfv(s->distance_fb.id, GL_COLOR, 0, far_value);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        mat4 view = mat4_look_at(center, vec3_add(center, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
+                                 vec3_make(ups[face][0], ups[face][1], ups[face][2]));
+        mat4 vp = mat4_mul(proj, view);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+        renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
+    }
+    renderer_reset_state(r);
+    return true;
+}
+
+static void bind_beam_buffers(const struct beam_caustics_state *s)
+{
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_VERTICES, s->vertices);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_CELLS, s->cells);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_BEAMS, s->beams);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_COUNTERS, s->counters);
+}
+
+static void set_lattice(const struct gl_program *prog, const struct beam_caustics_state *s)
+{
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lattice"), s->lattice);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refine"), s->refine);
+}
+
+static bool run_advance(struct renderer *r, const struct beam_caustics_state *s, int mode, struct error *err)
+{
+    struct gl_program *prog;
+    if (!gl_program_get_compute(&r->programs, "beam_caustics/advance.comp", NULL, NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_mode"), mode);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_capacity"), s->cell_capacity);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_beam_capacity"), s->beam_capacity);
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    return true;
+}
+
+/* Stages 2-4: edge rays, the adaptive grid, the beams. */
+static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ortho, float extent, vec3 center,
+                        float range, struct error *err)
+{
+    struct beam_caustics_state *s = p->state;
+    struct renderer *r = f->renderer;
+    /* the edge rays of the finest lattice */
+    struct gl_program *trace;
+    if (!gl_program_get_compute(&r->programs, "beam_caustics/trace.comp", NULL, NULL, &trace, err))
+        return false;
+    gl.UseProgram(trace->id);
+    struct layers_trace settings = {.search = 5, .steps = 8, .max_interfaces = 2 * pass_int(p, BC_LAYERS) + 2,
+                                    .layer_extent = extent};
+    layers_bind(&s->layers, trace, f->scene, &settings);
+    bind_beam_buffers(s);
+    set_lattice(trace, s);
+    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
+    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
+    gl.BindTextureUnit(BEAMS_UNIT_DISTANCE, s->distance.id);
+    gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
+    gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
+    if (!medium_gpu_bind(r, f->scene, trace, err))
+        return false;
+    GLuint groups = (GLuint)((s->lattice + 1 + 7) / 8);
+    gl.DispatchCompute(groups, groups, 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    pass_stage_end(p, "rays");
+
+    /* the coarse grid, then `refine` levels of the oracle */
+    int grid = s->grid, ncells = grid * grid;
+    GLuint *level0 = malloc((size_t)ncells * sizeof *level0);
+    if (!level0)
+        return error_set(err, "out of memory");
+    for (int y = 0; y < grid; y++)
+        for (int x = 0; x < grid; x++)
+            level0[y * grid + x] = ((GLuint)x << 14) | (GLuint)y;
+    gl.NamedBufferSubData(s->cells, 0, (GLsizeiptr)((size_t)ncells * sizeof *level0), level0);
+    free(level0);
+    GLuint counters[COUNT_SIZE] = {0};
+    counters[COUNT_DISPATCH] = (GLuint)((ncells + 63) / 64);
+    counters[COUNT_DISPATCH + 1] = counters[COUNT_DISPATCH + 2] = 1;
+    counters[COUNT_IN] = (GLuint)ncells;
+    gl.NamedBufferSubData(s->counters, 0, sizeof counters, counters);
+    struct gl_program *refine;
+    if (!gl_program_get_compute(&r->programs, "beam_caustics/refine.comp", NULL, NULL, &refine, err))
+        return false;
+    set_lattice(refine, s);
+    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_kept_offset"), 2 * s->cell_capacity);
+    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_capacity"), s->cell_capacity);
+    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_focus"), (float)pass_real(p, BC_FOCUS));
+    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_pixels"), (float)pass_real(p, BC_PIXELS));
+    /* surface discontinuities (§4.2): normals more than 20 degrees apart, or
+     * a depth step steeper than 80 degrees across the light's view */
+    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_normal_cos"), cosf(20.0f * (float)MATH_PI / 180.0f));
+    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_depth_jump"), tanf(80.0f * (float)MATH_PI / 180.0f));
+    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_light_ortho"), ortho ? 1 : 0);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counters);
+    for (int level = 0; level <= s->refine; level++) {
+        gl.UseProgram(refine->id);
+        gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_in_offset"), (level % 2) * s->cell_capacity);
+        gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_out_offset"),
+                            ((level + 1) % 2) * s->cell_capacity);
+        gl.DispatchComputeIndirect((GLintptr)(COUNT_DISPATCH * sizeof(GLuint)));
+        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        if (!run_advance(r, s, 0, err))
+            return false;
+    }
+    if (!run_advance(r, s, 1, err))
+        return false;
+    pass_stage_end(p, "refine");
+
+    /* the beams of the kept cells */
+    struct gl_program *build;
+    if (!gl_program_get_compute(&r->programs, "beam_caustics/build.comp", NULL, NULL, &build, err))
+        return false;
+    gl.UseProgram(build->id);
+    set_lattice(build, s);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_kept_offset"), 2 * s->cell_capacity);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_beam_capacity"), s->beam_capacity);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_reflection"), pass_flag(p, BC_REFLECTION) ? 1 : 0);
+    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_volumes"), pass_choice(p, BC_VOLUMES));
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_cutoff"), (float)pass_real(p, BC_CUTOFF));
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_max_focus"), (float)pass_real(p, BC_MAX_FOCUS));
+    gl.DispatchComputeIndirect((GLintptr)(COUNT_BUILD * sizeof(GLuint)));
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    if (!run_advance(r, s, 2, err))
+        return false;
+    pass_stage_end(p, "beams");
+    return true;
+}
+
+/* Stage 5: the bounding volumes rasterized, then the surface caustics'
+ * low-pass filter. */
+static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct error *err)
+{
+    struct beam_caustics_state *s = p->state;
+    struct renderer *r = f->renderer;
+    struct graph_resource *inscatter = pass_frame_output(p, f, "inscatter"),
+                          *irradiance = pass_frame_output(p, f, "irradiance");
+    const struct gl_texture *targets[2] = {&inscatter->texture, &s->irradiance_raw};
+    if (!gl_framebuffer_attach(&s->volumes_fb, targets, NULL, 2, NULL, -1, err))
+        return false;
+    const float zero[4] = {0, 0, 0, 0};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->volumes_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.ClearNamedFramebufferfv(s->volumes_fb.id, GL_COLOR, 0, zero);
+    gl.ClearNamedFramebufferfv(s->volumes_fb.id, GL_COLOR, 1, zero);
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "beam_caustics/volume.vert", "beam_caustics/volume.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    bind_beam_buffers(s);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth.id);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light"), slot);
+    int samples = pass_int(p, BC_SAMPLES);
+    if (samples == 0)
+        samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_samples"), samples);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_surface"), pass_flag(p, BC_SURFACE) ? 1 : 0);
+    if (!medium_gpu_bind(r, f->scene, prog, err))
+        return false;
+    gl.Disable(GL_DEPTH_TEST);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    gl.Enable(GL_CULL_FACE);
+    gl.CullFace(GL_FRONT); /* the volumes' back faces: one fragment per pixel and beam, the eye inside or not */
+    gl.BindVertexArray(r->empty_vao);
+    gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, s->counters);
+    gl.DrawArraysIndirect(GL_TRIANGLES, (const void *)(uintptr_t)(COUNT_DRAW * sizeof(GLuint)));
+    gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    renderer_reset_state(r);
+    pass_stage_end(p, "volumes");
+
+    /* the surface caustics' low-pass filter, separable */
+    struct gl_program *blur;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "beam_caustics/blur.frag", NULL, &blur, err))
+        return false;
+    gl.UseProgram(blur->id);
+    gl.ProgramUniform1f(blur->id, gl_program_uniform(blur, "u_sigma"), (float)pass_real(p, BC_BLUR));
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth.id);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal.id);
+    const struct gl_texture *src[2] = {&s->irradiance_raw, &s->irradiance_half};
+    const struct gl_texture *dst[2] = {&s->irradiance_half, &irradiance->texture};
+    for (int k = 0; k < 2; k++) {
+        const struct gl_texture *t[1] = {dst[k]};
+        if (!gl_framebuffer_attach(&s->blur_fb, t, NULL, 1, NULL, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->blur_fb.id);
+        gl.BindTextureUnit(UNIT_IMAGE, src[k]->id);
+        gl.ProgramUniform2f(blur->id, gl_program_uniform(blur, "u_direction"), k == 0 ? 1.0f : 0.0f,
+                            k == 0 ? 0.0f : 1.0f);
+        renderer_draw_fullscreen(r);
+    }
+    pass_stage_end(p, "filter");
+    return true;
+}
+
+static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct beam_caustics_state *s = p->state;
+    struct renderer *r = f->renderer;
+    const float zero[4] = {0, 0, 0, 0};
+    gl_texture_clear(&pass_frame_output(p, f, "inscatter")->texture, zero);
+    gl_texture_clear(&pass_frame_output(p, f, "irradiance")->texture, zero);
+    p->report[0] = '\0';
+    struct light *light = pass_light_at(p, BC_LIGHT);
+    int slot = renderer_light_slot(r, f->scene, light);
+    vec3 lo, hi, slo, shi;
+    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi) || !scene_bounds(f->scene, &slo, &shi))
+        return true; /* the light is not in the scene, or nothing refracts: no beams */
+    int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE), buffer = pass_int(p, BC_BUFFER);
+    if (!ensure_buffers(s, grid, refine, pass_flag(p, BC_REFLECTION), err) ||
+        !ensure_targets(s, f->width, f->height, err))
+        return false;
+    const struct frame_light *fl = &f->snapshot->lights[slot];
+    struct layers_light_view lv;
+    if (!layers_light_view(fl, lo, hi, &lv, "beam_caustics", err))
+        return false;
+    float extent = 2.0f * fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
+    vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    /* the distance impostor reaches past the whole scene from the refractors' centre */
+    float range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) + vec3_length(vec3_sub(center, vec3_scale(vec3_add(slo, shi), 0.5f)))), 1e-3f);
+
+    pass_stage_begin(p);
+    if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, BC_VOXELS),
+                      pass_int(p, BC_LAYERS), true, p, err))
+        return false;
+    if (!draw_distance_impostor(s, r, f->scene, center, range, err))
+        return false;
+    /* what the camera sees: depth of everything, normals of the receivers */
+    struct gl_program *recv;
+    if (!gl_program_get(&r->programs, "beam_caustics/receivers.vert", "beam_caustics/receivers.frag", NULL, &recv,
+                        err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    renderer_draw_objects(r, f->scene, recv, DRAW_ALL);
+    renderer_reset_state(r);
+    pass_stage_end(p, "impostors");
+    if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))
+        return false;
+
+    GLuint counters[COUNT_SIZE];
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!gl_buffer_read(s->counters, counters, sizeof counters, err))
+        return false;
+    snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %u fragments%s", counters[COUNT_BEAMS],
+             counters[COUNT_PRISMS], counters[COUNT_KEPT], counters[COUNT_FRAGMENTS],
+             counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "");
+    if (getenv("CAUSTICA_BEAMS_DUMP")) {
+        size_t n = counters[COUNT_BEAMS];
+        float *b = malloc(n * BEAMS_BEAM_BYTES);
+        gl.GetNamedBufferSubData(s->beams, 0, (GLsizeiptr)(n * BEAMS_BEAM_BYTES), b);
+        FILE *fp = fopen(getenv("CAUSTICA_BEAMS_DUMP"), "w");
+        for (size_t i = 0; i < n; i++) {
+            float *q = b + i * 60;
+            for (int k = 0; k < 60; k++)
+                fprintf(fp, "%g ", q[k]);
+            fprintf(fp, "\n");
+        }
+        fclose(fp);
+        free(b);
+    }
+    return gl_check("beam_caustics", err);
+}
+
+const struct pass_desc beam_caustics_pass = {
+    .name = "beam_caustics",
+    .summary = "Liktor & Dachsbacher 2011: volume and surface caustics from adaptively refined beams of light",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = beam_caustics_declare,
+    .create = beam_caustics_create,
+    .execute = beam_caustics_execute,
+    .needed = beam_caustics_needed,
+    .destroy = beam_caustics_destroy,
+};

@@ -1,0 +1,54 @@
+/* Shadow map inputs of a pass (see shadow_inputs.h). */
+#include <stdio.h>
+
+#include "graph/bindings.h"
+#include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
+
+bool shadow_inputs_declare(struct pass *p, int param, struct error *err)
+{
+    const struct pass_value *shadows = &p->values[param];
+    if (shadows->list_count > SHADOW_INPUTS_MAX)
+        return error_set(err, "bad argument '%s' to '%s' (at most %d shadow maps, got %d)",
+                         p->desc->params[param].name, p->desc->name, SHADOW_INPUTS_MAX, shadows->list_count);
+    for (int i = 0; i < shadows->list_count; i++) {
+        char slot[32];
+        snprintf(slot, sizeof slot, "shadow%d", i);
+        if (!pass_declare_input(p, slot, shadows->list[i], err))
+            return false;
+    }
+    return true;
+}
+
+void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
+{
+    struct renderer *r = f->renderer;
+    int nshadow = 0;
+    for (int i = 0; i < SHADOW_INPUTS_MAX; i++) {
+        char slot[32], name[64];
+        snprintf(slot, sizeof slot, "shadow%d", i);
+        struct graph_resource *sh = pass_frame_input(p, f, slot);
+        if (!sh)
+            continue;
+        bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
+        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_2D + i), cube ? r->dummy_depth.id : sh->texture.id);
+        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_CUBE + i), cube ? sh->texture.id : r->dummy_cube.id);
+        int entries = sh->light_index >= 0 ? 1 : 0;
+        for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
+            if (r->frame.light_first[li] == sh->light_index)
+                entries = r->frame.light_entries[li];
+        snprintf(name, sizeof name, "u_shadow_first[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), sh->light_index);
+        snprintf(name, sizeof name, "u_shadow_count[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), entries);
+        snprintf(name, sizeof name, "u_shadow_cube[%d]", nshadow);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), cube ? 1 : 0);
+        snprintf(name, sizeof name, "u_shadow_matrix[%d]", nshadow);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, sh->matrix.m);
+        snprintf(name, sizeof name, "u_shadow_params[%d]", nshadow);
+        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), sh->range, sh->bias,
+                            1.0f / (float)sh->texture.width, 0.0f);
+        nshadow++;
+    }
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);
+}
