@@ -12,7 +12,10 @@ const int DISTANCE_STEPS = 48;
 bool distance_beyond(vec3 p)
 {
     vec3 v = p - u_distance_center;
-    float stored = texture(u_distance, v).r * u_distance_range;
+    float stored = texture(u_distance, v).r;
+    if (stored >= 0.999)
+        return false; // no receiver in this direction (the cleared value)
+    stored *= u_distance_range;
     return dot(v, v) >= stored * stored;
 }
 
@@ -39,4 +42,16 @@ float distance_trace(vec3 o, vec3 d)
         lo = t;
     }
     return u_distance_range;
+}
+
+// How far a beam's edge ray needs to be extruded: to the first receiver,
+// or, meeting none, to where it leaves the medium (nothing scatters past
+// it), or nowhere when it never enters one.
+float extrusion_length(vec3 o, vec3 d)
+{
+    float len = distance_trace(o, d);
+    if (len < u_distance_range)
+        return len;
+    float t0, t1;
+    return medium_clip(o, d, len, t0, t1) ? t1 : 0.0;
 }

@@ -70,7 +70,7 @@ void main()
         bv.refl_pos = vec4(entry_world, layer_depth(p, 0));
         if (path.fresnel0 > 0.0) {
             flags |= VERTEX_REFLECTED;
-            float len = distance_trace(entry_world + reflected * (1e-4 * u_layer_extent), reflected);
+            float len = extrusion_length(entry_world + reflected * (1e-4 * u_layer_extent), reflected);
             bv.refl_dir = vec4(reflected, len);
             bv.refl_weight = vec4(w * path.fresnel0, 0.0);
         }
@@ -79,7 +79,7 @@ void main()
             vec3 o = (u_layer_inv_view * vec4(path.origin, 1.0)).xyz;
             vec3 d = normalize(to_world * path.dir);
             bv.exit_pos = vec4(o, 0.0);
-            bv.exit_dir = vec4(d, distance_trace(o, d));
+            bv.exit_dir = vec4(d, extrusion_length(o, d));
             // the path's signature: rays through different interfaces do not share a beam
             bv.exit_weight = vec4(w * (1.0 - path.fresnel0) * path.throughput,
                                   float(path.interfaces + 64 * path.tir));

@@ -62,7 +62,6 @@ vec3 density_at(vec3 x, float y, vec3 w, out vec3 dir, out float cos_base)
 
 void main()
 {
-    atomicAdd(counters[COUNT_FRAGMENTS], 1u);
     o_inscatter = vec4(0.0);
     o_irradiance = vec4(0.0);
     b = beams[v_beam];

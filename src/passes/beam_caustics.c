@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_api.h"
 #include "gl/gl_buffer.h"
 #include "graph/bindings.h"
 #include "graph/frame.h"
@@ -51,6 +52,7 @@ struct beam_caustics_state {
     struct gl_texture distance, distance_depth; /* the receivers' distance impostor */
     struct gl_texture receiver_normal, receiver_depth, irradiance_raw, irradiance_half;
     struct gl_framebuffer receivers_fb, volumes_fb, blur_fb, distance_fb;
+    GLuint fragments_query; /* GL_SAMPLES_PASSED around the volumes' draw: the fill rate */
     int width, height;
 };
 
@@ -130,6 +132,7 @@ static bool beam_caustics_create(struct pass *p, struct renderer *r, struct erro
         return error_set(err, "out of memory");
     p->state = s;
     layers_init(&s->layers);
+    gl.GenQueries(1, &s->fragments_query);
     return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->volumes_fb, err) &&
            gl_framebuffer_create(&s->blur_fb, err) && gl_framebuffer_create(&s->distance_fb, err) &&
            gl_texture_create(&s->distance, GL_TEXTURE_CUBE_MAP, GL_R32F, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE, 6,
@@ -170,6 +173,8 @@ static void beam_caustics_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->volumes_fb);
     gl_framebuffer_destroy(&s->blur_fb);
     gl_framebuffer_destroy(&s->distance_fb);
+    if (s->fragments_query && gl_api_ready())
+        gl.DeleteQueries(1, &s->fragments_query);
     free(s);
     p->state = NULL;
 }
@@ -422,7 +427,9 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
     gl.CullFace(GL_FRONT); /* the volumes' back faces: one fragment per pixel and beam, the eye inside or not */
     gl.BindVertexArray(r->empty_vao);
     gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, s->counters);
+    gl.BeginQuery(GL_SAMPLES_PASSED, s->fragments_query);
     gl.DrawArraysIndirect(GL_TRIANGLES, (const void *)(uintptr_t)(COUNT_DRAW * sizeof(GLuint)));
+    gl.EndQuery(GL_SAMPLES_PASSED);
     gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     renderer_reset_state(r);
@@ -504,8 +511,10 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!gl_buffer_read(s->counters, counters, sizeof counters, err))
         return false;
-    snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %u fragments%s", counters[COUNT_BEAMS],
-             counters[COUNT_PRISMS], counters[COUNT_KEPT], counters[COUNT_FRAGMENTS],
+    GLuint64 fragments = 0;
+    gl.GetQueryObjectui64v(s->fragments_query, GL_QUERY_RESULT, &fragments);
+    snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s", counters[COUNT_BEAMS],
+             counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
              counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "");
     if (getenv("CAUSTICA_BEAMS_DUMP")) {
         size_t n = counters[COUNT_BEAMS];
