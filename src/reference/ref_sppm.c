@@ -101,6 +101,15 @@ static void media_toggle(struct media *m, int object, bool entering)
         }
 }
 
+/* Is the scene's participating medium present where a path is? Outside
+ * every dielectric; and in water, whose one-interface surfaces bound the
+ * water below them (murky water is a medium box under a water surface),
+ * but not inside glass, which keeps its own absorption. */
+static bool scene_medium_here(const struct ref_scene *rs, const struct media *m)
+{
+    return m->count == 0 || rs->objects[m->objects[m->count - 1]].material.kind == MATERIAL_WATER;
+}
+
 /* Beer-Lambert over distance t in the current medium. */
 static dvec3 attenuate(dvec3 beta, dvec3 sigma, double t)
 {
@@ -343,7 +352,7 @@ static void trace_eye(struct job *j, int x, int y)
         struct ref_hit h;
         bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
         double t0, t1;
-        if (media.count == 0 && ref_medium_clip(rm, origin, dir, hit ? h.t : INFINITY, &t0, &t1)) {
+        if (scene_medium_here(rs, &media) && ref_medium_clip(rm, origin, dir, hit ? h.t : INFINITY, &t0, &t1)) {
             /* Single scattering of the lights along the segment: one
              * uniformly placed sample per iteration (unbiased; the
              * iterations average it). */
@@ -751,7 +760,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
          * light, for an opaque one) and this photon carries nothing. */
         if (depth == 0 && (!hit || h.object != target_object || h.primitive != target_primitive))
             return;
-        if (media.count == 0 && j->medium->present) {
+        if (scene_medium_here(rs, &media) && j->medium->present) {
             double ts = 0;
             dvec3 w = dv(1, 1, 1);
             enum ref_medium_event ev = ref_medium_track(j->medium, origin, dir, hit ? h.t : INFINITY, &rng, &ts, &w);
@@ -1278,8 +1287,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     for (size_t i = 0; i < npix; i++) {
         const struct pixel *px = &pixels[i];
         dvec3 l = px->samples > 0 ? dv_scale(px->direct, 1.0 / px->samples) : dv(0, 0, 0);
-        if (px->volume_samples > 0)
-            l = dv_add(l, dv_scale(px->volume, 1.0 / px->volume_samples));
+        dvec3 volume = px->volume_samples > 0 ? dv_scale(px->volume, 1.0 / px->volume_samples) : dv(0, 0, 0);
+        l = dv_add(l, volume);
         /* (volume_samples sums the gathers' pass fractions) */
         /* Each photon pass carries the lights' power between its photons
          * (flux per photon = power / photons), so tau averages over the
@@ -1289,10 +1298,11 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
             lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
         l = dv_add(l, lc);
         if (caustic_out) {
+            /* the caustic part: surface caustics and volume caustics */
             float *cd = caustic_out->rgba + i * 4;
-            cd[0] = (float)lc.x;
-            cd[1] = (float)lc.y;
-            cd[2] = (float)lc.z;
+            cd[0] = (float)(lc.x + volume.x);
+            cd[1] = (float)(lc.y + volume.y);
+            cd[2] = (float)(lc.z + volume.z);
             cd[3] = 1.0f;
         }
         float *dst = out->rgba + i * 4;

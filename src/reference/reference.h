@@ -50,8 +50,8 @@ struct ref_stats {
 void ref_options_default(struct ref_options *o);
 /* Renders the scene as set up by renderer_begin_frame for this frame (the
  * deformed vertex buffers are read back from the GPU), also returning the
- * caustic (light -> specular+ -> diffuse) part of the image on its own
- * (`caustic` may be NULL). */
+ * caustic part of the image on its own (light -> specular+ -> diffuse, and
+ * light -> specular+ -> medium; `caustic` may be NULL). */
 /* The debug output `aov` of the frame (ref_aov.c). */
 bool ref_render_aov(struct renderer *r, struct scene *scene, const struct ref_options *options, struct image *out,
                     struct error *err);
