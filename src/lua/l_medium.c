@@ -50,8 +50,8 @@ static int medium_new(lua_State *L)
     lutil_opt_color(L, 1, "medium", "sigma_s", &m->sigma_s);
     lutil_opt_color(L, 1, "medium", "sigma_a", &m->sigma_a);
     lutil_opt_number(L, 1, "medium", "g", &m->g);
-    if (!(m->g > -0.99f && m->g < 0.99f))
-        return lutil_error(L, "bad argument 'g' to 'medium' (a number in (-0.99, 0.99) expected, got %g)", (double)m->g);
+    if (!(m->g >= -0.99f && m->g <= 0.99f))
+        return lutil_error(L, "bad argument 'g' to 'medium' (a number in [-0.99, 0.99] expected, got %g)", (double)m->g);
     if (lua_getfield(L, 1, "box") != LUA_TTABLE)
         return lutil_error(L, "bad argument 'box' to 'medium' ({{x0, y0, z0}, {x1, y1, z1}} expected, got %s)",
                           luaL_typename(L, -1));

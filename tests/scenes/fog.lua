@@ -1,9 +1,13 @@
--- A box of fog under a directional light, seen from the side: --set
--- density=homogeneous|linear, g=, ball=true (a glass ball above the fog
--- focusing a volume caustic into it), ior=, hide=true, technique=plain|beams
--- (the GPU graph: plain shading, or beam_caustics and volume_light),
--- ortho=true (an orthographic camera 2.4 wide: the image's sum is the
--- power scattered towards it), grid=, refine=, volumes=tight|prism, output=color|inscatter|irradiance.
+-- A box of fog under a directional light, seen from the side. --set
+-- density=homogeneous|linear, g=, thickness= (scales the coefficients;
+-- 0: a medium that does nothing), ball=true (a glass ball above the fog
+-- focusing a volume caustic into it), ior=, hide=true, ball_y=, stretch=
+-- (the ball long along z: a line focus), inside=true (the camera in the fog
+-- under the ball, looking up the beams), ortho=true (an orthographic camera
+-- 2.4 wide: the image's sum is the power scattered towards it),
+-- technique=plain|beams (the GPU graph: plain shading, or beam_caustics and
+-- volume_light), grid=, refine=, volumes=tight|prism, max_focus=,
+-- reflection=, output=color|inscatter|irradiance.
 local c = require "caustica"
 local mode = c.param("density", "homogeneous")
 local g = c.param("g", 0.0)
@@ -13,7 +17,8 @@ local size = c.param("size", 33)
 
 local scene = c.scene {
   -- looking along +x through the fog box [-1,1] x [0,1] x [-1,1] at height 0.5
-  camera = c.param("ortho", false) and c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, ortho = { width = 2.4 } }
+  camera = c.param("inside", false) and c.camera { eye = {0.02, 0.3, 0.01}, target = {0, 1.6, 0}, up = {1, 0, 0}, fov = 60 }
+           or c.param("ortho", false) and c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, ortho = { width = 2.4 } }
            or c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, fov = 30 },
   background = {0, 0, 0},
 }
@@ -22,11 +27,13 @@ local density = 1.0
 if mode == "linear" then
   density = function(x, y, z) return 0.5 + 1.5 * y end   -- trilinear grids hold a linear function exactly
 end
-scene.medium = c.medium { sigma_s = {0.5, 0.4, 0.3}, sigma_a = {0.1, 0.2, 0.3}, g = g, density = density,
+local k = c.param("thickness", 1.0) -- scales both coefficients (0: a medium that does nothing)
+scene.medium = c.medium { sigma_s = {0.5 * k, 0.4 * k, 0.3 * k}, sigma_a = {0.1 * k, 0.2 * k, 0.3 * k}, g = g, density = density,
                           resolution = {4, 9, 4}, box = {{-1, 0, -1}, {1, 1, 1}} }
 if ball then
-  local sphere = scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4, segments = 128 }, position = {0, 1.6, 0},
-                                      material = c.material.glass { ior = ior } })
+  local stretch = c.param("stretch", 1.0) -- > 1: an ellipsoid long along z, focusing to a line
+  local sphere = scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4, segments = 128 }, position = {0, c.param("ball_y", 1.6), 0},
+                                      scale = {1, 1, stretch}, material = c.material.glass { ior = ior } })
   sphere.visible = not c.param("hide", false)
 end
 local technique = c.param("technique", "plain")
