@@ -38,6 +38,7 @@ struct result {
     double pass_ms[MAX_PASSES];
     struct image_metrics all, caustic;
     bool has_caustic;
+    char report[300]; /* the passes' lines about the last frame (beam counts, fill rate) */
 };
 
 static int compare_doubles(const void *a, const void *b)
@@ -286,6 +287,13 @@ int cmd_bench(struct app *app, struct cli *cli)
             }
             totals[f] = total;
         }
+        for (int i = 0; ok && i < s->graph->count; i++) {
+            const struct graph_entry *e = &s->graph->entries[i];
+            size_t filled = strlen(r->report);
+            if (e->state == GRAPH_PASS_KEPT && e->pass->report[0] && filled + 4 < sizeof r->report)
+                snprintf(r->report + filled, sizeof r->report - filled, "%s%.40s: %.200s", filled ? "; " : "",
+                         e->pass->name, e->pass->report);
+        }
         if (ok) {
             r->frame_ms = median(totals, frames);
             for (int p = 0; p < npasses; p++)
@@ -314,6 +322,8 @@ int cmd_bench(struct app *app, struct cli *cli)
             printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms,
                    results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0, r->all.rel_rmse,
                    r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0);
+            if (r->report[0])
+                printf("    %s\n", r->report);
             fflush(stdout);
         }
         image_destroy(&img);
@@ -373,10 +383,10 @@ int cmd_bench(struct app *app, struct cli *cli)
             fprintf(md, " %s ms |", pass_names[p]);
         }
         fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse\n");
-        fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse |\n|---|");
+        fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | passes' reports |\n|---|");
         for (int p = 0; p < npasses + 6; p++)
             fprintf(md, "---:|");
-        fprintf(md, "\n");
+        fprintf(md, "---|\n");
         for (int c = 0; c < combos + ncurve; c++) {
             const struct result *r = c < combos ? &results[c] : &curve[c - combos];
             fprintf(csv, "%s", c < combos ? "gpu" : "reference");
@@ -399,8 +409,8 @@ int cmd_bench(struct app *app, struct cli *cli)
             if (r->has_caustic)
                 snprintf(caustic, sizeof caustic, "%.6g", r->caustic.rel_rmse);
             fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim, caustic);
-            fprintf(md, " %.4f | %.2f | %.4f | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                    r->has_caustic ? caustic : "-");
+            fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                    r->has_caustic ? caustic : "-", c < combos ? r->report : "");
         }
     }
     if (csv)
