@@ -27,7 +27,7 @@ scene.medium = c.medium { sigma_s = {fog, fog, fog}, sigma_a = {0.02, 0.02, 0.02
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 3),
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2),
                                         volumes = c.param("volumes", "tight") })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("glass", c.pass.layered_refraction { color = "shade.color" })

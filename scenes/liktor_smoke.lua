@@ -37,7 +37,7 @@ scene.medium = c.medium { sigma_s = {0.8, 0.8, 0.8}, sigma_a = {0.05, 0.05, 0.05
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 3) })
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("smoke", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
 elseif technique == "plain" then

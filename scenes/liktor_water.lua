@@ -10,7 +10,8 @@ local c = require "caustica"
 local technique = c.param("technique", "beams")
 local wave = c.param("wave", 0.02)
 local scene = c.scene {
-  camera = c.camera { eye = {0.2, -0.55, 3.1}, target = {0, -0.45, 0}, fov = 40 },
+  -- just under the water level, looking down so that no view ray meets the surface from below
+  camera = c.camera { eye = {0.2, -0.15, 3.1}, target = {0.2, -1.28, 0}, fov = 40 },
   background = {0, 0, 0},
   ambient = {0.01, 0.012, 0.015},
 }
@@ -35,7 +36,7 @@ scene.medium = c.medium { sigma_s = {0.35, 0.4, 0.45}, sigma_a = {0.03, 0.02, 0.
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 3) })
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("water", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
 elseif technique == "plain" then

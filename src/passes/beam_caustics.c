@@ -79,7 +79,7 @@ static const struct pass_param_desc params[] = {
      .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
     [BC_GRID] = {.name = "grid", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = BEAMS_MAX_LATTICE,
      .help = "cells per side of the coarse projected grid in the light's view (§4.1)"},
-    [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 8,
+    [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8,
      .help = "adaptive refinement steps (§4.2); grid x 2^refine is at most 256"},
     [BC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "the light's view of the specular surfaces, buffer x buffer texels (the G-buffer of §4.1)"},
