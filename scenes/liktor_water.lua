@@ -11,7 +11,7 @@ local technique = c.param("technique", "beams")
 local wave = c.param("wave", 0.02)
 local scene = c.scene {
   -- just under the water level, looking down so that no view ray meets the surface from below
-  camera = c.camera { eye = {0.2, -0.15, 3.1}, target = {0.2, -1.28, 0}, fov = 40 },
+  camera = c.camera { eye = {0.2, -0.15, 2.3}, target = {0.2, -0.99, 0}, fov = 40 },
   background = {0, 0, 0},
   ambient = {0.01, 0.012, 0.015},
 }
@@ -21,8 +21,8 @@ scene:add(c.object { mesh = c.mesh.plane { size = 2 }, position = {0, -1, 0},
                      material = c.material.diffuse { color = {0.8, 0.78, 0.7} } })
 scene:add(c.object { mesh = c.mesh.plane { size = 2 }, position = {0, -0.5, -1}, rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
                      scale = {1, 1, 0.5}, material = c.material.diffuse { color = {0.3, 0.35, 0.45} } })
-scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3, segments = 96 }, position = {0, 0.75, 0},
-                     material = c.material.glass { ior = 1.5 } })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3, segments = 96 }, position = {0, 0.6, 0},
+                     material = c.material.glass { ior = c.param("ior", 1.2) } })
 local water = scene:add(c.water { size = 2, resolution = 65, depth = 1, ior = 1.33, attenuation = {0.05, 0.03, 0.02} })
 local function ripple(t)
   water:set_heights(function(x, z)
