@@ -31,9 +31,17 @@ struct Beam {
     vec4 area;       // c0, c1, c2, w = the floor |A| is clamped to (a focus stays finite)
     vec4 info;       // x = light-plane area x intensity scale, y = 1 prism / 0 tight, z = diagonal bits, w = 1 reflected
     vec4 top[3];     // the bounding volume's top corners (world)
+    uvec4 corners;   // xyz: its lattice vertices (their adjacency lists), w: unused
 };
 
 layout(std430, binding = BEAMS_SSBO_BEAMS) buffer Beams { Beam beams[]; };
+
+// Per lattice vertex, the beams that have it as a corner: a count, then up
+// to ADJACENCY_SLOTS beam indices (the lattice's adjacency, which lets the
+// surface caustics interpolate a flux density per edge ray, Ernst et al.
+// 2005, instead of one per beam: §7's limitation).
+const int ADJACENCY_STRIDE = 16, ADJACENCY_SLOTS = 15;
+layout(std430, binding = BEAMS_SSBO_ADJACENCY) buffer BeamAdjacency { uint adjacency[]; };
 
 // Counters and indirect arguments (uint offsets).
 const int COUNT_DISPATCH = 0;   // x, y, z: the current cell list's dispatch

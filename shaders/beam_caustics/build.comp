@@ -195,6 +195,7 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
     bm.n = vec4(n, top);
     bm.area = vec4(c0, c1, c2, a_floor);
     bm.info = vec4(light_area, prism ? 1.0 : 0.0, float(diagonals), reflected ? 1.0 : 0.0);
+    bm.corners = uvec4(uint(vertex_index(qa.x, qa.y)), uint(vertex_index(qb.x, qb.y)), uint(vertex_index(qc.x, qc.y)), 0u);
     return true;
 }
 
@@ -251,5 +252,11 @@ void main()
             break;
         }
         beams[at + uint(i)] = made[i];
+        for (int k = 0; k < 3; k++) {
+            uint v = made[i].corners[k];
+            uint slot = atomicAdd(adjacency[v * uint(ADJACENCY_STRIDE)], 1u);
+            if (slot < uint(ADJACENCY_SLOTS))
+                adjacency[v * uint(ADJACENCY_STRIDE) + 1u + slot] = at + uint(i);
+        }
     }
 }

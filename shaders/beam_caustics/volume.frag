@@ -26,6 +26,7 @@ layout(binding = BEAMS_UNIT_SCENE_NORMAL) uniform sampler2D u_scene_normal; // w
 uniform int u_light;
 uniform int u_samples; // samples along the beam's interval (1: the paper's midpoint)
 uniform int u_surface; // surface caustics too
+uniform int u_smooth;  // surface caustics from a density per edge ray, averaged over the beams sharing it
 layout(location = 0) out vec4 o_inscatter;
 layout(location = 1) out vec4 o_irradiance;
 
@@ -58,6 +59,35 @@ vec3 density_at(vec3 x, float y, vec3 w, out vec3 dir, out float cos_base)
     vec3 weight = w.x * b.weight[0].rgb + w.y * b.weight[1].rgb + w.z * b.weight[2].rgb;
     vec3 flux = u_lights[u_light].intensity.rgb * weight * b.info.x;
     return flux / area_at(y) / cos_base * medium_transmittance(x - dd * y, x);
+}
+
+// The flux density across the rays (per unit light-plane area and
+// intensity) along edge ray k where it reaches height y: averaged over the
+// beams that share that ray (the lattice's adjacency lists), as Ernst et
+// al. 2005 average one area function per vertex, so that neighbouring
+// beams agree along their shared edges.
+float edge_density(int k, float y)
+{
+    vec3 x = b.v[k].xyz + b.d[k].xyz * y;
+    vec3 dir = normalize(b.d[k].xyz);
+    uint base = b.corners[k] * uint(ADJACENCY_STRIDE);
+    uint count = min(adjacency[base], uint(ADJACENCY_SLOTS));
+    // the neighbours' flux over their cross-sections across the ray there:
+    // averaging the areas, as Ernst et al. do, not the densities (whose
+    // average is pulled up by any one neighbour near its own focus)
+    float flux = 0.0, area = 0.0;
+    for (uint i = 0u; i < count; i++) {
+        uint o = adjacency[base + 1u + i];
+        if (beams[o].info.w != b.info.w)
+            continue; // a reflected beam beside a transmitted one, or the other way round
+        vec3 no = beams[o].n.xyz;
+        vec4 ca = beams[o].area;
+        float yo = dot(x - beams[o].v[0].xyz, no);
+        float ao = max(0.5 * abs(ca.x + ca.y * yo + ca.z * yo * yo), ca.w);
+        flux += beams[o].info.x;
+        area += ao * max(dot(dir, no), 1e-3);
+    }
+    return area > 0.0 ? flux / area : b.info.x / (area_at(y) * max(dot(dir, b.n.xyz), 1e-3));
 }
 
 void main()
@@ -93,6 +123,12 @@ void main()
             vec3 dir;
             float cos_base;
             vec3 e = density_at(P, y, w, dir, cos_base);
+            if (u_smooth == 1) {
+                vec3 dd = w.x * b.d[0].xyz + w.y * b.d[1].xyz + w.z * b.d[2].xyz;
+                vec3 flux = w.x * b.weight[0].rgb * edge_density(0, y) + w.y * b.weight[1].rgb * edge_density(1, y) +
+                            w.z * b.weight[2].rgb * edge_density(2, y);
+                e = u_lights[u_light].intensity.rgb * flux * medium_transmittance(P - dd * y, P);
+            }
             float cos_r = -dot(dir, receiver.xyz);
             if (cos_r > 0.0)
                 o_irradiance = vec4(e * cos_r, 0.0);

@@ -101,6 +101,7 @@
 #define BEAMS_SSBO_CELLS 9                  // the refinement's cell lists and counters
 #define BEAMS_SSBO_BEAMS 10                 // the beams: vertices, directions, area function, flux
 #define BEAMS_SSBO_COUNTERS 11              // counters, indirect dispatch and draw arguments
+#define BEAMS_SSBO_ADJACENCY 12             // per lattice vertex: the beams that have it as a corner
 
 // volume_light (the colour it attenuates at UNIT_IMAGE)
 #define VOLUME_LIGHT_UNIT_DEPTH 13

@@ -36,7 +36,8 @@
 
 #define BEAMS_MAX_LATTICE 256     /* grid x 2^refine: the finest lattice's cells per side */
 #define BEAMS_VERTEX_BYTES 128    /* struct BeamVertex in shaders/beam_caustics/beams.glsl */
-#define BEAMS_BEAM_BYTES 240      /* struct Beam: 15 vec4 */
+#define BEAMS_BEAM_BYTES 256      /* struct Beam: 16 vec4 */
+#define BEAMS_ADJACENCY_STRIDE 16 /* uints per lattice vertex in the adjacency lists (beams.glsl) */
 #define BEAMS_DISTANCE_SIZE 256   /* the distance impostor's faces */
 /* Counter offsets of beams.glsl (uint index). */
 enum {
@@ -46,7 +47,7 @@ enum {
 
 struct beam_caustics_state {
     struct layer_set layers;
-    GLuint vertices, cells, beams, counters;
+    GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
     struct gl_texture distance, distance_depth; /* the receivers' distance impostor */
@@ -71,6 +72,7 @@ enum beam_caustics_param {
     BC_MAX_FOCUS,
     BC_SAMPLES,
     BC_SURFACE,
+    BC_SMOOTH,
     BC_BLUR,
 };
 
@@ -107,6 +109,9 @@ static const struct pass_param_desc params[] = {
              "4 in a density grid)"},
     [BC_SURFACE] = {.name = "surface", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "surface caustics from the same beams (§5.3)"},
+    [BC_SMOOTH] = {.name = "smooth", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "surface caustics from a flux density per edge ray, averaged over the beams that share it (Ernst et "
+             "al. 2005; the lattice keeps the adjacency), continuous across beams; false: one per beam (§7)"},
     [BC_BLUR] = {.name = "blur", .type = PASS_PARAM_NUMBER, .default_number = 1.5, .min = 0, .max = 32,
      .help = "the surface caustics' low-pass filter: a Gaussian of this many pixels (0: none)"},
 };
@@ -147,6 +152,7 @@ static void release_buffers(struct beam_caustics_state *s)
     gl_buffer_destroy(&s->cells);
     gl_buffer_destroy(&s->beams);
     gl_buffer_destroy(&s->counters);
+    gl_buffer_destroy(&s->adjacency);
     s->lattice = 0;
 }
 
@@ -207,7 +213,8 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
         !gl_buffer_create(&s->cells, NULL, (size_t)s->cell_capacity * 3 * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT,
                           err) ||
         !gl_buffer_create(&s->beams, NULL, (size_t)s->beam_capacity * BEAMS_BEAM_BYTES, 0, err) ||
-        !gl_buffer_create(&s->counters, NULL, COUNT_SIZE * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT, err))
+        !gl_buffer_create(&s->counters, NULL, COUNT_SIZE * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT, err) ||
+        !gl_buffer_create(&s->adjacency, NULL, vertices * BEAMS_ADJACENCY_STRIDE * sizeof(GLuint), 0, err))
         return false;
     s->lattice = lattice;
     s->grid = grid;
@@ -274,6 +281,7 @@ static void bind_beam_buffers(const struct beam_caustics_state *s)
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_CELLS, s->cells);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_BEAMS, s->beams);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_COUNTERS, s->counters);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_ADJACENCY, s->adjacency);
 }
 
 static void set_lattice(const struct gl_program *prog, const struct beam_caustics_state *s)
@@ -367,7 +375,10 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
         return false;
     pass_stage_end(p, "refine");
 
-    /* the beams of the kept cells */
+    /* the beams of the kept cells, and each lattice vertex's list of them */
+    const GLuint zero = 0;
+    gl.ClearNamedBufferData(s->adjacency, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     struct gl_program *build;
     if (!gl_program_get_compute(&r->programs, "beam_caustics/build.comp", NULL, NULL, &build, err))
         return false;
@@ -417,6 +428,7 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_samples"), samples);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_surface"), pass_flag(p, BC_SURFACE) ? 1 : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_smooth"), pass_flag(p, BC_SMOOTH) ? 1 : 0);
     if (!medium_gpu_bind(r, f->scene, prog, err))
         return false;
     gl.Disable(GL_DEPTH_TEST);
@@ -516,20 +528,6 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s", counters[COUNT_BEAMS],
              counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
              counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "");
-    if (getenv("CAUSTICA_BEAMS_DUMP")) {
-        size_t n = counters[COUNT_BEAMS];
-        float *b = malloc(n * BEAMS_BEAM_BYTES);
-        gl.GetNamedBufferSubData(s->beams, 0, (GLsizeiptr)(n * BEAMS_BEAM_BYTES), b);
-        FILE *fp = fopen(getenv("CAUSTICA_BEAMS_DUMP"), "w");
-        for (size_t i = 0; i < n; i++) {
-            float *q = b + i * 60;
-            for (int k = 0; k < 60; k++)
-                fprintf(fp, "%g ", q[k]);
-            fprintf(fp, "\n");
-        }
-        fclose(fp);
-        free(b);
-    }
     return gl_check("beam_caustics", err);
 }
 

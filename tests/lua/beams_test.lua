@@ -117,9 +117,10 @@ t.case("the power a ball lens scatters into the fog: within 5% of exact ray trac
     t.expect(math.abs(p / exact - 1) < g.tol,
              string.format("grid %d refine %d: %.5f against %.5f", g.grid, g.refine, p, exact))
   end
-  -- IOR 1.0: all of the light, straight down (measured -1.4%)
+  -- IOR 1.0: all of the light, straight down (measured -3.4% at the default
+  -- two steps, -1.4% at three: the silhouette's cells again)
   local p1, e1 = ortho_power { ior = 1.0 }, scattered_power(1.0, 160)
-  t.expect(math.abs(p1 / e1 - 1) < 0.03, string.format("IOR 1.0: %.5f against %.5f", p1, e1))
+  t.expect(math.abs(p1 / e1 - 1) < 0.05, string.format("IOR 1.0: %.5f against %.5f", p1, e1))
 end)
 
 t.case("the volume caustic against the reference's volumetric photon mapping", function()
@@ -135,8 +136,9 @@ end)
 t.case("surface caustics from the same beams: the ball lens's encircled power at its focus", function()
   -- issue 8's closed form (R = 1, n = 1.5, ideal interfaces, floor 1.5 below
   -- the centre): 0.406 of the power through the ball lands within r = 0.1.
-  -- Measured 0.382 (16 + 3) and 0.391 (32 + 3): one area function per beam
-  -- spreads a focus evenly over its section, §7's stated limitation.
+  -- Measured 0.384 at the defaults (0.380 with one area function per beam,
+  -- 0.387 at 3 steps): a beam's linear flux density spreads a focus evenly
+  -- over its section.
   local n, h = 128, 0.2
   local set = { technique = "beams", view = "down", floor = 1.5, radius = 1, camera_height = h, fresnel = false,
                 output = "irradiance" }
@@ -187,4 +189,40 @@ t.case("the light's view and the grid: errors name the parameter", function()
   t.expect_error(function()
     fog({ grid = 64, refine = 3 }, {32, 32})
   end, "grid x 2^refine")
+end)
+
+t.case("surface caustics are continuous across beams: a density per edge ray, no holes", function()
+  -- beyond the ball lens's focus (floor 3.5 below the centre) the floor's
+  -- irradiance varies slowly; with the filter off, one area function per
+  -- beam leaves steps at the beams' edges that the edge rays' shared
+  -- densities (the lattice's adjacency) remove. Measured total variation
+  -- over the mean 0.0215 against 0.0242, and 5 isolated pixels (cracks and
+  -- overlaps where a coarse beam meets finer ones) of 8,833.
+  local function measure(smooth)
+    local set = { technique = "beams", view = "down", floor = 3.5, radius = 1, camera_height = 1.2, fresnel = false,
+                  output = "irradiance", blur = 0, smooth = smooth }
+    local img = t.render("tests/scenes/ball_lens.lua", { set = set, size = {96, 96} })
+    t.expect_finite(img)
+    local tv, mean, lit, outliers = 0, 0, 0, 0
+    for y = 1, 94 do
+      for x = 1, 94 do
+        local v = img:pixel(x, y)
+        if v > 0 then
+          tv = tv + math.abs(v - img:pixel(x + 1, y)) + math.abs(v - img:pixel(x, y + 1))
+          mean, lit = mean + v, lit + 1
+        end
+        local alone = true
+        for _, o in ipairs { {1, 0}, {-1, 0}, {0, 1}, {0, -1} } do
+          local w = img:pixel(x + o[1], y + o[2])
+          if math.abs(v - w) <= 0.2 * math.max(w, 1e-6) then alone = false end
+        end
+        if alone then outliers = outliers + 1 end
+      end
+    end
+    return tv / mean, outliers, lit
+  end
+  local smooth, holes, lit = measure(true)
+  local flat = measure(false)
+  t.expect(smooth < flat, string.format("total variation %.4f (per edge ray) against %.4f (per beam)", smooth, flat))
+  t.expect(holes < 0.002 * lit, string.format("%d isolated pixels of %d", holes, lit))
 end)
