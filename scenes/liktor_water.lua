@@ -5,7 +5,8 @@
 -- caustics are under water, the surface caustics on the tank's floor; the
 -- camera looks through the tank's (invisible) side. --set grid=, refine=,
 -- wave= (the surface's ripple amplitude, 0: flat), technique=beams|plain.
--- smooth=false (one area function per beam), blur= (the surface caustics'
+-- edges= (silhouette refinement), smooth=false (one area function per beam),
+-- blur= (the surface caustics'
 -- filter, pixels).
 local c = require "caustica"
 
@@ -24,7 +25,7 @@ scene:add(c.object { mesh = c.mesh.plane { size = 2 }, position = {0, -1, 0},
 scene:add(c.object { mesh = c.mesh.plane { size = 2 }, position = {0, -0.5, -1}, rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
                      scale = {1, 1, 0.5}, material = c.material.diffuse { color = {0.3, 0.35, 0.45} } })
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3, segments = 96 }, position = {0, 0.6, 0},
-                     material = c.material.glass { ior = c.param("ior", 1.2) } })
+                     material = c.material.glass { ior = c.param("ior", 1.35) } })
 local water = scene:add(c.water { size = 2, resolution = 65, depth = 1, ior = 1.33, attenuation = {0.05, 0.03, 0.02} })
 local function ripple(t)
   water:set_heights(function(x, z)
@@ -38,7 +39,7 @@ scene.medium = c.medium { sigma_s = {0.35, 0.4, 0.45}, sigma_a = {0.03, 0.02, 0.
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2),
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
                                         smooth = c.param("smooth", true), blur = c.param("blur", 1.5) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("water", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })

@@ -68,6 +68,6 @@ void cell_unpack(uint c, out int level, out int x, out int y)
 }
 
 uniform int u_lattice;  // M: cells of the finest lattice per side (grid x 2^refine)
-uniform int u_refine;   // refinement steps
+uniform int u_refine;   // levels of the lattice below the coarse grid (refine + edges)
 
 int vertex_index(int i, int j) { return j * (u_lattice + 1) + i; }

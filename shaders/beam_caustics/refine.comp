@@ -12,7 +12,9 @@
 //   the base along the extrusion) are split first, divergent ones are not;
 // - the camera: a beam whose width seen from the camera (at the point of
 //   its central ray nearest to it) exceeds `u_pixels` pixels.
-// Cells are addressed on the finest lattice, so neighbouring beams of any
+// Past `refine` levels, a cell is split only at a silhouette (`edges` more
+// levels), where the beams' edges would otherwise leave a ragged ring with
+// no light. Cells are addressed on the finest lattice, so neighbouring beams of any
 // level share their corner rays exactly (the adjacency the paper loses
 // after stream-out, §7).
 #include "common/frame.glsl"
@@ -24,6 +26,7 @@ uniform float u_pixels;       // split when the beam's width on screen exceeds t
 uniform float u_normal_cos;   // split when two corners' normals differ more than this (cosine)
 uniform float u_depth_jump;   // split when two corners' depths differ more than this x the cell's side
 uniform int u_light_ortho;
+uniform int u_free;           // levels below this split on every criterion; the rest on silhouettes only
 
 bool valid_vertex(int i, int j)
 {
@@ -77,6 +80,10 @@ int decide(uint k, out int level, out int x, out int y)
                 split = true;
         }
     }
+    // a silhouette (of the glass, or between paths) is refined `u_edges` levels further
+    bool silhouette = split;
+    if (level >= u_free)
+        return silhouette && level < u_refine ? 2 : 1;
     if (!split) {
         // discontinuities of the surface: normals apart, or a depth step steeper than
         // u_depth_jump times the cell's side across the light's view (a slope of atan(u_depth_jump))
@@ -118,7 +125,7 @@ int decide(uint k, out int level, out int x, out int y)
         if (pixels > u_pixels)
             split = true;
     }
-    return split && level < u_refine ? 2 : 1;
+    return split && level < u_refine ? 2 : 1; // (level < u_free here)
 }
 
 void main()

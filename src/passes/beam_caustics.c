@@ -34,7 +34,8 @@
 #include "graph/renderer.h"
 #include "passes/layers.h"
 
-#define BEAMS_MAX_LATTICE 256     /* grid x 2^refine: the finest lattice's cells per side */
+#define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
+#define BEAMS_MAX_BEAMS (1 << 18)  /* beams one frame may build (64 MB); more are dropped and reported */
 #define BEAMS_VERTEX_BYTES 128    /* struct BeamVertex in shaders/beam_caustics/beams.glsl */
 #define BEAMS_BEAM_BYTES 256      /* struct Beam: 16 vec4 */
 #define BEAMS_ADJACENCY_STRIDE 16 /* uints per lattice vertex in the adjacency lists (beams.glsl) */
@@ -61,6 +62,7 @@ enum beam_caustics_param {
     BC_LIGHT,
     BC_GRID,
     BC_REFINE,
+    BC_EDGES,
     BC_BUFFER,
     BC_LAYERS,
     BC_VOXELS,
@@ -82,7 +84,10 @@ static const struct pass_param_desc params[] = {
     [BC_GRID] = {.name = "grid", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = BEAMS_MAX_LATTICE,
      .help = "cells per side of the coarse projected grid in the light's view (§4.1)"},
     [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8,
-     .help = "adaptive refinement steps (§4.2); grid x 2^refine is at most 256"},
+     .help = "adaptive refinement steps (§4.2) on every criterion of the split oracle"},
+    [BC_EDGES] = {.name = "edges", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 6,
+     .help = "further refinement at silhouettes only (the glass's, or between paths through different "
+             "interfaces); grid x 2^(refine + edges) is at most 256"},
     [BC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "the light's view of the specular surfaces, buffer x buffer texels (the G-buffer of §4.1)"},
     [BC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
@@ -118,10 +123,11 @@ static const struct pass_param_desc params[] = {
 
 static bool beam_caustics_declare(struct pass *p, struct error *err)
 {
-    int lattice = pass_int(p, BC_GRID) << pass_int(p, BC_REFINE);
+    int lattice = pass_int(p, BC_GRID) << (pass_int(p, BC_REFINE) + pass_int(p, BC_EDGES));
     if (lattice > BEAMS_MAX_LATTICE)
-        return error_set(err, "bad argument 'refine' to 'beam_caustics' (grid x 2^refine = %d is more than %d: "
-                              "use fewer refinement steps or a coarser grid)", lattice, BEAMS_MAX_LATTICE);
+        return error_set(err, "bad argument 'refine' to 'beam_caustics' (grid x 2^(refine + edges) = %d is more "
+                              "than %d: use fewer refinement steps, fewer edge steps or a coarser grid)",
+                         lattice, BEAMS_MAX_LATTICE);
     if (pass_int(p, BC_VOXELS) % 128 != 0)
         return error_set(err, "bad argument 'voxels' to 'beam_caustics' (a multiple of 128 expected, got %d)",
                          pass_int(p, BC_VOXELS));
@@ -208,6 +214,8 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
     release_buffers(s);
     s->cell_capacity = lattice * lattice;
     s->beam_capacity = 2 * s->cell_capacity * (reflection ? 2 : 1);
+    if (s->beam_capacity > BEAMS_MAX_BEAMS)
+        s->beam_capacity = BEAMS_MAX_BEAMS;
     size_t vertices = (size_t)(lattice + 1) * (size_t)(lattice + 1);
     if (!gl_buffer_create(&s->vertices, NULL, vertices * BEAMS_VERTEX_BYTES, 0, err) ||
         !gl_buffer_create(&s->cells, NULL, (size_t)s->cell_capacity * 3 * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT,
@@ -360,6 +368,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_normal_cos"), cosf(20.0f * (float)MATH_PI / 180.0f));
     gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_depth_jump"), tanf(80.0f * (float)MATH_PI / 180.0f));
     gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_light_ortho"), ortho ? 1 : 0);
+    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_free"), pass_int(p, BC_REFINE));
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counters);
     for (int level = 0; level <= s->refine; level++) {
         gl.UseProgram(refine->id);
@@ -485,7 +494,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi) || !scene_bounds(f->scene, &slo, &shi))
         return true; /* the light is not in the scene, or nothing refracts: no beams */
     int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE), buffer = pass_int(p, BC_BUFFER);
-    if (!ensure_buffers(s, grid, refine, pass_flag(p, BC_REFLECTION), err) ||
+    if (!ensure_buffers(s, grid, refine + pass_int(p, BC_EDGES), pass_flag(p, BC_REFLECTION), err) ||
         !ensure_targets(s, f->width, f->height, err))
         return false;
     const struct frame_light *fl = &f->snapshot->lights[slot];

@@ -187,8 +187,8 @@ end)
 
 t.case("the light's view and the grid: errors name the parameter", function()
   t.expect_error(function()
-    fog({ grid = 64, refine = 3 }, {32, 32})
-  end, "grid x 2^refine")
+    fog({ grid = 128, refine = 3 }, {32, 32})
+  end, "grid x 2^(refine + edges)")
 end)
 
 t.case("surface caustics are continuous across beams: a density per edge ray, no holes", function()
