@@ -6,9 +6,8 @@
 -- scattering of the direct light, shadowed (Fig. 8). --set grid=, refine=,
 -- volumes=tight|prism, technique=beams|plain, fog= (sigma_s), turn= (the
 -- skull's turn per second).
--- edges= (silhouette refinement), smooth=false (one area function per beam),
--- blur= (the surface caustics'
--- filter, pixels).
+-- edges= (silhouette refinement), smooth=false (one area function per
+-- beam), blur= (the surface caustics' filter, pixels).
 local c = require "caustica"
 
 local technique = c.param("technique", "beams")
@@ -30,7 +29,7 @@ scene.medium = c.medium { sigma_s = {fog, fog, fog}, sigma_a = {0.02, 0.02, 0.02
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
                                         smooth = c.param("smooth", true), blur = c.param("blur", 1.5),
                                         volumes = c.param("volumes", "tight") })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })

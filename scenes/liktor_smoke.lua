@@ -4,9 +4,8 @@
 -- marches the density along each view ray's interval in a beam (4 samples)
 -- and volume_light along each pixel's ray. --set grid=, refine=,
 -- technique=beams|plain, density= (the plume's peak density).
--- edges= (silhouette refinement), smooth=false (one area function per beam),
--- blur= (the surface caustics'
--- filter, pixels).
+-- edges= (silhouette refinement), smooth=false (one area function per
+-- beam), blur= (the surface caustics' filter, pixels).
 local c = require "caustica"
 
 local technique = c.param("technique", "beams")
@@ -40,7 +39,7 @@ scene.medium = c.medium { sigma_s = {0.8, 0.8, 0.8}, sigma_a = {0.05, 0.05, 0.05
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
                                         smooth = c.param("smooth", true), blur = c.param("blur", 1.5) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("smoke", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })

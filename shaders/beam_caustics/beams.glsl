@@ -49,7 +49,6 @@ const int COUNT_IN = 3;         // cells in the current list
 const int COUNT_NEXT = 4;       // cells appended to the next list
 const int COUNT_KEPT = 5;       // cells kept as beams' bases
 const int COUNT_BEAMS = 6;      // beams built
-const int COUNT_FRAGMENTS = 7;  // fragments the bounding volumes rasterized
 const int COUNT_DRAW = 8;       // count, instances, first, base instance
 const int COUNT_BUILD = 12;     // x, y, z: the beam builder's dispatch
 const int COUNT_OVERFLOW = 15;  // cells or beams past capacity (dropped)

@@ -42,7 +42,7 @@
 #define BEAMS_DISTANCE_SIZE 256   /* the distance impostor's faces */
 /* Counter offsets of beams.glsl (uint index). */
 enum {
-    COUNT_DISPATCH = 0, COUNT_IN = 3, COUNT_NEXT = 4, COUNT_KEPT = 5, COUNT_BEAMS = 6, COUNT_FRAGMENTS = 7,
+    COUNT_DISPATCH = 0, COUNT_IN = 3, COUNT_NEXT = 4, COUNT_KEPT = 5, COUNT_BEAMS = 6,
     COUNT_DRAW = 8, COUNT_BUILD = 12, COUNT_OVERFLOW = 15, COUNT_PRISMS = 16, COUNT_SIZE = 20
 };
 
@@ -83,9 +83,9 @@ static const struct pass_param_desc params[] = {
      .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
     [BC_GRID] = {.name = "grid", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = BEAMS_MAX_LATTICE,
      .help = "cells per side of the coarse projected grid in the light's view (§4.1)"},
-    [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8,
+    [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 0, .max = 8,
      .help = "adaptive refinement steps (§4.2) on every criterion of the split oracle"},
-    [BC_EDGES] = {.name = "edges", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 6,
+    [BC_EDGES] = {.name = "edges", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 6,
      .help = "further refinement at silhouettes only (the glass's, or between paths through different "
              "interfaces); grid x 2^(refine + edges) is at most 256"},
     [BC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
@@ -514,7 +514,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         return false;
     /* what the camera sees: depth of everything, normals of the receivers */
     struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "beam_caustics/receivers.vert", "beam_caustics/receivers.frag", NULL, &recv,
+    if (!gl_program_get(&r->programs, "common/object.vert", "beam_caustics/receivers.frag", NULL, &recv,
                         err))
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);

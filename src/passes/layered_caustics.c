@@ -164,7 +164,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
 
     /* The receivers as the camera sees them. */
     struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "layered_caustics/receivers.vert", "layered_caustics/receivers.frag", NULL,
+    if (!gl_program_get(&r->programs, "common/object.vert", "layered_caustics/receivers.frag", NULL,
                         &recv, err))
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);

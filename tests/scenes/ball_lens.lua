@@ -59,7 +59,7 @@ elseif c.param("technique", "") == "layered" then
 elseif c.param("technique", "") == "beams" then
   -- Liktor & Dachsbacher's beams (surface caustics from the same beams as volume caustics)
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
-  g:add("beams", c.pass.beam_caustics { light = sun, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
+  g:add("beams", c.pass.beam_caustics { light = sun, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
                                         blur = c.param("blur", 1.5), max_focus = c.param("max_focus", 1000),
                                         smooth = c.param("smooth", true) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance" })

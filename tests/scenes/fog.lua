@@ -41,7 +41,7 @@ local gr = c.graph()
 if technique == "beams" then
   local light = sun
   gr:add("shadow", c.pass.shadow_map { light = light, size = 512 })
-  gr:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
+  gr:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
                                          volumes = c.param("volumes", "tight"), max_focus = c.param("max_focus", 1000), reflection = c.param("reflection", true) })
   gr:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance" })
   gr:add("fog", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })

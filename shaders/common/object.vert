@@ -1,4 +1,6 @@
 #version 450 core
+// An object in world space for the camera: its world position and normal
+// (fragment shaders that need only these: receivers, G-buffers).
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
