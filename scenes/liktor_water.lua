@@ -3,10 +3,12 @@
 -- refracts the beams again (the edge rays are traced through the sphere's
 -- two interfaces and the water's one: multi-bounce beams, §6). The volume
 -- caustics are under water, the surface caustics on the tank's floor; the
--- camera looks through the tank's (invisible) side. --set grid=, refine=,
--- wave= (the surface's ripple amplitude, 0: flat), technique=beams|plain.
--- edges= (silhouette refinement), smooth=false (one area function per
--- beam), blur= (the surface caustics' filter, pixels).
+-- camera looks through the tank's (invisible) side. 2 refinement and 2 edge
+-- steps: the rippled water and the lens's silhouette need them (README).
+-- --set grid=, refine=, edges= (silhouette refinement), wave= (the
+-- surface's ripple amplitude, 0: flat), technique=beams|plain,
+-- smooth=false (one area function per beam), blur= (the surface caustics'
+-- filter, pixels).
 local c = require "caustica"
 
 local technique = c.param("technique", "beams")
@@ -38,7 +40,7 @@ scene.medium = c.medium { sigma_s = {0.35, 0.4, 0.45}, sigma_a = {0.03, 0.02, 0.
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = light, size = 1024 })
 if technique == "beams" then
-  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
+  g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 2), edges = c.param("edges", 2),
                                         smooth = c.param("smooth", true), blur = c.param("blur", 1.5) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
   g:add("water", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
