@@ -10,7 +10,9 @@
 static const char usage_text[] =
 "usage:\n"
     "  caustica render SCENE.lua [-o OUT.png|OUT.pfm|OUT.hdr] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
-    "  caustica record SCENE.lua -o DIR [--frames A:B] [--size WxH] [--set k=v ...]\n"
+    "  caustica record SCENE.lua -o DIR|PATTERN [--frames SET] [--shard i/n] [--overwrite] [--size WxH]\n"
+    "                  [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
+    "                  PATTERN: out/shot_####.png or .pfm; frames already there are skipped)\n"
     "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
     "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
@@ -93,20 +95,26 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
                 return usage_error("--frame needs a frame number >= 0, got '%s'", next);
         } else if (strcmp(a, "--frames") == 0) {
             NEED_VALUE();
-            const char *colon = strchr(next, ':');
+            char message[300];
+            if (!frame_set_parse(next, &cli->frame_set, message, sizeof message))
+                return usage_error("%s", message);
             cli->frames_set = true;
-            if (colon) {
-                char first[32];
-                snprintf(first, sizeof first, "%.*s", (int)(colon - next), next);
-                if (!parse_int(first, &cli->frames_from) || !parse_int(colon + 1, &cli->frames_to) ||
-                    cli->frames_from < 0 || cli->frames_to < cli->frames_from)
-                    return usage_error("--frames needs A:B with 0 <= A <= B, got '%s'", next);
-            } else {
-                if (!parse_int(next, &cli->frames_to) || cli->frames_to < 1)
-                    return usage_error("--frames needs a count >= 1 or A:B, got '%s'", next);
-                cli->frames_from = 0;
-                cli->frames_to -= 1;
+            cli->frames_from = cli->frame_set.ranges[0].from;
+            cli->frames_to = cli->frame_set.ranges[0].to;
+            for (int k = 1; k < cli->frame_set.count; k++) {
+                if (cli->frame_set.ranges[k].from < cli->frames_from)
+                    cli->frames_from = cli->frame_set.ranges[k].from;
+                if (cli->frame_set.ranges[k].to > cli->frames_to)
+                    cli->frames_to = cli->frame_set.ranges[k].to;
             }
+        } else if (strcmp(a, "--overwrite") == 0) {
+            cli->overwrite = true;
+        } else if (strcmp(a, "--shard") == 0) {
+            NEED_VALUE();
+            int used = 0;
+            if (sscanf(next, "%d/%d%n", &cli->shard_index, &cli->shard_count, &used) != 2 || next[used] ||
+                cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
+                return usage_error("--shard needs i/n with 0 <= i < n (e.g. $SLURM_ARRAY_TASK_ID/4), got '%s'", next);
         } else if (strcmp(a, "--size") == 0) {
             NEED_VALUE();
             if (sscanf(next, "%dx%d", &cli->width, &cli->height) != 2 || cli->width < 1 || cli->height < 1 ||

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "app/app.h"
+#include "app/frame_set.h"
 #include "app/session.h"
 
 #define EXIT_SCENE_ERROR 1
@@ -17,8 +18,11 @@ struct cli {
     int npositional;
     const char *output;      /* -o */
     int frame;               /* --frame */
-    int frames_from, frames_to; /* --frames A:B (record), N (run) */
+    int frames_from, frames_to; /* --frames: the set's first and last frame (N: 0..N-1) */
     bool frames_set;
+    struct frame_set frame_set; /* --frames as given (record renders exactly these) */
+    bool overwrite;          /* --overwrite (record): render frames whose file exists */
+    int shard_index, shard_count; /* --shard i/n (record): every n-th frame of the set from the i-th */
     int width, height;       /* --size */
     const char *screenshot;
     const char *mask;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "app/frame_set.h"
 #include "core/fileio.h"
 #include "core/log.h"
 #include "graph/graph.h"
@@ -103,54 +104,114 @@ int cmd_render(struct app *app, struct cli *cli)
 int cmd_record(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1 || !cli->output) {
-        fprintf(stderr, "caustica: record needs one scene script and -o DIR\n");
+        fprintf(stderr, "caustica: record needs one scene script and -o DIR or -o PATTERN (out/shot_####.png)\n");
         cli_usage(stderr);
         return EXIT_USAGE;
     }
     struct error err;
-    bool existed = file_exists(cli->output);
-    if (!dir_ensure(cli->output, &err)) {
+    /* -o DIR writes DIR/frame_####.png; -o out/shot_####.png names each file
+     * by its frame (a run of # is the zero-padded frame number). */
+    bool pattern = output_pattern_is_pattern(cli->output);
+    char dir[4096];
+    if (pattern) {
+        if (!image_path_is_png(cli->output) && !image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output)) {
+            fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .pfm or .hdr\n", cli->output);
+            return EXIT_USAGE;
+        }
+        if (strchr(cli->output, '/') && strchr(strchr(cli->output, '#'), '/')) {
+            fprintf(stderr, "caustica: -o %s: the # run must be in the file name, not in a folder\n", cli->output);
+            return EXIT_USAGE;
+        }
+        path_dirname(cli->output, dir, sizeof dir);
+    } else {
+        snprintf(dir, sizeof dir, "%s", cli->output);
+    }
+    bool existed = file_exists(dir);
+    if (!dir_ensure(dir, &err)) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
     /* An earlier record killed mid-write left its temporaries here. */
-    int stale = path_remove_stale_temporaries(cli->output);
+    int stale = path_remove_stale_temporaries(dir);
     if (stale)
-        log_info("removed %d stale temporary file%s of an earlier run from %s", stale, stale == 1 ? "" : "s",
-                 cli->output);
+        log_info("removed %d stale temporary file%s of an earlier run from %s", stale, stale == 1 ? "" : "s", dir);
     struct session *s;
-    if (!open_session(app, cli, app->allow_write ? app->allow_write : cli->output, &s)) {
+    if (!open_session(app, cli, app->allow_write ? app->allow_write : dir, &s)) {
         if (!existed)
-            rmdir(cli->output); /* made for this run, and still empty: nothing left behind */
+            rmdir(dir); /* made for this run, and still empty: nothing left behind */
         return EXIT_SCENE_ERROR;
     }
-    int from = cli->frames_set ? cli->frames_from : 0;
-    int to = cli->frames_set ? cli->frames_to : s->frames - 1;
-    int total = to - from + 1;
+    /* The frames: the set given (in order, each once), or the script's. */
+    int count = 0;
+    int *frames;
+    if (cli->frames_set) {
+        frames = frame_set_list(&cli->frame_set, &count);
+    } else {
+        count = s->frames;
+        frames = malloc((size_t)(count > 0 ? count : 1) * sizeof *frames);
+        for (int f = 0; frames && f < count; f++)
+            frames[f] = f;
+    }
+    if (!frames) {
+        session_close(s);
+        fprintf(stderr, "caustica: out of memory for the list of frames\n");
+        return EXIT_SCENE_ERROR;
+    }
+    /* A shard of a farm's array job: every n-th frame of the set, from the
+     * i-th (interleaved, so each shard spans the whole animation). */
+    if (cli->shard_count > 0) {
+        int kept = 0;
+        for (int k = 0; k < count; k++)
+            if (k % cli->shard_count == cli->shard_index)
+                frames[kept++] = frames[k];
+        count = kept;
+    }
     bool tty = isatty(STDERR_FILENO);
     double start = log_now();
     bool ok = true;
-    for (int f = from; f <= to && ok; f++) {
+    int written = 0, skipped = 0;
+    char first[4200] = "", last[4200] = "";
+    for (int k = 0; k < count && ok; k++) {
         char path[4200];
-        snprintf(path, sizeof path, "%s/frame_%04d.png", cli->output, f);
-        /* Each PNG is written to a temporary file and renamed into place. */
-        ok = session_render(s, f, &err) && session_write_image(s, path, &err);
-        int done = f - from + 1;
+        if (!output_pattern_path(cli->output, frames[k], path, sizeof path)) {
+            ok = error_set(&err, "-o %s: the path of frame %d is too long", cli->output, frames[k]);
+            break;
+        }
+        /* Resume: a frame whose file is there was finished by an earlier run
+         * (files are written to a temporary and renamed into place). */
+        if (!cli->overwrite && file_exists(path)) {
+            skipped++;
+            continue;
+        }
+        ok = session_render(s, frames[k], &err) && session_write_image(s, path, &err);
+        if (!ok)
+            break;
+        if (!written)
+            snprintf(first, sizeof first, "%s", path);
+        snprintf(last, sizeof last, "%s", path);
+        written++;
         double elapsed = log_now() - start;
-        double fps = elapsed > 0 ? done / elapsed : 0;
+        double fps = elapsed > 0 ? written / elapsed : 0;
         if (tty) {
-            fprintf(stderr, "\rframe %d/%d  %.1f fps  %.0f s left   ", done, total, fps,
-                    fps > 0 ? (total - done) / fps : 0.0);
+            fprintf(stderr, "\rframe %d (%d/%d)  %.1f fps  %.0f s left   ", frames[k], k + 1, count, fps,
+                    fps > 0 ? (count - k - 1) / fps : 0.0);
             fflush(stderr);
         }
     }
     if (tty)
         fputc('\n', stderr);
+    free(frames);
     session_close(s);
     if (!ok) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    printf("wrote %d frames to %s/frame_%04d.png .. frame_%04d.png\n", total, cli->output, from, to);
+    if (written)
+        printf("wrote %d frame%s: %s .. %s\n", written, written == 1 ? "" : "s", first, last);
+    if (skipped)
+        printf("skipped %d frame%s already written (--overwrite renders them again)\n", skipped,
+               skipped == 1 ? "" : "s");
+    if (!written && !skipped)
+        printf("no frames to render (the shard or the set is empty)\n");
     return 0;
 }

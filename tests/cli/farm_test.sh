@@ -1,0 +1,61 @@
+# Recording as render farms do: frame sets (1-100, 0-119:10, 1,5,10-20,
+# A:B), output patterns (shot_####.png), resuming an interrupted recording,
+# and shards (--shard i/n, interleaved) whose union equals one local record
+# byte for byte, driven by examples/slurm/record_array.sh with the array
+# variables Slurm would set (a real one-node cluster is not started here).
+source "$(dirname "$0")/lib.sh"
+SCENE=tests/scenes/deform.lua
+files() { (cd "$1" && ls | tr '\n' ' '); }
+
+"$CAUSTICA" record $SCENE -o "$WORK/steps/s_##.png" --frames 0-9:3 --size 24x24 >/dev/null
+[ "$(files "$WORK/steps")" = "s_00.png s_03.png s_06.png s_09.png " ] && pass "0-9:3 into s_##.png" \
+  || fail "a stepped range into a pattern" "$(files "$WORK/steps")"
+"$CAUSTICA" record $SCENE -o "$WORK/list" --frames 1,5,3-4,5 --size 24x24 >/dev/null
+[ "$(files "$WORK/list")" = "frame_0001.png frame_0003.png frame_0004.png frame_0005.png " ] \
+  && pass "1,5,3-4,5: each frame once, into a folder" || fail "a list" "$(files "$WORK/list")"
+"$CAUSTICA" record $SCENE -o "$WORK/old" --frames 2:3 --size 24x24 >/dev/null
+[ "$(files "$WORK/old")" = "frame_0002.png frame_0003.png " ] && pass "A:B still inclusive" \
+  || fail "A:B" "$(files "$WORK/old")"
+"$CAUSTICA" record $SCENE -o "$WORK/pfm/f_####.pfm" --frames 4 --size 24x24 >/dev/null
+[ "$(files "$WORK/pfm")" = "f_0000.pfm f_0001.pfm f_0002.pfm f_0003.pfm " ] && pass "a count, as PFM" \
+  || fail "a count as PFM" "$(files "$WORK/pfm")"
+expect_error "a backwards range" 2 "--frames: '5-3' runs backwards" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/bad" --frames 5-3
+expect_error "a step of 0" 2 "runs backwards or has a step below 1" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/bad" --frames 0-9:0
+expect_error "not a frame" 2 "--frames: 'x' is not a frame" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/bad" --frames 1,x
+expect_error "a bad shard" 2 "--shard needs i/n" - -- "$CAUSTICA" record $SCENE -o "$WORK/bad" --shard 4/4
+expect_error "# in a folder" 2 "the # run must be in the file name" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/d_##/f.png"
+expect_error "a pattern's type" 2 "must end in .png, .pfm or .hdr" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/f_##.jpg"
+
+# Resume: the frames on disk are kept, the missing one rendered; --overwrite renders all.
+"$CAUSTICA" record $SCENE -o "$WORK/resume" --frames 0-5 --size 24x24 >/dev/null
+cp "$WORK/resume/frame_0002.png" "$WORK/kept.png"
+rm "$WORK/resume/frame_0003.png"
+touch -d '2000-01-01' "$WORK/resume/frame_0002.png"
+out=$("$CAUSTICA" record $SCENE -o "$WORK/resume" --frames 0-5 --size 24x24)
+grep -q "wrote 1 frame: .*frame_0003.png" <<<"$out" && grep -q "skipped 5 frames already written" <<<"$out" \
+  && [ "$(find "$WORK/resume" -name frame_0002.png -newer "$WORK/kept.png" | wc -l)" = 0 ] \
+  && pass "a second run renders only the missing frame" || fail "resume" "$out"
+out=$("$CAUSTICA" record $SCENE -o "$WORK/resume" --frames 0-5 --size 24x24 --overwrite)
+grep -q "wrote 6 frames" <<<"$out" && pass "--overwrite renders them again" || fail "--overwrite" "$out"
+
+# Shards: an array job of 4 tasks over 8 frames equals one local record.
+"$CAUSTICA" record $SCENE -o "$WORK/local" --frames 0-7 --size 24x24 >/dev/null
+for i in 0 1 2 3; do
+  SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=4 CAUSTICA="$CAUSTICA" CAUSTICA_SIZE=24x24 \
+    bash examples/slurm/record_array.sh $SCENE "$WORK/farm" 0-7 >"$WORK/task$i.log" 2>&1 \
+    || fail "array task $i" "$(cat "$WORK/task$i.log")"
+done
+grep -q "frame_0001.png .. .*frame_0005.png" "$WORK/task1.log" && pass "shard 1/4 renders frames 1 and 5 (interleaved)" \
+  || fail "shard 1/4" "$(cat "$WORK/task1.log")"
+same=0
+for f in "$WORK"/local/*.png; do cmp -s "$f" "$WORK/farm/$(basename "$f")" && same=$((same + 1)); done
+[ "$same" = 8 ] && [ "$(ls "$WORK/farm" | wc -l)" = 8 ] && pass "4 shards == one local record, byte for byte" \
+  || fail "shards" "$same of 8 equal; farm holds: $(files "$WORK/farm")"
+expect_error "the array script outside Slurm" 1 "not inside a Slurm array job" - -- \
+  env -u SLURM_ARRAY_TASK_ID bash examples/slurm/record_array.sh $SCENE "$WORK/farm2"
+finish
