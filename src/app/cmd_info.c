@@ -20,25 +20,38 @@ int cmd_info(struct app *app, struct cli *cli)
         return EXIT_SCENE_ERROR;
     }
     bool ok = graph_check(s->graph, &err);
-    /* Two frames show what the graph reuses from one frame to the next. */
-    bool rendered = ok && !cli->no_render && session_render(s, 0, &err) && session_render(s, 1 % s->frames, &err);
+    /* Two frames show what the graph reuses from one frame to the next (a
+     * still has one: what its frame does). */
+    bool still = s->frames <= 1;
+    int shown = still ? 0 : 1;
+    bool rendered = ok && !cli->no_render && session_render(s, 0, &err) && (still || session_render(s, 1, &err));
     if (ok && !cli->no_render && !rendered)
         ok = false;
     if (ok) {
-        printf("%s: %d objects, %d lights, %dx%d, %d frames at %g fps, output '%s'\n", s->script,
-               s->scene->object_count, s->scene->light_count, s->width, s->height, s->frames, s->fps, s->graph->output);
+        printf("%s: %d objects, %d lights, %dx%d, %d frame%s at %g fps, output '%s'\n", s->script,
+               s->scene->object_count, s->scene->light_count, s->width, s->height, s->frames, s->frames == 1 ? "" : "s",
+               s->fps, s->graph->output);
         for (int i = 0; i < s->graph->count; i++) {
             const struct graph_entry *e = &s->graph->entries[i];
             const struct pass *p = e->pass;
+            const char *runs = still ? "runs once (a still)" : "runs every frame";
             printf("%2d  %-16s %-16s ", i + 1, p->name, p->desc->name);
-            if (e->state != GRAPH_PASS_KEPT)
+            if (e->state != GRAPH_PASS_KEPT) {
                 printf("left out: %s\n", e->reason);
-            else if (rendered && e->last_need != PASS_RUN)
-                printf("kept; on frame %d %s\n", 1 % s->frames, e->last_why);
-            else if (rendered && e->last_why[0])
-                printf("kept; runs every frame: %s\n", e->last_why);
-            else
-                printf("kept; runs every frame\n");
+            } else if (rendered && e->last_need == PASS_SKIP) {
+                const char *why = e->last_why;
+                if (strncmp(why, "left out: ", 10) == 0)
+                    why += 10;
+                printf("kept, but does nothing on frame %d: %s\n", shown, why);
+            } else if (rendered && e->last_need == PASS_REUSE && !still) {
+                printf("kept; on frame %d %s\n", shown, e->last_why);
+            } else if (rendered && e->last_why[0]) {
+                printf("kept; %s: %s\n", runs, e->last_why);
+            } else {
+                printf("kept; %s\n", runs);
+            }
+            if (rendered && e->state == GRAPH_PASS_KEPT && e->last_need == PASS_RUN && p->report[0])
+                printf("      on frame %d: %s\n", shown, p->report);
             for (int k = 0; k < p->input_count; k++)
                 printf("      in  %-12s <- %s\n", p->inputs[k].name, p->inputs[k].source);
             for (int k = 0; k < p->output_count; k++)

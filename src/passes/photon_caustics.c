@@ -193,6 +193,10 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     bool reuse = s->valid && s->light_version == light->version && s->geometry_version == gv && s->buffer == buffer &&
                  s->texture == texture;
     reuse = reuse && !f->snapshot->geometry_animated;
+    snprintf(p->report, sizeof p->report, "%s",
+             reuse ? "the photon buffer and caustic textures reused (the light and the geometry did not change since "
+                     "the last frame); the caustic mapping from the camera runs every frame"
+                   : "photons traced from the light into new caustic textures");
     if (!reuse) {
         if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))

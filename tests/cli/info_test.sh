@@ -4,10 +4,6 @@ source "$(dirname "$0")/lib.sh"
 grep -q "unused           environment      left out: contributes nothing to the output 'shade.color'" "$WORK/prune.txt" \
   && pass "unused pass left out with reason" || fail "unused pass" "$(cat "$WORK/prune.txt")"
 grep -q "shade            shade            kept" "$WORK/prune.txt" && pass "output pass kept" || fail "output pass kept" "$(cat "$WORK/prune.txt")"
-# A static light and static casters: the shadow map is reused on frame 1.
-"$CAUSTICA" info tests/scenes/lights.lua >"$WORK/static.txt" 2>&1
-grep -q "shadow .*reused: the light and the casters did not change" "$WORK/static.txt" \
-  && pass "static shadow map reused" || fail "static shadow reuse" "$(cat "$WORK/static.txt")"
 # The demo's light moves: its shadow map runs every frame.
 "$CAUSTICA" info scenes/demo.lua --size 64x64 >"$WORK/demo.txt" 2>&1
 grep -q "shadow .*runs every frame" "$WORK/demo.txt" && pass "moving light: shadow map redrawn" \
@@ -15,7 +11,7 @@ grep -q "shadow .*runs every frame" "$WORK/demo.txt" && pass "moving light: shad
 grep -q "in  shadow0      <- shadow.depth" "$WORK/demo.txt" && pass "inputs listed" || fail "inputs listed" "$(cat "$WORK/demo.txt")"
 # A caustics pass the scene does not ask for (its sun below the horizon) is left out, with the reason.
 "$CAUSTICA" info tests/scenes/flat_water.lua --set elevation=-10 >"$WORK/water.txt" 2>&1
-grep -q "cv .*left out: the light is below the horizon" "$WORK/water.txt" && pass "caustics left out when not needed" \
+grep -q "cv .*kept, but does nothing on frame 0: the light is below the horizon" "$WORK/water.txt" && pass "caustics left out when not needed" \
   || fail "caustics left out" "$(cat "$WORK/water.txt")"
 "$CAUSTICA" render scenes/demo.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
 grep -qE "^shade +shade +[0-9.]+ +[0-9]+ +[0-9]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
@@ -46,4 +42,33 @@ grep -q "10.8 MB, traced in" "$WORK/info1.txt" && grep -q "10.8 MB, read from th
   && pass "transport tables: traced, then read from the disk cache, traced again when the file is damaged" \
   || fail "transport table cache" "$(cat "$WORK/info1.txt" "$WORK/info2.txt" "$WORK/info3.txt" | grep transport)"
 unset CAUSTICA_CACHE
+# A still says what its one frame does, not what a next frame would reuse.
+"$CAUSTICA" info tests/scenes/fog.lua --size 16x16 >"$WORK/still.txt" 2>&1
+grep -q "shade            shade            kept; runs once (a still)" "$WORK/still.txt" && ! grep -q "since the last frame" "$WORK/still.txt" \
+  && pass "a still: runs once" || fail "a still" "$(cat "$WORK/still.txt")"
+# Photons of a static scene are traced once and reused; without glass the pass does nothing (one clear line).
+cat >"$WORK/static_photons.lua" <<'LUA'
+local c = require "caustica"
+local glass = c.param("glass", true)
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0} })
+if glass then scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass { ior = 1.5 } }) end
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 64 })
+g:add("photons", c.pass.photon_caustics { light = sun, buffer = 32, texture = 32 })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {16, 16}, frames = 4 }
+LUA
+"$CAUSTICA" info "$WORK/static_photons.lua" >"$WORK/photons.txt" 2>&1
+grep -A1 "photons          photon_caustics  kept; runs every frame" "$WORK/photons.txt" \
+  | grep -q "on frame 1: the photon buffer and caustic textures reused" \
+  && pass "static photons: reused, said so" || fail "static photons" "$(cat "$WORK/photons.txt")"
+# A static light and static casters over several frames: the shadow map is reused on frame 1.
+grep -q "shadow .*on frame 1 reused: the light and the casters did not change" "$WORK/photons.txt" \
+  && pass "static shadow map reused" || fail "static shadow reuse" "$(cat "$WORK/photons.txt")"
+"$CAUSTICA" info "$WORK/static_photons.lua" --set glass=false >"$WORK/noglass.txt" 2>&1
+grep -q "photons          photon_caustics  kept, but does nothing on frame 1: no refractive or reflective object" "$WORK/noglass.txt" \
+  && pass "no glass: the photon pass does nothing, one line" || fail "no glass" "$(cat "$WORK/noglass.txt")"
 finish
