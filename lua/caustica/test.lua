@@ -6,8 +6,44 @@
 local image = require "caustica.image"
 local host = require "caustica.host"
 
-local t = { _cases = {} }
+local t = { _cases = {}, _results = {} }
 local options = host.test_options()
+local current -- the case running: {file =, name =, images =}
+
+-- The folder of a path ("." for a bare name).
+local function folder_of(path)
+  return path:match("^(.*)/[^/]*$") or "."
+end
+
+-- A file-name-safe form of a case name.
+local function slug(text)
+  return (text:gsub("[^%w]+", "_"):gsub("^_+", ""):gsub("_+$", ""):sub(1, 60))
+end
+
+-- On a failed image comparison, the rendered image, the golden or other
+-- image it was compared with and their difference go to out/ beside the
+-- test file, named by the case: <test>.<case>.{new,ref,diff}.png. Returns
+-- a sentence naming them.
+local function save_failure_images(new, ref)
+  if not current then return "" end
+  local dir = host.script_dir() .. "/out"
+  local ok, err = pcall(host.mkdir, dir)
+  if not ok then return " (could not write the images: " .. tostring(err) .. ")" end
+  local stem = current.file:match("([^/]*)%.lua$") or "test"
+  current.count = (current.count or 0) + 1
+  local base = string.format("%s/%s.%s%s", dir, stem, slug(current.name),
+                             current.count > 1 and ("." .. current.count) or "")
+  local diff, scale = image.difference(new, ref)
+  local paths = { new = base .. ".new.png", ref = base .. ".ref.png", diff = base .. ".diff.png" }
+  local saved = pcall(function()
+    new:save(paths.new)
+    ref:save(paths.ref)
+    diff:save(paths.diff)
+  end)
+  if not saved then return " (could not write the images to " .. dir .. ")" end
+  current.images = paths
+  return string.format("; wrote %s, %s and %s (the difference scaled by %.4g)", paths.new, paths.ref, paths.diff, scale)
+end
 
 --- Registers a test case.
 function t.case(name, fn)
@@ -59,7 +95,9 @@ function t.expect_close(a, b, tol)
     problems[#problems + 1] = string.format("psnr %.4g < %.4g", m.psnr, tol.psnr) end
   if tol.ssim and m.ssim < tol.ssim then
     problems[#problems + 1] = string.format("ssim %.4g < %.4g", m.ssim, tol.ssim) end
-  if #problems > 0 then fail("images differ: " .. table.concat(problems, ", "), 2) end
+  if #problems > 0 then
+    fail("images differ: " .. table.concat(problems, ", ") .. save_failure_images(a, b), 2)
+  end
   return m
 end
 
@@ -72,25 +110,36 @@ function t.expect_different(a, b, rmse)
   return m
 end
 
---- Compares with a golden PNG in tests/refs (clamped to [0, 1] as a PNG
---- keeps it). `caustica test --update-refs` rewrites the file instead; a
---- golden image is committed only after a person looked at it.
+--- Compares with a golden PNG (clamped to [0, 1] as a PNG keeps it) in
+--- refs/ beside the test file (tests/refs/ of the project is read too).
+--- `caustica test --update-refs` writes the file there instead; a golden
+--- image is committed only after a person looked at it. A failure writes
+--- the new image, the golden and their difference to out/ beside the test.
 function t.expect_golden(img, name, tol)
-  local path = host.root() .. "/tests/refs/" .. name
+  local beside = host.script_dir() .. "/refs/" .. name
   local clamped = img:clamped()
   if options.update_refs then
-    clamped:save(path)
-    io.write("  updated ", path, "\n")
+    local ok, err = pcall(host.mkdir, folder_of(beside))
+    if not ok then fail("cannot make " .. folder_of(beside) .. ": " .. tostring(err), 2) end
+    clamped:save(beside)
+    io.write("  updated ", beside, "\n")
     return
   end
+  local path = beside
   local ok, ref = pcall(image.load, path)
   if not ok then
-    fail("no golden image " .. path .. " (run caustica test --update-refs, then look at it)", 2)
+    path = host.root() .. "/tests/refs/" .. name
+    ok, ref = pcall(image.load, path)
+  end
+  if not ok then
+    fail("no golden image " .. beside .. " (run caustica test --update-refs, then look at it)", 2)
   end
   local m = image.compare(clamped, ref)
   tol = tol or { rmse = 2 / 255 }
   if m.nan > 0 or (tol.rmse and m.rmse > tol.rmse) or (tol.max and m.max > tol.max) then
-    fail(string.format("differs from %s: rmse %.6g max %.6g nan %d", name, m.rmse, m.max, m.nan), 2)
+    fail(string.format("differs from the golden %s: rmse %.6g (at most %s), max %.6g (at most %s), nan %d%s", path,
+                       m.rmse, tostring(tol.rmse or "-"), m.max, tostring(tol.max or "-"), m.nan,
+                       save_failure_images(clamped, ref)), 2)
   end
   return m
 end
@@ -123,20 +172,26 @@ function t.fresnel(cos_i, eta)
   return 0.5 * (rs * rs + rp * rp)
 end
 
--- Runs the registered cases (called by `caustica test`).
+-- Runs the registered cases (called by `caustica test`); each case's
+-- result is kept in t._results for `caustica test --report`.
 function t._run(file)
   local passed, failed = 0, 0
   for _, case in ipairs(t._cases) do
     if not options.filter or case.name:find(options.filter, 1, true) then
       local start = os.clock()
+      current = { file = file, name = case.name }
       local ok, err = xpcall(case.fn, function(e) return e end)
+      local seconds = os.clock() - start
       if ok then
         passed = passed + 1
-        print(string.format("ok   %s: %s (%.2f s)", file, case.name, os.clock() - start))
+        print(string.format("ok   %s: %s (%.2f s)", file, case.name, seconds))
       else
         failed = failed + 1
         print(string.format("FAIL %s: %s: %s", file, case.name, tostring(err)))
       end
+      t._results[#t._results + 1] = { file = file, name = case.name, ok = ok, message = ok and "" or tostring(err),
+                                      seconds = seconds, images = current.images }
+      current = nil
       io.stdout:flush()
     end
   end

@@ -14,7 +14,7 @@ static const char usage_text[] =
     "                  [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
     "                  PATTERN: out/shot_####.png or .pfm; frames already there are skipped)\n"
     "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
-    "  caustica test [PATH ...] [--update-refs] [--filter TEXT]\n"
+    "  caustica test [PATH ...] [--update-refs] [--filter TEXT] [--report OUT.html]\n"
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
     "  caustica reference SCENE.lua -o OUT.pfm|OUT.hdr [--frame N] [--size WxH] [--photons N] [--spp N]\n"
     "                     [--time-budget S] [--report] [--aov tir|exit] [--seed S] [--radius R]\n"
@@ -173,7 +173,14 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             else
                 return usage_error("--aov needs tir or exit, got '%s'", next);
         } else if (strcmp(a, "--report") == 0) {
-            cli->report = true;
+            /* `test --report out.html` names a page; `reference --report` is a switch */
+            size_t n = next ? strlen(next) : 0;
+            if (n > 5 && strcmp(next + n - 5, ".html") == 0) {
+                cli->report_html = next;
+                i++;
+            } else {
+                cli->report = true;
+            }
         } else if (strcmp(a, "--seed") == 0) {
             NEED_VALUE();
             char *end;

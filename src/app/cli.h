@@ -28,6 +28,7 @@ struct cli {
     const char *mask;
     bool timings, update_refs, no_render;
     bool report;             /* --report: the reference's noise estimate per iteration */
+    const char *report_html; /* --report OUT.html (test): the HTML report */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */
     const char *filter;
     long photons;            /* --photons (reference) */

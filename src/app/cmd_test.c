@@ -11,6 +11,7 @@
 #include <lauxlib.h>
 
 #include "app/cli.h"
+#include "app/test_report.h"
 #include "core/fileio.h"
 #include "lua/lua_host.h"
 
@@ -68,6 +69,42 @@ static void collect(const char *path, char ***files, int *count, int *cap)
     free(names);
 }
 
+/* The harness's t._results (the module table on top of the stack) into the report. */
+static void collect_results(lua_State *L, struct test_report *report)
+{
+    lua_getfield(L, -1, "_results");
+    if (!lua_istable(L, -1)) {
+        lua_pop(L, 1);
+        return;
+    }
+    lua_Integer n = luaL_len(L, -1);
+    for (lua_Integer k = 1; k <= n; k++) {
+        lua_rawgeti(L, -1, k);
+        struct test_case_result r = {0};
+        lua_getfield(L, -1, "file");
+        lua_getfield(L, -2, "name");
+        lua_getfield(L, -3, "message");
+        lua_getfield(L, -4, "ok");
+        lua_getfield(L, -5, "seconds");
+        r.file = (char *)lua_tostring(L, -5);
+        r.name = (char *)lua_tostring(L, -4);
+        r.message = (char *)lua_tostring(L, -3);
+        r.ok = lua_toboolean(L, -2);
+        r.seconds = lua_tonumber(L, -1);
+        int images = lua_getfield(L, -6, "images");
+        static const char *const keys[3] = {"new", "ref", "diff"};
+        for (int j = 0; j < 3; j++) {
+            if (images == LUA_TTABLE) {
+                lua_getfield(L, -1 - j, keys[j]);
+                r.images[j] = (char *)lua_tostring(L, -1);
+            }
+        }
+        test_report_add(report, &r);
+        lua_pop(L, 7 + (images == LUA_TTABLE ? 3 : 0));
+    }
+    lua_pop(L, 1);
+}
+
 int cmd_test(struct app *app, struct cli *cli)
 {
     char **files = NULL;
@@ -84,6 +121,7 @@ int cmd_test(struct app *app, struct cli *cli)
         collect(cli->positional[i], &files, &count, &cap);
     }
     long passed = 0, failed = 0;
+    struct test_report report = {0};
     for (int i = 0; i < count; i++) {
         struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true,
                                       .render = session_render_service, .render_context = app,
@@ -102,12 +140,18 @@ int cmd_test(struct app *app, struct cli *cli)
                 if (ok) {
                     passed += (long)lua_tointeger(L, -2);
                     failed += (long)lua_tointeger(L, -1);
+                    lua_pop(L, 2);
+                    if (cli->report_html)
+                        collect_results(L, &report);
                 }
             }
         }
         if (!ok) {
             printf("FAIL %s: %s\n", files[i], err.message);
             failed++;
+            struct test_case_result r = {.file = files[i], .name = "(the file)", .message = err.message};
+            if (cli->report_html)
+                test_report_add(&report, &r);
         }
         fflush(stdout);
         lua_host_destroy(L);
@@ -121,6 +165,16 @@ int cmd_test(struct app *app, struct cli *cli)
     if (none_ran)
         fprintf(stderr, "caustica: test: no case matches --filter '%s' in %d file%s\n", cli->filter ? cli->filter : "",
                 count, count == 1 ? "" : "s");
+    bool written = true;
+    if (cli->report_html) {
+        struct error err;
+        written = test_report_write(&report, cli->report_html, &err);
+        if (written)
+            fprintf(stderr, "caustica: test: report in %s\n", cli->report_html);
+        else
+            cli_print_error(&err);
+    }
+    test_report_release(&report);
     printf("%ld passed, %ld failed\n", passed, failed);
-    return failed == 0 && count > 0 && !none_ran ? 0 : EXIT_SCENE_ERROR;
+    return failed == 0 && count > 0 && !none_ran && written ? 0 : EXIT_SCENE_ERROR;
 }

@@ -165,6 +165,38 @@ static int image_clamped_l(lua_State *L)
     return 1;
 }
 
+/* image.difference(a, b): |a - b| per channel, scaled so that the largest
+ * difference is 1 (the scale is returned second), for test reports. */
+static int image_difference_l(lua_State *L)
+{
+    struct image *a = limage_check(L, 1), *b = limage_check(L, 2);
+    if (a->width != b->width || a->height != b->height)
+        return luaL_error(L, "image.difference: sizes differ (%dx%d and %dx%d)", a->width, a->height, b->width,
+                          b->height);
+    struct image *out = limage_push(L);
+    struct error err;
+    if (!image_create(out, a->width, a->height, &err))
+        return luaL_error(L, "%s", err.message);
+    size_t n = (size_t)a->width * (size_t)a->height;
+    float largest = 0.0f;
+    for (size_t i = 0; i < n * 4; i++) {
+        float d = fabsf(a->rgba[i] - b->rgba[i]);
+        if (!isfinite(d))
+            d = 0.0f;
+        out->rgba[i] = d;
+        if ((i & 3) != 3 && d > largest)
+            largest = d;
+    }
+    float scale = largest > 0.0f ? 1.0f / largest : 1.0f;
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++)
+            out->rgba[i * 4 + (size_t)c] *= scale;
+        out->rgba[i * 4 + 3] = 1.0f;
+    }
+    lua_pushnumber(L, scale);
+    return 2;
+}
+
 static int image_get_width(lua_State *L)
 {
     lua_pushinteger(L, limage_check(L, 1)->width);
@@ -192,6 +224,7 @@ int luaopen_caustica_image(lua_State *L)
     static const luaL_Reg getters[] = {{"width", image_get_width}, {"height", image_get_height}, {NULL, NULL}};
     lutil_class(L, IMAGE_MT, "image", meta, methods, getters, NULL);
     static const luaL_Reg funcs[] = {{"load", image_load_l}, {"new", image_new_l}, {"compare", image_compare_l},
+                                     {"difference", image_difference_l},
                                      {"render", limage_render}, {"reference", limage_reference}, {NULL, NULL}};
     luaL_newlib(L, funcs);
     return 1;

@@ -168,6 +168,19 @@ static int host_test_options(lua_State *L)
     return 1;
 }
 
+/* host.mkdir(path): makes a folder (its parent must exist); trusted scripts only
+ * (the test harness writes its failure images). */
+static int host_mkdir(lua_State *L)
+{
+    const char *path = luaL_checkstring(L, 1);
+    if (!host_of(L)->options.trusted)
+        return luaL_error(L, "host.mkdir: only trusted scripts (tests) may make folders");
+    struct error err;
+    if (!dir_ensure(path, &err))
+        return luaL_error(L, "%s", err.message);
+    return 0;
+}
+
 static int host_root(lua_State *L)
 {
     lua_pushstring(L, host_of(L)->root);
@@ -177,7 +190,7 @@ static int host_root(lua_State *L)
 int luaopen_caustica_host(lua_State *L)
 {
     static const luaL_Reg funcs[] = {{"param", host_param}, {"script_dir", host_script_dir}, {"root", host_root},
-                                     {"test_options", host_test_options}, {NULL, NULL}};
+                                     {"test_options", host_test_options}, {"mkdir", host_mkdir}, {NULL, NULL}};
     luaL_newlib(L, funcs);
     return 1;
 }
