@@ -101,6 +101,64 @@ function t.expect_close(a, b, tol)
   return m
 end
 
+--- For noisy images (the reference renderer): a per-pixel Z-test, as
+--- Mitsuba's render tests do. `refs` is two renders of the truth with
+--- different seeds; their mean is the expectation and their difference
+--- estimates the variance ((a - b)^2 / 2 per sample, pooled over each
+--- pixel's 3x3 neighbourhood so that two samples give a usable estimate).
+--- A pixel passes when |img - mean| <= z sqrt(var / 2 + var_floor); the
+--- image passes when at least `fraction` of its pixels do.
+--- opts: z (3), fraction (0.99), floor (1e-8: the variance of a pixel both
+--- renders agree on exactly).
+function t.expect_statistically_close(img, refs, opts)
+  opts = opts or {}
+  local z, fraction, floor = opts.z or 3, opts.fraction or 0.99, opts.floor or 1e-8
+  local a, b = refs[1], refs[2]
+  assert(a and b, "t.expect_statistically_close: two reference renders expected ({ref1, ref2})")
+  local w, h = img.width, img.height
+  if a.width ~= w or b.width ~= w or a.height ~= h or b.height ~= h then
+    fail(string.format("image sizes differ: %dx%d against %dx%d and %dx%d", w, h, a.width, a.height, b.width, b.height), 2)
+  end
+  -- the three images' channels, flattened
+  local A, B, I = {}, {}, {}
+  for y = 0, h - 1 do
+    for x = 0, w - 1 do
+      local k = (y * w + x) * 3
+      A[k + 1], A[k + 2], A[k + 3] = a:pixel(x, y)
+      B[k + 1], B[k + 2], B[k + 3] = b:pixel(x, y)
+      I[k + 1], I[k + 2], I[k + 3] = img:pixel(x, y)
+    end
+  end
+  local passed, worst = 0, 0
+  for y = 0, h - 1 do
+    for x = 0, w - 1 do
+      local ok = true
+      for c = 1, 3 do
+        local var, n = 0, 0
+        for v = math.max(y - 1, 0), math.min(y + 1, h - 1) do
+          for u = math.max(x - 1, 0), math.min(x + 1, w - 1) do
+            local k = (v * w + u) * 3 + c
+            local d = A[k] - B[k]
+            var, n = var + d * d / 2, n + 1
+          end
+        end
+        var = var / n
+        local k = (y * w + x) * 3 + c
+        local score = math.abs(I[k] - 0.5 * (A[k] + B[k])) / math.sqrt(var / 2 + floor)
+        if score ~= score or score > z then ok = false end
+        if score == score and score > worst then worst = score end
+      end
+      if ok then passed = passed + 1 end
+    end
+  end
+  local got = passed / (w * h)
+  if got < fraction then
+    fail(string.format("%.2f%% of pixels within %g standard deviations of the reference (at least %.2f%% needed; "
+                       .. "the worst %.3g)", 100 * got, z, 100 * fraction, worst), 2)
+  end
+  return got
+end
+
 --- Fails unless a and b differ by at least `rmse` (a change must show).
 function t.expect_different(a, b, rmse)
   local m = image.compare(a, b)
