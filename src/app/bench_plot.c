@@ -23,33 +23,63 @@ static void escape(FILE *f, const char *s)
     }
 }
 
+static bool drawable(const struct plot_point *p)
+{
+    return p->x > 0 && p->y > 0 && isfinite(p->x) && isfinite(p->y);
+}
+
+/* Ticks for a log axis over [lo, hi] (log10 units): 1-2-5 steps per decade,
+ * or every integer multiple when the axis spans less than a decade. */
+static int log_ticks(double lo, double hi, double *ticks, int max)
+{
+    static const double fine[] = {1, 1.5, 2, 3, 4, 5, 6, 7, 8, 9};
+    static const double coarse[] = {1, 2, 5};
+    static const double decades[] = {1};
+    const double *m = hi - lo < 1.0 ? fine : hi - lo < 3.0 ? coarse : decades;
+    int nm = hi - lo < 1.0 ? 10 : hi - lo < 3.0 ? 3 : 1;
+    int n = 0;
+    for (int d = (int)floor(lo) - 1; d <= (int)ceil(hi) && n < max; d++)
+        for (int k = 0; k < nm && n < max; k++) {
+            double v = m[k] * pow(10.0, d), l = log10(v);
+            if (l >= lo - 1e-9 && l <= hi + 1e-9)
+                ticks[n++] = v;
+        }
+    return n;
+}
+
 bool bench_plot_write_svg(const char *path, const struct plot *plot, struct error *err)
 {
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    int drawn = 0;
     for (int i = 0; i < plot->count; i++) {
         const struct plot_point *p = &plot->points[i];
-        if (!(p->x > 0) || !(p->y > 0) || !isfinite(p->x) || !isfinite(p->y))
+        if (!drawable(p))
             continue;
         xmin = fmin(xmin, p->x);
         xmax = fmax(xmax, p->x);
         ymin = fmin(ymin, p->y);
         ymax = fmax(ymax, p->y);
+        drawn++;
     }
-    if (!(xmin <= xmax)) {
+    if (!drawn) {
         xmin = 1;
         xmax = 10;
         ymin = 0.01;
         ymax = 1;
     }
-    /* whole decades, with room so no point sits on the frame */
-    double lx0 = floor(log10(xmin) - 0.1), lx1 = ceil(log10(xmax) + 0.1), ly0 = floor(log10(ymin) - 0.1),
-           ly1 = ceil(log10(ymax) + 0.1);
-    if (lx1 <= lx0)
-        lx1 = lx0 + 1;
-    if (ly1 <= ly0)
-        ly1 = ly0 + 1;
-    const double W = 760, H = 520, left = 80, right = 230, top = 50, bottom = 60;
-    double pw = W - left - right, ph = H - top - bottom;
+    /* the axes fitted to the data, with a margin so no point sits on the frame */
+    double lx0 = log10(xmin), lx1 = log10(xmax), ly0 = log10(ymin), ly1 = log10(ymax);
+    double px = fmax(0.06 * (lx1 - lx0), 0.03), py = fmax(0.06 * (ly1 - ly0), 0.03);
+    lx0 -= px;
+    lx1 += px;
+    ly0 -= py;
+    ly1 += py;
+    /* the side table: one numbered line per point, under the legend */
+    const double line = 13;
+    const double W = 980, left = 80, right = 400, top = 50, bottom = 60;
+    double legend_h = 20.0 * plot->series_count + 10;
+    double H = fmax(520, top + legend_h + line * drawn + 20);
+    double pw = W - left - right, ph = fmin(H, 520) - top - bottom;
     char tmp[4200];
     path_temporary(path, tmp, sizeof tmp);
     FILE *f = fopen(tmp, "w");
@@ -59,53 +89,65 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
 #define PY(v) (top + ph - (log10(v) - ly0) / (ly1 - ly0) * ph)
     fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" "
                "font-size=\"12\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", W, H);
-    fprintf(f, "<text x=\"%.0f\" y=\"24\" font-size=\"15\" text-anchor=\"middle\">", left + pw / 2);
+    fprintf(f, "<text x=\"%.0f\" y=\"24\" font-size=\"15\" text-anchor=\"middle\">", (W - right + left) / 2);
     escape(f, plot->title);
     fputs("</text>\n", f);
-    /* grid and ticks per decade */
-    for (double d = lx0; d <= lx1 + 1e-9; d++) {
-        double x = left + (d - lx0) / (lx1 - lx0) * pw;
+    double ticks[64];
+    int nt = log_ticks(lx0, lx1, ticks, 64);
+    for (int k = 0; k < nt; k++) {
+        double x = PX(ticks[k]);
         fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, top, x, top + ph);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x, top + ph + 18, pow(10, d));
+        /* with many ticks, labels at 1, 2, 3 and 5 only: they would overlap */
+        double mantissa = ticks[k] / pow(10.0, floor(log10(ticks[k]) + 1e-9));
+        bool labelled = nt <= 8 || fabs(mantissa - 1) < 1e-6 || fabs(mantissa - 2) < 1e-6 ||
+                        fabs(mantissa - 3) < 1e-6 || fabs(mantissa - 5) < 1e-6;
+        if (labelled)
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x, top + ph + 18, ticks[k]);
     }
-    for (double d = ly0; d <= ly1 + 1e-9; d++) {
-        double y = top + ph - (d - ly0) / (ly1 - ly0) * ph;
+    nt = log_ticks(ly0, ly1, ticks, 64);
+    for (int k = 0; k < nt; k++) {
+        double y = PY(ticks[k]);
         fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", left, y, left + pw, y);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", left - 6, y + 4, pow(10, d));
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", left - 6, y + 4, ticks[k]);
     }
     fprintf(f, "<rect x=\"%.0f\" y=\"%.0f\" width=\"%.0f\" height=\"%.0f\" fill=\"none\" stroke=\"black\"/>\n", left, top,
             pw, ph);
-    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">", left + pw / 2, H - 14);
+    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">", left + pw / 2, top + ph + 44);
     escape(f, plot->x_label);
     fprintf(f, "</text>\n<text transform=\"translate(20 %.0f) rotate(-90)\" text-anchor=\"middle\">", top + ph / 2);
     escape(f, plot->y_label);
     fputs("</text>\n", f);
+    double tx = W - right + 20;
+    int number = 0;
     for (int s = 0; s < plot->series_count; s++) {
         const char *c = colours[s % 8];
         if (plot->series_lines[s]) {
             fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", c);
-            for (int i = 0; i < plot->count; i++) {
-                const struct plot_point *p = &plot->points[i];
-                if (p->series == s && p->x > 0 && p->y > 0 && isfinite(p->x) && isfinite(p->y))
-                    fprintf(f, "%.1f,%.1f ", PX(p->x), PY(p->y));
-            }
+            for (int i = 0; i < plot->count; i++)
+                if (plot->points[i].series == s && drawable(&plot->points[i]))
+                    fprintf(f, "%.1f,%.1f ", PX(plot->points[i].x), PY(plot->points[i].y));
             fputs("\"/>\n", f);
         }
-        for (int i = 0; i < plot->count; i++) {
-            const struct plot_point *p = &plot->points[i];
-            if (p->series != s || !(p->x > 0) || !(p->y > 0) || !isfinite(p->x) || !isfinite(p->y))
-                continue;
-            fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"/>\n", PX(p->x), PY(p->y), c);
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">", PX(p->x) + 6,
-                    PY(p->y) - 5 + 11.0 * (i % 2), c); /* alternate above and below: fewer collisions */
-            escape(f, p->label);
-            fprintf(f, " (%.3g ms, %.3g)</text>\n", p->x, p->y);
-        }
         double ly = top + 10 + 20 * s;
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"5\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">", W - right + 20,
-                ly, c, W - right + 30, ly + 4);
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"5\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">", tx, ly, c,
+                tx + 10, ly + 4);
         escape(f, plot->series_names[s]);
         fputs("</text>\n", f);
+    }
+    /* the points: a marker with its number, and the numbered side table */
+    for (int i = 0; i < plot->count; i++) {
+        const struct plot_point *p = &plot->points[i];
+        if (!drawable(p))
+            continue;
+        const char *c = colours[p->series % 8];
+        number++;
+        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"/>\n", PX(p->x), PY(p->y), c);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", PX(p->x) + 5, PY(p->y) - 4, c,
+                number);
+        fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"10\" fill=\"%s\">%d  ", tx,
+                top + legend_h + line * number, c, number);
+        escape(f, p->label);
+        fprintf(f, " (%.3g ms, %.3g)</text>\n", p->x, p->y);
     }
 #undef PX
 #undef PY

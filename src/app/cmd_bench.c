@@ -39,6 +39,7 @@ struct result {
     struct image_metrics all, caustic;
     bool has_caustic;
     char report[300]; /* the passes' lines about the last frame (beam counts, fill rate) */
+    int truth;        /* the ground truth it was measured against (its scene parameters) */
 };
 
 static int compare_doubles(const void *a, const void *b)
@@ -115,6 +116,8 @@ static bool caustic_mask(const struct image *truth, const struct image *caustic,
 
 struct truth {
     uint64_t key;
+    char label[200];  /* its scene parameters ("depth=0.5"), empty without scene sweeps */
+    char values[16][64]; /* per sweep: the scene parameter's value, empty for a pass parameter */
     struct image image, caustic, mask;
     bool has_mask;
     struct lua_params params;
@@ -311,9 +314,22 @@ int cmd_bench(struct app *app, struct cli *cli)
                 t = i;
         if (ok && t < 0) {
             ok = get_truth(app, script, &params, frame, width, height, &truth_options, cache, &truths[ntruths], &err);
-            if (ok)
+            if (ok) {
                 t = ntruths++;
+                struct truth *tr = &truths[t];
+                size_t filled = 0;
+                for (int k = 0; k < cli->nsweeps; k++) {
+                    if (strchr(sweeps[k].key, '.'))
+                        continue;
+                    snprintf(tr->values[k], sizeof tr->values[k], "%s", r->values[k]);
+                    int w = snprintf(tr->label + filled, sizeof tr->label - filled, "%s%s=%s", filled ? " " : "",
+                                     sweeps[k].key, r->values[k]);
+                    if (w > 0 && filled + (size_t)w < sizeof tr->label)
+                        filled += (size_t)w;
+                }
+            }
         }
+        r->truth = t;
         if (ok) {
             ok = image_metrics_compute(&img, &truths[t].image, NULL, &r->all, &err);
             r->has_caustic = truths[t].has_mask;
@@ -328,36 +344,44 @@ int cmd_bench(struct app *app, struct cli *cli)
         }
         image_destroy(&img);
     }
-    /* The reference's own curve, for the first truth's scene parameters. */
-    struct result curve[4];
+    /* The reference's own curve, for each distinct scene (its scene
+     * parameters): 1/8, 1/4, 1/2 and all of the truth's iterations / 16. */
+    enum { CURVE_LEVELS = 4, MAX_CURVES = 7 };
+    struct result curve[CURVE_LEVELS * MAX_CURVES];
     int ncurve = 0;
-    for (int level = level_max / 8; ok && ntruths > 0 && level <= level_max; level *= 2) {
-        struct ref_options ro = truth_options;
-        ro.iterations = level;
-        ro.progress = false;
-        ro.seed = truth_options.seed + 1000u + (uint64_t)level; /* independent of the truth's samples */
-        struct session_options so = {.script = script, .params = truths[0].params, .width = truths[0].width,
-                                     .height = truths[0].height};
-        struct session *s = NULL;
-        struct image img = {0};
-        struct ref_stats st = {0};
-        ok = session_open(app, &so, &s, &err);
-        if (ok) {
-            ok = session_reference(s, frame, &ro, &img, &st, &err);
-            session_close(s);
+    for (int t = 0; ok && t < ntruths && t < MAX_CURVES; t++) {
+        for (int level = level_max / 8; ok && level <= level_max; level *= 2) {
+            struct ref_options ro = truth_options;
+            ro.iterations = level;
+            ro.progress = false;
+            ro.seed = truth_options.seed + 1000u + (uint64_t)level; /* independent of the truth's samples */
+            struct session_options so = {.script = script, .params = truths[t].params, .width = truths[t].width,
+                                         .height = truths[t].height};
+            struct session *s = NULL;
+            struct image img = {0};
+            struct ref_stats st = {0};
+            ok = session_open(app, &so, &s, &err);
+            if (ok) {
+                ok = session_reference(s, frame, &ro, &img, &st, &err);
+                session_close(s);
+            }
+            struct result *r = &curve[ncurve++];
+            memset(r, 0, sizeof *r);
+            r->truth = t;
+            snprintf(r->label, sizeof r->label, "reference %d it%s%s", level, truths[t].label[0] ? " " : "",
+                     truths[t].label);
+            for (int k = 0; k < cli->nsweeps; k++)
+                snprintf(r->values[k], sizeof r->values[k], "%s", truths[t].values[k]);
+            r->frame_ms = st.seconds * 1000.0;
+            ok = ok && image_metrics_compute(&img, &truths[t].image, NULL, &r->all, &err);
+            r->has_caustic = truths[t].has_mask;
+            if (ok && r->has_caustic)
+                ok = image_metrics_compute(&img, &truths[t].image, &truths[t].mask, &r->caustic, &err);
+            if (ok)
+                printf("%-40s %9.1f ms  rel_rmse %.4f  caustic rel_rmse %.4f\n", r->label, r->frame_ms,
+                       r->all.rel_rmse, r->caustic.rel_rmse);
+            image_destroy(&img);
         }
-        struct result *r = &curve[ncurve++];
-        memset(r, 0, sizeof *r);
-        snprintf(r->label, sizeof r->label, "reference %d it", level);
-        r->frame_ms = st.seconds * 1000.0;
-        ok = ok && image_metrics_compute(&img, &truths[0].image, NULL, &r->all, &err);
-        r->has_caustic = truths[0].has_mask;
-        if (ok && r->has_caustic)
-            ok = image_metrics_compute(&img, &truths[0].image, &truths[0].mask, &r->caustic, &err);
-        if (ok)
-            printf("%-40s %9.1f ms  rel_rmse %.4f  caustic rel_rmse %.4f\n", r->label, r->frame_ms, r->all.rel_rmse,
-                   r->caustic.rel_rmse);
-        image_destroy(&img);
     }
     /* results.csv, results.md, plot.svg */
     char path[4400];
@@ -391,7 +415,7 @@ int cmd_bench(struct app *app, struct cli *cli)
             const struct result *r = c < combos ? &results[c] : &curve[c - combos];
             fprintf(csv, "%s", c < combos ? "gpu" : "reference");
             for (int k = 0; k < cli->nsweeps; k++)
-                fprintf(csv, ",%s", c < combos ? r->values[k] : "");
+                fprintf(csv, ",%s", r->values[k]); /* a reference row: its scene's parameters */
             /* the frame time relative to the first variant (e.g. plain shading) */
             double ratio = results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0;
             fprintf(csv, ",%.4f,%.4f", r->frame_ms, ratio);
@@ -419,13 +443,14 @@ int cmd_bench(struct app *app, struct cli *cli)
         fclose(md);
     if (ok) {
         bool caustic = ntruths > 0 && truths[0].has_mask;
-        struct plot_point points[MAX_COMBOS + 4];
+        struct plot_point points[MAX_COMBOS + CURVE_LEVELS * MAX_CURVES];
         int np = 0;
         for (int c = 0; c < combos + ncurve; c++) {
             const struct result *r = c < combos ? &results[c] : &curve[c - combos];
             points[np].x = r->frame_ms;
             points[np].y = caustic && r->has_caustic ? r->caustic.rel_rmse : r->all.rel_rmse;
-            points[np].series = c < combos ? 0 : 1;
+            /* series 0: the GPU variants; 1..: one reference curve per scene */
+            points[np].series = c < combos ? 0 : 1 + r->truth;
             snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
             np++;
         }
@@ -435,12 +460,19 @@ int cmd_bench(struct app *app, struct cli *cli)
             .title = title,
             .x_label = "time per frame (ms), log",
             .y_label = caustic ? "rel_rmse in the caustic region, log" : "rel_rmse, log",
-            .series_names = {"GPU variants", "reference (vs 16x longer run)"},
-            .series_lines = {false, true},
-            .series_count = 2,
+            .series_names = {"GPU variants"},
+            .series_lines = {false},
+            .series_count = 1,
             .points = points,
             .count = np,
         };
+        char names[MAX_CURVES][260];
+        for (int t = 0; t < ntruths && t < MAX_CURVES; t++) {
+            snprintf(names[t], sizeof names[t], "reference%s%s", truths[t].label[0] ? ": " : "", truths[t].label);
+            plot.series_names[1 + t] = names[t];
+            plot.series_lines[1 + t] = true;
+            plot.series_count = 2 + t;
+        }
         snprintf(path, sizeof path, "%s/plot.svg", dir);
         ok = bench_plot_write_svg(path, &plot, &err);
         if (ok)

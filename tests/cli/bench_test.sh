@@ -14,12 +14,18 @@ for f in results.csv results.md plot.svg; do
   [ -s "$B/$f" ] && pass "wrote $f" || fail "wrote $f" "missing"
 done
 rows=$(grep -c '^gpu,' "$B/results.csv"); refs=$(grep -c '^reference,' "$B/results.csv")
-[ "$rows" = 2 ] && [ "$refs" = 4 ] && pass "2 variants and 4 reference levels" || fail "rows" "$rows gpu, $refs reference"
-grep -q "<svg" "$B/plot.svg" && grep -q "reference 8 it" "$B/plot.svg" && pass "plot has the reference curve" \
+[ "$rows" = 2 ] && [ "$refs" = 8 ] && pass "2 variants and 4 reference levels for each of the 2 scenes" \
+  || fail "rows" "$rows gpu, $refs reference"
+[ "$(grep -c '^reference,0.75,' "$B/results.csv")" = 4 ] && [ "$(grep -c '^reference,1.0,' "$B/results.csv")" = 4 ] \
+  && pass "every reference row carries its scene's parameters" || fail "reference rows" "$(cat "$B/results.csv")"
+grep -q "<svg" "$B/plot.svg" && grep -q "reference: floor=0.75" "$B/plot.svg" && grep -q "reference: floor=1.0" "$B/plot.svg" \
+  && [ "$(grep -c '<polyline' "$B/plot.svg")" = 2 ] && pass "the plot has one labelled reference curve per scene" \
   || fail "plot" "$(head -c 300 "$B/plot.svg")"
+grep -q ">1  floor=0.75 (" "$B/plot.svg" && grep -q ">10  reference 8 it floor=1.0 (" "$B/plot.svg" \
+  && pass "the points are numbered, with a side table" || fail "numbered points" "$(grep -o '>[0-9]*  [^<]*' "$B/plot.svg" | head)"
 # the caustic-region error of the reference falls from 1 to 8 iterations
 first=$(grep '^reference,' "$B/results.csv" | head -1 | awk -F, '{print $NF}')
-last=$(grep '^reference,' "$B/results.csv" | tail -1 | awk -F, '{print $NF}')
+last=$(grep '^reference,' "$B/results.csv" | sed -n 4p | awk -F, '{print $NF}')
 awk "BEGIN { exit !($last < $first) }" && pass "reference error falls ($first -> $last)" || fail "reference error falls" "$first -> $last"
 ls "$B"/cache/truth_*.pfm >/dev/null 2>&1 && pass "ground truth cached" || fail "cache" "no files"
 grep -q "rendering the ground truth" "$WORK/err.txt" && pass "first run renders the truth" || fail "first run" "$(cat "$WORK/err.txt")"
