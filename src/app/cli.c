@@ -13,7 +13,8 @@ static const char usage_text[] =
     "  caustica record SCENE.lua -o DIR|PATTERN [--frames SET] [--shard i/n] [--overwrite] [--size WxH]\n"
     "                  [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
     "                  PATTERN: out/shot_####.png or .pfm; frames already there are skipped)\n"
-    "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--size WxH] [--set k=v ...]\n"
+    "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--keys space,left,right,s,r] [--size WxH]\n"
+    "                [--set k=v ...]   (keys: space pauses, left/right step, s screenshot, r reload)\n"
     "  caustica test [PATH ...] [--update-refs] [--filter TEXT] [--report OUT.html]\n"
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
     "  caustica reference SCENE.lua -o OUT.pfm|OUT.hdr [--frame N] [--size WxH] [--photons N] [--spp N]\n"
@@ -132,6 +133,9 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
         } else if (strcmp(a, "--screenshot") == 0) {
             NEED_VALUE();
             cli->screenshot = next;
+        } else if (strcmp(a, "--keys") == 0) {
+            NEED_VALUE();
+            cli->keys = next;
         } else if (strcmp(a, "--mask") == 0) {
             NEED_VALUE();
             cli->mask = next;

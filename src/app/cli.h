@@ -25,6 +25,7 @@ struct cli {
     int shard_index, shard_count; /* --shard i/n (record): every n-th frame of the set from the i-th */
     int width, height;       /* --size */
     const char *screenshot;
+    const char *keys;        /* --keys space,right,s (run): keys pressed on the first frame, for tests */
     const char *mask;
     bool timings, update_refs, no_render;
     bool report;             /* --report: the reference's noise estimate per iteration */

@@ -57,6 +57,71 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 
 /* The script's camera turned by the mouse: yaw about +Y, pitch about the
  * camera's right axis, distance scaled by zoom. */
+/* The keyboard: space pauses, left/right step one frame (and pause), s
+ * writes a screenshot next to the script, r reloads the script. Keys are
+ * queued by the callback (or by --keys, scripted input for tests) and
+ * handled once per frame. */
+enum run_key { KEY_PAUSE, KEY_BACK, KEY_FORWARD, KEY_SCREENSHOT, KEY_RELOAD };
+static struct {
+    enum run_key queue[64];
+    int count;
+} keys;
+
+static void push_key(enum run_key k)
+{
+    if (keys.count < (int)(sizeof keys.queue / sizeof keys.queue[0]))
+        keys.queue[keys.count++] = k;
+}
+
+static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
+{
+    (void)w;
+    (void)scancode;
+    (void)mods;
+    if (action != GLFW_PRESS && action != GLFW_REPEAT)
+        return;
+    switch (key) {
+    case GLFW_KEY_SPACE: push_key(KEY_PAUSE); break;
+    case GLFW_KEY_LEFT: push_key(KEY_BACK); break;
+    case GLFW_KEY_RIGHT: push_key(KEY_FORWARD); break;
+    case GLFW_KEY_S: push_key(KEY_SCREENSHOT); break;
+    case GLFW_KEY_R: push_key(KEY_RELOAD); break;
+    default: break;
+    }
+}
+
+/* --keys space,right,s,...: false with the bad name. */
+static bool parse_keys(const char *list, char *bad, size_t size)
+{
+    static const char *const names[] = {"space", "left", "right", "s", "r"};
+    const char *p = list;
+    while (*p) {
+        size_t n = strcspn(p, ",");
+        bool found = false;
+        for (int k = 0; k < 5 && !found; k++)
+            if (strlen(names[k]) == n && strncmp(p, names[k], n) == 0) {
+                push_key((enum run_key)k);
+                found = true;
+            }
+        if (!found) {
+            snprintf(bad, size, "%.*s", (int)n, p);
+            return false;
+        }
+        p += n;
+        if (*p == ',')
+            p++;
+    }
+    return true;
+}
+
+/* The screenshot's path: next to the script, named by it and the frame. */
+static void screenshot_path(const char *script, int frame, char *out, size_t size)
+{
+    const char *dot = strrchr(script, '.');
+    int stem = dot && dot > strrchr(script, '/') ? (int)(dot - script) : (int)strlen(script);
+    snprintf(out, size, "%.*s_frame_%04d.png", stem, script, frame);
+}
+
 static void apply_orbit(struct scene *scene)
 {
     if (!orbit_state.active)
@@ -100,6 +165,12 @@ int cmd_run(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct error err;
+    char bad[64];
+    keys.count = 0;
+    if (cli->keys && !parse_keys(cli->keys, bad, sizeof bad)) {
+        fprintf(stderr, "caustica: --keys: unknown key '%s' (space, left, right, s or r)\n", bad);
+        return EXIT_USAGE;
+    }
     if (cli->screenshot && !path_check_writable_dir(cli->screenshot, &err)) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
@@ -124,18 +195,40 @@ int cmd_run(struct app *app, struct cli *cli)
     glfwSetMouseButtonCallback(window, on_mouse_button);
     glfwSetCursorPosCallback(window, on_cursor);
     glfwSetScrollCallback(window, on_scroll);
+    glfwSetKeyCallback(window, on_key);
     if (cli->screenshot)
         glfwSwapInterval(0);
     long long script_mtime = file_mtime_ns(s->script);
     int limit = cli->frames_set ? cli->frames_to + 1 : -1;
     int frame = 0, shown = 0;
-    bool ok = true, have_frame = false;
-    double start = log_now();
+    bool ok = true, have_frame = false, paused = false;
+    /* the animation's clock: real time while playing, held while paused */
+    double clock = 0.0, last = log_now(), fps_time = last;
+    int fps_frames = 0;
+    double fps = 0.0;
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
-        /* Live reload: the script, then shaders. A failure keeps the last good state. */
+        double now = log_now();
+        if (!paused && limit <= 0)
+            clock += now - last;
+        last = now;
+        bool reload = false, screenshot = false;
+        int current = (int)floor(clock * s->fps + 1e-6);
+        for (int k = 0; k < keys.count; k++) {
+            switch (keys.queue[k]) {
+            case KEY_PAUSE: paused = !paused; break;
+            case KEY_BACK: paused = true; current--; break;
+            case KEY_FORWARD: paused = true; current++; break;
+            case KEY_SCREENSHOT: screenshot = true; break;
+            case KEY_RELOAD: reload = true; break;
+            }
+            if (keys.queue[k] == KEY_BACK || keys.queue[k] == KEY_FORWARD)
+                clock = ((current % s->frames + s->frames) % s->frames) / s->fps;
+        }
+        keys.count = 0;
+        /* Live reload (a changed script, or r), then shaders. A failure keeps the last good state. */
         long long mt = file_mtime_ns(s->script);
-        if (mt != script_mtime) {
+        if (mt != script_mtime || reload) {
             script_mtime = mt;
             struct session *fresh;
             if (session_open(app, &o, &fresh, &err)) {
@@ -151,7 +244,7 @@ int cmd_run(struct app *app, struct cli *cli)
             cli_print_error(&err);
         else if (reloaded)
             fprintf(stderr, "caustica: reloaded shaders\n");
-        int want = limit > 0 ? frame : (int)((log_now() - start) * s->fps) % s->frames;
+        int want = limit > 0 && !paused && clock == 0.0 ? frame : (int)floor(clock * s->fps + 1e-6) % s->frames;
         if (session_goto_frame(s, want, &err)) {
             apply_orbit(s->scene);
             if (session_render(s, want, &err))
@@ -166,6 +259,25 @@ int cmd_run(struct app *app, struct cli *cli)
         struct graph_resource *res = graph_output(s->graph);
         if (have_frame && res && !renderer_present_window(&app->renderer, &res->texture, s->exposure, s->tonemap, fw, fh, &err))
             cli_print_error(&err);
+        if (screenshot && have_frame) {
+            char path[4200];
+            screenshot_path(s->script, want, path, sizeof path);
+            if (save_window(fw, fh, path, &err))
+                fprintf(stderr, "caustica: wrote %s\n", path);
+            else
+                cli_print_error(&err);
+        }
+        /* the title: the script, the frame and the frame rate */
+        fps_frames++;
+        if (now - fps_time >= 0.5) {
+            fps = fps_frames / (now - fps_time);
+            fps_frames = 0;
+            fps_time = now;
+        }
+        char title[600];
+        snprintf(title, sizeof title, "caustica: %.400s, frame %d/%d%s, %.1f fps", s->script, want, s->frames,
+                 paused ? " (paused)" : "", fps);
+        glfwSetWindowTitle(window, title);
         shown++;
         frame++;
         if (limit > 0 && frame >= limit) {
