@@ -11,7 +11,7 @@ static const char usage_text[] =
 "usage:\n"
     "  caustica render SCENE.lua [-o OUT.png|OUT.pfm|OUT.hdr] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
     "  caustica record SCENE.lua -o DIR|PATTERN [--frames SET] [--shard i/n] [--overwrite] [--size WxH]\n"
-    "                  [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
+    "                  [--video OUT.mp4|OUT.gif] [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
     "                  PATTERN: out/shot_####.png or .pfm; frames already there are skipped)\n"
     "  caustica run SCENE.lua [--frames N] [--screenshot OUT.png] [--keys space,left,right,s,r] [--size WxH]\n"
     "                [--set k=v ...]   (keys: space pauses, left/right step, s screenshot, r reload)\n"
@@ -108,6 +108,9 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
                 if (cli->frame_set.ranges[k].to > cli->frames_to)
                     cli->frames_to = cli->frame_set.ranges[k].to;
             }
+        } else if (strcmp(a, "--video") == 0) {
+            NEED_VALUE();
+            cli->video = next;
         } else if (strcmp(a, "--overwrite") == 0) {
             cli->overwrite = true;
         } else if (strcmp(a, "--shard") == 0) {

@@ -7,6 +7,7 @@
 
 #include "app/cli.h"
 #include "app/frame_set.h"
+#include "app/video.h"
 #include "core/fileio.h"
 #include "core/log.h"
 #include "graph/graph.h"
@@ -109,6 +110,10 @@ int cmd_record(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct error err;
+    if (cli->video && !video_path_supported(cli->video)) {
+        fprintf(stderr, "caustica: --video %s: a video must end in .mp4 or .gif\n", cli->video);
+        return EXIT_USAGE;
+    }
     /* -o DIR writes DIR/frame_####.png; -o out/shot_####.png names each file
      * by its frame (a run of # is the zero-padded frame number). */
     bool pattern = output_pattern_is_pattern(cli->output);
@@ -170,6 +175,7 @@ int cmd_record(struct app *app, struct cli *cli)
     double start = log_now();
     bool ok = true;
     int written = 0, skipped = 0;
+    double video_fps = s->fps;
     char first[4200] = "", last[4200] = "";
     for (int k = 0; k < count && ok; k++) {
         char path[4200];
@@ -200,8 +206,26 @@ int cmd_record(struct app *app, struct cli *cli)
     }
     if (tty)
         fputc('\n', stderr);
-    free(frames);
     session_close(s);
+    /* The video preview: every frame of the set, written now or before. */
+    if (ok && cli->video) {
+        char **paths = calloc((size_t)(count > 0 ? count : 1), sizeof *paths);
+        int n = 0;
+        for (int k = 0; paths && k < count; k++) {
+            char path[4200];
+            if (output_pattern_path(cli->output, frames[k], path, sizeof path) && file_exists(path))
+                paths[n++] = strdup(path);
+        }
+        ok = paths && video_encode((const char *const *)paths, n, video_fps, cli->video, &err);
+        if (!paths)
+            error_set(&err, "out of memory");
+        for (int k = 0; paths && k < n; k++)
+            free(paths[k]);
+        free(paths);
+        if (ok)
+            printf("wrote %s (%d frames at %g fps)\n", cli->video, n, video_fps);
+    }
+    free(frames);
     if (!ok) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;

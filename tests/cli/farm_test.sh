@@ -58,4 +58,27 @@ for f in "$WORK"/local/*.png; do cmp -s "$f" "$WORK/farm/$(basename "$f")" && sa
   || fail "shards" "$same of 8 equal; farm holds: $(files "$WORK/farm")"
 expect_error "the array script outside Slurm" 1 "not inside a Slurm array job" - -- \
   env -u SLURM_ARRAY_TASK_ID bash examples/slurm/record_array.sh $SCENE "$WORK/farm2"
+# Video previews: ffmpeg missing is one clear line naming the package (the frames stay on disk);
+# with an ffmpeg on PATH (here a stand-in that records how it is called) every frame is handed to it in order.
+expect_error "no ffmpeg" 1 "ffmpeg is not installed (apt-get install ffmpeg); the frames are on disk" - -- \
+  env PATH=/nonexistent "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 --video "$WORK/v.mp4"
+[ "$(ls "$WORK/vid" | wc -l)" = 3 ] && pass "the frames stay without ffmpeg" || fail "frames without ffmpeg" "$(ls "$WORK/vid")"
+mkdir -p "$WORK/fakebin"
+cat >"$WORK/fakebin/ffmpeg" <<'SH'
+#!/bin/sh
+for a in "$@"; do case "$a" in *.frames.txt) cp "$a" "$FAKE_LOG.list";; esac; done
+echo "$@" >"$FAKE_LOG"
+for last in "$@"; do :; done
+echo video >"$last"
+SH
+chmod +x "$WORK/fakebin/ffmpeg"
+FAKE_LOG="$WORK/ffmpeg.log" PATH="$WORK/fakebin:$PATH" "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 \
+  --video "$WORK/v.mp4" >"$WORK/video.txt" 2>&1
+grep -q "wrote $WORK/v.mp4 (3 frames at" "$WORK/video.txt" && grep -q -- "-f concat .* -pix_fmt yuv420p $WORK/v.mp4" "$WORK/ffmpeg.log" \
+  && [ "$(grep -c "^file '.*frame_000[0-2].png'" "$WORK/ffmpeg.log.list")" = 3 ] \
+  && pass "--video hands every frame to ffmpeg in order" || fail "--video" "$(cat "$WORK/video.txt" "$WORK/ffmpeg.log" 2>&1)"
+if command -v ffmpeg >/dev/null; then
+  "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 --video "$WORK/real.gif" >/dev/null 2>&1 \
+    && [ -s "$WORK/real.gif" ] && pass "ffmpeg encodes a GIF" || fail "ffmpeg GIF" "no file"
+fi
 finish

@@ -1,0 +1,84 @@
+/* Video previews through ffmpeg (see video.h). */
+#define _DEFAULT_SOURCE
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "app/video.h"
+#include "core/fileio.h"
+
+extern char **environ;
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcmp(s + n - m, suffix) == 0;
+}
+
+bool video_path_supported(const char *output) { return ends_with(output, ".mp4") || ends_with(output, ".gif"); }
+
+bool video_find_program(const char *name)
+{
+    const char *path = getenv("PATH");
+    if (!path)
+        return false;
+    while (*path) {
+        size_t n = strcspn(path, ":");
+        char candidate[4200];
+        snprintf(candidate, sizeof candidate, "%.*s/%s", (int)n, path, name);
+        if (n > 0 && access(candidate, X_OK) == 0)
+            return true;
+        path += n;
+        if (*path == ':')
+            path++;
+    }
+    return false;
+}
+
+bool video_encode(const char *const *paths, int count, double fps, const char *output, struct error *err)
+{
+    if (!video_find_program("ffmpeg"))
+        return error_set(err, "--video %s: ffmpeg is not installed (apt-get install ffmpeg); the frames are on disk",
+                         output);
+    if (count == 0)
+        return error_set(err, "--video %s: no frames to encode", output);
+    /* ffmpeg's concat list: every frame in order, each shown 1/fps */
+    char list[4200];
+    snprintf(list, sizeof list, "%s.frames.txt", output);
+    FILE *f = fopen(list, "w");
+    if (!f)
+        return error_set(err, "--video %s: cannot write %s", output, list);
+    for (int i = 0; i < count; i++) {
+        char absolute[4200];
+        if (!realpath(paths[i], absolute))
+            snprintf(absolute, sizeof absolute, "%s", paths[i]);
+        fputs("file '", f);
+        for (const char *p = absolute; *p; p++) {
+            if (*p == '\'')
+                fputs("'\\''", f); /* the concat list's quoting */
+            else
+                fputc(*p, f);
+        }
+        fprintf(f, "'\nduration %.9f\n", 1.0 / fps);
+    }
+    fclose(f);
+    char rate[32];
+    snprintf(rate, sizeof rate, "fps=%g", fps);
+    bool gif = ends_with(output, ".gif");
+    const char *argv_mp4[] = {"ffmpeg", "-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i", list,
+                              "-vf", rate, "-pix_fmt", "yuv420p", output, NULL};
+    const char *argv_gif[] = {"ffmpeg", "-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i", list,
+                              "-vf", rate, output, NULL};
+    pid_t pid;
+    int rc = posix_spawnp(&pid, "ffmpeg", NULL, NULL, (char *const *)(gif ? argv_gif : argv_mp4), environ);
+    int status = 0;
+    bool ok = rc == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    remove(list);
+    if (!ok)
+        return error_set(err, "--video %s: ffmpeg failed (exit %d); the frames are on disk", output,
+                         WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    return true;
+}
