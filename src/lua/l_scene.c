@@ -453,8 +453,10 @@ int luaopen_caustica_scene(lua_State *L)
                                              {"medium", set_medium}, {NULL, NULL}};
     lutil_class(L, SCENE_MT, "scene", scene_meta, scene_methods, scene_getters, scene_setters);
 
+    /* c.environment "sky.hdr" (one equirectangular .hdr or .pfm) and
+     * c.cubemap "folder" (six faces) make the same thing: either takes either. */
     static const luaL_Reg top[] = {{"scene", scene_new}, {"camera", camera_new}, {"cubemap", cubemap_new},
-                                   {NULL, NULL}};
+                                   {"environment", cubemap_new}, {NULL, NULL}};
     luaL_newlib(L, top);
     lobject_open(L);
     llight_open(L);

@@ -71,3 +71,17 @@ t.case("a glass ball in the float environment: Hu & Qin against the reference", 
   t.expect(e < 0.1, string.format("rel_rmse %.4f", e))
   os.execute("rm -rf " .. dir)
 end)
+
+t.case("c.environment: one equirectangular .hdr (the procedural sky), the sun where the file puts it", function()
+  -- tests/data/make_sky.py: a sun of radiance 400 (plus the sky) 2.5 degrees
+  -- wide at (0.45, 0.55, -0.70), a ground of about 0.1 below the horizon
+  local sun = t.render("tests/scenes/sky.lua", { set = { look = "sun", fov = 2 } })
+  local r = sun:pixel(8, 8)
+  t.expect(r > 100, string.format("the sun's radiance %.3g", r))
+  local ground = t.render("tests/scenes/sky.lua", { set = { look = "ground" } })
+  local g = ground:stats().mean_gray
+  t.expect(g > 0.05 and g < 0.2, string.format("the ground's radiance %.3g", g))
+  -- the reference reads the same environment
+  local ref = t.reference("tests/scenes/sky.lua", { set = { look = "ground" }, photons = 0, spp = 1 })
+  t.expect_close(ground, ref, { rel_rmse = 0.02 })
+end)
