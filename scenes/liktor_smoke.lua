@@ -42,10 +42,13 @@ if technique == "beams" then
   g:add("beams", c.pass.beam_caustics { light = light, grid = c.param("grid", 16), refine = c.param("refine", 1), edges = c.param("edges", 0),
                                         smooth = c.param("smooth", true), blur = c.param("blur", 1.5) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "beams.irradiance", specular = false })
-  g:add("smoke", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
+  g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+  g:add("smoke", c.pass.volume_light { color = "glass.color", depth = "shade.depth", shadow = "shadow.depth",
+                                       add = "beams.inscatter" })
 elseif technique == "plain" then
   g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = false })
-  g:add("smoke", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth" })
+  g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+  g:add("smoke", c.pass.volume_light { color = "glass.color", depth = "shade.depth", shadow = "shadow.depth" })
 else
   error("technique: beams or plain expected, got " .. tostring(technique))
 end

@@ -4,6 +4,7 @@
 
 #include "app/cli.h"
 #include "graph/graph.h"
+#include "graph/graph_lint.h"
 
 int cmd_info(struct app *app, struct cli *cli)
 {
@@ -57,6 +58,13 @@ int cmd_info(struct app *app, struct cli *cli)
             for (int k = 0; k < p->output_count; k++)
                 printf("      out %s.%s (%s)\n", p->name, p->outputs[k].name, gl_format_name(p->outputs[k].format));
         }
+    }
+    if (ok) {
+        char messages[GRAPH_LINT_MAX][400];
+        int n = graph_lint(s->graph, s->scene, rendered ? &app->renderer.frame.view_proj : NULL, messages,
+                           GRAPH_LINT_MAX);
+        for (int i = 0; i < n; i++)
+            printf("warning: %s\n", messages[i]);
     }
     session_close(s);
     if (!ok) {

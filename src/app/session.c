@@ -9,6 +9,8 @@
 
 #include "core/fileio.h"
 #include "graph/graph.h"
+#include "graph/graph_lint.h"
+#include "core/log.h"
 #include "lua/lua_host.h"
 #include "reference/reference.h"
 
@@ -225,6 +227,14 @@ bool session_render(struct session *s, int frame, struct error *err)
         return script_error(s, err);
     if (!renderer_begin_frame(r, s->scene, s->width, s->height, frame, (double)frame / s->fps, err))
         return script_error(s, err);
+    if (!s->linted) {
+        /* mistakes that render without an error: said once per session */
+        char messages[GRAPH_LINT_MAX][400];
+        int n = graph_lint(s->graph, s->scene, &r->frame.view_proj, messages, GRAPH_LINT_MAX);
+        for (int i = 0; i < n; i++)
+            log_warn("%s: %s", s->script, messages[i]);
+        s->linted = true;
+    }
     if (!graph_execute(s->graph, r, s->scene, frame, (double)frame / s->fps, err))
         return script_error(s, err);
     return true;

@@ -37,6 +37,7 @@ struct session {
     float exposure;
     enum tonemap_operator tonemap;
     int advanced;            /* last frame update() ran for; -1 before any */
+    bool linted;             /* graph_lint's warnings printed (once per session) */
 };
 
 bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);

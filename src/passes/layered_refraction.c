@@ -116,10 +116,13 @@ static void layered_refraction_destroy(struct pass *p)
 static enum pass_need layered_refraction_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     (void)p;
+    bool any = false;
     for (int i = 0; i < f->scene->object_count; i++)
-        if (layers_is_refractor(f->scene->objects[i]))
-            return PASS_RUN;
-    snprintf(why, whylen, "passes the image through: no glass or water in the scene");
+        any = any || layers_is_refractor(f->scene->objects[i]);
+    if (!any)
+        snprintf(why, whylen, "passes the image through: no glass or water in the scene");
+    else if (!scene_specular_in_view(f->scene, f->snapshot->view_proj))
+        snprintf(why, whylen, "passes the image through: no glass or water in the camera's view");
     return PASS_RUN;
 }
 
@@ -140,7 +143,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
         return false;
     vec3 lo, hi;
-    if (!scene_specular_bounds(f->scene, &lo, &hi)) {
+    if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj)) {
         if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);

@@ -133,14 +133,17 @@ static bool is_refractive(const struct object *o)
 }
 
 /* Never left out (its output is read later): with no refractive object in
- * the scene it only copies its input through. */
+ * the scene, or none in the camera's view, it only copies its input through. */
 static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
 {
     (void)p;
+    bool any = false;
     for (int i = 0; i < f->scene->object_count; i++)
-        if (is_refractive(f->scene->objects[i]))
-            return PASS_RUN;
-    snprintf(why, whylen, "passes the image through: no refractive object in the scene");
+        any = any || is_refractive(f->scene->objects[i]);
+    if (!any)
+        snprintf(why, whylen, "passes the image through: no refractive object in the scene");
+    else if (!scene_specular_in_view(f->scene, f->snapshot->view_proj))
+        snprintf(why, whylen, "passes the image through: no refractive object in the camera's view");
     return PASS_RUN;
 }
 
@@ -191,6 +194,24 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     struct renderer *r = f->renderer;
     bool wyman = pass_choice(p, REFRACTION_METHOD) == REFRACTION_METHOD_WYMAN;
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
+    const float clear[4] = {0, 0, 0, 0};
+    if (!scene_specular_in_view(f->scene, f->snapshot->view_proj)) {
+        /* nothing to refract on screen: the image as it is (no impostors, no surfaces) */
+        const struct gl_texture *only[1] = {&f->outputs[0]->texture};
+        struct gl_program *pass_through;
+        if (!gl_framebuffer_attach(&s->out_fb, only, NULL, 1, NULL, -1, err) ||
+            !gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &pass_through, err))
+            return false;
+        gl_texture_clear(&f->outputs[1]->texture, clear);
+        gl_texture_clear(&f->outputs[2]->texture, clear);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+        gl.Viewport(0, 0, f->width, f->height);
+        gl.Disable(GL_DEPTH_TEST);
+        gl.UseProgram(pass_through->id);
+        gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+        renderer_draw_fullscreen(r);
+        return true;
+    }
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
     bool nearby = pass_flag(p, REFRACTION_NEARBY);

@@ -248,6 +248,41 @@ static bool bounds_of_visible(const struct scene *scene, bool specular_only, vec
     return any;
 }
 
+bool object_in_view(const struct object *o, mat4 view_proj)
+{
+    vec3 a, b;
+    object_world_bounds(o, &a, &b);
+    /* the box's corners in clip space: outside when all are beyond one plane */
+    int outside[6] = {0, 0, 0, 0, 0, 0};
+    for (int k = 0; k < 8; k++) {
+        vec3 p = {k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z};
+        const float *m = view_proj.m;
+        float c[4];
+        for (int r = 0; r < 4; r++)
+            c[r] = m[r] * p.x + m[4 + r] * p.y + m[8 + r] * p.z + m[12 + r];
+        outside[0] += c[0] < -c[3];
+        outside[1] += c[0] > c[3];
+        outside[2] += c[1] < -c[3];
+        outside[3] += c[1] > c[3];
+        outside[4] += c[2] < -c[3];
+        outside[5] += c[2] > c[3];
+    }
+    for (int q = 0; q < 6; q++)
+        if (outside[q] == 8)
+            return false;
+    return true;
+}
+
+bool scene_specular_in_view(const struct scene *scene, mat4 view_proj)
+{
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (o->visible && material_is_specular(&o->material) && object_in_view(o, view_proj))
+            return true;
+    }
+    return false;
+}
+
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 {
     if (bounds_of_visible(scene, false, lo, hi))

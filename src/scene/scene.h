@@ -271,6 +271,12 @@ void scene_set_medium(struct scene *scene, struct medium *medium);
 /* Bounds of every visible object, after its transform (morphs included
  * conservatively). Returns false for an empty scene. */
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Does any visible glass, water or mirror's box reach into the view of
+ * `view_proj` (a camera's)? The refraction passes pass their image
+ * through when none does. */
+bool scene_specular_in_view(const struct scene *scene, mat4 view_proj);
+/* Does the object's world box reach into the view of `view_proj`? */
+bool object_in_view(const struct object *o, mat4 view_proj);
 /* Bounds of the visible glass, water and mirrors only; false (and lo, hi
  * left as they were) when there are none. */
 bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);

@@ -71,4 +71,45 @@ grep -q "shadow .*on frame 1 reused: the light and the casters did not change" "
 "$CAUSTICA" info "$WORK/static_photons.lua" --set glass=false >"$WORK/noglass.txt" 2>&1
 grep -q "photons          photon_caustics  kept, but does nothing on frame 1: no refractive or reflective object" "$WORK/noglass.txt" \
   && pass "no glass: the photon pass does nothing, one line" || fail "no glass" "$(cat "$WORK/noglass.txt")"
+# Glass behind the camera: the refraction passes pass the image through, and say why.
+cat >"$WORK/behind.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 0.5, 2}, target = {0, 0.3, 5} }, background = {0.2, 0.3, 0.4} }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0.3}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 40 }, position = {0, -1, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass { ior = 1.5 } })
+local g = c.graph()
+g:add("shade", c.pass.shade { specular = false })
+g:add("glass", c.pass.refraction { color = "shade.color" })
+g:add("layered", c.pass.layered_refraction { color = "glass.color", depth = "shade.depth" })
+g:output(c.param("out", "layered.color"))
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+"$CAUSTICA" info "$WORK/behind.lua" >"$WORK/behind.txt" 2>&1
+grep -q "glass            refraction       kept; runs once (a still): passes the image through: no refractive object in the camera's view" "$WORK/behind.txt" \
+  && grep -q "layered          layered_refraction kept; runs once (a still): passes the image through: no glass or water in the camera's view" "$WORK/behind.txt" \
+  && pass "glass behind the camera: the refraction passes say they pass the image through" || fail "glass behind" "$(cat "$WORK/behind.txt")"
+"$CAUSTICA" render "$WORK/behind.lua" -o "$WORK/behind.pfm" >/dev/null 2>&1 \
+  && "$CAUSTICA" render "$WORK/behind.lua" --set out=shade.color -o "$WORK/shade.pfm" >/dev/null 2>&1 \
+  && line=$("$CAUSTICA" compare "$WORK/behind.pfm" "$WORK/shade.pfm") && grep -q "rmse=0 " <<<"$line" \
+  && pass "... and the image is the shaded one, unchanged" || fail "pass-through image" "${line:-render failed}"
+# Mistakes that render without an error: glass no pass draws, caustics for an unshadowed light.
+cat >"$WORK/undrawn.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass { ior = 1.5 } })
+local g = c.graph()
+g:add("photons", c.pass.photon_caustics { light = sun, buffer = 32, texture = 32 })
+g:add("shade", c.pass.shade { caustics = "photons.irradiance", specular = false })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {16, 16} }
+LUA
+"$CAUSTICA" info "$WORK/undrawn.lua" >"$WORK/undrawn.txt" 2>&1
+grep -q "^warning: object 2 (glass) is drawn by no pass" "$WORK/undrawn.txt" \
+  && grep -q "^warning: pass 'shade' adds the caustics of 'photons' for a light it does not shadow" "$WORK/undrawn.txt" \
+  && pass "info warns of undrawn glass and of caustics for an unshadowed light" || fail "lint in info" "$(cat "$WORK/undrawn.txt")"
+"$CAUSTICA" render "$WORK/undrawn.lua" -o "$WORK/undrawn.png" >/dev/null 2>"$WORK/undrawn.err"
+[ "$(grep -c "drawn by no pass" "$WORK/undrawn.err")" = 1 ] && pass "render warns once" || fail "render warning" "$(cat "$WORK/undrawn.err")"
 finish

@@ -1,0 +1,101 @@
+/* Graph mistakes that render without an error (see graph_lint.h). */
+#include <stdio.h>
+#include <string.h>
+
+#include "graph/graph_lint.h"
+#include "graph/pass.h"
+
+static bool kept(const struct graph_entry *e) { return e->state == GRAPH_PASS_KEPT; }
+
+static bool named(const struct pass *p, const char *name) { return strcmp(p->desc->name, name) == 0; }
+
+static struct light *light_of(const struct pass *p)
+{
+    int k = pass_param_index(p->desc, "light");
+    return k >= 0 && p->desc->params[k].type == PASS_PARAM_LIGHT ? pass_light_at(p, k) : NULL;
+}
+
+/* The kept pass that makes resource `source` ("pass.output"). */
+static const struct pass *producer(const struct graph *g, const char *source)
+{
+    const char *dot = strchr(source, '.');
+    size_t n = dot ? (size_t)(dot - source) : strlen(source);
+    for (int i = 0; i < g->count; i++)
+        if (strlen(g->entries[i].pass->name) == n && strncmp(g->entries[i].pass->name, source, n) == 0)
+            return g->entries[i].pass;
+    return NULL;
+}
+
+int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *view_proj, char messages[][400], int max)
+{
+    int count = 0;
+    /* Who draws glass, water and mirrors: shade { specular = true } (one
+     * interface), the refraction passes, water_surface (its water), a user's
+     * pass (which may: no warning then). */
+    bool glass = false, water = false, mirror = false, custom = false;
+    for (int i = 0; i < g->count; i++) {
+        const struct graph_entry *e = &g->entries[i];
+        const struct pass *p = e->pass;
+        if (!kept(e))
+            continue;
+        if (named(p, "shade")) {
+            int k = pass_param_index(p->desc, "specular");
+            if (k < 0 || pass_flag(p, k))
+                glass = water = mirror = true;
+        } else if (named(p, "refraction")) {
+            glass = water = mirror = true;
+        } else if (named(p, "layered_refraction")) {
+            glass = water = true;
+        } else if (named(p, "sliced_refraction")) {
+            glass = true;
+        } else if (named(p, "water_surface")) {
+            water = true;
+        } else if (named(p, "custom") || named(p, "fullscreen")) {
+            custom = true;
+        }
+    }
+    for (int i = 0; i < scene->object_count && !custom && count < max; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible || (view_proj && !object_in_view(o, *view_proj)))
+            continue;
+        enum material_kind kind = o->material.kind;
+        const char *what = kind == MATERIAL_GLASS ? "glass" : kind == MATERIAL_WATER ? "water" : "mirror";
+        bool drawn = kind == MATERIAL_DIFFUSE || (kind == MATERIAL_GLASS && glass) ||
+                     (kind == MATERIAL_WATER && water) || (kind == MATERIAL_MIRROR && mirror);
+        if (!drawn)
+            snprintf(messages[count++], 400,
+                     "object %d (%s) is drawn by no pass: shade { specular = false } leaves it to a refraction pass "
+                     "(refraction, layered_refraction, sliced_refraction%s), and the graph has none, so it shows "
+                     "what is behind it",
+                     i + 1, what, kind == MATERIAL_WATER ? ", water_surface" : "");
+    }
+    /* Caustics added by shade for a light that shade does not shadow. */
+    for (int i = 0; i < g->count && count < max; i++) {
+        const struct graph_entry *e = &g->entries[i];
+        const struct pass *shade = e->pass;
+        if (!kept(e) || !named(shade, "shade"))
+            continue;
+        for (int k = 0; k < shade->input_count && count < max; k++) {
+            if (strncmp(shade->inputs[k].name, "caustics", 8) != 0)
+                continue;
+            const struct pass *maker = producer(g, shade->inputs[k].source);
+            struct light *light = maker ? light_of(maker) : NULL;
+            if (!light)
+                continue;
+            bool shadowed = false;
+            for (int m = 0; m < shade->input_count; m++) {
+                if (strncmp(shade->inputs[m].name, "shadow", 6) != 0)
+                    continue;
+                const struct pass *map = producer(g, shade->inputs[m].source);
+                shadowed = shadowed || (map && light_of(map) == light);
+            }
+            if (!shadowed)
+                snprintf(messages[count++], 400,
+                         "pass '%s' adds the caustics of '%s' for a light it does not shadow (no shadow map of that "
+                         "light in its shadow list): the surfaces under the glass get that light twice, directly "
+                         "and as caustics; add the light's shadow_map to shade's shadow",
+                         shade->name, maker->name);
+        }
+    }
+    return count;
+}
