@@ -9,7 +9,8 @@
 
 static const char usage_text[] =
 "usage:\n"
-    "  caustica render SCENE.lua [-o OUT.png|OUT.pfm|OUT.hdr] [--frame N] [--size WxH] [--timings] [--set k=v ...]\n"
+    "  caustica render SCENE.lua [-o OUT.png|OUT.pfm|OUT.hdr|OUT.exr] [--aov pass.output]... [--frame N] [--size WxH]\n"
+    "                  [--timings] [--set k=v ...]\n"
     "  caustica record SCENE.lua -o DIR|PATTERN [--frames SET] [--shard i/n] [--overwrite] [--size WxH]\n"
     "                  [--video OUT.mp4|OUT.gif] [--set k=v ...]   (SET: 1-100, 0-119:10, 1,5,10-20, A:B or a count;\n"
     "                  PATTERN: out/shot_####.png or .pfm; frames already there are skipped)\n"
@@ -173,12 +174,16 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
                 cli->radius = v;
         } else if (strcmp(a, "--aov") == 0) {
             NEED_VALUE();
+            /* `reference --aov tir|exit`: a debug output; `render/record --aov pass.output`: an EXR layer */
             if (strcmp(next, "tir") == 0)
                 cli->aov = 1;
             else if (strcmp(next, "exit") == 0)
                 cli->aov = 2;
+            else if (strchr(next, '.') && cli->aov_count < 8)
+                cli->aovs[cli->aov_count++] = next;
             else
-                return usage_error("--aov needs tir or exit, got '%s'", next);
+                return usage_error("--aov needs tir or exit (reference) or pass.output (render, record to .exr), "
+                                   "at most 8, got '%s'", next);
         } else if (strcmp(a, "--report") == 0) {
             /* `test --report out.html` names a page; `reference --report` is a switch */
             size_t n = next ? strlen(next) : 0;

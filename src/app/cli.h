@@ -22,6 +22,8 @@ struct cli {
     bool frames_set;
     struct frame_set frame_set; /* --frames as given (record renders exactly these) */
     bool overwrite;          /* --overwrite (record): render frames whose file exists */
+    const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */
+    int aov_count;
     const char *video;       /* --video OUT.mp4|OUT.gif (record): the frames encoded by ffmpeg */
     int shard_index, shard_count; /* --shard i/n (record): every n-th frame of the set from the i-th */
     int width, height;       /* --size */

@@ -21,6 +21,9 @@ static bool open_session(struct app *app, struct cli *cli, const char *write_dir
         cli_print_error(&err);
         return false;
     }
+    for (int i = 0; i < cli->aov_count; i++)
+        (*s)->aovs[i] = cli->aovs[i];
+    (*s)->aov_count = cli->aov_count;
     return true;
 }
 
@@ -59,8 +62,12 @@ int cmd_render(struct app *app, struct cli *cli)
     }
     const char *out = cli->output ? cli->output : "out.png";
     struct error err;
-    if (!image_path_is_png(out) && !image_path_is_pfm(out) && !image_path_is_hdr(out)) {
-        fprintf(stderr, "caustica: -o %s: the output must end in .png, .pfm or .hdr\n", out);
+    if (!image_path_is_png(out) && !image_path_is_pfm(out) && !image_path_is_hdr(out) && !image_path_is_exr(out)) {
+        fprintf(stderr, "caustica: -o %s: the output must end in .png, .pfm, .hdr or .exr\n", out);
+        return EXIT_USAGE;
+    }
+    if (cli->aov_count && !image_path_is_exr(out)) {
+        fprintf(stderr, "caustica: --aov: extra layers need an EXR output (-o %s)\n", out);
         return EXIT_USAGE;
     }
     /* Check the destination before any work, so a bad path costs nothing. */
@@ -110,6 +117,10 @@ int cmd_record(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct error err;
+    if (cli->aov_count && !image_path_is_exr(cli->output)) {
+        fprintf(stderr, "caustica: --aov: extra layers need an EXR pattern (-o 'out/f_####.exr')\n");
+        return EXIT_USAGE;
+    }
     if (cli->video && !video_path_supported(cli->video)) {
         fprintf(stderr, "caustica: --video %s: a video must end in .mp4 or .gif\n", cli->video);
         return EXIT_USAGE;
@@ -119,8 +130,9 @@ int cmd_record(struct app *app, struct cli *cli)
     bool pattern = output_pattern_is_pattern(cli->output);
     char dir[4096];
     if (pattern) {
-        if (!image_path_is_png(cli->output) && !image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output)) {
-            fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .pfm or .hdr\n", cli->output);
+        if (!image_path_is_png(cli->output) && !image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output) &&
+            !image_path_is_exr(cli->output)) {
+            fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .pfm, .hdr or .exr\n", cli->output);
             return EXIT_USAGE;
         }
         if (strchr(cli->output, '/') && strchr(strchr(cli->output, '#'), '/')) {

@@ -240,6 +240,22 @@ bool session_render(struct session *s, int frame, struct error *err)
     return true;
 }
 
+/* A colour resource of the graph as a linear float image (rows top to bottom). */
+static bool read_resource(struct session *s, struct graph_resource *res, struct image *out, struct error *err)
+{
+    if (res->texture.target != GL_TEXTURE_2D || gl_format_is_depth(res->texture.format))
+        return error_set(err, "%s: '%s' is not a colour image (a depth or cube map output cannot be written)",
+                         s->script, res->name);
+    if (!image_create(out, res->texture.width, res->texture.height, err))
+        return false;
+    if (!gl_texture_read_rgba32f(&res->texture, 0, out->rgba, err)) {
+        image_destroy(out);
+        return false;
+    }
+    image_flip_rows(out);
+    return true;
+}
+
 bool session_read_linear(struct session *s, struct image *out, struct error *err)
 {
     struct graph_resource *res = graph_output(s->graph);
@@ -277,6 +293,39 @@ bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err)
 
 bool session_write_image(struct session *s, const char *path, struct error *err)
 {
+    if (image_path_is_exr(path)) {
+        /* the output, and each --aov resource as a named layer */
+        struct image img, layers_img[SESSION_MAX_AOVS];
+        struct image_layer layers[SESSION_MAX_AOVS];
+        int n = 0;
+        if (!session_read_linear(s, &img, err))
+            return false;
+        bool ok = true;
+        for (int i = 0; ok && i < s->aov_count; i++) {
+            struct graph_resource *res = graph_find_resource(s->graph, s->aovs[i]);
+            if (!res) {
+                ok = error_set(err, "--aov %s: no pass makes it (outputs are named \"pass.output\")", s->aovs[i]);
+                break;
+            }
+            if (res->producer >= 0 && res->producer < s->graph->count &&
+                s->graph->entries[res->producer].state != GRAPH_PASS_KEPT) {
+                ok = error_set(err, "--aov %s: its pass was left out (%s)", s->aovs[i],
+                               s->graph->entries[res->producer].reason);
+                break;
+            }
+            ok = read_resource(s, res, &layers_img[n], err);
+            if (ok) {
+                layers[n].name = s->aovs[i];
+                layers[n].image = &layers_img[n];
+                n++;
+            }
+        }
+        ok = ok && image_write_exr(path, &img, layers, n, err);
+        for (int i = 0; i < n; i++)
+            image_destroy(&layers_img[i]);
+        image_destroy(&img);
+        return ok;
+    }
     if (image_path_is_pfm(path) || image_path_is_hdr(path)) {
         struct image img;
         if (!session_read_linear(s, &img, err))
@@ -286,7 +335,7 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         return ok;
     }
     if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
+        return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
     /* An 8-bit PNG cannot hold NaN (the conversion makes it 0), but a pass
      * that produced some should not go unnoticed. */
     struct image linear;

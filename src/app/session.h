@@ -22,6 +22,8 @@ struct session_options {
                                 several frames) */
 };
 
+#define SESSION_MAX_AOVS 8
+
 struct session {
     struct app *app;
     struct session_options options;
@@ -38,6 +40,8 @@ struct session {
     enum tonemap_operator tonemap;
     int advanced;            /* last frame update() ran for; -1 before any */
     bool linted;             /* graph_lint's warnings printed (once per session) */
+    const char *aovs[8];     /* --aov pass.output: extra layers of an EXR output (borrowed from argv) */
+    int aov_count;
 };
 
 bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);

@@ -291,13 +291,22 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err)
 
 bool image_read(const char *path, struct image *img, struct error *err)
 {
+    /* "file.exr:layer" reads a named layer of an EXR */
+    const char *colon = strstr(path, ".exr:");
+    if (colon) {
+        char file[4200];
+        snprintf(file, sizeof file, "%.*s", (int)(colon + 4 - path), path);
+        return image_read_exr_layer(file, colon + 5, img, err);
+    }
     if (image_path_is_pfm(path))
         return image_read_pfm(path, img, err);
     if (image_path_is_png(path))
         return image_read_png(path, img, err);
     if (image_path_is_hdr(path))
         return image_read_hdr(path, img, err);
-    return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
+    if (image_path_is_exr(path))
+        return image_read_exr(path, img, err);
+    return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
 }
 
 bool image_write(const char *path, const struct image *img, struct error *err)
@@ -306,8 +315,10 @@ bool image_write(const char *path, const struct image *img, struct error *err)
         return image_write_pfm(path, img, err);
     if (image_path_is_hdr(path))
         return image_write_hdr(path, img, err);
+    if (image_path_is_exr(path))
+        return image_write_exr(path, img, NULL, 0, err);
     if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png, .pfm or .hdr)", path);
+        return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
     size_t n = (size_t)img->width * (size_t)img->height;
     uint8_t *bytes = calloc(n ? n * 4 : 4, 1);
     if (!bytes)

@@ -31,7 +31,7 @@ bool image_read_png(const char *path, struct image *img, struct error *err);
 bool image_read_png_rgba8(const char *path, uint8_t **rgba, int *width, int *height, struct error *err);
 bool image_write_pfm(const char *path, const struct image *img, struct error *err);
 bool image_read_pfm(const char *path, struct image *img, struct error *err);
-/* Picks the format by extension (.png, .pfm or .hdr). PNG gets a plain clamp and
+/* Picks the format by extension (.png, .pfm, .hdr or .exr). PNG gets a plain clamp and
  * sRGB encoding; tone-mapped output comes from the GPU path instead. */
 bool image_read(const char *path, struct image *img, struct error *err);
 bool image_write(const char *path, const struct image *img, struct error *err);
@@ -46,5 +46,18 @@ bool image_path_is_hdr(const char *path);
 FILE *image_file_begin(const char *path, char *tmp, size_t tmplen, struct error *err);
 bool image_file_finish(FILE *f, const char *tmp, const char *path, bool ok, struct error *err);
 bool image_path_is_pfm(const char *path);
+
+/* OpenEXR (image_exr.c): linear float RGBA, with named layers (channels
+ * "name.R" ...) for extra outputs. */
+struct image_layer {
+    const char *name;
+    const struct image *image;
+};
+bool image_path_is_exr(const char *path);
+bool image_write_exr(const char *path, const struct image *img, const struct image_layer *layers, int nlayers,
+                     struct error *err);
+bool image_read_exr(const char *path, struct image *img, struct error *err);
+/* One named layer's R, G, B, A (NULL: the top-level channels). */
+bool image_read_exr_layer(const char *path, const char *layer, struct image *img, struct error *err);
 
 #endif

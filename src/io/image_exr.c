@@ -1,0 +1,235 @@
+/* OpenEXR files through OpenEXR's own C API (OpenEXRCore, Debian's
+ * libopenexr-dev): the format renderers and compositors exchange linear
+ * float images in, with named layers for extra outputs (the AOVs Mogwai and
+ * Blender write beside the beauty image). Written as 32-bit float RGBA
+ * scanlines with ZIP compression, atomically (a temporary renamed into
+ * place); read: the R, G, B (and A) channels of the first part. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <openexr.h>
+
+#include "core/fileio.h"
+#include "io/image.h"
+
+bool image_path_is_exr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && (strcmp(path + n - 4, ".exr") == 0 || strcmp(path + n - 4, ".EXR") == 0);
+}
+
+static bool exr_failed(exr_result_t rv, const char *path, const char *what, struct error *err)
+{
+    return error_set(err, "%s: %s failed: %s", path, what, exr_get_default_error_message(rv));
+}
+
+/* Which image and component a channel named "[layer.]C" reads. */
+static bool channel_source(const char *name, const struct image *img, const struct image_layer *layers, int nlayers,
+                           const float **base, int *component)
+{
+    const char *dot = strrchr(name, '.');
+    const char *c = dot ? dot + 1 : name;
+    static const char comps[] = "RGBA";
+    const char *k = strchr(comps, c[0]);
+    if (!k || !c[0] || c[1])
+        return false;
+    *component = (int)(k - comps);
+    if (!dot) {
+        *base = img->rgba;
+        return true;
+    }
+    for (int i = 0; i < nlayers; i++)
+        if (strlen(layers[i].name) == (size_t)(dot - name) && strncmp(layers[i].name, name, (size_t)(dot - name)) == 0) {
+            *base = layers[i].image->rgba;
+            return true;
+        }
+    return false;
+}
+
+bool image_write_exr(const char *path, const struct image *img, const struct image_layer *layers, int nlayers,
+                     struct error *err)
+{
+    for (int i = 0; i < nlayers; i++)
+        if (layers[i].image->width != img->width || layers[i].image->height != img->height)
+            return error_set(err, "%s: layer '%s' is %dx%d, the image %dx%d", path, layers[i].name,
+                             layers[i].image->width, layers[i].image->height, img->width, img->height);
+    char tmp[4200];
+    path_temporary(path, tmp, sizeof tmp);
+    exr_context_t ctxt = NULL;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    exr_result_t rv = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv != EXR_ERR_SUCCESS)
+        return exr_failed(rv, path, "opening for writing", err);
+    int part = 0;
+    bool ok = true;
+    const char *step = "";
+    rv = exr_add_part(ctxt, "main", EXR_STORAGE_SCANLINE, &part);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctxt, part, img->width, img->height, EXR_COMPRESSION_ZIP);
+    static const char *const names[4] = {"R", "G", "B", "A"};
+    for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
+        rv = exr_add_channel(ctxt, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    for (int i = 0; i < nlayers && rv == EXR_ERR_SUCCESS; i++)
+        for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++) {
+            char name[300];
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, names[c]);
+            rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        }
+    step = "defining the channels";
+    if (rv == EXR_ERR_SUCCESS) {
+        rv = exr_write_header(ctxt);
+        step = "writing the header";
+    }
+    int32_t lines = 1;
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_scanlines_per_chunk(ctxt, part, &lines);
+    exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
+    bool started = false;
+    size_t row = (size_t)img->width * 4 * sizeof(float);
+    for (int y = 0; y < img->height && rv == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t chunk;
+        rv = exr_write_scanline_chunk_info(ctxt, part, y, &chunk);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        rv = started ? exr_encoding_update(ctxt, part, &chunk, &encoder)
+                     : exr_encoding_initialize(ctxt, part, &chunk, &encoder);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        for (int c = 0; c < encoder.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &encoder.channels[c];
+            const float *base = NULL;
+            int component = 0;
+            if (!channel_source(ch->channel_name, img, layers, nlayers, &base, &component)) {
+                rv = EXR_ERR_INVALID_ARGUMENT;
+                break;
+            }
+            ch->encode_from_ptr = (const uint8_t *)(base + (size_t)chunk.start_y * (size_t)img->width * 4 +
+                                                    (size_t)component);
+            ch->user_pixel_stride = 4 * (int32_t)sizeof(float);
+            ch->user_line_stride = (int32_t)row;
+            ch->user_bytes_per_element = 4;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (rv == EXR_ERR_SUCCESS && !started)
+            rv = exr_encoding_choose_default_routines(ctxt, part, &encoder);
+        started = true;
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_encoding_run(ctxt, part, &encoder);
+        step = "writing the pixels";
+    }
+    if (started)
+        exr_encoding_destroy(ctxt, &encoder);
+    exr_result_t fin = exr_finish(&ctxt);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = fin;
+    ok = rv == EXR_ERR_SUCCESS;
+    if (!ok) {
+        remove(tmp);
+        return exr_failed(rv, path, step, err);
+    }
+    if (rename(tmp, path) != 0) {
+        remove(tmp);
+        return error_set(err, "%s: cannot move the finished file into place", path);
+    }
+    return true;
+}
+
+bool image_read_exr_layer(const char *path, const char *layer, struct image *img, struct error *err)
+{
+    memset(img, 0, sizeof *img);
+    exr_context_t ctxt = NULL;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    exr_result_t rv = exr_start_read(&ctxt, path, &init);
+    if (rv != EXR_ERR_SUCCESS)
+        return exr_failed(rv, path, "reading", err);
+    exr_attr_box2i_t box;
+    exr_storage_t storage;
+    rv = exr_get_data_window(ctxt, 0, &box);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_storage(ctxt, 0, &storage);
+    if (rv != EXR_ERR_SUCCESS) {
+        exr_finish(&ctxt);
+        return exr_failed(rv, path, "reading the header", err);
+    }
+    int w = box.max.x - box.min.x + 1, h = box.max.y - box.min.y + 1;
+    if (storage != EXR_STORAGE_SCANLINE) {
+        exr_finish(&ctxt);
+        return error_set(err, "%s: only scanline EXR files are read (this one is tiled or deep)", path);
+    }
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) {
+        exr_finish(&ctxt);
+        return error_set(err, "%s: an EXR of %dx%d is out of range (1..16384)", path, w, h);
+    }
+    if (!image_create(img, w, h, err)) {
+        exr_finish(&ctxt);
+        return false;
+    }
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        img->rgba[i * 4 + 3] = 1.0f; /* alpha 1 where the file has none */
+    int32_t lines = 1;
+    rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines);
+    exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
+    bool started = false, found = false;
+    size_t row = (size_t)w * 4 * sizeof(float);
+    for (int y = box.min.y; y <= box.max.y && rv == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t chunk;
+        rv = exr_read_scanline_chunk_info(ctxt, 0, y, &chunk);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        rv = started ? exr_decoding_update(ctxt, 0, &chunk, &decoder)
+                     : exr_decoding_initialize(ctxt, 0, &chunk, &decoder);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        for (int c = 0; c < decoder.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &decoder.channels[c];
+            const char *name = ch->channel_name;
+            /* the layer's own channels: "R" at the top, "layer.R" in a layer */
+            size_t prefix = layer ? strlen(layer) : 0;
+            if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
+                name = "";
+            else if (layer)
+                name += prefix + 1;
+            static const char comps[] = "RGBA";
+            const char *k = name[0] && !name[1] ? strchr(comps, name[0]) : NULL;
+            if (!k || ch->x_samples != 1 || ch->y_samples != 1) {
+                ch->decode_to_ptr = NULL; /* a layer or a subsampled channel: not read */
+                continue;
+            }
+            found = true;
+            ch->decode_to_ptr = (uint8_t *)(img->rgba + (size_t)(chunk.start_y - box.min.y) * (size_t)w * 4 +
+                                            (size_t)(k - comps));
+            ch->user_pixel_stride = 4 * (int32_t)sizeof(float);
+            ch->user_line_stride = (int32_t)row;
+            ch->user_bytes_per_element = 4;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+        }
+        if (!started)
+            rv = exr_decoding_choose_default_routines(ctxt, 0, &decoder);
+        started = true;
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_decoding_run(ctxt, 0, &decoder);
+    }
+    if (started)
+        exr_decoding_destroy(ctxt, &decoder);
+    exr_finish(&ctxt);
+    if (rv != EXR_ERR_SUCCESS) {
+        image_destroy(img);
+        return exr_failed(rv, path, "reading the pixels", err);
+    }
+    if (!found) {
+        image_destroy(img);
+        return layer ? error_set(err, "%s: no layer '%s' (channels %s.R, %s.G, %s.B) in the EXR", path, layer, layer,
+                                 layer, layer)
+                     : error_set(err, "%s: no R, G or B channel in the EXR's first part", path);
+    }
+    return true;
+}
+
+bool image_read_exr(const char *path, struct image *img, struct error *err)
+{
+    return image_read_exr_layer(path, NULL, img, err);
+}

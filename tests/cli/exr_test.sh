@@ -1,0 +1,28 @@
+# OpenEXR output and input: linear float RGBA equal to the PFM, extra
+# layers for pass outputs (--aov pass.output, as Mogwai's frame capture
+# writes them), frame patterns, compare and convert reading EXR (a layer as
+# file.exr:layer), and a broken file refused cleanly.
+source "$(dirname "$0")/lib.sh"
+SCENE=tests/scenes/fog.lua
+SET="--set ball=true --set technique=beams --size 32x32"
+"$CAUSTICA" render $SCENE $SET -o "$WORK/a.exr" --aov beams.inscatter --aov shade.color >/dev/null 2>"$WORK/err" \
+  || fail "render to EXR" "$(cat "$WORK/err")"
+"$CAUSTICA" render $SCENE $SET -o "$WORK/a.pfm" >/dev/null 2>&1
+line=$("$CAUSTICA" compare "$WORK/a.exr" "$WORK/a.pfm" 2>&1)
+grep -q "rmse=0 " <<<"$line" && pass "the EXR holds the output exactly (== PFM)" || fail "EXR == PFM" "$line"
+"$CAUSTICA" render $SCENE $SET --set output=inscatter -o "$WORK/inscatter.pfm" >/dev/null 2>&1
+line=$("$CAUSTICA" compare "$WORK/a.exr:beams.inscatter" "$WORK/inscatter.pfm" 2>&1)
+grep -q "rmse=0 " <<<"$line" && pass "--aov beams.inscatter is a layer holding that output" || fail "AOV layer" "$line"
+"$CAUSTICA" record tests/scenes/deform.lua --size 24x24 -o "$WORK/seq/f_##.exr" --frames 0-1 >/dev/null 2>&1
+[ -s "$WORK/seq/f_00.exr" ] && [ -s "$WORK/seq/f_01.exr" ] && pass "record into an EXR pattern" \
+  || fail "EXR pattern" "$(ls "$WORK/seq" 2>&1)"
+"$CAUSTICA" convert "$WORK/a.exr" "$WORK/a.png" >/dev/null 2>&1 && "$CAUSTICA" compare "$WORK/a.png" "$WORK/a.png" >/dev/null \
+  && pass "convert reads EXR" || fail "convert EXR" "failed"
+expect_error "a layer the file lacks" 1 "no layer 'nope'" - -- "$CAUSTICA" compare "$WORK/a.exr:nope" "$WORK/a.pfm"
+expect_error "--aov without EXR" 2 "--aov: extra layers need an EXR output" "$WORK/b.png" -- \
+  "$CAUSTICA" render $SCENE $SET -o "$WORK/b.png" --aov shade.color
+expect_error "--aov of a depth buffer" 1 "'shade.depth' is not a colour image" "$WORK/c.exr" -- \
+  "$CAUSTICA" render $SCENE $SET -o "$WORK/c.exr" --aov shade.depth
+head -c 300 "$WORK/a.exr" >"$WORK/broken.exr"
+expect_error "a truncated EXR" 1 "broken.exr" - -- "$CAUSTICA" compare "$WORK/broken.exr" "$WORK/a.pfm"
+finish
