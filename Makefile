@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES = cmake make gcc g++ pkg-config liblua5.4-dev libglfw3-dev libosmesa6-dev libegl-dev \
            libegl-mesa0 libgl1-mesa-dri libgl1 libglx-mesa0 libtinygltf-dev libpng-dev libjpeg62-turbo-dev libopenexr-dev libembree-dev xvfb xauth
 
-.PHONY: all deps build demo test fuzz clean
+.PHONY: all deps farm-deps build demo test test-farm fuzz clean
 
 all: build
 
@@ -19,6 +19,24 @@ deps:
 	    echo "missing packages; run: sudo apt-get install -y $$missing"; exit 1; \
 	  fi; \
 	fi
+
+# The render-farm test's packages (a one-node Slurm cluster): installed as
+# root like `deps`, or the line to run printed.
+FARM_PACKAGES = slurm-wlm munge
+farm-deps:
+	@missing=$$(for p in $(FARM_PACKAGES); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "installing: $$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null || exit 1; \
+	  else \
+	    echo "missing packages; run: sudo apt-get install -y $$missing"; exit 1; \
+	  fi; \
+	fi
+
+# The Slurm test alone: a one-node cluster on this machine records an array job.
+test-farm: farm-deps build
+	@cd $(BUILD) && ctest --output-on-failure -R cli_slurm_test
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
