@@ -66,7 +66,7 @@ static vec3 latlong_lookup(const struct image *img, vec3 d)
     return out;
 }
 
-/* An equirectangular (latitude-longitude) .hdr or .pfm, resampled once into
+/* An equirectangular (latitude-longitude) .hdr, .pfm or .exr, resampled once into
  * cube faces of a quarter of its width, so that the GPU and the reference
  * read the same texels. */
 static struct environment *environment_load_latlong(const char *path, struct error *err)
@@ -109,7 +109,7 @@ static struct environment *environment_load_latlong(const char *path, struct err
 
 struct environment *environment_load(const char *path, struct error *err)
 {
-    if (image_path_is_hdr(path) || image_path_is_pfm(path))
+    if (image_path_is_hdr(path) || image_path_is_pfm(path) || image_path_is_exr(path))
         return environment_load_latlong(path, err);
     struct environment *env = environment_new(path, err);
     if (!env)
