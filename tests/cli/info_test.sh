@@ -112,4 +112,26 @@ grep -q "^warning: object 2 (glass) is drawn by no pass" "$WORK/undrawn.txt" \
   && pass "info warns of undrawn glass and of caustics for an unshadowed light" || fail "lint in info" "$(cat "$WORK/undrawn.txt")"
 "$CAUSTICA" render "$WORK/undrawn.lua" -o "$WORK/undrawn.png" >/dev/null 2>"$WORK/undrawn.err"
 [ "$(grep -c "drawn by no pass" "$WORK/undrawn.err")" = 1 ] && pass "render warns once" || fail "render warning" "$(cat "$WORK/undrawn.err")"
+# Why the caustics passes stay on with the glass out of view: its caustics land in view.
+cat >"$WORK/offscreen.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 0.3, 0}, target = {0, -1, 0}, up = {0, 0, -1}, fov = 60 } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 8 }, position = {0, -1, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, position = {0, 1.2, 0}, material = c.material.glass { ior = 1.5 } })
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 256 })
+g:add("caustics", c.pass.photon_caustics { light = sun, buffer = 64, texture = 128 })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance" })
+g:output(c.param("out", "shade.color"))
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+"$CAUSTICA" render "$WORK/offscreen.lua" --set out=caustics.irradiance -o "$WORK/offscreen.pfm" >/dev/null 2>&1
+python3 - "$WORK/offscreen.pfm" <<'PY' && pass "glass above the view still casts caustics into it" || fail "off-screen caustics" "none in view"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+body = data.split(b"\n", 3)[3]
+values = struct.unpack("<%df" % (len(body) // 4), body)
+sys.exit(0 if max(values) > 0.05 else 1)
+PY
 finish
