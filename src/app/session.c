@@ -243,9 +243,28 @@ bool session_render(struct session *s, int frame, struct error *err)
 /* A colour resource of the graph as a linear float image (rows top to bottom). */
 static bool read_resource(struct session *s, struct graph_resource *res, struct image *out, struct error *err)
 {
-    if (res->texture.target != GL_TEXTURE_2D || gl_format_is_depth(res->texture.format))
-        return error_set(err, "%s: '%s' is not a colour image (a depth or cube map output cannot be written)",
-                         s->script, res->name);
+    if (res->texture.target == GL_TEXTURE_2D && gl_format_is_depth(res->texture.format)) {
+        /* a depth buffer: its window depth in R, G and B */
+        if (!image_create(out, res->texture.width, res->texture.height, err))
+            return false;
+        size_t n = (size_t)res->texture.width * (size_t)res->texture.height;
+        float *depth = malloc(n * sizeof *depth);
+        if (!depth || !gl_texture_read_depth32f(&res->texture, depth, err)) {
+            free(depth);
+            image_destroy(out);
+            return depth ? false : error_set(err, "out of memory");
+        }
+        for (size_t i = 0; i < n; i++) {
+            out->rgba[i * 4] = out->rgba[i * 4 + 1] = out->rgba[i * 4 + 2] = depth[i];
+            out->rgba[i * 4 + 3] = 1.0f;
+        }
+        free(depth);
+        image_flip_rows(out);
+        return true;
+    }
+    if (res->texture.target != GL_TEXTURE_2D)
+        return error_set(err, "%s: '%s' is not a 2D image (a cube map output cannot be written)", s->script,
+                         res->name);
     if (!image_create(out, res->texture.width, res->texture.height, err))
         return false;
     if (!gl_texture_read_rgba32f(&res->texture, 0, out->rgba, err)) {
@@ -317,6 +336,7 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
             if (ok) {
                 layers[n].name = s->aovs[i];
                 layers[n].image = &layers_img[n];
+                layers[n].depth = gl_format_is_depth(res->texture.format);
                 n++;
             }
         }

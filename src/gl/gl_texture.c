@@ -72,6 +72,23 @@ void gl_texture_destroy(struct gl_texture *tex)
     memset(tex, 0, sizeof *tex);
 }
 
+bool gl_texture_read_depth32f(const struct gl_texture *tex, float *out, struct error *err)
+{
+    struct gl_framebuffer fb;
+    if (!gl_framebuffer_create(&fb, err))
+        return false;
+    bool ok = gl_framebuffer_attach(&fb, NULL, NULL, 0, tex, -1, err);
+    if (ok) {
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fb.id);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gl.ReadPixels(0, 0, tex->width, tex->height, GL_DEPTH_COMPONENT, GL_FLOAT, out);
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        ok = gl_check("reading a depth texture back", err);
+    }
+    gl_framebuffer_destroy(&fb);
+    return ok;
+}
+
 bool gl_texture_read_rgba32f(const struct gl_texture *tex, int layer, float *out, struct error *err)
 {
     /* Read through a framebuffer so that one layer of a cube map or array

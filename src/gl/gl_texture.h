@@ -24,6 +24,8 @@ bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int
                        int layers, struct error *err);
 void gl_texture_destroy(struct gl_texture *tex);
 /* Reads level 0 (layer `layer` of a cube map / array) as float RGBA. */
+/* A 2D depth texture's window depths [0, 1], rows bottom to top. */
+bool gl_texture_read_depth32f(const struct gl_texture *tex, float *out, struct error *err);
 bool gl_texture_read_rgba32f(const struct gl_texture *tex, int layer, float *out, struct error *err);
 
 struct gl_framebuffer {

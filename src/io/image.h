@@ -52,6 +52,7 @@ bool image_path_is_pfm(const char *path);
 struct image_layer {
     const char *name;
     const struct image *image;
+    bool depth; /* one channel, "name.Z", from the image's R (a depth buffer) */
 };
 bool image_path_is_exr(const char *path);
 bool image_write_exr(const char *path, const struct image *img, const struct image_layer *layers, int nlayers,

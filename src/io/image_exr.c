@@ -32,7 +32,7 @@ static bool channel_source(const char *name, const struct image *img, const stru
     const char *dot = strrchr(name, '.');
     const char *c = dot ? dot + 1 : name;
     static const char comps[] = "RGBA";
-    const char *k = strchr(comps, c[0]);
+    const char *k = c[0] == 'Z' ? comps : strchr(comps, c[0]); /* a depth layer's Z is its image's R */
     if (!k || !c[0] || c[1])
         return false;
     *component = (int)(k - comps);
@@ -73,9 +73,9 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
     for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctxt, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     for (int i = 0; i < nlayers && rv == EXR_ERR_SUCCESS; i++)
-        for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++) {
+        for (int c = 0; c < (layers[i].depth ? 1 : 4) && rv == EXR_ERR_SUCCESS; c++) {
             char name[300];
-            snprintf(name, sizeof name, "%s.%s", layers[i].name, names[c]);
+            snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].depth ? "Z" : names[c]);
             rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
         }
     step = "defining the channels";
@@ -173,7 +173,7 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
     int32_t lines = 1;
     rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines);
     exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
-    bool started = false, found = false;
+    bool started = false, found = false, depth_only = false;
     size_t row = (size_t)w * 4 * sizeof(float);
     for (int y = box.min.y; y <= box.max.y && rv == EXR_ERR_SUCCESS; y += lines) {
         exr_chunk_info_t chunk;
@@ -194,7 +194,9 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
             else if (layer)
                 name += prefix + 1;
             static const char comps[] = "RGBA";
-            const char *k = name[0] && !name[1] ? strchr(comps, name[0]) : NULL;
+            const char *k = name[0] && !name[1] ? (name[0] == 'Z' ? comps : strchr(comps, name[0])) : NULL;
+            if (k && name[0] == 'Z')
+                depth_only = true; /* a depth layer: Z into R, copied to G and B below */
             if (!k || ch->x_samples != 1 || ch->y_samples != 1) {
                 ch->decode_to_ptr = NULL; /* a layer or a subsampled channel: not read */
                 continue;
@@ -220,6 +222,9 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
         image_destroy(img);
         return exr_failed(rv, path, "reading the pixels", err);
     }
+    if (depth_only)
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+            img->rgba[i * 4 + 1] = img->rgba[i * 4 + 2] = img->rgba[i * 4];
     if (!found) {
         image_destroy(img);
         return layer ? error_set(err, "%s: no layer '%s' (channels %s.R, %s.G, %s.B) in the EXR", path, layer, layer,

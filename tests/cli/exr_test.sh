@@ -25,8 +25,22 @@ awk "BEGIN { exit !($rel < 1e-5) }" && pass "--aov beams.inscatter is a layer ho
 expect_error "a layer the file lacks" 1 "no layer 'nope'" - -- "$CAUSTICA" compare "$WORK/a.exr:nope" "$WORK/a.pfm"
 expect_error "--aov without EXR" 2 "--aov: extra layers need an EXR output" "$WORK/b.png" -- \
   "$CAUSTICA" render $SCENE $SET -o "$WORK/b.png" --aov shade.color
-expect_error "--aov of a depth buffer" 1 "'shade.depth' is not a colour image" "$WORK/c.exr" -- \
-  "$CAUSTICA" render $SCENE $SET -o "$WORK/c.exr" --aov shade.depth
+"$CAUSTICA" render tests/scenes/ball_lens.lua --size 32x32 -o "$WORK/d.exr" --aov shade.depth >/dev/null 2>"$WORK/d.err"
+if command -v exrheader >/dev/null; then
+  exrheader "$WORK/d.exr" | grep -q "shade.depth.Z, 32-bit floating-point" && pass "a depth buffer is a Z layer (exrheader)" \
+    || fail "depth layer" "$(exrheader "$WORK/d.exr" 2>&1 | head -12)"
+fi
+"$CAUSTICA" convert "$WORK/d.exr:shade.depth" "$WORK/depth.pfm" >/dev/null 2>&1 \
+  && python3 - "$WORK/depth.pfm" <<'PY' && pass "the depth layer holds window depths (floor nearer at the bottom)" || fail "depth values" "$(cat "$WORK/d.err")"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+head, dims, scale, body = data.split(b"\n", 3)
+w, h = map(int, dims.split())
+v = struct.unpack("<%df" % (w * h * 3), body[: w * h * 12])
+# PFM rows run bottom to top: the floor's bottom row is nearer than its top row; both are in (0, 1)
+bottom, top = v[(w // 2) * 3], v[((h - 1) * w + w // 2) * 3]
+sys.exit(0 if 0 < bottom < top <= 1 else 1)
+PY
 head -c 300 "$WORK/a.exr" >"$WORK/broken.exr"
 expect_error "a truncated EXR" 1 "broken.exr" - -- "$CAUSTICA" compare "$WORK/broken.exr" "$WORK/a.pfm"
 # An equirectangular environment from an EXR: the sky converted from its .hdr renders the same.
