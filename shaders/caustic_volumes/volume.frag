@@ -15,6 +15,17 @@ uniform float u_cap;
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
+// The edge function of p against the edge a -> b, computed from its
+// endpoints in one canonical order, so that two triangles sharing the edge
+// get bit-identical values (of opposite sign) for the same p.
+float edge_function(vec2 a, vec2 b, vec2 p)
+{
+    bool swap = a.x > b.x || (a.x == b.x && a.y > b.y);
+    vec2 lo = swap ? b : a, hi = swap ? a : b;
+    float e = cross2(hi - lo, p - lo);
+    return swap ? -e : e;
+}
+
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -33,12 +44,26 @@ void main()
     float area2 = cross2(q[1] - q[0], q[2] - q[0]);
     if (abs(area2) < 1e-20)
         discard;
-    // barycentrics of P in the cut triangle (either orientation: a fold inverts it)
-    float b1 = cross2(P.xz - q[0], q[2] - q[0]) / area2;
-    float b2 = cross2(q[1] - q[0], P.xz - q[0]) / area2;
-    float b0 = 1.0 - b1 - b2;
-    if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0)
-        discard;
+    // barycentrics of P in the cut triangle (either orientation: a fold
+    // inverts it), with a half-open fill rule: a point exactly on an edge
+    // belongs to the triangle for which that edge, wound counter-clockwise,
+    // is a top or left edge, so neighbouring volumes never both count it
+    // (a row of exactly 2x) nor both miss it (a row of 0)
+    float orientation = area2 > 0.0 ? 1.0 : -1.0;
+    float bary[3];
+    for (int k = 0; k < 3; k++) {
+        vec2 a = q[(k + 1) % 3], b = q[(k + 2) % 3];
+        float e = edge_function(a, b, P.xz) * orientation;
+        if (e < 0.0)
+            discard;
+        if (e == 0.0) {
+            vec2 d = (b - a) * orientation;
+            if (!(d.y < 0.0 || (d.y == 0.0 && d.x > 0.0)))
+                discard;
+        }
+        bary[k] = e / abs(area2);
+    }
+    float b0 = bary[0], b1 = bary[1], b2 = bary[2];
     float cut = 0.5 * abs(area2);
     // F_P, capped: a cut area smaller than generator / cap is not resolved by the grid
     float ratio = min(v.flux.w / max(cut, 1e-20), u_cap);

@@ -199,3 +199,22 @@ t.case("a rectangular basin (pool module): GPU and reference see the same pool",
   local e = c.image.compare(gpu, ref).rel_rmse
   t.expect(e < 0.3, string.format("rel_rmse %.4f", e))
 end)
+
+t.case("caustic volumes: a point on an edge between two volumes counts once (flat water is uniform)", function()
+  -- issue 8: under flat water the floor's points that fall exactly on the
+  -- generator grid's lines (the centre row and column at odd image sizes,
+  -- where the camera's rays meet x = 0 and z = 0 exactly) were counted by
+  -- both neighbouring volumes or by neither: rows of 2x or of 0. A half-open
+  -- rule on edge functions computed identically by both volumes fixes it.
+  for _, n in ipairs { 33, 64, 65 } do
+    local img = t.render("tests/scenes/flat_water.lua", { size = {n, n} })
+    local lo, hi = math.huge, 0
+    for y = 0, n - 1 do
+      for x = 0, n - 1 do
+        local v = img:pixel(x, y)
+        lo, hi = math.min(lo, v), math.max(hi, v)
+      end
+    end
+    t.expect(hi > 0 and (hi - lo) / hi < 1e-3, string.format("%dx%d: the floor spans %.5g .. %.5g", n, n, lo, hi))
+  end
+end)
