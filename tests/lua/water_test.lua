@@ -218,3 +218,57 @@ t.case("caustic volumes: a point on an edge between two volumes counts once (fla
     t.expect(hi > 0 and (hi - lo) / hi < 1e-3, string.format("%dx%d: the floor spans %.5g .. %.5g", n, n, lo, hi))
   end
 end)
+
+t.case("caustic volumes under a folding sine: the closed form's irradiance, and its mean within 2%", function()
+  -- Issue 8's folds. Ridges h(x) = A sin(2 pi x / L) under a vertical light,
+  -- an ideal interface, clear water: each vertical ray refracts at (x, h(x))
+  -- and lands at X(x) on the floor `depth` below; the floor's irradiance is
+  -- sum over the x with X(x) = X of E0 / |X'(x)| (rays cross: folds). The
+  -- test bins a dense set of such rays per pixel (the closed form, exact up
+  -- to the binning) and compares an orthographic view of two wavelengths,
+  -- 4096 pixels across (a caustic's sharp edges need the samples; at 512
+  -- the mean of point samples of it wanders by 2-6%). Measured: mean 0.985
+  -- (a 513 grid: 1.007), away from the folds 90% of the pixels within 5% and
+  -- all within 10% (one flux density per volume: steps between cells), the
+  -- folds' flux 0.977.
+  local A, L, depth, n, W, N = 0.019, 0.364, 1.5, 1.33, 0.728, 4096
+  local set = { depth = depth, camera_height = 1.0, grid = 257, ortho = W, fresnel = false, absorb = false,
+                elevation = 90 }
+  local flat = t.render("tests/scenes/flat_water.lua", { set = set, size = {N, 8} })
+  set.wave, set.wavelength, set.shape = A, L, "ridges"
+  local img = t.render("tests/scenes/flat_water.lua", { set = set, size = {N, 8} })
+  t.expect_finite(img)
+  local e0 = flat:pixel(N // 2, 4)
+  local function land(x)
+    local h = A * math.sin(2 * math.pi * x / L)
+    local dh = A * 2 * math.pi / L * math.cos(2 * math.pi * x / L)
+    local len = math.sqrt(dh * dh + 1)
+    local nx, ny = -dh / len, 1 / len
+    local eta = 1 / n
+    local s = eta * ny - math.sqrt(1 - eta * eta * (1 - ny * ny))
+    local tx, ty = s * nx, -eta + s * ny
+    return x + tx * (h + depth) / -ty
+  end
+  local bins, px, M, margin = {}, W / N, 400000, 0.2
+  for i = 0, N - 1 do bins[i] = 0 end
+  for j = 0, M - 1 do
+    local x = -W / 2 - margin + (j + 0.5) * (W + 2 * margin) / M
+    local b = math.floor((land(x) + W / 2) / px)
+    if b >= 0 and b < N then bins[b] = bins[b] + (W + 2 * margin) / M / px end
+  end
+  local mean, smooth, close, fold_gpu, fold_cf = 0, 0, 0, 0, 0
+  for i = 0, N - 1 do
+    local e = img:pixel(i, 4) / e0
+    mean = mean + e / N
+    local away = i >= 8 and i < N - 8
+    for k = -8, 8 do away = away and bins[math.max(0, math.min(N - 1, i + k))] < 1 end
+    if away then
+      smooth = smooth + 1
+      if math.abs(e / bins[i] - 1) < 0.1 then close = close + 1 end
+    end
+    if bins[i] > 1 then fold_gpu, fold_cf = fold_gpu + e, fold_cf + bins[i] end
+  end
+  t.expect(math.abs(mean - 1) < 0.02, string.format("mean %.4f of the flat water's (closed form: 1)", mean))
+  t.expect(close >= 0.99 * smooth, string.format("%d of %d pixels away from the folds within 10%%", close, smooth))
+  t.expect(math.abs(fold_gpu / fold_cf - 1) < 0.05, string.format("the folds' flux %.4f of the closed form's", fold_gpu / fold_cf))
+end)

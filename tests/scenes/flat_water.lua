@@ -12,7 +12,11 @@ local size = c.param("size", 64)
 local e = math.rad(elevation)
 
 local scene = c.scene {
-  camera = c.camera { eye = {0, -depth + camera_height, 0}, target = {0, -depth, 0}, up = {0, 0, -1}, fov = 40 },
+  -- ortho = W: an orthographic camera W wide looking straight down (every pixel the same floor area)
+  camera = c.param("ortho", 0) > 0
+    and c.camera { eye = {0, -depth + camera_height, 0}, target = {0, -depth, 0}, up = {0, 0, -1},
+                   ortho = { width = c.param("ortho", 0) } }
+    or c.camera { eye = {0, -depth + camera_height, 0}, target = {0, -depth, 0}, up = {0, 0, -1}, fov = 40 },
   background = {0, 0, 0},
 }
 local sun
