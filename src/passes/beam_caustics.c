@@ -87,7 +87,7 @@ static const struct pass_param_desc params[] = {
      .help = "adaptive refinement steps (§4.2) on every criterion of the split oracle"},
     [BC_EDGES] = {.name = "edges", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 6,
      .help = "further refinement at silhouettes only (the glass's, or between paths through different "
-             "interfaces); grid x 2^(refine + edges) is at most 256"},
+             "interfaces); grid x 2^(refine + edges) is at most 512"},
     [BC_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "the light's view of the specular surfaces, buffer x buffer texels (the G-buffer of §4.1)"},
     [BC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
