@@ -64,9 +64,8 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      (kind == MATERIAL_WATER && water) || (kind == MATERIAL_MIRROR && mirror);
         if (!drawn)
             snprintf(messages[count++], 400,
-                     "object %d (%s) is drawn by no pass: shade { specular = false } leaves it to a refraction pass "
-                     "(refraction, layered_refraction, sliced_refraction%s), and the graph has none, so it shows "
-                     "what is behind it",
+                     "object %d (%s) is drawn by no pass the output needs (shade draws it unless specular = false; "
+                     "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
                      i + 1, what, kind == MATERIAL_WATER ? ", water_surface" : "");
     }
     /* Caustics added by shade for a light that shade does not shadow. */

@@ -512,7 +512,10 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         return false;
     if (!draw_distance_impostor(s, r, f->scene, center, range, err))
         return false;
-    /* what the camera sees: depth of everything, normals of the receivers */
+    /* what the camera sees of the diffuse surfaces (as shade { specular =
+     * false } does: glass and water are drawn later, by the passes that
+     * refract this image): their depth, which clips the beams, and their
+     * normals, the receivers of the surface caustics */
     struct gl_program *recv;
     if (!gl_program_get(&r->programs, "common/object.vert", "beam_caustics/receivers.frag", NULL, &recv,
                         err))
@@ -522,7 +525,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, recv, DRAW_ALL);
+    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
     renderer_reset_state(r);
     pass_stage_end(p, "impostors");
     if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))

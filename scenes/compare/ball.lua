@@ -1,0 +1,40 @@
+-- Issue 17's comparison: a glass ball over a floor (surface caustics).
+-- --set technique=plain|photons|illumination|layered|beams: every
+-- technique that applies, each at its defaults (sweep its own parameters
+-- as caustics.<param>, e.g. --sweep caustics.buffer=128,256,512). The
+-- light turns slowly, so nothing is reused between frames.
+local c = require "caustica"
+local technique = c.param("technique", "layered")
+local scene = c.scene {
+  camera = c.camera { eye = {0, 1.6, 2.6}, target = {0, -0.2, 0}, fov = 40 },
+  environment = c.cubemap "../assets/env/room",
+  ambient = {0.03, 0.03, 0.03},
+}
+local e = math.rad(70)
+local sun = scene:add(c.light.directional { direction = {0.35 * math.cos(e), -math.sin(e), -0.9 * math.cos(e)},
+                                            intensity = {2.5, 2.4, 2.2} })
+scene:add(c.object { mesh = c.mesh.plane { size = 6 }, position = {0, -0.6, 0},
+                     material = c.material.diffuse { color = {0.75, 0.75, 0.72} } })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, material = c.material.glass { ior = 1.5 } })
+local passes = {
+  photons = function() return c.pass.photon_caustics { light = sun } end,
+  illumination = function() return c.pass.illumination_textures { light = sun } end,
+  layered = function() return c.pass.layered_caustics { light = sun } end,
+  beams = function() return c.pass.beam_caustics { light = sun } end,
+}
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
+if technique ~= "plain" then
+  assert(passes[technique], "technique: plain, photons, illumination, layered or beams expected, got " .. tostring(technique))
+  g:add("caustics", passes[technique]())
+end
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = technique ~= "plain" and "caustics.irradiance" or nil,
+                              specular = false })
+g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+g:output("glass.color")
+return { scene = scene, graph = g, size = {256, 256}, frames = 60,
+         update = function(t)
+           local a = 0.3 * t
+           sun.direction = { 0.35 * math.cos(e) * math.cos(a) - 0.9 * math.cos(e) * math.sin(a), -math.sin(e),
+                             0.35 * math.cos(e) * math.sin(a) - 0.9 * math.cos(e) * math.cos(a) }
+         end }
