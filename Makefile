@@ -8,9 +8,10 @@ PACKAGES = cmake make gcc g++ pkg-config liblua5.4-dev libglfw3-dev libosmesa6-d
 
 all: build
 
-# Installs what is missing when run as root; otherwise says what to install.
-deps:
-	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
+# Installs the packages named in $(1) that are missing, when run as root;
+# otherwise says what to install.
+define install_missing
+	@missing=$$(for p in $(1); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	  if [ "$$(id -u)" = 0 ]; then \
 	    echo "installing: $$missing"; \
@@ -19,20 +20,15 @@ deps:
 	    echo "missing packages; run: sudo apt-get install -y $$missing"; exit 1; \
 	  fi; \
 	fi
+endef
 
-# The render-farm test's packages (a one-node Slurm cluster): installed as
-# root like `deps`, or the line to run printed.
+deps:
+	$(call install_missing,$(PACKAGES))
+
+# The render-farm test's packages (a one-node Slurm cluster).
 FARM_PACKAGES = slurm-wlm munge
 farm-deps:
-	@missing=$$(for p in $(FARM_PACKAGES); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || echo $$p; done); \
-	if [ -n "$$missing" ]; then \
-	  if [ "$$(id -u)" = 0 ]; then \
-	    echo "installing: $$missing"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null || exit 1; \
-	  else \
-	    echo "missing packages; run: sudo apt-get install -y $$missing"; exit 1; \
-	  fi; \
-	fi
+	$(call install_missing,$(FARM_PACKAGES))
 
 # The Slurm test alone: a one-node cluster on this machine records an array job.
 test-farm: farm-deps build

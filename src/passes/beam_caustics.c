@@ -51,7 +51,11 @@ struct beam_caustics_state {
     GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
-    struct gl_texture distance, distance_depth; /* the receivers' distance impostor */
+    struct gl_texture distance, distance_depth; /* the receivers' distance impostor ... */
+    bool distance_valid;                        /* ... drawn for this geometry, centre and range */
+    uint64_t distance_geometry;
+    vec3 distance_center;
+    float distance_range;
     struct gl_texture receiver_normal, receiver_depth, irradiance_raw, irradiance_half;
     struct gl_framebuffer receivers_fb, volumes_fb, blur_fb, distance_fb;
     GLuint fragments_query; /* GL_SAMPLES_PASSED around the volumes' draw: the fill rate */
@@ -218,12 +222,23 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
         s->beam_capacity = BEAMS_MAX_BEAMS;
     size_t vertices = (size_t)(lattice + 1) * (size_t)(lattice + 1);
     if (!gl_buffer_create(&s->vertices, NULL, vertices * BEAMS_VERTEX_BYTES, 0, err) ||
-        !gl_buffer_create(&s->cells, NULL, (size_t)s->cell_capacity * 3 * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT,
-                          err) ||
+        !gl_buffer_create(&s->cells, NULL, ((size_t)s->cell_capacity * 3 + (size_t)grid * grid) * sizeof(GLuint),
+                          GL_DYNAMIC_STORAGE_BIT, err) ||
         !gl_buffer_create(&s->beams, NULL, (size_t)s->beam_capacity * BEAMS_BEAM_BYTES, 0, err) ||
         !gl_buffer_create(&s->counters, NULL, COUNT_SIZE * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT, err) ||
         !gl_buffer_create(&s->adjacency, NULL, vertices * BEAMS_ADJACENCY_STRIDE * sizeof(GLuint), 0, err))
         return false;
+    /* the coarse grid's cells, after the two level lists and the kept list:
+     * level 0 reads them, so they are written once */
+    GLuint *level0 = malloc((size_t)grid * (size_t)grid * sizeof *level0);
+    if (!level0)
+        return error_set(err, "out of memory");
+    for (int y = 0; y < grid; y++)
+        for (int x = 0; x < grid; x++)
+            level0[y * grid + x] = ((GLuint)x << 14) | (GLuint)y;
+    gl.NamedBufferSubData(s->cells, (GLintptr)((size_t)s->cell_capacity * 3 * sizeof(GLuint)),
+                          (GLsizeiptr)((size_t)grid * grid * sizeof *level0), level0);
+    free(level0);
     s->lattice = lattice;
     s->grid = grid;
     s->refine = refine;
@@ -341,15 +356,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     pass_stage_end(p, "rays");
 
     /* the coarse grid, then `refine` levels of the oracle */
-    int grid = s->grid, ncells = grid * grid;
-    GLuint *level0 = malloc((size_t)ncells * sizeof *level0);
-    if (!level0)
-        return error_set(err, "out of memory");
-    for (int y = 0; y < grid; y++)
-        for (int x = 0; x < grid; x++)
-            level0[y * grid + x] = ((GLuint)x << 14) | (GLuint)y;
-    gl.NamedBufferSubData(s->cells, 0, (GLsizeiptr)((size_t)ncells * sizeof *level0), level0);
-    free(level0);
+    int ncells = s->grid * s->grid;
     GLuint counters[COUNT_SIZE] = {0};
     counters[COUNT_DISPATCH] = (GLuint)((ncells + 63) / 64);
     counters[COUNT_DISPATCH + 1] = counters[COUNT_DISPATCH + 2] = 1;
@@ -372,7 +379,8 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counters);
     for (int level = 0; level <= s->refine; level++) {
         gl.UseProgram(refine->id);
-        gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_in_offset"), (level % 2) * s->cell_capacity);
+        gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_in_offset"),
+                            level == 0 ? 3 * s->cell_capacity : (level % 2) * s->cell_capacity);
         gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_out_offset"),
                             ((level + 1) % 2) * s->cell_capacity);
         gl.DispatchComputeIndirect((GLintptr)(COUNT_DISPATCH * sizeof(GLuint)));
@@ -510,8 +518,17 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, BC_VOXELS),
                       pass_int(p, BC_LAYERS), true, p, err))
         return false;
-    if (!draw_distance_impostor(s, r, f->scene, center, range, err))
-        return false;
+    /* the receivers' distance impostor changes only with the geometry */
+    uint64_t geometry = scene_geometry_version(f->scene);
+    if (!s->distance_valid || f->snapshot->geometry_animated || s->distance_geometry != geometry ||
+        s->distance_range != range || vec3_length(vec3_sub(s->distance_center, center)) != 0.0f) {
+        if (!draw_distance_impostor(s, r, f->scene, center, range, err))
+            return false;
+        s->distance_valid = true;
+        s->distance_geometry = geometry;
+        s->distance_center = center;
+        s->distance_range = range;
+    }
     /* what the camera sees of the diffuse surfaces (as shade { specular =
      * false } does: glass and water are drawn later, by the passes that
      * refract this image): their depth, which clips the beams, and their
