@@ -33,6 +33,19 @@ g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = technique ~= "
 g:add("glass", c.pass.layered_refraction { color = "shade.color" })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {256, 256}, frames = 60,
+         -- bench --sweep technique=all / choose: each technique at its defaults and these settings
+         techniques = {
+           metric = "caustic",
+           { "plain" },
+           { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
+                                   { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 },
+                                   { ["caustics.buffer"] = 1024, ["caustics.texture"] = 1024, ["caustics.k"] = 1 } } },
+           { "illumination", points = { { ["caustics.planes"] = 8 }, { ["caustics.size"] = 512 },
+                                        { ["caustics.table"] = 8 } } },
+           { "layered", sweep = { ["caustics.buffer"] = {128, 512} } },
+           { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 },
+                                 { ["caustics.grid"] = 32, ["caustics.refine"] = 2 } } },
+         },
          update = function(t)
            local a = 0.3 * t
            sun.direction = { 0.35 * math.cos(e) * math.cos(a) - 0.9 * math.cos(e) * math.sin(a), -math.sin(e),

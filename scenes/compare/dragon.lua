@@ -45,4 +45,18 @@ else
   error("technique: huqin, wyman or layered expected, got " .. tostring(technique))
 end
 g:output("glass.color")
-return { scene = scene, graph = g, frames = 90, fps = 30, size = {256, 256} }
+return { scene = scene, graph = g, frames = 90, fps = 30, size = {256, 256},
+         -- bench --sweep technique=all / choose: the refractions without caustics, then the caustics
+         -- under layered refraction; ranked by the whole image's error over the deformation
+         techniques = {
+           metric = "image",
+           { "huqin", set = { technique = "huqin", caustics = "none" } },
+           { "wyman", set = { technique = "wyman", caustics = "none" } },
+           { "layered", set = { technique = "layered", caustics = "none" }, sweep = { ["glass.layers"] = {8} } },
+           { "layered+photons", set = { technique = "layered", caustics = "photons" },
+             points = { { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 } } },
+           { "layered+layered", set = { technique = "layered", caustics = "layered" },
+             sweep = { ["caustics.buffer"] = {128} } },
+           { "layered+beams", set = { technique = "layered", caustics = "beams" },
+             points = { { ["caustics.refine"] = 0 } } },
+         } }

@@ -21,4 +21,11 @@ else
   g:add("fog", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth" })
 end
 g:output("fog.color")
-return { scene = scene, graph = g, size = {256, 256} }
+return { scene = scene, graph = g, size = {256, 256},
+         -- bench --sweep technique=all / choose: each technique at its defaults and these settings
+         techniques = {
+           metric = "caustic", -- the volume caustic (the reference's caustic part includes it)
+           { "plain", sweep = { ["fog.steps"] = {16, 64} } },
+           { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 },
+                                 { ["caustics.grid"] = 32, ["caustics.refine"] = 2 }, { ["fog.steps"] = 16 } } },
+         } }

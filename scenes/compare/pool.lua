@@ -40,4 +40,13 @@ return {
     drops(t, dt)
   end,
   frames = 150, fps = 30, size = {256, 256},
+  -- bench --sweep technique=all / choose: each technique at its defaults and these settings
+  techniques = {
+    metric = "caustic",
+    { "plain" },
+    { "volumes", sweep = { ["cv.resolution"] = {32, 128, 256} } },
+    { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
+                            { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 } } },
+    { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 } } },
+  },
 }

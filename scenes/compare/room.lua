@@ -50,4 +50,23 @@ else
   end
   g:output("glass.color")
 end
-return { scene = scene, graph = g, size = {256, 256} }
+return { scene = scene, graph = g, size = {256, 256},
+         -- bench --sweep technique=all / choose: the refraction techniques without caustics, then the
+         -- caustics techniques under layered refraction; ranked by the whole image's error
+         techniques = {
+           metric = "image",
+           { "plain", set = { technique = "plain", caustics = "none" } },
+           { "huqin", set = { technique = "huqin", caustics = "none" },
+             points = { { ["glass.impostor"] = 1024 }, { ["glass.correction"] = 0 } } },
+           { "wyman", set = { technique = "wyman", caustics = "none" } },
+           { "layered", set = { technique = "layered", caustics = "none" }, sweep = { ["glass.layers"] = {4, 8} } },
+           { "sliced", set = { technique = "sliced", caustics = "none" }, sweep = { ["glass.slices"] = {1, 3} } },
+           { "layered+photons", set = { technique = "layered", caustics = "photons" },
+             points = { { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 } } },
+           { "layered+illumination", set = { technique = "layered", caustics = "illumination" },
+             points = { { ["caustics.planes"] = 8 } } },
+           { "layered+layered", set = { technique = "layered", caustics = "layered" },
+             sweep = { ["caustics.buffer"] = {128, 512} } },
+           { "layered+beams", set = { technique = "layered", caustics = "beams" },
+             points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 } } },
+         } }

@@ -7,7 +7,9 @@
 
 #include "core/fileio.h"
 
-static const char *colours[8] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#7f7f7f"};
+static const char *colours[PLOT_MAX_SERIES] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+                                               "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939",
+                                               "#8c6d31", "#843c39", "#7b4173", "#000000"};
 
 static void escape(FILE *f, const char *s)
 {
@@ -76,7 +78,13 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
     ly1 += py;
     /* the side table: one numbered line per point, under the legend */
     const double line = 13;
-    const double W = 980, left = 80, right = 400, top = 50, bottom = 60;
+    /* the side table as wide as its longest line (10 px font: ~5.6 px a character) */
+    size_t longest = 0;
+    for (int i = 0; i < plot->count; i++)
+        if (strlen(plot->points[i].label) > longest)
+            longest = strlen(plot->points[i].label);
+    const double right = fmin(fmax(400.0, 5.6 * (double)(longest + 28) + 30.0), 900.0);
+    const double W = 580 + right, left = 80, top = 50, bottom = 60;
     double legend_h = 20.0 * plot->series_count + 10;
     double H = fmax(520, top + legend_h + line * drawn + 20);
     double pw = W - left - right, ph = fmin(H, 520) - top - bottom;
@@ -120,12 +128,24 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
     double tx = W - right + 20;
     int number = 0;
     for (int s = 0; s < plot->series_count; s++) {
-        const char *c = colours[s % 8];
+        const char *c = colours[s % PLOT_MAX_SERIES];
         if (plot->series_lines[s]) {
+            /* its joined points in the order of x (selection: the counts are small) */
             fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", c);
-            for (int i = 0; i < plot->count; i++)
-                if (plot->points[i].series == s && drawable(&plot->points[i]))
-                    fprintf(f, "%.1f,%.1f ", PX(plot->points[i].x), PY(plot->points[i].y));
+            double last = -INFINITY;
+            for (;;) {
+                int next = -1;
+                for (int i = 0; i < plot->count; i++) {
+                    const struct plot_point *p = &plot->points[i];
+                    if (p->series == s && p->joined && drawable(p) && p->x > last &&
+                        (next < 0 || p->x < plot->points[next].x))
+                        next = i;
+                }
+                if (next < 0)
+                    break;
+                last = plot->points[next].x;
+                fprintf(f, "%.1f,%.1f ", PX(plot->points[next].x), PY(plot->points[next].y));
+            }
             fputs("\"/>\n", f);
         }
         double ly = top + 10 + 20 * s;
@@ -139,9 +159,12 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         const struct plot_point *p = &plot->points[i];
         if (!drawable(p))
             continue;
-        const char *c = colours[p->series % 8];
+        const char *c = colours[p->series % PLOT_MAX_SERIES];
         number++;
-        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"/>\n", PX(p->x), PY(p->y), c);
+        /* a point off its series' line (dominated by a faster, better one) is hollow */
+        bool hollow = plot->series_lines[p->series % PLOT_MAX_SERIES] && !p->joined;
+        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"%s\"/>\n", PX(p->x), PY(p->y),
+                hollow ? "white" : c, c);
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", PX(p->x) + 5, PY(p->y) - 4, c,
                 number);
         fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"10\" fill=\"%s\">%d  ", tx,

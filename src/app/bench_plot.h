@@ -6,16 +6,19 @@
 
 #include "core/error.h"
 
+#define PLOT_MAX_SERIES 16
+
 struct plot_point {
     double x, y;       /* time (ms), error; points with x or y <= 0 are left out */
     char label[128];
     int series;        /* 0.. : colour and legend entry */
+    bool joined;       /* on its series' line (when the series has one), joined in the order of x */
 };
 
 struct plot {
     const char *title, *x_label, *y_label;
-    const char *series_names[8];
-    bool series_lines[8]; /* join the series' points in order */
+    const char *series_names[PLOT_MAX_SERIES];
+    bool series_lines[PLOT_MAX_SERIES]; /* join the series' points flagged `joined` */
     int series_count;
     struct plot_point *points;
     int count;

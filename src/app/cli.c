@@ -25,7 +25,10 @@ static const char usage_text[] =
     "  caustica convert IN.pfm|IN.hdr OUT.png [--exposure E]\n"
     "  caustica help [passes | PASS] [--markdown]\n"
     "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
-    "                 [--ref-photons N] [--ref-spp N] [--set k=v ...]\n"
+    "                 [--ref-photons N] [--ref-spp N] [--error-frames K] [--set k=v ...]\n"
+    "                 (--sweep technique=all|NAME,...: every technique the scene's `techniques` table declares)\n"
+    "  caustica choose SCENE.lua --error E | --time MS [--size WxH] [-o DIR] [--ref-photons N] [--ref-spp N]\n"
+    "                  [--error-frames K] [--set k=v ...]   (reads DIR's bench cache, or runs the sweep; DIR: bench)\n"
     "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
     "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
     "  --script-memory MB (Lua heap, default 4096, 0 = none),\n"
@@ -79,6 +82,7 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
 {
     memset(cli, 0, sizeof *cli);
     cli->frames_from = cli->frames_to = -1;
+    cli->max_error = cli->max_time_ms = -1.0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *next = i + 1 < argc ? argv[i + 1] : NULL;
@@ -214,6 +218,21 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             NEED_VALUE();
             if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
                 return usage_error("--ref-spp needs a count >= 8, got '%s'", next);
+        } else if (strcmp(a, "--error-frames") == 0) {
+            NEED_VALUE();
+            if (!parse_int(next, &cli->error_frames) || cli->error_frames < 1 || cli->error_frames > 16)
+                return usage_error("--error-frames needs a count in 1..16, got '%s'", next);
+        } else if (strcmp(a, "--error") == 0 || strcmp(a, "--time") == 0) {
+            NEED_VALUE();
+            char *end;
+            double v = strtod(next, &end);
+            if (end == next || *end || !(v > 0) || v > 1e12)
+                return usage_error(strcmp(a, "--error") == 0 ? "--error needs a relative error > 0 (e.g. 0.1), got '%s'"
+                                                             : "--time needs milliseconds a frame > 0, got '%s'", next);
+            if (strcmp(a, "--error") == 0)
+                cli->max_error = v;
+            else
+                cli->max_time_ms = v;
         } else if (strcmp(a, "--timings") == 0) {
             cli->timings = true;
         } else if (strcmp(a, "--update-refs") == 0) {

@@ -44,6 +44,10 @@ struct cli {
     int nsweeps;
     long ref_photons;        /* --ref-photons (bench) */
     int ref_spp;             /* --ref-spp: the longest reference run of the curve (bench) */
+    int error_frames;        /* --error-frames K (bench, choose): errors averaged over K frames spread over the
+                                animation (0: 1 frame, or 3 with --sweep technique=...) */
+    double max_error;        /* --error E (choose): the largest error accepted (< 0: not given) */
+    double max_time_ms;      /* --time T (choose): milliseconds a frame may take (< 0: not given) */
     double exposure;         /* --exposure (convert) */
     struct lua_params params;
 };
@@ -61,6 +65,7 @@ int cmd_info(struct app *app, struct cli *cli);
 int cmd_compare(struct app *app, struct cli *cli);
 int cmd_reference(struct app *app, struct cli *cli);
 int cmd_bench(struct app *app, struct cli *cli);
+int cmd_choose(struct app *app, struct cli *cli);
 int cmd_convert(struct app *app, struct cli *cli);
 /* The usage lines of one verb (its line, continuation lines, the common options). */
 void cli_usage_verb(FILE *out, const char *verb);

@@ -1,0 +1,16 @@
+/* What `caustica bench` shares with `caustica choose`: where a technique
+ * sweep's results are cached. */
+#ifndef CAUSTICA_BENCH_H
+#define CAUSTICA_BENCH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "app/cli.h"
+
+/* DIR/cache/sweep_<key>.csv, the key a hash of everything that determines
+ * the sweep's measurements: the script's text, --set, --size, --frame,
+ * --frames, --error-frames, --ref-photons, --ref-spp and the sweeps. */
+bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, size_t size, struct error *err);
+
+#endif

@@ -1,0 +1,285 @@
+/* `caustica choose SCENE --error E [--time T]`: the cheapest technique and
+ * settings of a comparison scene whose error is at most E (or the most
+ * accurate within T milliseconds a frame), from the scene's technique sweep
+ * — read from `bench`'s cache when it was measured with the same options,
+ * run otherwise — with the graph lines to paste into the script. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/bench.h"
+#include "app/cli.h"
+#include "app/techniques.h"
+#include "graph/graph.h"
+#include "scene/scene.h"
+
+#define MAX_ROWS 512
+
+struct row {
+    char technique[64], settings[256];
+    double ms, error;
+};
+
+/* Splits a CSV line in place (the bench's fields have no commas or quotes). */
+static int split(char *line, char **fields, int max)
+{
+    int n = 0;
+    for (char *p = line; n < max;) {
+        fields[n++] = p;
+        char *comma = strchr(p, ',');
+        if (!comma)
+            break;
+        *comma = '\0';
+        p = comma + 1;
+    }
+    return n;
+}
+
+static bool read_rows(const char *path, struct row *rows, int *count, struct error *err)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return error_set(err, "%s: cannot read", path);
+    char line[8192];
+    char *fields[128];
+    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, n = 0;
+    bool header = true;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\r\n")] = '\0';
+        int nf = split(line, fields, 128);
+        if (header) {
+            for (int i = 0; i < nf; i++) {
+                if (strcmp(fields[i], "technique") == 0)
+                    col_technique = i;
+                else if (strcmp(fields[i], "settings") == 0)
+                    col_settings = i;
+                else if (strcmp(fields[i], "frame_ms") == 0)
+                    col_ms = i;
+                else if (strcmp(fields[i], "error") == 0)
+                    col_error = i;
+            }
+            header = false;
+            if (col_technique < 0 || col_settings < 0 || col_ms < 0 || col_error < 0) {
+                fclose(f);
+                return error_set(err, "%s: not a technique sweep's results (no technique, settings, frame_ms and "
+                                      "error columns)", path);
+            }
+            continue;
+        }
+        if (nf <= col_error || strcmp(fields[0], "gpu") != 0 || n >= MAX_ROWS)
+            continue;
+        struct row *r = &rows[n++];
+        snprintf(r->technique, sizeof r->technique, "%s", fields[col_technique]);
+        snprintf(r->settings, sizeof r->settings, "%s", fields[col_settings]);
+        r->ms = atof(fields[col_ms]);
+        r->error = atof(fields[col_error]);
+    }
+    fclose(f);
+    *count = n;
+    return n > 0 ? true : error_set(err, "%s: no measured variants", path);
+}
+
+/* One pass's constructor as a script writes it: the parameters the script
+ * (or the chosen settings) set. Lights and objects by their index in the
+ * scene, since the script's variable names are not known here. */
+static void print_pass(const struct pass *p, const struct scene *scene)
+{
+    printf("  g:add(\"%s\", c.pass.%s {", p->name, p->desc->name);
+    int printed = 0;
+    for (int i = 0; i < p->desc->param_count; i++) {
+        const struct pass_param_desc *d = &p->desc->params[i];
+        const struct pass_value *v = &p->values[i];
+        if (!v->set)
+            continue;
+        char text[512] = "";
+        switch (d->type) {
+        case PASS_PARAM_NUMBER:
+            snprintf(text, sizeof text, "%g", v->number);
+            break;
+        case PASS_PARAM_INTEGER:
+            snprintf(text, sizeof text, "%.0f", v->number);
+            break;
+        case PASS_PARAM_BOOLEAN:
+            snprintf(text, sizeof text, "%s", v->number != 0 ? "true" : "false");
+            break;
+        case PASS_PARAM_STRING:
+        case PASS_PARAM_INPUT:
+            snprintf(text, sizeof text, "\"%s\"", v->string ? v->string : "");
+            break;
+        case PASS_PARAM_ENUM: {
+            const char *c = d->choices;
+            for (int k = 0; k < (int)v->number && c; k++) {
+                c = strchr(c, '|');
+                c = c ? c + 1 : NULL;
+            }
+            if (c)
+                snprintf(text, sizeof text, "\"%.*s\"", (int)strcspn(c, "|"), c);
+            break;
+        }
+        case PASS_PARAM_LIGHT:
+            for (int k = 0; k < scene->light_count; k++)
+                if (scene->lights[k] == v->light)
+                    snprintf(text, sizeof text, "LIGHT%d", k + 1);
+            break;
+        case PASS_PARAM_OBJECT:
+            for (int k = 0; k < scene->object_count; k++)
+                if (scene->objects[k] == v->object)
+                    snprintf(text, sizeof text, "OBJECT%d", k + 1);
+            break;
+        case PASS_PARAM_INPUT_LIST: {
+            size_t used = 0;
+            used += (size_t)snprintf(text, sizeof text, "{");
+            for (int k = 0; k < v->list_count && used < sizeof text; k++)
+                used += (size_t)snprintf(text + used, sizeof text - used, "%s\"%s\"", k ? ", " : " ", v->list[k]);
+            if (used < sizeof text)
+                snprintf(text + used, sizeof text - used, " }");
+            break;
+        }
+        case PASS_PARAM_COLOR:
+            snprintf(text, sizeof text, "{%g, %g, %g}", v->color[0], v->color[1], v->color[2]);
+            break;
+        default:
+            snprintf(text, sizeof text, "...");
+            break;
+        }
+        if (!text[0])
+            continue;
+        printf("%s %s = %s", printed++ ? "," : "", d->name, text);
+    }
+    printf(" })\n");
+}
+
+int cmd_choose(struct app *app, struct cli *cli)
+{
+    if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0)) {
+        fprintf(stderr, "caustica: choose needs one scene script and --error E (the largest error accepted) or --time "
+                        "MS (the milliseconds a frame may take), or both\n");
+        cli_usage_verb(stderr, "choose");
+        return EXIT_USAGE;
+    }
+    const char *script = cli->positional[0];
+    const char *dir = cli->output ? cli->output : "bench";
+    /* the sweep `bench --sweep technique=all` runs, with the same options */
+    struct cli sweep = *cli;
+    if (sweep.nsweeps == 0) {
+        sweep.sweeps[0] = "technique=all";
+        sweep.nsweeps = 1;
+    }
+    struct error err;
+    char cached[4400];
+    if (!bench_sweep_cache_path(&sweep, dir, cached, sizeof cached, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    FILE *probe = fopen(cached, "r");
+    if (probe) {
+        fclose(probe);
+        fprintf(stderr, "caustica: choose: the sweep from the bench cache %s\n", cached);
+    } else {
+        fprintf(stderr, "caustica: choose: no sweep of %s with these options in %s/cache: running `caustica bench %s "
+                        "--sweep %s -o %s` ...\n", script, dir, script, sweep.sweeps[0], dir);
+        int rc = cmd_bench(app, &sweep);
+        if (rc != 0)
+            return rc;
+    }
+    struct row *rows = calloc(MAX_ROWS, sizeof *rows);
+    int n = 0;
+    if (!rows || !read_rows(cached, rows, &n, &err)) {
+        free(rows);
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    /* with --error: the cheapest within the error (and the time); with
+     * --time only: the most accurate within the time */
+    int best = -1;
+    for (int i = 0; i < n; i++) {
+        bool fits = (cli->max_error < 0 || rows[i].error <= cli->max_error) &&
+                    (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms);
+        if (!fits)
+            continue;
+        bool better = best < 0 || (cli->max_error >= 0 ? rows[i].ms < rows[best].ms : rows[i].error < rows[best].error);
+        if (better)
+            best = i;
+    }
+    if (best < 0) {
+        int accurate = 0, fastest = 0;
+        for (int i = 1; i < n; i++) {
+            if (rows[i].error < rows[accurate].error)
+                accurate = i;
+            if (rows[i].ms < rows[fastest].ms)
+                fastest = i;
+        }
+        fprintf(stderr, "caustica: choose: no technique of %s reaches", script);
+        if (cli->max_error >= 0)
+            fprintf(stderr, " error %g", cli->max_error);
+        if (cli->max_time_ms >= 0)
+            fprintf(stderr, "%s %g ms a frame", cli->max_error >= 0 ? " within" : "", cli->max_time_ms);
+        fprintf(stderr, " on this machine; the most accurate is %s (%s): %.4g in %.1f ms, the fastest %s (%s): "
+                        "%.4g in %.1f ms\n", rows[accurate].technique, rows[accurate].settings, rows[accurate].error,
+                rows[accurate].ms, rows[fastest].technique, rows[fastest].settings, rows[fastest].error,
+                rows[fastest].ms);
+        free(rows);
+        return EXIT_SCENE_ERROR;
+    }
+    struct row chosen = rows[best];
+    free(rows);
+    /* the chosen technique's graph: the script opened with its selecting
+     * parameters and settings */
+    struct session_options so = {.script = script, .params = cli->params, .width = cli->width, .height = cli->height,
+                                 .past_last_frame = true};
+    struct session *s = NULL;
+    struct technique_list *list = calloc(1, sizeof *list);
+    bool ok = list && session_open(app, &so, &s, &err) && techniques_read(s, list, &err) &&
+              techniques_select(list, chosen.technique, &err);
+    const struct technique *tech = ok ? &list->items[0] : NULL;
+    const char *metric = ok && list->metric == TECHNIQUE_METRIC_IMAGE ? "error (rel_rmse of the image)"
+                                                                      : "caustic-region error (rel_rmse)";
+    char set_text[600] = "";
+    for (int k = 0; ok && k < tech->set_count; k++) {
+        char assignment[200];
+        snprintf(assignment, sizeof assignment, "%s=%s", tech->set_keys[k], tech->set_values[k]);
+        snprintf(set_text + strlen(set_text), sizeof set_text - strlen(set_text), " --set %s", assignment);
+        ok = lua_params_add(&so.params, assignment, &err);
+    }
+    /* the settings: "pass.param=value" overrides, "param=value" scene parameters */
+    char settings[256];
+    snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
+    for (char *tok = strtok(settings, " "); ok && tok; tok = strtok(NULL, " ")) {
+        if (!strchr(tok, '.') || strchr(tok, '.') > strchr(tok, '='))
+            ok = lua_params_add(&so.params, tok, &err);
+    }
+    if (s)
+        session_close(s);
+    s = NULL;
+    ok = ok && session_open(app, &so, &s, &err);
+    snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
+    for (char *tok = strtok(settings, " "); ok && tok; tok = strtok(NULL, " ")) {
+        char *eq = strchr(tok, '='), *dot = strchr(tok, '.');
+        if (eq && dot && dot < eq) {
+            *eq = '\0';
+            ok = session_set_pass_param(s, tok, eq + 1, &err);
+        }
+    }
+    if (ok) {
+        printf("%s: %s (%s): %.1f ms a frame, %s %.4g\n", script, chosen.technique, chosen.settings, chosen.ms, metric,
+               chosen.error);
+        printf("measured by the sweep in %s\n", cached);
+        printf("the graph (paste into the script; LIGHTn is the scene's n-th light, OBJECTn its n-th object):\n");
+        for (int i = 0; i < s->graph->count; i++)
+            print_pass(s->graph->entries[i].pass, s->scene);
+        printf("or keep the script as it is and run it with:%s", set_text);
+        snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
+        for (char *tok = strtok(settings, " "); tok; tok = strtok(NULL, " "))
+            if (!strchr(tok, '.') || strchr(tok, '.') > strchr(tok, '='))
+                printf(" --set %s", tok);
+        printf("\n");
+    }
+    if (s)
+        session_close(s);
+    free(list);
+    if (!ok) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    return 0;
+}
