@@ -335,8 +335,12 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors.items[k].object->id);
     }
     gl.Enable(GL_DEPTH_TEST);
-    /* all objects write depth (so refractors hide what is behind them); receivers get the caustics */
-    renderer_draw_objects(r, f->scene, map, DRAW_ALL);
+    /* the diffuse surfaces only, as shade { specular = false } draws them: the
+     * refraction passes and water_surface look up that image through the
+     * glass or water, so a floor under water or behind glass needs its
+     * caustics too (drawing the refractors' depth hid them: no caustics at
+     * all under water seen from above) */
+    renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
     return true;
 }
 

@@ -31,3 +31,15 @@ t.case("every technique of every comparison scene renders", function()
     end
   end
 end)
+
+t.case("photons light a pool floor seen from above through the water, as caustic volumes do", function()
+  -- The caustic mapping once drew the water's depth too, hiding the floor
+  -- under it: photons added nothing to the pool (0.1273 against plain's 0.1273).
+  local mean = {}
+  for _, name in ipairs { "plain", "photons", "volumes" } do
+    mean[name] = t.render("scenes/compare/pool.lua", { set = { technique = name }, size = {64, 64}, frame = 30 })
+                   :stats().mean_gray
+  end
+  t.expect(mean.photons - mean.plain > 0.6 * (mean.volumes - mean.plain),
+           string.format("photons add %.4f over plain, volumes %.4f", mean.photons - mean.plain, mean.volumes - mean.plain))
+end)

@@ -1,0 +1,88 @@
+# `caustica bench --sweep technique=all` and `caustica choose` on a small
+# comparison scene: one frontier per technique, the table of best errors
+# within 33 ms / 100 ms / 1 s, and choose reading the sweep from the bench
+# cache (here a cached sweep whose numbers the test wrote, so the expected
+# choice is known exactly).
+source "$(dirname "$0")/lib.sh"
+B="$WORK/bench"
+OPTS=(--size 32x32 --frames 1 --error-frames 2 --ref-photons 3000 --ref-spp 8 -o "$B")
+# choose without a cached sweep runs it (bench --sweep technique=all)
+"$CAUSTICA" choose scenes/compare/fog.lua --error 10 "${OPTS[@]}" >"$WORK/out.txt" 2>"$WORK/err.txt" \
+  && grep -q "running \`caustica bench" "$WORK/err.txt" && pass "choose runs the sweep when the cache has none" \
+  || fail "choose without a cache" "$(tail -5 "$WORK/err.txt")"
+for f in results.csv results.md frontier.md plot.svg; do
+  [ -s "$B/$f" ] && pass "wrote $f" || fail "wrote $f" "missing"
+done
+rows=$(grep -c '^gpu,' "$B/results.csv")
+[ "$rows" = 8 ] && [ "$(grep -c '^gpu,plain,' "$B/results.csv")" = 3 ] && [ "$(grep -c '^gpu,beams,' "$B/results.csv")" = 5 ] \
+  && pass "every declared technique at its defaults and its settings (3 + 5)" || fail "rows" "$(cat "$B/results.csv")"
+# an animated scene: the error is the mean over frames spread across it; a subset of its techniques
+"$CAUSTICA" bench scenes/compare/ball.lua --sweep technique=plain,photons --size 32x32 --frames 1 --error-frames 3 \
+  --ref-photons 3000 --ref-spp 8 -o "$WORK/ball" >"$WORK/ball.txt" 2>&1
+grep -q "^errors: the mean over frames 0, 30, 59 of 60" "$WORK/ball.txt" && grep -q "means over frames 0, 30, 59" "$WORK/ball/results.md" \
+  && [ "$(grep -c 'rendering the ground truth of frame' "$WORK/ball.txt")" = 3 ] \
+  && pass "errors over 3 frames spread across the animation, one truth each (not one per technique)" \
+  || fail "error frames" "$(head -5 "$WORK/ball.txt")"
+[ "$(grep -c '^gpu,' "$WORK/ball/results.csv")" = 5 ] && ! grep -q '^gpu,illumination' "$WORK/ball/results.csv" \
+  && pass "--sweep technique=plain,photons: those two only" || fail "technique subset" "$(cut -d, -f1-3 "$WORK/ball/results.csv")"
+grep -q "^| plain |" "$B/frontier.md" && grep -q "^| beams |" "$B/frontier.md" && grep -q "^| reference (CPU) |" "$B/frontier.md" \
+  && grep -q "≤ 33 ms | ≤ 100 ms | ≤ 1 s" "$B/frontier.md" && pass "the frontier table: each technique and the reference" \
+  || fail "frontier table" "$(cat "$B/frontier.md")"
+# the plot: one frontier line per technique and the reference's curve
+[ "$(grep -c '<polyline' "$B/plot.svg")" = 3 ] && grep -q ">beams</text>" "$B/plot.svg" \
+  && pass "one frontier per technique in the plot" || fail "plot" "$(grep -c '<polyline' "$B/plot.svg") lines"
+cache=$(ls "$B"/cache/sweep_*.csv 2>/dev/null | head -1)
+[ -n "$cache" ] && pass "the sweep is cached ($(basename "$cache"))" || fail "sweep cache" "none in $B/cache"
+
+# A cached sweep with known numbers: choose must read it, not run anything.
+head -1 "$cache" >"$WORK/header"
+cols=$(head -1 "$cache" | tr ',' '\n' | wc -l)
+row() { # kind technique settings ms error
+  local line="$1,$2,$3,$4,1"
+  for ((i = 6; i < cols; i++)); do line="$line,"; done
+  echo "$line,$5"
+}
+{
+  cat "$WORK/header"
+  row gpu plain defaults 5 0.9
+  row gpu plain fog.steps=16 3 0.95
+  row gpu beams defaults 40 0.20
+  row gpu beams caustics.refine=0 20 0.30
+  row gpu beams caustics.refine=2 80 0.12
+  row reference "" "8 it" 1 0.01
+} >"$cache"
+"$CAUSTICA" choose scenes/compare/fog.lua --error 0.25 "${OPTS[@]}" >"$WORK/c1.txt" 2>"$WORK/c1e.txt"
+grep -q "from the bench cache" "$WORK/c1e.txt" && ! grep -q "rendering" "$WORK/c1e.txt" \
+  && pass "choose reads the cached sweep" || fail "cache read" "$(cat "$WORK/c1e.txt")"
+grep -q "^scenes/compare/fog.lua: beams (defaults): 40.0 ms a frame" "$WORK/c1.txt" \
+  && pass "--error 0.25: the cheapest within it (beams at its defaults, not refine=2)" || fail "--error" "$(cat "$WORK/c1.txt")"
+grep -q 'g:add("caustics", c.pass.beam_caustics { light = LIGHT1 })' "$WORK/c1.txt" \
+  && grep -q 'g:add("fog", c.pass.volume_light {.*add = { "caustics.inscatter" }' "$WORK/c1.txt" \
+  && grep -q -- "--set technique=beams" "$WORK/c1.txt" && pass "the graph lines to paste, and the --set" \
+  || fail "graph lines" "$(cat "$WORK/c1.txt")"
+"$CAUSTICA" choose scenes/compare/fog.lua --error 0.2 --time 30 "${OPTS[@]}" >"$WORK/c2.txt" 2>"$WORK/c2e.txt"
+[ $? = 1 ] && grep -q "no technique of scenes/compare/fog.lua reaches error 0.2 within 30 ms" "$WORK/c2e.txt" \
+  && pass "nothing fits: says so, with the nearest choices" || fail "nothing fits" "$(cat "$WORK/c2e.txt")"
+"$CAUSTICA" choose scenes/compare/fog.lua --time 50 "${OPTS[@]}" >"$WORK/c3.txt" 2>&1
+grep -q "beams (defaults)" "$WORK/c3.txt" && pass "--time 50: the most accurate within it" || fail "--time" "$(cat "$WORK/c3.txt")"
+"$CAUSTICA" choose scenes/compare/fog.lua --error 0.15 --time 1000 "${OPTS[@]}" >"$WORK/c4.txt" 2>&1
+grep -q "caustics.refine=2" "$WORK/c4.txt" && grep -q 'beam_caustics { light = LIGHT1, refine = 2 }' "$WORK/c4.txt" \
+  && pass "a chosen setting appears in the graph line" || fail "setting in graph" "$(cat "$WORK/c4.txt")"
+
+expect_error "choose needs a bound" 2 "choose needs one scene script and --error E" - -- \
+  "$CAUSTICA" choose scenes/compare/fog.lua
+expect_error "no techniques table" 2 "returns no 'techniques' table" - -- \
+  "$CAUSTICA" bench scenes/demo.lua --sweep technique=all --size 16x16 -o "$WORK/x"
+expect_error "an unknown technique" 2 "declares no technique 'lasers' (it has: plain, beams, or all)" - -- \
+  "$CAUSTICA" bench scenes/compare/fog.lua --sweep technique=lasers --size 16x16 -o "$WORK/x"
+cat >"$WORK/bad.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, techniques = { { "a", sweep = { ["shade.x"] = 3 } } } }
+LUA
+expect_error "a malformed techniques table" 2 "techniques: a.sweep: each key a \"pass.param\" or scene parameter, each value a list" - -- \
+  "$CAUSTICA" bench "$WORK/bad.lua" --sweep technique=all --size 16x16 -o "$WORK/x" --trusted
+finish
