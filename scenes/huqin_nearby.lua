@@ -27,6 +27,8 @@ ball.visible = not c.param("hide", false)
 local g = c.graph()
 g:add("shade", c.pass.shade {})
 g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", correction = c.param("correction", 3),
-                                   impostor = c.param("impostor", 512), method = c.param("method", "huqin") })
+                                   impostor = c.param("impostor", 512), method = c.param("method", "huqin"),
+                                   -- the paper's impostors (Fig. 18); "scene" is the pass's default
+                                   lookup = c.param("lookup", "impostors") })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {256, 256} }

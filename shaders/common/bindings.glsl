@@ -31,12 +31,20 @@
 #define REFRACTION_UNIT_BACK_NORMAL 2
 #define REFRACTION_UNIT_FRONT_DEPTH 3
 #define REFRACTION_UNIT_BACK_DEPTH 4
+#define REFRACTION_UNIT_INPUT_DEPTH 7      // the input image's depth (lookup = "scene")
+#define REFRACTION_UNIT_BEHIND 5           // the diffuse scene behind the glass, drawn by the pass (lookup = "scene")
 #define REFRACTION_SSBO_THICKNESS 4         // Wyman's per-vertex d_N
 
 // Impostors of nearby geometry (impostors.glsl, refraction and photon_caustics)
 #define IMPOSTOR_SSBO 5
 #define IMPOSTOR_UNIT_DEPTH 6
 #define IMPOSTOR_UNIT_COLOR 8
+
+// The distance map around the refractors (distance_map.c, distance_map/lookup.glsl; refraction)
+#define DISTANCE_MAP_UNIT_COLOR 11
+#define DISTANCE_MAP_UNIT_DISTANCE 12
+#define DISTANCE_MAP_UNIT_COLOR_BEHIND 13
+#define DISTANCE_MAP_UNIT_DISTANCE_BEHIND 14
 
 // photon_caustics
 #define PHOTON_UNIT_FRONT_NORMAL 1

@@ -64,8 +64,21 @@ bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
             }
             float bb;
             scene_behind(o + dir * b, bb, px);
-            // within a step's depth change of the surface: a hit
-            if (bb < 2.0 * step + 1e-3 * t) {
+            // A hit when the bisected point is on the surface: within the
+            // depth the surface itself changes across a pixel there (a
+            // floor seen at a grazing angle), plus a twentieth of a step.
+            // A ray passing behind an occluder's edge stays deep behind
+            // it (two steps' leeway once accepted those: the wall beside
+            // a box seen through a lens came out as the box).
+            float here = texelFetch(u_scene_depth, px, 0).r, slope = 0.0;
+            for (int k = 0; k < 4; k++) {
+                ivec2 q = clamp(px + ivec2(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0), ivec2(0),
+                                ivec2(u_viewport.xy) - 1);
+                float dq = texelFetch(u_scene_depth, q, 0).r;
+                if (dq < 1.0 && here < 1.0)
+                    slope = max(slope, abs(view_depth(dq) - view_depth(here)));
+            }
+            if (bb < 2.0 * slope + 0.05 * step + 1e-3 * t) {
                 hit_px = px;
                 t_hit = b;
                 return true;

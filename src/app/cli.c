@@ -28,7 +28,8 @@ static const char usage_text[] =
     "                 [--ref-photons N] [--ref-spp N] [--error-frames K] [--set k=v ...]\n"
     "                 (--sweep technique=all|NAME,...: every technique the scene's `techniques` table declares)\n"
     "  caustica choose SCENE.lua --error E | --time MS [--size WxH] [-o DIR] [--ref-photons N] [--ref-spp N]\n"
-    "                  [--error-frames K] [--set k=v ...]   (reads DIR's bench cache, or runs the sweep; DIR: bench)\n"
+    "                  [--frames N] [--error-frames K] [--cached] [--set k=v ...]\n"
+    "                  (reads the sweep from DIR's bench cache, or runs it; DIR: bench; --cached: never runs it)\n"
     "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
     "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
     "  --script-memory MB (Lua heap, default 4096, 0 = none),\n"
@@ -237,6 +238,8 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             cli->timings = true;
         } else if (strcmp(a, "--update-refs") == 0) {
             cli->update_refs = true;
+        } else if (strcmp(a, "--cached") == 0) {
+            cli->cached_only = true;
         } else if (strcmp(a, "--no-render") == 0) {
             cli->no_render = true;
         } else if (strcmp(a, "--script-timeout") == 0 || strcmp(a, "--script-memory") == 0) {

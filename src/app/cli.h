@@ -31,6 +31,7 @@ struct cli {
     const char *keys;        /* --keys space,right,s (run): keys pressed on the first frame, for tests */
     const char *mask;
     bool timings, update_refs, no_render;
+    bool cached_only;        /* --cached (choose): read the bench cache only, never run the sweep */
     bool report;             /* --report: the reference's noise estimate per iteration */
     const char *report_html; /* --report OUT.html (test): the HTML report */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */

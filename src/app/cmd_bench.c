@@ -123,6 +123,16 @@ static bool truth_key(const char *script, const struct lua_params *params, int f
     return true;
 }
 
+int bench_timing_frames(const struct cli *cli)
+{
+    if (cli->frames_set)
+        return cli->frames_to - cli->frames_from + 1 > 1024 ? 1024 : cli->frames_to - cli->frames_from + 1;
+    for (int i = 0; i < cli->nsweeps; i++)
+        if (strncmp(cli->sweeps[i], "technique=", 10) == 0)
+            return 3; /* a technique sweep renders many variants over several frames each */
+    return 5;
+}
+
 bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, size_t size, struct error *err)
 {
     char *text;
@@ -132,7 +142,7 @@ bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, s
     uint64_t k = hash_fnv1a(1469598103934665603ULL, text, n);
     free(text);
     k = hash_params(k, &cli->params);
-    long long ints[8] = {cli->width, cli->height, cli->frame, cli->frames_set ? cli->frames_to - cli->frames_from + 1 : 0,
+    long long ints[8] = {cli->width, cli->height, cli->frame, bench_timing_frames(cli),
                          cli->error_frames, cli->ref_photons, cli->ref_spp, cli->nsweeps};
     k = hash_fnv1a(k, ints, sizeof ints);
     for (int i = 0; i < cli->nsweeps; i++)
@@ -498,9 +508,7 @@ int cmd_bench(struct app *app, struct cli *cli)
         columns[0] = "technique";
         columns[1] = "settings";
     }
-    int frames = cli->frames_set ? cli->frames_to - cli->frames_from + 1 : 5;
-    if (frames > 1024)
-        frames = 1024;
+    int frames = bench_timing_frames(cli);
     int frame = cli->frame;
     int error_frames[MAX_ERROR_FRAMES];
     int nerror = pick_error_frames(cli->error_frames ? cli->error_frames : technique_sweep ? 3 : 1, frame,

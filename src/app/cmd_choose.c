@@ -175,6 +175,11 @@ int cmd_choose(struct app *app, struct cli *cli)
     if (probe) {
         fclose(probe);
         fprintf(stderr, "caustica: choose: the sweep from the bench cache %s\n", cached);
+    } else if (cli->cached_only) {
+        fprintf(stderr, "caustica: choose: --cached: no sweep of %s with these options in %s/cache (%s); run `caustica "
+                        "bench %s --sweep %s -o %s` with the same --size, --frames, --error-frames and --ref-* options, "
+                        "or leave out --cached\n", script, dir, cached, script, sweep.sweeps[0], dir);
+        return EXIT_SCENE_ERROR;
     } else {
         fprintf(stderr, "caustica: choose: no sweep of %s with these options in %s/cache: running `caustica bench %s "
                         "--sweep %s -o %s` ...\n", script, dir, script, sweep.sweeps[0], dir);

@@ -471,7 +471,16 @@ bool session_render_service(void *context, const struct lua_render_request *requ
     bool ok = session_open(app, &o, &s, err);
     if (ok && request->reference) {
         struct ref_stats st;
-        ok = session_reference(s, request->frame, request->reference, out, &st, err);
+        struct image caustic = {0};
+        ok = session_reference_parts(s, request->frame, request->reference, out,
+                                     request->without_caustics ? &caustic : NULL, &st, err);
+        if (ok && request->without_caustics) {
+            size_t n = (size_t)out->width * (size_t)out->height * 4;
+            for (size_t i = 0; i < n; i++)
+                if (i % 4 != 3)
+                    out->rgba[i] = fmaxf(out->rgba[i] - caustic.rgba[i], 0.0f);
+        }
+        image_destroy(&caustic);
         if (ok) {
             reply->iterations = st.iterations;
             reply->photons = st.photons;

@@ -107,7 +107,8 @@ int limage_render(lua_State *L)
     return 2;
 }
 
-/* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget, aov = "tir" | "exit"})
+/* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget, aov = "tir" | "exit",
+ *                     caustics = false (the image less its caustic part)})
  * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
 int limage_reference(lua_State *L)
 {
@@ -134,7 +135,11 @@ int limage_reference(lua_State *L)
             static const char *const aovs[] = {"none", "tir", "exit", NULL};
             ro.aov = (enum ref_aov)luaL_checkoption(L, -1, NULL, aovs);
         }
-        lua_pop(L, 7);
+        if (lua_getfield(L, 2, "caustics") != LUA_TNIL) {
+            luaL_argexpected(L, lua_isboolean(L, -1), 2, "caustics = true or false");
+            request.without_caustics = !lua_toboolean(L, -1);
+        }
+        lua_pop(L, 8);
     }
     if (ro.photons < 0 || ro.iterations < 1)
         return luaL_error(L, "reference: photons must be >= 0 and spp >= 1");

@@ -38,6 +38,7 @@ struct lua_render_request {
     int width, height;  /* 0: the script's size */
     int frame;
     const struct ref_options *reference; /* NULL: render the graph on the GPU */
+    bool without_caustics;  /* reference: the image less its caustic part (what refraction alone should match) */
 };
 
 struct lua_render_reply {

@@ -22,7 +22,9 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/distance_map.h"
 #include "passes/impostors.h"
+#include "passes/shadow_inputs.h"
 #include "scene/scene.h"
 
 #define MAX_ITERATIONS 16
@@ -30,8 +32,12 @@
 
 struct refraction_state {
     struct impostor_set impostors;
-    struct gl_framebuffer front_fb, back_fb, out_fb;
+    struct distance_map distance;
+    struct gl_framebuffer front_fb, back_fb, out_fb, behind_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
+    /* lookup = "scene": the diffuse objects as the camera sees them without
+     * the glass, where the input image shows the glass itself */
+    struct gl_texture behind_color, behind_distance, behind_depth;
     int width, height;
 };
 
@@ -40,6 +46,8 @@ struct refraction_state {
  * drift apart. */
 /* Choices of `method`, in the order of its `choices`. */
 enum { REFRACTION_METHOD_HUQIN, REFRACTION_METHOD_WYMAN };
+/* Choices of `lookup`. */
+enum { REFRACTION_LOOKUP_SCENE, REFRACTION_LOOKUP_MAP, REFRACTION_LOOKUP_IMPOSTORS };
 
 enum refraction_param {
     REFRACTION_METHOD,
@@ -53,6 +61,8 @@ enum refraction_param {
     REFRACTION_IMPOSTOR,
     REFRACTION_CORRECTION,
     REFRACTION_RECURSION,
+    REFRACTION_LOOKUP,
+    REFRACTION_SHADOW,
 };
 
 static const struct pass_param_desc params[] = {
@@ -70,18 +80,31 @@ static const struct pass_param_desc params[] = {
     [REFRACTION_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "add the Fresnel-weighted reflection (Fig. 24 a-e show refraction alone)"},
     [REFRACTION_NEARBY] = {.name = "nearby", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
-     .help = "reflect and refract nearby objects through impostors (§2.2), not only the environment"},
+     .help = "reflect and refract the nearby (diffuse) objects, not only the environment (§2.2; how: lookup)"},
     [REFRACTION_IMPOSTOR] = {.name = "impostor", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
-     .help = "impostor texture size"},
+     .help = "impostor texture size (the rectangles', or each face of the distance map)"},
     [REFRACTION_CORRECTION] = {.name = "correction", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
      .help = "iterations of the impostor correction (Fig. 16); 0 uses the rectangle's point"},
     [REFRACTION_RECURSION] = {.name = "recursion", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4,
-     .help = "levels of recursive reflection/refraction through the reflectors' own impostors (Fig. 1b, 24g)"},
+     .help = "levels of recursive reflection/refraction through the reflectors' own impostors (Fig. 1b, 24g; "
+             "uses the impostors whatever the lookup)"},
+    [REFRACTION_LOOKUP] = {.name = "lookup", .type = PASS_PARAM_ENUM, .default_string = "scene",
+     .choices = "scene|map|impostors",
+     .help = "how a ray leaving the glass finds the nearby objects: scene = the input image searched in screen "
+             "space (exact where it shows what the ray meets), then a two-layer distance map around the refractors "
+             "(Szirmay-Kalos et al. 2005: floors and walls too); map = the distance map alone; impostors = the "
+             "paper's one rectangle per object "
+             "(§2.2), which large receivers break (README)"},
+    [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+     .help = "shadow maps for lighting the distance map's surfaces as shade does (e.g. \"shadow.depth\"); "
+             "without them they are unshadowed"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
 {
     /* color and depth are declared from the descriptor (pass_declare). */
+    if (!shadow_inputs_declare(p, REFRACTION_SHADOW, err))
+        return false;
     /* tir: r = total internal reflections the pixel's path met at its two
      * interfaces (0, 1 or 2; 0 off the refractors); exit: rgb = the
      * direction the path leaves the refractor in, a = 1 on a refractor.
@@ -100,7 +123,7 @@ static bool refraction_create(struct pass *p, struct renderer *r, struct error *
         return error_set(err, "out of memory");
     p->state = s;
     return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
-           gl_framebuffer_create(&s->out_fb, err);
+           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err);
 }
 
 static void release_targets(struct refraction_state *s)
@@ -109,6 +132,9 @@ static void release_targets(struct refraction_state *s)
     gl_texture_destroy(&s->back_normal);
     gl_texture_destroy(&s->front_depth);
     gl_texture_destroy(&s->back_depth);
+    gl_texture_destroy(&s->behind_color);
+    gl_texture_destroy(&s->behind_distance);
+    gl_texture_destroy(&s->behind_depth);
 }
 
 static void refraction_destroy(struct pass *p)
@@ -118,9 +144,11 @@ static void refraction_destroy(struct pass *p)
         return;
     release_targets(s);
     impostors_release(&s->impostors);
+    distance_map_release(&s->distance);
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
+    gl_framebuffer_destroy(&s->behind_fb);
     free(s);
     p->state = NULL;
 }
@@ -181,11 +209,47 @@ static bool ensure_targets(struct refraction_state *s, int w, int h, struct erro
     if (!gl_texture_create(&s->front_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->back_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->front_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
-        !gl_texture_create(&s->back_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err))
+        !gl_texture_create(&s->back_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
+        !gl_texture_create(&s->behind_color, GL_TEXTURE_2D, GL_RGBA16F, w, h, 1, err) ||
+        !gl_texture_create(&s->behind_distance, GL_TEXTURE_2D, GL_R32F, w, h, 1, err) ||
+        !gl_texture_create(&s->behind_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err))
         return false;
     const struct gl_texture *fc[1] = {&s->front_normal}, *bc[1] = {&s->back_normal};
+    const struct gl_texture *behind[2] = {&s->behind_color, &s->behind_distance};
     return gl_framebuffer_attach(&s->front_fb, fc, NULL, 1, &s->front_depth, -1, err) &&
-           gl_framebuffer_attach(&s->back_fb, bc, NULL, 1, &s->back_depth, -1, err);
+           gl_framebuffer_attach(&s->back_fb, bc, NULL, 1, &s->back_depth, -1, err) &&
+           gl_framebuffer_attach(&s->behind_fb, behind, NULL, 2, &s->behind_depth, -1, err);
+}
+
+/* lookup = "scene": the diffuse objects from the camera, lit as the distance
+ * map lights them (shaders/distance_map/distance.frag), for the rays whose
+ * exit the input image hides behind the glass it drew itself. */
+static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distance.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    shadow_inputs_bind(p, f, prog);
+    vec3 eye = f->snapshot->eye;
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
+    gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, r->dummy_cube.id);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE,
+                               f->snapshot->view_proj.m);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->behind_fb.id);
+    const float black[4] = {0, 0, 0, 0};
+    gl.ClearNamedFramebufferfv(s->behind_fb.id, GL_COLOR, 0, black);
+    gl.ClearNamedFramebufferfv(s->behind_fb.id, GL_COLOR, 1, black);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);
+    renderer_draw_objects(r, f->scene, prog, DRAW_DIFFUSE);
+    return gl_check("drawing the scene behind the glass", err);
 }
 
 static bool refraction_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -215,12 +279,20 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
     bool nearby = pass_flag(p, REFRACTION_NEARBY);
-    const char *defines = wyman ? (nearby ? "#define WYMAN 1\n#define NEARBY 1\n" : "#define WYMAN 1\n")
-                                : (nearby ? "#define NEARBY 1\n" : "");
-    if (nearby) {
+    int lookup = pass_choice(p, REFRACTION_LOOKUP);
+    bool distance = nearby && lookup != REFRACTION_LOOKUP_IMPOSTORS && pass_int(p, REFRACTION_RECURSION) == 0;
+    bool screen = distance && lookup == REFRACTION_LOOKUP_SCENE;
+    char defines[128];
+    snprintf(defines, sizeof defines, "%s%s%s%s", wyman ? "#define WYMAN 1\n" : "", nearby ? "#define NEARBY 1\n" : "",
+             distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
+    vec3 lo, hi;
+    vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
+    if (distance) {
+        if (!distance_map_update(&s->distance, r, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), err) ||
+            (screen && !draw_behind(s, p, f, err)))
+            return false;
+    } else if (nearby) {
         /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
-        vec3 lo, hi;
-        vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
         /* recursion redraws the impostors' colours: made again every frame */
         if (!impostors_current(&s->impostors, f->scene, pass_int(p, REFRACTION_IMPOSTOR), f->snapshot->geometry_animated) ||
             pass_int(p, REFRACTION_RECURSION) > 0) {
@@ -282,12 +354,29 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
-    if (nearby && s->impostors.count > 0) {
+    if (distance) {
+        gl.BindTextureUnit(DISTANCE_MAP_UNIT_COLOR, s->distance.color[0].id);
+        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, s->distance.distance[0].id);
+        gl.BindTextureUnit(DISTANCE_MAP_UNIT_COLOR_BEHIND, s->distance.color[1].id);
+        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE_BEHIND, s->distance.distance[1].id);
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), centre.x, centre.y, centre.z);
+        /* the input image first: what the camera sees where the ray goes */
+        gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
+        gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->behind_depth.id);
+        gl.BindTextureUnit(REFRACTION_UNIT_BEHIND, s->behind_color.id);
+        gl.BindTextureUnit(REFRACTION_UNIT_INPUT_DEPTH, in_depth->texture.id);
+        vec3 slo, shi;
+        scene_bounds(f->scene, &slo, &shi);
+        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
+                            fmaxf(vec3_length(vec3_sub(shi, slo)), 1e-4f) * 1.5f);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+    } else if (nearby && s->impostors.count > 0) {
         gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
         gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
         gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, s->impostors.color.id);
     }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"),
+                        nearby && !distance ? s->impostors.count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_int(p, REFRACTION_CORRECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, REFRACTION_REFLECTION));
     gl.Enable(GL_DEPTH_TEST);
@@ -295,7 +384,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.DepthMask(GL_FALSE);
     gl.Enable(GL_CULL_FACE);
     gl.CullFace(GL_BACK);
-    if (!draw_refractors(r, f->scene, prog, wyman, nearby ? &s->impostors : NULL, err))
+    if (!draw_refractors(r, f->scene, prog, wyman, nearby && !distance ? &s->impostors : NULL, err))
         return false;
     return true;
 }

@@ -39,18 +39,20 @@ t.case("more than two interfaces: a torus against the reference, better than the
   local huqin = render("tests/scenes/layered.lua", { object = "torus", method = "huqin" })
   local el = c.image.compare(layered, ref).rel_rmse
   local eh = c.image.compare(huqin, ref).rel_rmse
-  -- measured 0.065 and 0.174 (against 64 reference samples)
+  -- measured 0.065 and 0.174 (against 64 reference samples); since issue 8's
+  -- exit decision and secant iteration the two-interface pass gets 0.081
   t.expect(el < 0.09, string.format("layered rel_rmse %.4f", el))
-  t.expect(el < 0.6 * eh, string.format("layered %.4f, huqin %.4f", el, eh))
+  t.expect(el < 0.92 * eh, string.format("layered %.4f, huqin %.4f", el, eh))
 end)
 
-t.case("a glass ball in an environment: within 7% of the reference, half the two-interface pass's error", function()
+t.case("a glass ball in an environment: within 7% of the reference, below the two-interface pass's error", function()
   local ref = t.reference("tests/scenes/layered.lua", { photons = 0, spp = 32 })
   local img = render("tests/scenes/layered.lua", {})
   local huqin = render("tests/scenes/layered.lua", { method = "huqin" })
   local e, eh = c.image.compare(img, ref).rel_rmse, c.image.compare(huqin, ref).rel_rmse
-  -- measured 0.053 and 0.105 against 64 reference samples
-  t.expect(e < 0.07 and e < 0.65 * eh, string.format("rel_rmse %.4f, huqin %.4f", e, eh))
+  -- measured 0.053 and 0.105 against 64 reference samples; 0.058 and 0.068
+  -- since issue 8's exit decision and secant iteration (the rim's rings gone)
+  t.expect(e < 0.07 and e < 0.92 * eh, string.format("rel_rmse %.4f, huqin %.4f", e, eh))
 end)
 
 t.case("total internal reflection: the IOR 2.42 cube and an IOR 0.8 cube against the reference", function()

@@ -1,0 +1,113 @@
+#include "passes/distance_map.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "graph/bindings.h"
+#include "graph/frame.h"
+#include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
+
+void distance_map_release(struct distance_map *m)
+{
+    for (int layer = 0; layer < 2; layer++) {
+        gl_texture_destroy(&m->color[layer]);
+        gl_texture_destroy(&m->distance[layer]);
+    }
+    gl_texture_destroy(&m->depth_buffer);
+    gl_framebuffer_destroy(&m->fb);
+    memset(m, 0, sizeof *m);
+}
+
+static uint64_t lights_version(const struct scene *scene)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < scene->light_count; i++)
+        v = v * 31u + scene->lights[i]->version;
+    return v;
+}
+
+bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
+                         vec3 center, int size, struct error *err)
+{
+    const struct scene *scene = f->scene;
+    bool current = m->built && m->size == size && !f->snapshot->geometry_animated &&
+                   m->built_geometry == scene_geometry_version(scene) && m->built_lights == lights_version(scene) &&
+                   m->center.x == center.x && m->center.y == center.y && m->center.z == center.z;
+    if (current)
+        return true;
+    m->built = false;
+    if (m->size != size || !m->color[0].id) {
+        distance_map_release(m);
+        for (int layer = 0; layer < 2; layer++) {
+            if (!gl_texture_create(&m->color[layer], GL_TEXTURE_CUBE_MAP, GL_RGBA16F, size, size, 6, err) ||
+                !gl_texture_create(&m->distance[layer], GL_TEXTURE_CUBE_MAP, GL_R32F, size, size, 6, err))
+                return false;
+            gl.TextureParameteri(m->distance[layer].id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl.TextureParameteri(m->distance[layer].id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            gl.TextureParameteri(m->color[layer].id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            gl.TextureParameteri(m->color[layer].id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            for (int k = 0; k < 2; k++) {
+                GLuint id = k ? m->distance[layer].id : m->color[layer].id;
+                gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+                gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+                gl.TextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+            }
+        }
+        if (!gl_texture_create(&m->depth_buffer, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err) ||
+            !gl_framebuffer_create(&m->fb, err))
+            return false;
+        m->size = size;
+    }
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distance.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    if (shadow_pass)
+        shadow_inputs_bind(shadow_pass, f, prog);
+    else
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    /* near: a hundredth of the scene's size around the centre (what is
+     * nearer than that is inside the refractor); far: the whole scene */
+    vec3 lo, hi;
+    float extent = scene_bounds(scene, &lo, &hi) ? vec3_length(vec3_sub(hi, lo)) : 10.0f;
+    float reach = fmaxf(vec3_length(vec3_sub(hi, center)), vec3_length(vec3_sub(lo, center)));
+    float far = fmaxf(fmaxf(extent, reach) * 2.0f, 1e-2f);
+    mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(far * 1e-5f, 1e-4f), far);
+    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);
+    gl.Viewport(0, 0, size, size);
+    for (int i = 0; i < 12; i++) {
+        int layer = i / 6, face = i % 6;
+        /* the second layer reads the first's distances (what to peel) */
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), layer);
+        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, layer ? m->distance[0].id : r->dummy_cube.id);
+        const struct gl_texture *colors[2] = {&m->color[layer], &m->distance[layer]};
+        int layers[2] = {face, face};
+        if (!gl_framebuffer_attach(&m->fb, colors, layers, 2, &m->depth_buffer, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, m->fb.id);
+        const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f}, none[4] = {1e30f, 0.0f, 0.0f, 0.0f}; /* no surface */
+        gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 0, black);
+        gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 1, none);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        mat4 view = mat4_look_at(center, vec3_add(center, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
+                                 vec3_make(ups[face][0], ups[face][1], ups[face][2]));
+        mat4 vp = mat4_mul(proj, view);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+        renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
+    }
+    gl.DepthFunc(GL_LESS);
+    if (!gl_check("building the distance map", err))
+        return false;
+    m->center = center;
+    m->built = true;
+    m->built_geometry = scene_geometry_version(scene);
+    m->built_lights = lights_version(scene);
+    return true;
+}
