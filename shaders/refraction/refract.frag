@@ -22,7 +22,7 @@ in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
 layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec4 o_tir;  // r: total internal reflections at the two interfaces
+layout(location = 1) out vec4 o_tir;  // r: total internal reflection at the two interfaces, g: all of them
 layout(location = 2) out vec4 o_exit; // rgb: the direction the path leaves in, a = 1
 layout(binding = REFRACTION_UNIT_FRONT_NORMAL) uniform sampler2D u_front_normal;
 layout(binding = REFRACTION_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
@@ -37,6 +37,8 @@ uniform int u_iterations;
 uniform float u_tolerance;
 uniform int u_search_steps;
 uniform int u_reflection; // 0: refraction alone (Fig. 24 a-e)
+uniform float u_reach = 1.0; // the refractors' bounding diameter (marches inside them)
+uniform int u_internal = 4;   // interfaces a path meets from the first exit on (1: the paper's two)
 
 // What a ray from o in direction d sees: a nearby object in the distance
 // map, or its impostor (§2.2, corrected by Fig. 16), or else the environment.
@@ -99,11 +101,14 @@ vec3 unproject(vec2 uv, float d)
 // the surface the ray leaves through, in eye-space depth units.
 // `converged`: the ray point ends within 2% of d_T of that surface, on the
 // refractor.
-float exit_distance(vec3 p1, vec3 t1, bool back, out bool converged)
+float exit_distance(vec3 p1, vec3 t1, bool back, int iterations, out bool converged)
 {
     float dT = 1e-3 * length(p1 - u_camera_pos.xyz);
     vec3 fwd = -vec3(u_view[0][2], u_view[1][2], u_view[2][2]);
-    float rate = max(abs(dot(t1, fwd)), 0.05); // eye depth per unit length along T1
+    // eye depth per unit length along T1, signed (a reflected ray inside
+    // may head back towards the camera), at least 0.05 in size
+    float along = dot(t1, fwd);
+    float rate = along < 0.0 ? min(along, -0.05) : max(along, 0.05);
     if (back) {
         // start from the thickness along the view ray at P1 (Wyman's d_V):
         // near the answer wherever T1 bends little, and never worse than
@@ -115,7 +120,7 @@ float exit_distance(vec3 p1, vec3 t1, bool back, out bool converged)
     }
     converged = false;
     float prev_dT = dT, prev_step = 0.0;
-    for (int i = 0; i <= u_iterations; i++) { // capped by the parameter's range; the last pass only measures
+    for (int i = 0; i <= iterations; i++) { // capped by the callers (16 at most); the last pass only measures
         vec3 p2 = p1 + dT * t1;
         vec3 q = project(p2);
         if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))))
@@ -123,11 +128,15 @@ float exit_distance(vec3 p1, vec3 t1, bool back, out bool converged)
         float d = back ? texture(u_back_depth, q.xy).r : texture(u_front_depth, q.xy).r;
         if (d >= 1.0)
             return dT; // off the refractor: keep the last estimate
-        // Fig. 9: Steplength = Flag * (depth - z), Flag = -1 for the front-facing surface
+        // Fig. 9: Steplength = Flag * (depth - z), Flag = -1 for the
+        // front-facing surface: for T1 heading away from the camera. Here
+        // the step is the depth gap over the signed depth rate, which is
+        // that for T1 and also serves a ray heading back (after a total
+        // internal reflection), for either surface.
         float zbuf = linear_depth(d), zp = eye_depth(p2);
-        float step = (back ? zbuf - zp : zp - zbuf) / rate;
+        float step = (zbuf - zp) / rate;
         converged = abs(step) < max(0.02 * dT, u_tolerance);
-        if (i == u_iterations)
+        if (i == iterations)
             return dT;
         // Fig. 9's step moves d_T by the depth gap; after the first, a secant
         // through the last two gaps (the gap is smooth along the ray on a
@@ -146,6 +155,52 @@ float exit_distance(vec3 p1, vec3 t1, bool back, out bool converged)
             return dT;
     }
     return dT;
+}
+
+// After a total internal reflection the ray may head anywhere inside, so
+// instead of Fig. 9's iteration (which assumes T1 heads away from the
+// camera) the next interface is found by marching: a point is inside
+// while its eye depth lies between the front and the back depth at its
+// pixel; the first step outside is bisected, and which bound it crossed
+// says which surface it leaves through (the side of the silhouette: the
+// back one). `reach`: how far to march (the refractors' extent).
+bool march_exit(vec3 o, vec3 d, float reach, out float t_exit, out float t_inside, out bool through_back)
+{
+    const int STEPS = 24;
+    float lo = 0.0, hi = -1.0;
+    through_back = true;
+    for (int i = 1; i <= STEPS; i++) {
+        float t = reach * float(i) / float(STEPS);
+        vec3 q = project(o + t * d);
+        bool off = any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)));
+        float zf = off ? 1.0 : texture(u_front_depth, q.xy).r, zb = off ? 1.0 : texture(u_back_depth, q.xy).r;
+        float z = eye_depth(o + t * d);
+        bool outside = zf >= 1.0 || z < linear_depth(zf) || z > linear_depth(zb);
+        if (outside) {
+            hi = t;
+            through_back = zf >= 1.0 || z > linear_depth(zb);
+            break;
+        }
+        lo = t;
+    }
+    if (hi < 0.0)
+        return false;
+    for (int k = 0; k < 8; k++) {
+        float t = 0.5 * (lo + hi);
+        vec3 q = project(o + t * d);
+        float zf = texture(u_front_depth, q.xy).r, zb = texture(u_back_depth, q.xy).r;
+        float z = eye_depth(o + t * d);
+        bool outside = zf >= 1.0 || z < linear_depth(zf) || z > linear_depth(zb);
+        if (outside) {
+            hi = t;
+            through_back = zf >= 1.0 || z > linear_depth(zb);
+        } else {
+            lo = t;
+        }
+    }
+    t_exit = hi;
+    t_inside = lo; // the last point inside: where the surface's normal is read
+    return true;
 }
 #endif
 
@@ -166,7 +221,7 @@ void main()
     vec3 reflected = trace_out(v_world, reflect(v, n1));
     vec3 t1 = refract(v, n1, eta);
     if (dot(t1, t1) == 0.0) { // total internal reflection at the entry (an IOR below 1)
-        o_tir = vec4(1.0, 0.0, 0.0, 1.0);
+        o_tir = vec4(1.0, 1.0, 0.0, 1.0);
         o_color = vec4(reflected, 1.0);
         return;
     }
@@ -194,9 +249,9 @@ void main()
     // onto the front surface ahead of the back one (a concave part the ray
     // leaves through towards the camera); otherwise the back-facing one.
     bool front_converged;
-    float dT_front = exit_distance(p1, t1, false, front_converged);
+    float dT_front = exit_distance(p1, t1, false, u_iterations, front_converged);
     bool back_converged;
-    dT = exit_distance(p1, t1, true, back_converged);
+    dT = exit_distance(p1, t1, true, u_iterations, back_converged);
     back = !(front_converged && dT_front > 1e-2 * dT && (dT_front < dT || !back_converged));
     if (!back)
         dT = dT_front;
@@ -207,15 +262,62 @@ void main()
     if (dot(n2, n2) < 0.5)
         n2 = back ? texture(u_back_normal, uv1).xyz : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
-    // leaving: the normal facing against the ray is -n2 (n2 is outward)
-    vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
-    float f2 = fresnel_of(-dot(t1, m), u_ior, u_ideal);
-    vec3 t2 = refract(t1, m, u_ior);
-    vec3 exit_dir = dot(t2, t2) > 0.0 ? normalize(t2) : reflect(t1, m); // TIR: the reflected ray (approximation)
-    o_tir = vec4(dot(t2, t2) > 0.0 ? 0.0 : 1.0, 0.0, 0.0, 1.0);
+    // Leaving: the normal facing against the ray is -n2 (n2 is outward).
+    // Beyond the paper's two interfaces (issue 8): at a total internal
+    // reflection the ray reflects and the next interface is found by
+    // march_exit; where it can leave, the Fresnel-reflected part goes on
+    // inside the same way (a diamond's internal reflections: 17% at normal
+    // incidence for n = 2.42), until MAX_INTERFACES interfaces or until
+    // what remains is under 3%. Whatever is still inside then leaves along
+    // its last direction. Wyman's method keeps two interfaces.
+#ifdef WYMAN
+    const int MAX_INTERFACES = 1;
+#else
+    int MAX_INTERFACES = clamp(u_internal, 1, 8);
+#endif
+    vec3 dir = t1, pos = p2, throughput = exp(-u_absorption * dT), transmitted = vec3(0.0);
+    int tir = 0, tir_first = 0;
+    bool left = false;
+    vec3 exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
+    for (int crossing = 0; crossing < MAX_INTERFACES; crossing++) {
+        vec3 m = dot(dir, n2) > 0.0 ? -n2 : n2;
+        vec3 t2 = refract(dir, m, u_ior);
+        if (dot(t2, t2) > 0.0) {
+            float f2 = fresnel_of(-dot(dir, m), u_ior, u_ideal);
+            if (!left)
+                exit_dir = normalize(t2); // the first way out (the `exit` output)
+            left = true;
+            transmitted += throughput * (1.0 - f2) * trace_out(pos, normalize(t2));
+            throughput *= f2;
+        } else {
+            tir++;
+            if (crossing == 0)
+                tir_first = 1;
+        }
+        dir = reflect(dir, m);
+        if (max(throughput.r, max(throughput.g, throughput.b)) < 0.03 || crossing + 1 == MAX_INTERFACES)
+            break;
+#ifndef WYMAN
+        // start a little inside, off the surface it reflected off
+        vec3 start = pos + dir * (1e-3 * u_reach);
+        float d, d_inside;
+        bool use_back;
+        if (!march_exit(start, dir, u_reach, d, d_inside, use_back))
+            break; // still inside after the whole reach: leaves along the reflection below
+        vec2 q = project(start + d_inside * dir).xy;
+        vec3 nn = use_back ? texture(u_back_normal, q).xyz : texture(u_front_normal, q).xyz;
+        if (dot(nn, nn) < 0.5)
+            break;
+        pos = start + d * dir;
+        throughput *= exp(-u_absorption * d);
+        n2 = normalize(nn);
+#endif
+    }
+    if (max(throughput.r, max(throughput.g, throughput.b)) >= 0.03)
+        transmitted += throughput * trace_out(pos, dir); // still inside: along its last reflection
+    if (!left)
+        exit_dir = dir;
+    o_tir = vec4(float(tir_first), float(tir), 0.0, 1.0);
     o_exit = vec4(exit_dir, 1.0);
-    vec3 transmitted = trace_out(p2, exit_dir) * exp(-u_absorption * dT);
-    if (dot(t2, t2) > 0.0)
-        transmitted *= (1.0 - f2);
     o_color = vec4(u_reflection == 1 ? f1 * reflected + (1.0 - f1) * transmitted : transmitted, 1.0);
 }

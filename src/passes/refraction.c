@@ -63,6 +63,7 @@ enum refraction_param {
     REFRACTION_RECURSION,
     REFRACTION_LOOKUP,
     REFRACTION_SHADOW,
+    REFRACTION_INTERNAL,
 };
 
 static const struct pass_param_desc params[] = {
@@ -98,6 +99,10 @@ static const struct pass_param_desc params[] = {
     [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
      .help = "shadow maps for lighting the distance map's surfaces as shade does (e.g. \"shadow.depth\"); "
              "without them they are unshadowed"},
+    [REFRACTION_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 8,
+     .help = "interfaces a path meets from its first way out on: 1 = the paper's two interfaces (a total internal "
+             "reflection leaves along its reflection); more follow total internal reflections and the Fresnel-"
+             "reflected part inside (huqin only)"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
@@ -105,9 +110,10 @@ static bool refraction_declare(struct pass *p, struct error *err)
     /* color and depth are declared from the descriptor (pass_declare). */
     if (!shadow_inputs_declare(p, REFRACTION_SHADOW, err))
         return false;
-    /* tir: r = total internal reflections the pixel's path met at its two
-     * interfaces (0, 1 or 2; 0 off the refractors); exit: rgb = the
-     * direction the path leaves the refractor in, a = 1 on a refractor.
+    /* tir: r = total internal reflection at the paper's two interfaces (1
+     * or 0; 0 off the refractors), g = all the path met (`internal`);
+     * exit: rgb = the direction the path first leaves the refractor in,
+     * a = 1 on a refractor.
      * Debug outputs to hold against theory and against `reference --aov
      * tir`, which traces the same two interfaces exactly. */
     return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
@@ -379,6 +385,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
                         nearby && !distance ? s->impostors.count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_int(p, REFRACTION_CORRECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, REFRACTION_REFLECTION));
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_reach"), fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), (GLint)pass_int(p, REFRACTION_INTERNAL));
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);

@@ -82,7 +82,7 @@ elseif method == "layered" then
                                              interfaces = c.param("interfaces", 0) })
 else
   g:add("shade", c.pass.shade { shadow = shadow })
-  g:add("glass", c.pass.refraction { method = method, color = "shade.color" })
+  g:add("glass", c.pass.refraction { method = method, color = "shade.color", internal = c.param("internal", 4) })
 end
 g:output(c.param("output", "glass.color"))
 return { scene = scene, graph = g, size = {128, 128} }

@@ -10,7 +10,7 @@ local scene = c.scene {
 }
 scene:add(c.object { mesh = c.mesh.box { size = {1, 1, 1} },
                      rotation = c.quat.axis_angle({0, 1, 0}, math.rad(30)),
-                     material = c.material.glass { ior = c.param("ior", 2.42) } })
+                     material = c.material.glass { ior = c.param("ior", 2.42), fresnel = c.param("fresnel", true) } })
 local g = c.graph()
 if c.param("method", "huqin") == "layered" then
   -- every interface (layered_refraction): its debug output is `info`
@@ -18,7 +18,7 @@ if c.param("method", "huqin") == "layered" then
   g:add("glass", c.pass.layered_refraction { color = "shade.color" })
 else
   g:add("shade", c.pass.shade {})
-  g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+  g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", internal = c.param("internal", 4) })
 end
 g:output("glass." .. c.param("output", "color"))
 return { scene = scene, graph = g, size = {64, 64} }
