@@ -45,7 +45,9 @@ else
   end
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", nearby = stage ~= "a",
                                      correction = stage == "b" and 0 or 3, reflection = stage == "f" or stage == "g",
-                                     recursion = stage == "g" and c.param("recursion", 2) or 0 })
+                                     recursion = stage == "g" and c.param("recursion", 2) or 0,
+                                     -- the paper's impostors (b, c: Fig. 16's correction); --set lookup=scene: the pass's default
+                                     lookup = c.param("lookup", "impostors") })
   g:output("glass.color")
 end
 -- The lamp drifts a little every frame so that nothing is reused between

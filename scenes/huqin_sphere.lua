@@ -13,6 +13,7 @@ local scene = c.scene {
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.7, segments = 96 }, material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 local g = c.graph()
 g:add("shade", c.pass.shade {})
-g:add("glass", c.pass.refraction { method = method, color = "shade.color", depth = "shade.depth", iterations = iterations })
+g:add("glass", c.pass.refraction { method = method, color = "shade.color", depth = "shade.depth", iterations = iterations,
+                                   internal = c.param("internal", 4) })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {256, 256} }

@@ -38,7 +38,7 @@ end
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = caustics ~= "none" and "caustics.irradiance" or nil,
                               specular = false })
 if technique == "huqin" or technique == "wyman" then
-  g:add("glass", c.pass.refraction { method = technique, color = "shade.color" })
+  g:add("glass", c.pass.refraction { method = technique, color = "shade.color", shadow = "shadow.depth" })
 elseif technique == "layered" then
   g:add("glass", c.pass.layered_refraction { color = "shade.color" })
 else
@@ -50,7 +50,8 @@ return { scene = scene, graph = g, frames = 90, fps = 30, size = {256, 256},
          -- under layered refraction; ranked by the whole image's error over the deformation
          techniques = {
            metric = "image",
-           { "huqin", set = { technique = "huqin", caustics = "none" } },
+           { "huqin", set = { technique = "huqin", caustics = "none" },
+             points = { { ["glass.lookup"] = "impostors", ["glass.internal"] = 1 } } },
            { "wyman", set = { technique = "wyman", caustics = "none" } },
            { "layered", set = { technique = "layered", caustics = "none" }, sweep = { ["glass.layers"] = {8} } },
            { "layered+photons", set = { technique = "layered", caustics = "photons" },

@@ -40,7 +40,7 @@ if technique == "plain" then
 else
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = irradiance, specular = false })
   if technique == "huqin" or technique == "wyman" then
-    g:add("glass", c.pass.refraction { method = technique, color = "shade.color", nearby = true })
+    g:add("glass", c.pass.refraction { method = technique, color = "shade.color", shadow = "shadow.depth" })
   elseif technique == "layered" then
     g:add("glass", c.pass.layered_refraction { color = "shade.color" })
   elseif technique == "sliced" then
@@ -57,7 +57,8 @@ return { scene = scene, graph = g, size = {256, 256},
            metric = "image",
            { "plain", set = { technique = "plain", caustics = "none" } },
            { "huqin", set = { technique = "huqin", caustics = "none" },
-             points = { { ["glass.impostor"] = 1024 }, { ["glass.correction"] = 0 } } },
+             -- the paper's impostor rectangles and two interfaces, against the defaults
+             points = { { ["glass.lookup"] = "impostors", ["glass.internal"] = 1 }, { ["glass.internal"] = 1 } } },
            { "wyman", set = { technique = "wyman", caustics = "none" } },
            { "layered", set = { technique = "layered", caustics = "none" }, sweep = { ["glass.layers"] = {4, 8} } },
            { "sliced", set = { technique = "sliced", caustics = "none" }, sweep = { ["glass.slices"] = {1, 3} } },
