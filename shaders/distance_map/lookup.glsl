@@ -15,7 +15,7 @@ layout(binding = DISTANCE_MAP_UNIT_DISTANCE) uniform samplerCube u_distance_dist
 layout(binding = DISTANCE_MAP_UNIT_COLOR_BEHIND) uniform samplerCube u_distance_color_behind;
 layout(binding = DISTANCE_MAP_UNIT_DISTANCE_BEHIND) uniform samplerCube u_distance_distance_behind;
 uniform vec3 u_distance_center;
-uniform int u_distance_steps = 48;
+uniform int u_distance_steps = 24;
 
 // |p - c| minus the stored distance of `layer` in p's direction: < 0 in
 // front of that surface, >= 0 behind it (very negative: none stored)
@@ -58,12 +58,12 @@ bool distance_map_refine(vec3 o, vec3 d, int layer, float t0, float g0, float t1
     return abs(best_g) < 0.02 * length(o + best_t * d - u_distance_center) + 1e-4;
 }
 
-bool distance_map_lookup(vec3 o, vec3 d, out vec3 color)
+bool distance_map_lookup(vec3 o, vec3 d, int steps, out vec3 color)
 {
     color = vec3(0.0);
     float s = max(length(o - u_distance_center), 1e-3);
     float t0 = 0.0, a0 = distance_map_gap(o, 0), b0 = distance_map_gap(o, 1);
-    int steps = clamp(u_distance_steps, 4, 256);
+    steps = clamp(steps, 4, 256);
     for (int i = 1; i <= steps + 1; i++) {
         float a = float(i) / float(steps + 1);
         // t = s at a = 0.2: most steps past the refractor, where the walls

@@ -2,12 +2,75 @@
 #include "common/bindings.glsl"
 // Hu & Qin §3.2: each photon adds its flux to its receiver's caustic
 // texture at (u, v), on the GPU (integer atomics on a fixed-point scale).
+//
+// With u_footprint > 0 (issue 8) a photon is not a point: its neighbours
+// one texel away in the photon buffer that land on the same receiver span,
+// by central differences, the parallelogram its light covers there (a ray
+// differential, as layered_caustics' splat.comp); the flux is spread over
+// it (n x n sample points, each bilinearly into four texels), so a
+// diverging photon spreads, a converging one stays sharp, a uniform field
+// stays uniform (no moire between the photon grid and the texel grid), and
+// the flux is kept exactly. A neighbour's offset is clamped to
+// u_footprint texels (a footprint torn by a silhouette or a fold smears no
+// farther). With u_footprint = 0 each photon goes into its texel (the
+// paper's).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = PHOTON_UNIT_PHOTONS) uniform sampler2D u_photons;
 layout(binding = PHOTON_UNIT_FLUX) uniform sampler2D u_flux;
 layout(r32ui, binding = PHOTON_IMAGE_COUNTS) uniform uimage2DArray u_counts;
 uniform float u_fixed_point;
 uniform int u_texture;
+uniform float u_footprint; // texels (0: a point)
+
+int receiver;
+
+void deposit(vec2 at, vec3 flux) // `at` in texels (centres at +0.5)
+{
+    vec2 f = at - 0.5;
+    ivec2 c = ivec2(floor(f));
+    vec2 t = f - vec2(c);
+    float w[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
+    ivec2 o[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(0, 1), ivec2(1, 1));
+    for (int i = 0; i < 4; i++) {
+        // clamped at the texture's edge: the flux stays on the receiver
+        ivec2 q = clamp(c + o[i], ivec2(0), ivec2(u_texture - 1));
+        if (w[i] <= 0.0)
+            continue;
+        for (int k = 0; k < 3; k++)
+            imageAtomicAdd(u_counts, ivec3(q, 3 * receiver + k),
+                           uint(clamp(flux[k] * w[i] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+    }
+}
+
+// The texel offset to neighbour q's landing point, if it landed on the same receiver.
+bool neighbour(ivec2 q, vec2 from, out vec2 offset)
+{
+    offset = vec2(0.0);
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, textureSize(u_photons, 0))))
+        return false;
+    vec4 n = texelFetch(u_photons, q, 0);
+    if (n.w < 0.5 || int(n.z + 0.5) != receiver)
+        return false;
+    offset = n.xy * float(u_texture) - from;
+    float len = length(offset);
+    if (len > u_footprint)
+        offset *= u_footprint / len;
+    return true;
+}
+
+vec2 axis(ivec2 p, ivec2 step, vec2 at)
+{
+    vec2 a, b;
+    bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
+    if (plus && minus)
+        return 0.5 * (a - b);
+    if (plus)
+        return a;
+    if (minus)
+        return -b;
+    return vec2(0.0);
+}
+
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -17,8 +80,18 @@ void main()
     if (photon.w < 0.5)
         return;
     vec3 flux = texelFetch(u_flux, p, 0).rgb;
-    ivec2 t = clamp(ivec2(photon.xy * float(u_texture)), ivec2(0), ivec2(u_texture - 1));
-    int k = int(photon.z + 0.5);
-    for (int c = 0; c < 3; c++)
-        imageAtomicAdd(u_counts, ivec3(t, 3 * k + c), uint(clamp(flux[c] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+    receiver = int(photon.z + 0.5);
+    vec2 at = photon.xy * float(u_texture);
+    if (u_footprint <= 0.0) {
+        ivec2 t = clamp(ivec2(at), ivec2(0), ivec2(u_texture - 1));
+        for (int c = 0; c < 3; c++)
+            imageAtomicAdd(u_counts, ivec3(t, 3 * receiver + c), uint(clamp(flux[c] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+        return;
+    }
+    vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
+    int nx = clamp(int(ceil(length(ex))), 1, 16), ny = clamp(int(ceil(length(ey))), 1, 16);
+    vec3 share = flux / float(nx * ny);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            deposit(at + ((float(i) + 0.5) / float(nx) - 0.5) * ex + ((float(j) + 0.5) / float(ny) - 0.5) * ey, share);
 }

@@ -27,11 +27,24 @@ static uint64_t lights_version(const struct scene *scene)
     return v;
 }
 
+/* Whether a visible diffuse object morphs, deforms or is simulated (the
+ * map holds the diffuse objects only: a deforming glass dragon does not
+ * make it stale). */
+static bool diffuse_animated(const struct scene *scene)
+{
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (o->visible && !material_is_specular(&o->material) && object_is_animated_geometry(o))
+            return true;
+    }
+    return false;
+}
+
 bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
                          vec3 center, int size, struct error *err)
 {
     const struct scene *scene = f->scene;
-    bool current = m->built && m->size == size && !f->snapshot->geometry_animated &&
+    bool current = m->built && m->size == size && !diffuse_animated(scene) &&
                    m->built_geometry == scene_geometry_version(scene) && m->built_lights == lights_version(scene) &&
                    m->center.x == center.x && m->center.y == center.y && m->center.z == center.z;
     if (current)

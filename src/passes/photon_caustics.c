@@ -54,6 +54,7 @@ enum photon_caustics_param {
     PHOTON_ITERATIONS,
     PHOTON_BIAS,
     PHOTON_MODE,
+    PHOTON_FOOTPRINT,
 };
 
 static const struct pass_param_desc params[] = {
@@ -71,6 +72,9 @@ static const struct pass_param_desc params[] = {
      .help = "depth tolerance of the caustic mapping test, scene units"},
     [PHOTON_MODE] = {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
+    [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 16,
+     .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
+             "many texels from its landing point; 0 = a point per photon, the paper's (README)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -289,6 +293,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             gl.BindImageTexture(PHOTON_IMAGE_COUNTS, s->counts.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
+            gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
             gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
             gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
             struct gl_program *filt;
