@@ -272,6 +272,7 @@ int cmd_choose(struct app *app, struct cli *cli)
         printf("the graph (paste into the script; LIGHTn is the scene's n-th light, OBJECTn its n-th object):\n");
         for (int i = 0; i < s->graph->count; i++)
             print_pass(s->graph->entries[i].pass, s->scene);
+        printf("  g:output(\"%s\")\n", s->graph->output);
         printf("or keep the script as it is and run it with:%s", set_text);
         snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
         for (char *tok = strtok(settings, " "); tok; tok = strtok(NULL, " "))

@@ -69,6 +69,36 @@ grep -q "beams (defaults)" "$WORK/c3.txt" && pass "--time 50: the most accurate 
 grep -q "caustics.refine=2" "$WORK/c4.txt" && grep -q 'beam_caustics { light = LIGHT1, refine = 2 }' "$WORK/c4.txt" \
   && pass "a chosen setting appears in the graph line" || fail "setting in graph" "$(cat "$WORK/c4.txt")"
 
+# The README's comparison scenes: choose, from the sweeps measured for the
+# README (their CSVs kept in docs/bench/SCENE/cache), picks what the tables
+# say: the most accurate within 1 s a frame is the best of frontier.md's
+# "<= 1 s" column, the cheapest within an error the fastest row of
+# results.csv that reaches it.
+for scene in ball room; do
+  table="docs/bench/$scene/frontier.md"
+  # "| name | ... | 0.078 (settings, 206 ms) | ...": the 4th column's best
+  want=$(awk -F'|' '/^\| / && $2 !~ /technique|reference|---/ {
+           v = $5; gsub(/^ +| +$/, "", v); if (v == "—") next
+           split(v, a, " "); e = a[1] + 0
+           if (best == "" || e < best) { best = e; name = $2; gsub(/^ +| +$/, "", name)
+             s = v; sub(/^[^(]*\(/, "", s); sub(/, [0-9.]+ ms\)$/, "", s); settings = s } }
+         END { print name " (" settings ")" }' "$table")
+  "$CAUSTICA" choose "scenes/compare/$scene.lua" --time 1000 --cached -o "docs/bench/$scene" >"$WORK/pick.txt" 2>"$WORK/pick.err"
+  got=$(sed -n 1p "$WORK/pick.txt" | sed 's/^[^:]*: //; s/: [0-9.]* ms a frame.*//')
+  [ -n "$want" ] && [ "$got" = "$want" ] && pass "$scene: --time 1000 picks the table's best within 1 s: $got" \
+    || fail "$scene: choose against the table" "want '$want', got '$got' ($(head -2 "$WORK/pick.txt"))"
+  csv="docs/bench/$scene/results.csv"
+  # the cheapest row within the median error of the GPU rows
+  limit=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "error") c = i; next } $1 == "gpu" { print $c }' "$csv" \
+          | sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }')
+  want=$(awk -F, -v lim="$limit" 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "error") c = i; if ($i == "frame_ms") m = i }; next }
+           $1 == "gpu" && $c <= lim && (best == "" || $m < best) { best = $m; w = $2 " (" $3 ")" } END { print w }' "$csv")
+  "$CAUSTICA" choose "scenes/compare/$scene.lua" --error "$limit" --cached -o "docs/bench/$scene" >"$WORK/pick.txt" 2>"$WORK/pick.err"
+  got=$(sed -n 1p "$WORK/pick.txt" | sed 's/^[^:]*: //; s/: [0-9.]* ms a frame.*//')
+  [ -n "$want" ] && [ "$got" = "$want" ] && pass "$scene: --error $limit picks the cheapest row within it: $got" \
+    || fail "$scene: choose --error" "want '$want', got '$got' ($(head -2 "$WORK/pick.txt"))"
+done
+
 expect_error "choose needs a bound" 2 "choose needs one scene script and --error E" - -- \
   "$CAUSTICA" choose scenes/compare/fog.lua
 expect_error "no techniques table" 2 "returns no 'techniques' table" - -- \
