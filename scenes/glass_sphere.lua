@@ -21,7 +21,7 @@ local techniques = c.param("techniques", true)   -- false: plain shading only
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = lamp, size = 1024 })
 if techniques then
-  g:add("photons", c.pass.photon_caustics { light = lamp, buffer = c.param("buffer", 256), k = c.param("k", 2) })
+  g:add("photons", c.pass.photon_caustics { light = lamp, buffer = c.param("buffer", 256), k = c.param("k", 0) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", iterations = c.param("iterations", 3) })
   g:output("glass.color")

@@ -61,7 +61,8 @@ static const struct pass_param_desc params[] = {
     [PHOTON_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true, .help = "the light the photons come from"},
     [PHOTON_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 2048,
      .help = "photon buffer size (photons = buffer^2 at most), 64-512 in the paper"},
-    [PHOTON_K] = {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 8, .help = "filter radius (§3.2)"},
+    [PHOTON_K] = {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 8,
+     .help = "filter radius (§3.2; 0: none, the footprints spread the photons instead; README)"},
     [PHOTON_S] = {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
      .help = "filter scale; 1 keeps the photons' energy (irradiance)"},
     [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
@@ -72,7 +73,7 @@ static const struct pass_param_desc params[] = {
      .help = "depth tolerance of the caustic mapping test, scene units"},
     [PHOTON_MODE] = {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
-    [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 0, .min = 0, .max = 16,
+    [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0, .max = 16,
      .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
              "many texels from its landing point; 0 = a point per photon, the paper's (README)"},
 };

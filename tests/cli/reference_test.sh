@@ -2,10 +2,12 @@
 # photon count, the noise report, HDR output.
 source "$(dirname "$0")/lib.sh"
 
-# A budget of 2 s with far more photons than 2 s can trace: the clock is
-# checked every 1024 photons, so the whole command (start-up and the file
-# included) ends in under 2.5 s. The fog scene also reserves time for the
-# volume gather that follows its photons.
+# A budget of 2 s with far more photons than 2 s can trace (minutes of
+# them): the clock is checked every 1024 photons, so the whole command
+# (start-up and the file included) ends soon after 2 s — measured under
+# 2.5 s on an idle machine; the bound is 4 s so that a loaded machine (the
+# suite runs two tests at a time) does not fail it. The fog scene also
+# reserves time for the volume gather that follows its photons.
 for scene in "tests/scenes/ball_lens.lua" "tests/scenes/fog.lua --set ball=true"; do
   start=$(date +%s.%N)
   # shellcheck disable=SC2086
@@ -15,7 +17,7 @@ for scene in "tests/scenes/ball_lens.lua" "tests/scenes/fog.lua --set ball=true"
   took=$(awk "BEGIN { print $(date +%s.%N) - $start }")
   if [ $rc != 0 ]; then
     fail "budget on $scene" "exit $rc: $(cat "$WORK/err.txt")"
-  elif awk "BEGIN { exit !($took < 2.5 && $took > 1.9) }"; then
+  elif awk "BEGIN { exit !($took < 4.0 && $took > 1.9) }"; then
     pass "--time-budget 2 with 5e8 photons took $took s ($scene)"
   else
     fail "budget on $scene" "took $took s"

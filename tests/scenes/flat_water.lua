@@ -2,7 +2,8 @@
 -- camera under water looking straight down (Issue 3's closed form):
 -- --set depth=, elevation=degrees, ior=, camera_height=, light=directional|point|spot,
 -- fresnel=false (an ideal interface), rect=true (the water and the floor
--- 3 x 1.5 instead of 3 x 3)
+-- 3 x 1.5 instead of 3 x 3), technique=photons (photon_caustics instead of
+-- caustic_volumes; buffer=, texture=, k=, footprint=)
 local c = require "caustica"
 local depth = c.param("depth", 0.5)
 local elevation = c.param("elevation", 60)
@@ -57,6 +58,12 @@ g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 if c.param("light", "directional") == "spot" then
   -- (caustic volumes take directional and point lights; the spot is for the reference)
   g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = false })
+elseif c.param("technique", "volumes") == "photons" then
+  -- Hu & Qin's photons through the water's one interface (issue 8's moire test)
+  g:add("cv", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),
+                                       k = c.param("k", 0),
+                                       footprint = c.param("footprint", nil) and tonumber(c.param("footprint", nil)) })
+  g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
 else
   g:add("cv", c.pass.caustic_volumes { light = sun, water = water, resolution = c.param("generator", 0) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
