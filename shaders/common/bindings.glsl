@@ -57,6 +57,7 @@
 #define PHOTON_IMAGE_COUNTS 0
 #define PHOTON_IMAGE_CAUSTICS 1
 #define PHOTON_UNIT_CAUSTICS 7
+#define PHOTON_SSBO_WINDOWS 6                // per receiver: the box its photons landed in
 
 // caustic_volumes
 #define VOLUMES_SSBO_POSITIONS 0

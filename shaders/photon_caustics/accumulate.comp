@@ -21,6 +21,7 @@ layout(r32ui, binding = PHOTON_IMAGE_COUNTS) uniform uimage2DArray u_counts;
 uniform float u_fixed_point;
 uniform int u_texture;
 uniform float u_footprint; // texels (0: a point)
+#include "photon_caustics/window.glsl"
 
 int receiver;
 
@@ -51,7 +52,7 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
     vec4 n = texelFetch(u_photons, q, 0);
     if (n.w < 0.5 || int(n.z + 0.5) != receiver)
         return false;
-    offset = n.xy * float(u_texture) - from;
+    offset = photon_window_uv(receiver, n.xy) * float(u_texture) - from;
     float len = length(offset);
     if (len > u_footprint)
         offset *= u_footprint / len;
@@ -81,7 +82,7 @@ void main()
         return;
     vec3 flux = texelFetch(u_flux, p, 0).rgb;
     receiver = int(photon.z + 0.5);
-    vec2 at = photon.xy * float(u_texture);
+    vec2 at = photon_window_uv(receiver, photon.xy) * float(u_texture);
     if (u_footprint <= 0.0) {
         ivec2 t = clamp(ivec2(at), ivec2(0), ivec2(u_texture - 1));
         for (int c = 0; c < 3; c++)
@@ -89,7 +90,9 @@ void main()
         return;
     }
     vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
-    int nx = clamp(int(ceil(length(ex))), 1, 16), ny = clamp(int(ceil(length(ey))), 1, 16);
+    // two sample points per texel the footprint spans: one per texel beats
+    // against the texel grid where photons are 1-2 texels apart (flat water)
+    int nx = clamp(int(ceil(2.0 * length(ex))), 1, 16), ny = clamp(int(ceil(2.0 * length(ey))), 1, 16);
     vec3 share = flux / float(nx * ny);
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)

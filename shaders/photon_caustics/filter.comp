@@ -4,6 +4,7 @@
 // |i|, |j| <= k. We divide by the sum of the weights, so that s = 1 keeps
 // the photons' energy, and by the texel's area: the result is irradiance.
 #include "impostors/impostors.glsl"
+#include "photon_caustics/window.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(r32ui, binding = PHOTON_IMAGE_COUNTS) readonly uniform uimage2DArray u_counts;
 layout(rgba32f, binding = PHOTON_IMAGE_CAUSTICS) writeonly uniform image2DArray u_caustics;
@@ -29,6 +30,7 @@ void main()
                 sum[c] += w * float(imageLoad(u_counts, ivec3(q, 3 * g.z + c)).r);
         }
     vec3 flux = sum / max(wsum, 1e-6) / u_fixed_point * u_s;
-    float texel = 2.0 * impostors[g.z].center.w / float(u_texture);
-    imageStore(u_caustics, g, vec4(flux / (texel * texel), 1.0));
+    vec4 w = photon_window(g.z);
+    vec2 texel = 2.0 * impostors[g.z].center.w * (w.zw - w.xy) / float(u_texture);
+    imageStore(u_caustics, g, vec4(flux / (texel.x * texel.y), 1.0));
 }

@@ -6,6 +6,7 @@
 // irradiance.
 #include "common/frame.glsl"
 #include "impostors/impostors.glsl"
+#include "photon_caustics/window.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 layout(location = 0) out vec4 o_irradiance;
@@ -28,5 +29,8 @@ void main()
     float here = dot(v_world - impostors[k].center.xyz, impostors[k].axis.xyz);
     if (here > impostor_depth(k, uv) + u_bias)
         return; // hidden from the refractor's side
-    o_irradiance = vec4(texture(u_caustics, vec3(uv, float(k))).rgb, 1.0);
+    vec2 wuv = photon_window_uv(k, uv);
+    if (any(lessThan(wuv, vec2(0.0))) || any(greaterThan(wuv, vec2(1.0))))
+        return; // outside where the photons landed
+    o_irradiance = vec4(texture(u_caustics, vec3(wuv, float(k))).rgb, 1.0);
 }

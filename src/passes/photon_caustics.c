@@ -37,6 +37,7 @@ struct photon_state {
     uint64_t light_version, geometry_version;
     mat4 light_view_proj, light_inverse;
     float fixed_point; /* flux -> integer count scale */
+    GLuint windows;    /* SSBO: per receiver, the box its photons landed in (window.glsl) */
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -55,6 +56,7 @@ enum photon_caustics_param {
     PHOTON_BIAS,
     PHOTON_MODE,
     PHOTON_FOOTPRINT,
+    PHOTON_FIT,
 };
 
 static const struct pass_param_desc params[] = {
@@ -65,8 +67,8 @@ static const struct pass_param_desc params[] = {
      .help = "filter radius (§3.2; 0: none, the footprints spread the photons instead; README)"},
     [PHOTON_S] = {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
      .help = "filter scale; 1 keeps the photons' energy (irradiance)"},
-    [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
-     .help = "caustic texture size per receiver"},
+    [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
+     .help = "caustic texture size per receiver (over the box its photons landed in, with fit)"},
     [PHOTON_ITERATIONS] = {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
      .help = "iterations of d_T and of the impostor correction (Fig. 9, 16)"},
     [PHOTON_BIAS] = {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
@@ -76,6 +78,9 @@ static const struct pass_param_desc params[] = {
     [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0, .max = 16,
      .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
              "many texels from its landing point; 0 = a point per photon, the paper's (README)"},
+    [PHOTON_FIT] = {.name = "fit", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
+     .help = "each receiver's caustic texture covers the box its photons landed in, not the whole receiver "
+             "(more texels where the caustic is; README)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -119,6 +124,8 @@ static void photon_destroy(struct pass *p)
         gl_framebuffer_destroy(&s->light_fb[i]);
     gl_framebuffer_destroy(&s->photon_fb);
     gl_framebuffer_destroy(&s->map_fb);
+    if (s->windows && gl_api_ready())
+        gl.DeleteBuffers(1, &s->windows);
     free(s);
     p->state = NULL;
 }
@@ -177,6 +184,7 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
 static void bind_impostors(struct photon_state *s, const struct gl_program *prog)
 {
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
     gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
 }
@@ -283,6 +291,26 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         float total = light->kind == LIGHT_DIRECTIONAL ? emax * 4.0f * orad * orad : emax * 4.0f * (float)MATH_PI;
         s->fixed_point = 2.0e9f / fmaxf(total, 1e-20f);
         if (s->impostors.count > 0) {
+            /* issue 8: where each receiver's photons landed, so that its
+             * caustic texture covers that box (window.glsl) */
+            if (!s->windows) {
+                gl.CreateBuffers(1, &s->windows);
+                gl.NamedBufferStorage(s->windows, IMPOSTOR_MAX * 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+            }
+            GLuint empty[IMPOSTOR_MAX * 4];
+            for (int i = 0; i < IMPOSTOR_MAX; i++) {
+                empty[4 * i] = empty[4 * i + 1] = 65535u;
+                empty[4 * i + 2] = empty[4 * i + 3] = 0u;
+            }
+            gl.NamedBufferSubData(s->windows, 0, sizeof empty, empty);
+            struct gl_program *bounds;
+            if (!gl_program_get_compute(&r->programs, "photon_caustics/bounds.comp", NULL, NULL, &bounds, err))
+                return false;
+            gl.UseProgram(bounds->id);
+            gl.BindTextureUnit(PHOTON_UNIT_PHOTONS, s->photons.id);
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
+            gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+            gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             const GLuint zero_u = 0;
             gl.ClearTexImage(s->counts.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
             struct gl_program *acc;
@@ -295,6 +323,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
+            gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_fit"), pass_flag(p, PHOTON_FIT));
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
             gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
             gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
             struct gl_program *filt;
@@ -308,6 +338,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
             gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
+            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_fit"), pass_flag(p, PHOTON_FIT));
             gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
             gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
@@ -335,6 +366,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     bind_impostors(s, map);
     gl.BindTextureUnit(PHOTON_UNIT_CAUSTICS, s->caustics.id);
     gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
     for (int k = 0; k < s->impostors.count; k++) {
         char name[48];
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);

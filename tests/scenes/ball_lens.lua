@@ -67,7 +67,7 @@ elseif c.param("technique", "") == "beams" then
 elseif c.param("techniques", false) then
   -- Hu & Qin's photon caustics on the GPU (the scene's sun is the only light)
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
-  g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),
+  g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 512),
                                              k = c.param("k", 0),
                                              footprint = c.param("footprint", nil) and tonumber(c.param("footprint", nil)) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })

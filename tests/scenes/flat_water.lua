@@ -60,7 +60,7 @@ if c.param("light", "directional") == "spot" then
   g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = false })
 elseif c.param("technique", "volumes") == "photons" then
   -- Hu & Qin's photons through the water's one interface (issue 8's moire test)
-  g:add("cv", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 256),
+  g:add("cv", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 512),
                                        k = c.param("k", 0),
                                        footprint = c.param("footprint", nil) and tonumber(c.param("footprint", nil)) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "cv.irradiance", specular = false })
