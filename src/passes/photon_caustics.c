@@ -75,7 +75,7 @@ static const struct pass_param_desc params[] = {
      .help = "depth tolerance of the caustic mapping test, scene units"},
     [PHOTON_MODE] = {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
-    [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0, .max = 16,
+    [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 16, .min = 0, .max = 64,
      .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
              "many texels from its landing point; 0 = a point per photon, the paper's (README)"},
     [PHOTON_FIT] = {.name = "fit", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
