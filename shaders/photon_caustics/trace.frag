@@ -23,6 +23,7 @@ uniform int u_light;
 uniform int u_iterations;
 uniform float u_buffer;
 uniform int u_reflect_glass; // mode "reflect": follow the light glass reflects (Fresnel-weighted)
+uniform float u_reach = 1.0; // the refractors' bounding diameter (marches inside them)
 layout(binding = PHOTON_UNIT_FRONT_MATERIAL) uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w material kind
 
 vec3 unproject(vec2 uv, float d)
@@ -41,6 +42,45 @@ void nothing()
 {
     o_photon = vec4(0.0);
     o_flux = vec4(0.0);
+}
+
+// A photon inside after a total internal reflection: march along d while
+// its window depth in the light's view lies between the front and back
+// depths at its pixel; bisect the first step outside. Which bound it
+// crossed says which surface it leaves through.
+bool light_march(vec3 o, vec3 d, out float t_exit, out float t_inside, out bool through_back)
+{
+    const int STEPS = 24;
+    float reach = u_reach, lo = 0.0, hi = -1.0;
+    through_back = true;
+    for (int i = 1; i <= STEPS && hi < 0.0; i++) {
+        float t = reach * float(i) / float(STEPS);
+        vec3 q = project(o + t * d);
+        bool off = any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)));
+        float df = off ? 1.0 : texture(u_front_depth, q.xy).r, db = off ? 1.0 : texture(u_back_depth, q.xy).r;
+        if (df >= 1.0 || q.z < df || q.z > db) {
+            hi = t;
+            through_back = df >= 1.0 || q.z > db;
+        } else {
+            lo = t;
+        }
+    }
+    if (hi < 0.0)
+        return false;
+    for (int k = 0; k < 8; k++) {
+        float t = 0.5 * (lo + hi);
+        vec3 q = project(o + t * d);
+        float df = texture(u_front_depth, q.xy).r, db = texture(u_back_depth, q.xy).r;
+        if (df >= 1.0 || q.z < df || q.z > db) {
+            hi = t;
+            through_back = df >= 1.0 || q.z > db;
+        } else {
+            lo = t;
+        }
+    }
+    t_exit = hi;
+    t_inside = lo;
+    return true;
 }
 
 void main()
@@ -88,16 +128,21 @@ void main()
     } else {
         float f1 = fresnel_of(-dot(ldir, n1), 1.0 / ior, ideal);
         vec3 t1 = refract(ldir, n1, 1.0 / ior);
-        if (dot(t1, t1) == 0.0) {
-            nothing(); // an IOR below 1 reflecting everything at the entry
-            return;
-        }
-        t1 = normalize(t1);
-        flux *= 1.0 - f1;
-        if (single) {
+        bool outside_tir = dot(t1, t1) == 0.0;
+        if (outside_tir) {
+            // an IOR below 1 reflects everything at the entry: the photon
+            // goes on off the outside, all of it (issue 8: dropping it lost
+            // 47% of the light under an IOR 0.8 cube)
+            dir = reflect(ldir, n1);
+            origin = p1 + n1 * eps;
+        } else if (single) {
+            t1 = normalize(t1);
+            flux *= 1.0 - f1;
             dir = t1;
             origin = p1 - n1 * eps;
         } else {
+        t1 = normalize(t1);
+        flux *= 1.0 - f1;
         // d_T (Fig. 9): start small, move to the back surface along the light's view
         float dT = 1e-3;
         for (int i = 0; i < max(u_iterations, 1); i++) {
@@ -121,16 +166,38 @@ void main()
             return;
         }
         n2 = normalize(n2);
-        vec3 m = dot(t1, n2) > 0.0 ? -n2 : n2;
-        float f2 = fresnel_of(-dot(t1, m), ior, ideal);
-        vec3 t2 = refract(t1, m, ior);
+        // Total internal reflection at the exit (issue 8): the photon
+        // reflects and marches on inside, between the front and back depths
+        // of the light's view, to its next interface, at most twice.
+        vec3 pos = p2, t = t1;
+        float travelled = dT;
+        vec3 t2 = vec3(0.0), m = vec3(0.0);
+        for (int bounce = 0; bounce <= 2; bounce++) {
+            m = dot(t, n2) > 0.0 ? -n2 : n2;
+            t2 = refract(t, m, ior);
+            if (dot(t2, t2) > 0.0 || bounce == 2)
+                break;
+            t = reflect(t, m);
+            float d, d_inside;
+            bool through_back;
+            if (!light_march(pos + t * eps, t, d, d_inside, through_back))
+                break;
+            vec3 q = project(pos + t * (eps + d_inside));
+            vec3 nn = through_back ? texture(u_back_normal, q.xy).xyz : texture(u_front_normal, q.xy).xyz;
+            if (dot(nn, nn) < 0.5)
+                break;
+            n2 = normalize(nn);
+            pos += t * (eps + d);
+            travelled += d;
+        }
         if (dot(t2, t2) == 0.0) {
-            nothing(); // total internal reflection at the exit: the photon is not followed further
+            nothing(); // still totally reflected: not followed further
             return;
         }
-        flux *= (1.0 - f2) * exp(-absorption * dT);
+        float f2 = fresnel_of(-dot(t, m), ior, ideal);
+        flux *= (1.0 - f2) * exp(-absorption * travelled);
         dir = normalize(t2);
-        origin = p2 - m * eps;
+        origin = pos - m * eps;
         }
     }
     float best = 1e30;
