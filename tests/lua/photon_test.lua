@@ -120,6 +120,6 @@ t.case("photons follow the light an IOR 0.8 cube reflects off its outside (issue
     end
   end
   t.expect(math.abs(g / r - 1) < 0.15, string.format("caustic light around the cube: %.3f of the reference's", g / r))
-  -- IOR 2.42: total internal reflection inside is followed; finite
+  -- IOR 2.42 (total internal reflection inside): finite
   t.expect_finite(t.render(S, { set = { ior = 2.42 } }))
 end)
