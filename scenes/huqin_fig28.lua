@@ -1,6 +1,8 @@
 -- Hu & Qin Fig. 28: caustics under a rippling water surface, seen from
 -- under water: one interface (the light refracts into the water and stays
--- there), caustics on the floor, a wall and the dolphins.
+-- there), caustics on the floor, a wall and the dolphins. --set k=0 --set
+-- texture=512: the photon pass's own defaults since issue 8 (the floor's caustic
+-- lines show; the k = 3 filter at 192² blurs them into blotches).
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0.2, -0.35, 1.3}, target = {-0.1, -0.7, -0.2}, fov = 55 },
@@ -18,7 +20,7 @@ local water = scene:add(c.water { size = 3, resolution = 96, depth = 1.0, attenu
                                   damping = 0.2, wave_speed = 0.5 })
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("photons", c.pass.photon_caustics { light = sun, buffer = 512, texture = 192, k = 3, bias = 0.08 })
+g:add("photons", c.pass.photon_caustics { light = sun, buffer = 512, texture = c.param("texture", 192), k = c.param("k", 3), bias = 0.08 })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance", specular = false })
 g:add("surface", c.pass.water_surface { water = water, color = "shade.color", depth = "shade.depth",
                                         position = "shade.position" })
