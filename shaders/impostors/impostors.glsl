@@ -89,7 +89,17 @@ float impostor_hit(int k, vec3 o, vec3 d, int iterations, out vec2 uv)
         t = tn;
         uv = un;
     }
-    return impostor_depth(k, uv) < 1e29 ? t : -1.0;
+    // The point must lie on the surface the texel holds (issue 8): a seed
+    // candidate past the object (the slab's far side) that the correction
+    // could not move, or whose move left the impostor, was kept as a hit —
+    // rays converging past a small floor's edge were counted on it (a third
+    // more light on a 0.6-wide floor than on a 1.2-wide one).
+    float surface = impostor_depth(k, uv);
+    if (surface >= 1e29)
+        return -1.0;
+    float z = dot(o + t * d - im.center.xyz, im.axis.xyz);
+    float texel = 2.0 * half_side / float(textureSize(u_impostor_depth, 0).x);
+    return abs(z - surface) <= max(0.05 * half_side, 4.0 * texel) ? t : -1.0;
 }
 
 // The nearest impostor along a ray: its colour, or false for none.

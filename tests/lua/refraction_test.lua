@@ -175,7 +175,9 @@ t.case("an IOR 1.0 sphere vanishes in a room: the image behind it, whatever shad
   end
   local free = t.render(ROOM, { set = { sphere = false } })
   local old = inside_silhouette(t.render(ROOM, { set = { lookup = "impostors" } }), free)
-  t.expect(old > 0.2, string.format("the impostors' error is the issue's (%.3f)", old))
+  -- (0.263 when the issue was filed; 0.108 since a hit off the surface its
+  -- texel holds is rejected: still no identity)
+  t.expect(old > 0.05, string.format("the impostors still fail the identity (%.3f)", old))
 end)
 
 t.case("an IOR 1.5 sphere in the room against the reference (its caustics left out)", function()
