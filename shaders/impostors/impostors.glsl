@@ -97,6 +97,8 @@ float impostor_hit(int k, vec3 o, vec3 d, int iterations, out vec2 uv)
     float surface = impostor_depth(k, uv);
     if (surface >= 1e29)
         return -1.0;
+    if (iterations == 0)
+        return t; // Fig. 18c: the uncorrected rectangle point, as the paper has it
     float z = dot(o + t * d - im.center.xyz, im.axis.xyz);
     float texel = 2.0 * half_side / float(textureSize(u_impostor_depth, 0).x);
     return abs(z - surface) <= max(0.05 * half_side, 4.0 * texel) ? t : -1.0;

@@ -123,3 +123,27 @@ t.case("photons follow the light an IOR 0.8 cube reflects off its outside (issue
   -- IOR 2.42 (total internal reflection inside): finite
   t.expect_finite(t.render(S, { set = { ior = 2.42 } }))
 end)
+
+t.case("the light on a floor does not depend on the floor's size (issue 8)", function()
+  -- Under the ball lens, the power within the central 0.6 x 0.6 square of a
+  -- 0.6-wide floor and of a 1.2-wide one: 0.813 and 0.649 of the light
+  -- through the ball before impostor hits had to lie on the surface (a seed
+  -- past the small floor was kept as a hit), 0.645 and 0.649 since.
+  local n, h = 128, 1.0
+  local power = {}
+  for _, fs in ipairs { 0.6, 1.2 } do
+    local set = { techniques = true, view = "down", floor = 1.5, radius = 1, camera_height = h, fresnel = false,
+                  output = "irradiance", floor_size = fs }
+    local img = t.render("tests/scenes/ball_lens.lua", { set = set, size = {n, n} })
+    local side, p = 2 * h * math.tan(math.rad(30)) / n, 0
+    for y = 0, n - 1 do
+      for x = 0, n - 1 do
+        local px, py = (x + 0.5 - n / 2) * side, (y + 0.5 - n / 2) * side
+        if math.abs(px) < 0.3 and math.abs(py) < 0.3 then p = p + img:pixel(x, y) * side * side end
+      end
+    end
+    power[fs] = p / math.pi
+  end
+  t.expect(math.abs(power[0.6] / power[1.2] - 1) < 0.03,
+           string.format("0.6-wide floor %.4f, 1.2-wide %.4f of the light through the ball", power[0.6], power[1.2]))
+end)
