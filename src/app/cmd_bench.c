@@ -182,6 +182,7 @@ struct truth {
 /* A distinct scene (its parameters that change the scene): one curve of the
  * reference, and one truth per error frame. */
 struct truth_set {
+    uint64_t key;        /* hash_params of `params` */
     char label[200];     /* its scene parameters ("depth=0.5"), empty without scene sweeps */
     char values[16][64]; /* per sweep: the scene parameter's value, empty for a pass parameter */
     struct lua_params params;
@@ -308,7 +309,7 @@ static bool technique_variants(const struct technique_list *list, const struct l
                     return false;
             const struct technique_point *pt = &tech->points[p];
             for (int k = 0; k < pt->count; k++) {
-                if (strchr(pt->keys[k], '.')) {
+                if (technique_key_is_pass(pt->keys[k])) {
                     snprintf(v->override_keys[v->override_count], 64, "%s", pt->keys[k]);
                     snprintf(v->override_values[v->override_count++], 64, "%s", pt->values[k]);
                 } else if (!params_merge(&v->params, pt->keys[k], pt->values[k], err) ||
@@ -611,7 +612,7 @@ int cmd_bench(struct app *app, struct cli *cli)
         uint64_t set_key = hash_params(1469598103934665603ULL, &v->truth_params);
         int set = -1;
         for (int i = 0; i < nsets; i++)
-            if (hash_params(1469598103934665603ULL, &sets[i].params) == set_key)
+            if (sets[i].key == set_key)
                 set = i;
         if (ok && set < 0) {
             if (nsets >= MAX_TRUTHS)
@@ -619,6 +620,7 @@ int cmd_bench(struct app *app, struct cli *cli)
             else {
                 set = nsets++;
                 struct truth_set *ts = &sets[set];
+                ts->key = set_key;
                 ts->params = v->truth_params;
                 ts->width = width;
                 ts->height = height;

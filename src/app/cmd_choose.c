@@ -247,24 +247,24 @@ int cmd_choose(struct app *app, struct cli *cli)
         ok = lua_params_add(&so.params, assignment, &err);
     }
     /* the settings: "pass.param=value" overrides, "param=value" scene parameters */
-    char settings[256];
-    snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
-    for (char *tok = strtok(settings, " "); ok && tok; tok = strtok(NULL, " ")) {
-        if (!strchr(tok, '.') || strchr(tok, '.') > strchr(tok, '='))
-            ok = lua_params_add(&so.params, tok, &err);
+    struct technique_point point;
+    if (ok && !technique_point_parse(chosen.settings, &point))
+        ok = error_set(&err, "%s: the cached settings '%s' are not pass.param=value ...", cached, chosen.settings);
+    for (int k = 0; ok && k < point.count; k++) {
+        char assignment[200];
+        snprintf(assignment, sizeof assignment, "%s=%s", point.keys[k], point.values[k]);
+        if (!technique_key_is_pass(point.keys[k])) {
+            ok = lua_params_add(&so.params, assignment, &err);
+            snprintf(set_text + strlen(set_text), sizeof set_text - strlen(set_text), " --set %s", assignment);
+        }
     }
     if (s)
         session_close(s);
     s = NULL;
     ok = ok && session_open(app, &so, &s, &err);
-    snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
-    for (char *tok = strtok(settings, " "); ok && tok; tok = strtok(NULL, " ")) {
-        char *eq = strchr(tok, '='), *dot = strchr(tok, '.');
-        if (eq && dot && dot < eq) {
-            *eq = '\0';
-            ok = session_set_pass_param(s, tok, eq + 1, &err);
-        }
-    }
+    for (int k = 0; ok && k < point.count; k++)
+        if (technique_key_is_pass(point.keys[k]))
+            ok = session_set_pass_param(s, point.keys[k], point.values[k], &err);
     if (ok) {
         printf("%s: %s (%s): %.1f ms a frame, %s %.4g\n", script, chosen.technique, chosen.settings, chosen.ms, metric,
                chosen.error);
@@ -273,12 +273,7 @@ int cmd_choose(struct app *app, struct cli *cli)
         for (int i = 0; i < s->graph->count; i++)
             print_pass(s->graph->entries[i].pass, s->scene);
         printf("  g:output(\"%s\")\n", s->graph->output);
-        printf("or keep the script as it is and run it with:%s", set_text);
-        snprintf(settings, sizeof settings, "%s", strcmp(chosen.settings, "defaults") == 0 ? "" : chosen.settings);
-        for (char *tok = strtok(settings, " "); tok; tok = strtok(NULL, " "))
-            if (!strchr(tok, '.') || strchr(tok, '.') > strchr(tok, '='))
-                printf(" --set %s", tok);
-        printf("\n");
+        printf("or keep the script as it is and run it with:%s\n", set_text);
     }
     if (s)
         session_close(s);

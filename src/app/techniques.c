@@ -146,16 +146,7 @@ static bool read_sweep(lua_State *L, int t, const char *script, struct technique
             lua_pop(L, 2);
             point_set(p, keys[k], value);
         }
-        /* in the sweep's key order, first key slowest */
-        for (int i = 0; i < p->count / 2; i++) {
-            char tk[64], tv[64];
-            memcpy(tk, p->keys[i], 64);
-            memcpy(tv, p->values[i], 64);
-            memcpy(p->keys[i], p->keys[p->count - 1 - i], 64);
-            memcpy(p->values[i], p->values[p->count - 1 - i], 64);
-            memcpy(p->keys[p->count - 1 - i], tk, 64);
-            memcpy(p->values[p->count - 1 - i], tv, 64);
-        }
+        point_sort(p); /* the keys in order, as a point's are */
     }
     lua_settop(L, top);
     return true;
@@ -278,6 +269,30 @@ void technique_point_label(const struct technique_point *p, char *out, size_t si
             break;
         used += (size_t)w;
     }
+}
+
+bool technique_point_parse(const char *label, struct technique_point *out)
+{
+    memset(out, 0, sizeof *out);
+    if (strcmp(label, "defaults") == 0)
+        return true;
+    for (const char *p = label; *p;) {
+        size_t n = strcspn(p, " ");
+        const char *eq = memchr(p, '=', n);
+        if (!eq || eq == p || out->count >= TECHNIQUE_ASSIGNMENTS_MAX || (size_t)(eq - p) >= sizeof out->keys[0] ||
+            n - (size_t)(eq - p) - 1 >= sizeof out->values[0])
+            return false;
+        snprintf(out->keys[out->count], sizeof out->keys[0], "%.*s", (int)(eq - p), p);
+        snprintf(out->values[out->count++], sizeof out->values[0], "%.*s", (int)(n - (size_t)(eq - p) - 1), eq + 1);
+        p += n;
+        p += strspn(p, " ");
+    }
+    return true;
+}
+
+bool technique_key_is_pass(const char *key)
+{
+    return strchr(key, '.') != NULL;
 }
 
 bool techniques_is_selector(const struct technique_list *list, const char *key)

@@ -46,6 +46,10 @@ bool techniques_read(const struct session *s, struct technique_list *out, struct
 bool techniques_select(struct technique_list *list, const char *names, struct error *err);
 /* "caustics.buffer=512 caustics.k=1", or "defaults" for point 0. */
 void technique_point_label(const struct technique_point *p, char *out, size_t size);
+/* The inverse: a label back into its assignments (false when malformed). */
+bool technique_point_parse(const char *label, struct technique_point *out);
+/* Whether an assignment's key names a pass parameter ("pass.param"). */
+bool technique_key_is_pass(const char *key);
 /* True when `key` is one of the selecting parameters of any technique (they
  * choose the graph, not the scene: the ground truth ignores them). */
 bool techniques_is_selector(const struct technique_list *list, const char *key);

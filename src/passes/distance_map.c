@@ -19,14 +19,6 @@ void distance_map_release(struct distance_map *m)
     memset(m, 0, sizeof *m);
 }
 
-static uint64_t lights_version(const struct scene *scene)
-{
-    uint64_t v = 0;
-    for (int i = 0; i < scene->light_count; i++)
-        v = v * 31u + scene->lights[i]->version;
-    return v;
-}
-
 /* Whether a visible diffuse object morphs, deforms or is simulated (the
  * map holds the diffuse objects only: a deforming glass dragon does not
  * make it stale). */
@@ -45,7 +37,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
 {
     const struct scene *scene = f->scene;
     bool current = m->built && m->size == size && !diffuse_animated(scene) &&
-                   m->built_geometry == scene_geometry_version(scene) && m->built_lights == lights_version(scene) &&
+                   m->built_geometry == scene_geometry_version(scene) && m->built_lights == scene_lights_version(scene) &&
                    m->center.x == center.x && m->center.y == center.y && m->center.z == center.z;
     if (current)
         return true;
@@ -121,6 +113,6 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
     m->center = center;
     m->built = true;
     m->built_geometry = scene_geometry_version(scene);
-    m->built_lights = lights_version(scene);
+    m->built_lights = scene_lights_version(scene);
     return true;
 }

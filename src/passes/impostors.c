@@ -18,18 +18,10 @@ void impostors_release(struct impostor_set *set)
     memset(set, 0, sizeof *set);
 }
 
-static uint64_t lights_version(const struct scene *scene)
-{
-    uint64_t v = 0;
-    for (int i = 0; i < scene->light_count; i++)
-        v = v * 31u + scene->lights[i]->version;
-    return v;
-}
-
 bool impostors_current(const struct impostor_set *set, const struct scene *scene, int size, bool animated)
 {
     return set->built && !animated && set->size == size && set->built_geometry == scene_geometry_version(scene) &&
-           set->built_lights == lights_version(scene);
+           set->built_lights == scene_lights_version(scene);
 }
 
 int impostors_find(const struct impostor_set *set, const struct object *object)
@@ -130,7 +122,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         return false;
     set->built = true;
     set->built_geometry = scene_geometry_version(scene);
-    set->built_lights = lights_version(scene);
+    set->built_lights = scene_lights_version(scene);
     return true;
 }
 

@@ -304,6 +304,14 @@ int scene_light_index(const struct scene *scene, const struct light *light)
     return -1;
 }
 
+uint64_t scene_lights_version(const struct scene *scene)
+{
+    uint64_t v = (uint64_t)scene->light_count;
+    for (int i = 0; i < scene->light_count; i++)
+        v = v * 31u + scene->lights[i]->version;
+    return v;
+}
+
 uint64_t scene_geometry_version(const struct scene *scene)
 {
     uint64_t v = scene->version * 1000003u;

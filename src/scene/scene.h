@@ -284,5 +284,8 @@ bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
 int scene_light_index(const struct scene *scene, const struct light *light);
 /* Sum of object versions and the scene version: changes when any caster moves. */
 uint64_t scene_geometry_version(const struct scene *scene);
+/* Changes whenever a light is added, removed or changed (what a pass that
+ * caches lit surfaces, such as impostors or the distance map, checks). */
+uint64_t scene_lights_version(const struct scene *scene);
 
 #endif

@@ -79,6 +79,19 @@ t.case("a uniform field stays uniform: photons under flat water, no moire (issue
            string.format("floor from %.1f%% to %+.1f%% of its mean", 100 * (lo / mean - 1), 100 * (hi / mean - 1)))
 end)
 
+-- The power (as a fraction of pi, the light through a ball of radius 1)
+-- that tests/scenes/ball_lens.lua's downward camera at `h` above the floor
+-- sees on the floor within `inside(x, z)`, n x n pixels of a 60-degree view.
+local function floor_power(img, n, h, inside)
+  local side, p = 2 * h * math.tan(math.rad(30)) / n, 0
+  for y = 0, n - 1 do
+    for x = 0, n - 1 do
+      if inside((x + 0.5 - n / 2) * side, (y + 0.5 - n / 2) * side) then p = p + img:pixel(x, y) * side * side end
+    end
+  end
+  return p / math.pi
+end
+
 t.case("the ball lens at its paraxial focus: encircled power within 10% of the closed form (issue 8)", function()
   -- R = 1, n = 1.5, an ideal interface, the floor 1.5 below the centre: within
   -- r = 0.1 of the axis 0.406 of the light through the ball. At the
@@ -88,14 +101,8 @@ t.case("the ball lens at its paraxial focus: encircled power within 10% of the c
                 output = "irradiance", floor_size = 3 }
   local img = t.render("tests/scenes/ball_lens.lua", { set = set, size = {n, n} })
   t.expect_finite(img)
-  local side, p = 2 * h * math.tan(math.rad(30)) / n, 0
-  for y = 0, n - 1 do
-    for x = 0, n - 1 do
-      local px, py = (x + 0.5 - n / 2) * side, (y + 0.5 - n / 2) * side
-      if px * px + py * py < 0.01 then p = p + img:pixel(x, y) * side * side end
-    end
-  end
-  t.expect(math.abs(p / math.pi / 0.406 - 1) < 0.1, string.format("encircled fraction %.4f (closed form 0.406)", p / math.pi))
+  local f = floor_power(img, n, h, function(x, z) return x * x + z * z < 0.01 end)
+  t.expect(math.abs(f / 0.406 - 1) < 0.1, string.format("encircled fraction %.4f (closed form 0.406)", f))
 end)
 
 t.case("photons follow the light an IOR 0.8 cube reflects off its outside (issue 8)", function()
@@ -135,14 +142,7 @@ t.case("the light on a floor does not depend on the floor's size (issue 8)", fun
     local set = { techniques = true, view = "down", floor = 1.5, radius = 1, camera_height = h, fresnel = false,
                   output = "irradiance", floor_size = fs }
     local img = t.render("tests/scenes/ball_lens.lua", { set = set, size = {n, n} })
-    local side, p = 2 * h * math.tan(math.rad(30)) / n, 0
-    for y = 0, n - 1 do
-      for x = 0, n - 1 do
-        local px, py = (x + 0.5 - n / 2) * side, (y + 0.5 - n / 2) * side
-        if math.abs(px) < 0.3 and math.abs(py) < 0.3 then p = p + img:pixel(x, y) * side * side end
-      end
-    end
-    power[fs] = p / math.pi
+    power[fs] = floor_power(img, n, h, function(x, z) return math.abs(x) < 0.3 and math.abs(z) < 0.3 end)
   end
   t.expect(math.abs(power[0.6] / power[1.2] - 1) < 0.03,
            string.format("0.6-wide floor %.4f, 1.2-wide %.4f of the light through the ball", power[0.6], power[1.2]))
