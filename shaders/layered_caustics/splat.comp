@@ -13,7 +13,7 @@
 #include "common/frame.glsl"
 layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
 layout(r32ui, binding = LAYERED_IMAGE_FLUX) uniform uimage2DArray u_flux;
-uniform float u_fixed_point;
+#include "common/fixed_point.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform readonly image2DArray u_hits;
 layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform readonly image2DArray u_photons;
@@ -72,7 +72,7 @@ void deposit(vec2 at, vec3 flux)
         if (texelFetch(u_receiver_normal, q, 0).w < 0.5)
             continue;
         for (int k = 0; k < 3; k++)
-            imageAtomicAdd(u_flux, ivec3(q, k), uint(clamp(flux[k] * w[i] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+            imageAtomicAdd(u_flux, ivec3(q, k), fixed_point_count(flux[k] * w[i]));
     }
 }
 
@@ -80,6 +80,7 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     branch = int(gl_GlobalInvocationID.z);
+    fixed_point_seed(gl_GlobalInvocationID);
     if (any(greaterThanEqual(p, u_buffer_size)))
         return;
     vec4 h = imageLoad(u_hits, ivec3(p, branch));

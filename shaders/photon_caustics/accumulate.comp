@@ -18,7 +18,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = PHOTON_UNIT_PHOTONS) uniform sampler2D u_photons;
 layout(binding = PHOTON_UNIT_FLUX) uniform sampler2D u_flux;
 layout(r32ui, binding = PHOTON_IMAGE_COUNTS) uniform uimage2DArray u_counts;
-uniform float u_fixed_point;
+#include "common/fixed_point.glsl"
 uniform int u_texture;
 uniform float u_footprint; // texels (0: a point)
 #include "photon_caustics/window.glsl"
@@ -38,8 +38,7 @@ void deposit(vec2 at, vec3 flux) // `at` in texels (centres at +0.5)
         if (w[i] <= 0.0)
             continue;
         for (int k = 0; k < 3; k++)
-            imageAtomicAdd(u_counts, ivec3(q, 3 * receiver + k),
-                           uint(clamp(flux[k] * w[i] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+            imageAtomicAdd(u_counts, ivec3(q, 3 * receiver + k), fixed_point_count(flux[k] * w[i]));
     }
 }
 
@@ -77,6 +76,7 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, textureSize(u_photons, 0))))
         return;
+    fixed_point_seed(gl_GlobalInvocationID);
     vec4 photon = texelFetch(u_photons, p, 0);
     if (photon.w < 0.5)
         return;
@@ -86,7 +86,7 @@ void main()
     if (u_footprint <= 0.0) {
         ivec2 t = clamp(ivec2(at), ivec2(0), ivec2(u_texture - 1));
         for (int c = 0; c < 3; c++)
-            imageAtomicAdd(u_counts, ivec3(t, 3 * receiver + c), uint(clamp(flux[c] * u_fixed_point, 0.0, 4.0e9) + 0.5));
+            imageAtomicAdd(u_counts, ivec3(t, 3 * receiver + c), fixed_point_count(flux[c]));
         return;
     }
     vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);

@@ -177,8 +177,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     pass_stage_end(p, "receivers");
 
     /* Photons: traced through the light's layers, then onto the receivers. */
-    double total = ortho ? (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * orad * orad
-                         : (double)fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z) * 4.0 * MATH_PI;
+    double total = light_view_flux_bound(fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z), &proj);
     /* No pixel can gather more than all the light through the refractors:
      * that fits below 2^32 with room to spare. */
     float fixed_point = (float)(1.0e9 / fmax(total, 1e-20));

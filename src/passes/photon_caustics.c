@@ -287,9 +287,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         /* §3.2: accumulate into the caustic textures (fixed point: the
          * scale keeps even all the light in one texel below 2^31). */
         vec3 e = light->intensity;
-        float emax = fmaxf(e.x, fmaxf(e.y, e.z));
-        float total = light->kind == LIGHT_DIRECTIONAL ? emax * 4.0f * orad * orad : emax * 4.0f * (float)MATH_PI;
-        s->fixed_point = 2.0e9f / fmaxf(total, 1e-20f);
+        double total = light_view_flux_bound(fmaxf(e.x, fmaxf(e.y, e.z)), &proj);
+        s->fixed_point = (float)(2.0e9 / fmax(total, 1e-20));
         if (s->impostors.count > 0) {
             /* issue 8: where each receiver's photons landed, so that its
              * caustic texture covers that box (window.glsl) */

@@ -133,6 +133,18 @@ vec3 light_center(const struct light *l)
     return l->kind == LIGHT_LINEAR ? vec3_scale(vec3_add(l->position, l->end), 0.5f) : l->position;
 }
 
+double light_view_flux_bound(float intensity, const mat4 *proj)
+{
+    double sx = fabs((double)proj->m[0]), sy = fabs((double)proj->m[5]);
+    if (sx <= 0.0 || sy <= 0.0)
+        return intensity * 4.0 * MATH_PI;
+    double tx = 1.0 / sx, ty = 1.0 / sy; /* half extents: tangents, or lengths when orthographic */
+    if (proj->m[11] == 0.0f)
+        return intensity * 4.0 * tx * ty;
+    /* a rectangular pyramid of half-angle tangents tx, ty */
+    return intensity * 4.0 * atan(tx * ty / sqrt(1.0 + tx * tx + ty * ty));
+}
+
 void light_retain(struct light *light)
 {
     if (light)

@@ -189,6 +189,13 @@ void light_retain(struct light *light);
 /* Where a light's shadow map and photons start: its position, a linear
  * light's midpoint. */
 vec3 light_center(const struct light *light);
+/* The most light a light's view can hold: `intensity` (its largest
+ * channel: radiant intensity, or irradiance for a directional light) times
+ * the solid angle of the perspective frustum `proj` (or the area of the
+ * orthographic one). Photon passes scale their fixed-point sums by it: no
+ * texel can gather more, and a bound of all the light around a point
+ * (4 pi) left a narrow frustum's photons a few counts each, rounded away. */
+double light_view_flux_bound(float intensity, const mat4 *proj);
 /* Drops one reference; the last one frees it. */
 void light_destroy(struct light *light);
 const char *light_kind_name(enum light_kind kind);

@@ -147,3 +147,23 @@ t.case("the light on a floor does not depend on the floor's size (issue 8)", fun
   t.expect(math.abs(power[0.6] / power[1.2] - 1) < 0.03,
            string.format("0.6-wide floor %.4f, 1.2-wide %.4f of the light through the ball", power[0.6], power[1.2]))
 end)
+
+t.case("photon caustics under a far point light: the light on the floor does not depend on the photon buffer's size", function()
+  -- A point light 20 above the ball: the photon buffer's frustum holds a
+  -- 6400th of the light around the point. The fixed-point sums were scaled
+  -- by all of it (4 pi), so each photon of a 2048^2 buffer was a tenth of a
+  -- count, rounded to nothing: a black floor (issue 8; the halo around
+  -- glass_sphere's caustic faded as the buffer grew). Now scaled by the
+  -- frustum's solid angle and rounded without bias.
+  local set = { techniques = true, view = "down", camera_height = 0.25, floor = 0.8, point = 20, floor_size = 3 }
+  local mean = {}
+  for _, buffer in ipairs { 256, 2048 } do
+    set.buffer = buffer
+    local img = t.render("tests/scenes/ball_lens.lua", { set = set, size = { 64, 64 } })
+    t.expect_finite(img)
+    mean[buffer] = img:stats().mean_gray
+  end
+  t.expect(mean[256] > 0.1, "the floor near the focus is lit: " .. mean[256])
+  t.expect(math.abs(mean[2048] / mean[256] - 1) < 0.02,
+           string.format("mean floor radiance %.5g at 2048^2, %.5g at 256^2", mean[2048], mean[256]))
+end)

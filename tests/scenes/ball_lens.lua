@@ -20,7 +20,11 @@ local scene = c.scene {
   background = {0, 0, 0},
 }
 local e = math.rad(elevation)
-local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
+-- point = H > 0: a point light H above the ball's centre instead of the sun
+-- (intensity H^2: the same irradiance at the ball's centre)
+local point = c.param("point", 0)
+local sun = scene:add(point > 0 and c.light.point { position = {0, point, 0}, intensity = {point * point, point * point, point * point} }
+                      or c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
 scene:add(c.object { mesh = c.mesh.plane { size = c.param("floor_size", 40) }, position = {0, -floor_depth, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = radius, segments = c.param("segments", 256) },
