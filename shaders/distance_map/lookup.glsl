@@ -1,4 +1,5 @@
 #include "common/bindings.glsl"
+#include "common/scene_bounds.glsl"
 // What a ray sees in the distance map (src/passes/distance_map.h,
 // Szirmay-Kalos et al. 2005): the ray is walked in steps spread in the
 // angle seen from the map's centre (t = 4 s a / (1 - a) for a evenly
@@ -61,6 +62,10 @@ bool distance_map_refine(vec3 o, vec3 d, int layer, float t0, float g0, float t1
 bool distance_map_lookup(vec3 o, vec3 d, int steps, out vec3 color)
 {
     color = vec3(0.0);
+    // nothing to find outside the diffuse objects' box (common/scene_bounds.glsl)
+    float t_enter, t_exit;
+    if (!scene_bounds_segment(o, d, t_enter, t_exit))
+        return false;
     float s = max(length(o - u_distance_center), 1e-3);
     float t0 = 0.0, a0 = distance_map_gap(o, 0), b0 = distance_map_gap(o, 1);
     steps = clamp(steps, 4, 256);
@@ -68,6 +73,8 @@ bool distance_map_lookup(vec3 o, vec3 d, int steps, out vec3 color)
         float a = float(i) / float(steps + 1);
         // t = s at a = 0.2: most steps past the refractor, where the walls
         // are; the last step far beyond anything (a miss: the environment)
+        if (t0 > t_exit)
+            return false;
         float t1 = i > steps ? 1e6 * s : s * a / (1.0 - a) * 4.0;
         vec3 p1 = o + t1 * d;
         float a1 = distance_map_gap(p1, 0), b1 = distance_map_gap(p1, 1);

@@ -5,6 +5,7 @@
 // surface there (else it passed behind an occluder and marches on). Rays
 // that leave the image, turn towards the camera past the near plane or hit
 // nothing see the environment. Requires common/frame.glsl.
+#include "common/scene_bounds.glsl"
 layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
 uniform float u_scene_extent; // the longest a ray is marched (the scene's bounding diameter)
 uniform int u_scene_steps;
@@ -46,8 +47,18 @@ bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
 {
     int steps = max(u_scene_steps, 1);
     float step = u_scene_extent / float(steps), lo = 0.0;
-    for (int j = 1; j <= steps; j++) {
+    // Only the steps inside the diffuse objects' box: a hit lies on one of
+    // them (the steps keep their places, so what is found is what the
+    // whole march finds).
+    float t_enter, t_exit;
+    if (!scene_bounds_segment(o, dir, t_enter, t_exit))
+        return false;
+    int first = max(int(floor(t_enter / step)), 1);
+    lo = step * float(first - 1);
+    for (int j = first; j <= steps; j++) {
         float t = step * float(j), behind;
+        if (t - step > t_exit)
+            return false;
         ivec2 px;
         if (!scene_behind(o + dir * t, behind, px))
             return false;

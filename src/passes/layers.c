@@ -266,11 +266,23 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *prog, cons
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_gradient"), trace->gradient);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_max_interfaces"), trace->max_interfaces);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_layer_extent"), trace->layer_extent);
-    vec3 lo, hi;
+    layers_bind_scene_trace(prog, scene);
+}
+
+void layers_bind_scene_trace(const struct gl_program *prog, const struct scene *scene)
+{
+    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
     scene_bounds(scene, &lo, &hi);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
                         fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.5f);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+    /* what a ray can meet there: the diffuse objects (none: an empty box) */
+    if (!scene_diffuse_bounds(scene, &lo, &hi)) {
+        lo = vec3_make(1e30f, 1e30f, 1e30f);
+        hi = vec3_make(-1e30f, -1e30f, -1e30f);
+    }
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_scene_lo"), lo.x, lo.y, lo.z);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_scene_hi"), hi.x, hi.y, hi.z);
 }
 
 bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,

@@ -71,6 +71,11 @@ struct layers_trace {
 void layers_bind(const struct layer_set *ls, const struct gl_program *program, const struct scene *scene,
                  const struct layers_trace *trace);
 bool layers_is_refractor(const struct object *o);
+/* The uniforms of shaders/layers/scene_trace.glsl (what a leaving ray sees
+ * in the camera's image) and of common/scene_bounds.glsl on `program`:
+ * marched at most 1.5 times the scene's bounding diameter in 64 steps, and
+ * only inside the scene's box. */
+void layers_bind_scene_trace(const struct gl_program *program, const struct scene *scene);
 
 /* A light's view of the refractors' bounding sphere (centre c, radius
  * `radius`): orthographic along a directional light, else a perspective

@@ -24,6 +24,7 @@
 #include "graph/renderer.h"
 #include "passes/distance_map.h"
 #include "passes/impostors.h"
+#include "passes/layers.h"
 #include "passes/shadow_inputs.h"
 #include "scene/scene.h"
 
@@ -371,11 +372,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->behind_depth.id);
         gl.BindTextureUnit(REFRACTION_UNIT_BEHIND, s->behind_color.id);
         gl.BindTextureUnit(REFRACTION_UNIT_INPUT_DEPTH, in_depth->texture.id);
-        vec3 slo, shi;
-        scene_bounds(f->scene, &slo, &shi);
-        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
-                            fmaxf(vec3_length(vec3_sub(shi, slo)), 1e-4f) * 1.5f);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+        layers_bind_scene_trace(prog, f->scene);
     } else if (nearby && s->impostors.count > 0) {
         gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
         gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);

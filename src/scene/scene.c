@@ -239,13 +239,16 @@ void scene_object_remove(struct scene *scene, struct object *obj)
         }
 }
 
-static bool bounds_of_visible(const struct scene *scene, bool specular_only, vec3 *lo, vec3 *hi)
+enum bounds_filter { BOUNDS_ALL, BOUNDS_SPECULAR, BOUNDS_DIFFUSE };
+
+static bool bounds_of_visible(const struct scene *scene, enum bounds_filter filter, vec3 *lo, vec3 *hi)
 {
     vec3 l = {INFINITY, INFINITY, INFINITY}, h = {-INFINITY, -INFINITY, -INFINITY};
     bool any = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (!o->visible || (specular_only && !material_is_specular(&o->material)))
+        bool specular = material_is_specular(&o->material);
+        if (!o->visible || (filter == BOUNDS_SPECULAR && !specular) || (filter == BOUNDS_DIFFUSE && specular))
             continue;
         vec3 a, b;
         object_world_bounds(o, &a, &b);
@@ -297,7 +300,7 @@ bool scene_specular_in_view(const struct scene *scene, mat4 view_proj)
 
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 {
-    if (bounds_of_visible(scene, false, lo, hi))
+    if (bounds_of_visible(scene, BOUNDS_ALL, lo, hi))
         return true;
     *lo = *hi = vec3_make(0, 0, 0);
     return false;
@@ -305,7 +308,12 @@ bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 
 bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 {
-    return bounds_of_visible(scene, true, lo, hi);
+    return bounds_of_visible(scene, BOUNDS_SPECULAR, lo, hi);
+}
+
+bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+{
+    return bounds_of_visible(scene, BOUNDS_DIFFUSE, lo, hi);
 }
 
 int scene_light_index(const struct scene *scene, const struct light *light)

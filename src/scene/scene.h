@@ -287,6 +287,8 @@ bool object_in_view(const struct object *o, mat4 view_proj);
 /* Bounds of the visible glass, water and mirrors only; false (and lo, hi
  * left as they were) when there are none. */
 bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Bounds of the visible objects that are not glass, water or mirrors. */
+bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
 /* Position of `light` in scene->lights, or -1 when it was never added. */
 int scene_light_index(const struct scene *scene, const struct light *light);
 /* Sum of object versions and the scene version: changes when any caster moves. */
