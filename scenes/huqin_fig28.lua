@@ -1,11 +1,18 @@
 -- Hu & Qin Fig. 28: caustics under a rippling water surface, seen from
 -- under water: one interface (the light refracts into the water and stays
--- there), caustics on the floor, a wall and the dolphins. --set k=0 --set
--- texture=512: the photon pass's own defaults since issue 8 (the floor's caustic
--- lines show; the k = 3 filter at 192² blurs them into blotches).
+-- there), caustics on the floor, a wall and the dolphins. The photon pass
+-- at its own defaults (since issue 8; the paper's k = 3 filter at 192^2,
+-- --set k=3 --set texture=192, blurs the floor's caustic lines into
+-- blotches). --set technique=volumes: Sandberg & Falemo's caustic volumes
+-- on the same water; --set view=floor: straight down at a patch of the
+-- floor from under water (the caustic lines without the surface or the
+-- dolphins in front; tests/lua/photon_test.lua).
 local c = require "caustica"
+local technique = c.param("technique", "photons")
+local floor_view = c.param("view", "figure") == "floor"
 local scene = c.scene {
-  camera = c.camera { eye = {0.2, -0.35, 1.3}, target = {-0.1, -0.7, -0.2}, fov = 55 },
+  camera = floor_view and c.camera { eye = {0.8, -0.3, 0.7}, target = {0.8, -1, 0.7}, up = {0, 0, -1}, ortho = { width = 0.8 } }
+           or c.camera { eye = {0.2, -0.35, 1.3}, target = {-0.1, -0.7, -0.2}, fov = 55 },
   environment = c.cubemap "assets/env/room",
   ambient = {0.02, 0.04, 0.05},
 }
@@ -20,8 +27,15 @@ local water = scene:add(c.water { size = 3, resolution = 96, depth = 1.0, attenu
                                   damping = 0.2, wave_speed = 0.5 })
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("photons", c.pass.photon_caustics { light = sun, buffer = 512, texture = c.param("texture", 192), k = c.param("k", 3), bias = 0.08 })
-g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance", specular = false })
+if technique == "volumes" then
+  g:add("caustics", c.pass.caustic_volumes { light = sun, water = water })
+elseif technique == "photons" then
+  g:add("caustics", c.pass.photon_caustics { light = sun, buffer = 512, texture = c.param("texture", 512), k = c.param("k", 0),
+                                             bias = 0.08 })
+else
+  error("technique: photons or volumes expected, got " .. tostring(technique))
+end
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance", specular = false })
 g:add("surface", c.pass.water_surface { water = water, color = "shade.color", depth = "shade.depth",
                                         position = "shade.position" })
 g:output("surface.color")
@@ -36,4 +50,9 @@ return {
     water:step(dt)
   end,
   frames = 120, fps = 30, size = {512, 512},
+  techniques = {
+    metric = "caustic",
+    { "photons", points = { { ["caustics.k"] = 3, ["caustics.texture"] = 192 } } },
+    { "volumes" },
+  },
 }

@@ -33,6 +33,12 @@ vec3 camera_forward() { return -vec3(u_view[0][2], u_view[1][2], u_view[2][2]); 
 // The unit direction in which the camera sees world point p: from the eye,
 // or the one direction every ray of an orthographic camera has.
 vec3 view_direction(vec3 p) { return camera_is_ortho() ? camera_forward() : normalize(p - u_camera_pos.xyz); }
+// How far the light from world point p travels to the camera: to the eye,
+// or to the image plane of an orthographic camera.
+float view_distance(vec3 p)
+{
+    return camera_is_ortho() ? max(dot(p - u_camera_pos.xyz, camera_forward()), 0.0) : length(p - u_camera_pos.xyz);
+}
 
 // Eye-space distance (along the view axis) of a window depth d in [0, 1].
 float view_depth(float d)

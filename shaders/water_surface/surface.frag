@@ -18,6 +18,7 @@ uniform vec3 u_absorption;
 uniform float u_depth;
 uniform float u_level;
 uniform int u_refract_mapping; // 0: the paper's virtual plane at the mean level; 1: the refracted ray
+uniform int u_eye_in_water;    // the camera under water: the path from the surface to it absorbs too
 
 // The scene image seen along a ray from P in direction d down to the
 // virtual plane, with the absorption over the distance to what is there.
@@ -56,6 +57,8 @@ void main()
         vec3 t = refract(v, nn, u_ior);
         vec3 reflected = through_water(v_world, reflect(v, nn));
         color = dot(t, t) > 0.0 ? (1.0 - f) * environment_radiance(normalize(t)) + f * reflected : reflected;
+        if (u_eye_in_water == 1)
+            color *= exp(-u_absorption * view_distance(v_world));
     }
     o_color = vec4(color, 1.0);
 }

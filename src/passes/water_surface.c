@@ -6,10 +6,12 @@
  * mapping = "refract", along the refracted ray down to the pool floor; the
  * environment is reflected with Fresnel weights. Seen from below, total internal
  * reflection shows the pool contents mirrored instead (never a NaN). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "graph/bindings.h"
+#include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
@@ -84,12 +86,22 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
     gl.Viewport(0, 0, f->width, f->height);
-    /* the scene as it is, then the surface over it */
+    /* the scene as it is (absorbed on its way when the camera is under
+     * water: inside the pool's box, below the mean level), then the
+     * surface over it */
+    vec3 eye = f->snapshot->eye, at = water->position;
+    const struct water *w = water->water;
+    bool under = eye.y < at.y && eye.y > at.y - w->depth && fabsf(eye.x - at.x) < 0.5f * w->size_x &&
+                 fabsf(eye.z - at.z) < 0.5f * w->size_z;
     struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert",
+                        under ? "water_surface/underwater.frag" : "common/copy.frag", NULL, &copy, err))
         return false;
     gl.UseProgram(copy->id);
     gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    gl.BindTextureUnit(SURFACE_UNIT_POSITION, in_pos->texture.id);
+    vec3 c = water->material.absorption;
+    gl.ProgramUniform3f(copy->id, gl_program_uniform(copy, "u_absorption"), c.x, c.y, c.z);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "water_surface/surface.vert", "water_surface/surface.frag", NULL, &prog, err))
@@ -101,6 +113,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),
                         pass_choice(p, SURFACE_MAPPING) == SURFACE_MAPPING_REFRACT);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_eye_in_water"), under);
     renderer_draw_object(r, f->scene, prog, water);
     return true;
 }
