@@ -9,6 +9,7 @@
 // the two transmittances and Beer-Lambert absorption.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
+#include "common/surface_normal.glsl"
 #include "impostors/impostors.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_photon;
@@ -120,7 +121,7 @@ void main()
                 break;
         }
         vec3 p2 = p1 + dT * t1;
-        vec3 n2 = texture(u_back_normal, project(p2).xy).xyz;
+        vec3 n2 = surface_normal(u_back_normal, project(p2).xy);
         if (dot(n2, n2) < 0.5) {
             nothing();
             return;

@@ -4,6 +4,7 @@
 // through two interfaces, per fragment of the visible front surface.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
+#include "common/surface_normal.glsl"
 #ifdef NEARBY
 #ifdef DISTANCE_MAP
 #include "distance_map/lookup.glsl"
@@ -263,9 +264,9 @@ void main()
 #endif
     vec3 p2 = p1 + dT * t1;
     vec2 uv2 = project(p2).xy;
-    vec3 n2 = back ? texture(u_back_normal, uv2).xyz : texture(u_front_normal, uv2).xyz;
+    vec3 n2 = back ? surface_normal(u_back_normal, uv2) : surface_normal(u_front_normal, uv2);
     if (dot(n2, n2) < 0.5)
-        n2 = back ? texture(u_back_normal, uv1).xyz : -n1; // outside the buffer: the nearest guess
+        n2 = back ? surface_normal(u_back_normal, uv1) : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
     // Leaving: the normal facing against the ray is -n2 (n2 is outward).
     // Beyond the paper's two interfaces (issue 8): at a total internal
@@ -311,7 +312,7 @@ void main()
         if (!march_exit(start, dir, u_reach, d, d_inside, use_back))
             break; // still inside after the whole reach: leaves along the reflection below
         vec2 q = project(start + d_inside * dir).xy;
-        vec3 nn = use_back ? texture(u_back_normal, q).xyz : texture(u_front_normal, q).xyz;
+        vec3 nn = use_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);
         if (dot(nn, nn) < 0.5)
             break;
         pos = start + d * dir;
