@@ -9,6 +9,14 @@
 layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
 uniform float u_scene_extent; // the longest a ray is marched (the scene's bounding diameter)
 uniform int u_scene_steps;
+// > 0: a hit on a surface the camera sees more obliquely than this (its
+// depth changing by more than u_scene_grazing pixel widths per pixel) is
+// not taken when the ray looks at it from elsewhere: a few pixels of it
+// stand for all the ray sees there, and their neighbours' colours leak in
+// (a box's side seen through a lens came out as its lit front; the
+// refraction pass has its distance map to ask instead; issue 8). 0: every
+// hit is taken.
+uniform float u_scene_grazing = 0.0;
 
 // Eye depth of world point p, and its pixel (false: outside the image or
 // behind the camera).
@@ -81,15 +89,35 @@ bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
             // A ray passing behind an occluder's edge stays deep behind
             // it (two steps' leeway once accepted those: the wall beside
             // a box seen through a lens came out as the box).
+            // Per axis the smaller of the two one-sided differences: on a
+            // surface seen at a grazing angle both are large, at an
+            // occluder's edge only the one across the edge is (taking it
+            // accepted a ray point on a box's hidden side as the lit front
+            // face next to it: issue 8's IOR-1.5 sphere in the room).
             float here = texelFetch(u_scene_depth, px, 0).r, slope = 0.0;
-            for (int k = 0; k < 4; k++) {
-                ivec2 q = clamp(px + ivec2(k == 0 ? 1 : k == 1 ? -1 : 0, k == 2 ? 1 : k == 3 ? -1 : 0), ivec2(0),
-                                ivec2(u_viewport.xy) - 1);
-                float dq = texelFetch(u_scene_depth, q, 0).r;
-                if (dq < 1.0 && here < 1.0)
-                    slope = max(slope, abs(view_depth(dq) - view_depth(here)));
+            for (int axis = 0; axis < 2; axis++) {
+                float smooth_side = 1e30;
+                for (int side = -1; side <= 1; side += 2) {
+                    ivec2 q = clamp(px + (axis == 0 ? ivec2(side, 0) : ivec2(0, side)), ivec2(0), ivec2(u_viewport.xy) - 1);
+                    float dq = texelFetch(u_scene_depth, q, 0).r;
+                    if (dq < 1.0 && here < 1.0)
+                        smooth_side = min(smooth_side, abs(view_depth(dq) - view_depth(here)));
+                }
+                if (smooth_side < 1e30)
+                    slope = max(slope, smooth_side);
             }
             if (bb < 2.0 * slope + 0.05 * step + 1e-3 * t) {
+                if (u_scene_grazing > 0.0) {
+                    float seen = view_depth(here);
+                    float pixel = camera_is_ortho() ? 2.0 / (u_proj[1][1] * u_viewport.y)
+                                                    : 2.0 * seen / (u_proj[1][1] * u_viewport.y);
+                    // ... unless the ray looks at it as the camera does
+                    // (within 5 degrees; an IOR-1.0 object: then the image
+                    // is exactly right)
+                    vec3 camera_dir = view_direction(o + dir * b);
+                    if (slope > u_scene_grazing * pixel && dot(normalize(dir), camera_dir) < 0.9962)
+                        return false;
+                }
                 hit_px = px;
                 t_hit = b;
                 return true;

@@ -373,6 +373,10 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.BindTextureUnit(REFRACTION_UNIT_BEHIND, s->behind_color.id);
         gl.BindTextureUnit(REFRACTION_UNIT_INPUT_DEPTH, in_depth->texture.id);
         layers_bind_scene_trace(prog, f->scene);
+        /* a surface the camera sees at more than about 63 degrees (its depth
+         * changing by two pixel widths a pixel) is asked of the distance map
+         * when the ray looks at it from elsewhere (scene_trace.glsl) */
+        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_grazing"), 2.0f);
     } else if (nearby && s->impostors.count > 0) {
         gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
         gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);

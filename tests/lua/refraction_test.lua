@@ -181,16 +181,18 @@ t.case("an IOR 1.0 sphere vanishes in a room: the image behind it, whatever shad
 end)
 
 t.case("an IOR 1.5 sphere in the room against the reference (its caustics left out)", function()
-  -- Inside the silhouette, against 200k x 16 reference photons: 0.423 with
-  -- the impostors and the paper's p_e decision (rings of wrong exits
-  -- across the outer half); 0.285 at the defaults (both exits tried,
-  -- secant iteration from the view-ray thickness, the scene lookup); 0.272
-  -- converged (iterations = 8). The rest is the two-interface model's: no
-  -- internal reflections at the rim.
+  -- Inside the silhouette, against 200k x 16 reference photons (their own
+  -- noise about 0.09): 0.423 with the impostors and the paper's p_e
+  -- decision (rings of wrong exits across the outer half); 0.285 with both
+  -- exits tried, the secant iteration and the scene lookup; 0.224 once the
+  -- screen-space hit test no longer takes an occluder's edge for a slope;
+  -- 0.188 once a surface the camera sees edge-on (a box's side, that the
+  -- ray through the ball sees face-on) is asked of the distance map.
+  -- Issue 8 asked for half of 0.423.
   local set = { ior = 1.5, shadow = true }
   local ref = t.reference(ROOM, { set = set, photons = 200000, spp = 16, caustics = false })
   local e = inside_silhouette(t.render(ROOM, { set = set }), ref)
-  t.expect(e < 0.32, string.format("rel_rmse inside the silhouette %.4f", e))
+  t.expect(e < 0.5 * 0.423, string.format("rel_rmse inside the silhouette %.4f", e))
 end)
 
 t.case("no rings of wrong exits: the pass's exit directions on a sphere against the exact trace", function()
