@@ -150,7 +150,7 @@ void main()
     vec2 huv = vec2(0.0);
     for (int k = 0; k < u_impostor_count; k++) {
         vec2 kuv;
-        float t = impostor_hit(k, origin, dir, u_iterations, kuv);
+        float t = impostor_march(k, origin, dir, 32, u_iterations, kuv);
         if (t > 0.0 && t < best) {
             best = t;
             hit = k;
