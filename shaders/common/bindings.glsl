@@ -58,6 +58,7 @@
 #define PHOTON_IMAGE_CAUSTICS 1
 #define PHOTON_UNIT_CAUSTICS 7
 #define PHOTON_SSBO_WINDOWS 6                // per receiver: the box its photons landed in
+#define PHOTON_SSBO_COVER 7                  // the light view's texels the specular objects cover
 
 // caustic_volumes
 #define VOLUMES_SSBO_POSITIONS 0

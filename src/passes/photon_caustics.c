@@ -38,6 +38,8 @@ struct photon_state {
     mat4 light_view_proj, light_inverse;
     float fixed_point; /* flux -> integer count scale */
     GLuint windows;    /* SSBO: per receiver, the box its photons landed in (window.glsl) */
+    GLuint cover;      /* SSBO: the light-view texels the specular objects cover (cover.comp) */
+    float coverage;    /* the narrowed light view's share of the first one (0: not narrowed; the report) */
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -126,6 +128,8 @@ static void photon_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->map_fb);
     if (s->windows && gl_api_ready())
         gl.DeleteBuffers(1, &s->windows);
+    if (s->cover && gl_api_ready())
+        gl.DeleteBuffers(1, &s->cover);
     free(s);
     p->state = NULL;
 }
@@ -189,6 +193,91 @@ static void bind_impostors(struct photon_state *s, const struct gl_program *prog
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
 }
 
+/* Front and back surfaces of the specular objects as the light sees them
+ * (§2.1 in the light's view): normals, depths and materials. */
+static bool draw_light_surfaces(struct photon_state *s, struct renderer *r, const struct scene *scene, int buffer,
+                                struct error *err)
+{
+    struct gl_program *surf;
+    if (!gl_program_get(&r->programs, "photon_caustics/light_surfaces.vert", "photon_caustics/light_surfaces.frag", NULL,
+                        &surf, err))
+        return false;
+    gl.ProgramUniformMatrix4fv(surf->id, gl_program_uniform(surf, "u_light_view_proj"), 1, GL_FALSE,
+                               s->light_view_proj.m);
+    const float zero[4] = {0, 0, 0, 0};
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Enable(GL_CULL_FACE);
+    gl.Viewport(0, 0, buffer, buffer);
+    for (int side = 0; side < 2; side++) {
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->light_fb[side].id);
+        gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 0, zero);
+        gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 1, zero);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
+        renderer_draw_objects(r, scene, surf, DRAW_SPECULAR);
+    }
+    gl.Disable(GL_CULL_FACE);
+    gl.Disable(GL_DEPTH_TEST);
+    return true;
+}
+
+/* Issue 8's "photon buffer that adapts to the refractors' projected area":
+ * the light view first covers the specular objects' bounding sphere; the
+ * texels they cover there are boxed (cover.comp, read back: four numbers),
+ * and where the box leaves a tenth of the buffer or more unused along an
+ * axis the view is narrowed to it (grown by two texels) and the surfaces are
+ * drawn again. A lone sphere fills its square already; a glass ball with a
+ * mirror teapot beside it, or a long dragon, put most photons off the glass
+ * before. The photons' flux comes from the narrowed view's own texel
+ * footprints (trace.frag), so the energy is unchanged. */
+static bool fit_light_view(struct photon_state *s, struct renderer *r, const struct scene *scene, int buffer, mat4 view,
+                           mat4 *proj, struct error *err)
+{
+    if (!s->cover) {
+        gl.CreateBuffers(1, &s->cover);
+        gl.NamedBufferStorage(s->cover, 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+    }
+    struct gl_program *cover;
+    if (!gl_program_get_compute(&r->programs, "photon_caustics/cover.comp", NULL, NULL, &cover, err))
+        return false;
+    GLuint box[4] = {(GLuint)buffer, (GLuint)buffer, 0u, 0u};
+    gl.NamedBufferSubData(s->cover, 0, sizeof box, box);
+    gl.UseProgram(cover->id);
+    gl.BindTextureUnit(PHOTON_UNIT_FRONT_DEPTH, s->light_depth[0].id);
+    gl.BindTextureUnit(PHOTON_UNIT_BACK_DEPTH, s->light_depth[1].id);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_COVER, s->cover);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.GetNamedBufferSubData(s->cover, 0, sizeof box, box);
+    s->coverage = 0.0f;
+    if (box[0] > box[2] || box[1] > box[3])
+        return true; /* nothing specular in view of the light */
+    float lo[2], hi[2];
+    bool narrow = false;
+    for (int a = 0; a < 2; a++) {
+        /* the box in normalized device coordinates, two texels wider each way */
+        float t0 = fmaxf((float)box[a] - 2.0f, 0.0f), t1 = fminf((float)box[a + 2] + 3.0f, (float)buffer);
+        lo[a] = 2.0f * t0 / (float)buffer - 1.0f;
+        hi[a] = 2.0f * t1 / (float)buffer - 1.0f;
+        narrow = narrow || (t1 - t0) < 0.9f * (float)buffer;
+    }
+    if (!narrow)
+        return true;
+    s->coverage = ((hi[0] - lo[0]) * (hi[1] - lo[1])) / 4.0f;
+    /* x' = (2 x - (hi + lo) w) / (hi - lo) on clip coordinates: the box to
+     * [-1, 1], for a perspective view as for an orthographic one */
+    mat4 m = mat4_identity();
+    m.m[0] = 2.0f / (hi[0] - lo[0]);
+    m.m[12] = -(hi[0] + lo[0]) / (hi[0] - lo[0]);
+    m.m[5] = 2.0f / (hi[1] - lo[1]);
+    m.m[13] = -(hi[1] + lo[1]) / (hi[1] - lo[1]);
+    /* m acts on clip space: its last column adds w times the offset */
+    *proj = mat4_mul(m, *proj);
+    s->light_view_proj = mat4_mul(*proj, view);
+    mat4_inverse(s->light_view_proj, &s->light_inverse);
+    return draw_light_surfaces(s, r, scene, buffer, err);
+}
+
 static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct photon_state *s = p->state;
@@ -210,6 +299,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
              reuse ? "the photon buffer and caustic textures reused (the light and the geometry did not change since "
                      "the last frame); the caustic mapping from the camera runs every frame"
                    : "photons traced from the light into new caustic textures");
+    size_t used = strlen(p->report);
     if (!reuse) {
         if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
@@ -233,29 +323,13 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         s->light_view_proj = mat4_mul(proj, view);
         mat4_inverse(s->light_view_proj, &s->light_inverse);
 
-        /* Front and back surfaces of the refractors from the light (§2.1, in its view). */
-        struct gl_program *surf;
-        if (!gl_program_get(&r->programs, "photon_caustics/light_surfaces.vert", "photon_caustics/light_surfaces.frag",
-                            NULL, &surf, err))
+        /* Front and back surfaces of the refractors from the light (§2.1, in
+         * its view), the view then narrowed to the texels they cover. */
+        if (!draw_light_surfaces(s, r, f->scene, buffer, err) || !fit_light_view(s, r, f->scene, buffer, view, &proj, err))
             return false;
-        gl.ProgramUniformMatrix4fv(surf->id, gl_program_uniform(surf, "u_light_view_proj"), 1, GL_FALSE,
-                                   s->light_view_proj.m);
-        const float zero[4] = {0, 0, 0, 0};
-        gl.Enable(GL_DEPTH_TEST);
-        gl.Enable(GL_CULL_FACE);
-        gl.Viewport(0, 0, buffer, buffer);
-        for (int side = 0; side < 2; side++) {
-            gl.BindFramebuffer(GL_FRAMEBUFFER, s->light_fb[side].id);
-            gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 0, zero);
-            gl.ClearNamedFramebufferfv(s->light_fb[side].id, GL_COLOR, 1, zero);
-            gl.Clear(GL_DEPTH_BUFFER_BIT);
-            gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
-            renderer_draw_objects(r, f->scene, surf, DRAW_SPECULAR);
-        }
-        gl.Disable(GL_CULL_FACE);
-        gl.Disable(GL_DEPTH_TEST);
 
         /* §3.1: the photon buffer. One fullscreen draw traces every photon. */
+        const float zero[4] = {0, 0, 0, 0};
         struct gl_program *trace;
         if (!gl_program_get(&r->programs, "common/fullscreen.vert", "photon_caustics/trace.frag", NULL, &trace, err))
             return false;
@@ -342,6 +416,9 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         s->valid = true;
+        if (s->coverage > 0.0f && used + 8 < sizeof p->report)
+            snprintf(p->report + used, sizeof p->report - used, " (the light's view narrowed to the specular objects' "
+                     "box, %.0f%% of the area it first had)", 100.0 * s->coverage);
         s->light_version = light->version;
         s->geometry_version = gv;
     }
