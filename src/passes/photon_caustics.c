@@ -350,6 +350,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
         gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
         gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
+        gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_reach"), 2.0f * orad);
         /* each photon reads the material it meets from the light-space
          * buffers (mirror or index of refraction, tint or absorption, water's
          * one interface): several specular objects may share the view */

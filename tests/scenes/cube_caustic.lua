@@ -2,11 +2,16 @@
 -- reflected off the outside at incidences past 53 degrees) or 2.42 (total
 -- internal reflection inside) tilted under a directional light, seen from
 -- above. --set ior=, caustics=true|false (photon_caustics or none),
--- mask=true (the cube in white on black, to leave it out of comparisons)
+-- mask=true (the cube in white on black, to leave it out of comparisons),
+-- view=top (an orthographic camera 5 wide straight down at the floor, the
+-- output photon_caustics' irradiance: the floor's caustic light, the cube
+-- not drawn), buffer=
 local c = require "caustica"
 local mask = c.param("mask", false)
 local scene = c.scene {
-  camera = c.camera { eye = {0.0, 3.0, 1.6}, target = {0, 0, -0.2}, fov = 50 },
+  camera = c.param("view", "") == "top"
+           and c.camera { eye = {0, 3, 0}, target = {0, 0, 0}, up = {0, 0, -1}, ortho = { width = 5 } }
+           or c.camera { eye = {0.0, 3.0, 1.6}, target = {0, 0, -0.2}, fov = 50 },
   background = {0, 0, 0},
   ambient = {0, 0, 0},
 }
@@ -22,8 +27,8 @@ local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 local caustics = c.param("caustics", true) and not mask
 if caustics then
-  g:add("photons", c.pass.photon_caustics { light = sun })
+  g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256) })
 end
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = caustics and "photons.irradiance" or nil, specular = false })
-g:output("shade.color")
+g:output(caustics and c.param("view", "") == "top" and "photons.irradiance" or "shade.color")
 return { scene = scene, graph = g, size = {128, 128} }
