@@ -66,7 +66,7 @@ local function fail(message, level)
 end
 
 --- Renders the ground truth (the CPU reference) of a scene script.
---- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius,
+--- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius, antialias,
 --- caustics = false (less the caustic part: what refraction without a caustics pass should match)
 function t.reference(script, opts)
   local ok, img, stats = pcall(image.reference, script, opts)

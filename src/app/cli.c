@@ -20,15 +20,15 @@ static const char usage_text[] =
     "  caustica info SCENE.lua [--size WxH] [--no-render] [--set k=v ...]\n"
     "  caustica reference SCENE.lua -o OUT.pfm|OUT.hdr [--frame N] [--size WxH] [--photons N] [--spp N]\n"
     "                     [--time-budget S] [--report] [--aov tir|exit] [--seed S] [--radius R]\n"
-    "                     [--set k=v ...]\n"
+    "                     [--antialias] [--set k=v ...]   (--antialias: pixel means, not pixel centres)\n"
     "  caustica compare A B [--mask M]\n"
     "  caustica convert IN.pfm|IN.hdr OUT.png [--exposure E]\n"
     "  caustica help [passes | PASS] [--markdown]\n"
     "  caustica bench SCENE.lua [--sweep key=v1,v2,...]... [--frames N] [--frame F] [--size WxH] [-o DIR]\n"
-    "                 [--ref-photons N] [--ref-spp N] [--error-frames K] [--set k=v ...]\n"
+    "                 [--ref-photons N] [--ref-spp N] [--ref-antialias] [--error-frames K] [--set k=v ...]\n"
     "                 (--sweep technique=all|NAME,...: every technique the scene's `techniques` table declares)\n"
     "  caustica choose SCENE.lua --error E | --time MS [--size WxH] [-o DIR] [--ref-photons N] [--ref-spp N]\n"
-    "                  [--frames N] [--error-frames K] [--cached] [--set k=v ...]\n"
+    "                  [--ref-antialias] [--frames N] [--error-frames K] [--cached] [--set k=v ...]\n"
     "                  (reads the sweep from DIR's bench cache, or runs it; DIR: bench; --cached: never runs it)\n"
     "options for every verb: --backend osmesa|egl, --trusted (no sandbox), --verbose,\n"
     "  --script-timeout S (per call into the script, default 30, 0 = none),\n"
@@ -189,6 +189,8 @@ bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli)
             else
                 return usage_error("--aov needs tir or exit (reference) or pass.output (render, record to .exr), "
                                    "at most 8, got '%s'", next);
+        } else if (strcmp(a, "--antialias") == 0 || strcmp(a, "--ref-antialias") == 0) {
+            cli->antialias = true;
         } else if (strcmp(a, "--report") == 0) {
             /* `test --report out.html` names a page; `reference --report` is a switch */
             size_t n = next ? strlen(next) : 0;

@@ -33,6 +33,7 @@ struct cli {
     bool timings, update_refs, no_render;
     bool cached_only;        /* --cached (choose): read the bench cache only, never run the sweep */
     bool report;             /* --report: the reference's noise estimate per iteration */
+    bool antialias;          /* --antialias (reference), --ref-antialias (bench, choose): pixel means */
     const char *report_html; /* --report OUT.html (test): the HTML report */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */
     const char *filter;

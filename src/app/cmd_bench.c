@@ -119,6 +119,8 @@ static bool truth_key(const char *script, const struct lua_params *params, int f
     k = hash_fnv1a(k, &ro->photons, sizeof ro->photons);
     k = hash_fnv1a(k, &ro->iterations, sizeof ro->iterations);
     k = hash_fnv1a(k, &ro->seed, sizeof ro->seed);
+    if (ro->antialias) /* only then: the point-sampled truths keep their keys */
+        k = hash_fnv1a(k, "antialias", 9);
     *key = k;
     return true;
 }
@@ -147,6 +149,8 @@ bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, s
     k = hash_fnv1a(k, ints, sizeof ints);
     for (int i = 0; i < cli->nsweeps; i++)
         k = hash_fnv1a(k, cli->sweeps[i], strlen(cli->sweeps[i]) + 1);
+    if (cli->antialias)
+        k = hash_fnv1a(k, "antialias", 9);
     snprintf(out, size, "%s/cache/sweep_%016llx.csv", dir, (unsigned long long)k);
     return true;
 }
@@ -527,6 +531,7 @@ int cmd_bench(struct app *app, struct cli *cli)
     truth_options.photons = cli->ref_photons > 0 ? cli->ref_photons : 100000;
     truth_options.iterations = 16 * level_max;
     truth_options.progress = true;
+    truth_options.antialias = cli->antialias;
 
     char pass_names[MAX_PASSES][PASS_NAME_MAX];
     int npasses = -1, ntruths = 0, nsets = 0;

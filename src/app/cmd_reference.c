@@ -46,6 +46,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.progress = true;
     o.report = cli->report;
     o.aov = cli->aov;
+    o.antialias = cli->antialias;
     struct image img = {0};
     struct ref_stats st;
     bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);

@@ -108,7 +108,8 @@ int limage_render(lua_State *L)
 }
 
 /* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget, aov = "tir" | "exit",
- *                     caustics = false (the image less its caustic part)})
+ *                     caustics = false (the image less its caustic part),
+ *                     antialias = true (each pixel's mean, not its centre)})
  * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
 int limage_reference(lua_State *L)
 {
@@ -135,6 +136,11 @@ int limage_reference(lua_State *L)
             static const char *const aovs[] = {"none", "tir", "exit", NULL};
             ro.aov = (enum ref_aov)luaL_checkoption(L, -1, NULL, aovs);
         }
+        if (lua_getfield(L, 2, "antialias") != LUA_TNIL) {
+            luaL_argexpected(L, lua_isboolean(L, -1), 2, "antialias = true or false");
+            ro.antialias = lua_toboolean(L, -1);
+        }
+        lua_pop(L, 1);
         if (lua_getfield(L, 2, "caustics") != LUA_TNIL) {
             luaL_argexpected(L, lua_isboolean(L, -1), 2, "caustics = true or false");
             request.without_caustics = !lua_toboolean(L, -1);

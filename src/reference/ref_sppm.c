@@ -336,8 +336,17 @@ static void trace_eye(struct job *j, int x, int y)
     struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 1u,
                                       (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
     dvec3 origin, dir;
-    /* Pixel centres, as the rasterizer samples: a point-sampled reference. */
-    ref_scene_camera_ray(rs, x + 0.5, y + 0.5, j->o->width, j->o->height, &origin, &dir);
+    /* Pixel centres, as the rasterizer samples: a point-sampled reference;
+     * with `antialias` a point spread over the pixel each iteration, so that
+     * the iterations average the pixel's area (a caustic whose focus is a few
+     * pixels wide is then the light falling in each pixel, not at its
+     * centre: issue 8's glass_sphere). */
+    double sx = 0.5, sy = 0.5;
+    if (j->o->antialias) {
+        sx = ref_rng_uniform(&rng);
+        sy = ref_rng_uniform(&rng);
+    }
+    ref_scene_camera_ray(rs, x + sx, y + sy, j->o->width, j->o->height, &origin, &dir);
     struct media media = *j->camera_media;
     /* The ray starts on the near plane (what the rasterizer clips), but the
      * camera sits at the eye: the medium around it absorbs from there. */

@@ -32,6 +32,9 @@ struct ref_options {
     bool report;         /* print the noise estimate after every iteration on stderr */
     int threads;         /* 0: all cores */
     enum ref_aov aov;    /* REF_AOV_NONE: the image */
+    bool antialias;      /* each iteration's camera ray through a random point of its pixel (the pixel's
+                          * mean, SPPM's stochastic visible points), not its centre (what the
+                          * rasterizer samples) */
 };
 
 struct ref_stats {

@@ -304,3 +304,31 @@ t.case("volume caustics: a glass ball focuses a bright cone into the fog", funct
   local focus, fog = glass:stats(28, 8, 37, 16).max, plain:stats(28, 8, 37, 16).max
   t.expect(focus > 2 * fog, string.format("brightest near the focus %.4g, plain fog %.4g", focus, fog))
 end)
+
+t.case("antialias: each pixel's mean instead of its centre (issue 8)", function()
+  -- The emissive white cube of tests/scenes/cube_caustic.lua (mask = true)
+  -- on black: at pixel centres every pixel is the cube's emission or black;
+  -- spread over the pixels (antialias = true, SPPM's stochastic visible
+  -- points) the silhouette's pixels take the share of them the cube covers,
+  -- and the image keeps its mean.
+  local opts = { set = { mask = true }, size = { 64, 64 }, photons = 0, spp = 64 }
+  local centre = t.reference("tests/scenes/cube_caustic.lua", opts)
+  opts.antialias = true
+  local mean = t.reference("tests/scenes/cube_caustic.lua", opts)
+  local function partial(img)
+    local n = 0
+    for y = 0, 63 do
+      for x = 0, 63 do
+        local v = img:pixel(x, y)
+        if v > 0.05 and v < 0.95 then n = n + 1 end
+      end
+    end
+    return n
+  end
+  local pc, pm = partial(centre), partial(mean)
+  t.expect(pc == 0, "at pixel centres no pixel is part cube: " .. pc)
+  t.expect(pm > 30, "spread over the pixels the silhouette's are: " .. pm)
+  local a, b = centre:stats().mean_gray, mean:stats().mean_gray
+  t.expect(math.abs(a / b - 1) < 0.03, string.format("the mean: %.4f at centres, %.4f spread", a, b))
+  t.expect_error(function() t.reference("tests/scenes/cube_caustic.lua", { antialias = 1 }) end, "antialias = true or false")
+end)
