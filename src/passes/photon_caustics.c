@@ -226,9 +226,9 @@ static bool draw_light_surfaces(struct photon_state *s, struct renderer *r, cons
  * texels they cover there are boxed (cover.comp, read back: four numbers),
  * and where the box leaves a tenth of the buffer or more unused along an
  * axis the view is narrowed to it (grown by two texels) and the surfaces are
- * drawn again. A lone sphere fills its square already; a glass ball with a
- * mirror teapot beside it, or a long dragon, put most photons off the glass
- * before. The photons' flux comes from the narrowed view's own texel
+ * drawn again. The bounding sphere is the one around the objects' box: a
+ * lone glass ball covered a third of the view, a ball with a mirror teapot
+ * beside it or a long dragon less. The photons' flux comes from the narrowed view's own texel
  * footprints (trace.frag), so the energy is unchanged. */
 static bool fit_light_view(struct photon_state *s, struct renderer *r, const struct scene *scene, int buffer, mat4 view,
                            mat4 *proj, struct error *err)
