@@ -26,6 +26,12 @@ float impostor_depth(int k, vec2 uv)
     return texture(u_impostor_depth, vec3(uv, float(k))).r;
 }
 
+// The depth stored at uv, 1e30 (no surface) outside the impostor.
+float impostor_depth_inside(int k, vec2 uv)
+{
+    return any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) ? 1e30 : impostor_depth(k, uv);
+}
+
 // Where does the ray (o, d) meet the object of impostor k? Hu & Qin §2.2.2:
 // the seed matters. Candidates are the ray's points at the rectangle
 // (P_rect) and at the front and back of the impostor's slab; a candidate
@@ -135,8 +141,7 @@ float impostor_march(int k, vec3 o, vec3 d, int steps, int iterations, out vec2 
     for (int i = 1; i <= steps; i++) {
         float t = mix(t0, t1, float(i) / float(steps));
         vec3 p = o + t * d;
-        vec2 cuv = impostor_uv(k, p);
-        float surface = any(lessThan(cuv, vec2(0.0))) || any(greaterThan(cuv, vec2(1.0))) ? 1e30 : impostor_depth(k, cuv);
+        float surface = impostor_depth_inside(k, impostor_uv(k, p));
         float z = dot(p - im.center.xyz, im.axis.xyz);
         if (surface < 1e29 && z >= surface) {
             // bisect between the last point in front and this one
@@ -144,8 +149,7 @@ float impostor_march(int k, vec3 o, vec3 d, int steps, int iterations, out vec2 
             for (int j = 0; j < 8; j++) {
                 float m = 0.5 * (a + b);
                 vec3 q = o + m * d;
-                vec2 muv = impostor_uv(k, q);
-                float sm = any(lessThan(muv, vec2(0.0))) || any(greaterThan(muv, vec2(1.0))) ? 1e30 : impostor_depth(k, muv);
+                float sm = impostor_depth_inside(k, impostor_uv(k, q));
                 if (sm < 1e29 && dot(q - im.center.xyz, im.axis.xyz) >= sm)
                     b = m;
                 else
@@ -163,8 +167,7 @@ float impostor_march(int k, vec3 o, vec3 d, int steps, int iterations, out vec2 
                         break;
                     float tn = (base + depth) / along;
                     vec2 un = impostor_uv(k, o + tn * d);
-                    if (tn <= 0.0 || any(lessThan(un, vec2(0.0))) || any(greaterThan(un, vec2(1.0))) ||
-                        impostor_depth(k, un) >= 1e29)
+                    if (tn <= 0.0 || impostor_depth_inside(k, un) >= 1e29)
                         break;
                     b = tn;
                     huv = un;

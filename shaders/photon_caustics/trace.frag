@@ -40,47 +40,10 @@ vec3 project(vec3 p)
     return c.xyz / max(c.w, 1e-6) * 0.5 + 0.5;
 }
 
-// After a total internal reflection the photon may head anywhere inside,
-// so its next interface is found by marching in the light's view (as the
-// refraction pass does in the camera's, refract.frag): a point is inside
-// while its depth lies between the front and the back depth at its texel;
-// the first step outside is bisected, and which bound it crossed says which
-// surface it leaves through. False: still inside after `reach`.
-bool light_march(vec3 o, vec3 d, float reach, out float t_exit, out float t_inside, out bool through_back)
-{
-    const int STEPS = 24;
-    float lo = 0.0, hi = -1.0;
-    through_back = true;
-    t_exit = t_inside = 0.0;
-    for (int i = 1; i <= STEPS; i++) {
-        float t = reach * float(i) / float(STEPS);
-        vec3 q = project(o + t * d);
-        bool off = any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)));
-        float zf = off ? 1.0 : texture(u_front_depth, q.xy).r, zb = off ? 1.0 : texture(u_back_depth, q.xy).r;
-        if (zf >= 1.0 || q.z < zf || q.z > zb) {
-            hi = t;
-            through_back = zf >= 1.0 || q.z > zb;
-            break;
-        }
-        lo = t;
-    }
-    if (hi < 0.0)
-        return false;
-    for (int k = 0; k < 8; k++) {
-        float t = 0.5 * (lo + hi);
-        vec3 q = project(o + t * d);
-        float zf = texture(u_front_depth, q.xy).r, zb = texture(u_back_depth, q.xy).r;
-        if (zf >= 1.0 || q.z < zf || q.z > zb) {
-            hi = t;
-            through_back = zf >= 1.0 || q.z > zb;
-        } else {
-            lo = t;
-        }
-    }
-    t_exit = hi;
-    t_inside = lo;
-    return true;
-}
+// After a total internal reflection the photon may head anywhere inside:
+// its next interface is found by marching in the light's view (as the
+// refraction pass does in the camera's).
+#include "common/depth_march.glsl"
 
 void nothing()
 {
@@ -207,7 +170,7 @@ void main()
             vec3 start = pos + d_in * (1e-3 * u_reach);
             float t_exit, t_inside;
             bool through_back;
-            if (!light_march(start, d_in, u_reach, t_exit, t_inside, through_back))
+            if (!depth_march(start, d_in, u_reach, t_exit, t_inside, through_back))
                 break;
             vec2 q = project(start + t_inside * d_in).xy;
             vec3 nn = through_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);

@@ -164,49 +164,9 @@ float exit_distance(vec3 p1, vec3 t1, bool back, int iterations, out bool conver
 
 // After a total internal reflection the ray may head anywhere inside, so
 // instead of Fig. 9's iteration (which assumes T1 heads away from the
-// camera) the next interface is found by marching: a point is inside
-// while its eye depth lies between the front and the back depth at its
-// pixel; the first step outside is bisected, and which bound it crossed
-// says which surface it leaves through (the side of the silhouette: the
-// back one). `reach`: how far to march (the refractors' extent).
-bool march_exit(vec3 o, vec3 d, float reach, out float t_exit, out float t_inside, out bool through_back)
-{
-    const int STEPS = 24;
-    float lo = 0.0, hi = -1.0;
-    through_back = true;
-    for (int i = 1; i <= STEPS; i++) {
-        float t = reach * float(i) / float(STEPS);
-        vec3 q = project(o + t * d);
-        bool off = any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0)));
-        float zf = off ? 1.0 : texture(u_front_depth, q.xy).r, zb = off ? 1.0 : texture(u_back_depth, q.xy).r;
-        float z = eye_depth(o + t * d);
-        bool outside = zf >= 1.0 || z < linear_depth(zf) || z > linear_depth(zb);
-        if (outside) {
-            hi = t;
-            through_back = zf >= 1.0 || z > linear_depth(zb);
-            break;
-        }
-        lo = t;
-    }
-    if (hi < 0.0)
-        return false;
-    for (int k = 0; k < 8; k++) {
-        float t = 0.5 * (lo + hi);
-        vec3 q = project(o + t * d);
-        float zf = texture(u_front_depth, q.xy).r, zb = texture(u_back_depth, q.xy).r;
-        float z = eye_depth(o + t * d);
-        bool outside = zf >= 1.0 || z < linear_depth(zf) || z > linear_depth(zb);
-        if (outside) {
-            hi = t;
-            through_back = zf >= 1.0 || z > linear_depth(zb);
-        } else {
-            lo = t;
-        }
-    }
-    t_exit = hi;
-    t_inside = lo; // the last point inside: where the surface's normal is read
-    return true;
-}
+// camera) the next interface is found by marching between the front and
+// back depths (the photons' march in the light's view is the same).
+#include "common/depth_march.glsl"
 #endif
 
 void main()
@@ -271,7 +231,7 @@ void main()
     // Leaving: the normal facing against the ray is -n2 (n2 is outward).
     // Beyond the paper's two interfaces (issue 8): at a total internal
     // reflection the ray reflects and the next interface is found by
-    // march_exit; where it can leave, the Fresnel-reflected part goes on
+    // depth_march; where it can leave, the Fresnel-reflected part goes on
     // inside the same way (a diamond's internal reflections: 17% at normal
     // incidence for n = 2.42), until MAX_INTERFACES interfaces or until
     // what remains is under 3%. Whatever is still inside then leaves along
@@ -309,7 +269,7 @@ void main()
         vec3 start = pos + dir * (1e-3 * u_reach);
         float d, d_inside;
         bool use_back;
-        if (!march_exit(start, dir, u_reach, d, d_inside, use_back))
+        if (!depth_march(start, dir, u_reach, d, d_inside, use_back))
             break; // still inside after the whole reach: leaves along the reflection below
         vec2 q = project(start + d_inside * dir).xy;
         vec3 nn = use_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);

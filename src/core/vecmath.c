@@ -143,6 +143,15 @@ mat4 mat4_ortho(float l, float r, float b, float t, float n, float f)
     return m;
 }
 
+mat4 mat4_cube_face_view(vec3 eye, int face)
+{
+    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    int f = face < 0 ? 0 : face > 5 ? 5 : face;
+    return mat4_look_at(eye, vec3_add(eye, vec3_make(dirs[f][0], dirs[f][1], dirs[f][2])),
+                        vec3_make(ups[f][0], ups[f][1], ups[f][2]));
+}
+
 mat4 mat4_look_at(vec3 eye, vec3 target, vec3 up)
 {
     vec3 f = vec3_normalize_or(vec3_sub(target, eye), vec3_make(0, 0, -1));

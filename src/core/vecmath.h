@@ -46,6 +46,10 @@ mat4 mat4_ortho(float l, float r, float b, float t, float n, float f);
 /* View matrix looking from eye at target; `up` is replaced when parallel
  * to the viewing direction so the matrix never degenerates. */
 mat4 mat4_look_at(vec3 eye, vec3 target, vec3 up);
+/* The view from `eye` through cube-map face `face` (0..5: +X -X +Y -Y +Z -Z,
+ * OpenGL's order) with that face's up vector: with a 90-degree square
+ * perspective, what the face of a cube map centred at `eye` holds. */
+mat4 mat4_cube_face_view(vec3 eye, int face);
 /* General inverse; returns identity (and false) for a singular matrix. */
 bool mat4_inverse(mat4 m, mat4 *out);
 mat4 mat4_transpose(mat4 m);

@@ -272,8 +272,6 @@ static bool draw_distance_impostor(struct beam_caustics_state *s, struct rendere
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "beam_caustics/distance.vert", "beam_caustics/distance.frag", NULL, &prog, err))
         return false;
-    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-5f, 1e-5f), range);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_range"), range);
@@ -288,9 +286,7 @@ static bool draw_distance_impostor(struct beam_caustics_state *s, struct rendere
         const float far_value[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         gl.ClearNamedFramebufferfv(s->distance_fb.id, GL_COLOR, 0, far_value);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
-        mat4 view = mat4_look_at(center, vec3_add(center, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
-                                 vec3_make(ups[face][0], ups[face][1], ups[face][2]));
-        mat4 vp = mat4_mul(proj, view);
+        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
         gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
         renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
     }

@@ -80,8 +80,6 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
     float reach = fmaxf(vec3_length(vec3_sub(hi, center)), vec3_length(vec3_sub(lo, center)));
     float far = fmaxf(fmaxf(extent, reach) * 2.0f, 1e-2f);
     mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(far * 1e-5f, 1e-4f), far);
-    static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
@@ -101,9 +99,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 0, black);
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 1, none);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
-        mat4 view = mat4_look_at(center, vec3_add(center, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
-                                 vec3_make(ups[face][0], ups[face][1], ups[face][2]));
-        mat4 vp = mat4_mul(proj, view);
+        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
         gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
         renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
     }

@@ -147,9 +147,6 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, out->matrix.m);
         renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
     } else {
-        /* Cube faces in the OpenGL order +X -X +Y -Y +Z -Z with their up vectors. */
-        static const float dirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
         vec3 pos = light_center(l);
         float range = vec3_length(vec3_sub(center, pos)) + radius;
         range = fmaxf(range, 1e-2f);
@@ -167,9 +164,7 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
             const float far_value[4] = {1.0f, 1.0f, 1.0f, 1.0f};
             gl.ClearNamedFramebufferfv(s->fb.id, GL_COLOR, 0, far_value);
             gl.Clear(GL_DEPTH_BUFFER_BIT);
-            mat4 view = mat4_look_at(pos, vec3_add(pos, vec3_make(dirs[face][0], dirs[face][1], dirs[face][2])),
-                                     vec3_make(ups[face][0], ups[face][1], ups[face][2]));
-            mat4 vp = mat4_mul(proj, view);
+            mat4 vp = mat4_mul(proj, mat4_cube_face_view(pos, face)); /* OpenGL's face order */
             gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, vp.m);
             renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
         }
