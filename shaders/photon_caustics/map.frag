@@ -14,6 +14,26 @@ layout(binding = PHOTON_UNIT_CAUSTICS) uniform sampler2DArray u_caustics;
 uniform int u_object_id;
 uniform int u_impostor_object[16];
 uniform float u_bias;
+uniform int u_pixel_samples = 1;
+
+// The caustic irradiance at receiver point p of impostor k; false where p
+// is outside the caustic texture or hidden from the refractor's side.
+bool caustic_at(int k, vec3 p, out vec3 irradiance)
+{
+    irradiance = vec3(0.0);
+    vec2 uv = impostor_uv(k, p);
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+        return false;
+    float here = dot(p - impostors[k].center.xyz, impostors[k].axis.xyz);
+    if (here > impostor_depth(k, uv) + u_bias)
+        return false; // hidden from the refractor's side
+    vec2 wuv = photon_window_uv(k, uv);
+    if (any(lessThan(wuv, vec2(0.0))) || any(greaterThan(wuv, vec2(1.0))))
+        return false; // outside where the photons landed
+    irradiance = texture(u_caustics, vec3(wuv, float(k))).rgb;
+    return true;
+}
+
 void main()
 {
     int k = -1;
@@ -23,14 +43,28 @@ void main()
     o_irradiance = vec4(0.0);
     if (k < 0)
         return;
-    vec2 uv = impostor_uv(k, v_world);
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
-        return;
-    float here = dot(v_world - impostors[k].center.xyz, impostors[k].axis.xyz);
-    if (here > impostor_depth(k, uv) + u_bias)
-        return; // hidden from the refractor's side
-    vec2 wuv = photon_window_uv(k, uv);
-    if (any(lessThan(wuv, vec2(0.0))) || any(greaterThan(wuv, vec2(1.0))))
-        return; // outside where the photons landed
-    o_irradiance = vec4(texture(u_caustics, vec3(wuv, float(k))).rgb, 1.0);
+    // The pixel's footprint on the receiver, in caustic texels: where the
+    // texels are smaller than the pixel a single lookup at its centre picks
+    // one texel of a caustic with sub-pixel detail (aliasing); the pixel's
+    // light is the mean over its footprint (issue 8), taken as a grid of up
+    // to u_pixel_samples^2 lookups across the parallelogram the screen
+    // derivatives span (a texture minification filter for a texture with
+    // no mip levels: the caustic is rebuilt every frame the light moves).
+    vec3 dx = dFdx(v_world), dy = dFdy(v_world);
+    vec2 texels = vec2(textureSize(u_caustics, 0).xy);
+    vec2 wuv = photon_window_uv(k, impostor_uv(k, v_world));
+    vec2 wdx = dFdx(wuv) * texels, wdy = dFdy(wuv) * texels;
+    int nx = clamp(int(ceil(length(wdx))), 1, max(u_pixel_samples, 1));
+    int ny = clamp(int(ceil(length(wdy))), 1, max(u_pixel_samples, 1));
+    vec3 sum = vec3(0.0);
+    bool any_hit = false;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            vec3 p = v_world + ((float(i) + 0.5) / float(nx) - 0.5) * dx + ((float(j) + 0.5) / float(ny) - 0.5) * dy;
+            vec3 e;
+            any_hit = caustic_at(k, p, e) || any_hit;
+            sum += e;
+        }
+    if (any_hit)
+        o_irradiance = vec4(sum / float(nx * ny), 1.0);
 }

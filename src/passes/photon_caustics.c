@@ -59,6 +59,7 @@ enum photon_caustics_param {
     PHOTON_MODE,
     PHOTON_FOOTPRINT,
     PHOTON_FIT,
+    PHOTON_PIXEL_SAMPLES,
 };
 
 static const struct pass_param_desc params[] = {
@@ -83,6 +84,9 @@ static const struct pass_param_desc params[] = {
     [PHOTON_FIT] = {.name = "fit", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "each receiver's caustic texture covers the box its photons landed in, not the whole receiver "
              "(more texels where the caustic is; README)"},
+    [PHOTON_PIXEL_SAMPLES] = {.name = "pixel_samples", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 16,
+     .help = "caustic lookups per pixel along each screen axis where its footprint spans more caustic texels "
+             "(the pixel's mean light; 1: its centre; README)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -444,6 +448,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.BindTextureUnit(PHOTON_UNIT_CAUSTICS, s->caustics.id);
     gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
     for (int k = 0; k < s->impostors.count; k++) {
         char name[48];
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);

@@ -81,7 +81,8 @@ elseif c.param("techniques", false) then
   g:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
   g:add("photons", c.pass.photon_caustics { light = sun, buffer = c.param("buffer", 256), texture = c.param("texture", 512),
                                              k = c.param("k", 0),
-                                             footprint = c.param("footprint", nil) and tonumber(c.param("footprint", nil)) })
+                                             footprint = c.param("footprint", nil) and tonumber(c.param("footprint", nil)),
+                                             pixel_samples = c.param("pixel_samples", nil) and tonumber(c.param("pixel_samples", nil)) })
   g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
   if c.param("output", "") == "irradiance" then g:output("photons.irradiance") end
 else
