@@ -54,6 +54,9 @@ void main()
     vec2 texels = vec2(textureSize(u_caustics, 0).xy);
     vec2 wuv = photon_window_uv(k, impostor_uv(k, v_world));
     vec2 wdx = dFdx(wuv) * texels, wdy = dFdy(wuv) * texels;
+    vec2 reach = 0.5 * (abs(wdx) + abs(wdy)) / texels;
+    if (any(lessThan(wuv + reach, vec2(0.0))) || any(greaterThan(wuv - reach, vec2(1.0))))
+        return; // the footprint is outside where the photons landed: no lookups
     int nx = clamp(int(ceil(length(wdx))), 1, max(u_pixel_samples, 1));
     int ny = clamp(int(ceil(length(wdy))), 1, max(u_pixel_samples, 1));
     vec3 sum = vec3(0.0);
