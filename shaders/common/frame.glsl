@@ -49,8 +49,42 @@ float view_depth(float d)
     return u_proj[3][2] / (z + u_proj[2][2]);
 }
 
-// Radiance arriving from direction `dir` (world space) from far away.
+// Radiance arriving from direction `dir` (world space) from far away: the
+// finest level (the reference's bilinear lookup within a face).
 vec3 environment_radiance(vec3 dir)
 {
-    return u_background.w > 0.5 ? texture(u_environment, dir).rgb : u_background.rgb;
+    return u_background.w > 0.5 ? textureLod(u_environment, dir, 0.0).rgb : u_background.rgb;
+}
+
+// The same, averaged over the directions one pixel's rays spread across
+// (gx, gy: the direction's change to the next pixel in x and y): the pixel's
+// mean instead of one texel picked at its centre, where a curved refractor
+// minifies the environment (issue 8: the isolated pixels along a sphere's
+// rim). A grid of up to 4 x 4 bilinear lookups along the two gradients,
+// as many along each as the texels it spans: a box filter over the pixel,
+// as anisotropic as the spread (a mip level would blur a rim's thin
+// squeeze across both axes). A spread wider than about a tenth of a radian
+// (a quad straddling a silhouette or a total internal reflection, where
+// the difference is not a pixel's spread) is clamped to it.
+vec3 environment_radiance_grad(vec3 dir, vec3 gx, vec3 gy)
+{
+    if (u_background.w <= 0.5)
+        return u_background.rgb;
+    const float MAX_SPREAD = 0.1;
+    // a neighbour that is a helper invocation off the surface may hold no
+    // direction at all (NaN): then no spread along that axis
+    gx = dot(gx, gx) < 1e6 ? gx : vec3(0.0);
+    gy = dot(gy, gy) < 1e6 ? gy : vec3(0.0);
+    gx *= min(1.0, MAX_SPREAD / max(length(gx), 1e-12));
+    gy *= min(1.0, MAX_SPREAD / max(length(gy), 1e-12));
+    float texel = 1.5708 / float(textureSize(u_environment, 0).x); // radians, at a face's centre
+    int nx = clamp(int(ceil(2.0 * length(gx) / texel)), 1, 4), ny = clamp(int(ceil(2.0 * length(gy) / texel)), 1, 4);
+    if (nx * ny == 1)
+        return textureLod(u_environment, dir, 0.0).rgb;
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            sum += textureLod(u_environment, dir + ((float(i) + 0.5) / float(nx) - 0.5) * gx +
+                                                  ((float(j) + 0.5) / float(ny) - 0.5) * gy, 0.0).rgb;
+    return sum / float(nx * ny);
 }

@@ -42,15 +42,16 @@ uniform float u_reach = 1.0; // the refractors' bounding diameter (marches insid
 uniform int u_internal = 4;   // interfaces a path meets from the first exit on (1: the paper's two)
 
 // What a ray from o in direction d sees: a nearby object in the distance
-// map, or its impostor (§2.2, corrected by Fig. 16), or else the environment.
+// map, or its impostor (§2.2, corrected by Fig. 16); false: the
+// environment (looked up at the end of main, filtered over the pixel).
 // `weight`: how much of the pixel this ray carries; a ray under a tenth
 // (a Fresnel reflection, the part reflected inside) is looked up in the
 // distance map alone with a third of the steps (on llvmpipe the searches
 // are most of the pass's time).
-vec3 trace_out(vec3 o, vec3 d, float weight)
+bool trace_nearby(vec3 o, vec3 d, float weight, out vec3 c)
 {
+    c = vec3(0.0);
 #ifdef NEARBY
-    vec3 c;
 #ifdef DISTANCE_MAP
     // What the camera sees where the ray goes (searched in the pass's own
     // depth of the diffuse objects): the input image there, unless the input
@@ -61,17 +62,46 @@ vec3 trace_out(vec3 o, vec3 d, float weight)
     if (weight >= 0.1 && scene_trace(o, d, px)) {
         float glass = texelFetch(u_front_depth, px, 0).r, seen = texelFetch(u_input_depth, px, 0).r;
         bool input_shows_glass = glass < 1.0 && abs(view_depth(seen) - view_depth(glass)) <= 1e-3 * view_depth(glass) + 1e-4;
-        return input_shows_glass ? texelFetch(u_behind, px, 0).rgb : texelFetch(u_scene, px, 0).rgb;
+        c = input_shows_glass ? texelFetch(u_behind, px, 0).rgb : texelFetch(u_scene, px, 0).rgb;
+        return true;
     }
 #endif
     if (distance_map_lookup(o, d, weight >= 0.1 ? u_distance_steps : max(u_distance_steps / 3, 4), c))
-        return c;
+        return true;
 #else
     if (impostor_lookup(o, d, u_correction, c))
-        return c;
+        return true;
 #endif
 #endif
-    return environment_radiance(d);
+    return false;
+}
+
+// The pixel's radiance: the nearby objects' found at once; the reflected
+// ray and the first ray leaving the refractor that see the environment are
+// kept here and looked up at the end of main, where the screen derivatives
+// of their directions are defined (uniform control flow); fainter ones
+// (the parts reflected inside) at once, unfiltered.
+vec3 pixel_radiance = vec3(0.0);
+vec3 reflected_env_dir = vec3(0.0), reflected_env_weight = vec3(0.0);
+vec3 exit_env_dir = vec3(0.0), exit_env_weight = vec3(0.0);
+bool exit_env_taken = false;
+
+// Adds what the ray from o along d sees, times w, to the pixel
+// (`importance`: trace_nearby's weight).
+void gather(vec3 o, vec3 d, vec3 w, float importance, bool reflected)
+{
+    vec3 c;
+    if (trace_nearby(o, d, importance, c))
+        pixel_radiance += w * c;
+    else if (reflected) {
+        reflected_env_dir = d;
+        reflected_env_weight = w;
+    } else if (!exit_env_taken) {
+        exit_env_dir = d;
+        exit_env_weight = w;
+        exit_env_taken = true;
+    } else
+        pixel_radiance += w * environment_radiance(d);
 }
 
 // world point -> (uv in [0,1], window depth in [0,1])
@@ -169,28 +199,26 @@ float exit_distance(vec3 p1, vec3 t1, bool back, int iterations, out bool conver
 #include "common/depth_march.glsl"
 #endif
 
-void main()
+// The paths through the refractor from the surface point v_world (view
+// direction v, normal n1 facing the camera), gathered into the pixel;
+// exit_dir: the direction the light first leaves along; exit_key: the
+// normal of the first interface inside and the number of total internal
+// reflections (where either jumps between neighbouring pixels the path
+// changed there: a cube's edge seen through its front face).
+void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout vec4 exit_key)
 {
-    vec3 n1 = normalize(v_normal);
-    vec3 v = view_direction(v_world);
-    if (dot(v, n1) > 0.0)
-        n1 = -n1;
-    o_tir = vec4(0.0);
-    o_exit = vec4(reflect(v, n1), 1.0);
-    if (u_material_kind == 2) { // a mirror: reflection alone, of nearby objects too
-        o_color = vec4(u_color * trace_out(v_world, reflect(v, n1), 1.0), 1.0);
-        return;
-    }
     float eta = 1.0 / u_ior;
     float f1 = fresnel_of(-dot(v, n1), eta, u_ideal);
     vec3 t1 = refract(v, n1, eta);
     bool entry_tir = dot(t1, t1) == 0.0;
-    vec3 reflected = trace_out(v_world, reflect(v, n1), entry_tir ? 1.0 : u_reflection == 1 ? f1 : 0.0);
     if (entry_tir) { // total internal reflection at the entry (an IOR below 1)
         o_tir = vec4(1.0, 1.0, 0.0, 1.0);
-        o_color = vec4(reflected, 1.0);
+        gather(v_world, reflect_dir, vec3(1.0), 1.0, true);
         return;
     }
+    if (u_reflection == 1)
+        gather(v_world, reflect_dir, vec3(f1), f1, true);
+    float transmitted_share = u_reflection == 1 ? 1.0 - f1 : 1.0;
     t1 = normalize(t1);
     vec3 p1 = v_world;
     vec2 uv1 = project(p1).xy;
@@ -228,6 +256,7 @@ void main()
     if (dot(n2, n2) < 0.5)
         n2 = back ? surface_normal(u_back_normal, uv1) : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
+    exit_key.xyz = n2;
     // Leaving: the normal facing against the ray is -n2 (n2 is outward).
     // Beyond the paper's two interfaces (issue 8): at a total internal
     // reflection the ray reflects and the next interface is found by
@@ -241,10 +270,10 @@ void main()
 #else
     int MAX_INTERFACES = clamp(u_internal, 1, 8);
 #endif
-    vec3 dir = t1, pos = p2, throughput = exp(-u_absorption * dT), transmitted = vec3(0.0);
+    vec3 dir = t1, pos = p2, throughput = transmitted_share * exp(-u_absorption * dT);
     int tir = 0, tir_first = 0;
     bool left = false;
-    vec3 exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
+    exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
     for (int crossing = 0; crossing < MAX_INTERFACES; crossing++) {
         vec3 m = dot(dir, n2) > 0.0 ? -n2 : n2;
         vec3 t2 = refract(dir, m, u_ior);
@@ -254,7 +283,7 @@ void main()
                 exit_dir = normalize(t2); // the first way out (the `exit` output)
             left = true;
             vec3 w = throughput * (1.0 - f2);
-            transmitted += w * trace_out(pos, normalize(t2), max(w.r, max(w.g, w.b)));
+            gather(pos, normalize(t2), w, max(w.r, max(w.g, w.b)) / transmitted_share, false);
             throughput *= f2;
         } else {
             tir++;
@@ -262,7 +291,7 @@ void main()
                 tir_first = 1;
         }
         dir = reflect(dir, m);
-        if (max(throughput.r, max(throughput.g, throughput.b)) < 0.03 || crossing + 1 == MAX_INTERFACES)
+        if (max(throughput.r, max(throughput.g, throughput.b)) < 0.03 * transmitted_share || crossing + 1 == MAX_INTERFACES)
             break;
 #ifndef WYMAN
         // start a little inside, off the surface it reflected off
@@ -280,11 +309,44 @@ void main()
         n2 = normalize(nn);
 #endif
     }
-    if (max(throughput.r, max(throughput.g, throughput.b)) >= 0.03)
-        transmitted += throughput * trace_out(pos, dir, max(throughput.r, max(throughput.g, throughput.b))); // still inside
+    if (max(throughput.r, max(throughput.g, throughput.b)) >= 0.03 * transmitted_share)
+        gather(pos, dir, throughput, max(throughput.r, max(throughput.g, throughput.b)) / transmitted_share, false); // still inside
     if (!left)
         exit_dir = dir;
+    exit_key.w = float(tir);
     o_tir = vec4(float(tir_first), float(tir), 0.0, 1.0);
+}
+
+void main()
+{
+    vec3 n1 = normalize(v_normal);
+    vec3 v = view_direction(v_world);
+    if (dot(v, n1) > 0.0)
+        n1 = -n1;
+    vec3 reflect_dir = reflect(v, n1);
+    o_tir = vec4(0.0);
+    vec3 exit_dir = reflect_dir; // the first way out (the `exit` output)
+    vec4 exit_key = vec4(n1, 0.0);
+    if (u_material_kind == 2) // a mirror: reflection alone, of nearby objects too
+        gather(v_world, reflect_dir, u_color, 1.0, true);
+    else
+        refract_paths(v, n1, reflect_dir, exit_dir, exit_key);
+    // The environment over each pixel's spread of directions (issue 8): the
+    // exit direction's screen derivatives for the rays leaving the
+    // refractor, the reflection's for the reflected one. Derivatives are
+    // differences between neighbouring pixels: where the path changes
+    // between them (another face inside, another count of total internal
+    // reflections), the difference is not a pixel's spread, and that axis
+    // is not filtered (the reflection's spread is only clamped).
+    vec4 kx = dFdx(exit_key), ky = dFdy(exit_key);
+    const float JUMP = 0.5; // radians of normal between neighbouring pixels
+    vec3 ex = dFdx(exit_dir), ey = dFdy(exit_dir), rx = dFdx(reflect_dir), ry = dFdy(reflect_dir);
+    ex *= float(length(kx.xyz) < JUMP && kx.w == 0.0);
+    ey *= float(length(ky.xyz) < JUMP && ky.w == 0.0);
+    if (reflected_env_weight != vec3(0.0))
+        pixel_radiance += reflected_env_weight * environment_radiance_grad(reflected_env_dir, rx, ry);
+    if (exit_env_taken)
+        pixel_radiance += exit_env_weight * environment_radiance_grad(exit_env_dir, ex, ey);
     o_exit = vec4(exit_dir, 1.0);
-    o_color = vec4(u_reflection == 1 ? f1 * reflected + (1.0 - f1) * transmitted : transmitted, 1.0);
+    o_color = vec4(pixel_radiance, 1.0);
 }

@@ -36,8 +36,16 @@ for _, ior in ipairs { 0.8, 1.33, 2.42 } do
 end
 
 t.case("Fig. 11 (IOR 1.75): Hu & Qin's error against the reference is lower than Wyman's", function()
+  -- Against each pixel's mean (antialias = true): the pass looks the
+  -- environment up over the directions a pixel's rays spread across
+  -- (environment_radiance_grad). Issue 8 asked for the error halved: the
+  -- pass before issue 8 measures 0.138 against this truth (0.142 against
+  -- pixel centres), one lookup per ray at the pixel's centre 0.074 (0.064),
+  -- the mean over the pixel 0.054 (0.079: the point-sampled truth keeps the
+  -- environment's aliasing).
   local opts = { set = { ior = 1.75 }, size = { 96, 96 } }
-  local ref = t.reference("scenes/huqin_sphere.lua", { set = { ior = 1.75 }, size = { 96, 96 }, photons = 0, spp = 32 })
+  local ref = t.reference("scenes/huqin_sphere.lua", { set = { ior = 1.75 }, size = { 96, 96 }, photons = 0, spp = 64,
+                                                       antialias = true })
   opts.set.method = "huqin"
   local hq = t.render("scenes/huqin_sphere.lua", opts)
   opts.set.method = "wyman"
@@ -45,9 +53,43 @@ t.case("Fig. 11 (IOR 1.75): Hu & Qin's error against the reference is lower than
   local c = require("caustica").image
   local e_hq, e_wy = c.compare(hq, ref).rel_rmse, c.compare(wy, ref).rel_rmse
   t.expect(e_hq < e_wy, string.format("Hu & Qin rel_rmse %.4f, Wyman %.4f", e_hq, e_wy))
-  -- issue 8 asked for the error halved: 0.136 before (128^2; 0.126 at
-  -- 256^2), 0.065 after (0.063 at 256^2, 0.064 here at 96^2)
-  t.expect(e_hq < 0.068, string.format("Hu & Qin rel_rmse %.4f (0.136 before issue 8's changes)", e_hq))
+  t.expect(e_hq < 0.069, string.format("Hu & Qin rel_rmse %.4f (0.138 before issue 8's changes)", e_hq))
+end)
+
+t.case("no isolated pixels on the Fig. 11 sphere at 256^2 (issue 8)", function()
+  -- A pixel that differs from all 8 neighbours by more than 0.2 in display
+  -- values (sRGB) in some channel: 149 before issue 8, 30 with one
+  -- environment lookup per ray at the pixel's centre (thin lines of the
+  -- environment squeezed near the rim, picked at every other row), none
+  -- with the lookup over the pixel's spread of directions.
+  local img = t.render("scenes/huqin_sphere.lua", { size = { 256, 256 } })
+  local function display(x)
+    x = math.min(math.max(x, 0), 1)
+    return x <= 0.0031308 and 12.92 * x or 1.055 * x ^ (1 / 2.4) - 0.055
+  end
+  local w, h, v = img.width, img.height, {}
+  for y = 0, h - 1 do
+    for x = 0, w - 1 do
+      local r, g, b = img:pixel(x, y)
+      v[y * w + x] = { display(r), display(g), display(b) }
+    end
+  end
+  local isolated = 0
+  for y = 1, h - 2 do
+    for x = 1, w - 2 do
+      local p, alone = v[y * w + x], true
+      for dy = -1, 1 do
+        for dx = -1, 1 do
+          if alone and (dx ~= 0 or dy ~= 0) then
+            local q = v[(y + dy) * w + x + dx]
+            if math.max(math.abs(p[1] - q[1]), math.abs(p[2] - q[2]), math.abs(p[3] - q[3])) <= 0.2 then alone = false end
+          end
+        end
+      end
+      if alone then isolated = isolated + 1 end
+    end
+  end
+  t.expect(isolated == 0, "isolated pixels: " .. isolated)
 end)
 
 t.case("an ideal interface (fresnel = false): Hu & Qin against the reference, no reflection on the sphere", function()
@@ -63,9 +105,14 @@ t.case("an ideal interface (fresnel = false): Hu & Qin against the reference, no
   t.expect(e < 0.14, string.format("rel_rmse %.4f against the reference", e))
   local g, r = hq:pixel(48, 48), ref:pixel(48, 48)
   t.expect(math.abs(g / r - 1) < 0.01, string.format("centre: GPU %.5f, reference %.5f", g, r))
-  -- with Fresnel the centre loses 2 x 7.4% (n = 1.75) to reflection
+  -- with Fresnel the centre loses 2 x 7.4% (n = 1.75) to reflection and
+  -- gains 7.4% of what the front reflects (measured: 0.949 of the ideal
+  -- interface's, the reference's 0.941)
   local with = t.render("scenes/huqin_sphere.lua", { size = { 96, 96 } })
-  t.expect(with:pixel(48, 48) < 0.95 * g, "Fresnel darkens the centre: " .. with:pixel(48, 48) .. " vs " .. g)
+  local ref_with = t.reference("scenes/huqin_sphere.lua", { size = { 96, 96 }, photons = 0, spp = 32 })
+  local a, b = with:pixel(48, 48), ref_with:pixel(48, 48)
+  t.expect(a < 0.97 * g and math.abs(a / b - 1) < 0.02,
+           string.format("Fresnel darkens the centre: %.4f, the ideal interface %.4f, the reference %.4f", a, g, b))
 end)
 
 t.case("refraction: no refractive object, the image passes through unchanged", function()
