@@ -49,8 +49,8 @@ float view_depth(float d)
     return u_proj[3][2] / (z + u_proj[2][2]);
 }
 
-// Radiance arriving from direction `dir` (world space) from far away: the
-// finest level (the reference's bilinear lookup within a face).
+// Radiance arriving from direction `dir` (world space) from far away
+// (bilinear within a face, as the reference's lookup).
 vec3 environment_radiance(vec3 dir)
 {
     return u_background.w > 0.5 ? textureLod(u_environment, dir, 0.0).rgb : u_background.rgb;
@@ -62,8 +62,8 @@ vec3 environment_radiance(vec3 dir)
 // minifies the environment (issue 8: the isolated pixels along a sphere's
 // rim). A grid of up to 4 x 4 bilinear lookups along the two gradients,
 // as many along each as the texels it spans: a box filter over the pixel,
-// as anisotropic as the spread (a mip level would blur a rim's thin
-// squeeze across both axes). A spread wider than about a tenth of a radian
+// as anisotropic as the spread (a mip level, isotropic, blurred a rim's
+// thin squeeze across both axes: measured worse against the pixel means). A spread wider than about a tenth of a radian
 // (a quad straddling a silhouette or a total internal reflection, where
 // the difference is not a pixel's spread) is clamped to it.
 vec3 environment_radiance_grad(vec3 dir, vec3 gx, vec3 gy)

@@ -35,24 +35,20 @@ bool gl_format_is_depth(GLenum format)
     return format == GL_DEPTH_COMPONENT24 || format == GL_DEPTH_COMPONENT32F;
 }
 
-static bool texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
-                           int layers, bool mipmapped, struct error *err)
+bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
+                       int layers, struct error *err)
 {
     memset(tex, 0, sizeof *tex);
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return error_set(err, "texture size %dx%d is out of range (1..16384)", width, height);
-    int levels = 1;
-    if (mipmapped)
-        for (int size = width > height ? width : height; size > 1; size /= 2)
-            levels++;
     gl.CreateTextures(target, 1, &tex->id);
     if (target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_3D)
-        gl.TextureStorage3D(tex->id, levels, format, width, height, layers > 0 ? layers : 1);
+        gl.TextureStorage3D(tex->id, 1, format, width, height, layers > 0 ? layers : 1);
     else
-        gl.TextureStorage2D(tex->id, levels, format, width, height);
+        gl.TextureStorage2D(tex->id, 1, format, width, height);
     bool is_int = format == GL_R32UI || format == GL_RG32UI || format == GL_RGBA32UI;
     GLint filter = is_int ? GL_NEAREST : GL_LINEAR;
-    gl.TextureParameteri(tex->id, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : filter);
+    gl.TextureParameteri(tex->id, GL_TEXTURE_MIN_FILTER, filter);
     gl.TextureParameteri(tex->id, GL_TEXTURE_MAG_FILTER, filter);
     gl.TextureParameteri(tex->id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TextureParameteri(tex->id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -67,18 +63,6 @@ static bool texture_create(struct gl_texture *tex, GLenum target, GLenum format,
         return error_prefix(err, "%s %dx%d", gl_format_name(format), width, height);
     }
     return true;
-}
-
-bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
-                       int layers, struct error *err)
-{
-    return texture_create(tex, target, format, width, height, layers, false, err);
-}
-
-bool gl_texture_create_mipmapped(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
-                                 int layers, struct error *err)
-{
-    return texture_create(tex, target, format, width, height, layers, true, err);
 }
 
 void gl_texture_destroy(struct gl_texture *tex)

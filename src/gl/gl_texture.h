@@ -22,10 +22,6 @@ bool gl_format_is_depth(GLenum format);
 
 bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
                        int layers, struct error *err);
-/* The same with a full mip chain (filtered trilinearly; fill level 0, then
- * gl.GenerateTextureMipmap). */
-bool gl_texture_create_mipmapped(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
-                                 int layers, struct error *err);
 void gl_texture_destroy(struct gl_texture *tex);
 /* Reads level 0 (layer `layer` of a cube map / array) as float RGBA. */
 /* A 2D depth texture's window depths [0, 1], rows bottom to top. */

@@ -97,10 +97,7 @@ static bool upload_environment(struct renderer *r, const struct environment *env
         return true;
     gl_texture_destroy(&r->environment);
     r->environment_serial = 0;
-    /* Mip levels for lookups whose directions spread over many texels in a
-     * pixel (environment_radiance_grad: refraction near a sphere's rim);
-     * every other lookup reads level 0. */
-    if (!gl_texture_create_mipmapped(&r->environment, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
+    if (!gl_texture_create(&r->environment, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
         return false;
     float *rgba = malloc((size_t)env->size * (size_t)env->size * 4 * sizeof(float));
     if (!rgba)
@@ -115,7 +112,6 @@ static bool upload_environment(struct renderer *r, const struct environment *env
         gl.TextureSubImage3D(r->environment.id, 0, 0, 0, f, env->size, env->size, 1, GL_RGBA, GL_FLOAT, rgba);
     }
     free(rgba);
-    gl.GenerateTextureMipmap(r->environment.id);
     r->environment_serial = env->serial;
     return gl_check("uploading the environment", err);
 }
