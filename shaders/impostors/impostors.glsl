@@ -119,19 +119,16 @@ float impostor_hit(int k, vec3 o, vec3 d, int iterations, out vec2 uv)
 // passing behind a nearer body's edge) is skipped and the march goes on.
 // Fig. 16's iteration alone (impostor_hit) lost most photons on the
 // dolphins: they went on to the floor, leaving the dolphins dark and
-// striped (issue 8). Rays at more than 72 degrees to the impostor's axis
+// striped (issue 8). Rays at more than 37 degrees to the impostor's axis
 // (a wall's, for light from above: the slab is long along them and the
 // steps coarse) or heading back towards its centre side fall back to
-// impostor_hit. (At 37 degrees, the first bound, the floor's photons in
-// Fig. 24 g, whose impostor axis leans towards the mirror teapot, fell
-// back to Fig. 16's search and the sphere's caustic came out a crescent:
-// caustic-region error 1.19, 0.44 at 72 degrees; the pool 0.319 -> 0.324.)
+// impostor_hit.
 float impostor_march(int k, vec3 o, vec3 d, int steps, int iterations, out vec2 uv)
 {
     Impostor im = impostors[k];
     float along = dot(d, im.axis.xyz);
     uv = vec2(0.0);
-    if (along < 0.3 || steps <= 0)
+    if (along < 0.8 || steps <= 0)
         return impostor_hit(k, o, d, iterations, uv);
     float base = dot(im.center.xyz - o, im.axis.xyz);
     float half_side = im.center.w;
