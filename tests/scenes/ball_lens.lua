@@ -47,9 +47,11 @@ end
 ball.cast_shadows = true
 -- mirror = H > 0: a small mirror H above the floor's level, beside the
 -- ball's light path (the specular objects' bounding sphere then spans the
--- two: photon_caustics must keep its photons on the ball)
+-- two: photon_caustics must keep its photons on the ball); mirror_x = its
+-- distance to the side (default 0.8)
 if c.param("mirror", 0) > 0 then
-  local m = scene:add(c.object { mesh = c.mesh.box { size = {0.1, 0.1, 0.1} }, position = {0.8, c.param("mirror", 0), 0},
+  local m = scene:add(c.object { mesh = c.mesh.box { size = {0.1, 0.1, 0.1} },
+                                 position = {c.param("mirror_x", 0.8), c.param("mirror", 0), 0},
                                  material = c.material.mirror { color = {0.9, 0.9, 0.9} } })
   m.cast_shadows = false
 end
