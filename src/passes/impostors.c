@@ -64,13 +64,15 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
         im->center = vec3_scale(vec3_add(lo, hi), 0.5f);
         im->half = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
         im->axis = vec3_normalize_or(vec3_sub(im->center, refractor_center), vec3_make(0, -1, 0));
-        /* A flat receiver (a floor, a wall: its box a twentieth as thick as
-         * it is wide) looks along its own normal, turned away from the
-         * refractors: its parameterization is then even across it, and the
-         * rays reaching it from above are near the axis, where the search is
-         * exact. From the refractors' centre the axis met a floor obliquely
-         * whenever a second specular object stood to the side (Fig. 24 g's
-         * mirror teapot cut the sphere's caustic to a crescent; issue 8). */
+        /* A floor (a box a twentieth as thick vertically as it is wide)
+         * looks straight along its normal, turned away from the refractors:
+         * its parameterization is then even across it, and the rays reaching
+         * it from above are near the axis, where the search is exact. From
+         * the refractors' centre the axis met a floor obliquely whenever a
+         * second specular object stood to the side (Fig. 24 g's mirror
+         * teapot cut the sphere's caustic to a crescent; issue 8). Walls keep
+         * the centre's axis: along their own normal, the photons from above
+         * meet them edge-on and Fig. 28's back wall went dark below. */
         vec3 extent = vec3_sub(hi, lo);
         float ext[3] = {extent.x, extent.y, extent.z};
         int thin = 0;
@@ -78,7 +80,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
             if (ext[a] < ext[thin])
                 thin = a;
         float wide = fmaxf(fmaxf(ext[0], ext[1]), ext[2]);
-        if (ext[thin] < 0.05f * wide) {
+        if (thin == 1 && ext[thin] < 0.05f * wide) {
             vec3 n = vec3_make(thin == 0, thin == 1, thin == 2);
             im->axis = vec3_dot(n, im->axis) < 0.0f ? vec3_scale(n, -1.0f) : n;
         }

@@ -401,8 +401,8 @@ t.case("a mirror far to the side does not move the ball's caustic (Fig. 24 g's t
   -- small mirror 3 to the side of the ball (1 above its centre) the floor's
   -- axis met the photons from the ball 56 degrees off, where they were
   -- placed with Fig. 16's search alone, wrongly on a floor seen obliquely
-  -- (Fig. 24 g's sphere caustic came out a crescent). A flat receiver now
-  -- looks along its own normal. The floor's light under the ball with the
+  -- (Fig. 24 g's sphere caustic came out a crescent). A floor now looks
+  -- along its own normal. The floor's light under the ball with the
   -- mirror against without it: rel_rmse 1.21 before.
   local set = { techniques = true, view = "down", floor = 1.5, camera_height = 0.3, buffer = 128 }
   local alone = t.render("tests/scenes/ball_lens.lua", { set = set, size = { 64, 64 } })

@@ -67,8 +67,8 @@ t.case("demo frame 45 matches its golden image", function()
   -- a faint caustic; the light to the front right. Regenerated (and looked
   -- at beside the reference) after issue 8's refraction lookups: the blob's
   -- top half shows the floor behind it, as the reference does, not the wall.
-  -- Again after flat receivers' impostors were made to look along their own
-  -- normal (issue 8, Fig. 24 g): the caustic had been drawn beside the
+  -- Again after a floor's impostor was made to look along its own normal
+  -- (issue 8, Fig. 24 g): the caustic had been drawn beside the
   -- shadow (photons coming in low, placed by Fig. 16's search on the floor
   -- seen obliquely), now inside it, where the reference has it (rel_rmse
   -- against 16 reference iterations 0.058 -> 0.043).
