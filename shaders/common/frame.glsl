@@ -56,16 +56,25 @@ vec3 environment_radiance(vec3 dir)
     return u_background.w > 0.5 ? textureLod(u_environment, dir, 0.0).rgb : u_background.rgb;
 }
 
+// Sample (i, j) of an nx x ny grid over a pixel, as offsets in [-0.5, 0.5]
+// along the pixel's two screen derivatives (the box filters over a pixel's
+// footprint: environment_radiance_grad, the caustic mapping).
+vec2 pixel_grid_point(int i, int j, int nx, int ny)
+{
+    return (vec2(i, j) + 0.5) / vec2(nx, ny) - 0.5;
+}
+
 // The same, averaged over the directions one pixel's rays spread across
 // (gx, gy: the direction's change to the next pixel in x and y): the pixel's
 // mean instead of one texel picked at its centre, where a curved refractor
 // minifies the environment (issue 8: the isolated pixels along a sphere's
-// rim). A grid of up to 4 x 4 bilinear lookups along the two gradients,
-// as many along each as the texels it spans: a box filter over the pixel,
-// as anisotropic as the spread (a mip level, isotropic, blurred a rim's
-// thin squeeze across both axes: measured worse against the pixel means). A spread wider than about a tenth of a radian
-// (a quad straddling a silhouette or a total internal reflection, where
-// the difference is not a pixel's spread) is clamped to it.
+// rim). A grid of up to 4 x 4 bilinear lookups along the two gradients, as
+// many along each as the half-texels it spans: a box filter over the pixel,
+// as anisotropic as the spread (a mip level, isotropic, blurred a rim's thin
+// squeeze across both axes: measured worse against the pixel means). A
+// spread wider than about a tenth of a radian (a quad straddling a
+// silhouette or a total internal reflection, where the difference is not a
+// pixel's spread) is clamped to it.
 vec3 environment_radiance_grad(vec3 dir, vec3 gx, vec3 gy)
 {
     if (u_background.w <= 0.5)
@@ -79,12 +88,11 @@ vec3 environment_radiance_grad(vec3 dir, vec3 gx, vec3 gy)
     gy *= min(1.0, MAX_SPREAD / max(length(gy), 1e-12));
     float texel = 1.5708 / float(textureSize(u_environment, 0).x); // radians, at a face's centre
     int nx = clamp(int(ceil(2.0 * length(gx) / texel)), 1, 4), ny = clamp(int(ceil(2.0 * length(gy) / texel)), 1, 4);
-    if (nx * ny == 1)
-        return textureLod(u_environment, dir, 0.0).rgb;
     vec3 sum = vec3(0.0);
     for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            sum += textureLod(u_environment, dir + ((float(i) + 0.5) / float(nx) - 0.5) * gx +
-                                                  ((float(j) + 0.5) / float(ny) - 0.5) * gy, 0.0).rgb;
+        for (int i = 0; i < nx; i++) {
+            vec2 g = pixel_grid_point(i, j, nx, ny);
+            sum += textureLod(u_environment, dir + g.x * gx + g.y * gy, 0.0).rgb;
+        }
     return sum / float(nx * ny);
 }

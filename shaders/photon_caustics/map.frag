@@ -63,8 +63,9 @@ void main()
     bool any_hit = false;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
-            vec3 p = v_world + ((float(i) + 0.5) / float(nx) - 0.5) * dx + ((float(j) + 0.5) / float(ny) - 0.5) * dy;
+            vec2 g = pixel_grid_point(i, j, nx, ny);
             vec3 e;
+            vec3 p = v_world + g.x * dx + g.y * dy;
             any_hit = caustic_at(k, p, e) || any_hit;
             sum += e;
         }

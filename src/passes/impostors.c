@@ -74,16 +74,8 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
          * the centre's axis: along their own normal, the photons from above
          * meet them edge-on and Fig. 28's back wall went dark below. */
         vec3 extent = vec3_sub(hi, lo);
-        float ext[3] = {extent.x, extent.y, extent.z};
-        int thin = 0;
-        for (int a = 1; a < 3; a++)
-            if (ext[a] < ext[thin])
-                thin = a;
-        float wide = fmaxf(fmaxf(ext[0], ext[1]), ext[2]);
-        if (thin == 1 && ext[thin] < 0.05f * wide) {
-            vec3 n = vec3_make(thin == 0, thin == 1, thin == 2);
-            im->axis = vec3_dot(n, im->axis) < 0.0f ? vec3_scale(n, -1.0f) : n;
-        }
+        if (extent.y < extent.x && extent.y <= extent.z && extent.y < 0.05f * fmaxf(extent.x, extent.z))
+            im->axis = vec3_make(0.0f, im->axis.y < 0.0f ? -1.0f : 1.0f, 0.0f);
         /* up and right chosen so that the parallel projection below (a
          * look-at along the axis) has right as its screen x and up as its y */
         vec3 hint = fabsf(im->axis.y) > 0.9f ? vec3_make(0, 0, 1) : vec3_make(0, 1, 0);
