@@ -13,6 +13,8 @@ struct BeamVertex {
     vec4 refl_weight;// Fresnel reflectance x the rest, w = unused
     vec4 normal;     // the first interface's normal (world), w = unused
     vec4 light_plane;// xy: the vertex on the light's image plane (world units, or tangents for a point/spot light)
+    vec4 exit_sigma; // rgb: absorption per unit length of the medium the transmitted ray leaves into (an open
+                     // one, water: no layer below it, the receivers are inside it), 0 outside every refractor
 };
 
 const uint VERTEX_TRANSMITTED = 1u, VERTEX_REFLECTED = 2u, VERTEX_SURFACE = 4u;
@@ -25,13 +27,14 @@ layout(std430, binding = BEAMS_SSBO_VERTICES) buffer BeamVertices { BeamVertex b
 // to the base, and its bounding volume's top corners at height n.w.
 struct Beam {
     vec4 v[3];       // w: the edge's end height (extrusion) in beam space
-    vec4 d[3];       // w: unused
+    vec4 d[3];       // w: how far the base lies behind the ray's exit along the ray (nothing is absorbed there)
     vec4 weight[3];  // per edge: flux per unit light-plane area (rgb)
     vec4 n;          // unit normal of the base, w = the bounding volume's top height
     vec4 area;       // c0, c1, c2, w = the floor |A| is clamped to (a focus stays finite)
     vec4 info;       // x = light-plane area x intensity scale, y = 1 prism / 0 tight, z = diagonal bits, w = 1 reflected
     vec4 top[3];     // the bounding volume's top corners (world)
     uvec4 corners;   // xyz: its lattice vertices (their adjacency lists), w: unused
+    vec4 sigma;      // rgb: absorption per unit length along the edge rays (the medium the beam runs in)
 };
 
 layout(std430, binding = BEAMS_SSBO_BEAMS) buffer Beams { Beam beams[]; };

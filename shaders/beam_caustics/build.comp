@@ -21,6 +21,7 @@ struct Ray {
     vec3 o, d;
     float len;
     vec3 w;
+    vec3 sigma; // absorption per unit length after the ray's origin
     uint flags;
     float signature;
 };
@@ -36,12 +37,14 @@ Ray vertex_ray(int i, int j, bool reflected)
         r.len = bv.refl_dir.w;
         r.w = bv.refl_weight.rgb;
         r.signature = -1.0;
+        r.sigma = vec3(0.0);
     } else {
         r.o = bv.exit_pos.xyz;
         r.d = bv.exit_dir.xyz;
         r.len = bv.exit_dir.w;
         r.w = bv.exit_weight.rgb;
         r.signature = bv.exit_weight.w;
+        r.sigma = bv.exit_sigma.rgb;
     }
     return r;
 }
@@ -93,15 +96,15 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
     vec3 n = normalize(m);
     float plane = min(min(dot(r[0].o, n), dot(r[1].o, n)), dot(r[2].o, n));
     vec3 v[3], d[3];
-    float h[3], top = 0.0;
+    float h[3], back[3], top = 0.0;
     for (int i = 0; i < 3; i++) {
         float dn = dot(r[i].d, n);
         if (dn < 0.05)
             return false; // an edge ray nearly across the beam's mean direction: not a beam to speak of
-        float back = (dot(r[i].o, n) - plane) / dn; // how far back along the ray the base plane is
-        v[i] = r[i].o - r[i].d * back;
+        back[i] = (dot(r[i].o, n) - plane) / dn; // how far back along the ray the base plane is
+        v[i] = r[i].o - r[i].d * back[i];
         d[i] = r[i].d / dn;
-        h[i] = max((r[i].len + back) * dn, 0.0);
+        h[i] = max((r[i].len + back[i]) * dn, 0.0);
         top = max(top, h[i]);
     }
     float scale = max(max(distance(v[0], v[1]), distance(v[1], v[2])), distance(v[2], v[0]));
@@ -188,13 +191,15 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
     was_prism = prism;
     for (int i = 0; i < 3; i++) {
         bm.v[i] = vec4(v[i], h[i]);
-        bm.d[i] = vec4(d[i], 0.0);
+        bm.d[i] = vec4(d[i], back[i]);
         bm.weight[i] = vec4(r[i].w, 0.0);
         bm.top[i] = vec4(t[i], 0.0);
     }
     bm.n = vec4(n, top);
     bm.area = vec4(c0, c1, c2, a_floor);
     bm.info = vec4(light_area, prism ? 1.0 : 0.0, float(diagonals), reflected ? 1.0 : 0.0);
+    // the three rays left through the same interfaces; a beam across two media's boundary takes their mean
+    bm.sigma = vec4((r[0].sigma + r[1].sigma + r[2].sigma) / 3.0, 0.0);
     bm.corners = uvec4(uint(vertex_index(qa.x, qa.y)), uint(vertex_index(qb.x, qb.y)), uint(vertex_index(qc.x, qc.y)), 0u);
     return true;
 }

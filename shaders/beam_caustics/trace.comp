@@ -32,6 +32,7 @@ void main()
     bv.refl_dir = vec4(0.0);
     bv.refl_weight = vec4(0.0);
     bv.normal = vec4(0.0);
+    bv.exit_sigma = vec4(0.0);
     // the lattice spans the light's image, vertex i on texel round(i (B - 1) / M)
     ivec2 p = ivec2(floor(vec2(ij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
     vec3 P0 = layer_point(vec2(p) + 0.5, layer_count(p) > 0 ? layer_depth(p, 0) : 1.0);
@@ -83,6 +84,7 @@ void main()
             // the path's signature: rays through different interfaces do not share a beam
             bv.exit_weight = vec4(w * (1.0 - path.fresnel0) * path.throughput,
                                   float(path.interfaces + 64 * path.tir));
+            bv.exit_sigma = vec4(layer_path_sigma(path), 0.0);
         }
     }
     bv.exit_pos.w = float(flags);

@@ -48,6 +48,18 @@ vec3 section_weights(vec3 x, float y, out bool ok)
     return vec3(1.0 - b1 - b2, b1, b2);
 }
 
+// Beer-Lambert inside the refractor the beam runs in from its base to height
+// y (|dd| y along the ray, dot(dd, n) = 1, less the stretch behind the exits
+// where build.comp set the base): water over its floor, whose
+// light is absorbed on the way down as much as in the glass the layers bound
+// (§4.1 ends the beams at the receivers; the paper's glass has no receiver
+// inside it, so it says nothing of absorption after the last interface).
+vec3 beam_absorption(vec3 dd, float y, vec3 w)
+{
+    float behind = dot(w, vec3(b.d[0].w, b.d[1].w, b.d[2].w));
+    return exp(-b.sigma.rgb * max(length(dd) * y - behind, 0.0));
+}
+
 // The flux density (per unit area across the rays) at height y with
 // weights w, its direction, and the beam's own medium path from the base.
 vec3 density_at(vec3 x, float y, vec3 w, out vec3 dir, out float cos_base)
@@ -58,7 +70,7 @@ vec3 density_at(vec3 x, float y, vec3 w, out vec3 dir, out float cos_base)
     cos_base = 1.0 / len;
     vec3 weight = w.x * b.weight[0].rgb + w.y * b.weight[1].rgb + w.z * b.weight[2].rgb;
     vec3 flux = u_lights[u_light].intensity.rgb * weight * b.info.x;
-    return flux / area_at(y) / cos_base * medium_transmittance(x - dd * y, x);
+    return flux / area_at(y) / cos_base * medium_transmittance(x - dd * y, x) * beam_absorption(dd, y, w);
 }
 
 // The flux density across the rays (per unit light-plane area and
@@ -127,7 +139,8 @@ void main()
                 vec3 dd = w.x * b.d[0].xyz + w.y * b.d[1].xyz + w.z * b.d[2].xyz;
                 vec3 flux = w.x * b.weight[0].rgb * edge_density(0, y) + w.y * b.weight[1].rgb * edge_density(1, y) +
                             w.z * b.weight[2].rgb * edge_density(2, y);
-                e = u_lights[u_light].intensity.rgb * flux * medium_transmittance(P - dd * y, P);
+                e = u_lights[u_light].intensity.rgb * flux * medium_transmittance(P - dd * y, P) *
+                    beam_absorption(dd, y, w);
             }
             float cos_r = -dot(dir, receiver.xyz);
             if (cos_r > 0.0)

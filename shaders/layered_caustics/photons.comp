@@ -67,9 +67,11 @@ void main()
         imageStore(u_hits, ivec3(p, 1), vec4(at, 1.0));
         imageStore(u_photons, ivec3(p, 1), vec4(flux * path.fresnel0, 0.0));
     }
-    if (path.fresnel0 < 1.0 &&
-        land((u_layer_inv_view * vec4(path.origin, 1.0)).xyz, normalize(to_world * path.dir), at, px)) {
+    vec3 exit = (u_layer_inv_view * vec4(path.origin, 1.0)).xyz;
+    if (path.fresnel0 < 1.0 && land(exit, normalize(to_world * path.dir), at, px)) {
         imageStore(u_hits, ivec3(p, 0), vec4(at, 1.0));
-        imageStore(u_photons, ivec3(p, 0), vec4(flux * (1.0 - path.fresnel0) * path.throughput, 0.0));
+        // a receiver inside the medium (a floor under water): absorbed on the way there too
+        vec3 absorbed = layer_path_absorption(path, length(at - exit));
+        imageStore(u_photons, ivec3(p, 0), vec4(flux * (1.0 - path.fresnel0) * path.throughput * absorbed, 0.0));
     }
 }

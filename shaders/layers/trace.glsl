@@ -52,7 +52,19 @@ struct LayerPath {
     int interfaces;   // interfaces crossed or reflected at
     int tir;          // total internal reflections met
     bool capped;      // stopped by the interface cap, not by leaving
+    int medium;       // the refractor slot the ray is inside when it leaves (-1: outside every one):
+                      // an open surface (water) has no layer below it, so its ray is still in the medium
 };
+
+// Beer-Lambert over a length t inside the path's last medium: the rest of
+// the way to a receiver inside an open medium (water over a floor), which no
+// layer bounds; nothing outside every refractor.
+vec3 layer_path_sigma(LayerPath path)
+{
+    return path.medium >= 0 ? layer_materials[path.medium].absorption.rgb : vec3(0.0);
+}
+
+vec3 layer_path_absorption(LayerPath path, float t) { return exp(-layer_path_sigma(path) * max(t, 0.0)); }
 
 int layer_count(ivec2 q)
 {
@@ -244,6 +256,7 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     path.tir = 0;
     path.capped = false;
     path.fresnel0 = 0.0;
+    path.medium = -1;
     if (layer_count(p) == 0)
         return path;
     path.entered = true;
@@ -298,5 +311,6 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     }
     path.origin = P;
     path.dir = d;
+    path.medium = medium;
     return path;
 }

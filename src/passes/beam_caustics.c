@@ -36,8 +36,8 @@
 
 #define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
 #define BEAMS_MAX_BEAMS (1 << 18)  /* beams one frame may build (64 MB); more are dropped and reported */
-#define BEAMS_VERTEX_BYTES 128    /* struct BeamVertex in shaders/beam_caustics/beams.glsl */
-#define BEAMS_BEAM_BYTES 256      /* struct Beam: 16 vec4 */
+#define BEAMS_VERTEX_BYTES 144    /* struct BeamVertex in shaders/beam_caustics/beams.glsl: 9 vec4 */
+#define BEAMS_BEAM_BYTES 272      /* struct Beam: 17 vec4 */
 #define BEAMS_ADJACENCY_STRIDE 16 /* uints per lattice vertex in the adjacency lists (beams.glsl) */
 #define BEAMS_DISTANCE_SIZE 256   /* the distance impostor's faces */
 /* Counter offsets of beams.glsl (uint index). */
