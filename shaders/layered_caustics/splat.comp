@@ -89,7 +89,7 @@ void main()
     vec3 flux = imageLoad(u_photons, ivec3(p, branch)).rgb;
     vec2 at = to_pixels(h.xyz);
     vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
-    int nx = clamp(int(ceil(length(ex))), 1, 32), ny = clamp(int(ceil(length(ey))), 1, 32);
+    int nx = clamp(int(ceil(2.0 * length(ex))), 1, 32), ny = clamp(int(ceil(2.0 * length(ey))), 1, 32);
     vec3 share = flux / float(nx * ny);
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)

@@ -17,18 +17,30 @@ uniform int u_scene_steps;
 // refraction pass has its distance map to ask instead; issue 8). 0: every
 // hit is taken.
 uniform float u_scene_grazing = 0.0;
+// > 0 (photons, which start far outside the camera's view over a large
+// pool and land near and past its edges): a guard band of this many pixels
+// around the image, where the receivers are taken to go on as they are at
+// the nearest edge pixel (their depth clamped to the edge), so a photon
+// that lands just past the edge still spreads its footprint's share into
+// the image (without it the last column got none of it: black, or a
+// quarter too dark); and a sample past the band does not end the march
+// (the ray may come into the image later), the step from an on-image
+// sample to it searched for a crossing still on the image. 0: the ray
+// leaves at the image's edge (what the refraction passes then look up in
+// the environment).
+uniform float u_scene_guard = 0.0;
 
-// Eye depth of world point p, and its pixel (false: outside the image or
-// behind the camera).
+// Eye depth of world point p, and its pixel (false: outside the image, and
+// its guard band, or behind the camera).
 bool scene_project(vec3 p, out ivec2 px, out float depth)
 {
     vec4 c = u_view_proj * vec4(p, 1.0);
     if (c.w <= 1e-6)
         return false;
-    vec2 uv = c.xy / c.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0))))
+    vec2 at = (c.xy / c.w * 0.5 + 0.5) * u_viewport.xy;
+    if (any(lessThan(at, vec2(-u_scene_guard))) || any(greaterThanEqual(at, u_viewport.xy + u_scene_guard)))
         return false;
-    px = ivec2(floor(uv * u_viewport.xy));
+    px = clamp(ivec2(floor(at)), ivec2(0), ivec2(u_viewport.xy) - 1);
     depth = -(u_view * vec4(p, 1.0)).z;
     return depth > 0.0;
 }
@@ -63,13 +75,44 @@ bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
         return false;
     int first = max(int(floor(t_enter / step)), 1);
     lo = step * float(first - 1);
+    float lo_behind;
+    ivec2 lo_px;
+    bool lo_on_image = u_scene_guard > 0.0 && scene_behind(o + dir * lo, lo_behind, lo_px);
     for (int j = first; j <= steps; j++) {
         float t = step * float(j), behind;
         if (t - step > t_exit)
             return false;
         ivec2 px;
-        if (!scene_behind(o + dir * t, behind, px))
-            return false;
+        if (!scene_behind(o + dir * t, behind, px)) {
+            if (u_scene_guard <= 0.0)
+                return false;
+            // the last point of the step still on the image: behind the
+            // surface there, the ray crossed it inside the image
+            bool found = false;
+            if (lo_on_image) {
+                float a = lo, b = t, bs;
+                ivec2 ps;
+                for (int i = 0; i < 12; i++) {
+                    float m = 0.5 * (a + b);
+                    if (scene_behind(o + dir * m, bs, ps))
+                        a = m;
+                    else
+                        b = m;
+                }
+                if (a > lo && scene_behind(o + dir * a, bs, ps) && bs > 0.0) {
+                    t = a;
+                    behind = bs;
+                    px = ps;
+                    found = true;
+                }
+            }
+            if (!found) {
+                lo = t;
+                lo_on_image = false;
+                continue;
+            }
+        }
+        lo_on_image = true;
         if (behind > 0.0) {
             float a = lo, b = t;
             for (int i = 0; i < 8; i++) {

@@ -200,6 +200,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
+    /* A photon may start far outside the camera's view and land inside it,
+     * or just past its edge and still spread into it: the receivers go on
+     * past the edge as far as a footprint reaches (scene_trace.glsl). */
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"), 2.0f * (float)pass_real(p, LC_RADIUS) + 1.0f);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);

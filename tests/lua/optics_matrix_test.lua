@@ -1,0 +1,291 @@
+-- The technique x case matrix (issue 27): every technique that applies,
+-- at its defaults, on textbook cases each checked against its own closed
+-- form (tests/lua/closed_forms.lua), with orthographic and perspective
+-- cameras and Fresnel on and off. Each cell asserts its error bound, or
+-- is "not applicable" with the reason. A cell marked `known` is a measured
+-- failure not fixed yet: its bound is the measured error with a margin, so
+-- it still fails on a regression, and the table says why it is not good.
+-- Each cell prints a line `matrix| ...`; tests/optics_matrix.sh turns them
+-- into docs/OPTICS_MATRIX.md.
+local t = require "caustica.test"
+local closed = require "closed_forms"
+
+local c = require "caustica"
+local WATER = "tests/scenes/matrix/water.lua"
+local BALL = "tests/scenes/matrix/ball.lua"
+local SIGMA = { 0.2, 0.5, 1.0 }
+
+-- The pass's own time (ms) in that render.
+local function pass_ms(ms)
+  return type(ms) == "table" and (ms.caustics or ms.glass) or 0
+end
+
+-- Checks one cell and prints its row; returns an error message or nil.
+local function cell(case, technique, variant, err, black, ms, spec)
+  local status, problem
+  if err ~= err or err == math.huge then
+    status, problem = "FAIL", "error is not finite"
+  elseif err > spec.bound then
+    status, problem = "FAIL", string.format("error %.4f > bound %.4f", err, spec.bound)
+  elseif black > (spec.black or 0) then
+    status, problem = "FAIL", string.format("%d pixels black where the closed form is lit (at most %d)", black,
+                                            spec.black or 0)
+  elseif spec.known then
+    status = "known: " .. spec.known
+  else
+    status = "ok"
+  end
+  print(string.format("matrix| %s | %s | %s | %.4f | %.3g | %d | %.1f | %s", case, technique, variant, err,
+                      spec.bound, black, ms, status))
+  if problem then return string.format("%s, %s, %s: %s", case, technique, variant, problem) end
+end
+
+-- Renders a script once small, so the cell's own render times the pass
+-- and not the compiling of its shaders.
+local warmed = {}
+local function warm_up(script, set)
+  local key = script .. ":" .. set.technique
+  if not warmed[key] then
+    t.render(script, { set = set, size = { 16, 16 } })
+    warmed[key] = true
+  end
+end
+
+local function not_applicable(case, technique, why)
+  print(string.format("matrix| %s | %s | - | - | - | - | - | n/a: %s", case, technique, why))
+end
+
+local function finish(failures)
+  t.expect(#failures == 0, table.concat(failures, "; "))
+end
+
+-- Relative RMS error of per-column means (rows 8..55) against columns[ch][col].
+local function column_error(img, columns)
+  local num, den = 0, 0
+  for col = 0, 63 do
+    for ch = 1, 3 do
+      local sum = 0
+      for y = 8, 55 do sum = sum + select(ch, img:pixel(col, y)) end
+      local g, w = sum / 48, columns[ch][col + 1]
+      num, den = num + (g - w) ^ 2, den + w * w
+    end
+  end
+  return math.sqrt(num / den)
+end
+
+-- The pixels (of those whose columns the closed form lights) that are black.
+local function black_pixels(img, columns)
+  local n = 0
+  for col = 0, 63 do
+    if columns[1][col + 1] > 1e-3 then
+      for y = 0, 63 do
+        if img:pixel(col, y) <= 0 then n = n + 1 end
+      end
+    end
+  end
+  return n
+end
+
+local WATER_TECHNIQUES = { "photon_caustics", "caustic_volumes", "layered_caustics", "beam_caustics" }
+
+-- spec per technique (and camera where they differ): bound, known
+local function water_case(name, set, specs)
+  return function()
+    local failures = {}
+    local columns = closed.water_columns { elevation = 60, amplitude = set.amplitude or 0, wavelength = 1,
+                                           ior = 1.33, depth = 2, sigma = SIGMA, columns = 64, x0 = -0.5, x1 = 0.5,
+                                           fresnel = set.fresnel or false }
+    for _, technique in ipairs(WATER_TECHNIQUES) do
+      for _, ortho in ipairs { true, false } do
+        local variant = (ortho and "orthographic" or "perspective") .. (set.fresnel and ", Fresnel" or "")
+        local s = { technique = technique, ortho = ortho }
+        for k, v in pairs(set) do s[k] = v end
+        warm_up(WATER, s)
+        local img, ms = t.render(WATER, { set = s })
+        t.expect_finite(img)
+        local spec = specs[technique .. (ortho and ":ortho" or ":perspective")] or specs[technique]
+        failures[#failures + 1] = cell(name, technique, variant, column_error(img, columns),
+                                       black_pixels(img, columns), pass_ms(ms), spec)
+      end
+    end
+    not_applicable(name, "illumination_textures", "Iwasaki et al.'s transport tables are built for closed glass objects, not a water surface")
+    finish(failures)
+  end
+end
+
+t.case("flat water, absorbing, sun 30 degrees off the zenith: E cos(ti) exp(-sigma d / cos(tt))", water_case(
+  "flat water", {}, {
+    photon_caustics = { bound = 0.02 },
+    caustic_volumes = { bound = 0.02 },
+    beam_caustics = { bound = 0.02 },
+    layered_caustics = { bound = 0.02 },
+  }))
+
+t.case("flat water with Fresnel: the floor darker by T(ti)", water_case(
+  "flat water", { fresnel = true }, {
+    photon_caustics = { bound = 0.02 },
+    caustic_volumes = { bound = 0.02 },
+    beam_caustics = { bound = 0.02 },
+    layered_caustics = { bound = 0.02 },
+  }))
+
+t.case("sinusoidal water, A = 0.025 (no fold before the floor): rays binned per pixel column", water_case(
+  "ridges A = 0.025", { amplitude = 0.025 }, {
+    photon_caustics = { bound = 0.1 },
+    caustic_volumes = { bound = 0.1 },
+    layered_caustics = { bound = 0.1 },
+    beam_caustics = { bound = 0.5, known = "the default 16 x 16 lattice over the whole surface is coarser than the waves (0.37 a cell, 1.0 a wavelength)" },
+  }))
+
+t.case("sinusoidal water, A = 0.1 (folds before the floor): rays binned per pixel column", water_case(
+  "ridges A = 0.1", { amplitude = 0.1 }, {
+    photon_caustics = { bound = 0.3, known = "the fold lines' peaks are sharper than the caustic texture and the splats" },
+    caustic_volumes = { bound = 0.7, known = "each pixel is a point sample of the volumes: the fold lines' peaks are not pixel means" },
+    layered_caustics = { bound = 0.36, black = 128, known = "two columns just past a fold line are black: the photons there take their footprints from neighbours across the fold" },
+    beam_caustics = { bound = 0.7, known = "the default 16 x 16 lattice over the whole surface is coarser than the waves (0.37 a cell, 1.0 a wavelength)" },
+  }))
+
+-- Ball lens: mean irradiance in 16 rings of the ball's shadow (radius 0.5,
+-- seen 1.1 wide at 128 x 128) against the 2D trace's ring means.
+local BALL_SIZE, BALL_WIDTH, BALL_R, RINGS = 128, 1.1, 0.5, 16
+
+-- The ring means, the pixels per ring, and the pixels that are black where
+-- the closed form lights the whole pixel: `fine` is its means over rings an
+-- eighth of a pixel wide, and a pixel counts when those within its
+-- footprint (1.5 fine rings either side of its centre's) are all lit.
+local FINE = 128
+local function ring_means(img, want, fine)
+  local sum, count, black = {}, {}, 0
+  for i = 1, RINGS do sum[i], count[i] = 0, 0 end
+  for y = 0, BALL_SIZE - 1 do
+    for x = 0, BALL_SIZE - 1 do
+      local wx, wz = ((x + 0.5) / BALL_SIZE - 0.5) * BALL_WIDTH, ((y + 0.5) / BALL_SIZE - 0.5) * BALL_WIDTH
+      local ring = math.floor(math.sqrt(wx * wx + wz * wz) / BALL_R * RINGS) + 1
+      if ring <= RINGS then
+        local r, g, b = img:pixel(x, y)
+        sum[ring], count[ring] = sum[ring] + (r + g + b) / 3, count[ring] + 1
+        if r + g + b <= 0 then
+          local at = math.floor(math.sqrt(wx * wx + wz * wz) / BALL_R * FINE) + 1
+          local lit = true
+          for k = math.max(at - 2, 1), math.min(at + 2, FINE) do lit = lit and fine[k] > 1e-3 end
+          if lit then black = black + 1 end
+        end
+      end
+    end
+  end
+  for i = 1, RINGS do sum[i] = sum[i] / count[i] end
+  return sum, count, black
+end
+
+local function ring_error(means, count, want)
+  local num, den = 0, 0
+  for i = 1, RINGS do
+    num, den = num + count[i] * (means[i] - want[i]) ^ 2, den + count[i] * want[i] ^ 2
+  end
+  return math.sqrt(num / den)
+end
+
+local BALL_TECHNIQUES = { "photon_caustics", "layered_caustics", "beam_caustics", "illumination_textures" }
+
+local function ball_case(name, set, specs)
+  return function()
+    local failures = {}
+    local want = closed.ball_rings { radius = BALL_R, ior = set.ior or 1.5, floor = set.floor * BALL_R, rings = RINGS,
+                                     fresnel = set.fresnel or false }
+    local fine = closed.ball_rings { radius = BALL_R, ior = set.ior or 1.5, floor = set.floor * BALL_R, rings = FINE,
+                                     fresnel = set.fresnel or false }
+    for _, technique in ipairs(BALL_TECHNIQUES) do
+      local spec = specs[technique]
+      if spec.na then
+        not_applicable(name, technique, spec.na)
+      else
+        local s = { technique = technique }
+        for k, v in pairs(set) do s[k] = v end
+        warm_up(BALL, s)
+        local img, ms = t.render(BALL, { set = s })
+        t.expect_finite(img)
+        local means, count, black = ring_means(img, want, fine)
+        failures[#failures + 1] = cell(name, technique, "orthographic" .. (set.fresnel and ", Fresnel" or ""),
+                                       ring_error(means, count, want), black, pass_ms(ms), spec)
+      end
+    end
+    not_applicable(name, "caustic_volumes", "Sandberg & Falemo's volumes are built from a water surface's grid, not a closed object")
+    finish(failures)
+  end
+end
+
+local BEAMS_FOCUS = "the beams' focus is bounded (max_focus) and blurred over 1.5 pixels (blur): the peak comes out low"
+local BEAMS_SPOKES = BEAMS_FOCUS .. "; the rim's light, spread wide before the focus, comes out as spokes along the 16 x 16 lattice, black between"
+local LAYERED_GAPS = "the rim's light, spread thin past the shadow's edge: photons farther apart than their footprint's clamp "
+                     .. "(2 x radius pixels) leave black gaps between the bands of the sphere's facets"
+
+t.case("ball lens n = 1.5, floor 1.25 radii below its centre (before the paraxial focus)", ball_case(
+  "ball lens, floor 1.25 R", { floor = 1.25 }, {
+    photon_caustics = { bound = 0.15 },
+    layered_caustics = { bound = 0.15, black = 750, known = LAYERED_GAPS },
+    beam_caustics = { bound = 0.45, black = 4200, known = BEAMS_SPOKES },
+    illumination_textures = { bound = 0.15 },
+  }))
+
+t.case("ball lens n = 1.5, floor at the paraxial focus (1.5 radii)", ball_case(
+  "ball lens, floor 1.5 R", { floor = 1.5 }, {
+    photon_caustics = { bound = 0.15 },
+    layered_caustics = { bound = 0.15, black = 24, known = LAYERED_GAPS },
+    beam_caustics = { bound = 0.4, black = 560, known = BEAMS_SPOKES },
+    illumination_textures = { bound = 0.15 },
+  }))
+
+t.case("ball lens n = 1.5, floor 2.5 radii below (beyond the focus), Fresnel on and off", function()
+  for _, fresnel in ipairs { false, true } do
+    ball_case("ball lens, floor 2.5 R", { floor = 2.5, fresnel = fresnel }, {
+      photon_caustics = { bound = 0.02 },
+      layered_caustics = { bound = 0.04 },
+      beam_caustics = { bound = 0.05 },
+      illumination_textures = { bound = 0.05 },
+    })()
+  end
+end)
+
+t.case("ball lens at IOR 1.0001: the floor lit as if the ball were not there (no black rim)", ball_case(
+  "ball lens, IOR 1.0001", { floor = 2.5, ior = 1.0001 }, {
+    photon_caustics = { bound = 0.02 },
+    layered_caustics = { bound = 0.03 },
+    beam_caustics = { bound = 0.3, known = "the lattice's cells across the ball's silhouette make no beam: the shadow's rim gets a polygon's light, not a circle's" },
+    illumination_textures = { bound = 0.06, black = 3, known = "pixels at the shadow's rim" },
+  }))
+
+t.case("ball lens at IOR 10: light only near the axis, no black holes where it lands", ball_case(
+  "ball lens, IOR 10", { floor = 2.5, ior = 10 }, {
+    photon_caustics = { bound = 0.05 },
+    layered_caustics = { bound = 0.2 },
+    beam_caustics = { bound = 0.06 },
+    illumination_textures = { bound = 0.08 },
+  }))
+
+-- The identity: an IOR-1.0 sphere before a checkered wall and a box must
+-- vanish: relative RMS difference from the same graph without the sphere.
+local IDENTITY = "tests/scenes/matrix/identity.lua"
+t.case("IOR-1.0 sphere before a checkered wall: the image without it", function()
+  local failures = {}
+  local specs = {
+    refraction = { bound = 0.001 },
+    ["refraction:ortho"] = { bound = 0.012, known = "a few pixels at the sphere's rim under an orthographic camera see the wrong side of the wall's edge" },
+    refraction_impostors = { bound = 0.06, known = "lookup = \"impostors\": one rectangle per object (the paper's §2.2) cannot stand for the floor and the wall" },
+    layered_refraction = { bound = 0.001 },
+    sliced_refraction = { bound = 0.25, known = "six sliced object images of what lies behind the glass stand for it, each a slab projected onto one virtual plane (Iwasaki et al. §3)" },
+  }
+  for _, technique in ipairs { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" } do
+    for _, ortho in ipairs { false, true } do
+      local set = { technique = technique, ortho = ortho }
+      warm_up(IDENTITY, set)
+      local img, ms = t.render(IDENTITY, { set = set })
+      local truth = t.render(IDENTITY, { set = { technique = technique, ortho = ortho, sphere = false } })
+      t.expect_finite(img)
+      local m = c.image.compare(img, truth)
+      local spec = specs[technique .. (ortho and ":ortho" or "")] or specs[technique]
+      failures[#failures + 1] = cell("IOR 1.0 identity", technique, ortho and "orthographic" or "perspective", m.rel_rmse,
+                                     0, pass_ms(ms), spec)
+    end
+  end
+  finish(failures)
+end)
