@@ -68,6 +68,25 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
                      i + 1, what, kind == MATERIAL_WATER ? ", water_surface" : "");
     }
+    /* Objects a kept pass leaves out (its descriptor says which and why). */
+    for (int i = 0; i < g->count && count < max; i++) {
+        const struct graph_entry *e = &g->entries[i];
+        const struct pass *p = e->pass;
+        if (!kept(e) || !p->desc->leaves_out)
+            continue;
+        for (int k = 0; k < scene->object_count && count < max; k++) {
+            const struct object *o = scene->objects[k];
+            if (!o->visible || o->material.kind == MATERIAL_DIFFUSE)
+                continue;
+            const char *why = p->desc->leaves_out(p, o);
+            if (why) {
+                enum material_kind kind = o->material.kind;
+                snprintf(messages[count++], 400, "pass '%s' (%s) leaves out object %d (%s): %s", p->name,
+                         p->desc->name, k + 1,
+                         kind == MATERIAL_GLASS ? "glass" : kind == MATERIAL_WATER ? "water" : "mirror", why);
+            }
+        }
+    }
     /* Caustics added by shade for a light that shade does not shadow. */
     for (int i = 0; i < g->count && count < max; i++) {
         const struct graph_entry *e = &g->entries[i];

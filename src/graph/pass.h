@@ -130,6 +130,12 @@ struct pass_desc {
      * NULL means it always runs. `why` explains a REUSE or SKIP. */
     enum pass_need (*needed)(struct pass *p, struct pass_frame *f, char *why, size_t whylen);
     void (*destroy)(struct pass *p);
+    /* What of the scene the pass cannot handle: NULL where it handles
+     * object o (or has no business with it), else what it leaves out, in
+     * words ("no caustics through it: ..."). graph_lint prints one warning
+     * per pass and object, so nothing renders dark without a line saying
+     * why (issue 27). NULL: the pass handles every object. */
+    const char *(*leaves_out)(const struct pass *p, const struct object *o);
 };
 
 /* Named stages of one frame of a pass, timed with GL timestamps

@@ -224,8 +224,21 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     return true;
 }
 
+/* Sandberg & Falemo's volumes hang from one water surface's triangles. */
+static const char *caustic_volumes_leaves_out(const struct pass *p, const struct object *o)
+{
+    if (o->material.kind == MATERIAL_WATER)
+        return o == pass_object_at(p, VOLUMES_WATER)
+                   ? NULL
+                   : "only the water surface named by `water` makes caustic volumes: no caustics through this one "
+                     "(add a caustic_volumes pass for it)";
+    return "caustic volumes are built from the water surface named by `water` alone: no caustics through glass "
+           "or off a mirror (photon_caustics or layered_caustics make them)";
+}
+
 const struct pass_desc caustic_volumes_pass = {
     .name = "caustic_volumes",
+    .leaves_out = caustic_volumes_leaves_out,
     .summary = "Sandberg & Falemo: water caustics as volumes per surface triangle (irradiance for shade)",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -691,8 +691,23 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     return gl_check("illumination_textures", err);
 }
 
+/* Iwasaki et al. build the light transport table per vertex of a closed
+ * glass object (§4.2): a water surface or a mirror has none. */
+static const char *illumination_textures_leaves_out(const struct pass *p, const struct object *o)
+{
+    (void)p;
+    if (o->material.kind == MATERIAL_WATER)
+        return "the light transport tables are made for closed glass objects (Iwasaki et al. 4.2), not a water "
+               "surface: no caustics through it (photon_caustics, caustic_volumes or layered_caustics make them)";
+    if (o->material.kind == MATERIAL_MIRROR)
+        return "only glass refracts light into the illumination textures: no caustics off a mirror "
+               "(photon_caustics makes them)";
+    return NULL;
+}
+
 const struct pass_desc illumination_textures_pass = {
     .name = "illumination_textures",
+    .leaves_out = illumination_textures_leaves_out,
     .summary = "Iwasaki et al.: caustics through illumination textures on virtual planes and a light transport table",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -1,0 +1,52 @@
+# A pass that cannot handle an object of the scene says so, once, naming
+# the pass, the object and what is left out (issue 27); one that can says nothing.
+source "$(dirname "$0")/lib.sh"
+leaves_out() { grep -c "leaves out object" "$1"; }
+"$CAUSTICA" render tests/scenes/matrix/water.lua --set technique=illumination_textures --size 16x16 -o "$WORK/a.png" \
+  >"$WORK/a.txt" 2>&1
+[ "$(grep -c "pass 'caustics' (illumination_textures) leaves out object 2 (water): .*no caustics through it" "$WORK/a.txt")" = 1 ] \
+  && pass "illumination_textures over water: one warning" || fail "illumination_textures over water" "$(cat "$WORK/a.txt")"
+# caustic volumes over a pool with a glass ball in it: the ball is left out
+cat >"$WORK/pool.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 2, 3}, target = {0, -1, 0} } }
+local sun = scene:add(c.light.directional { direction = {0.3, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0}, material = c.material.diffuse {} })
+local water = scene:add(c.water { size = 4, resolution = 17, depth = 1 })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3 }, position = {0, -0.5, 0}, material = c.material.glass {} })
+local g = c.graph()
+g:add("caustics", c.pass.caustic_volumes { light = sun, water = water })
+g:add("shade", c.pass.shade { caustics = "caustics.irradiance" })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+"$CAUSTICA" info "$WORK/pool.lua" --no-render --trusted >"$WORK/b.txt" 2>&1
+grep -q "pass 'caustics' (caustic_volumes) leaves out object 3 (glass): caustic volumes are built from the water surface" "$WORK/b.txt" \
+  && [ "$(leaves_out "$WORK/b.txt")" = 1 ] && pass "caustic_volumes with glass in the pool: one warning, not for its water" \
+  || fail "caustic_volumes with glass in the pool" "$(cat "$WORK/b.txt")"
+"$CAUSTICA" info tests/scenes/matrix/ball.lua --set technique=layered_caustics --no-render >"$WORK/c.txt" 2>&1
+[ "$(leaves_out "$WORK/c.txt")" = 0 ] && pass "layered_caustics through glass: no warning" \
+  || fail "layered_caustics through glass" "$(cat "$WORK/c.txt")"
+# a mirror beside the glass: the layered passes leave it out, photon_caustics does not
+cat >"$WORK/mirror.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 2, 3}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0}, material = c.material.diffuse {} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass { ior = 1.5 } })
+scene:add(c.object { mesh = c.mesh.box { size = {0.3, 0.3, 0.3} }, position = {1, 0, 0}, material = c.material.mirror {} })
+local g = c.graph()
+g:add("caustics", c.pass[c.param("technique", "layered_caustics")] { light = sun })
+g:add("shade", c.pass.shade { caustics = "caustics.irradiance" })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+for t in layered_caustics beam_caustics; do
+  "$CAUSTICA" info "$WORK/mirror.lua" --set technique=$t --no-render --trusted >"$WORK/m.txt" 2>&1
+  grep -q "pass 'caustics' ($t) leaves out object 3 (mirror): the light's depth layers hold glass and water only" "$WORK/m.txt" \
+    && [ "$(leaves_out "$WORK/m.txt")" = 1 ] && pass "$t beside a mirror: one warning" || fail "$t beside a mirror" "$(cat "$WORK/m.txt")"
+done
+"$CAUSTICA" info "$WORK/mirror.lua" --set technique=photon_caustics --no-render --trusted >"$WORK/p.txt" 2>&1
+[ "$(leaves_out "$WORK/p.txt")" = 0 ] && pass "photon_caustics beside a mirror: no warning" \
+  || fail "photon_caustics beside a mirror" "$(cat "$WORK/p.txt")"
+finish
