@@ -43,8 +43,20 @@
 #define ILLUM_MAX_PLANES 16
 #define ILLUM_VERTEX_FLOATS 9 /* position, intensity, direction */
 
+/* A glass mesh whose longest edge is more than this fraction of its
+ * bounding diagonal is subdivided for its table (scene/mesh_subdivide.c):
+ * 1/16 splits a cube's faces into 16 x 16 (3,072 triangles, a 15 MB table
+ * at table = 16) and leaves the default spheres (128 segments) alone. */
+#define ILLUM_EDGE_FRACTION (1.0f / 16.0f)
+#define ILLUM_MAX_TABLE_TRIANGLES 8192
+
 struct illum_state {
     struct transport_table tables[ILLUM_MAX_REFRACTORS];
+    /* the mesh each table samples: the object's, or `fine`, its subdivision */
+    const struct mesh *table_mesh[ILLUM_MAX_REFRACTORS];
+    struct mesh *fine[ILLUM_MAX_REFRACTORS];
+    uint64_t fine_of[ILLUM_MAX_REFRACTORS]; /* the serial of the mesh `fine` subdivides */
+    int fine_levels[ILLUM_MAX_REFRACTORS];
     int table_count;
     struct gl_texture target, target_depth, textures, receiver_depth;
     struct gl_framebuffer target_fb, texture_fb, map_fb;
@@ -114,8 +126,11 @@ static void illum_destroy(struct pass *p)
     struct illum_state *s = p->state;
     if (!s)
         return;
-    for (int i = 0; i < ILLUM_MAX_REFRACTORS; i++)
+    for (int i = 0; i < ILLUM_MAX_REFRACTORS; i++) {
         transport_table_release(&s->tables[i]);
+        if (s->fine[i])
+            mesh_destroy(s->fine[i]);
+    }
     release_targets(s);
     gl_framebuffer_destroy(&s->target_fb);
     gl_framebuffer_destroy(&s->texture_fb);
@@ -184,16 +199,19 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
     size_t bytes = 0, vertices = 0;
     double seconds = 0.0;
     bool all_cached = s->table_count > 0;
+    int subdivided = 0;
     for (int i = 0; i < s->table_count; i++) {
+        subdivided += s->table_mesh[i] == s->fine[i] && s->fine[i];
         bytes += s->tables[i].bytes;
         vertices += s->tables[i].vertex_count;
         seconds += s->tables[i].build_seconds;
         all_cached = all_cached && s->tables[i].from_cache;
     }
     if (s->table_count > 0)
-        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, %s in %.2f s",
+        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, %s in %.2f s%s",
                  s->table_count, vertices, s->tables[0].resolution * s->tables[0].resolution, (double)bytes / 1048576.0,
-                 all_cached ? "read from the cache" : "traced", seconds);
+                 all_cached ? "read from the cache" : "traced", seconds,
+                 subdivided ? " (coarse meshes subdivided for their tables)" : "");
     bool reuse = s->valid && s->key == texture_key(p, f->scene, light) && !f->snapshot->geometry_animated;
     snprintf(why, whylen, "%s%s",
              reuse ? "the illumination textures are reused (light, glass and targets unchanged: only the mapping runs)"
@@ -249,12 +267,12 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
+        const struct mesh *m = s->table_mesh[t];
         const struct transport_table *table = &s->tables[t++];
         const struct frame_object *fo = frame_object_of(fr, o);
         mat4 model = fo ? fo->model : object_model_matrix(o), inverse;
         if (!mat4_inverse(model, &inverse))
             continue;
-        const struct mesh *m = o->mesh;
         size_t nv = m->vertex_count;
         struct vertex_path *vp = malloc(nv * sizeof *vp);
         if (!vp)
@@ -370,6 +388,30 @@ static void weighted_range(struct weighted *v, size_t n, float lo, float hi, flo
 
 /* Builds the tables (when new), the virtual camera, the planes and the
  * illumination textures. */
+/* The mesh table k samples: the object's own, or its subdivision where its
+ * triangles are coarse against it (kept while the object's mesh is the
+ * same). NULL on error. */
+static const struct mesh *table_mesh(struct illum_state *s, int k, const struct mesh *m, struct error *err)
+{
+    float diagonal = vec3_length(vec3_sub(m->bounds_max, m->bounds_min));
+    int levels = mesh_subdivision_levels(m, ILLUM_EDGE_FRACTION * diagonal, ILLUM_MAX_TABLE_TRIANGLES);
+    if (levels == 0) {
+        s->table_mesh[k] = m;
+        return m;
+    }
+    if (!s->fine[k] || s->fine_of[k] != m->serial || s->fine_levels[k] != levels) {
+        if (s->fine[k])
+            mesh_destroy(s->fine[k]);
+        s->fine[k] = mesh_create_subdivided(m, levels, err);
+        if (!s->fine[k])
+            return NULL;
+        s->fine_of[k] = m->serial;
+        s->fine_levels[k] = levels;
+    }
+    s->table_mesh[k] = s->fine[k];
+    return s->fine[k];
+}
+
 static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struct error *err)
 {
     struct illum_state *s = p->state;
@@ -384,9 +426,13 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
-        struct transport_table *t = &s->tables[s->table_count++];
-        if (!transport_table_matches(t, o->mesh, &o->material, resolution, internal) &&
-            !transport_table_build(t, o->mesh, &o->material, resolution, internal, err))
+        int k = s->table_count++;
+        const struct mesh *m = table_mesh(s, k, o->mesh, err);
+        if (!m)
+            return false;
+        struct transport_table *t = &s->tables[k];
+        if (!transport_table_matches(t, m, &o->material, resolution, internal) &&
+            !transport_table_build(t, m, &o->material, resolution, internal, err))
             return false;
     }
     pass_stage_end(p, "tables");

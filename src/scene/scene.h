@@ -120,6 +120,13 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err);
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err);
 void mesh_compute_bounds(struct mesh *mesh);
+/* Midpoint subdivision (scene/mesh_subdivide.c): the longest edge; how many
+ * levels (each triangle into four) bring it to max_edge without passing
+ * max_triangles; a new mesh (positions, normals, indices only) `levels`
+ * levels finer, owned by the caller (mesh_destroy), or NULL on error. */
+float mesh_longest_edge(const struct mesh *mesh);
+int mesh_subdivision_levels(const struct mesh *mesh, float max_edge, size_t max_triangles);
+struct mesh *mesh_create_subdivided(const struct mesh *mesh, int levels, struct error *err);
 /* d_N per vertex into mesh->thickness (scene/thickness.c, Embree). */
 bool mesh_compute_thickness(struct mesh *mesh, struct error *err);
 void mesh_retain(struct mesh *mesh);

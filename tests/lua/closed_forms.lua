@@ -109,4 +109,128 @@ function closed.ball_rings(opts)
   return means
 end
 
+-- 3D vectors as {x, y, z}.
+local function dot3(a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
+local function normalize3(a)
+  local l = math.sqrt(dot3(a, a))
+  return { a[1] / l, a[2] / l, a[3] / l }
+end
+
+-- Snell's law in 3D (n unit, facing against d), eta = n_incident /
+-- n_transmitted: the refracted unit direction, or nil under total internal
+-- reflection.
+local function refract3(d, n, eta)
+  local cos_i = -dot3(d, n)
+  local k = 1 - eta * eta * (1 - cos_i * cos_i)
+  if k < 0 then return nil end
+  local a = eta * cos_i - math.sqrt(k)
+  return { eta * d[1] + a * n[1], eta * d[2] + a * n[2], eta * d[3] + a * n[3] }
+end
+
+local function reflect3(d, n)
+  local k = 2 * dot3(d, n)
+  return { d[1] - k * n[1], d[2] - k * n[2], d[3] - k * n[3] }
+end
+
+-- The rotation matrix (rows) of `degrees` about `axis` (Rodrigues).
+local function rotation(axis, degrees)
+  local u = normalize3(axis)
+  local a = math.rad(degrees)
+  local c, s, t = math.cos(a), math.sin(a), 1 - math.cos(a)
+  local x, y, z = u[1], u[2], u[3]
+  return { { t * x * x + c, t * x * y - s * z, t * x * z + s * y },
+           { t * x * y + s * z, t * y * y + c, t * y * z - s * x },
+           { t * x * z - s * y, t * y * z + s * x, t * z * z + c } }
+end
+local function mul(m, v) return { dot3(m[1], v), dot3(m[2], v), dot3(m[3], v) } end
+local function mul_t(m, v)
+  return { m[1][1] * v[1] + m[2][1] * v[2] + m[3][1] * v[3], m[1][2] * v[1] + m[2][2] * v[2] + m[3][2] * v[3],
+           m[1][3] * v[1] + m[2][3] * v[2] + m[3][3] * v[3] }
+end
+
+--- A cube (tests/scenes/matrix/cube_geometry.lua) of IOR `ior` with an
+--- ideal interface in a sun of irradiance 1 across its rays: the floor's
+--- (y = 0) irradiance from the light that met the cube, binned into the
+--- size x size pixels of the orthographic view of the square `view_width`
+--- wide around `view_centre` (row j at z = centre - width / 2 + (j + 0.5)
+--- width / size). Rays start on a grid `spacing` apart on the plane y = 3
+--- and are followed exactly through the cube: refracted at every face,
+--- totally reflected where Snell's law has no solution (outside too, at
+--- IOR < 1), up to 32 interfaces. Returns grid[j][i] (1-based).
+function closed.cube_pixels(geometry, opts)
+  local n, size, spacing = opts.ior, opts.size, opts.spacing or 0.004
+  local R = rotation(geometry.axis, geometry.angle)
+  local C, h = geometry.centre, geometry.side / 2
+  local L = normalize3(geometry.light)
+  local width, vc = geometry.view_width, geometry.view_centre
+  local pixel = width / size
+  local grid = {}
+  for j = 1, size do grid[j] = {} for i = 1, size do grid[j][i] = 0 end end
+  local flux = spacing * spacing * -L[2] -- a horizontal cell's share of the light
+  -- the start plane's square that covers the cube's shadow from above
+  local reach = h * math.sqrt(3)
+  local t0 = (3 - C[2]) / -L[2]
+  local sx, sz = C[1] - L[1] * t0, C[3] - L[3] * t0
+  local cells = math.floor(2 * reach / spacing)
+  for a = 0, cells - 1 do
+    for b = 0, cells - 1 do
+      local o = { sx - reach + (a + 0.5) * spacing, 3, sz - reach + (b + 0.5) * spacing }
+      -- into the cube's frame
+      local p = mul_t(R, { o[1] - C[1], o[2] - C[2], o[3] - C[3] })
+      local d = mul_t(R, L)
+      -- the slab test: where the ray enters the box
+      local tin, tout, axis_in = -math.huge, math.huge, 0
+      for k = 1, 3 do
+        if math.abs(d[k]) < 1e-12 then
+          if math.abs(p[k]) > h then tin = math.huge end
+        else
+          local ta, tb = (-h - p[k]) / d[k], (h - p[k]) / d[k]
+          if ta > tb then ta, tb = tb, ta end
+          if ta > tin then tin, axis_in = ta, k end
+          if tb < tout then tout = tb end
+        end
+      end
+      if tin < tout and tin > 0 then
+        local q = { p[1] + d[1] * tin, p[2] + d[2] * tin, p[3] + d[3] * tin }
+        local nrm = { 0, 0, 0 }
+        nrm[axis_in] = d[axis_in] > 0 and -1 or 1
+        local inside = false
+        local dir = refract3(d, nrm, 1 / n)
+        if dir then inside = true else dir = reflect3(d, nrm) end
+        local bounces = 0
+        while inside and bounces < 32 do
+          -- the face the ray leaves by
+          local texit, axis_out = math.huge, 0
+          for k = 1, 3 do
+            if math.abs(dir[k]) > 1e-12 then
+              local tk = ((dir[k] > 0 and h or -h) - q[k]) / dir[k]
+              if tk < texit then texit, axis_out = tk, k end
+            end
+          end
+          q = { q[1] + dir[1] * texit, q[2] + dir[2] * texit, q[3] + dir[3] * texit }
+          local face = { 0, 0, 0 }
+          face[axis_out] = dir[axis_out] > 0 and -1 or 1 -- facing back into the cube, against the ray
+          local out = refract3(dir, face, n)
+          if out then dir, inside = out, false else dir = reflect3(dir, face) end
+          bounces = bounces + 1
+        end
+        if not inside then
+          local wq, wd = mul(R, q), mul(R, dir)
+          wq = { wq[1] + C[1], wq[2] + C[2], wq[3] + C[3] }
+          if wd[2] < 0 then
+            local t = wq[2] / -wd[2]
+            local x, z = wq[1] + wd[1] * t, wq[3] + wd[3] * t
+            local i = math.floor((x - (vc[1] - width / 2)) / pixel) + 1
+            local j = math.floor((z - (vc[3] - width / 2)) / pixel) + 1
+            if i >= 1 and i <= size and j >= 1 and j <= size then
+              grid[j][i] = grid[j][i] + flux / (pixel * pixel)
+            end
+          end
+        end
+      end
+    end
+  end
+  return grid
+end
+
 return closed

@@ -11,7 +11,7 @@ local caustics_pass = require "caustics_pass"
 local R = 0.5
 local floor_y = -c.param("floor", 1.5) * R
 local scene = c.scene {
-  camera = c.camera { eye = {0, floor_y + 0.5 * (-R - floor_y), 0}, target = {0, floor_y, 0}, up = {0, 0, -1}, near = 0.01,
+  camera = c.camera { eye = {0, floor_y + 0.5 * (-R - floor_y), 0}, target = {0, floor_y, 0}, up = {0, 0, -1}, near = c.param("near", 0.01),
                       ortho = { width = 2.2 * R } },
   background = {0, 0, 0},
 }

@@ -9,8 +9,8 @@ local technique = c.param("technique", "refraction")
 local target = {0, 0.8, 0}
 local scene = c.scene {
   camera = c.param("ortho", false)
-    and c.camera { eye = {0, 1.2, 4.0}, target = target, ortho = { width = 3.2 } }
-    or c.camera { eye = {0, 1.2, 4.0}, target = target, fov = 45 },
+    and c.camera { eye = {0, 1.2, 4.0}, target = target, ortho = { width = 3.2 }, near = c.param("near", 0.1) }
+    or c.camera { eye = {0, 1.2, 4.0}, target = target, fov = 45, near = c.param("near", 0.1) },
   background = {0.2, 0.3, 0.5},
   ambient = {0.1, 0.1, 0.1},
 }
