@@ -1,4 +1,5 @@
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "scene/scene.h"
@@ -84,6 +85,58 @@ int main(void)
     CHECK(sc.object_count == 0);
     CHECK(!scene_bounds(&sc, &lo, &hi));
     scene_release(&sc);
+
+    /* Midpoint subdivision (for the transport tables): a box of side 1,
+     * two levels: 16 times the triangles, the edges a quarter as long, each
+     * face's midpoints shared (a face of 2 triangles has 25 vertices after
+     * two levels, 4 + 21 new), every vertex still on the box, the normals
+     * unit and the winding kept. */
+    struct mesh *box = mesh_create_box(vec3_make(1, 1, 1), &err);
+    CHECK(box != NULL);
+    CHECK_NEAR(mesh_longest_edge(box), sqrt(2.0), 1e-5);
+    CHECK(mesh_subdivision_levels(box, 0.5f, 1 << 20) == 2);
+    CHECK(mesh_subdivision_levels(box, 0.5f, 12 * 4) == 1); /* the triangle cap holds */
+    CHECK(mesh_subdivision_levels(box, 2.0f, 1 << 20) == 0);
+    struct mesh *fine = mesh_create_subdivided(box, 2, &err);
+    CHECK(fine != NULL);
+    if (fine) {
+        CHECK(fine->index_count == box->index_count * 16);
+        CHECK(fine->vertex_count == 6 * 25);
+        CHECK_NEAR(mesh_longest_edge(fine), sqrt(2.0) / 4, 1e-5);
+        CHECK(normals_unit(fine));
+        CHECK(winding_outward(fine));
+        bool on_box = true;
+        for (size_t i = 0; i < fine->vertex_count * 3; i += 3) {
+            float m = fmaxf(fmaxf(fabsf(fine->positions[i]), fabsf(fine->positions[i + 1])), fabsf(fine->positions[i + 2]));
+            on_box = on_box && fabsf(m - 0.5f) < 1e-6f;
+        }
+        CHECK(on_box);
+        mesh_destroy(fine);
+    }
+    /* a zero-area triangle and opposite normals on an edge: finite */
+    float *zp = malloc(9 * sizeof *zp), *zn = malloc(9 * sizeof *zn);
+    uint32_t *zi = malloc(3 * sizeof *zi);
+    if (zp && zn && zi) {
+        const float p9[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0}, n9[9] = {0, 1, 0, 0, -1, 0, 0, 1, 0};
+        memcpy(zp, p9, sizeof p9);
+        memcpy(zn, n9, sizeof n9);
+        zi[0] = 0, zi[1] = 1, zi[2] = 2;
+    }
+    struct mesh *flat = mesh_create_from_arrays("zero-area", zp, zn, 3, zi, 3, &err);
+    CHECK(flat != NULL);
+    if (flat) {
+        struct mesh *f2 = mesh_create_subdivided(flat, 3, &err);
+        CHECK(f2 != NULL);
+        bool finite = true;
+        for (size_t i = 0; f2 && i < f2->vertex_count * 3; i++)
+            finite = finite && isfinite(f2->positions[i]) && isfinite(f2->normals[i]);
+        CHECK(finite);
+        CHECK(f2 && normals_unit(f2));
+        if (f2)
+            mesh_destroy(f2);
+        mesh_destroy(flat);
+    }
+    mesh_destroy(box);
 
     object_destroy(o);
     mesh_destroy(s);
