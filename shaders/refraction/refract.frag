@@ -22,6 +22,7 @@ uniform int u_correction;
 in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
+uniform int u_camera_inside = 0; // 1: the camera is inside this refractor (its back faces are drawn)
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_tir;  // r: total internal reflection at the two interfaces, g: all of them
 layout(location = 2) out vec4 o_exit; // rgb: the direction the path leaves in, a = 1
@@ -61,6 +62,8 @@ bool trace_nearby(vec3 o, vec3 d, float weight, out vec3 c)
     ivec2 px;
     if (weight >= 0.1 && scene_trace(o, d, px)) {
         float glass = texelFetch(u_front_depth, px, 0).r, seen = texelFetch(u_input_depth, px, 0).r;
+        if (u_camera_inside == 1 && glass >= 1.0) // the camera inside: the glass it sees is its back faces
+            glass = texelFetch(u_back_depth, px, 0).r;
         bool input_shows_glass = glass < 1.0 && abs(view_depth(seen) - view_depth(glass)) <= 1e-3 * view_depth(glass) + 1e-4;
         c = input_shows_glass ? texelFetch(u_behind, px, 0).rgb : texelFetch(u_scene, px, 0).rgb;
         return true;
@@ -205,6 +208,9 @@ float exit_distance(vec3 p1, vec3 t1, bool back, int iterations, out bool conver
 // normal of the first interface inside and the number of total internal
 // reflections (where either jumps between neighbouring pixels the path
 // changed there: a cube's edge seen through its front face).
+void leave_glass(vec3 pos, vec3 dir, vec3 n2, vec3 throughput, float transmitted_share, inout vec3 exit_dir,
+                 inout vec4 exit_key);
+
 void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout vec4 exit_key)
 {
     float eta = 1.0 / u_ior;
@@ -256,6 +262,16 @@ void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout
     if (dot(n2, n2) < 0.5)
         n2 = back ? surface_normal(u_back_normal, uv1) : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
+    exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
+    leave_glass(p2, t1, n2, transmitted_share * exp(-u_absorption * dT), transmitted_share, exit_dir, exit_key);
+}
+
+// From inside the glass at its surface `pos` (outward normal n2), going
+// along dir with `throughput` left of the pixel's `transmitted_share`: out
+// through the interface, or on inside after a total internal reflection.
+void leave_glass(vec3 pos, vec3 dir, vec3 n2, vec3 throughput, float transmitted_share, inout vec3 exit_dir,
+                 inout vec4 exit_key)
+{
     exit_key.xyz = n2;
     // Leaving: the normal facing against the ray is -n2 (n2 is outward).
     // Beyond the paper's two interfaces (issue 8): at a total internal
@@ -270,10 +286,8 @@ void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout
 #else
     int MAX_INTERFACES = clamp(u_internal, 1, 8);
 #endif
-    vec3 dir = t1, pos = p2, throughput = transmitted_share * exp(-u_absorption * dT);
     int tir = 0, tir_first = 0;
     bool left = false;
-    exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
     for (int crossing = 0; crossing < MAX_INTERFACES; crossing++) {
         vec3 m = dot(dir, n2) > 0.0 ? -n2 : n2;
         vec3 t2 = refract(dir, m, u_ior);
@@ -329,7 +343,21 @@ void main()
     vec4 exit_key = vec4(n1, 0.0);
     if (u_material_kind == 2) // a mirror: reflection alone, of nearby objects too
         gather(v_world, reflect_dir, u_color, 1.0, true);
-    else
+    else if (u_camera_inside == 1) {
+        // The camera inside the glass (Hu & Qin's two interfaces assume it
+        // outside): the view ray is in the glass already, absorbed on the way
+        // to this back face, and meets only the way out. Where a front face
+        // lies nearer (an orthographic camera's rays that start outside),
+        // the front-face drawing stands.
+        if (texelFetch(u_front_depth, ivec2(gl_FragCoord.xy), 0).r < gl_FragCoord.z)
+            discard;
+        vec3 n_out = normalize(v_normal);
+        if (dot(v, n_out) < 0.0)
+            n_out = -n_out;
+        reflect_dir = v; // no reflection off the outside to filter
+        exit_dir = v;
+        leave_glass(v_world, v, n_out, exp(-u_absorption * view_distance(v_world)), 1.0, exit_dir, exit_key);
+    } else
         refract_paths(v, n1, reflect_dir, exit_dir, exit_key);
     // The environment over each pixel's spread of directions (issue 8): the
     // exit direction's screen derivatives for the rays leaving the

@@ -78,7 +78,7 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
             const struct object *o = scene->objects[k];
             if (!o->visible || o->material.kind == MATERIAL_DIFFUSE)
                 continue;
-            const char *why = p->desc->leaves_out(p, o);
+            const char *why = p->desc->leaves_out(p, scene, o);
             if (why) {
                 enum material_kind kind = o->material.kind;
                 snprintf(messages[count++], 400, "pass '%s' (%s) leaves out object %d (%s): %s", p->name,

@@ -131,11 +131,11 @@ struct pass_desc {
     enum pass_need (*needed)(struct pass *p, struct pass_frame *f, char *why, size_t whylen);
     void (*destroy)(struct pass *p);
     /* What of the scene the pass cannot handle: NULL where it handles
-     * object o (or has no business with it), else what it leaves out, in
+     * object o of `scene` as the scene stands (its camera, say), else what it leaves out, in
      * words ("no caustics through it: ..."). graph_lint prints one warning
      * per pass and object, so nothing renders dark without a line saying
      * why (issue 27). NULL: the pass handles every object. */
-    const char *(*leaves_out)(const struct pass *p, const struct object *o);
+    const char *(*leaves_out)(const struct pass *p, const struct scene *scene, const struct object *o);
 };
 
 /* Named stages of one frame of a pass, timed with GL timestamps

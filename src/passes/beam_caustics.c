@@ -557,8 +557,10 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
 }
 
 /* The light's depth layers hold glass and water (layers_is_refractor). */
-static const char *beam_caustics_leaves_out(const struct pass *p, const struct object *o)
+static const char *beam_caustics_leaves_out(const struct pass *p, const struct scene *scene,
+                                            const struct object *o)
 {
+    (void)scene;
     (void)p;
     return o->material.kind == MATERIAL_MIRROR
                ? "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "

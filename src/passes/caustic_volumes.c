@@ -225,8 +225,10 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
 }
 
 /* Sandberg & Falemo's volumes hang from one water surface's triangles. */
-static const char *caustic_volumes_leaves_out(const struct pass *p, const struct object *o)
+static const char *caustic_volumes_leaves_out(const struct pass *p, const struct scene *scene,
+                                              const struct object *o)
 {
+    (void)scene;
     if (o->material.kind == MATERIAL_WATER)
         return o == pass_object_at(p, VOLUMES_WATER)
                    ? NULL

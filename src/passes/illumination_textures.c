@@ -739,8 +739,10 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
 
 /* Iwasaki et al. build the light transport table per vertex of a closed
  * glass object (§4.2): a water surface or a mirror has none. */
-static const char *illumination_textures_leaves_out(const struct pass *p, const struct object *o)
+static const char *illumination_textures_leaves_out(const struct pass *p, const struct scene *scene,
+                                                    const struct object *o)
 {
+    (void)scene;
     (void)p;
     if (o->material.kind == MATERIAL_WATER)
         return "the light transport tables are made for closed glass objects (Iwasaki et al. 4.2), not a water "

@@ -182,13 +182,15 @@ static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, ch
     return PASS_RUN;
 }
 
-/* Draws each refractive object alone (its d_N buffer bound for Wyman's). */
+/* Draws each refractive object alone (its d_N buffer bound for Wyman's);
+ * with `inside`, only those whose inside[i] is `which`. */
 static bool draw_refractors(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
-                            bool wyman, const struct impostor_set *impostors, struct error *err)
+                            bool wyman, const struct impostor_set *impostors, const bool *inside, bool which,
+                            struct error *err)
 {
     for (int i = 0; i < scene->object_count; i++) {
         struct object *o = scene->objects[i];
-        if (!is_refractive(o))
+        if (!is_refractive(o) || (inside && inside[i] != which))
             continue;
         struct mesh *m = o->mesh;
         if (wyman) {
@@ -326,7 +328,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
-        if (!draw_refractors(r, f->scene, surf, wyman, NULL, err))
+        if (!draw_refractors(r, f->scene, surf, wyman, NULL, NULL, false, err))
             return false;
     }
     gl.Disable(GL_CULL_FACE);
@@ -393,9 +395,32 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.DepthMask(GL_FALSE);
     gl.Enable(GL_CULL_FACE);
     gl.CullFace(GL_BACK);
-    if (!draw_refractors(r, f->scene, prog, wyman, nearby && !distance ? &s->impostors : NULL, err))
-        return false;
-    return true;
+    /* A camera inside a glass or water object sees none of its front faces
+     * (an orthographic one may see some, in front of the pixels whose rays
+     * start outside it): that object is drawn again by its back faces, each
+     * pixel's path starting inside where no front face of it is nearer
+     * (refract.frag's u_camera_inside). */
+    bool *inside = calloc((size_t)f->scene->object_count + 1, sizeof *inside);
+    if (!inside)
+        return error_set(err, "refraction: out of memory");
+    bool any_inside = false;
+    for (int i = 0; i < f->scene->object_count; i++) {
+        const struct object *o = f->scene->objects[i];
+        inside[i] = is_refractive(o) && o->material.kind != MATERIAL_MIRROR &&
+                    object_contains_point(o, f->snapshot->eye);
+        any_inside = any_inside || inside[i];
+    }
+    const struct impostor_set *imp = nearby && !distance ? &s->impostors : NULL;
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_inside"), 0);
+    bool ok = draw_refractors(r, f->scene, prog, wyman, imp, NULL, false, err);
+    if (ok && any_inside && !wyman) {
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_inside"), 1);
+        gl.CullFace(GL_FRONT);
+        ok = draw_refractors(r, f->scene, prog, wyman, imp, inside, true, err);
+        gl.CullFace(GL_BACK);
+    }
+    free(inside);
+    return ok;
 }
 
 const struct pass_desc refraction_pass = {

@@ -280,8 +280,21 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     return gl_check("sliced_refraction", err);
 }
 
+/* The sliced object images are mapped onto the glass's front faces
+ * (Iwasaki et al. §3): a camera inside sees none of them. */
+static const char *sliced_refraction_leaves_out(const struct pass *p, const struct scene *scene,
+                                                const struct object *o)
+{
+    (void)p;
+    if (is_refractor(o) && object_contains_point(o, scene->camera.eye))
+        return "the camera is inside it: the sliced object images are seen through its front faces, none of which "
+               "the camera sees, so the view through it is not refracted (refraction or layered_refraction trace it)";
+    return NULL;
+}
+
 const struct pass_desc sliced_refraction_pass = {
     .name = "sliced_refraction",
+    .leaves_out = sliced_refraction_leaves_out,
     .summary = "Iwasaki et al.: the refracted view through glass by sliced object images and the light transport table",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -125,6 +125,11 @@ void mesh_compute_bounds(struct mesh *mesh);
  * max_triangles; a new mesh (positions, normals, indices only) `levels`
  * levels finer, owned by the caller (mesh_destroy), or NULL on error. */
 float mesh_longest_edge(const struct mesh *mesh);
+/* Whether p (the mesh's frame, or the world for the object) is inside the
+ * closed mesh: the parity of a ray's crossings (scene/mesh_inside.c). The
+ * object's base shape under its transform: morphs and deformers are not
+ * applied. */
+bool mesh_contains_point(const struct mesh *mesh, vec3 p);
 int mesh_subdivision_levels(const struct mesh *mesh, float max_edge, size_t max_triangles);
 struct mesh *mesh_create_subdivided(const struct mesh *mesh, int levels, struct error *err);
 /* d_N per vertex into mesh->thickness (scene/thickness.c, Embree). */
@@ -173,6 +178,7 @@ void object_destroy(struct object *obj);
 /* Morphs or deforms this frame? */
 bool object_is_animated_geometry(const struct object *obj);
 mat4 object_model_matrix(const struct object *obj);
+bool object_contains_point(const struct object *obj, vec3 p);
 void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
 
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };

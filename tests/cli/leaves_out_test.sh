@@ -49,4 +49,14 @@ done
 "$CAUSTICA" info "$WORK/mirror.lua" --set technique=photon_caustics --no-render --trusted >"$WORK/p.txt" 2>&1
 [ "$(leaves_out "$WORK/p.txt")" = 0 ] && pass "photon_caustics beside a mirror: no warning" \
   || fail "photon_caustics beside a mirror" "$(cat "$WORK/p.txt")"
+# the camera inside a glass ball: sliced_refraction says it does not refract it; refraction and
+# layered_refraction trace paths that start inside, and say nothing
+for t in sliced_refraction refraction layered_refraction; do
+  "$CAUSTICA" info tests/scenes/matrix/identity.lua --set technique=$t --set inside=true --set ior=1.5 --no-render \
+    >"$WORK/i.txt" 2>&1
+  want=0
+  [ $t = sliced_refraction ] && want=1
+  [ "$(grep -c "leaves out object 4 (glass): the camera is inside it" "$WORK/i.txt")" = $want ] \
+    && pass "$t with the camera inside the glass: $want warning(s)" || fail "$t, camera inside" "$(cat "$WORK/i.txt")"
+done
 finish

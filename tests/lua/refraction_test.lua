@@ -289,3 +289,18 @@ t.case("total internal reflection inside: the IOR 2.42 and 0.8 cubes against the
     t.expect(e < tol and e < 0.8 * ep, string.format("IOR %g: %.4f (the paper's two interfaces %.4f)", ior, e, ep))
   end
 end)
+
+t.case("the camera inside an IOR-1.5 ball: refraction traces the way out as layered_refraction does", function()
+  -- Hu & Qin's two interfaces assume the camera outside: with it inside,
+  -- the pass drew nothing of the ball. Now each pixel's path starts inside
+  -- and meets only the way out; layered_refraction traces every interface
+  -- independently, so the two must agree, and differ from the IOR-1.0 view.
+  local set = { technique = "refraction", inside = true, ior = 1.5 }
+  local img = t.render("tests/scenes/matrix/identity.lua", { set = set })
+  t.expect_finite(img)
+  set.technique = "layered_refraction"
+  local layered = t.render("tests/scenes/matrix/identity.lua", { set = set })
+  t.expect_close(img, layered, { rel_rmse = 0.05 }) -- (0.035: a few pixels at the box's edges)
+  local unrefracted = t.render("tests/scenes/matrix/identity.lua", { set = { technique = "refraction", inside = true, ior = 1.0 } })
+  t.expect_different(img, unrefracted, 0.05)
+end)

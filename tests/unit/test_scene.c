@@ -136,6 +136,19 @@ int main(void)
             mesh_destroy(f2);
         mesh_destroy(flat);
     }
+    /* Inside a closed mesh: the parity of a ray's crossings. */
+    CHECK(mesh_contains_point(box, vec3_make(0, 0, 0)));
+    CHECK(mesh_contains_point(box, vec3_make(0.49f, -0.3f, 0.2f)));
+    CHECK(!mesh_contains_point(box, vec3_make(0.51f, 0, 0)));
+    CHECK(!mesh_contains_point(box, vec3_make(0, 2, 0)));
+    struct mesh *ball = mesh_create_sphere(0.55f, 96, &err);
+    CHECK(ball != NULL);
+    if (ball) {
+        CHECK(mesh_contains_point(ball, vec3_make(0.1f, 0.05f, 0.05f)));
+        CHECK(mesh_contains_point(ball, vec3_make(0, 0.54f, 0)));
+        CHECK(!mesh_contains_point(ball, vec3_make(0.4f, 0.4f, 0.4f)));
+        mesh_destroy(ball);
+    }
     mesh_destroy(box);
 
     object_destroy(o);

@@ -3,14 +3,17 @@
 -- image without it. A directional light with no shadow pass lights
 -- everything the same with or without the sphere.
 -- --set technique=refraction|refraction_impostors|layered_refraction|sliced_refraction,
---       ortho=true|false, sphere=false (the truth), fresnel=true|false, ior=
+--       ortho=true|false, sphere=false (the truth), fresnel=true|false, ior=, inside=true (the camera
+--       inside the sphere, looking out at the wall)
 local c = require "caustica"
 local technique = c.param("technique", "refraction")
-local target = {0, 0.8, 0}
+local inside = c.param("inside", false)
+local eye = inside and {0.1, 0.85, 0.75} or {0, 1.2, 4.0}
+local target = inside and {0, 0.8, -2} or {0, 0.8, 0}
 local scene = c.scene {
   camera = c.param("ortho", false)
-    and c.camera { eye = {0, 1.2, 4.0}, target = target, ortho = { width = 3.2 }, near = c.param("near", 0.1) }
-    or c.camera { eye = {0, 1.2, 4.0}, target = target, fov = 45, near = c.param("near", 0.1) },
+    and c.camera { eye = eye, target = target, ortho = { width = inside and 2.0 or 3.2 }, near = c.param("near", 0.1) }
+    or c.camera { eye = eye, target = target, fov = inside and 60 or 45, near = c.param("near", 0.1) },
   background = {0.2, 0.3, 0.5},
   ambient = {0.1, 0.1, 0.1},
 }
