@@ -54,6 +54,14 @@ struct LayerPath {
     bool capped;      // stopped by the interface cap, not by leaving
     int medium;       // the refractor slot the ray is inside when it leaves (-1: outside every one):
                       // an open surface (water) has no layer below it, so its ray is still in the medium
+    // The part reflected back inside where the path first left a refractor
+    // through an interface that also reflects (Fresnel): where, which way,
+    // its share of the light, and the medium and layer gap it stays in, for
+    // a second march (layer_continue). The thesis drops it (§3.8); at an
+    // exit just past a total internal reflection it is most of the light.
+    bool split;
+    vec3 split_origin, split_dir, split_weight;
+    int split_medium, split_gap, split_interfaces;
 };
 
 // Beer-Lambert over a length t inside the path's last medium: the rest of
@@ -246,8 +254,8 @@ bool layer_interface(inout vec3 d, vec3 n, int slot, inout int medium, out float
     return true;
 }
 
-// The path of the ray `d0` (eye space) that meets pixel p's first layer.
-LayerPath layer_trace(ivec2 p, vec3 d0)
+// A path before its first interface.
+LayerPath layer_path_start()
 {
     LayerPath path;
     path.entered = false;
@@ -257,26 +265,20 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     path.capped = false;
     path.fresnel0 = 0.0;
     path.medium = -1;
-    if (layer_count(p) == 0)
-        return path;
-    path.entered = true;
-    vec3 P = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
-    vec3 d = normalize(d0);
-    int medium = -1, gap = -1;
+    path.split = false;
+    return path;
+}
+
+// The rest of a path from P along d, inside `medium` (-1: none) between
+// layers gap and gap + 1, until no layer is left in its direction. With
+// `split`, the first exit that also reflects records the reflected part.
+void layer_march(inout LayerPath path, vec3 P, vec3 d, int medium, int gap, bool split)
+{
     float f;
     vec3 facing;
-    bool through = layer_interface(d, layer_normal(p, 0), layer_slot(p, 0), medium, f, facing);
-    path.fresnel0 = f;
-    path.normal0 = facing;
-    path.entry = P;
-    path.interfaces = 1;
-    if (through)
-        gap = 0; /* else reflected off the outside: the reflection term, not an internal reflection */
     int max_count = int(layer_ranges[2 * 32]);
     int cap = min(u_max_interfaces, LAYER_MAX_INTERFACES);
     for (int i = 0; i < LAYER_MAX_INTERFACES; i++) {
-        if (!through && i == 0)
-            break; // total reflection at the first interface: nothing enters
         if (path.interfaces >= cap) {
             path.capped = true;
             break;
@@ -298,9 +300,20 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
         if (medium >= 0)
             path.throughput *= exp(-layer_materials[medium].absorption.rgb * t);
         P = H;
+        vec3 d_in = d;
+        int medium_in = medium, gap_in = gap;
         bool refracted = layer_interface(d, layer_normal_at(q, k), layer_slot(ivec2(floor(q)), k), medium, f, facing);
         path.interfaces++;
         if (refracted) {
+            if (split && !path.split && medium_in >= 0 && medium < 0 && f > 0.0) {
+                path.split = true;
+                path.split_origin = H;
+                path.split_dir = reflect(d_in, facing);
+                path.split_weight = path.throughput * f;
+                path.split_medium = medium_in;
+                path.split_gap = gap_in;
+                path.split_interfaces = path.interfaces;
+            }
             path.throughput *= 1.0 - f;
             gap = deeper ? k : k - 1;
         } else {
@@ -312,5 +325,48 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     path.origin = P;
     path.dir = d;
     path.medium = medium;
+}
+
+// The path of the ray `d0` (eye space) that meets pixel p's first layer.
+LayerPath layer_trace(ivec2 p, vec3 d0)
+{
+    LayerPath path = layer_path_start();
+    if (layer_count(p) == 0)
+        return path;
+    path.entered = true;
+    vec3 P = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
+    vec3 d = normalize(d0);
+    int medium = -1;
+    float f;
+    vec3 facing;
+    bool through = layer_interface(d, layer_normal(p, 0), layer_slot(p, 0), medium, f, facing);
+    path.fresnel0 = f;
+    path.normal0 = facing;
+    path.entry = P;
+    path.interfaces = 1;
+    if (through) {
+        layer_march(path, P, d, medium, 0, true);
+    } else { // total reflection at the first interface: nothing enters (the reflection term, not an internal one)
+        path.origin = P;
+        path.dir = d;
+        path.medium = medium;
+    }
+    return path;
+}
+
+// The next march: the part `path` reflected back inside where it first
+// left, followed from there on its own (its throughput starts at that
+// part's share), itself recording where it first leaves.
+LayerPath layer_continue(LayerPath from)
+{
+    LayerPath path = layer_path_start();
+    path.entered = true;
+    path.throughput = from.split_weight;
+    path.interfaces = from.split_interfaces;
+    path.fresnel0 = from.fresnel0;
+    path.normal0 = from.normal0;
+    path.entry = from.entry;
+    layer_march(path, from.split_origin + from.split_dir * (1e-4 * u_layer_extent), from.split_dir, from.split_medium,
+                from.split_gap, true);
     return path;
 }

@@ -2,7 +2,7 @@
 -- seen from above at an angle, in the room environment: most of the rays
 -- that enter through its faces meet total internal reflection at the back.
 -- --set output=color|tir|exit picks the refraction pass's output; ior=;
--- method=layered (layered_refraction; outputs color|info).
+-- method=layered (layered_refraction; outputs color|info); internal= (either pass's).
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {1.6, 1.4, 2.4}, target = {0, 0, 0}, fov = 35 },
@@ -15,7 +15,7 @@ local g = c.graph()
 if c.param("method", "huqin") == "layered" then
   -- every interface (layered_refraction): its debug output is `info`
   g:add("shade", c.pass.shade { specular = false })
-  g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+  g:add("glass", c.pass.layered_refraction { color = "shade.color", internal = c.param("internal", 2) })
 else
   g:add("shade", c.pass.shade {})
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", internal = c.param("internal", 4) })
