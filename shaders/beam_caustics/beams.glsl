@@ -18,6 +18,10 @@ struct BeamVertex {
 };
 
 const uint VERTEX_TRANSMITTED = 1u, VERTEX_REFLECTED = 2u, VERTEX_SURFACE = 4u;
+// The vertex's own texel misses the refractors and its rays were traced from
+// the nearest texel towards a neighbour that meets them (the silhouette): a
+// beam needs at least one corner that is not snapped.
+const uint VERTEX_SNAPPED = 8u;
 
 layout(std430, binding = BEAMS_SSBO_VERTICES) buffer BeamVertices { BeamVertex beam_vertices[]; };
 

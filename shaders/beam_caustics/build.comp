@@ -208,7 +208,8 @@ bool whole(ivec2 a, ivec2 b, ivec2 c, bool reflected)
 {
     Ray ra = vertex_ray(a.x, a.y, reflected), rb = vertex_ray(b.x, b.y, reflected), rc = vertex_ray(c.x, c.y, reflected);
     return ray_ok(ra, reflected) && ray_ok(rb, reflected) && ray_ok(rc, reflected) &&
-           ra.signature == rb.signature && rb.signature == rc.signature;
+           ra.signature == rb.signature && rb.signature == rc.signature &&
+           ((ra.flags & rb.flags & rc.flags) & VERTEX_SNAPPED) == 0u; // not all three off the silhouette
 }
 
 void main()

@@ -35,10 +35,43 @@ void main()
     bv.exit_sigma = vec4(0.0);
     // the lattice spans the light's image, vertex i on texel round(i (B - 1) / M)
     ivec2 p = ivec2(floor(vec2(ij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
+    uint flags = 0u;
+    // A vertex just off the refractors' silhouette, with a neighbour on
+    // them, is moved to the nearest texel on them towards that neighbour:
+    // the cells across the silhouette then make beams up to it instead of
+    // none (§4.2 refines there, but any finite lattice dropped a rim of the
+    // light: an IOR-1.0001 ball lit only a polygon of its shadow).
+    if (layer_count(p) == 0) {
+        float best = 1e30;
+        ivec2 found = p;
+        for (int n = 0; n < 4; n++) {
+            ivec2 nij = ij + ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1))[n];
+            if (any(lessThan(nij, ivec2(0))) || any(greaterThan(nij, ivec2(u_lattice))))
+                continue;
+            ivec2 pn = ivec2(floor(vec2(nij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
+            if (layer_count(pn) == 0)
+                continue;
+            int span = max(abs(pn.x - p.x), abs(pn.y - p.y));
+            for (int s = 1; s <= span; s++) {
+                ivec2 q = p + ivec2(round(vec2(pn - p) * float(s) / float(span)));
+                if (layer_count(q) > 0) {
+                    float dist = length(vec2(q - p));
+                    if (dist < best) {
+                        best = dist;
+                        found = q;
+                    }
+                    break;
+                }
+            }
+        }
+        if (best < 1e30) {
+            p = found;
+            flags |= VERTEX_SNAPPED;
+        }
+    }
     vec3 P0 = layer_point(vec2(p) + 0.5, layer_count(p) > 0 ? layer_depth(p, 0) : 1.0);
     vec3 d0 = u_light_ortho == 1 ? vec3(0.0, 0.0, -1.0) : normalize(P0);
     bv.light_plane = u_light_ortho == 1 ? vec4(P0.xy, 0.0, 0.0) : vec4(d0.xy / max(-d0.z, 1e-6), 0.0, 0.0);
-    uint flags = 0u;
     if (layer_count(p) > 0) {
         flags |= VERTEX_SURFACE;
         mat3 to_world = mat3(u_layer_inv_view);
