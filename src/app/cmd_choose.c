@@ -3,6 +3,7 @@
  * accurate within T milliseconds a frame), from the scene's technique sweep
  * — read from `bench`'s cache when it was measured with the same options,
  * run otherwise — with the graph lines to paste into the script. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,7 @@
 #include "app/cli.h"
 #include "app/techniques.h"
 #include "graph/graph.h"
+#include "graph/graph_lint.h"
 #include "scene/scene.h"
 
 #define MAX_ROWS 512
@@ -18,6 +20,7 @@
 struct row {
     char technique[64], settings[256];
     double ms, error;
+    bool excluded; /* the technique leaves out part of the scene */
 };
 
 /* Splits a CSV line in place (the bench's fields have no commas or quotes). */
@@ -149,6 +152,49 @@ static void print_pass(const struct pass *p, const struct scene *scene)
     printf(" })\n");
 }
 
+/* Whether the technique's graph leaves out something of the scene (a pass's
+ * descriptor says so: graph_lint's "leaves out" warnings): `why` gets the
+ * first such warning. A technique that renders part of the scene dark
+ * without saying so in its error must not be recommended for it (issue 27);
+ * its error on this scene may even be small where what it leaves out is
+ * small here. False with `err` set when the script cannot be opened. */
+static bool technique_leaves_out(struct app *app, const struct cli *cli, const char *script, const char *technique,
+                                 bool *leaves, char *why, size_t whylen, struct error *err)
+{
+    *leaves = false;
+    struct session_options so = {.script = script, .params = cli->params, .width = cli->width, .height = cli->height,
+                                 .past_last_frame = true};
+    struct session *s = NULL;
+    struct technique_list *list = calloc(1, sizeof *list);
+    bool ok = list && session_open(app, &so, &s, err) && techniques_read(s, list, err) &&
+              techniques_select(list, technique, err);
+    for (int k = 0; ok && k < list->items[0].set_count; k++) {
+        char assignment[200];
+        snprintf(assignment, sizeof assignment, "%s=%s", list->items[0].set_keys[k], list->items[0].set_values[k]);
+        ok = lua_params_add(&so.params, assignment, err);
+    }
+    if (s)
+        session_close(s);
+    s = NULL;
+    ok = ok && session_open(app, &so, &s, err) && graph_check(s->graph, err);
+    if (ok) {
+        char messages[GRAPH_LINT_MAX][400];
+        int n = graph_lint(s->graph, s->scene, NULL, messages, GRAPH_LINT_MAX);
+        for (int i = 0; i < n && !*leaves; i++)
+            if (strstr(messages[i], " leaves out object ")) {
+                *leaves = true;
+                size_t len = strnlen(messages[i], sizeof messages[i] - 1);
+                len = len < whylen ? len : whylen - 1;
+                memcpy(why, messages[i], len);
+                why[len] = '\0';
+            }
+    }
+    if (s)
+        session_close(s);
+    free(list);
+    return ok;
+}
+
 int cmd_choose(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0)) {
@@ -194,10 +240,34 @@ int cmd_choose(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
+    /* Techniques that leave out part of the scene are not considered (one
+     * line each says which and why). */
+    for (int i = 0; i < n; i++) {
+        bool seen = false;
+        for (int j = 0; j < i && !seen; j++)
+            seen = strcmp(rows[j].technique, rows[i].technique) == 0;
+        if (seen)
+            continue;
+        bool leaves;
+        char why[400];
+        if (!technique_leaves_out(app, cli, script, rows[i].technique, &leaves, why, sizeof why, &err)) {
+            free(rows);
+            cli_print_error(&err);
+            return EXIT_SCENE_ERROR;
+        }
+        if (!leaves)
+            continue;
+        fprintf(stderr, "caustica: choose: %s is not considered: %s\n", rows[i].technique, why);
+        for (int j = i; j < n; j++)
+            if (strcmp(rows[j].technique, rows[i].technique) == 0)
+                rows[j].excluded = true;
+    }
     /* with --error: the cheapest within the error (and the time); with
      * --time only: the most accurate within the time */
     int best = -1;
     for (int i = 0; i < n; i++) {
+        if (rows[i].excluded)
+            continue;
         bool fits = (cli->max_error < 0 || rows[i].error <= cli->max_error) &&
                     (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms);
         if (!fits)
@@ -207,12 +277,19 @@ int cmd_choose(struct app *app, struct cli *cli)
             best = i;
     }
     if (best < 0) {
-        int accurate = 0, fastest = 0;
-        for (int i = 1; i < n; i++) {
-            if (rows[i].error < rows[accurate].error)
+        int accurate = -1, fastest = -1;
+        for (int i = 0; i < n; i++) {
+            if (rows[i].excluded)
+                continue;
+            if (accurate < 0 || rows[i].error < rows[accurate].error)
                 accurate = i;
-            if (rows[i].ms < rows[fastest].ms)
+            if (fastest < 0 || rows[i].ms < rows[fastest].ms)
                 fastest = i;
+        }
+        if (accurate < 0) {
+            fprintf(stderr, "caustica: choose: every technique of %s leaves out part of the scene (above)\n", script);
+            free(rows);
+            return EXIT_SCENE_ERROR;
         }
         fprintf(stderr, "caustica: choose: no technique of %s reaches", script);
         if (cli->max_error >= 0)

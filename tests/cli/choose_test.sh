@@ -115,4 +115,37 @@ return { scene = scene, graph = g, techniques = { { "a", sweep = { ["shade.x"] =
 LUA
 expect_error "a malformed techniques table" 2 "techniques: a.sweep: each key a \"pass.param\" or scene parameter, each value a list" - -- \
   "$CAUSTICA" bench "$WORK/bad.lua" --sweep technique=all --size 16x16 -o "$WORK/x" --trusted
+# A technique that leaves out part of the scene (its pass says so) is never
+# chosen, whatever its numbers: illumination textures over water.
+cat >"$WORK/pool.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 0}, target = {0, -1, 0}, up = {0, 0, -1}, fov = 40 },
+                        background = {0, 0, 0} }
+local sun = scene:add(c.light.directional { direction = {0.4, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0}, material = c.material.diffuse {} })
+scene:add(c.water { size = 4, resolution = 17, depth = 1, fresnel = false })
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun })
+local tech = c.param("technique", "photons")
+g:add("caustics", tech == "iwasaki" and c.pass.illumination_textures { light = sun } or c.pass.photon_caustics { light = sun })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance", specular = false })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {32, 32}, techniques = { metric = "caustic", { "photons" }, { "iwasaki" } } }
+LUA
+P="$WORK/pool_bench"
+POPTS=(--size 32x32 --frames 1 --error-frames 1 --ref-photons 3000 --ref-spp 8 -o "$P" --trusted)
+"$CAUSTICA" bench "$WORK/pool.lua" --sweep technique=all "${POPTS[@]}" >"$WORK/pb.txt" 2>&1
+pcache=$(ls "$P"/cache/sweep_*.csv 2>/dev/null | head -1)
+if [ -n "$pcache" ]; then
+  head -1 "$pcache" >"$WORK/pheader"
+  cols=$(head -1 "$pcache" | tr ',' '\n' | wc -l)
+  { cat "$WORK/pheader"; row gpu photons defaults 30 0.2; row gpu iwasaki defaults 5 0.1; } >"$pcache"
+  "$CAUSTICA" choose "$WORK/pool.lua" --error 0.5 "${POPTS[@]}" >"$WORK/p1.txt" 2>"$WORK/p1e.txt"
+  grep -q "choose: iwasaki is not considered: pass 'caustics' (illumination_textures) leaves out object 2 (water)" "$WORK/p1e.txt" \
+    && grep -q ": photons (defaults): 30.0 ms a frame" "$WORK/p1.txt" \
+    && pass "a technique that leaves out the water is not chosen, though cheaper and within the error" \
+    || fail "leaves-out technique" "$(cat "$WORK/p1.txt" "$WORK/p1e.txt")"
+else
+  fail "bench of the pool" "no sweep cache: $(tail -3 "$WORK/pb.txt")"
+fi
 finish
