@@ -30,6 +30,30 @@ uniform float u_scene_grazing = 0.0;
 // the environment).
 uniform float u_scene_guard = 0.0;
 
+// The part [t0, t1] of the ray o + t d inside the camera's frustum widened
+// by the guard band (each clip-space plane is linear in t); false where it
+// misses. Marching only there keeps photons that pass far from the view
+// from marching at all.
+bool scene_frustum_segment(vec3 o, vec3 d, inout float t0, inout float t1)
+{
+    vec4 a = u_view_proj * vec4(o, 1.0), b = u_view_proj * vec4(d, 0.0);
+    vec2 g = 1.0 + 2.0 * u_scene_guard / u_viewport.xy; // the widened image's half-extent in NDC
+    // w g.x - x >= 0, w g.x + x >= 0, the same for y, and w + z >= 0 (the near plane)
+    float A[5] = float[5](a.w * g.x - a.x, a.w * g.x + a.x, a.w * g.y - a.y, a.w * g.y + a.y, a.w + a.z);
+    float B[5] = float[5](b.w * g.x - b.x, b.w * g.x + b.x, b.w * g.y - b.y, b.w * g.y + b.y, b.w + b.z);
+    for (int k = 0; k < 5; k++) {
+        if (abs(B[k]) < 1e-12) {
+            if (A[k] < 0.0)
+                return false;
+        } else if (B[k] > 0.0) {
+            t0 = max(t0, -A[k] / B[k]);
+        } else {
+            t1 = min(t1, -A[k] / B[k]);
+        }
+    }
+    return t0 <= t1;
+}
+
 // Eye depth of world point p, and its pixel (false: outside the image, and
 // its guard band, or behind the camera).
 bool scene_project(vec3 p, out ivec2 px, out float depth)
@@ -73,6 +97,14 @@ bool scene_trace_at(vec3 o, vec3 dir, out ivec2 hit_px, out float t_hit)
     float t_enter, t_exit;
     if (!scene_bounds_segment(o, dir, t_enter, t_exit))
         return false;
+    if (u_scene_guard > 0.0) {
+        // photons: march only where the ray is in view (with its guard band), a step's margin either side
+        float f0 = t_enter, f1 = t_exit;
+        if (!scene_frustum_segment(o, dir, f0, f1))
+            return false;
+        t_enter = max(t_enter, f0 - step);
+        t_exit = min(t_exit, f1 + step);
+    }
     int first = max(int(floor(t_enter / step)), 1);
     lo = step * float(first - 1);
     float lo_behind;

@@ -556,21 +556,9 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     return gl_check("beam_caustics", err);
 }
 
-/* The light's depth layers hold glass and water (layers_is_refractor). */
-static const char *beam_caustics_leaves_out(const struct pass *p, const struct scene *scene,
-                                            const struct object *o)
-{
-    (void)scene;
-    (void)p;
-    return o->material.kind == MATERIAL_MIRROR
-               ? "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
-                 "makes them)"
-               : NULL;
-}
-
 const struct pass_desc beam_caustics_pass = {
     .name = "beam_caustics",
-    .leaves_out = beam_caustics_leaves_out,
+    .leaves_out = layers_leaves_out,
     .summary = "Liktor & Dachsbacher 2011: volume and surface caustics from adaptively refined beams of light",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -251,21 +251,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     return gl_check("layered_caustics", err);
 }
 
-/* The light's depth layers hold glass and water (layers_is_refractor). */
-static const char *layered_caustics_leaves_out(const struct pass *p, const struct scene *scene,
-                                               const struct object *o)
-{
-    (void)scene;
-    (void)p;
-    return o->material.kind == MATERIAL_MIRROR
-               ? "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
-                 "makes them)"
-               : NULL;
-}
-
 const struct pass_desc layered_caustics_pass = {
     .name = "layered_caustics",
-    .leaves_out = layered_caustics_leaves_out,
+    .leaves_out = layers_leaves_out,
     .summary = "Chaudhari 2008: caustics through every interface, photons traced through the light's depth layers",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -55,6 +55,16 @@ bool layers_is_refractor(const struct object *o)
     return o->visible && (o->material.kind == MATERIAL_GLASS || o->material.kind == MATERIAL_WATER);
 }
 
+const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
+{
+    (void)p;
+    (void)scene;
+    return o->material.kind == MATERIAL_MIRROR
+               ? "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
+                 "makes them)"
+               : NULL;
+}
+
 static bool ensure_targets(struct layer_set *ls, int w, int h, int voxels, int layers, struct error *err)
 {
     if (ls->bounds.id && ls->width == w && ls->height == h && ls->voxels == voxels && ls->layers == layers)

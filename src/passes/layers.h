@@ -71,6 +71,10 @@ struct layers_trace {
 void layers_bind(const struct layer_set *ls, const struct gl_program *program, const struct scene *scene,
                  const struct layers_trace *trace);
 bool layers_is_refractor(const struct object *o);
+/* What a pass tracing the light through the layers leaves out of object o
+ * (a mirror: the layers hold glass and water only), for pass_desc.leaves_out;
+ * NULL when it handles it. */
+const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o);
 /* The uniforms of shaders/layers/scene_trace.glsl (what a leaving ray sees
  * in the camera's image) and of common/scene_bounds.glsl on `program`:
  * marched at most 1.5 times the scene's bounding diameter in 64 steps, and

@@ -5,15 +5,7 @@
 local closed = {}
 
 -- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted.
-local function fresnel(cos_i, eta)
-  local sin2_t = eta * eta * (1 - cos_i * cos_i)
-  if sin2_t >= 1 then return 1 end
-  local cos_t = math.sqrt(1 - sin2_t)
-  local rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-  local rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
-  return 0.5 * (rs * rs + rp * rp)
-end
-closed.fresnel = fresnel
+local fresnel = require("caustica.test").fresnel
 
 -- Snell's law in 2D: d (unit) meets a surface with unit normal n facing
 -- against it; eta = n_incident / n_transmitted. Returns the refracted unit
