@@ -207,9 +207,20 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
 bool whole(ivec2 a, ivec2 b, ivec2 c, bool reflected)
 {
     Ray ra = vertex_ray(a.x, a.y, reflected), rb = vertex_ray(b.x, b.y, reflected), rc = vertex_ray(c.x, c.y, reflected);
-    return ray_ok(ra, reflected) && ray_ok(rb, reflected) && ray_ok(rc, reflected) &&
-           ra.signature == rb.signature && rb.signature == rc.signature &&
-           ((ra.flags & rb.flags & rc.flags) & VERTEX_SNAPPED) == 0u; // not all three off the silhouette
+    if (!(ray_ok(ra, reflected) && ray_ok(rb, reflected) && ray_ok(rc, reflected) &&
+          ra.signature == rb.signature && rb.signature == rc.signature))
+        return false;
+    uint snapped = (ra.flags | rb.flags | rc.flags) & VERTEX_SNAPPED;
+    if (snapped == 0u)
+        return true;
+    // A corner moved onto the silhouette: not all three (the cell is off the
+    // refractors), and not where its ray leaves far from the others' way (a
+    // grazing entry bent hard: a wide beam of little density whose bounding
+    // volume doubled the fragments of the fog scene, for no error it
+    // removed); the light of such a cell is dropped, as it was before.
+    if (((ra.flags & rb.flags & rc.flags) & VERTEX_SNAPPED) != 0u)
+        return false;
+    return min(min(dot(ra.d, rb.d), dot(rb.d, rc.d)), dot(ra.d, rc.d)) > 0.95;
 }
 
 void main()

@@ -208,10 +208,12 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
         all_cached = all_cached && s->tables[i].from_cache;
     }
     if (s->table_count > 0)
-        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, %s in %.2f s%s",
+        snprintf(tables, sizeof tables, "; transport tables: %d, %zu vertices x %d directions, %.1f MB, %s in %.2f s%s%s",
                  s->table_count, vertices, s->tables[0].resolution * s->tables[0].resolution, (double)bytes / 1048576.0,
                  all_cached ? "read from the cache" : "traced", seconds,
-                 subdivided ? " (coarse meshes subdivided for their tables)" : "");
+                 subdivided ? " (coarse meshes subdivided for their tables)" : "",
+                 s->tables[0].resolution < pass_int(p, IT_TABLE) ? " (fewer directions than `table` asks, to fit: a fine mesh)"
+                                                                 : "");
     bool reuse = s->valid && s->key == texture_key(p, f->scene, light) && !f->snapshot->geometry_animated;
     snprintf(why, whylen, "%s%s",
              reuse ? "the illumination textures are reused (light, glass and targets unchanged: only the mapping runs)"
@@ -422,6 +424,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
                                                                                     : TRANSPORT_INTERNAL_NONE;
     /* §3: the tables, one per glass object (built once per mesh, IOR, resolution) */
     s->table_count = 0;
+    p->report[0] = '\0';
     for (int i = 0; i < scene->object_count && s->table_count < ILLUM_MAX_REFRACTORS; i++) {
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
@@ -431,8 +434,17 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         if (!m)
             return false;
         struct transport_table *t = &s->tables[k];
-        if (!transport_table_matches(t, m, &o->material, resolution, internal) &&
-            !transport_table_build(t, m, &o->material, resolution, internal, err))
+        /* a fine mesh gets fewer directions, so its table fits (said in info and --timings) */
+        int fitted = transport_fit_resolution(m->vertex_count, resolution);
+        if (fitted == 0)
+            return error_set(err, "%s: %zu vertices: too many for any transport table (at most %zu MB); use a coarser "
+                                  "mesh", m->name, m->vertex_count, (size_t)TRANSPORT_MAX_BYTES >> 20);
+        if (fitted < resolution)
+            snprintf(p->report, sizeof p->report, "object %d's transport table has %d x %d directions, not %d x %d, to "
+                     "fit %zu MB (%zu vertices)", i + 1, fitted, fitted, resolution, resolution,
+                     (size_t)TRANSPORT_MAX_BYTES >> 20, m->vertex_count);
+        if (!transport_table_matches(t, m, &o->material, fitted, internal) &&
+            !transport_table_build(t, m, &o->material, fitted, internal, err))
             return false;
     }
     pass_stage_end(p, "tables");

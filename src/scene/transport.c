@@ -252,6 +252,16 @@ static void cache_write(const char *path, uint64_t hash, size_t vertex_count, in
         remove(tmp); /* the whole file or none */
 }
 
+int transport_fit_resolution(size_t vertex_count, int wanted)
+{
+    for (int r = wanted; r >= 2; r--) {
+        size_t cells = (size_t)r * (size_t)r;
+        if (vertex_count <= TRANSPORT_MAX_BYTES / sizeof(float) / TRANSPORT_FLOATS / cells)
+            return r;
+    }
+    return 0;
+}
+
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err)
 {

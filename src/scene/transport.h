@@ -45,6 +45,10 @@ struct transport_table {
  * cannot be written there is simply not cached. */
 #define TRANSPORT_MAX_BYTES ((size_t)512 << 20)
 
+/* The largest table resolution up to `wanted` whose table for `vertex_count`
+ * vertices fits TRANSPORT_MAX_BYTES; 0 when not even 2 x 2 directions fit. A
+ * 512-segment sphere (131,841 vertices) gets 10 x 10 instead of 16 x 16. */
+int transport_fit_resolution(size_t vertex_count, int wanted);
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err);
 void transport_table_release(struct transport_table *t);

@@ -375,3 +375,12 @@ t.case("glass cube, IOR 0.8 (total reflection at the way in), its shadow caustic
     beam_caustics = { bound = 0.42, known = BEAMS_CUBE },
     illumination_textures = { bound = 0.85, black = 100, known = ILLUM_PLANES },
   }))
+
+t.case("ball lens of 512 segments (131,841 vertices), floor 2.5 radii below: the transport tables fit", ball_case(
+  "ball lens, 512 segments", { floor = 2.5, segments = 512 }, {
+    photon_caustics = { bound = 0.02 },
+    layered_caustics = { bound = 0.04 },
+    beam_caustics = { bound = 0.05 },
+    -- its table would take 1.2 GB at 16 x 16 directions: built at 10 x 10 (the report says so)
+    illumination_textures = { bound = 0.06 },
+  }))

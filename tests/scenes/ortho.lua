@@ -1,12 +1,13 @@
 -- An orthographic camera (c.camera { ortho = { width } }): the floor under
 -- a glass ball lens seen straight down, each pixel the same size on the
 -- floor -- the natural view of an irradiance map. --set ortho=false for a
--- perspective camera, shape=ball|cube.
+-- perspective camera, shape=ball|cube, near=, far=.
 local c = require "caustica"
 local ortho = c.param("ortho", true)
 local size = c.param("size", 64)
 local scene = c.scene {
   camera = c.camera { eye = {0, c.param("height", 3), 0}, target = {0, 0, 0}, up = {0, 0, -1}, fov = 30,
+                      near = c.param("near", 0.05), far = c.param("far", 100),
                       ortho = ortho and { width = c.param("width", 2.0) } or false },
   background = {0, 0, 0},
 }

@@ -3,6 +3,7 @@
 
 #include "check.h"
 #include "scene/scene.h"
+#include "scene/transport.h"
 
 static bool normals_unit(const struct mesh *m)
 {
@@ -136,6 +137,12 @@ int main(void)
             mesh_destroy(f2);
         mesh_destroy(flat);
     }
+    /* A transport table that fits: fewer directions for a fine mesh, none
+     * for one too fine for any. */
+    CHECK(transport_fit_resolution(1000, 16) == 16);
+    CHECK(transport_fit_resolution(131841, 16) == 10);
+    CHECK(transport_fit_resolution((size_t)1 << 40, 16) == 0);
+
     /* Inside a closed mesh: the parity of a ray's crossings. */
     CHECK(mesh_contains_point(box, vec3_make(0, 0, 0)));
     CHECK(mesh_contains_point(box, vec3_make(0.49f, -0.3f, 0.2f)));
