@@ -4,6 +4,8 @@
 // that leaves along it, times the Fresnel transmissions and absorption on
 // the way, plus the reflection at the first interface.
 #include "common/frame.glsl"
+// LAYER_TRACE_SPLIT (defined by the pass where `internal` > 0): the part an
+// exit reflects back inside is marched again
 #include "layers/trace.glsl"
 #include "layers/scene_trace.glsl"
 #include "impostors/impostors.glsl"
@@ -57,6 +59,7 @@ void main()
     // in every such pixel): more marches, each from where the last one
     // first left, while a tenth of the light is in the part reflected (an
     // ordinary exit reflects 4% and costs no march).
+#ifdef LAYER_TRACE_SPLIT
     LayerPath from = path;
     for (int k = 0; k < u_internal && from.fresnel0 < 1.0 && from.split &&
                     max(from.split_weight.r, max(from.split_weight.g, from.split_weight.b)) > 0.1; k++) {
@@ -65,6 +68,7 @@ void main()
         color += (1.0 - path.fresnel0) * next.throughput * look(next_o, normalize(to_world * next.dir));
         from = next;
     }
+#endif
     if (u_reflection == 1 || path.fresnel0 >= 1.0)
         color += path.fresnel0 * look(entry + reflected * (1e-4 * u_layer_extent), reflected);
     o_color = vec4(color, 1.0);

@@ -59,9 +59,13 @@ struct LayerPath {
     // its share of the light, and the medium and layer gap it stays in, for
     // a second march (layer_continue). The thesis drops it (§3.8); at an
     // exit just past a total internal reflection it is most of the light.
+    // Only where the includer defines LAYER_TRACE_SPLIT (layered_refraction):
+    // the photons' and beams' shaders do not carry it.
     bool split;
+#ifdef LAYER_TRACE_SPLIT
     vec3 split_origin, split_dir, split_weight;
     int split_medium, split_gap, split_interfaces;
+#endif
 };
 
 // Beer-Lambert over a length t inside the path's last medium: the rest of
@@ -305,6 +309,7 @@ void layer_march(inout LayerPath path, vec3 P, vec3 d, int medium, int gap, bool
         bool refracted = layer_interface(d, layer_normal_at(q, k), layer_slot(ivec2(floor(q)), k), medium, f, facing);
         path.interfaces++;
         if (refracted) {
+#ifdef LAYER_TRACE_SPLIT
             if (split && !path.split && medium_in >= 0 && medium < 0 && f > 0.0) {
                 path.split = true;
                 path.split_origin = H;
@@ -314,6 +319,7 @@ void layer_march(inout LayerPath path, vec3 P, vec3 d, int medium, int gap, bool
                 path.split_gap = gap_in;
                 path.split_interfaces = path.interfaces;
             }
+#endif
             path.throughput *= 1.0 - f;
             gap = deeper ? k : k - 1;
         } else {
@@ -354,6 +360,7 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     return path;
 }
 
+#ifdef LAYER_TRACE_SPLIT
 // The next march: the part `path` reflected back inside where it first
 // left, followed from there on its own (its throughput starts at that
 // part's share), itself recording where it first leaves.
@@ -370,3 +377,4 @@ LayerPath layer_continue(LayerPath from)
                 from.split_gap, true);
     return path;
 }
+#endif

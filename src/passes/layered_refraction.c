@@ -82,7 +82,8 @@ static const struct pass_param_desc params[] = {
      .help = "impostor texture size"},
     [LR_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 4,
      .help = "further marches of the light an exit reflects back inside, each from where the last one left, while "
-             "a tenth of the pixel's light is in it (0: the thesis's one path, which drops it)"},
+             "a tenth of the pixel's light is in it (0: the thesis's one path, which drops it); unless set, only where "
+             "a refractor's IOR is 2 or more or below 1 (else 0: they cost a tenth of the pass)"},
 };
 
 static bool layered_refraction_declare(struct pass *p, struct error *err)
@@ -182,8 +183,25 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     renderer_draw_fullscreen(r);
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, both);
 
+    /* The marches of the light exits reflect back inside (`internal`) cost
+     * a tenth of the pass where none is needed (their state rides along the
+     * whole trace): unless the script sets `internal`, they are compiled in
+     * only where a refractor's IOR is 2 or more, or below 1, where most
+     * paths meet total internal reflection and the exits after it reflect
+     * much of the light (the IOR 2.42 cube: 198 -> 1,438 of 2,051 such
+     * pixels within 10% of the reference). */
+    int internal = pass_int(p, LR_INTERNAL);
+    if (!p->values[LR_INTERNAL].set) {
+        bool strong = false;
+        for (int i = 0; i < f->scene->object_count; i++) {
+            const struct object *o = f->scene->objects[i];
+            strong = strong || (layers_is_refractor(o) && (o->material.ior >= 2.0f || o->material.ior < 1.0f));
+        }
+        internal = strong ? internal : 0;
+    }
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_refraction/refract.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_refraction/refract.frag",
+                        internal > 0 ? "#define LAYER_TRACE_SPLIT\n" : NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
     struct layers_trace trace = {
@@ -199,7 +217,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
                         pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), pass_int(p, LR_INTERNAL));
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), internal);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
     if (nearby && s->impostors.count > 0) {
         gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
