@@ -1,4 +1,5 @@
 /* Graph mistakes that render without an error (see graph_lint.h). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -86,6 +87,29 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                          kind == MATERIAL_GLASS ? "glass" : kind == MATERIAL_WATER ? "water" : "mirror", why);
             }
         }
+    }
+    /* A depth range the 24 bits of the depth buffers cannot resolve at the
+     * scene: perspective depth steps grow as distance^2 / near, an
+     * orthographic camera's are (far - near) / 2^24 everywhere. Surfaces
+     * closer than a step are confused (a silhouette's pixels take the wrong
+     * side); the frame still renders, so this is said, not refused. */
+    vec3 lo, hi;
+    const struct camera *cam = &scene->camera;
+    if (count < max && scene_bounds(scene, &lo, &hi)) {
+        float size = vec3_length(vec3_sub(hi, lo));
+        float far_corner = 0.0f;
+        for (int k = 0; k < 8; k++) {
+            vec3 corner = {k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z};
+            far_corner = fmaxf(far_corner, vec3_length(vec3_sub(corner, cam->eye)));
+        }
+        float d = fminf(far_corner, cam->zfar);
+        double step = cam->ortho_width > 0.0f ? ((double)cam->zfar - cam->znear) / 16777216.0
+                                              : (double)d * d / fmax(cam->znear, 1e-30) / 16777216.0;
+        if (size > 0.0f && step > 1e-3 * size)
+            snprintf(messages[count++], 400,
+                     "the camera's near and far planes (%g, %g) resolve depth only to %.3g at the scene (%.2g%% of its "
+                     "size): surfaces closer than that are confused, at silhouettes first; raise near or lower far",
+                     (double)cam->znear, (double)cam->zfar, step, 100.0 * step / size);
     }
     /* Caustics added by shade for a light that shade does not shadow. */
     for (int i = 0; i < g->count && count < max; i++) {

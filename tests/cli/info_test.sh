@@ -134,4 +134,15 @@ body = data.split(b"\n", 3)[3]
 values = struct.unpack("<%df" % (len(body) // 4), body)
 sys.exit(0 if max(values) > 0.05 else 1)
 PY
+# a depth range the depth buffer cannot resolve at the scene is said once; an
+# orthographic camera's tiny near plane is harmless and says nothing
+"$CAUSTICA" info tests/scenes/ortho.lua --set ortho=false --set near=1e-5 --no-render >"$WORK/near.txt" 2>&1
+[ "$(grep -c "the camera's near and far planes (1e-05, 100) resolve depth only to" "$WORK/near.txt")" = 1 ] \
+  && pass "a perspective near plane of 1e-5: one warning" || fail "near 1e-5" "$(cat "$WORK/near.txt")"
+"$CAUSTICA" info tests/scenes/ortho.lua --set far=1e6 --no-render >"$WORK/far.txt" 2>&1
+grep -q "near and far planes (0.05, 1e+06)" "$WORK/far.txt" && pass "an orthographic far plane of 1e6: a warning" \
+  || fail "far 1e6" "$(cat "$WORK/far.txt")"
+"$CAUSTICA" info tests/scenes/ortho.lua --set near=1e-5 --no-render >"$WORK/ortho.txt" 2>&1
+! grep -q "near and far planes" "$WORK/ortho.txt" && pass "an orthographic near plane of 1e-5: no warning" \
+  || fail "ortho near" "$(cat "$WORK/ortho.txt")"
 finish
