@@ -21,6 +21,7 @@
 
 #include "core/log.h"
 #include "core/vecmath.h"
+#include "core/optics.h"
 #include "reference/ref_emit.h"
 #include "reference/ref_media.h"
 #include "reference/ref_rng.h"
@@ -46,31 +47,13 @@ void ref_options_default(struct ref_options *o)
 
 /* ---- optics ------------------------------------------------------------ */
 
-/* Exact unpolarised Fresnel reflectance; eta = n_incident / n_transmitted.
- * 1 under total internal reflection, 0 for matched indices. */
-static double fresnel(double cos_i, double eta)
-{
-    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
-    double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-    if (sin2_t >= 1.0)
-        return 1.0;
-    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
-    double rs = (eta * cos_i - cos_t) / fmax(eta * cos_i + cos_t, 1e-300);
-    double rp = (cos_i - eta * cos_t) / fmax(cos_i + eta * cos_t, 1e-300);
-    return fmin(fmax(0.5 * (rs * rs + rp * rp), 0.0), 1.0);
-}
-
-/* The material's reflectance: Fresnel's, or for an ideal interface
- * (fresnel = false) 0, and 1 where refraction is impossible (the shaders'
- * fresnel_of). */
+/* The material's reflectance (core/optics.h): Fresnel's, or for an ideal
+ * interface (fresnel = false) 0, and 1 where refraction is impossible (the
+ * shaders' fresnel_of). */
 static double fresnel_of(const struct material *m, double cos_i, double eta)
 {
-    if (!m->ideal)
-        return fresnel(cos_i, eta);
-    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
-    return eta * eta * (1.0 - cos_i * cos_i) >= 1.0 ? 1.0 : 0.0;
+    return optics_fresnel_of(cos_i, eta, m->ideal);
 }
-
 
 /* The media a path is inside: a small stack of object indices. */
 struct media {

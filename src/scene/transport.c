@@ -11,6 +11,7 @@
 #include <embree3/rtcore.h>
 
 #include "core/fileio.h"
+#include "core/optics.h"
 #include "core/hash.h"
 #include "scene/mesh_embree.h"
 
@@ -66,20 +67,6 @@ bool transport_table_matches(const struct transport_table *t, const struct mesh 
     return t->entries && t->mesh_serial == m->serial && t->ior == mat->ior && t->ideal == mat->ideal &&
            t->absorption.x == mat->absorption.x && t->absorption.y == mat->absorption.y &&
            t->absorption.z == mat->absorption.z && t->resolution == resolution && t->internal == internal;
-}
-
-static double fresnel(double cos_i, double eta, bool ideal)
-{
-    cos_i = fmin(fmax(cos_i, 0.0), 1.0);
-    double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-    if (sin2_t >= 1.0)
-        return 1.0;
-    if (ideal)
-        return 0.0;
-    double cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
-    double rs = (eta * cos_i - cos_t) / fmax(eta * cos_i + cos_t, 1e-12);
-    double rp = (cos_i - eta * cos_t) / fmax(cos_i + eta * cos_t, 1e-12);
-    return 0.5 * (rs * rs + rp * rp);
 }
 
 /* Refraction of unit d about unit n facing against it; false under TIR. */
@@ -145,7 +132,7 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
     vec3 t;
     if (!refract3(d, n, 1.0 / ior, &t))
         return; /* IOR < 1: totally reflected on the outside */
-    double transmit = 1.0 - fresnel(-vec3_dot(d, n), 1.0 / ior, mat->ideal), length = 0.0;
+    double transmit = 1.0 - optics_fresnel_of(-vec3_dot(d, n), 1.0 / ior, mat->ideal), length = 0.0;
     vec3 o = p, dir = t;
     int reflections = internal == TRANSPORT_INTERNAL_FIRST ? 1 : 0;
     for (int bounce = 0; bounce <= reflections; bounce++) {
@@ -157,7 +144,7 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
         vec3 inward = vec3_dot(nq, dir) > 0.0f ? vec3_scale(nq, -1.0f) : nq; /* facing against dir */
         vec3 out_dir;
         if (refract3(dir, inward, ior, &out_dir)) {
-            transmit *= 1.0 - fresnel(-vec3_dot(dir, inward), ior, mat->ideal);
+            transmit *= 1.0 - optics_fresnel_of(-vec3_dot(dir, inward), ior, mat->ideal);
             vec3 a = mat->absorption;
             out[0] = q.x;
             out[1] = q.y;

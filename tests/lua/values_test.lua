@@ -78,3 +78,24 @@ for _, view in ipairs { "eye_is_target", "up_zero", "up_parallel" } do
     t.expect_finite(t.render("tests/scenes/camera_degenerate.lua", { set = { view = view } }))
   end)
 end
+
+t.case("Fresnel: the shaders' fresnel.glsl equals the exact formula (and so core/optics.c, test_optics)", function()
+  -- the same exact unpolarised reflectance the C code is checked against in
+  -- tests/unit/test_optics.c; here in float on the GPU, 64 cosines x 8 IOR ratios
+  local etas = { 1 / 1.5, 1.5, 1 / 2.42, 2.42, 1.0, 0.1, 10.0, 1.0001 }
+  local img = t.render("tests/scenes/fresnel_grid.lua")
+  t.expect_finite(img)
+  local worst = 0
+  for y = 0, 7 do
+    for x = 0, 63 do
+      local cos_i = x / 63
+      local r, g = img:pixel(x, 7 - y) -- image rows run down, gl_FragCoord.y up
+      local want = t.fresnel(cos_i, etas[y + 1])
+      local tir = etas[y + 1] ^ 2 * (1 - cos_i * cos_i) >= 1
+      worst = math.max(worst, math.abs(r - want))
+      t.expect((g == 1) == tir and (tir or g == 0), string.format("ideal interface at cos %.3f, eta %g: %g", cos_i, etas[y + 1], g))
+    end
+  end
+  -- float arithmetic: 5.5e-5 at most, next to the critical angle where R is steepest
+  t.expect(worst < 1e-4, "largest difference from the exact reflectance " .. worst)
+end)
