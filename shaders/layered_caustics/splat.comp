@@ -44,19 +44,6 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
     return true;
 }
 
-vec2 axis(ivec2 p, ivec2 step, vec2 at)
-{
-    vec2 a, b;
-    bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
-    if (plus && minus)
-        return 0.5 * (a - b);
-    if (plus)
-        return a;
-    if (minus)
-        return -b;
-    return vec2(0.0);
-}
-
 void deposit(vec2 at, vec3 flux)
 {
     // bilinear into the four pixels around `at` (pixel centres at +0.5)
@@ -76,6 +63,8 @@ void deposit(vec2 at, vec3 flux)
     }
 }
 
+#include "common/footprint.glsl"
+
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -88,15 +77,9 @@ void main()
         return;
     vec3 flux = imageLoad(u_photons, ivec3(p, branch)).rgb;
     vec2 at = to_pixels(h.xyz);
-    vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
-    // half-pixel sample spacing on footprints up to 3 pixels across (a
-    // pixel apart, each sample's bilinear deposit left a ripple of +-12% on
-    // a uniform field of photons 2 pixels apart); wider footprints overlap
-    // their neighbours' enough to smooth it at a pixel's spacing
-    float lx = length(ex), ly = length(ey);
-    int nx = clamp(int(ceil(lx <= 3.0 ? 2.0 * lx : lx)), 1, 32), ny = clamp(int(ceil(ly <= 3.0 ? 2.0 * ly : ly)), 1, 32);
-    vec3 share = flux / float(nx * ny);
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            deposit(at + ((float(i) + 0.5) / float(nx) - 0.5) * ex + ((float(j) + 0.5) / float(ny) - 0.5) * ey, share);
+    vec2 ex = footprint_axis(p, ivec2(1, 0), at), ey = footprint_axis(p, ivec2(0, 1), at);
+    // two points a pixel on footprints up to 3 pixels across, one beyond
+    // (their neighbours' overlap smooths the ripple; the ball's splat cost
+    // 3.5x with two everywhere), at most 32 a side
+    footprint_splat(at, ex, ey, flux, 3.0, 32);
 }

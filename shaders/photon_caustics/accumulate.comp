@@ -58,18 +58,7 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
     return true;
 }
 
-vec2 axis(ivec2 p, ivec2 step, vec2 at)
-{
-    vec2 a, b;
-    bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
-    if (plus && minus)
-        return 0.5 * (a - b);
-    if (plus)
-        return a;
-    if (minus)
-        return -b;
-    return vec2(0.0);
-}
+#include "common/footprint.glsl"
 
 void main()
 {
@@ -89,14 +78,8 @@ void main()
             imageAtomicAdd(u_counts, ivec3(t, 3 * receiver + c), fixed_point_count(flux[c]));
         return;
     }
-    vec2 ex = axis(p, ivec2(1, 0), at), ey = axis(p, ivec2(0, 1), at);
-    // two sample points per texel the footprint spans: one per texel beats
-    // against the texel grid where photons are 1-2 texels apart (flat
-    // water); at most 12 a side (a wide footprint overlaps its neighbours'
-    // anyway, and 32 a side cost the ball's caustics 70% more time)
-    int nx = clamp(int(ceil(2.0 * length(ex))), 1, 12), ny = clamp(int(ceil(2.0 * length(ey))), 1, 12);
-    vec3 share = flux / float(nx * ny);
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            deposit(at + ((float(i) + 0.5) / float(nx) - 0.5) * ex + ((float(j) + 0.5) / float(ny) - 0.5) * ey, share);
+    vec2 ex = footprint_axis(p, ivec2(1, 0), at), ey = footprint_axis(p, ivec2(0, 1), at);
+    // two sample points per texel at any size; at most 12 a side (32 a side
+    // cost the ball's caustics 70% more time)
+    footprint_splat(at, ex, ey, flux, 1e30, 12);
 }
