@@ -222,7 +222,7 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
         s->beam_capacity = BEAMS_MAX_BEAMS;
     size_t vertices = (size_t)(lattice + 1) * (size_t)(lattice + 1);
     if (!gl_buffer_create(&s->vertices, NULL, vertices * BEAMS_VERTEX_BYTES, 0, err) ||
-        !gl_buffer_create(&s->cells, NULL, ((size_t)s->cell_capacity * 3 + (size_t)grid * grid) * sizeof(GLuint),
+        !gl_buffer_create(&s->cells, NULL, ((size_t)s->cell_capacity * 3 + (size_t)grid * (size_t)grid) * sizeof(GLuint),
                           GL_DYNAMIC_STORAGE_BIT, err) ||
         !gl_buffer_create(&s->beams, NULL, (size_t)s->beam_capacity * BEAMS_BEAM_BYTES, 0, err) ||
         !gl_buffer_create(&s->counters, NULL, COUNT_SIZE * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT, err) ||
@@ -237,7 +237,7 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
         for (int x = 0; x < grid; x++)
             level0[y * grid + x] = ((GLuint)x << 14) | (GLuint)y;
     gl.NamedBufferSubData(s->cells, (GLintptr)((size_t)s->cell_capacity * 3 * sizeof(GLuint)),
-                          (GLsizeiptr)((size_t)grid * grid * sizeof *level0), level0);
+                          (GLsizeiptr)((size_t)grid * (size_t)grid * sizeof *level0), level0);
     free(level0);
     s->lattice = lattice;
     s->grid = grid;

@@ -498,8 +498,8 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         pd[i] = planes == 1 ? 0.5f * (dmin + dmax) : dmin + (dmax - dmin) * (float)i / (float)(planes - 1);
     /* the square where 99% of the flux crosses the planes */
     float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    struct weighted *wu = malloc(vols.count * (size_t)planes * sizeof *wu);
-    struct weighted *wv = malloc(vols.count * (size_t)planes * sizeof *wv);
+    struct weighted *wu = malloc((size_t)vols.count * (size_t)planes * sizeof *wu);
+    struct weighted *wv = malloc((size_t)vols.count * (size_t)planes * sizeof *wv);
     size_t nw = 0;
     for (int i = 0; wu && wv && i < vols.count; i++)
         for (int pl = 0; pl < planes; pl++) {
@@ -578,9 +578,9 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     pass_stage_end(p, "targets");
     /* §4.2: intersection triangles, eq. 3 without cos(gamma) at each vertex */
     float texel = 2.0f * half / (float)size, texel_area = texel * texel;
-    size_t nverts = vols.count * (size_t)planes * 3;
+    size_t nverts = (size_t)vols.count * (size_t)planes * 3;
     float *buf = malloc(nverts * ILLUM_VERTEX_FLOATS * sizeof(float));
-    float *points = malloc(vols.count * (size_t)planes * 3 * ILLUM_VERTEX_FLOATS * sizeof(float));
+    float *points = malloc((size_t)vols.count * (size_t)planes * 3 * ILLUM_VERTEX_FLOATS * sizeof(float));
     size_t plane_first[ILLUM_MAX_PLANES], plane_count[ILLUM_MAX_PLANES], n = 0;
     size_t point_first[ILLUM_MAX_PLANES], point_count[ILLUM_MAX_PLANES], np = 0;
     if (!buf || !points) {

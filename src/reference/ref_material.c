@@ -14,7 +14,8 @@ static void hit_uv(const struct ref_object *o, const struct ref_hit *h, int set,
     const float *t = o->texcoords[set];
     double w = 1.0 - h->bary_u - h->bary_v;
     for (int k = 0; k < 2; k++)
-        uv[k] = (float)(w * t[tri[0] * 2 + k] + h->bary_u * t[tri[1] * 2 + k] + h->bary_v * t[tri[2] * 2 + k]);
+        uv[k] = (float)(w * t[tri[0] * 2 + (uint32_t)k] + h->bary_u * t[tri[1] * 2 + (uint32_t)k] +
+                        h->bary_v * t[tri[2] * 2 + (uint32_t)k]);
 }
 
 static bool slot_active(const struct ref_object *o, const struct texture_ref *ref)
