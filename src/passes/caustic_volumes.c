@@ -136,7 +136,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     gl.Enable(GL_DEPTH_TEST);
     struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "caustic_volumes/receivers.vert", "caustic_volumes/receivers.frag", NULL, &recv,
+    if (!gl_program_get(&r->programs, "common/object.vert", "caustic_volumes/receivers.frag", NULL, &recv,
                         err))
         return false;
     renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);

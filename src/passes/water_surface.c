@@ -104,7 +104,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ProgramUniform3f(copy->id, gl_program_uniform(copy, "u_absorption"), c.x, c.y, c.z);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "water_surface/surface.vert", "water_surface/surface.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "water_surface/surface.frag", NULL, &prog, err))
         return false;
     gl.BindTextureUnit(SURFACE_UNIT_SCENE, in_color->texture.id);
     gl.BindTextureUnit(SURFACE_UNIT_DEPTH, in_depth->texture.id);
