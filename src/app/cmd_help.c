@@ -64,7 +64,7 @@ static void param_range(const struct pass_param_desc *d, char *out, size_t outle
 {
     out[0] = '\0';
     if ((d->type == PASS_PARAM_NUMBER || d->type == PASS_PARAM_INTEGER) && d->min < d->max)
-        snprintf(out, outlen, "%g..%g", d->min, d->max);
+        snprintf(out, outlen, d->multiple > 0 ? "%g..%g, x%d" : "%g..%g", d->min, d->max, d->multiple);
     else if (d->type == PASS_PARAM_ENUM && d->choices)
         snprintf(out, outlen, "%s", d->choices);
 }

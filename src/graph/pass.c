@@ -193,6 +193,9 @@ bool pass_set_number(struct pass *p, const char *name, double value, struct erro
         return error_set(err, "bad argument '%s' to '%s' (integer expected, got %g)", name, fn, value);
     if (d->min < d->max && (value < d->min || value > d->max))
         return error_set(err, "bad argument '%s' to '%s' (%g is out of range %g..%g)", name, fn, value, d->min, d->max);
+    if (d->type == PASS_PARAM_INTEGER && d->multiple > 0 && fmod(value, (double)d->multiple) != 0.0)
+        return error_set(err, "bad argument '%s' to '%s' (a multiple of %d expected, got %g)", name, fn, d->multiple,
+                         value);
     p->values[i].number = value;
     p->values[i].set = true;
     return true;

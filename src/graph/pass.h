@@ -41,6 +41,7 @@ struct pass_param_desc {
     enum pass_param_type type;
     double default_number; /* number, integer, boolean (0/1) */
     double min, max;       /* number, integer: accepted range */
+    int multiple;          /* integer: > 0, the value must be a multiple of it (checked here, once) */
     const char *default_string; /* string/enum default; NULL = none */
     const char *choices;   /* enum: "a|b|c" */
     bool required;

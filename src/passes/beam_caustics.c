@@ -97,7 +97,7 @@ static const struct pass_param_desc params[] = {
     [BC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
      .help = "depth layers per texel of the light's view (interfaces an edge ray can cross)"},
     [BC_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128,
-     .max = LAYERS_MAX_VOXELS, .help = "slices per texel of the light's view, a multiple of 128"},
+     .max = LAYERS_MAX_VOXELS, .multiple = 128, .help = "slices per texel of the light's view, a multiple of 128"},
     [BC_REFLECTION] = {.name = "reflection", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "beams reflected off the first interface too (§6)"},
     [BC_VOLUMES] = {.name = "volumes", .type = PASS_PARAM_ENUM, .default_string = "tight", .choices = "tight|prism",
@@ -132,9 +132,6 @@ static bool beam_caustics_declare(struct pass *p, struct error *err)
         return error_set(err, "bad argument 'refine' to 'beam_caustics' (grid x 2^(refine + edges) = %d is more "
                               "than %d: use fewer refinement steps, fewer edge steps or a coarser grid)",
                          lattice, BEAMS_MAX_LATTICE);
-    if (pass_int(p, BC_VOXELS) % 128 != 0)
-        return error_set(err, "bad argument 'voxels' to 'beam_caustics' (a multiple of 128 expected, got %d)",
-                         pass_int(p, BC_VOXELS));
     return pass_declare_output(p, "inscatter", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
            pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }

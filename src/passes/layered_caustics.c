@@ -45,7 +45,7 @@ static const struct pass_param_desc params[] = {
     [LC_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
      .help = "depth layers per photon texel"},
     [LC_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128, .max = LAYERS_MAX_VOXELS,
-     .help = "slices per texel, a multiple of 128"},
+     .multiple = 128, .help = "slices per texel, a multiple of 128"},
     [LC_SEARCH] = {.name = "search", .type = PASS_PARAM_INTEGER, .default_number = 5, .min = 0, .max = 16,
      .help = "bisection steps per interface"},
     [LC_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64,
@@ -137,8 +137,6 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
         return true; /* the light is not in the scene, or nothing refracts: no caustics */
     int voxels = pass_int(p, LC_VOXELS), buffer = pass_int(p, LC_BUFFER);
-    if (voxels % 128 != 0)
-        return error_set(err, "bad argument 'voxels' to 'layered_caustics' (a multiple of 128 expected, got %d)", voxels);
     if (!ensure_targets(s, f->width, f->height, buffer, err))
         return false;
 

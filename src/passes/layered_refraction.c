@@ -59,7 +59,7 @@ static const struct pass_param_desc params[] = {
     [LR_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = LAYERS_MAX,
      .help = "depth layers kept per pixel (§3.4.2; surfaces past them are dropped and counted in `info`)"},
     [LR_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128, .max = LAYERS_MAX_VOXELS,
-     .help = "slices per pixel between its depth bounds (§3.3), a multiple of 128"},
+     .multiple = 128, .help = "slices per pixel between its depth bounds (§3.3), a multiple of 128"},
     [LR_SEARCH] = {.name = "search", .type = PASS_PARAM_INTEGER, .default_number = 5, .min = 0, .max = 16,
      .help = "bisection steps per interface (§3.6: 5)"},
     [LR_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64,
@@ -137,8 +137,6 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     struct renderer *r = f->renderer;
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
     int layers = pass_int(p, LR_LAYERS), voxels = pass_int(p, LR_VOXELS);
-    if (voxels % 128 != 0)
-        return error_set(err, "bad argument 'voxels' to 'layered_refraction' (a multiple of 128 expected, got %d)", voxels);
     const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&f->outputs[1]->texture, zero);
 

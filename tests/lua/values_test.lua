@@ -99,3 +99,14 @@ t.case("Fresnel: the shaders' fresnel.glsl equals the exact formula (and so core
   -- float arithmetic: 5.5e-5 at most, next to the critical angle where R is steepest
   t.expect(worst < 1e-4, "largest difference from the exact reflectance " .. worst)
 end)
+
+t.case("a parameter that must be a multiple (voxels: 128) is refused where the script sets it", function()
+  local sun = c.light.directional { direction = {0, -1, 0} }
+  for _, name in ipairs { "layered_caustics", "beam_caustics" } do
+    t.expect_error(function() c.pass[name] { light = sun, voxels = 200 } end,
+                   "bad argument 'voxels' to '" .. name .. "' (a multiple of 128 expected, got 200)")
+  end
+  t.expect_error(function() c.pass.layered_refraction { color = "shade.color", voxels = 300 } end,
+                 "(a multiple of 128 expected, got 300)")
+  c.pass.layered_caustics { light = sun, voxels = 384 } -- a multiple is taken
+end)
