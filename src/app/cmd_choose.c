@@ -158,24 +158,20 @@ static void print_pass(const struct pass *p, const struct scene *scene)
  * without saying so in its error must not be recommended for it (issue 27);
  * its error on this scene may even be small where what it leaves out is
  * small here. False with `err` set when the script cannot be opened. */
-static bool technique_leaves_out(struct app *app, const struct cli *cli, const char *script, const char *technique,
-                                 bool *leaves, char *why, size_t whylen, struct error *err)
+static bool technique_leaves_out(struct app *app, const struct cli *cli, const char *script,
+                                 const struct technique *tech, bool *leaves, char *why, size_t whylen,
+                                 struct error *err)
 {
     *leaves = false;
     struct session_options so = {.script = script, .params = cli->params, .width = cli->width, .height = cli->height,
                                  .past_last_frame = true};
-    struct session *s = NULL;
-    struct technique_list *list = calloc(1, sizeof *list);
-    bool ok = list && session_open(app, &so, &s, err) && techniques_read(s, list, err) &&
-              techniques_select(list, technique, err);
-    for (int k = 0; ok && k < list->items[0].set_count; k++) {
+    bool ok = true;
+    for (int k = 0; ok && k < tech->set_count; k++) {
         char assignment[200];
-        snprintf(assignment, sizeof assignment, "%s=%s", list->items[0].set_keys[k], list->items[0].set_values[k]);
+        snprintf(assignment, sizeof assignment, "%s=%s", tech->set_keys[k], tech->set_values[k]);
         ok = lua_params_add(&so.params, assignment, err);
     }
-    if (s)
-        session_close(s);
-    s = NULL;
+    struct session *s = NULL;
     ok = ok && session_open(app, &so, &s, err) && graph_check(s->graph, err);
     if (ok) {
         char messages[GRAPH_LINT_MAX][400];
@@ -191,7 +187,6 @@ static bool technique_leaves_out(struct app *app, const struct cli *cli, const c
     }
     if (s)
         session_close(s);
-    free(list);
     return ok;
 }
 
@@ -241,16 +236,34 @@ int cmd_choose(struct app *app, struct cli *cli)
         return EXIT_SCENE_ERROR;
     }
     /* Techniques that leave out part of the scene are not considered (one
-     * line each says which and why). */
+     * line each says which and why). The script's techniques, read once. */
+    struct technique_list *all = calloc(1, sizeof *all);
+    struct session_options base = {.script = script, .params = cli->params, .width = cli->width,
+                                   .height = cli->height, .past_last_frame = true};
+    struct session *s0 = NULL;
+    bool read = all && session_open(app, &base, &s0, &err) && techniques_read(s0, all, &err);
+    if (s0)
+        session_close(s0);
+    if (!read) {
+        free(all);
+        free(rows);
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
     for (int i = 0; i < n; i++) {
         bool seen = false;
         for (int j = 0; j < i && !seen; j++)
             seen = strcmp(rows[j].technique, rows[i].technique) == 0;
-        if (seen)
+        const struct technique *tech = NULL;
+        for (int j = 0; j < all->count && !tech; j++)
+            if (strcmp(all->items[j].name, rows[i].technique) == 0)
+                tech = &all->items[j];
+        if (seen || !tech) /* a cached row of a technique the script no longer declares: judged as it was */
             continue;
         bool leaves;
         char why[400];
-        if (!technique_leaves_out(app, cli, script, rows[i].technique, &leaves, why, sizeof why, &err)) {
+        if (!technique_leaves_out(app, cli, script, tech, &leaves, why, sizeof why, &err)) {
+            free(all);
             free(rows);
             cli_print_error(&err);
             return EXIT_SCENE_ERROR;
@@ -262,6 +275,7 @@ int cmd_choose(struct app *app, struct cli *cli)
             if (strcmp(rows[j].technique, rows[i].technique) == 0)
                 rows[j].excluded = true;
     }
+    free(all);
     /* with --error: the cheapest within the error (and the time); with
      * --time only: the most accurate within the time */
     int best = -1;

@@ -435,16 +435,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
             return false;
         struct transport_table *t = &s->tables[k];
         /* a fine mesh gets fewer directions, so its table fits (said in info and --timings) */
-        int fitted = transport_fit_resolution(m->vertex_count, resolution);
-        if (fitted == 0)
-            return error_set(err, "%s: %zu vertices: too many for any transport table (at most %zu MB); use a coarser "
-                                  "mesh", m->name, m->vertex_count, (size_t)TRANSPORT_MAX_BYTES >> 20);
-        if (fitted < resolution)
-            snprintf(p->report, sizeof p->report, "object %d's transport table has %d x %d directions, not %d x %d, to "
-                     "fit %zu MB (%zu vertices)", i + 1, fitted, fitted, resolution, resolution,
-                     (size_t)TRANSPORT_MAX_BYTES >> 20, m->vertex_count);
-        if (!transport_table_matches(t, m, &o->material, fitted, internal) &&
-            !transport_table_build(t, m, &o->material, fitted, internal, err))
+        if (!transport_table_ensure(t, m, &o->material, resolution, internal, i + 1, p->report, sizeof p->report, err))
             return false;
     }
     pass_stage_end(p, "tables");

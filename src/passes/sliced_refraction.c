@@ -166,16 +166,8 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         if (!is_refractor(o))
             continue;
         /* a fine mesh gets fewer directions, so its table fits (said in the report) */
-        int fitted = transport_fit_resolution(o->mesh->vertex_count, resolution);
-        if (fitted == 0)
-            return error_set(err, "%s: %zu vertices: too many for any transport table (at most %zu MB); use a coarser "
-                                  "mesh", o->mesh->name, o->mesh->vertex_count, (size_t)TRANSPORT_MAX_BYTES >> 20);
-        if (fitted < resolution)
-            snprintf(p->report, sizeof p->report, "object %d's transport table has %d x %d directions, not %d x %d, to "
-                     "fit %zu MB (%zu vertices)", i + 1, fitted, fitted, resolution, resolution,
-                     (size_t)TRANSPORT_MAX_BYTES >> 20, o->mesh->vertex_count);
-        if (!transport_table_matches(&s->tables[k], o->mesh, &o->material, fitted, TRANSPORT_INTERNAL_NONE) &&
-            !transport_table_build(&s->tables[k], o->mesh, &o->material, fitted, TRANSPORT_INTERNAL_NONE, err))
+        if (!transport_table_ensure(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE, i + 1,
+                                    p->report, sizeof p->report, err))
             return false;
         if (!viewing_rays(s, k, o, f->snapshot, scene, &dir_sum, &exit_sum, &exit_count, err))
             return false;

@@ -249,6 +249,22 @@ int transport_fit_resolution(size_t vertex_count, int wanted)
     return 0;
 }
 
+bool transport_table_ensure(struct transport_table *t, const struct mesh *m, const struct material *mat, int wanted,
+                            enum transport_internal internal, int object, char *report, size_t reportlen,
+                            struct error *err)
+{
+    int fitted = transport_fit_resolution(m->vertex_count, wanted);
+    if (fitted == 0)
+        return error_set(err, "%s: %zu vertices: too many for any transport table (at most %zu MB); use a coarser mesh",
+                         m->name, m->vertex_count, (size_t)TRANSPORT_MAX_BYTES >> 20);
+    if (fitted < wanted)
+        snprintf(report, reportlen, "object %d's transport table has %d x %d directions, not %d x %d, to fit %zu MB "
+                 "(%zu vertices)", object, fitted, fitted, wanted, wanted, (size_t)TRANSPORT_MAX_BYTES >> 20,
+                 m->vertex_count);
+    return transport_table_matches(t, m, mat, fitted, internal) ||
+           transport_table_build(t, m, mat, fitted, internal, err);
+}
+
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err)
 {

@@ -49,6 +49,13 @@ struct transport_table {
  * vertices fits TRANSPORT_MAX_BYTES; 0 when not even 2 x 2 directions fit. A
  * 512-segment sphere (131,841 vertices) gets 10 x 10 instead of 16 x 16. */
 int transport_fit_resolution(size_t vertex_count, int wanted);
+/* The table of mesh m (object number `object` of its scene) at `wanted`
+ * directions per side, or the most that fit, built unless `t` already
+ * holds it; where fewer fit, `report` says so. False (err set) when the
+ * mesh is too fine for any table or the build fails. */
+bool transport_table_ensure(struct transport_table *t, const struct mesh *m, const struct material *mat, int wanted,
+                            enum transport_internal internal, int object, char *report, size_t reportlen,
+                            struct error *err);
 bool transport_table_build(struct transport_table *t, const struct mesh *m, const struct material *mat,
                            int resolution, enum transport_internal internal, struct error *err);
 void transport_table_release(struct transport_table *t);

@@ -134,6 +134,7 @@ local function rotation(axis, degrees)
            { t * x * y + s * z, t * y * y + c, t * y * z - s * x },
            { t * x * z - s * y, t * y * z + s * x, t * z * z + c } }
 end
+closed.refract3 = refract3
 local function mul(m, v) return { dot3(m[1], v), dot3(m[2], v), dot3(m[3], v) } end
 local function mul_t(m, v)
   return { m[1][1] * v[1] + m[2][1] * v[2] + m[3][1] * v[3], m[1][2] * v[1] + m[2][2] * v[2] + m[3][2] * v[3],

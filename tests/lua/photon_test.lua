@@ -261,19 +261,7 @@ local function cube_floor_light(ior, photons)
     return { v[1] + w * tx + (y * tz - z * ty), v[2] + w * ty + (z * tx - x * tz), v[3] + w * tz + (x * ty - y * tx) }
   end
   local function dot(a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
-  local function fresnel(ci, eta)
-    local s2 = eta * eta * (1 - ci * ci)
-    if s2 >= 1 then return 1 end
-    local ct = math.sqrt(1 - s2)
-    return 0.5 * (((eta * ci - ct) / (eta * ci + ct)) ^ 2 + ((eta * ct - ci) / (eta * ct + ci)) ^ 2)
-  end
-  local function refract(v, n, eta)
-    local ci = -dot(v, n)
-    local k = 1 - eta * eta * (1 - ci * ci)
-    if k < 0 then return nil end
-    local a = eta * ci - math.sqrt(k)
-    return { eta * v[1] + a * n[1], eta * v[2] + a * n[2], eta * v[3] + a * n[3] }
-  end
+  local fresnel, refract = t.fresnel, require("closed_forms").refract3
   local H = 0.35
   local function slab(o, v) -- entry and exit of the cube [-H, H]^3: t0, n0, t1, n1
     local t0, t1, n0, n1 = -1e30, 1e30, nil, nil
