@@ -22,7 +22,13 @@ static const char *param_type_name(const struct pass_param_desc *d)
     case PASS_PARAM_LIGHT: return "light";
     case PASS_PARAM_OBJECT: return "object";
     case PASS_PARAM_OBJECT_LIST: return "object list";
-    case PASS_PARAM_INPUT: return "input \"pass.output\"";
+    case PASS_PARAM_INPUT:
+        if (d->bundle) { /* a record, not a texture: say which */
+            static char bundle[64];
+            snprintf(bundle, sizeof bundle, "input \"pass.output\" (%s)", d->bundle);
+            return bundle;
+        }
+        return "input \"pass.output\"";
     case PASS_PARAM_INPUT_LIST: return "input or list of inputs";
     case PASS_PARAM_COLOR: return "colour {r, g, b}";
     case PASS_PARAM_INPUT_MAP: return "{slot = \"pass.output\"}";
@@ -38,6 +44,10 @@ static const char *param_type_name(const struct pass_param_desc *d)
 static void param_default(const struct pass_param_desc *d, char *out, size_t outlen)
 {
     out[0] = '\0';
+    if (d->block) {
+        snprintf(out, outlen, "a shared %s", d->block);
+        return;
+    }
     if (d->required) {
         snprintf(out, outlen, "required");
         return;

@@ -51,12 +51,15 @@ int cmd_info(struct app *app, struct cli *cli)
             } else {
                 printf("kept; %s\n", runs);
             }
+            if (p->implicit)
+                printf("      %s: a building block, shared by every pass that reads it\n", p->origin);
             if (rendered && e->state == GRAPH_PASS_KEPT && e->last_need == PASS_RUN && p->report[0])
                 printf("      on frame %d: %s\n", shown, p->report);
             for (int k = 0; k < p->input_count; k++)
                 printf("      in  %-12s <- %s\n", p->inputs[k].name, p->inputs[k].source);
             for (int k = 0; k < p->output_count; k++)
-                printf("      out %s.%s (%s)\n", p->name, p->outputs[k].name, gl_format_name(p->outputs[k].format));
+                printf("      out %s.%s (%s)\n", p->name, p->outputs[k].name,
+                       p->outputs[k].bundle ? p->outputs[k].bundle : gl_format_name(p->outputs[k].format));
         }
     }
     if (ok) {

@@ -332,6 +332,11 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
                                s->graph->entries[res->producer].reason);
                 break;
             }
+            if (res->bundle) {
+                ok = error_set(err, "--aov %s: a %s, not an image; name one of the textures its readers make",
+                               s->aovs[i], res->bundle);
+                break;
+            }
             ok = read_resource(s, res, &layers_img[n], err);
             if (ok) {
                 layers[n].name = s->aovs[i];

@@ -39,7 +39,7 @@ bool graph_add(struct graph *g, const char *name, struct pass *pass, struct erro
         return error_set(err, "pass name '%s' must be non-empty, shorter than %d characters and without '.'", name,
                          PASS_NAME_MAX);
     for (int i = 0; i < g->count; i++) {
-        if (strcmp(g->entries[i].pass->name, name) == 0)
+        if (!g->entries[i].pass->implicit && strcmp(g->entries[i].pass->name, name) == 0)
             return error_set(err, "a pass named '%s' is already in the graph", name);
         if (g->entries[i].pass == pass)
             return error_set(err, "this %s pass is already in the graph as '%s'", pass->desc->name,
@@ -109,10 +109,197 @@ static void list_producers(const struct graph *g, const char *resource, char *ou
     }
 }
 
+/* Building blocks (issue 26). An input parameter with `.block` that the
+ * script leaves unset is read from a block pass the graph adds before the
+ * first pass that needs it, one per distinct configuration: beam_caustics
+ * and layered_caustics for one light read one depth-layer set, and every
+ * caustics pass the one receiver G-buffer. The blocks of the last check are
+ * reused when their configuration is unchanged, so a recompile (a new size)
+ * keeps their state. */
+static bool name_taken(const struct graph_entry *entries, int count, const struct pass *self, const char *name)
+{
+    for (int i = 0; i < count; i++)
+        if (entries[i].pass != self && strcmp(entries[i].pass->name, name) == 0)
+            return true;
+    return false;
+}
+
+static void block_name(const struct graph *g, const struct graph_entry *added, int added_count, struct pass *block)
+{
+    for (int n = 1;; n++) {
+        char name[PASS_NAME_MAX];
+        if (n == 1)
+            snprintf(name, sizeof name, "%s", block->desc->name);
+        else
+            snprintf(name, sizeof name, "%s_%d", block->desc->name, n);
+        bool taken = false;
+        for (int i = 0; i < g->count; i++)
+            if (!g->entries[i].pass->implicit && strcmp(g->entries[i].pass->name, name) == 0)
+                taken = true;
+        if (!taken && !name_taken(added, added_count, block, name)) {
+            snprintf(block->name, sizeof block->name, "%s", name);
+            return;
+        }
+    }
+}
+
+/* The blocks the graph holds from its last check: taken out of the list. */
+struct old_blocks {
+    struct graph_entry *entries;
+    int count;
+};
+
+static void release_entry(struct graph_entry *e)
+{
+    if (e->queries[0] && gl_api_ready())
+        gl.DeleteQueries(2, e->queries);
+    pass_destroy(e->pass);
+}
+
+static bool add_block(struct graph *g, struct graph_entry *list, int *count, int consumer_index, struct old_blocks *old,
+                      const struct pass_param_desc *pd, int param, struct pass **used, struct error *err)
+{
+    struct pass *consumer = list[consumer_index].pass;
+    const struct pass_desc *desc = pass_registry_find(pd->block);
+    if (!desc)
+        return error_set(err, "pass '%s' (%s): input '%s' names the building block '%s', which is not a pass", consumer->name,
+                         consumer->desc->name, pd->name, pd->block);
+    struct pass *want = pass_create(desc);
+    if (!want)
+        return error_set(err, "out of memory");
+    want->implicit = true;
+    if (consumer->desc->configure_block && !consumer->desc->configure_block(consumer, param, want, err)) {
+        pass_destroy(want);
+        return error_prefix(err, "pass '%s' (%s)", consumer->name, consumer->desc->name);
+    }
+    /* A block already added for an earlier reader: it serves this one too,
+     * with the merged flags this reader needs turned on. */
+    struct pass *block = NULL;
+    for (int i = 0; i < *count && !block; i++)
+        if (list[i].pass->implicit && pass_values_equal(list[i].pass, want, true))
+            block = list[i].pass;
+    if (block) {
+        for (int k = 0; k < desc->param_count; k++)
+            if (desc->params[k].merge_or && want->values[k].number != 0.0)
+                block->values[k].number = 1.0;
+        pass_destroy(want);
+        *used = block;
+        return true;
+    }
+    /* Else one of the last check's (its state kept), or the new one, goes
+     * in just before this reader. */
+    struct graph_entry entry;
+    memset(&entry, 0, sizeof entry);
+    for (int i = 0; i < old->count && !block; i++)
+        if (old->entries[i].pass && pass_values_equal(old->entries[i].pass, want, true)) {
+            entry = old->entries[i];
+            old->entries[i].pass = NULL;
+            block = entry.pass;
+            for (int k = 0; k < desc->param_count; k++) /* merged flags start again from this reader's */
+                if (desc->params[k].merge_or)
+                    block->values[k].number = want->values[k].number;
+            pass_destroy(want);
+        }
+    if (!block) {
+        entry.pass = block = want;
+        snprintf(block->origin, sizeof block->origin, "added by the graph for '%s'", consumer->name);
+    }
+    memmove(&list[consumer_index + 1], &list[consumer_index], (size_t)(*count - consumer_index) * sizeof *list);
+    list[consumer_index] = entry;
+    (*count)++;
+    block_name(g, list, *count, block);
+    *used = block;
+    return true;
+}
+
+/* The reader's inputs from `block`: the parameter's own (`default_output`)
+ * and those read beside it. */
+static bool read_block(struct pass *consumer, int param, const struct pass *block, struct error *err)
+{
+    const struct pass_desc *d = consumer->desc;
+    char source[RESOURCE_NAME_MAX];
+    snprintf(source, sizeof source, "%s.%s", block->name, d->params[param].default_output);
+    if (!pass_declare_input(consumer, d->params[param].name, source, err))
+        return false;
+    for (int k = 0; k < d->param_count; k++) {
+        const struct pass_param_desc *pk = &d->params[k];
+        if (pk->type == PASS_PARAM_INPUT && !consumer->values[k].string && pk->default_beside &&
+            strcmp(pk->default_beside, d->params[param].name) == 0) {
+            snprintf(source, sizeof source, "%s.%s", block->name, pk->default_output);
+            if (!pass_declare_input(consumer, pk->name, source, err))
+                return false;
+        }
+    }
+    return true;
+}
+
+static bool add_blocks(struct graph *g, struct error *err)
+{
+    struct old_blocks old = {calloc((size_t)(g->count > 0 ? g->count : 1), sizeof *old.entries), 0};
+    /* room for a block before every input of every pass */
+    size_t room = (size_t)g->count * (PASS_MAX_INPUTS + 1) + 1;
+    struct graph_entry *list = calloc(room, sizeof *list);
+    if (!old.entries || !list) {
+        free(old.entries);
+        free(list);
+        return error_set(err, "out of memory");
+    }
+    int count = 0;
+    for (int i = 0; i < g->count; i++) {
+        if (g->entries[i].pass->implicit)
+            old.entries[old.count++] = g->entries[i];
+        else {
+            list[count++] = g->entries[i];
+            g->entries[i].pass->input_count = g->entries[i].pass->declared_inputs;
+        }
+    }
+    bool ok = true;
+    for (int i = 0; i < count && ok; i++) {
+        struct pass *p = list[i].pass;
+        if (p->implicit)
+            continue;
+        for (int k = 0; k < p->desc->param_count && ok; k++) {
+            const struct pass_param_desc *pd = &p->desc->params[k];
+            if (pd->type != PASS_PARAM_INPUT || !pd->block || p->values[k].string)
+                continue;
+            struct pass *block = NULL;
+            int before = count;
+            ok = add_block(g, list, &count, i, &old, pd, k, &block, err) && read_block(p, k, block, err);
+            i += count - before; /* the reader moved down past the new block */
+        }
+    }
+    /* every block's outputs follow its (merged) values */
+    for (int i = 0; i < count && ok; i++)
+        if (list[i].pass->implicit)
+            ok = pass_declare(list[i].pass, err);
+    for (int i = 0; i < old.count; i++)
+        if (old.entries[i].pass)
+            release_entry(&old.entries[i]);
+    free(old.entries);
+    if (!ok) {
+        /* keep the script's passes; the blocks made so far go */
+        int kept = 0;
+        for (int i = 0; i < count; i++) {
+            if (list[i].pass->implicit)
+                release_entry(&list[i]);
+            else
+                list[kept++] = list[i];
+        }
+        count = kept;
+    }
+    free(g->entries);
+    g->entries = list;
+    g->count = count;
+    g->capacity = (int)room;
+    return ok;
+}
+
 bool graph_check(struct graph *g, struct error *err)
 {
     if (g->count == 0)
         return error_set(err, "the graph has no passes: add one with g:add(name, c.pass.<kind>{...})");
+    if (!add_blocks(g, err))
+        return false;
     if (!g->output[0])
         return error_set(err, "the graph has no output: call g:output(\"pass.output\")");
     /* Every input must be produced by an earlier pass. */
@@ -122,6 +309,17 @@ bool graph_check(struct graph *g, struct error *err)
         for (int k = 0; k < p->input_count; k++) {
             int which = 0;
             int producer = find_output_of(g, i, p->inputs[k].source, &which);
+            if (producer >= 0) {
+                /* a texture where a texture is read, a record of the right type where one is */
+                int param = pass_param_index(p->desc, p->inputs[k].name);
+                const char *want = param >= 0 ? p->desc->params[param].bundle : NULL;
+                const char *have = g->entries[producer].pass->outputs[which].bundle;
+                if (!(want == have || (want && have && strcmp(want, have) == 0)))
+                    return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', which is %s%s, where %s%s is expected",
+                                     p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                                     p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture", have ? have : "",
+                                     want ? "a " : "a texture", want ? want : "");
+            }
             if (producer < 0) {
                 char producers[512];
                 list_producers(g, p->inputs[k].source, producers, sizeof producers);
@@ -162,6 +360,9 @@ bool graph_check(struct graph *g, struct error *err)
         return error_set(err, "graph output '%s' is made by no pass%s%s", g->output,
                          producers[0] ? "; outputs of that name: " : "", producers);
     }
+    if (g->entries[out_pass].pass->outputs[which].bundle)
+        return error_set(err, "graph output '%s' is a %s, not an image: output one of the textures made from it",
+                         g->output, g->entries[out_pass].pass->outputs[which].bundle);
     /* Keep what the output depends on, walking backwards. */
     for (int i = 0; i < g->count; i++) {
         g->entries[i].state = GRAPH_PASS_PRUNED;
@@ -221,6 +422,11 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
             res->producer = i;
             res->light_index = -1;
             res->matrix = mat4_identity();
+            if (d->bundle) { /* the producer's record: no texture */
+                res->bundle = d->bundle;
+                e->output_resources[o] = g->resource_count++;
+                continue;
+            }
             int w = d->width > 0 ? d->width : width, h = d->height > 0 ? d->height : height;
             if (!gl_texture_create(&res->texture, d->target, d->format, w, h, 1, err)) {
                 release_resources(g);
@@ -288,7 +494,7 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
              * far depth) rather than as last frame's. */
             const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
             for (int o = 0; o < p->output_count; o++)
-                if (f.outputs[o]) {
+                if (f.outputs[o] && f.outputs[o]->texture.id) {
                     bool depth = gl_format_is_depth(f.outputs[o]->texture.format);
                     gl.ClearTexImage(f.outputs[o]->texture.id, 0, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
                                      depth ? (const void *)&far_depth : (const void *)zero);

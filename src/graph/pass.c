@@ -313,7 +313,10 @@ bool pass_declare(struct pass *p, struct error *err)
         if (!pass_declare_input(p, pd->name, source, err))
             return false;
     }
-    return !d->declare || d->declare(p, err);
+    if (d->declare && !d->declare(p, err))
+        return false;
+    p->declared_inputs = p->input_count;
+    return true;
 }
 
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err)
@@ -340,6 +343,44 @@ bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum
     out->target = target;
     out->width = width;
     out->height = height;
+    return true;
+}
+
+bool pass_declare_bundle(struct pass *p, const char *name, const char *bundle, struct error *err)
+{
+    if (!pass_declare_output(p, name, GL_NONE, GL_NONE, 0, 0, err))
+        return false;
+    p->outputs[p->output_count - 1].bundle = bundle;
+    return true;
+}
+
+static bool strings_equal(const char *a, const char *b)
+{
+    return a == b || (a && b && strcmp(a, b) == 0);
+}
+
+bool pass_values_equal(const struct pass *a, const struct pass *b, bool ignore_merged)
+{
+    if (a->desc != b->desc)
+        return false;
+    for (int i = 0; i < a->desc->param_count; i++) {
+        const struct pass_param_desc *pd = &a->desc->params[i];
+        const struct pass_value *x = &a->values[i], *y = &b->values[i];
+        if (ignore_merged && pd->merge_or)
+            continue;
+        if (x->number != y->number || x->light != y->light || x->object != y->object ||
+            !strings_equal(x->string, y->string) || x->object_count != y->object_count ||
+            x->list_count != y->list_count || memcmp(x->color, y->color, sizeof x->color) != 0)
+            return false;
+        for (int k = 0; k < x->object_count; k++)
+            if (x->objects[k] != y->objects[k])
+                return false;
+        for (int k = 0; k < x->list_count; k++)
+            if (!strings_equal(x->list[k], y->list[k]) || !strings_equal(x->keys ? x->keys[k] : NULL, y->keys ? y->keys[k] : NULL))
+                return false;
+        if (x->lua_ref != y->lua_ref || pd->type == PASS_PARAM_UNIFORM_MAP)
+            return false; /* tables, functions and uniform maps: never shared */
+    }
     return true;
 }
 

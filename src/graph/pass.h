@@ -50,6 +50,15 @@ struct pass_param_desc {
      * the pass that makes input `default_beside` (refraction's depth is the
      * depth of the pass that made its colour). */
     const char *default_beside, *default_output;
+    /* input: the building block (a registered pass, e.g. "receivers") the
+     * graph adds and shares when the script names none (issue 26); its
+     * parameters come from the reader's `configure_block`. */
+    const char *block;
+    /* input: the record type the input must be ("layer_set"); NULL: a texture */
+    const char *bundle;
+    /* boolean: building blocks that differ only in this are one block with
+     * it on (the receivers' `position`: one G-buffer serves both readers) */
+    bool merge_or;
     const char *help;
 };
 
@@ -82,6 +91,9 @@ struct pass_input_decl {
 
 struct pass_output_decl {
     char name[PASS_NAME_MAX];
+    /* NULL: a texture the graph allocates; else a record of this type
+     * ("layer_set") that the producer owns and points `record` at */
+    const char *bundle;
     GLenum format;
     GLenum target;   /* GL_TEXTURE_2D or GL_TEXTURE_CUBE_MAP */
     int width, height; /* 0: the frame's size */
@@ -92,7 +104,9 @@ struct pass_output_decl {
 struct graph_resource {
     char name[RESOURCE_NAME_MAX];
     struct pass_output_decl decl;
-    struct gl_texture texture;
+    struct gl_texture texture; /* a texture output's (none for a bundle) */
+    const char *bundle;        /* a bundle's record type, NULL for a texture */
+    void *record;              /* a bundle's record, owned by its producer (set in its execute) */
     int producer;      /* index of the pass in the graph */
     mat4 matrix;
     int light_index;   /* index into the frame's GPU light list, -1 if none */
@@ -137,6 +151,10 @@ struct pass_desc {
      * per pass and object, so nothing renders dark without a line saying
      * why (issue 27). NULL: the pass handles every object. */
     const char *(*leaves_out)(const struct pass *p, const struct scene *scene, const struct object *o);
+    /* Sets the parameters of the building block the graph adds for input
+     * parameter `param` (one with `.block`): a depth-layer set for this
+     * pass's light at its buffer size. NULL: the block's defaults. */
+    bool (*configure_block)(const struct pass *p, int param, struct pass *block, struct error *err);
 };
 
 /* Named stages of one frame of a pass, timed with GL timestamps
@@ -160,6 +178,8 @@ struct pass {
     int input_count;
     struct pass_output_decl outputs[PASS_MAX_OUTPUTS];
     int output_count;
+    int declared_inputs;       /* inputs from the values; those after it were added by the graph */
+    bool implicit;             /* a building block the graph added (not the script) */
     bool created;
     void *state;               /* owned by the pass's create/destroy */
     /* A pass that calls back into the script (custom): set by the bindings,
@@ -223,6 +243,13 @@ bool pass_declare(struct pass *p, struct error *err);
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err);
 bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum target, int width, int height,
                          struct error *err);
+/* A bundle output: a record of type `bundle` ("layer_set") that the pass
+ * owns and points its resource's `record` at while it executes. */
+bool pass_declare_bundle(struct pass *p, const char *name, const char *bundle, struct error *err);
+/* Do two passes of one descriptor have the same values (lights and
+ * objects by identity)? Booleans marked `merge_or` are ignored when
+ * `ignore_merged`. For sharing building blocks. */
+bool pass_values_equal(const struct pass *a, const struct pass *b, bool ignore_merged);
 /* The resolved input for `slot` (NULL when the script gave none). */
 struct graph_resource *pass_frame_input(const struct pass *p, struct pass_frame *f, const char *slot);
 struct graph_resource *pass_frame_output(const struct pass *p, struct pass_frame *f, const char *name);

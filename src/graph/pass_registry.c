@@ -19,11 +19,13 @@ extern const struct pass_desc sliced_refraction_pass;
 extern const struct pass_desc photon_caustics_pass;
 extern const struct pass_desc volume_light_pass;
 extern const struct pass_desc beam_caustics_pass;
+extern const struct pass_desc receivers_pass;
+extern const struct pass_desc depth_layers_pass;
 
 static const struct pass_desc *const registry[] = {
     &shadow_map_pass, &shade_pass, &environment_pass, &fullscreen_pass, &custom_pass, &caustic_volumes_pass,
     &water_surface_pass, &refraction_pass, &photon_caustics_pass, &layered_refraction_pass, &layered_caustics_pass, &illumination_textures_pass, &sliced_refraction_pass,
-    &beam_caustics_pass, &volume_light_pass,
+    &beam_caustics_pass, &volume_light_pass, &receivers_pass, &depth_layers_pass,
 };
 
 int pass_registry_count(void) { return (int)(sizeof registry / sizeof registry[0]); }

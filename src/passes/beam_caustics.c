@@ -47,7 +47,7 @@ enum {
 };
 
 struct beam_caustics_state {
-    struct layer_set layers;
+    const struct layer_set *layers; /* this frame's, the depth_layers block's */
     GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
@@ -56,8 +56,9 @@ struct beam_caustics_state {
     uint64_t distance_geometry;
     vec3 distance_center;
     float distance_range;
-    struct gl_texture receiver_normal, receiver_depth, irradiance_raw, irradiance_half;
-    struct gl_framebuffer receivers_fb, volumes_fb, blur_fb, distance_fb;
+    GLuint receiver_normal, receiver_depth; /* this frame's, the receivers block's */
+    struct gl_texture irradiance_raw, irradiance_half;
+    struct gl_framebuffer volumes_fb, blur_fb, distance_fb;
     GLuint fragments_query; /* GL_SAMPLES_PASSED around the volumes' draw: the fill rate */
     int width, height;
 };
@@ -80,6 +81,9 @@ enum beam_caustics_param {
     BC_SURFACE,
     BC_SMOOTH,
     BC_BLUR,
+    BC_RECEIVERS,
+    BC_RECEIVER_DEPTH,
+    BC_LIGHT_LAYERS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -123,6 +127,15 @@ static const struct pass_param_desc params[] = {
              "al. 2005; the lattice keeps the adjacency), continuous across beams; false: one per beam (§7)"},
     [BC_BLUR] = {.name = "blur", .type = PASS_PARAM_NUMBER, .default_number = 1.5, .min = 0, .max = 32,
      .help = "the surface caustics' low-pass filter: a Gaussian of this many pixels (0: none)"},
+    [BC_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
+     .help = "the camera's receivers (a receivers pass's normal): by default the graph adds one, shared with the other "
+             "caustics passes"},
+    [BC_RECEIVER_DEPTH] = {.name = "receiver_depth", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
+     .default_output = "depth", .help = "their depth, which clips the beams (by default beside `receivers`)"},
+    [BC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = "layer_set",
+     .default_output = "layers",
+     .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
+             "`buffer`, `layers` and `voxels`, shared with layered_caustics for the same light"},
 };
 
 static bool beam_caustics_declare(struct pass *p, struct error *err)
@@ -143,9 +156,8 @@ static bool beam_caustics_create(struct pass *p, struct renderer *r, struct erro
     if (!s)
         return error_set(err, "out of memory");
     p->state = s;
-    layers_init(&s->layers);
     gl.GenQueries(1, &s->fragments_query);
-    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->volumes_fb, err) &&
+    return gl_framebuffer_create(&s->volumes_fb, err) &&
            gl_framebuffer_create(&s->blur_fb, err) && gl_framebuffer_create(&s->distance_fb, err) &&
            gl_texture_create(&s->distance, GL_TEXTURE_CUBE_MAP, GL_R32F, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE, 6,
                              err) &&
@@ -165,8 +177,6 @@ static void release_buffers(struct beam_caustics_state *s)
 
 static void release_targets(struct beam_caustics_state *s)
 {
-    gl_texture_destroy(&s->receiver_normal);
-    gl_texture_destroy(&s->receiver_depth);
     gl_texture_destroy(&s->irradiance_raw);
     gl_texture_destroy(&s->irradiance_half);
     s->width = s->height = 0;
@@ -177,12 +187,10 @@ static void beam_caustics_destroy(struct pass *p)
     struct beam_caustics_state *s = p->state;
     if (!s)
         return;
-    layers_release(&s->layers);
     release_buffers(s);
     release_targets(s);
     gl_texture_destroy(&s->distance);
     gl_texture_destroy(&s->distance_depth);
-    gl_framebuffer_destroy(&s->receivers_fb);
     gl_framebuffer_destroy(&s->volumes_fb);
     gl_framebuffer_destroy(&s->blur_fb);
     gl_framebuffer_destroy(&s->distance_fb);
@@ -245,20 +253,15 @@ static bool ensure_buffers(struct beam_caustics_state *s, int grid, int refine, 
 
 static bool ensure_targets(struct beam_caustics_state *s, int w, int h, struct error *err)
 {
-    if (s->receiver_normal.id && s->width == w && s->height == h)
+    if (s->irradiance_raw.id && s->width == w && s->height == h)
         return true;
     release_targets(s);
-    if (!gl_texture_create(&s->receiver_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
-        !gl_texture_create(&s->receiver_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
-        !gl_texture_create(&s->irradiance_raw, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
+    if (!gl_texture_create(&s->irradiance_raw, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->irradiance_half, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err))
         return false;
-    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     s->width = w;
     s->height = h;
-    const struct gl_texture *c[1] = {&s->receiver_normal};
-    return gl_framebuffer_attach(&s->receivers_fb, c, NULL, 1, &s->receiver_depth, -1, err);
+    return true;
 }
 
 /* The receivers' distance impostor around `center` (Szirmay-Kalos et al.
@@ -331,9 +334,9 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     if (!gl_program_get_compute(&r->programs, "beam_caustics/trace.comp", NULL, NULL, &trace, err))
         return false;
     gl.UseProgram(trace->id);
-    struct layers_trace settings = {.search = 5, .steps = 8, .max_interfaces = 2 * pass_int(p, BC_LAYERS) + 2,
+    struct layers_trace settings = {.search = 5, .steps = 8, .max_interfaces = 2 * s->layers->layers + 2,
                                     .layer_extent = extent};
-    layers_bind(&s->layers, trace, f->scene, &settings);
+    layers_bind(s->layers, trace, f->scene, &settings);
     bind_beam_buffers(s);
     set_lattice(trace, s);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
@@ -430,8 +433,8 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         return false;
     gl.UseProgram(prog->id);
     bind_beam_buffers(s);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth.id);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal.id);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light"), slot);
     int samples = pass_int(p, BC_SAMPLES);
     if (samples == 0)
@@ -463,8 +466,8 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         return false;
     gl.UseProgram(blur->id);
     gl.ProgramUniform1f(blur->id, gl_program_uniform(blur, "u_sigma"), (float)pass_real(p, BC_BLUR));
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth.id);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal.id);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth);
+    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal);
     const struct gl_texture *src[2] = {&s->irradiance_raw, &s->irradiance_half};
     const struct gl_texture *dst[2] = {&s->irradiance_half, &irradiance->texture};
     for (int k = 0; k < 2; k++) {
@@ -494,7 +497,17 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     vec3 lo, hi, slo, shi;
     if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi) || !scene_bounds(f->scene, &slo, &shi))
         return true; /* the light is not in the scene, or nothing refracts: no beams */
-    int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE), buffer = pass_int(p, BC_BUFFER);
+    /* the building blocks' outputs, made earlier in this frame */
+    struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
+    struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
+    if (!layers || !layers->record || !normal || !depth)
+        return error_set(err, "its light's layers or the receivers were not made this frame");
+    s->layers = layers->record;
+    if (s->layers->width == 0)
+        return true; /* the layers' light is not in the scene, or nothing refracts */
+    s->receiver_normal = normal->texture.id;
+    s->receiver_depth = depth->texture.id;
+    int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE);
     if (!ensure_buffers(s, grid, refine + pass_int(p, BC_EDGES), pass_flag(p, BC_REFLECTION), err) ||
         !ensure_targets(s, f->width, f->height, err))
         return false;
@@ -508,9 +521,6 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     float range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) + vec3_length(vec3_sub(center, vec3_scale(vec3_add(slo, shi), 0.5f)))), 1e-3f);
 
     pass_stage_begin(p);
-    if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, BC_VOXELS),
-                      pass_int(p, BC_LAYERS), true, p, err))
-        return false;
     /* the receivers' distance impostor changes only with the geometry */
     uint64_t geometry = scene_geometry_version(f->scene);
     if (!s->distance_valid || f->snapshot->geometry_animated || s->distance_geometry != geometry ||
@@ -522,21 +532,6 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         s->distance_center = center;
         s->distance_range = range;
     }
-    /* what the camera sees of the diffuse surfaces (as shade { specular =
-     * false } does: glass and water are drawn later, by the passes that
-     * refract this image): their depth, which clips the beams, and their
-     * normals, the receivers of the surface caustics */
-    struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "common/object.vert", "beam_caustics/receivers.frag", NULL, &recv,
-                        err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
-    renderer_reset_state(r);
     pass_stage_end(p, "impostors");
     if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))
         return false;
@@ -553,9 +548,21 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     return gl_check("beam_caustics", err);
 }
 
+/* The blocks it reads (issue 26): the light's layers at this pass's size
+ * (layered_caustics for the same light and size shares them); the
+ * receivers as they come. */
+static bool beam_caustics_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    if (param != BC_LIGHT_LAYERS)
+        return true;
+    return layers_configure_block(block, pass_light_at(p, BC_LIGHT), pass_int(p, BC_BUFFER), pass_int(p, BC_LAYERS),
+                                  pass_int(p, BC_VOXELS), err);
+}
+
 const struct pass_desc beam_caustics_pass = {
     .name = "beam_caustics",
     .leaves_out = layers_leaves_out,
+    .configure_block = beam_caustics_configure_block,
     .summary = "Liktor & Dachsbacher 2011: volume and surface caustics from adaptively refined beams of light",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

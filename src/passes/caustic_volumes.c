@@ -30,7 +30,7 @@
 #define VOLUME_VEC4S 10 /* per volume: top[3], dir[3], bottom[3], flux (std430) */
 
 struct caustic_volumes_state {
-    struct gl_framebuffer receivers_fb, volumes_fb;
+    struct gl_framebuffer volumes_fb;
     GLuint volumes;      /* SSBO, owned */
     size_t capacity;     /* volumes it holds */
 };
@@ -43,6 +43,8 @@ enum caustic_volumes_param {
     VOLUMES_WATER,
     VOLUMES_CAP,
     VOLUMES_RESOLUTION,
+    VOLUMES_RECEIVERS,
+    VOLUMES_RECEIVER_POSITION,
 };
 
 static const struct pass_param_desc params[] = {
@@ -52,6 +54,12 @@ static const struct pass_param_desc params[] = {
      .help = "largest flux ratio F_P (0: a quarter of the generator grid's resolution)"},
     [VOLUMES_RESOLUTION] = {.name = "resolution", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4096,
      .help = "generator grid, vertices along the water's longer side, resampled from the surface (0: the water's own grid)"},
+    [VOLUMES_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
+     .help = "the camera's receivers (a receivers pass's normal; §3.5's pass 1): by default the graph adds one with "
+             "positions, shared with the other caustics passes"},
+    [VOLUMES_RECEIVER_POSITION] = {.name = "receiver_position", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
+     .default_output = "position", .help = "their world positions (by default beside `receivers`: a receivers pass "
+                                           "with position = true)"},
 };
 
 static bool caustic_volumes_declare(struct pass *p, struct error *err)
@@ -64,10 +72,7 @@ static bool caustic_volumes_declare(struct pass *p, struct error *err)
     if (l->kind != LIGHT_DIRECTIONAL && l->kind != LIGHT_POINT)
         return error_set(err, "bad argument 'light' to 'caustic_volumes' (a directional or point light expected, got a "
                               "%s light)", light_kind_name(l->kind));
-    return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
-           pass_declare_output(p, "position", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
-           pass_declare_output(p, "normal", GL_RGBA16F, GL_TEXTURE_2D, 0, 0, err) &&
-           pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err);
+    return pass_declare_output(p, "irradiance", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }
 
 static bool caustic_volumes_create(struct pass *p, struct renderer *r, struct error *err)
@@ -77,7 +82,7 @@ static bool caustic_volumes_create(struct pass *p, struct renderer *r, struct er
     if (!s)
         return error_set(err, "out of memory");
     p->state = s;
-    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->volumes_fb, err);
+    return gl_framebuffer_create(&s->volumes_fb, err);
 }
 
 static void caustic_volumes_destroy(struct pass *p)
@@ -85,7 +90,6 @@ static void caustic_volumes_destroy(struct pass *p)
     struct caustic_volumes_state *s = p->state;
     if (!s)
         return;
-    gl_framebuffer_destroy(&s->receivers_fb);
     gl_framebuffer_destroy(&s->volumes_fb);
     if (s->volumes && gl_api_ready())
         gl.DeleteBuffers(1, &s->volumes);
@@ -121,26 +125,11 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
-    struct graph_resource *irr = pass_frame_output(p, f, "irradiance"), *pos = pass_frame_output(p, f, "position"),
-                          *nrm = pass_frame_output(p, f, "normal"), *depth = pass_frame_output(p, f, "depth");
-
-    /* Pass 1 (§3.5): world-space positions (and normals) of the receivers. */
-    const struct gl_texture *targets[2] = {&pos->texture, &nrm->texture};
-    if (!gl_framebuffer_attach(&s->receivers_fb, targets, NULL, 2, &depth->texture, -1, err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
+    struct graph_resource *irr = pass_frame_output(p, f, "irradiance"), *pos = pass_frame_input(p, f, "receiver_position"),
+                          *nrm = pass_frame_input(p, f, "receivers");
+    if (!pos || !nrm)
+        return error_set(err, "the receivers' positions and normals were not made this frame");
     const float zero[4] = {0, 0, 0, 0};
-    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
-    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 1, zero);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "common/object.vert", "caustic_volumes/receivers.frag", NULL, &recv,
-                        err))
-        return false;
-    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
-    gl.Disable(GL_DEPTH_TEST);
 
     /* The caustic volumes, built on the GPU from this frame's surface,
      * resampled (bilinearly) onto the generator grid. */
@@ -200,6 +189,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     if (!gl_framebuffer_attach(&s->volumes_fb, irr_target, NULL, 1, NULL, -1, err))
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->volumes_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
     gl.ClearNamedFramebufferfv(s->volumes_fb.id, GL_COLOR, 0, zero);
     struct gl_program *draw;
     if (!gl_program_get(&r->programs, "caustic_volumes/volume.vert", "caustic_volumes/volume.frag", NULL, &draw, err))
@@ -238,9 +228,19 @@ static const char *caustic_volumes_leaves_out(const struct pass *p, const struct
            "or off a mirror (photon_caustics or layered_caustics make them)";
 }
 
+/* The receivers it reads (issue 26): with their world positions, which
+ * §3.5 cuts the volumes at. */
+static bool caustic_volumes_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    (void)p;
+    (void)param;
+    return pass_set_boolean(block, "position", true, err);
+}
+
 const struct pass_desc caustic_volumes_pass = {
     .name = "caustic_volumes",
     .leaves_out = caustic_volumes_leaves_out,
+    .configure_block = caustic_volumes_configure_block,
     .summary = "Sandberg & Falemo: water caustics as volumes per surface triangle (irradiance for shade)",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

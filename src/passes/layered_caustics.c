@@ -19,9 +19,8 @@
 #include "passes/layers.h"
 
 struct layered_caustics_state {
-    struct layer_set layers;
-    struct gl_framebuffer receivers_fb, out_fb;
-    struct gl_texture receiver_normal, receiver_depth, flux;
+    struct gl_framebuffer out_fb;
+    struct gl_texture flux;
     struct gl_texture hits, photons; /* per photon: where it lands, its flux */
     int buffer;
     int width, height;
@@ -35,6 +34,9 @@ enum layered_caustics_param {
     LC_SEARCH,
     LC_STEPS,
     LC_RADIUS,
+    LC_RECEIVERS,
+    LC_RECEIVER_DEPTH,
+    LC_LIGHT_LAYERS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -52,6 +54,15 @@ static const struct pass_param_desc params[] = {
      .help = "linear steps along a photon before the bisection"},
     [LC_RADIUS] = {.name = "radius", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0.5, .max = 32,
      .help = "each photon is spread over its footprint from its neighbours' landing points (a ray differential), at most 2 x radius pixels along each side"},
+    [LC_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
+     .help = "the camera's receivers (a receivers pass's normal), where the photons land: by default the graph adds "
+             "one, shared with the other caustics passes"},
+    [LC_RECEIVER_DEPTH] = {.name = "receiver_depth", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
+     .default_output = "depth", .help = "their depth (by default beside `receivers`)"},
+    [LC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = "layer_set",
+     .default_output = "layers",
+     .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
+             "`buffer`, `layers` and `voxels`, shared with beam_caustics for the same light"},
 };
 
 static bool layered_caustics_declare(struct pass *p, struct error *err)
@@ -66,14 +77,11 @@ static bool layered_caustics_create(struct pass *p, struct renderer *r, struct e
     if (!s)
         return error_set(err, "out of memory");
     p->state = s;
-    layers_init(&s->layers);
-    return gl_framebuffer_create(&s->receivers_fb, err) && gl_framebuffer_create(&s->out_fb, err);
+    return gl_framebuffer_create(&s->out_fb, err);
 }
 
 static void release_targets(struct layered_caustics_state *s)
 {
-    gl_texture_destroy(&s->receiver_normal);
-    gl_texture_destroy(&s->receiver_depth);
     gl_texture_destroy(&s->flux);
     gl_texture_destroy(&s->hits);
     gl_texture_destroy(&s->photons);
@@ -84,9 +92,7 @@ static void layered_caustics_destroy(struct pass *p)
     struct layered_caustics_state *s = p->state;
     if (!s)
         return;
-    layers_release(&s->layers);
     release_targets(s);
-    gl_framebuffer_destroy(&s->receivers_fb);
     gl_framebuffer_destroy(&s->out_fb);
     free(s);
     p->state = NULL;
@@ -114,14 +120,7 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
     if (!gl_texture_create(&s->hits, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err) ||
         !gl_texture_create(&s->photons, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err))
         return false;
-    if (!gl_texture_create(&s->receiver_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
-        !gl_texture_create(&s->receiver_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
-        !gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err))
-        return false;
-    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TextureParameteri(s->receiver_normal.id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    const struct gl_texture *c[1] = {&s->receiver_normal};
-    return gl_framebuffer_attach(&s->receivers_fb, c, NULL, 1, &s->receiver_depth, -1, err);
+    return gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err);
 }
 
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -136,7 +135,16 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     vec3 lo, hi;
     if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
         return true; /* the light is not in the scene, or nothing refracts: no caustics */
-    int voxels = pass_int(p, LC_VOXELS), buffer = pass_int(p, LC_BUFFER);
+    /* the building blocks' outputs, made earlier in this frame */
+    struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
+    struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
+    if (!layers || !layers->record || !normal || !depth)
+        return error_set(err, "its light's layers or the receivers were not made this frame");
+    const struct layer_set *ls = layers->record;
+    if (ls->width == 0)
+        return true; /* the layers' light is not in the scene, or nothing refracts */
+    GLuint receiver_normal = normal->texture.id, receiver_depth = depth->texture.id;
+    int buffer = ls->width;
     if (!ensure_targets(s, f->width, f->height, buffer, err))
         return false;
 
@@ -146,7 +154,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (!layers_light_view(fl, lo, hi, &lv, "layered_caustics", err))
         return false;
     bool ortho = lv.ortho;
-    mat4 view = lv.view, proj = lv.proj;
+    mat4 proj = lv.proj;
     float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
     float texel_area = 0.0f, texel_tan = 0.0f;
     if (ortho) {
@@ -156,23 +164,6 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         texel_tan = 2.0f * lv.half_extent / (float)buffer;
     }
     pass_stage_begin(p);
-    if (!layers_build(&s->layers, r, f->scene, view, proj, buffer, buffer, voxels, pass_int(p, LC_LAYERS), true, p,
-                      err))
-        return false;
-
-    /* The receivers as the camera sees them. */
-    struct gl_program *recv;
-    if (!gl_program_get(&r->programs, "common/object.vert", "layered_caustics/receivers.frag", NULL,
-                        &recv, err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->receivers_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.ClearNamedFramebufferfv(s->receivers_fb.id, GL_COLOR, 0, zero);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, recv, DRAW_DIFFUSE);
-    renderer_reset_state(r);
-    pass_stage_end(p, "receivers");
 
     /* Photons: traced through the light's layers, then onto the receivers. */
     double total = light_view_flux_bound(fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z), &proj);
@@ -188,12 +179,12 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     struct layers_trace trace = {
         .search = pass_int(p, LC_SEARCH),
         .steps = pass_int(p, LC_STEPS),
-        .max_interfaces = 2 * pass_int(p, LC_LAYERS) + 2,
+        .max_interfaces = 2 * ls->layers + 2,
         .layer_extent = 2.0f * orad,
     };
-    layers_bind(&s->layers, photons, f->scene, &trace);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->receiver_depth.id);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    layers_bind(ls, photons, f->scene, &trace);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, receiver_depth);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
@@ -220,7 +211,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
     gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
     gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
     gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
@@ -238,8 +229,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
     gl.Viewport(0, 0, f->width, f->height);
     gl.UseProgram(resolve->id);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->receiver_depth.id);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, s->receiver_normal.id);
+    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, receiver_depth);
+    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
     gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
@@ -249,9 +240,21 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     return gl_check("layered_caustics", err);
 }
 
+/* The blocks it reads (issue 26): the light's layers at this pass's size
+ * (beam_caustics for the same light and size shares them); the receivers
+ * as they come. */
+static bool layered_caustics_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    if (param != LC_LIGHT_LAYERS)
+        return true;
+    return layers_configure_block(block, pass_light_at(p, LC_LIGHT), pass_int(p, LC_BUFFER), pass_int(p, LC_LAYERS),
+                                  pass_int(p, LC_VOXELS), err);
+}
+
 const struct pass_desc layered_caustics_pass = {
     .name = "layered_caustics",
     .leaves_out = layers_leaves_out,
+    .configure_block = layered_caustics_configure_block,
     .summary = "Chaudhari 2008: caustics through every interface, photons traced through the light's depth layers",
     .params = params,
     .param_count = sizeof params / sizeof params[0],

@@ -295,6 +295,18 @@ void layers_bind_scene_trace(const struct gl_program *prog, const struct scene *
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_scene_hi"), hi.x, hi.y, hi.z);
 }
 
+bool layers_configure_block(struct pass *block, struct light *light, int buffer, int layers, int voxels,
+                            struct error *err)
+{
+    int light_param = pass_param_index(block->desc, "light");
+    if (light_param < 0)
+        return error_set(err, "the layers' block '%s' has no light", block->desc->name);
+    pass_set_light(block, light_param, light);
+    block->values[light_param].set = true;
+    return pass_set_number(block, "buffer", buffer, err) && pass_set_number(block, "layers", layers, err) &&
+           pass_set_number(block, "voxels", voxels, err);
+}
+
 bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
                        const char *pass_name, struct error *err)
 {

@@ -93,6 +93,12 @@ struct layers_light_view {
     float half_extent;
 };
 struct frame_light;
+/* The depth_layers block a reader of `light`'s layers asks the graph for
+ * (its configure_block): this light, buffer x buffer texels, `layers`
+ * layers of `voxels` slices. */
+struct light;
+bool layers_configure_block(struct pass *block, struct light *light, int buffer, int layers, int voxels,
+                            struct error *err);
 bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
                        const char *pass_name, struct error *err);
 

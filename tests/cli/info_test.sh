@@ -16,10 +16,13 @@ grep -q "cv .*kept, but does nothing on frame 0: the light is below the horizon"
 "$CAUSTICA" render scenes/demo.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
 grep -qE "^shade +shade +[0-9.]+ +[0-9]+ +[0-9]+$" "$WORK/timings.txt" && grep -qE "^total" "$WORK/timings.txt" \
   && pass "--timings prints per-pass milliseconds, draws and triangles" || fail "--timings" "$(cat "$WORK/timings.txt")"
-# the layered passes name their stages, and draw the refractor three times per view
+# the layered passes name their stages, and draw the refractor three times per view (the light's
+# view in the depth_layers block the graph adds for layered_caustics, its receivers in another)
 "$CAUSTICA" render scenes/chaudhari_fig45.lua --size 64x64 --timings -o "$WORK/t.png" >"$WORK/timings.txt" 2>&1
 grep -qE "^glass +layered_refraction +[0-9.]+ +[34] +" "$WORK/timings.txt" && grep -qE "^  trace +[0-9.]+$" "$WORK/timings.txt" \
-  && grep -qE "^  voxelize +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^caustics +layered_caustics +[0-9.]+ +4 +" "$WORK/timings.txt" \
+  && grep -qE "^  voxelize +[0-9.]+$" "$WORK/timings.txt" && grep -qE "^caustics +layered_caustics +[0-9.]+ +0 +" "$WORK/timings.txt" \
+  && grep -qE "^depth_layers +depth_layers +[0-9.]+ +3 +" "$WORK/timings.txt" \
+  && grep -qE "^receivers +receivers +[0-9.]+ +1 +" "$WORK/timings.txt" \
   && pass "--timings: the layered passes' draws and stages" || fail "--timings (layered)" "$(cat "$WORK/timings.txt")"
 # illumination textures: reused on a camera orbit, made again when the light turns
 "$CAUSTICA" info scenes/iwasaki_fig1.lua --size 64x48 >"$WORK/info.txt" 2>&1

@@ -1,0 +1,97 @@
+/* depth_layers: the refractors' depth layers seen from a light, a building
+ * block (issue 26). Chaudhari 2008 §3.3-3.5 (passes/layers.c builds them:
+ * bounds, voxelization, peeling, per-layer normals): from the light they
+ * are Liktor & Dachsbacher's light-space G-buffer (§4.1), through which
+ * beam_caustics traces its grid, and the photons of layered_caustics
+ * (Chaudhari §4.1). The graph adds one per light and configuration when a
+ * script names none, so two techniques for one light build its layers
+ * once. The output `layers` is a bundle (a `layer_set` record: five
+ * textures, two buffers, the view) that readers bind with layers_bind. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "graph/frame.h"
+#include "graph/pass.h"
+#include "graph/renderer.h"
+#include "passes/layers.h"
+
+struct depth_layers_state {
+    struct layer_set layers;
+};
+
+enum depth_layers_param {
+    DL_LIGHT,
+    DL_BUFFER,
+    DL_LAYERS,
+    DL_VOXELS,
+};
+
+static const struct pass_param_desc params[] = {
+    [DL_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
+     .help = "the light whose view of the refractors (glass and water) the layers are"},
+    [DL_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "the light's view, buffer x buffer texels"},
+    [DL_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
+     .help = "depth layers per texel"},
+    [DL_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128,
+     .max = LAYERS_MAX_VOXELS, .multiple = 128, .help = "slices per texel, a multiple of 128"},
+};
+
+static bool depth_layers_declare(struct pass *p, struct error *err)
+{
+    return pass_declare_bundle(p, "layers", "layer_set", err);
+}
+
+static bool depth_layers_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    struct depth_layers_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return error_set(err, "out of memory");
+    layers_init(&s->layers);
+    p->state = s;
+    return true;
+}
+
+static void depth_layers_destroy(struct pass *p)
+{
+    struct depth_layers_state *s = p->state;
+    if (!s)
+        return;
+    layers_release(&s->layers);
+    free(s);
+    p->state = NULL;
+}
+
+static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct depth_layers_state *s = p->state;
+    pass_frame_output(p, f, "layers")->record = &s->layers;
+    struct renderer *r = f->renderer;
+    int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
+    vec3 lo, hi;
+    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
+        return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
+    struct layers_light_view lv;
+    if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
+        return false;
+    int buffer = pass_int(p, DL_BUFFER);
+    pass_stage_begin(p);
+    if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, DL_VOXELS),
+                      pass_int(p, DL_LAYERS), true, p, err))
+        return false;
+    snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
+    return true;
+}
+
+const struct pass_desc depth_layers_pass = {
+    .name = "depth_layers",
+    .summary = "building block: the refractors' depth layers from a light (Chaudhari 2008 §3.3-3.5), shared by "
+               "beam_caustics and layered_caustics",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = depth_layers_declare,
+    .create = depth_layers_create,
+    .execute = depth_layers_execute,
+    .destroy = depth_layers_destroy,
+};

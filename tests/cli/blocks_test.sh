@@ -1,0 +1,63 @@
+# The graph's building blocks (issue 26): three caustics passes for one
+# light draw the receiver G-buffer once, the two layered techniques build
+# the light's depth layers once (counted from --timings' draws), the same
+# blocks named in the script give the same image, blocks of different
+# sizes stay apart, and a layer set is refused where an image is read.
+source "$(dirname "$0")/lib.sh"
+S=tests/scenes/shared_blocks.lua
+"$CAUSTICA" render $S --timings --size 64x64 -o "$WORK/a.pfm" >"$WORK/t.txt" 2>&1 || fail "render" "$(cat "$WORK/t.txt")"
+rows() { grep -cE "^$1 +$2 " "$WORK/t.txt"; }
+draws() { awk -v n="$1" '$1 == n { print $4 }' "$WORK/t.txt"; }
+[ "$(rows receivers receivers)" = 1 ] && [ "$(grep -cE '^[a-z_0-9]+ +receivers ' "$WORK/t.txt")" = 1 ] \
+  && [ "$(draws receivers)" = 2 ] \
+  && pass "three caustics passes: one receiver G-buffer, 2 draws (the floor and the box)" \
+  || fail "one receiver G-buffer" "$(cat "$WORK/t.txt")"
+# the refractors (the ball and the water) drawn three times (bounds, voxels, attributes) by one layer set
+[ "$(grep -cE '^[a-z_0-9]+ +depth_layers ' "$WORK/t.txt")" = 1 ] && [ "$(draws depth_layers)" = 6 ] \
+  && [ "$(draws beams)" != "" ] && ! grep -qE "^(beams|layered) .* (bounds|voxelize)" "$WORK/t.txt" \
+  && pass "beam_caustics and layered_caustics for one light: its layers built once (6 refractor draws)" \
+  || fail "one layer set" "$(cat "$WORK/t.txt")"
+"$CAUSTICA" info $S --no-render >"$WORK/i.txt" 2>&1
+grep -q "added by the graph for 'volumes': a building block" "$WORK/i.txt" \
+  && grep -q "receivers.position (rgba32f)" "$WORK/i.txt" && grep -q "depth_layers.layers (layer_set)" "$WORK/i.txt" \
+  && pass "info shows the blocks, what they make and for whom" || fail "info" "$(cat "$WORK/i.txt")"
+"$CAUSTICA" render $S --set explicit=true --timings --size 64x64 -o "$WORK/b.pfm" >"$WORK/e.txt" 2>&1
+out=$("$CAUSTICA" compare "$WORK/a.pfm" "$WORK/b.pfm")
+rel=$(sed -n 's/.*rel_rmse=\([^ ]*\).*/\1/p' <<<"$out")
+[ "$(grep -cE '^[a-z_0-9]+ +(receivers|depth_layers) ' "$WORK/e.txt")" = 2 ] && grep -qE "^recv +receivers " "$WORK/e.txt" \
+  && awk -v r="$rel" 'BEGIN { exit !(r < 1e-5) }' \
+  && pass "the blocks named in the script: no others added, the same image (rel $rel)" \
+  || fail "explicit blocks" "$out $(cat "$WORK/e.txt")"
+"$CAUSTICA" render $S --set buffer=128 --timings --size 64x64 -o "$WORK/c.pfm" >"$WORK/c.txt" 2>&1
+[ "$(grep -cE '^depth_layers(_2)? +depth_layers ' "$WORK/c.txt")" = 2 ] \
+  && pass "layers of two sizes: two sets (depth_layers, depth_layers_2)" || fail "two sizes" "$(cat "$WORK/c.txt")"
+cat >"$WORK/bad.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 2}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3 }, material = c.material.glass {} })
+local g = c.graph()
+g:add("L", c.pass.depth_layers { light = sun })
+local read = c.param("read", "L.layers")
+if c.param("beams", false) then
+  g:add("shade", c.pass.shade {})
+  g:add("beams", c.pass.beam_caustics { light = sun, light_layers = "shade.color" })
+  g:output("beams.irradiance")
+  return { scene = scene, graph = g, size = {16, 16} }
+end
+g:add("shade", c.pass.shade { caustics = read ~= "none" and read or nil })
+g:output(c.param("out", "shade.color"))
+return { scene = scene, graph = g, size = {16, 16} }
+LUA
+expect_error "a layer set read as an image" 1 "reads caustics0 = 'L.layers', which is a layer_set, where a texture is expected" \
+  "$WORK/x.png" -- "$CAUSTICA" render "$WORK/bad.lua" --trusted -o "$WORK/x.png"
+expect_error "a layer set as the graph's output" 1 "graph output 'L.layers' is a layer_set, not an image" \
+  "$WORK/y.png" -- "$CAUSTICA" render "$WORK/bad.lua" --trusted --set read=none --set out=L.layers -o "$WORK/y.png"
+expect_error "an image where a layer set is read" 1 "reads light_layers = 'shade.color', which is a texture, where a layer_set is expected" \
+  "$WORK/z.png" -- "$CAUSTICA" render "$WORK/bad.lua" --trusted --set beams=true -o "$WORK/z.png"
+# (after the scene's own warning: caustic_volumes leaves the glass ball out)
+"$CAUSTICA" render $S --size 32x32 --aov depth_layers.layers -o "$WORK/w.exr" >"$WORK/w.txt" 2>&1
+rc=$?
+[ $rc = 1 ] && grep -q "^caustica: --aov depth_layers.layers: a layer_set, not an image" "$WORK/w.txt" && [ ! -e "$WORK/w.exr" ] \
+  && pass "--aov of a layer set refused" || fail "--aov of a layer set" "rc $rc: $(cat "$WORK/w.txt")"
+finish
