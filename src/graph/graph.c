@@ -453,6 +453,23 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
 static bool execute_passes(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
                            struct error *err);
 
+/* A pass whose light is not among the frame's lights makes nothing this
+ * frame, whatever the pass (issue 26: three passes refused such a light and
+ * three rendered zero without a word); graph_lint says so. */
+static bool lights_present(const struct pass *p, const struct renderer *r, const struct scene *scene, char *why,
+                           size_t whylen)
+{
+    for (int k = 0; k < p->desc->param_count; k++) {
+        const struct light *light = p->values[k].light;
+        if (p->desc->params[k].type == PASS_PARAM_LIGHT && light && renderer_light_slot(r, scene, light) < 0) {
+            snprintf(why, whylen, "left out: its %s is not among the scene's lights (scene:add(light))",
+                     p->desc->params[k].name);
+            return false;
+        }
+    }
+    return true;
+}
+
 /* The graph is frozen while it executes: a custom pass's run may not add
  * passes or release the graph under the loop (graph_add refuses). */
 bool graph_execute(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
@@ -488,17 +505,25 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         for (int o = 0; o < p->output_count; o++)
             f.outputs[o] = e->output_resources[o] >= 0 ? &g->resources[e->output_resources[o]] : NULL;
         e->last_why[0] = '\0';
-        e->last_need = p->desc->needed ? p->desc->needed(p, &f, e->last_why, sizeof e->last_why) : PASS_RUN;
+        if (!lights_present(p, r, scene, e->last_why, sizeof e->last_why))
+            e->last_need = PASS_SKIP;
+        else
+            e->last_need = p->desc->needed ? p->desc->needed(p, &f, e->last_why, sizeof e->last_why) : PASS_RUN;
         if (e->last_need == PASS_SKIP) {
             /* Nothing to do this frame: the outputs read as empty (no light,
              * far depth) rather than as last frame's. */
             const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
-            for (int o = 0; o < p->output_count; o++)
+            for (int o = 0; o < p->output_count; o++) {
+                if (f.outputs[o] && f.outputs[o]->bundle)
+                    f.outputs[o]->record = NULL; /* its readers find nothing made this frame */
+                if (f.outputs[o])
+                    f.outputs[o]->light_index = -1; /* a shadow map of no light this frame */
                 if (f.outputs[o] && f.outputs[o]->texture.id) {
                     bool depth = gl_format_is_depth(f.outputs[o]->texture.format);
                     gl.ClearTexImage(f.outputs[o]->texture.id, 0, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
                                      depth ? (const void *)&far_depth : (const void *)zero);
                 }
+            }
         }
         if (e->last_need != PASS_RUN) {
             e->last_ms = 0.0;

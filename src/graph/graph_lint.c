@@ -8,8 +8,6 @@
 
 static bool kept(const struct graph_entry *e) { return e->state == GRAPH_PASS_KEPT; }
 
-static bool named(const struct pass *p, const char *name) { return strcmp(p->desc->name, name) == 0; }
-
 static struct light *light_of(const struct pass *p)
 {
     int k = pass_param_index(p->desc, "light");
@@ -30,31 +28,16 @@ static const struct pass *producer(const struct graph *g, const char *source)
 int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *view_proj, char messages[][400], int max)
 {
     int count = 0;
-    /* Who draws glass, water and mirrors: shade { specular = true } (one
-     * interface), the refraction passes, water_surface (its water), a user's
-     * pass (which may: no warning then). */
-    bool glass = false, water = false, mirror = false, custom = false;
-    for (int i = 0; i < g->count; i++) {
-        const struct graph_entry *e = &g->entries[i];
-        const struct pass *p = e->pass;
-        if (!kept(e))
-            continue;
-        if (named(p, "shade")) {
-            int k = pass_param_index(p->desc, "specular");
-            if (k < 0 || pass_flag(p, k))
-                glass = water = mirror = true;
-        } else if (named(p, "refraction")) {
-            glass = water = mirror = true;
-        } else if (named(p, "layered_refraction")) {
-            glass = water = true;
-        } else if (named(p, "sliced_refraction")) {
-            glass = true;
-        } else if (named(p, "water_surface")) {
-            water = true;
-        } else if (named(p, "custom") || named(p, "fullscreen")) {
-            custom = true;
-        }
-    }
+    /* Who draws glass, water and mirrors: each descriptor says (shade {
+     * specular = true }: one interface of each; the refraction passes;
+     * water_surface its water; a user's pass may draw anything: no warning
+     * then). */
+    unsigned drawn_by = 0;
+    for (int i = 0; i < g->count; i++)
+        if (kept(&g->entries[i]) && g->entries[i].pass->desc->draws)
+            drawn_by |= g->entries[i].pass->desc->draws(g->entries[i].pass);
+    bool glass = drawn_by & PASS_DRAWS_GLASS, water = drawn_by & PASS_DRAWS_WATER,
+         mirror = drawn_by & PASS_DRAWS_MIRROR, custom = drawn_by & PASS_DRAWS_ANYTHING;
     for (int i = 0; i < scene->object_count && !custom && count < max; i++) {
         const struct object *o = scene->objects[i];
         if (!o->visible || (view_proj && !object_in_view(o, *view_proj)))
@@ -68,6 +51,16 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      "object %d (%s) is drawn by no pass the output needs (shade draws it unless specular = false; "
                      "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
                      i + 1, what, kind == MATERIAL_WATER ? ", water_surface" : "");
+    }
+    /* A pass whose light is not in the scene makes nothing (the graph skips it). */
+    for (int i = 0; i < g->count && count < max; i++) {
+        const struct pass *p = g->entries[i].pass;
+        for (int k = 0; kept(&g->entries[i]) && k < p->desc->param_count && count < max; k++)
+            if (p->desc->params[k].type == PASS_PARAM_LIGHT && p->values[k].light &&
+                scene_light_index(scene, p->values[k].light) < 0)
+                snprintf(messages[count++], 400,
+                         "pass '%s' (%s): its %s is not among the scene's lights, so it makes nothing (add it with "
+                         "scene:add(light))", p->name, p->desc->name, p->desc->params[k].name);
     }
     /* Objects a kept pass leaves out (its descriptor says which and why). */
     for (int i = 0; i < g->count && count < max; i++) {
@@ -111,11 +104,12 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      "size): surfaces closer than that are confused, at silhouettes first; raise near or lower far",
                      (double)cam->znear, (double)cam->zfar, step, 100.0 * step / size);
     }
-    /* Caustics added by shade for a light that shade does not shadow. */
+    /* Caustics added for a light that the same pass does not shadow (shade's
+     * `caustics` and `shadow` inputs). */
     for (int i = 0; i < g->count && count < max; i++) {
         const struct graph_entry *e = &g->entries[i];
         const struct pass *shade = e->pass;
-        if (!kept(e) || !named(shade, "shade"))
+        if (!kept(e))
             continue;
         for (int k = 0; k < shade->input_count && count < max; k++) {
             if (strncmp(shade->inputs[k].name, "caustics", 8) != 0)

@@ -503,7 +503,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     if (!layers || !layers->record || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
     s->layers = layers->record;
-    if (s->layers->width == 0)
+    if (!s->layers->built)
         return true; /* the layers' light is not in the scene, or nothing refracts */
     s->receiver_normal = normal->texture.id;
     s->receiver_depth = depth->texture.id;

@@ -19,7 +19,14 @@ static bool custom_execute(struct pass *p, struct pass_frame *f, struct error *e
     return p->script_run(p, f, err);
 }
 
+static unsigned custom_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_ANYTHING;
+}
+
 const struct pass_desc custom_pass = {
+    .draws = custom_draws,
     .name = "custom",
     .summary = "a pass written in Lua: run(ctx) clears outputs and draws fullscreen shaders",
     .params = params,

@@ -1,9 +1,10 @@
-/* depth_layers: the refractors' depth layers seen from a light, a building
- * block (issue 26). Chaudhari 2008 §3.3-3.5 (passes/layers.c builds them:
+/* depth_layers: the refractors' depth layers seen from a light or from the
+ * camera, a building block (issue 26). Chaudhari 2008 §3.3-3.5 (passes/layers.c builds them:
  * bounds, voxelization, peeling, per-layer normals): from the light they
  * are Liktor & Dachsbacher's light-space G-buffer (§4.1), through which
  * beam_caustics traces its grid, and the photons of layered_caustics
- * (Chaudhari §4.1). The graph adds one per light and configuration when a
+ * (Chaudhari §4.1); from the camera, the layers layered_refraction traces
+ * its rays through (§3.6-3.8). The graph adds one per light and configuration when a
  * script names none, so two techniques for one light build its layers
  * once. The output `layers` is a bundle (a `layer_set` record: five
  * textures, two buffers, the view) that readers bind with layers_bind. */
@@ -20,25 +21,34 @@ struct depth_layers_state {
 };
 
 enum depth_layers_param {
+    DL_VIEW,
     DL_LIGHT,
     DL_BUFFER,
     DL_LAYERS,
     DL_VOXELS,
+    DL_DEPTHS,
 };
+enum { VIEW_LIGHT, VIEW_CAMERA };
 
 static const struct pass_param_desc params[] = {
-    [DL_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
-     .help = "the light whose view of the refractors (glass and water) the layers are"},
+    [DL_VIEW] = {.name = "view", .type = PASS_PARAM_ENUM, .default_string = "light", .choices = "light|camera",
+     .help = "whose view of the refractors (glass and water): `light`'s, or the camera's at the frame's size"},
+    [DL_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .help = "the light, for view = \"light\""},
     [DL_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "the light's view, buffer x buffer texels"},
     [DL_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
      .help = "depth layers per texel"},
     [DL_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128,
      .max = LAYERS_MAX_VOXELS, .multiple = 128, .help = "slices per texel, a multiple of 128"},
+    [DL_DEPTHS] = {.name = "depths", .type = PASS_PARAM_ENUM, .default_string = "exact", .choices = "exact|voxel",
+     .help = "each layer's depth: the surface's own, or its slice's centre (§3.4.2)"},
 };
 
 static bool depth_layers_declare(struct pass *p, struct error *err)
 {
+    if (pass_choice(p, DL_VIEW) == VIEW_LIGHT && !pass_light_at(p, DL_LIGHT))
+        return error_set(err, "bad argument 'light' to 'depth_layers' (a light expected for view = \"light\", got no "
+                              "value)");
     return pass_declare_bundle(p, "layers", "layer_set", err);
 }
 
@@ -67,9 +77,21 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
 {
     struct depth_layers_state *s = p->state;
     pass_frame_output(p, f, "layers")->record = &s->layers;
+    s->layers.built = false;
     struct renderer *r = f->renderer;
-    int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
     vec3 lo, hi;
+    bool exact = pass_choice(p, DL_DEPTHS) == 0;
+    if (pass_choice(p, DL_VIEW) == VIEW_CAMERA) {
+        if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj))
+            return true; /* no glass or water in the camera's view: the readers pass the image through */
+        pass_stage_begin(p);
+        if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height,
+                          pass_int(p, DL_VOXELS), pass_int(p, DL_LAYERS), exact, p, err))
+            return false;
+        snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
+        return true;
+    }
+    int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
     if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
         return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
     struct layers_light_view lv;
@@ -78,7 +100,7 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     int buffer = pass_int(p, DL_BUFFER);
     pass_stage_begin(p);
     if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, DL_VOXELS),
-                      pass_int(p, DL_LAYERS), true, p, err))
+                      pass_int(p, DL_LAYERS), exact, p, err))
         return false;
     snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
     return true;
@@ -86,8 +108,8 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
 
 const struct pass_desc depth_layers_pass = {
     .name = "depth_layers",
-    .summary = "building block: the refractors' depth layers from a light (Chaudhari 2008 §3.3-3.5), shared by "
-               "beam_caustics and layered_caustics",
+    .summary = "building block: the refractors' depth layers from a light or the camera (Chaudhari 2008 §3.3-3.5), "
+               "shared by beam_caustics and layered_caustics",
     .params = params,
     .param_count = sizeof params / sizeof params[0],
     .declare = depth_layers_declare,

@@ -112,7 +112,14 @@ static bool fullscreen_execute(struct pass *p, struct pass_frame *f, struct erro
     return true;
 }
 
+static unsigned fullscreen_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_ANYTHING;
+}
+
 const struct pass_desc fullscreen_pass = {
+    .draws = fullscreen_draws,
     .name = "fullscreen",
     .summary = "a user-written fragment shader over the whole frame",
     .params = params,

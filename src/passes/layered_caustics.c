@@ -141,7 +141,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (!layers || !layers->record || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
     const struct layer_set *ls = layers->record;
-    if (ls->width == 0)
+    if (!ls->built)
         return true; /* the layers' light is not in the scene, or nothing refracts */
     GLuint receiver_normal = normal->texture.id, receiver_depth = depth->texture.id;
     int buffer = ls->width;

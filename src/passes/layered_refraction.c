@@ -24,7 +24,6 @@
 #include "passes/layers.h"
 
 struct layered_refraction_state {
-    struct layer_set layers;
     struct gl_framebuffer out_fb;
     struct impostor_set impostors;
 };
@@ -49,6 +48,7 @@ enum layered_refraction_param {
     LR_NEARBY,
     LR_IMPOSTOR,
     LR_INTERNAL,
+    LR_CAMERA_LAYERS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -84,6 +84,10 @@ static const struct pass_param_desc params[] = {
      .help = "further marches of the light an exit reflects back inside, each from where the last one left, while "
              "a tenth of the pixel's light is in it (0: the thesis's one path, which drops it); unless set, only where "
              "a refractor's IOR is 2 or more or below 1 (else 0: they cost a tenth of the pass)"},
+    [LR_CAMERA_LAYERS] = {.name = "camera_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers",
+     .bundle = "layer_set", .default_output = "layers",
+     .help = "the camera's depth layers (a depth_layers { view = \"camera\" } pass's `layers`): by default the graph "
+             "adds one at `layers`, `voxels` and `depths`"},
 };
 
 static bool layered_refraction_declare(struct pass *p, struct error *err)
@@ -102,7 +106,6 @@ static bool layered_refraction_create(struct pass *p, struct renderer *r, struct
     if (!s)
         return error_set(err, "out of memory");
     p->state = s;
-    layers_init(&s->layers);
     return gl_framebuffer_create(&s->out_fb, err);
 }
 
@@ -111,7 +114,6 @@ static void layered_refraction_destroy(struct pass *p)
     struct layered_refraction_state *s = p->state;
     if (!s)
         return;
-    layers_release(&s->layers);
     impostors_release(&s->impostors);
     gl_framebuffer_destroy(&s->out_fb);
     free(s);
@@ -136,7 +138,11 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     struct layered_refraction_state *s = p->state;
     struct renderer *r = f->renderer;
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
-    int layers = pass_int(p, LR_LAYERS), voxels = pass_int(p, LR_VOXELS);
+    struct graph_resource *layer_input = pass_frame_input(p, f, "camera_layers");
+    if (!layer_input || !layer_input->record)
+        return error_set(err, "the camera's depth layers were not made this frame");
+    const struct layer_set *ls = layer_input->record;
+    int layers = ls->layers;
     const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&f->outputs[1]->texture, zero);
 
@@ -146,7 +152,8 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
         return false;
     vec3 lo, hi;
-    if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj)) {
+    if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj) ||
+        !ls->built) {
         if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
@@ -157,9 +164,6 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         return true;
     }
     pass_stage_begin(p);
-    if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height, voxels,
-                      layers, pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, p, err))
-        return false;
     bool nearby = pass_flag(p, LR_NEARBY);
     if (nearby) {
         if (!impostors_current(&s->impostors, f->scene, pass_int(p, LR_IMPOSTOR), f->snapshot->geometry_animated) &&
@@ -209,7 +213,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         .max_interfaces = pass_int(p, LR_INTERFACES) > 0 ? pass_int(p, LR_INTERFACES) : 2 * layers + 2,
         .layer_extent = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.01f,
     };
-    layers_bind(&s->layers, prog, f->scene, &trace);
+    layers_bind(ls, prog, f->scene, &trace);
     gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
     gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, in_depth->texture.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
@@ -229,7 +233,24 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     return gl_check("layered_refraction", err);
 }
 
+/* Its camera's layers come from a depth_layers block (issue 26) at this
+ * pass's layers, voxels and depths. */
+static bool layered_refraction_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    (void)param;
+    return layers_configure_camera_block(block, pass_int(p, LR_LAYERS), pass_int(p, LR_VOXELS),
+                                         pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, err);
+}
+
+static unsigned layered_refraction_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_GLASS | PASS_DRAWS_WATER;
+}
+
 const struct pass_desc layered_refraction_pass = {
+    .draws = layered_refraction_draws,
+    .configure_block = layered_refraction_configure_block,
     .name = "layered_refraction",
     .summary = "Chaudhari 2008: refraction through every interface of deforming objects by voxelization and depth-layer peeling",
     .params = params,

@@ -144,6 +144,7 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     if (!ensure_targets(ls, width, height, voxels, layers, err))
         return false;
     ls->exact_depth = exact_depth;
+    ls->built = true;
     ls->view = view;
     ls->proj = proj;
     mat4_inverse(view, &ls->inv_view);
@@ -305,6 +306,13 @@ bool layers_configure_block(struct pass *block, struct light *light, int buffer,
     block->values[light_param].set = true;
     return pass_set_number(block, "buffer", buffer, err) && pass_set_number(block, "layers", layers, err) &&
            pass_set_number(block, "voxels", voxels, err);
+}
+
+bool layers_configure_camera_block(struct pass *block, int layers, int voxels, bool exact_depth, struct error *err)
+{
+    return pass_set_enum(block, "view", "camera", err) && pass_set_number(block, "layers", layers, err) &&
+           pass_set_number(block, "voxels", voxels, err) &&
+           pass_set_enum(block, "depths", exact_depth ? "exact" : "voxel", err);
 }
 
 bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,

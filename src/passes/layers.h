@@ -30,6 +30,7 @@ struct layers_material_gpu {
 
 struct layer_set {
     int width, height, voxels, layers;
+    bool built;                /* built this frame (false: nothing refracts in its view, read nothing) */
     bool exact_depth;          /* depths from the attribute pass (else the voxels' slice centres) */
     struct gl_texture bounds;  /* rg32f: max depth, max -depth (per-pixel Zmax and -Zmin, §3.3) */
     struct gl_texture bits;    /* rgba32ui array: voxels / 128 words of slice bits (§3.3) */
@@ -99,6 +100,9 @@ struct frame_light;
 struct light;
 bool layers_configure_block(struct pass *block, struct light *light, int buffer, int layers, int voxels,
                             struct error *err);
+/* The camera's depth_layers block (layered_refraction's): the frame's size,
+ * `layers` layers of `voxels` slices, exact depths or the slices' own. */
+bool layers_configure_camera_block(struct pass *block, int layers, int voxels, bool exact_depth, struct error *err);
 bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
                        const char *pass_name, struct error *err);
 

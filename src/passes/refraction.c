@@ -423,7 +423,14 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     return ok;
 }
 
+static unsigned refraction_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_SPECULAR;
+}
+
 const struct pass_desc refraction_pass = {
+    .draws = refraction_draws,
     .name = "refraction",
     .summary = "Hu & Qin two-sided image-space refraction of the environment (or Wyman 2005's baseline)",
     .params = params,

@@ -140,7 +140,13 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     return true;
 }
 
+static unsigned shade_draws(const struct pass *p)
+{
+    return pass_flag(p, SHADE_SPECULAR) ? PASS_DRAWS_SPECULAR : 0u; /* one interface of each */
+}
+
 const struct pass_desc shade_pass = {
+    .draws = shade_draws,
     .name = "shade",
     .summary = "Lambert + shadows + ambient in linear radiance, with depth, normal and position buffers",
     .params = params,

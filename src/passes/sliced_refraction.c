@@ -294,7 +294,14 @@ static const char *sliced_refraction_leaves_out(const struct pass *p, const stru
     return NULL;
 }
 
+static unsigned sliced_refraction_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_GLASS;
+}
+
 const struct pass_desc sliced_refraction_pass = {
+    .draws = sliced_refraction_draws,
     .name = "sliced_refraction",
     .leaves_out = sliced_refraction_leaves_out,
     .summary = "Iwasaki et al.: the refracted view through glass by sliced object images and the light transport table",

@@ -118,7 +118,14 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     return true;
 }
 
+static unsigned water_surface_draws(const struct pass *p)
+{
+    (void)p;
+    return PASS_DRAWS_WATER;
+}
+
 const struct pass_desc water_surface_pass = {
+    .draws = water_surface_draws,
     .name = "water_surface",
     .summary = "Sandberg & Falemo's third pass: refraction mapping of the pool through the surface, Fresnel reflection",
     .params = params,

@@ -13,9 +13,10 @@ draws() { awk -v n="$1" '$1 == n { print $4 }' "$WORK/t.txt"; }
   && pass "three caustics passes: one receiver G-buffer, 2 draws (the floor and the box)" \
   || fail "one receiver G-buffer" "$(cat "$WORK/t.txt")"
 # the refractors (the ball and the water) drawn three times (bounds, voxels, attributes) by one layer set
-[ "$(grep -cE '^[a-z_0-9]+ +depth_layers ' "$WORK/t.txt")" = 1 ] && [ "$(draws depth_layers)" = 6 ] \
+[ "$(grep -cE '^[a-z_0-9]+ +depth_layers ' "$WORK/t.txt")" = 2 ] && [ "$(draws depth_layers)" = 6 ] \
+  && [ "$(draws depth_layers_2)" = 6 ] \
   && [ "$(draws beams)" != "" ] && ! grep -qE "^(beams|layered) .* (bounds|voxelize)" "$WORK/t.txt" \
-  && pass "beam_caustics and layered_caustics for one light: its layers built once (6 refractor draws)" \
+  && pass "beam_caustics and layered_caustics for one light: its layers built once (6 refractor draws); the camera's for layered_refraction" \
   || fail "one layer set" "$(cat "$WORK/t.txt")"
 "$CAUSTICA" info $S --no-render >"$WORK/i.txt" 2>&1
 grep -q "added by the graph for 'volumes': a building block" "$WORK/i.txt" \
@@ -24,13 +25,13 @@ grep -q "added by the graph for 'volumes': a building block" "$WORK/i.txt" \
 "$CAUSTICA" render $S --set explicit=true --timings --size 64x64 -o "$WORK/b.pfm" >"$WORK/e.txt" 2>&1
 out=$("$CAUSTICA" compare "$WORK/a.pfm" "$WORK/b.pfm")
 rel=$(sed -n 's/.*rel_rmse=\([^ ]*\).*/\1/p' <<<"$out")
-[ "$(grep -cE '^[a-z_0-9]+ +(receivers|depth_layers) ' "$WORK/e.txt")" = 2 ] && grep -qE "^recv +receivers " "$WORK/e.txt" \
+[ "$(grep -cE '^[a-z_0-9]+ +(receivers|depth_layers) ' "$WORK/e.txt")" = 3 ] && grep -qE "^recv +receivers " "$WORK/e.txt" \
   && awk -v r="$rel" 'BEGIN { exit !(r < 1e-5) }' \
   && pass "the blocks named in the script: no others added, the same image (rel $rel)" \
   || fail "explicit blocks" "$out $(cat "$WORK/e.txt")"
 "$CAUSTICA" render $S --set buffer=128 --timings --size 64x64 -o "$WORK/c.pfm" >"$WORK/c.txt" 2>&1
-[ "$(grep -cE '^depth_layers(_2)? +depth_layers ' "$WORK/c.txt")" = 2 ] \
-  && pass "layers of two sizes: two sets (depth_layers, depth_layers_2)" || fail "two sizes" "$(cat "$WORK/c.txt")"
+[ "$(grep -cE '^depth_layers(_[23])? +depth_layers ' "$WORK/c.txt")" = 3 ] \
+  && pass "the light's layers at two sizes: two sets, and the camera's" || fail "two sizes" "$(cat "$WORK/c.txt")"
 cat >"$WORK/bad.lua" <<'LUA'
 local c = require "caustica"
 local scene = c.scene { camera = c.camera { eye = {0, 1, 2}, target = {0, 0, 0} } }
@@ -60,4 +61,32 @@ expect_error "an image where a layer set is read" 1 "reads light_layers = 'shade
 rc=$?
 [ $rc = 1 ] && grep -q "^caustica: --aov depth_layers.layers: a layer_set, not an image" "$WORK/w.txt" && [ ! -e "$WORK/w.exr" ] \
   && pass "--aov of a layer set refused" || fail "--aov of a layer set" "rc $rc: $(cat "$WORK/w.txt")"
+# A light the scene does not hold: every pass alike makes nothing and says so
+# once (three used to refuse it and three to render zero without a word).
+cat >"$WORK/nolight.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 2}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0.2}, intensity = {1, 1, 1} })
+local lamp = c.light.point { position = {0, 2, 0}, intensity = {3, 3, 3} } -- never added
+scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -0.5, 0}, material = c.material.diffuse {} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3 }, material = c.material.glass {} })
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun })
+g:add("lamp_shadow", c.pass.shadow_map { light = lamp })
+g:add(c.param("kind", "photon_caustics"), c.pass[c.param("kind", "photon_caustics")] { light = lamp })
+g:add("shade", c.pass.shade { shadow = { "shadow.depth", "lamp_shadow.depth" },
+                              caustics = c.param("kind", "photon_caustics") .. ".irradiance", specular = false })
+g:add("glass", c.pass.refraction { color = "shade.color" })
+g:output("glass.color")
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+for k in photon_caustics layered_caustics beam_caustics; do
+  "$CAUSTICA" render "$WORK/nolight.lua" --trusted --set kind=$k -o "$WORK/nl_$k.png" >"$WORK/nl.txt" 2>&1
+  rc=$?
+  [ $rc = 0 ] && [ -s "$WORK/nl_$k.png" ] \
+    && [ "$(grep -c "pass '$k' ($k): its light is not among the scene's lights, so it makes nothing" "$WORK/nl.txt")" = 1 ] \
+    && [ "$(grep -c "pass 'lamp_shadow' (shadow_map): its light is not among the scene's lights" "$WORK/nl.txt")" = 1 ] \
+    && pass "$k and a shadow map of a light not in the scene: rendered, one warning each" \
+    || fail "$k of a light not in the scene" "rc $rc: $(cat "$WORK/nl.txt")"
+done
 finish

@@ -3,7 +3,7 @@
 -- and Chaudhari's layered photons through the glass ball and the water.
 -- The graph adds the building blocks they read: one receiver G-buffer for
 -- all three, one set of the sun's depth layers for the beams and the
--- layered photons. --set explicit=true names the blocks in the script
+-- layered photons, and the camera's layers for layered_refraction. --set explicit=true names the blocks in the script
 -- instead; --set buffer=N gives layered_caustics its own layer size (two
 -- sets of layers, not shared).
 local c = require "caustica"
@@ -30,6 +30,7 @@ if c.param("explicit", false) then
   g:add("beams", c.pass.beam_caustics { light = sun, receivers = "recv.normal", light_layers = "sun_layers.layers" })
   g:add("layered", c.pass.layered_caustics { light = sun, receivers = "recv.normal",
                                              light_layers = "sun_layers.layers" })
+  g:add("camera_layers", c.pass.depth_layers { view = "camera", layers = 16 })
 else
   g:add("volumes", c.pass.caustic_volumes { light = sun, water = water })
   g:add("beams", c.pass.beam_caustics { light = sun })
@@ -37,6 +38,7 @@ else
 end
 g:add("shade", c.pass.shade { caustics = { "volumes.irradiance", "beams.irradiance", "layered.irradiance" },
                               shadow = "shadow.depth", specular = false })
-g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+g:add("glass", c.pass.layered_refraction { color = "shade.color",
+                                          camera_layers = c.param("explicit", false) and "camera_layers.layers" or nil })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {128, 128} }
