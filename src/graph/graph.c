@@ -442,6 +442,7 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
         }
         if (!e->queries[0])
             gl.GenQueries(2, e->queries);
+        e->reuse_valid = false; /* new textures: nothing in them yet */
     }
     int which = 0;
     int out_pass = find_output_of(g, g->count, g->output, &which);
@@ -468,6 +469,43 @@ static bool lights_present(const struct pass *p, const struct renderer *r, const
         }
     }
     return true;
+}
+
+/* Reuse by version (issue 26): the key of what a pass with `depends` made
+ * its outputs from: its parameters (a light or an object by identity and
+ * version), its inputs' versions, the frame's size, and the camera,
+ * geometry and lights its descriptor names. */
+static uint64_t mix(uint64_t h, uint64_t v) { return (h ^ v) * 1099511628211u; }
+
+static uint64_t reuse_key(const struct graph *g, const struct graph_entry *e, const struct scene *scene,
+                          unsigned depends)
+{
+    const struct pass *p = e->pass;
+    uint64_t h = 14695981039346656037u;
+    h = mix(h, (uint64_t)g->width);
+    h = mix(h, (uint64_t)g->height);
+    for (int k = 0; k < p->desc->param_count; k++) {
+        const struct pass_value *v = &p->values[k];
+        double number = v->number;
+        uint64_t bits = 0;
+        memcpy(&bits, &number, sizeof bits < sizeof number ? sizeof bits : sizeof number);
+        h = mix(h, bits);
+        h = mix(h, (uint64_t)(uintptr_t)v->light);
+        h = mix(h, v->light ? v->light->version : 0u);
+        h = mix(h, (uint64_t)(uintptr_t)v->object);
+        h = mix(h, v->object ? v->object->version : 0u);
+        for (const char *c = v->string; c && *c; c++)
+            h = mix(h, (uint64_t)(unsigned char)*c);
+    }
+    for (int k = 0; k < p->input_count; k++)
+        h = mix(h, e->input_resources[k] >= 0 ? g->resources[e->input_resources[k]].version : 0u);
+    if (depends & PASS_DEPENDS_CAMERA)
+        h = mix(h, scene->camera.version);
+    if (depends & PASS_DEPENDS_GEOMETRY)
+        h = mix(h, scene_geometry_version(scene));
+    if (depends & PASS_DEPENDS_LIGHTS)
+        h = mix(h, scene_lights_version(scene));
+    return h;
 }
 
 /* The graph is frozen while it executes: a custom pass's run may not add
@@ -505,10 +543,19 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         for (int o = 0; o < p->output_count; o++)
             f.outputs[o] = e->output_resources[o] >= 0 ? &g->resources[e->output_resources[o]] : NULL;
         e->last_why[0] = '\0';
+        unsigned depends = p->desc->depends ? p->desc->depends(p) : 0u;
+        uint64_t key = depends ? reuse_key(g, e, scene, depends) : 0u;
         if (!lights_present(p, r, scene, e->last_why, sizeof e->last_why))
             e->last_need = PASS_SKIP;
-        else
+        else if (depends && e->reuse_valid && e->reuse_key == key && !r->frame.geometry_animated) {
+            e->last_need = PASS_REUSE;
+            snprintf(e->last_why, sizeof e->last_why, "reuses its outputs: its parameters, inputs%s%s%s did not change",
+                     depends & PASS_DEPENDS_CAMERA ? ", the camera" : "",
+                     depends & PASS_DEPENDS_GEOMETRY ? ", the geometry" : "",
+                     depends & PASS_DEPENDS_LIGHTS ? ", the lights" : "");
+        } else
             e->last_need = p->desc->needed ? p->desc->needed(p, &f, e->last_why, sizeof e->last_why) : PASS_RUN;
+        e->reuse_valid = false; /* until it runs to the end below */
         if (e->last_need == PASS_SKIP) {
             /* Nothing to do this frame: the outputs read as empty (no light,
              * far depth) rather than as last frame's. */
@@ -516,8 +563,10 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
             for (int o = 0; o < p->output_count; o++) {
                 if (f.outputs[o] && f.outputs[o]->bundle)
                     f.outputs[o]->record = NULL; /* its readers find nothing made this frame */
-                if (f.outputs[o])
+                if (f.outputs[o]) {
                     f.outputs[o]->light_index = -1; /* a shadow map of no light this frame */
+                    f.outputs[o]->version++;        /* emptied: its readers' keys change */
+                }
                 if (f.outputs[o] && f.outputs[o]->texture.id) {
                     bool depth = gl_format_is_depth(f.outputs[o]->texture.format);
                     gl.ClearTexImage(f.outputs[o]->texture.id, 0, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT,
@@ -527,6 +576,7 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         }
         if (e->last_need != PASS_RUN) {
             e->last_ms = 0.0;
+            e->reuse_valid = e->last_need == PASS_REUSE;
             continue;
         }
         renderer_reset_state(r);
@@ -544,6 +594,11 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
             return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
         if (!gl_check("executing the pass", err))
             return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
+        for (int o = 0; o < p->output_count; o++)
+            if (f.outputs[o])
+                f.outputs[o]->version++;
+        e->reuse_key = key;
+        e->reuse_valid = depends != 0;
     }
     /* Timings: waiting for the queries costs a pipeline drain, which the
      * frame needs anyway before its image is read back. */

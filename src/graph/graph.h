@@ -27,6 +27,8 @@ struct graph_entry {
     double last_ms;
     long last_draws, last_triangles; /* object draws the pass made (renderer_draw_objects) */
     GLuint queries[2]; /* GL_TIMESTAMP before and after */
+    uint64_t reuse_key; /* what its outputs were made from, for passes with `depends` */
+    bool reuse_valid;   /* its outputs hold what reuse_key says (cleared by compile, skip, error) */
 };
 
 struct graph {

@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "core/error.h"
 #include "core/vecmath.h"
@@ -107,6 +108,7 @@ struct graph_resource {
     struct gl_texture texture; /* a texture output's (none for a bundle) */
     const char *bundle;        /* a bundle's record type, NULL for a texture */
     void *record;              /* a bundle's record, owned by its producer (set in its execute) */
+    uint64_t version;          /* bumped each time its producer runs (what readers' reuse keys hold) */
     int producer;      /* index of the pass in the graph */
     mat4 matrix;
     int light_index;   /* index into the frame's GPU light list, -1 if none */
@@ -159,7 +161,16 @@ struct pass_desc {
      * "glass no pass draws"): a mask of PASS_DRAWS_*. NULL: none (a pass
      * that makes irradiance, depth or layers). */
     unsigned (*draws)(const struct pass *p);
+    /* Reuse by version (issue 26): what of the frame the pass's outputs
+     * depend on besides its parameters and inputs, a mask of PASS_DEPENDS_*.
+     * The graph reuses last frame's outputs while none of it changed (and no
+     * visible geometry animates). NULL: the pass decides (`needed`). */
+    unsigned (*depends)(const struct pass *p);
 };
+
+#define PASS_DEPENDS_CAMERA 1u   /* the camera's view and projection */
+#define PASS_DEPENDS_GEOMETRY 2u /* objects: added, removed, moved, shown, hidden, their materials */
+#define PASS_DEPENDS_LIGHTS 4u   /* every light of the scene (a LIGHT parameter's own is always counted) */
 
 #define PASS_DRAWS_GLASS 1u
 #define PASS_DRAWS_WATER 2u

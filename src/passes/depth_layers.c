@@ -106,7 +106,15 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     return true;
 }
 
+/* Made again only when the geometry, the light (a LIGHT parameter's
+ * version is always in the key) or, from the camera, the camera changed. */
+static unsigned depth_layers_depends(const struct pass *p)
+{
+    return PASS_DEPENDS_GEOMETRY | (pass_choice(p, DL_VIEW) == VIEW_CAMERA ? PASS_DEPENDS_CAMERA : 0u);
+}
+
 const struct pass_desc depth_layers_pass = {
+    .depends = depth_layers_depends,
     .name = "depth_layers",
     .summary = "building block: the refractors' depth layers from a light or the camera (Chaudhari 2008 §3.3-3.5), "
                "shared by beam_caustics and layered_caustics",

@@ -81,7 +81,16 @@ static bool receivers_execute(struct pass *p, struct pass_frame *f, struct error
     return true;
 }
 
+/* What the camera sees of the diffuse objects: made again only when the
+ * camera or the geometry changed (the graph's reuse by version). */
+static unsigned receivers_depends(const struct pass *p)
+{
+    (void)p;
+    return PASS_DEPENDS_CAMERA | PASS_DEPENDS_GEOMETRY;
+}
+
 const struct pass_desc receivers_pass = {
+    .depends = receivers_depends,
     .name = "receivers",
     .summary = "building block: the camera's receiver G-buffer (diffuse depth, normal, position), shared by the caustics passes",
     .params = params,

@@ -61,6 +61,18 @@ expect_error "an image where a layer set is read" 1 "reads light_layers = 'shade
 rc=$?
 [ $rc = 1 ] && grep -q "^caustica: --aov depth_layers.layers: a layer_set, not an image" "$WORK/w.txt" && [ ! -e "$WORK/w.exr" ] \
   && pass "--aov of a layer set refused" || fail "--aov of a layer set" "rc $rc: $(cat "$WORK/w.txt")"
+# Reuse by version: with the light turning, the receivers (camera and
+# geometry still) are reused and the light's layers made again; the
+# recorded frame 3 equals a fresh render of frame 3 bit for bit.
+M="scenes/compare_caustics.lua --set technique=layered --set moving=true"
+"$CAUSTICA" info $M --size 48x48 >"$WORK/m.txt" 2>&1
+grep -qE "^ 2  receivers +receivers +kept; on frame 1 reuses its outputs" "$WORK/m.txt" \
+  && grep -qE "^ 3  depth_layers +depth_layers +kept; runs every frame" "$WORK/m.txt" \
+  && pass "a turning light: the receivers reused, the light's layers made again" || fail "reuse" "$(cat "$WORK/m.txt")"
+"$CAUSTICA" record $M --size 48x48 --frames 0-3 -o "$WORK/rec_####.pfm" >/dev/null 2>&1
+"$CAUSTICA" render $M --size 48x48 --frame 3 -o "$WORK/fresh.pfm" >/dev/null 2>&1
+out=$("$CAUSTICA" compare "$WORK/rec_0003.pfm" "$WORK/fresh.pfm" 2>&1)
+grep -q "rmse=0 " <<<"$out" && pass "reused blocks: frame 3 recorded = frame 3 rendered alone" || fail "reused blocks" "$out"
 # A light the scene does not hold: every pass alike makes nothing and says so
 # once (three used to refuse it and three to render zero without a word).
 cat >"$WORK/nolight.lua" <<'LUA'
