@@ -45,7 +45,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.initial_radius = cli->radius;
     o.progress = true;
     o.report = cli->report;
-    o.aov = cli->aov;
+    o.aov = (enum ref_aov)cli->aov;
     o.antialias = cli->antialias;
     struct image img = {0};
     struct ref_stats st;
