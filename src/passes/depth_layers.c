@@ -29,6 +29,7 @@ enum depth_layers_param {
     DL_DEPTHS,
 };
 enum { VIEW_LIGHT, VIEW_CAMERA };
+enum { DEPTHS_EXACT, DEPTHS_VOXEL };
 
 static const struct pass_param_desc params[] = {
     [DL_VIEW] = {.name = "view", .type = PASS_PARAM_ENUM, .default_string = "light", .choices = "light|camera",
@@ -80,27 +81,29 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     s->layers.built = false;
     struct renderer *r = f->renderer;
     vec3 lo, hi;
-    bool exact = pass_choice(p, DL_DEPTHS) == 0;
+    mat4 view, proj;
+    int width, height;
     if (pass_choice(p, DL_VIEW) == VIEW_CAMERA) {
         if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj))
             return true; /* no glass or water in the camera's view: the readers pass the image through */
-        pass_stage_begin(p);
-        if (!layers_build(&s->layers, r, f->scene, f->snapshot->view, f->snapshot->proj, f->width, f->height,
-                          pass_int(p, DL_VOXELS), pass_int(p, DL_LAYERS), exact, p, err))
+        view = f->snapshot->view;
+        proj = f->snapshot->proj;
+        width = f->width;
+        height = f->height;
+    } else {
+        int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
+        if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
+            return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
+        struct layers_light_view lv;
+        if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
             return false;
-        snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
-        return true;
+        view = lv.view;
+        proj = lv.proj;
+        width = height = pass_int(p, DL_BUFFER);
     }
-    int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
-    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
-        return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
-    struct layers_light_view lv;
-    if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
-        return false;
-    int buffer = pass_int(p, DL_BUFFER);
     pass_stage_begin(p);
-    if (!layers_build(&s->layers, r, f->scene, lv.view, lv.proj, buffer, buffer, pass_int(p, DL_VOXELS),
-                      pass_int(p, DL_LAYERS), exact, p, err))
+    if (!layers_build(&s->layers, r, f->scene, view, proj, width, height, pass_int(p, DL_VOXELS),
+                      pass_int(p, DL_LAYERS), pass_choice(p, DL_DEPTHS) == DEPTHS_EXACT, p, err))
         return false;
     snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
     return true;
