@@ -1,6 +1,5 @@
 // Liktor & Dachsbacher 2011: the data the stages of beam_caustics share
 // (src/passes/beam_caustics.c mirrors the layouts and counter offsets).
-#include "common/bindings.glsl"
 
 // One vertex of the finest lattice of the light's projected grid (§4.1):
 // the edge rays of every beam that has it as a corner, traced once.
@@ -23,7 +22,7 @@ const uint VERTEX_TRANSMITTED = 1u, VERTEX_REFLECTED = 2u, VERTEX_SURFACE = 4u;
 // beam needs at least one corner that is not snapped.
 const uint VERTEX_SNAPPED = 8u;
 
-layout(std430, binding = BEAMS_SSBO_VERTICES) buffer BeamVertices { BeamVertex beam_vertices[]; };
+layout(std430) buffer BeamVertices { BeamVertex beam_vertices[]; };
 
 // A beam (§4.3): base triangle v[i] (world), edge directions d[i] scaled so
 // that dot(d, n) = 1 (Ernst et al. 2005's beam space: y along n), the area
@@ -41,14 +40,14 @@ struct Beam {
     vec4 sigma;      // rgb: absorption per unit length along the edge rays (the medium the beam runs in)
 };
 
-layout(std430, binding = BEAMS_SSBO_BEAMS) buffer Beams { Beam beams[]; };
+layout(std430) buffer Beams { Beam beams[]; };
 
 // Per lattice vertex, the beams that have it as a corner: a count, then up
 // to ADJACENCY_SLOTS beam indices (the lattice's adjacency, which lets the
 // surface caustics interpolate a flux density per edge ray, Ernst et al.
 // 2005, instead of one per beam: §7's limitation).
 const int ADJACENCY_STRIDE = 16, ADJACENCY_SLOTS = 15;
-layout(std430, binding = BEAMS_SSBO_ADJACENCY) buffer BeamAdjacency { uint adjacency[]; };
+layout(std430) buffer BeamAdjacency { uint adjacency[]; };
 
 // Counters and indirect arguments (uint offsets).
 const int COUNT_DISPATCH = 0;   // x, y, z: the current cell list's dispatch
@@ -61,10 +60,10 @@ const int COUNT_BUILD = 12;     // x, y, z: the beam builder's dispatch
 const int COUNT_OVERFLOW = 15;  // cells or beams past capacity (dropped)
 const int COUNT_PRISMS = 16;    // beams that fell back to the prism
 const int COUNT_SIZE = 20;
-layout(std430, binding = BEAMS_SSBO_COUNTERS) buffer BeamCounters { uint counters[]; };
+layout(std430) buffer BeamCounters { uint counters[]; };
 
 // Cells of the refinement: level (bits 28-31), x (14 bits), y (14 bits).
-layout(std430, binding = BEAMS_SSBO_CELLS) buffer BeamCells { uint cells[]; };
+layout(std430) buffer BeamCells { uint cells[]; };
 uint cell_pack(int level, int x, int y) { return (uint(level) << 28) | (uint(x) << 14) | uint(y); }
 void cell_unpack(uint c, out int level, out int x, out int y)
 {

@@ -3,11 +3,10 @@
 // per beam leaves edges between beams): a separable Gaussian over the
 // receivers, weighted down across normal and depth discontinuities so
 // caustics do not bleed from one surface onto another.
-#include "common/bindings.glsl"
 #include "common/frame.glsl"
-layout(binding = UNIT_IMAGE) uniform sampler2D u_image;
-layout(binding = BEAMS_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
-layout(binding = BEAMS_UNIT_SCENE_NORMAL) uniform sampler2D u_scene_normal;
+uniform sampler2D u_image;
+uniform sampler2D u_scene_depth;
+uniform sampler2D u_scene_normal;
 uniform vec2 u_direction;
 uniform float u_sigma;
 out vec4 o_color;

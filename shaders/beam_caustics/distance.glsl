@@ -3,7 +3,7 @@
 // and §6): a cube map around the refractors' centre holding, per
 // direction, the distance to the nearest diffuse surface. A ray is
 // marched until it passes the stored distance, then bisected.
-layout(binding = BEAMS_UNIT_DISTANCE) uniform samplerCube u_distance;
+uniform samplerCube u_distance;
 uniform vec3 u_distance_center;
 uniform float u_distance_range;  // distances are stored over this range; the longest a ray is traced
 const int DISTANCE_STEPS = 48;

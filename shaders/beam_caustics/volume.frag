@@ -21,8 +21,8 @@
 #include "common/medium.glsl"
 #include "beam_caustics/beams.glsl"
 flat in int v_beam;
-layout(binding = BEAMS_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
-layout(binding = BEAMS_UNIT_SCENE_NORMAL) uniform sampler2D u_scene_normal; // world normal, w = 1 on a receiver
+uniform sampler2D u_scene_depth;
+uniform sampler2D u_scene_normal; // world normal, w = 1 on a receiver
 uniform int u_light;
 uniform int u_samples; // samples along the beam's interval (1: the paper's midpoint)
 uniform int u_surface; // surface caustics too

@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Sandberg & Falemo §3.2: per water triangle, the refracted rays R_i at its
 // vertices and the six corners of its caustic volume; §3.4: the light
 // power I0 entering through the triangle (irradiance x cos(theta_i) x
@@ -9,8 +8,8 @@
 #include "common/fresnel.glsl"
 #include "caustic_volumes/volume.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = VOLUMES_SSBO_POSITIONS) readonly buffer Positions { float positions[]; };
-layout(std430, binding = VOLUMES_SSBO_NORMALS) readonly buffer Normals { float normals[]; };
+layout(std430) readonly buffer Positions { float positions[]; };
+layout(std430) readonly buffer Normals { float normals[]; };
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 uniform int u_triangles;

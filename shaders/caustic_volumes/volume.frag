@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Sandberg & Falemo §3.3-3.4: is the receiver point P of this pixel inside
 // the volume? Cut the volume with the horizontal plane through P (the
 // plane's normal is (0, 1, 0)), and test P against the cut triangle in xz.
@@ -8,8 +7,8 @@
 #include "caustic_volumes/volume.glsl"
 flat in int v_volume;
 layout(location = 0) out vec4 o_irradiance;
-layout(binding = VOLUMES_UNIT_POSITIONS) uniform sampler2D u_positions;
-layout(binding = VOLUMES_UNIT_NORMALS) uniform sampler2D u_normals;
+uniform sampler2D u_positions;
+uniform sampler2D u_normals;
 uniform vec3 u_attenuation;
 uniform float u_cap;
 

@@ -1,4 +1,3 @@
-#include "common/bindings.glsl"
 // One caustic volume (std430): the generator triangle's corners, the unit
 // refracted light rays at them, the rays' ends below the deepest receiver,
 // and the light power through the triangle (rgb) with its area (w).
@@ -8,4 +7,4 @@ struct CausticVolume {
     vec4 bottom[3];
     vec4 flux;
 };
-layout(std430, binding = VOLUMES_SSBO_VOLUMES) buffer Volumes { CausticVolume volumes[]; };
+layout(std430) buffer Volumes { CausticVolume volumes[]; };

@@ -1,14 +1,13 @@
-#include "common/bindings.glsl"
-// Per-frame data shared by every pass: one std140 block at binding 0
-// (mirrored by struct renderer_frame_uniforms in src/graph/renderer.h) and
-// the environment cube map at unit 15.
+// Per-frame data shared by every pass: one std140 block (mirrored by struct
+// renderer_frame_uniforms in src/graph/renderer.h) and the environment cube
+// map, both at units the renderer reserves (renderer_create) and keeps bound.
 struct GpuLight {
     vec4 position;   // xyz, w = kind: 0 point, 1 directional, 2 spot
     vec4 direction;  // xyz (direction light travels / spot axis), w = cos(outer)
     vec4 intensity;  // rgb, w = cos(inner)
 };
 
-layout(std140, binding = BINDING_FRAME) uniform Frame {
+layout(std140) uniform Frame {
     mat4 u_view;
     mat4 u_proj;
     mat4 u_view_proj;
@@ -21,7 +20,7 @@ layout(std140, binding = BINDING_FRAME) uniform Frame {
     GpuLight u_lights[32];
 };
 
-layout(binding = UNIT_ENVIRONMENT) uniform samplerCube u_environment;
+uniform samplerCube u_environment;
 
 const float PI = 3.14159265358979;
 

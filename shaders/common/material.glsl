@@ -3,10 +3,9 @@
 // shader passes the mesh's texture coordinate sets as v_texcoord0/1.
 // The reference renderer reads the same texels with the same filter and the
 // same tangent frame (src/reference/ref_material.c).
-#include "common/bindings.glsl"
-layout(binding = MATERIAL_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
-layout(binding = MATERIAL_UNIT_NORMAL) uniform sampler2D u_normal_texture;
-layout(binding = MATERIAL_UNIT_EMISSIVE) uniform sampler2D u_emissive_texture;
+uniform sampler2D u_base_color_texture;
+uniform sampler2D u_normal_texture;
+uniform sampler2D u_emissive_texture;
 uniform int u_texture_set[3];         // per slot (base, normal, emissive): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
 uniform vec3 u_texture_transform[6];  // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 uniform float u_normal_scale;

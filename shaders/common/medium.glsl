@@ -1,8 +1,7 @@
 // The scene's participating medium (src/graph/medium_gpu.c sets these): a
 // box of sigma_s, sigma_t = sigma_s + sigma_a at density 1, a density that
 // is a constant or a grid (trilinear, a 3D texture), and a Henyey-Greenstein
-// phase function, as the reference's (src/reference/ref_media.c). Requires
-// common/bindings.glsl.
+// phase function, as the reference's (src/reference/ref_media.c).
 uniform int u_medium;          // 0: no medium (transmittance 1, no scattering)
 uniform vec3 u_medium_lo, u_medium_hi;
 uniform vec3 u_medium_sigma_s, u_medium_sigma_t;
@@ -10,7 +9,7 @@ uniform float u_medium_g;
 uniform float u_medium_density; // a homogeneous medium's density
 uniform int u_medium_grid;      // 1: the density grid below
 uniform vec3 u_medium_grid_scale, u_medium_grid_offset; // texture coordinate = p * scale + offset
-layout(binding = MEDIUM_UNIT_DENSITY) uniform sampler3D u_medium_texture;
+uniform sampler3D u_medium_texture;
 
 const int MEDIUM_STEPS = 16; // midpoint steps of a transmittance through a density grid
 

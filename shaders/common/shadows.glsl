@@ -1,15 +1,14 @@
 // The shadow maps a pass reads (src/passes/shadow_inputs.c binds them):
 // up to 4, 2D (directional and spot lights) or distance cube maps (point
 // and linear lights), each covering a run of the frame's light entries.
-// Requires common/bindings.glsl.
 uniform int u_shadow_total;
 uniform int u_shadow_first[4];
 uniform int u_shadow_count[4];
 uniform int u_shadow_cube[4];
 uniform mat4 u_shadow_matrix[4];
 uniform vec4 u_shadow_params[4]; // range, bias, 1/size
-layout(binding = SHADE_UNIT_SHADOW_2D) uniform sampler2D u_shadow_2d[4];
-layout(binding = SHADE_UNIT_SHADOW_CUBE) uniform samplerCube u_shadow_cubes[4];
+uniform sampler2D u_shadow_2d[4];
+uniform samplerCube u_shadow_cubes[4];
 
 // Fraction of light reaching p from the light of shadow map k (3x3 PCF).
 float shadow_visibility(int k, vec3 p, vec3 n, vec3 to_light)

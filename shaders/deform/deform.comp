@@ -1,16 +1,15 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Morph targets then a deformer, per vertex, into the object's frame
 // buffers. DEFORM_KIND: 0 morphs only, 1 wave, 2 a GLSL function from the
 // script, `vec3 deform(vec3 p, float t)`, inserted above this line.
 layout(local_size_x = 256) in;
 
-layout(std430, binding = DEFORM_SSBO_BASE_POSITIONS) readonly buffer BasePositions { float base_positions[]; };
-layout(std430, binding = DEFORM_SSBO_BASE_NORMALS) readonly buffer BaseNormals { float base_normals[]; };
-layout(std430, binding = DEFORM_SSBO_TARGET_POSITIONS) readonly buffer TargetPositions { float target_positions[]; };
-layout(std430, binding = DEFORM_SSBO_TARGET_NORMALS) readonly buffer TargetNormals { float target_normals[]; };
-layout(std430, binding = DEFORM_SSBO_OUT_POSITIONS) writeonly buffer OutPositions { float out_positions[]; };
-layout(std430, binding = DEFORM_SSBO_OUT_NORMALS) writeonly buffer OutNormals { float out_normals[]; };
+layout(std430) readonly buffer BasePositions { float base_positions[]; };
+layout(std430) readonly buffer BaseNormals { float base_normals[]; };
+layout(std430) readonly buffer TargetPositions { float target_positions[]; };
+layout(std430) readonly buffer TargetNormals { float target_normals[]; };
+layout(std430) writeonly buffer OutPositions { float out_positions[]; };
+layout(std430) writeonly buffer OutNormals { float out_normals[]; };
 
 uniform int u_vertex_count;
 uniform int u_target_count;

@@ -8,7 +8,7 @@
 #include "common/lighting.glsl"
 #include "common/material.glsl"
 #include "common/shadows.glsl"
-layout(binding = DISTANCE_MAP_UNIT_DISTANCE) uniform samplerCube u_first; // layer 0's distances
+uniform samplerCube u_first; // layer 0's distances
 uniform int u_layer;
 in vec3 v_world;
 in vec3 v_normal;

@@ -1,4 +1,3 @@
-#include "common/bindings.glsl"
 #include "common/scene_bounds.glsl"
 // What a ray sees in the distance map (src/passes/distance_map.h,
 // Szirmay-Kalos et al. 2005): the ray is walked in steps spread in the
@@ -11,10 +10,10 @@
 // object) keeps a large gap after the search: no hit there. Behind layer
 // 0's surface the ray looks for layer 1's (the surface facing the centre
 // beyond it: the wall beside a box).
-layout(binding = DISTANCE_MAP_UNIT_COLOR) uniform samplerCube u_distance_color;
-layout(binding = DISTANCE_MAP_UNIT_DISTANCE) uniform samplerCube u_distance_distance;
-layout(binding = DISTANCE_MAP_UNIT_COLOR_BEHIND) uniform samplerCube u_distance_color_behind;
-layout(binding = DISTANCE_MAP_UNIT_DISTANCE_BEHIND) uniform samplerCube u_distance_distance_behind;
+uniform samplerCube u_distance_color;
+uniform samplerCube u_distance_distance;
+uniform samplerCube u_distance_color_behind;
+uniform samplerCube u_distance_distance_behind;
 uniform vec3 u_distance_center;
 uniform int u_distance_steps = 24;
 

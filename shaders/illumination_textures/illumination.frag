@@ -3,8 +3,7 @@
 // of the virtual camera) and the light arriving (interpolated over the
 // intersection triangle); accumulated additively into the plane's
 // illumination texture.
-#include "common/bindings.glsl"
-layout(binding = ILLUM_UNIT_TARGET) uniform sampler2D u_target;
+uniform sampler2D u_target;
 in vec3 v_intensity;
 in vec3 v_direction;
 layout(location = 0) out vec4 o_irradiance;

@@ -6,8 +6,8 @@
 // plane reads that plane).
 #include "common/frame.glsl"
 #include "illumination_textures/virtual_camera.glsl"
-layout(binding = ILLUM_UNIT_TARGET) uniform sampler2D u_target;
-layout(binding = ILLUM_UNIT_TEXTURES) uniform sampler2DArray u_textures;
+uniform sampler2D u_target;
+uniform sampler2DArray u_textures;
 uniform int u_planes;
 uniform float u_plane_depth[16];
 uniform float u_bias;

@@ -1,4 +1,3 @@
-#include "common/bindings.glsl"
 // The impostors' frames (src/passes/impostors.h) and the ray lookup of Hu &
 // Qin §2.2: intersect a ray with the rectangles, then correct the hit with
 // the depth texture (the iterative lookup of Fig. 16).
@@ -8,9 +7,9 @@ struct Impostor {
     vec4 right;
     vec4 up;
 };
-layout(std430, binding = IMPOSTOR_SSBO) readonly buffer Impostors { Impostor impostors[]; };
-layout(binding = IMPOSTOR_UNIT_DEPTH) uniform sampler2DArray u_impostor_depth;
-layout(binding = IMPOSTOR_UNIT_COLOR) uniform sampler2DArray u_impostor_color;
+layout(std430) readonly buffer Impostors { Impostor impostors[]; };
+uniform sampler2DArray u_impostor_depth;
+uniform sampler2DArray u_impostor_color;
 uniform int u_impostor_count;
 uniform int u_skip_impostor = -1; // the object being shaded does not see its own impostor
 

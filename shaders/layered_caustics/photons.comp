@@ -10,10 +10,10 @@
 #include "common/frame.glsl"
 #include "layers/trace.glsl"
 #include "layers/scene_trace.glsl"
-layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
+uniform sampler2D u_receiver_normal;
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform writeonly image2DArray u_hits;
-layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform writeonly image2DArray u_photons;
+layout(rgba32f) uniform writeonly image2DArray u_hits;
+layout(rgba32f) uniform writeonly image2DArray u_photons;
 uniform int u_light;          // the light's entry in the frame's list
 uniform int u_light_ortho;    // a directional light: parallel photons
 uniform float u_texel_area;   // directional: the area a texel spans across the beam

@@ -3,9 +3,9 @@
 // pixel covers on the surface (its footprint at that depth over the cosine
 // between the view ray and the normal).
 #include "common/frame.glsl"
-layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
-layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_receiver_depth;
-layout(r32ui, binding = LAYERED_IMAGE_FLUX) uniform readonly uimage2DArray u_flux;
+uniform sampler2D u_receiver_normal;
+uniform sampler2D u_receiver_depth;
+layout(r32ui) uniform readonly uimage2DArray u_flux;
 uniform float u_fixed_point;
 uniform float u_pixel_tan;   // a pixel's side on the plane at distance 1 (perspective)
 uniform float u_pixel_size;  // a pixel's side (orthographic camera)

@@ -11,12 +11,12 @@
 // a silhouette or a fold between neighbours smears no farther either. A
 // photon with no neighbour on an axis is one pixel wide along it.
 #include "common/frame.glsl"
-layout(binding = LAYERED_UNIT_RECEIVER_NORMAL) uniform sampler2D u_receiver_normal;
-layout(r32ui, binding = LAYERED_IMAGE_FLUX) uniform uimage2DArray u_flux;
+uniform sampler2D u_receiver_normal;
+layout(r32ui) uniform uimage2DArray u_flux;
 #include "common/fixed_point.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = LAYERED_IMAGE_HITS) uniform readonly image2DArray u_hits;
-layout(rgba32f, binding = LAYERED_IMAGE_PHOTONS) uniform readonly image2DArray u_photons;
+layout(rgba32f) uniform readonly image2DArray u_hits;
+layout(rgba32f) uniform readonly image2DArray u_photons;
 uniform ivec2 u_buffer_size;
 uniform float u_max_radius; // pixels
 

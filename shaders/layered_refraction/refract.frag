@@ -10,7 +10,7 @@
 #include "layers/scene_trace.glsl"
 #include "impostors/impostors.glsl"
 uniform int u_correction; // Fig. 16's iterations for the impostor lookup
-layout(binding = LAYERED_UNIT_SCENE) uniform sampler2D u_scene;
+uniform sampler2D u_scene;
 uniform int u_lookup_scene;
 uniform int u_reflection;
 uniform int u_internal = 2; // marches of the light exits reflect back inside (0: the thesis's one path)

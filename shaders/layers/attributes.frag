@@ -5,10 +5,10 @@
 // that share a slice (surfaces closer than one voxel) share a layer: the
 // last one written wins.
 #include "layers/layers.glsl"
-layout(binding = LAYERS_UNIT_BOUNDS) uniform sampler2D u_bounds;
-layout(binding = LAYERS_UNIT_BITS) uniform usampler2DArray u_bits;
-layout(r32f, binding = LAYERS_IMAGE_DEPTH) uniform writeonly image2DArray u_depth;
-layout(rgba32f, binding = LAYERS_IMAGE_NORMAL) uniform writeonly image2DArray u_normal;
+uniform sampler2D u_bounds;
+uniform usampler2DArray u_bits;
+layout(r32f) uniform writeonly image2DArray u_depth;
+layout(rgba32f) uniform writeonly image2DArray u_normal;
 uniform int u_slot;
 in vec3 v_normal;
 in float v_depth;

@@ -6,10 +6,10 @@
 // past the `u_layers`-th are dropped (counted in info.g).
 #include "layers/layers.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = LAYERS_UNIT_BOUNDS) uniform sampler2D u_bounds;
-layout(binding = LAYERS_UNIT_BITS) uniform usampler2DArray u_bits;
-layout(r32f, binding = LAYERS_IMAGE_DEPTH) uniform writeonly image2DArray u_depth;
-layout(rg32ui, binding = LAYERS_IMAGE_INFO) uniform writeonly uimage2D u_info;
+uniform sampler2D u_bounds;
+uniform usampler2DArray u_bits;
+layout(r32f) uniform writeonly image2DArray u_depth;
+layout(rg32ui) uniform writeonly uimage2D u_info;
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

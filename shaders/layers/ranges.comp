@@ -4,9 +4,9 @@
 // largest layer count, to bound the search along a ray.
 #include "layers/layers.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = LAYERS_UNIT_DEPTH) uniform sampler2DArray u_depth;
-layout(binding = LAYERS_UNIT_INFO) uniform usampler2D u_info;
-layout(std430, binding = LAYERS_SSBO_RANGES) buffer Ranges { uint ranges[]; };
+uniform sampler2DArray u_depth;
+uniform usampler2D u_info;
+layout(std430) buffer Ranges { uint ranges[]; };
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

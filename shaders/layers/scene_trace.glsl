@@ -6,7 +6,7 @@
 // that leave the image, turn towards the camera past the near plane or hit
 // nothing see the environment. Requires common/frame.glsl.
 #include "common/scene_bounds.glsl"
-layout(binding = LAYERED_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
+uniform sampler2D u_scene_depth;
 uniform float u_scene_extent; // the longest a ray is marched (the scene's bounding diameter)
 uniform int u_scene_steps;
 // > 0: a hit on a surface the camera sees more obliquely than this (its

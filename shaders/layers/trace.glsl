@@ -21,15 +21,15 @@
 //   reference's absorption is per unit length, as Fig. 4.4's caption says).
 #include "layers/layers.glsl"
 #include "common/fresnel.glsl"
-layout(binding = LAYERS_UNIT_DEPTH) uniform sampler2DArray u_layer_depth;
-layout(binding = LAYERS_UNIT_NORMAL) uniform sampler2DArray u_layer_normal;
-layout(binding = LAYERS_UNIT_INFO) uniform usampler2D u_layer_info;
-layout(std430, binding = LAYERS_SSBO_RANGES) readonly buffer LayerRanges { uint layer_ranges[]; };
+uniform sampler2DArray u_layer_depth;
+uniform sampler2DArray u_layer_normal;
+uniform usampler2D u_layer_info;
+layout(std430) readonly buffer LayerRanges { uint layer_ranges[]; };
 struct LayerMaterial {
     vec4 ior_ideal;  // x = ior, y = 1 for an ideal interface
     vec4 absorption; // rgb per unit length
 };
-layout(std430, binding = LAYERS_SSBO_MATERIALS) readonly buffer LayerMaterials { LayerMaterial layer_materials[]; };
+layout(std430) readonly buffer LayerMaterials { LayerMaterial layer_materials[]; };
 uniform mat4 u_layer_inv_view;
 uniform mat4 u_layer_inv_proj;
 uniform ivec2 u_layer_size;

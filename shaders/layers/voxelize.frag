@@ -2,7 +2,7 @@
 // §3.3, second pass (after Eisemann & Decoret 2006): the fragment's slice
 // bit, ORed into the words by the logic op (GL_OR on RGBA32UI targets).
 #include "layers/layers.glsl"
-layout(binding = LAYERS_UNIT_BOUNDS) uniform sampler2D u_bounds;
+uniform sampler2D u_bounds;
 in vec3 v_normal;
 in float v_depth;
 layout(location = 0) out uvec4 o_word0;

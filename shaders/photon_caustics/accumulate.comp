@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Hu & Qin §3.2: each photon adds its flux to its receiver's caustic
 // texture at (u, v), on the GPU (integer atomics on a fixed-point scale).
 //
@@ -15,9 +14,9 @@
 // farther). With u_footprint = 0 each photon goes into its texel (the
 // paper's).
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = PHOTON_UNIT_PHOTONS) uniform sampler2D u_photons;
-layout(binding = PHOTON_UNIT_FLUX) uniform sampler2D u_flux;
-layout(r32ui, binding = PHOTON_IMAGE_COUNTS) uniform uimage2DArray u_counts;
+uniform sampler2D u_photons;
+uniform sampler2D u_flux;
+layout(r32ui) uniform uimage2DArray u_counts;
 #include "common/fixed_point.glsl"
 uniform int u_texture;
 uniform float u_footprint; // texels (0: a point)

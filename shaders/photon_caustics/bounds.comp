@@ -1,8 +1,7 @@
 #version 450 core
-#include "common/bindings.glsl"
 // The box each receiver's photons landed in (shaders/photon_caustics/window.glsl).
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = PHOTON_UNIT_PHOTONS) uniform sampler2D u_photons;
+uniform sampler2D u_photons;
 #include "photon_caustics/window.glsl"
 void main()
 {

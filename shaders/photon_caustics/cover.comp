@@ -1,13 +1,12 @@
 #version 450 core
-#include "common/bindings.glsl"
 // The box of light-view texels the specular objects cover (front or back
 // surface drawn): photon_caustics narrows its light view to it, so that the
 // photon buffer's texels fall on the glass (issue 8: a buffer that adapts
 // to the refractors' projected area). Out: min x, min y, max x, max y.
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = PHOTON_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
-layout(binding = PHOTON_UNIT_BACK_DEPTH) uniform sampler2D u_back_depth;
-layout(std430, binding = PHOTON_SSBO_COVER) buffer Cover { uint cover[4]; };
+uniform sampler2D u_front_depth;
+uniform sampler2D u_back_depth;
+layout(std430) buffer Cover { uint cover[4]; };
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

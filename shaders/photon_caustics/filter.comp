@@ -1,13 +1,12 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Hu & Qin §3.2: c(u, v) = s * sum p(u + i, v + j) sqrt(1 + 2k^2 - (i^2 + j^2)),
 // |i|, |j| <= k. We divide by the sum of the weights, so that s = 1 keeps
 // the photons' energy, and by the texel's area: the result is irradiance.
 #include "impostors/impostors.glsl"
 #include "photon_caustics/window.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(r32ui, binding = PHOTON_IMAGE_COUNTS) readonly uniform uimage2DArray u_counts;
-layout(rgba32f, binding = PHOTON_IMAGE_CAUSTICS) writeonly uniform image2DArray u_caustics;
+layout(r32ui) readonly uniform uimage2DArray u_counts;
+layout(rgba32f) writeonly uniform image2DArray u_caustics;
 uniform float u_fixed_point;
 uniform int u_k;
 uniform float u_s;

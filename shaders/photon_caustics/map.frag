@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Hu & Qin §3.3, caustic mapping like shadow mapping: a receiver point
 // projects along its impostor's axis to (u, v); if it is the surface the
 // impostor saw there (within the bias), it gets that texel's caustic
@@ -10,7 +9,7 @@
 in vec3 v_world;
 in vec3 v_normal;
 layout(location = 0) out vec4 o_irradiance;
-layout(binding = PHOTON_UNIT_CAUSTICS) uniform sampler2DArray u_caustics;
+uniform sampler2DArray u_caustics;
 uniform int u_object_id;
 uniform int u_impostor_object[16];
 uniform float u_bias;

@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Hu & Qin §3.1: one photon per photon-buffer pixel that sees a refractor
 // (or mirror) from the light. It enters (Fresnel, Snell), crosses the
 // object (d_T by the depth-buffer iteration of Fig. 9, in the light's
@@ -15,10 +14,10 @@
 in vec2 v_uv;
 layout(location = 0) out vec4 o_photon;
 layout(location = 1) out vec4 o_flux;
-layout(binding = PHOTON_UNIT_FRONT_NORMAL) uniform sampler2D u_front_normal;
-layout(binding = PHOTON_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
-layout(binding = PHOTON_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
-layout(binding = PHOTON_UNIT_BACK_DEPTH) uniform sampler2D u_back_depth;
+uniform sampler2D u_front_normal;
+uniform sampler2D u_back_normal;
+uniform sampler2D u_front_depth;
+uniform sampler2D u_back_depth;
 uniform mat4 u_light_view_proj;
 uniform mat4 u_light_inverse;
 uniform int u_light;
@@ -26,7 +25,7 @@ uniform int u_iterations;
 uniform float u_buffer;
 uniform float u_reach; // the specular objects' bounding diameter: how far a photon inside is marched
 uniform int u_reflect_glass; // mode "reflect": follow the light glass reflects (Fresnel-weighted)
-layout(binding = PHOTON_UNIT_FRONT_MATERIAL) uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w material kind
+uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w material kind
 
 vec3 unproject(vec2 uv, float d)
 {

@@ -4,7 +4,7 @@
 // filter's reach, at least a 64th of the impostor's side and within it.
 // The texture's texels go where the caustic is instead of over the whole
 // receiver: a floor 10 units wide under a ball's caustic 0.2 wide.
-layout(std430, binding = PHOTON_SSBO_WINDOWS) buffer PhotonWindows { uint photon_windows[]; };
+layout(std430) buffer PhotonWindows { uint photon_windows[]; };
 uniform int u_fit = 1;
 
 vec4 photon_window(int k)

@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Hu & Qin §2.1 (or Wyman 2005 with WYMAN): refraction of the environment
 // through two interfaces, per fragment of the visible front surface.
 #include "common/frame.glsl"
@@ -10,9 +9,9 @@
 #include "distance_map/lookup.glsl"
 #ifdef SCREEN_LOOKUP
 #include "layers/scene_trace.glsl"
-layout(binding = LAYERED_UNIT_SCENE) uniform sampler2D u_scene;
-layout(binding = REFRACTION_UNIT_BEHIND) uniform sampler2D u_behind;
-layout(binding = REFRACTION_UNIT_INPUT_DEPTH) uniform sampler2D u_input_depth;
+uniform sampler2D u_scene;
+uniform sampler2D u_behind;
+uniform sampler2D u_input_depth;
 #endif
 #else
 #include "impostors/impostors.glsl"
@@ -26,10 +25,10 @@ uniform int u_camera_inside = 0; // 1: the camera is inside this refractor (its 
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_tir;  // r: total internal reflection at the two interfaces, g: all of them
 layout(location = 2) out vec4 o_exit; // rgb: the direction the path leaves in, a = 1
-layout(binding = REFRACTION_UNIT_FRONT_NORMAL) uniform sampler2D u_front_normal;
-layout(binding = REFRACTION_UNIT_BACK_NORMAL) uniform sampler2D u_back_normal;
-layout(binding = REFRACTION_UNIT_FRONT_DEPTH) uniform sampler2D u_front_depth;
-layout(binding = REFRACTION_UNIT_BACK_DEPTH) uniform sampler2D u_back_depth;
+uniform sampler2D u_front_normal;
+uniform sampler2D u_back_normal;
+uniform sampler2D u_front_depth;
+uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;

@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -9,7 +8,7 @@ out vec3 v_normal;
 out vec3 v_world;
 out float v_thickness;
 #ifdef WYMAN
-layout(std430, binding = REFRACTION_SSBO_THICKNESS) readonly buffer Thickness { float thickness[]; };
+layout(std430) readonly buffer Thickness { float thickness[]; };
 #endif
 void main()
 {

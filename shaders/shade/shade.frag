@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
@@ -21,7 +20,7 @@ uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_object_id;
 
-layout(binding = SHADE_UNIT_CAUSTICS) uniform sampler2D u_caustics[4];
+uniform sampler2D u_caustics[4];
 uniform int u_has_caustics; // how many caustic irradiance images to add
 
 void main()

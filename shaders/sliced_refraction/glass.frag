@@ -7,7 +7,7 @@
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
 #include "illumination_textures/virtual_camera.glsl"
-layout(binding = SLICED_UNIT_SLICES) uniform sampler2DArray u_slices;
+uniform sampler2DArray u_slices;
 uniform int u_slices_count;
 uniform float u_plane[17];
 uniform float u_ior;

@@ -8,7 +8,7 @@ layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 struct Exit { vec4 position; vec4 direction; vec4 transmittance; }; // w of position: 1 where a path exists
-layout(std430, binding = SLICED_SSBO_EXITS) readonly buffer Exits { Exit exits[]; };
+layout(std430) readonly buffer Exits { Exit exits[]; };
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_exit_position;

@@ -7,8 +7,8 @@
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "illumination_textures/virtual_camera.glsl"
-layout(binding = SLICED_UNIT_SCENE) uniform sampler2D u_scene;
-layout(binding = SLICED_UNIT_SCENE_DEPTH) uniform sampler2D u_scene_depth;
+uniform sampler2D u_scene;
+uniform sampler2D u_scene_depth;
 uniform vec2 u_slab;
 uniform vec3 u_color;
 uniform vec3 u_emission;

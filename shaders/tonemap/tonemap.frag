@@ -1,10 +1,9 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Linear radiance to 8-bit sRGB: exposure, an operator, then the sRGB
 // transfer function. Used for PNG output and for the window alike.
 in vec2 v_uv;
 out vec4 o_color;
-layout(binding = UNIT_IMAGE) uniform sampler2D u_image;
+uniform sampler2D u_image;
 uniform float u_exposure;
 uniform int u_operator; // 0 clamp, 1 Reinhard, 2 ACES (Narkowicz's fit)
 

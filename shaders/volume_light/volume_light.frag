@@ -7,14 +7,13 @@
 // the images in `add` (volume caustics, already attenuated) are summed on
 // top. One jittered sample per step (interleaved gradient noise), as the
 // reference takes one uniformly placed sample per segment and iteration.
-#include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/shadows.glsl"
 #include "common/medium.glsl"
-layout(binding = UNIT_IMAGE) uniform sampler2D u_color;
-layout(binding = VOLUME_LIGHT_UNIT_DEPTH) uniform sampler2D u_depth;
-layout(binding = VOLUME_LIGHT_UNIT_ADD) uniform sampler2D u_add[4];
+uniform sampler2D u_color;
+uniform sampler2D u_depth;
+uniform sampler2D u_add[4];
 uniform int u_add_count;
 uniform int u_steps;
 out vec4 o_color;

@@ -1,5 +1,4 @@
 #version 450 core
-#include "common/bindings.glsl"
 // Sandberg & Falemo §3.5, third pass: the pool's image mapped onto the
 // surface by refraction against a virtual plane (the floor, `u_depth`
 // below the mean level), absorbed on the way, plus the Fresnel-weighted
@@ -9,9 +8,9 @@
 in vec3 v_world;
 in vec3 v_normal;
 layout(location = 0) out vec4 o_color;
-layout(binding = SURFACE_UNIT_SCENE) uniform sampler2D u_scene;
-layout(binding = SURFACE_UNIT_DEPTH) uniform sampler2D u_scene_depth;
-layout(binding = SURFACE_UNIT_POSITION) uniform sampler2D u_scene_position;
+uniform sampler2D u_scene;
+uniform sampler2D u_scene_depth;
+uniform sampler2D u_scene_position;
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;

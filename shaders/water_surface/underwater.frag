@@ -4,12 +4,11 @@
 // (Beer-Lambert, as the reference's medium): the input image times
 // exp(-c d), d the path's length to the camera, where the input has a position. The surface, drawn
 // over it, absorbs its own path (surface.frag).
-#include "common/bindings.glsl"
 #include "common/frame.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
-layout(binding = UNIT_IMAGE) uniform sampler2D u_image;
-layout(binding = SURFACE_UNIT_POSITION) uniform sampler2D u_scene_position;
+uniform sampler2D u_image;
+uniform sampler2D u_scene_position;
 uniform vec3 u_absorption;
 void main()
 {

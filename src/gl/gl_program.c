@@ -205,8 +205,12 @@ static bool link_program(GLuint *shaders, int n, const char *what, GLuint *out, 
 }
 
 /* Builds `p->id` from its stage files; on failure leaves p->id untouched. */
-static bool program_build(const char *root, struct gl_program *p, struct error *err)
+static bool program_assign_slots(struct gl_program_cache *cache, struct gl_program *p, GLuint prog,
+                                 struct error *err);
+
+static bool program_build(struct gl_program_cache *cache, struct gl_program *p, struct error *err)
 {
+    const char *root = cache->root;
     static const GLenum types[3] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER};
     GLuint shaders[3];
     int nshaders = 0;
@@ -243,6 +247,10 @@ static bool program_build(const char *root, struct gl_program *p, struct error *
     }
     if (!ok)
         return false;
+    if (!program_assign_slots(cache, p, prog, err)) {
+        gl.DeleteProgram(prog);
+        return false;
+    }
     if (p->id)
         gl.DeleteProgram(p->id);
     p->id = prog;
@@ -260,11 +268,16 @@ void gl_program_cache_destroy(struct gl_program_cache *cache)
     for (int i = 0; i < cache->count; i++) {
         if (cache->items[i]->id && gl_api_ready())
             gl.DeleteProgram(cache->items[i]->id);
+        free(cache->items[i]->slots);
+        free(cache->items[i]->locations);
         free(cache->items[i]);
     }
     free(cache->items);
     cache->items = NULL;
     cache->count = cache->capacity = 0;
+    free(cache->assigned);
+    cache->assigned = NULL;
+    cache->nassigned = cache->assigned_capacity = 0;
 }
 
 static bool program_get(struct gl_program_cache *cache, const char *stages[3], const char *defines,
@@ -299,7 +312,9 @@ static bool program_get(struct gl_program_cache *cache, const char *stages[3], c
         return error_set(err, "%s: shader defines longer than %zu characters", origin ? origin : resolved[0],
                          sizeof p->defines - 1);
     }
-    if (!program_build(cache->root, p, err)) {
+    if (!program_build(cache, p, err)) {
+        free(p->slots);
+        free(p->locations);
         free(p);
         return false;
     }
@@ -308,6 +323,8 @@ static bool program_get(struct gl_program_cache *cache, const char *stages[3], c
         struct gl_program **items = realloc(cache->items, (size_t)cap * sizeof *items);
         if (!items) {
             gl.DeleteProgram(p->id);
+            free(p->slots);
+            free(p->locations);
             free(p);
             return error_set(err, "out of memory");
         }
@@ -347,7 +364,7 @@ bool gl_program_cache_reload_changed(struct gl_program_cache *cache, bool *any_r
         if (!changed)
             continue;
         struct error local;
-        if (program_build(cache->root, p, &local)) {
+        if (program_build(cache, p, &local)) {
             if (any_reloaded)
                 *any_reloaded = true;
         } else if (ok) {
@@ -359,7 +376,358 @@ bool gl_program_cache_reload_changed(struct gl_program_cache *cache, bool *any_r
     return ok;
 }
 
+/* ---- Binding by name ---- */
+
+static const char *const slot_kind_names[GL_SLOT_KINDS] = {"texture unit", "image unit", "storage block binding",
+                                                           "uniform block binding"};
+
+static bool type_is_sampler(GLenum type)
+{
+    switch (type) {
+    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_1D_SHADOW: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_1D_ARRAY: case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_1D_ARRAY_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW: case GL_SAMPLER_2D_MULTISAMPLE:
+    case GL_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_SAMPLER_CUBE_SHADOW: case GL_SAMPLER_BUFFER:
+    case GL_SAMPLER_2D_RECT: case GL_SAMPLER_2D_RECT_SHADOW: case GL_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
+    case GL_INT_SAMPLER_1D: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_CUBE:
+    case GL_INT_SAMPLER_1D_ARRAY: case GL_INT_SAMPLER_2D_ARRAY: case GL_INT_SAMPLER_2D_MULTISAMPLE:
+    case GL_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_RECT:
+    case GL_INT_SAMPLER_CUBE_MAP_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_1D: case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_CUBE: case GL_UNSIGNED_INT_SAMPLER_1D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE:
+    case GL_UNSIGNED_INT_SAMPLER_2D_MULTISAMPLE_ARRAY: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
+    case GL_UNSIGNED_INT_SAMPLER_2D_RECT: case GL_UNSIGNED_INT_SAMPLER_CUBE_MAP_ARRAY:
+        return true;
+    default:
+        return false;
+    }
+}
+
+static bool type_is_image(GLenum type)
+{
+    switch (type) {
+    case GL_IMAGE_1D: case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_2D_RECT: case GL_IMAGE_CUBE:
+    case GL_IMAGE_BUFFER: case GL_IMAGE_1D_ARRAY: case GL_IMAGE_2D_ARRAY: case GL_IMAGE_CUBE_MAP_ARRAY:
+    case GL_IMAGE_2D_MULTISAMPLE: case GL_IMAGE_2D_MULTISAMPLE_ARRAY:
+    case GL_INT_IMAGE_1D: case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_2D_RECT:
+    case GL_INT_IMAGE_CUBE: case GL_INT_IMAGE_BUFFER: case GL_INT_IMAGE_1D_ARRAY: case GL_INT_IMAGE_2D_ARRAY:
+    case GL_INT_IMAGE_CUBE_MAP_ARRAY: case GL_INT_IMAGE_2D_MULTISAMPLE: case GL_INT_IMAGE_2D_MULTISAMPLE_ARRAY:
+    case GL_UNSIGNED_INT_IMAGE_1D: case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D:
+    case GL_UNSIGNED_INT_IMAGE_2D_RECT: case GL_UNSIGNED_INT_IMAGE_CUBE: case GL_UNSIGNED_INT_IMAGE_BUFFER:
+    case GL_UNSIGNED_INT_IMAGE_1D_ARRAY: case GL_UNSIGNED_INT_IMAGE_2D_ARRAY:
+    case GL_UNSIGNED_INT_IMAGE_CUBE_MAP_ARRAY: case GL_UNSIGNED_INT_IMAGE_2D_MULTISAMPLE:
+    case GL_UNSIGNED_INT_IMAGE_2D_MULTISAMPLE_ARRAY:
+        return true;
+    default:
+        return false;
+    }
+}
+
+static int slot_limit(enum gl_slot_kind kind)
+{
+    static const GLenum limits[GL_SLOT_KINDS] = {GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, GL_MAX_IMAGE_UNITS,
+                                                 GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,
+                                                 GL_MAX_UNIFORM_BUFFER_BINDINGS};
+    GLint n = 0;
+    gl.GetIntegerv(limits[kind], &n);
+    return n > 0 ? n : 8;
+}
+
+static bool assignment_append(struct gl_program_cache *cache, const char *space, enum gl_slot_kind kind,
+                              const char *name, int unit, int count, struct error *err)
+{
+    if (cache->nassigned == cache->assigned_capacity) {
+        int cap = cache->assigned_capacity ? cache->assigned_capacity * 2 : 64;
+        struct gl_slot_assignment *a = realloc(cache->assigned, (size_t)cap * sizeof *a);
+        if (!a)
+            return error_set(err, "out of memory");
+        cache->assigned = a;
+        cache->assigned_capacity = cap;
+    }
+    struct gl_slot_assignment *a = &cache->assigned[cache->nassigned++];
+    snprintf(a->space, sizeof a->space, "%s", space);
+    snprintf(a->name, sizeof a->name, "%s", name);
+    a->kind = kind;
+    a->unit = unit;
+    a->count = count;
+    return true;
+}
+
+/* True when [unit, unit + count) overlaps a unit of `kind` that is
+ * reserved or given in `space`. */
+static bool units_taken(const struct gl_program_cache *cache, const char *space, enum gl_slot_kind kind, int unit,
+                        int count)
+{
+    for (int i = 0; i < cache->nassigned; i++) {
+        const struct gl_slot_assignment *a = &cache->assigned[i];
+        if (a->kind != kind || (a->space[0] && strcmp(a->space, space) != 0))
+            continue;
+        if (unit < a->unit + a->count && a->unit < unit + count)
+            return true;
+    }
+    return false;
+}
+
+bool gl_program_cache_reserve(struct gl_program_cache *cache, enum gl_slot_kind kind, const char *name, int unit,
+                              int count, struct error *err)
+{
+    if (units_taken(cache, "", kind, unit, count))
+        return error_set(err, "%s %d is reserved twice ('%s')", slot_kind_names[kind], unit, name);
+    return assignment_append(cache, "", kind, name, unit, count, err);
+}
+
+/* The unit of `name` in `space`: reserved, given earlier, or the lowest
+ * free run of `count` units. */
+static int slot_assign(struct gl_program_cache *cache, const struct gl_program *p, enum gl_slot_kind kind,
+                       const char *name, int count, struct error *err)
+{
+    for (int i = 0; i < cache->nassigned; i++) {
+        const struct gl_slot_assignment *a = &cache->assigned[i];
+        if (a->kind != kind || strcmp(a->name, name) != 0 || (a->space[0] && strcmp(a->space, p->space) != 0))
+            continue;
+        if (count > a->count) {
+            /* An array grew (a define changed its size): move it. */
+            if (!a->space[0]) {
+                error_set(err, "%s: '%s' has %d elements but %d %ss are reserved for it", p->stages[1][0] ? p->stages[1] : p->stages[2],
+                          name, count, a->count, slot_kind_names[kind]);
+                return -1;
+            }
+            break;
+        }
+        return a->unit;
+    }
+    int limit = slot_limit(kind);
+    for (int unit = 0; unit + count <= limit; unit++)
+        if (!units_taken(cache, p->space, kind, unit, count)) {
+            for (int i = 0; i < cache->nassigned; i++) /* the smaller array's entry, if it grew */
+                if (cache->assigned[i].kind == kind && strcmp(cache->assigned[i].name, name) == 0 &&
+                    strcmp(cache->assigned[i].space, p->space) == 0)
+                    cache->assigned[i].name[0] = '\0';
+            if (!assignment_append(cache, p->space, kind, name, unit, count, err))
+                return -1;
+            return unit;
+        }
+    error_set(err, "shaders/%s: its programs use more than the %d %ss this GL offers ('%s' has none left); "
+              "split the folder or share names", p->space, limit, slot_kind_names[kind], name);
+    return -1;
+}
+
+/* The folder of the program's main stage (compute, else fragment, else
+ * vertex), below the shader root; a stage in common/ names no folder
+ * unless all of them are there. */
+static void program_space(const struct gl_program_cache *cache, struct gl_program *p)
+{
+    static const int order[3] = {2, 1, 0};
+    const char *chosen = NULL;
+    size_t rootlen = strlen(cache->root);
+    for (int k = 0; k < 3; k++) {
+        const char *path = p->stages[order[k]];
+        if (!path[0])
+            continue;
+        const char *rel = strncmp(path, cache->root, rootlen) == 0 && path[rootlen] == '/' ? path + rootlen + 1 : path;
+        if (!chosen)
+            chosen = rel;
+        if (strncmp(rel, "common/", 7) != 0) {
+            chosen = rel;
+            break;
+        }
+    }
+    const char *slash = chosen ? strrchr(chosen, '/') : NULL;
+    size_t n = slash ? (size_t)(slash - chosen) : 0;
+    if (n >= sizeof p->space)
+        n = sizeof p->space - 1;
+    memcpy(p->space, chosen ? chosen : "", n);
+    p->space[n] = '\0';
+}
+
+static bool slot_push(struct gl_program_slot **slots, int *n, int *cap, const char *name, enum gl_slot_kind kind,
+                      int unit, int count, struct error *err)
+{
+    if (*n == *cap) {
+        int c = *cap ? *cap * 2 : 16;
+        struct gl_program_slot *s = realloc(*slots, (size_t)c * sizeof *s);
+        if (!s)
+            return error_set(err, "out of memory");
+        *slots = s;
+        *cap = c;
+    }
+    struct gl_program_slot *s = &(*slots)[(*n)++];
+    snprintf(s->name, sizeof s->name, "%s", name);
+    s->kind = kind;
+    s->unit = unit;
+    s->count = count;
+    return true;
+}
+
+static bool location_push(struct gl_program_location **locs, int *n, int *cap, const char *name, GLint location,
+                          struct error *err)
+{
+    if (*n == *cap) {
+        int c = *cap ? *cap * 2 : 32;
+        struct gl_program_location *l = realloc(*locs, (size_t)c * sizeof *l);
+        if (!l)
+            return error_set(err, "out of memory");
+        *locs = l;
+        *cap = c;
+    }
+    struct gl_program_location *l = &(*locs)[(*n)++];
+    snprintf(l->name, sizeof l->name, "%s", name);
+    l->location = location;
+    return true;
+}
+
+/* After link: gives every sampler, image and block its unit (setting the
+ * program's uniform or block binding) and reads every uniform's location. */
+static bool program_assign_slots(struct gl_program_cache *cache, struct gl_program *p, GLuint prog,
+                                 struct error *err)
+{
+    program_space(cache, p);
+    struct gl_program_slot *slots = NULL;
+    struct gl_program_location *locs = NULL;
+    int nslots = 0, slot_cap = 0, nlocs = 0, loc_cap = 0;
+    bool ok = true;
+
+    GLint count = 0;
+    gl.GetProgramInterfaceiv(prog, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count && ok; i++) {
+        static const GLenum props[4] = {GL_TYPE, GL_ARRAY_SIZE, GL_LOCATION, GL_BLOCK_INDEX};
+        GLint v[4] = {0, 0, -1, -1};
+        char name[256];
+        gl.GetProgramResourceiv(prog, GL_UNIFORM, (GLuint)i, 4, props, 4, NULL, v);
+        gl.GetProgramResourceName(prog, GL_UNIFORM, (GLuint)i, sizeof name, NULL, name);
+        if (v[3] != -1 || v[2] < 0)
+            continue; /* a member of a uniform block, or a built-in */
+        size_t len = strlen(name);
+        if (len >= 3 && strcmp(name + len - 3, "[0]") == 0)
+            name[len - 3] = '\0';
+        if (strlen(name) >= GL_PROGRAM_NAME_MAX) {
+            ok = error_set(err, "%s: uniform name '%s' is longer than %d characters", p->stages[1][0] ? p->stages[1] : p->stages[2],
+                           name, GL_PROGRAM_NAME_MAX - 1);
+            break;
+        }
+        int size = v[1] > 0 ? v[1] : 1;
+        ok = location_push(&locs, &nlocs, &loc_cap, name, v[2], err);
+        char element[GL_PROGRAM_NAME_MAX + 16];
+        for (int e = 0; e < size && ok && size > 1; e++) {
+            snprintf(element, sizeof element, "%s[%d]", name, e);
+            if (strlen(element) < GL_PROGRAM_NAME_MAX)
+                ok = location_push(&locs, &nlocs, &loc_cap, element, gl.GetUniformLocation(prog, element), err);
+        }
+        enum gl_slot_kind kind;
+        if (type_is_sampler((GLenum)v[0]))
+            kind = GL_SLOT_TEXTURE;
+        else if (type_is_image((GLenum)v[0]))
+            kind = GL_SLOT_IMAGE;
+        else
+            continue;
+        int unit = ok ? slot_assign(cache, p, kind, name, size, err) : -1;
+        if (unit < 0) {
+            ok = false;
+            break;
+        }
+        GLint units[64];
+        for (int e = 0; e < size && e < 64; e++)
+            units[e] = unit + e;
+        gl.ProgramUniform1iv(prog, v[2], size < 64 ? size : 64, units);
+        ok = slot_push(&slots, &nslots, &slot_cap, name, kind, unit, size, err);
+    }
+
+    static const GLenum blocks[2] = {GL_SHADER_STORAGE_BLOCK, GL_UNIFORM_BLOCK};
+    for (int b = 0; b < 2 && ok; b++) {
+        enum gl_slot_kind kind = b == 0 ? GL_SLOT_STORAGE : GL_SLOT_UNIFORM_BLOCK;
+        count = 0;
+        gl.GetProgramInterfaceiv(prog, blocks[b], GL_ACTIVE_RESOURCES, &count);
+        for (GLint i = 0; i < count && ok; i++) {
+            char name[GL_PROGRAM_NAME_MAX];
+            gl.GetProgramResourceName(prog, blocks[b], (GLuint)i, sizeof name, NULL, name);
+            int unit = slot_assign(cache, p, kind, name, 1, err);
+            if (unit < 0) {
+                ok = false;
+                break;
+            }
+            if (b == 0)
+                gl.ShaderStorageBlockBinding(prog, (GLuint)i, (GLuint)unit);
+            else
+                gl.UniformBlockBinding(prog, (GLuint)i, (GLuint)unit);
+            ok = slot_push(&slots, &nslots, &slot_cap, name, kind, unit, 1, err);
+        }
+    }
+    if (!ok) {
+        free(slots);
+        free(locs);
+        return false;
+    }
+    free(p->slots);
+    free(p->locations);
+    p->slots = slots;
+    p->nslots = nslots;
+    p->locations = locs;
+    p->nlocations = nlocs;
+    return true;
+}
+
+static const struct gl_program_slot *slot_find(const struct gl_program *p, enum gl_slot_kind kind, const char *name)
+{
+    for (int i = 0; i < p->nslots; i++)
+        if (p->slots[i].kind == kind && strcmp(p->slots[i].name, name) == 0)
+            return &p->slots[i];
+    return NULL;
+}
+
+int gl_program_unit(const struct gl_program *p, enum gl_slot_kind kind, const char *name)
+{
+    const struct gl_program_slot *s = slot_find(p, kind, name);
+    return s ? s->unit : -1;
+}
+
+bool gl_program_bind_texture(const struct gl_program *p, const char *name, GLuint texture)
+{
+    return gl_program_bind_texture_at(p, name, 0, texture);
+}
+
+bool gl_program_bind_texture_at(const struct gl_program *p, const char *name, int index, GLuint texture)
+{
+    const struct gl_program_slot *s = slot_find(p, GL_SLOT_TEXTURE, name);
+    if (!s || index < 0 || index >= s->count)
+        return false;
+    gl.BindTextureUnit((GLuint)(s->unit + index), texture);
+    return true;
+}
+
+bool gl_program_bind_image(const struct gl_program *p, const char *name, GLuint texture, GLboolean layered,
+                           GLenum access, GLenum format)
+{
+    const struct gl_program_slot *s = slot_find(p, GL_SLOT_IMAGE, name);
+    if (!s)
+        return false;
+    gl.BindImageTexture((GLuint)s->unit, texture, 0, layered, 0, access, format);
+    return true;
+}
+
+bool gl_program_bind_storage(const struct gl_program *p, const char *block, GLuint buffer)
+{
+    const struct gl_program_slot *s = slot_find(p, GL_SLOT_STORAGE, block);
+    if (!s)
+        return false;
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)s->unit, buffer);
+    return true;
+}
+
+bool gl_program_bind_uniform_block(const struct gl_program *p, const char *block, GLuint buffer)
+{
+    const struct gl_program_slot *s = slot_find(p, GL_SLOT_UNIFORM_BLOCK, block);
+    if (!s)
+        return false;
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, (GLuint)s->unit, buffer);
+    return true;
+}
+
 GLint gl_program_uniform(const struct gl_program *p, const char *name)
 {
-    return gl.GetUniformLocation(p->id, name);
+    for (int i = 0; i < p->nlocations; i++)
+        if (strcmp(p->locations[i].name, name) == 0)
+            return p->locations[i].location;
+    return -1;
 }

@@ -1,6 +1,16 @@
 /* Shader programs: GLSL files with `#include "common/x.glsl"`, compiled with
  * errors that name the file and line, cached by (files, defines), and
- * reloaded when a file changes (a failed reload keeps the last good one). */
+ * reloaded when a file changes (a failed reload keeps the last good one).
+ *
+ * Binding by name: shaders declare samplers, images and buffer blocks
+ * without `binding =`; after link the cache gives each one a unit (or
+ * binding point) and C binds by the name the shader uses
+ * (gl_program_bind_texture(p, "u_scene", tex)). A name keeps its unit in
+ * every program of one shader folder (its namespace), so a pass may bind a
+ * buffer once and dispatch several of its folder's programs; names the
+ * renderer keeps bound for every pass (the frame block, the environment)
+ * are reserved once with gl_program_cache_reserve. No list of slot numbers
+ * exists to edit when a technique is added. */
 #ifndef CAUSTICA_GL_PROGRAM_H
 #define CAUSTICA_GL_PROGRAM_H
 
@@ -10,6 +20,23 @@
 #include "gl/gl_api.h"
 
 #define GL_PROGRAM_MAX_FILES 24
+#define GL_PROGRAM_NAME_MAX 64
+
+enum gl_slot_kind { GL_SLOT_TEXTURE, GL_SLOT_IMAGE, GL_SLOT_STORAGE, GL_SLOT_UNIFORM_BLOCK, GL_SLOT_KINDS };
+
+/* One sampler, image or block of a program and the unit it was given
+ * (`count` consecutive units for an array of samplers). */
+struct gl_program_slot {
+    char name[GL_PROGRAM_NAME_MAX];
+    enum gl_slot_kind kind;
+    int unit, count;
+};
+
+/* A uniform's location, looked up once after link. */
+struct gl_program_location {
+    char name[GL_PROGRAM_NAME_MAX];
+    GLint location;
+};
 
 struct gl_program {
     GLuint id;
@@ -19,12 +46,27 @@ struct gl_program {
     int nfiles;            /* every file read, includes too, to notice edits */
     char files[GL_PROGRAM_MAX_FILES][1024];
     long long mtimes[GL_PROGRAM_MAX_FILES];
+    char space[GL_PROGRAM_NAME_MAX]; /* the namespace of its units: its shader folder */
+    struct gl_program_slot *slots;   /* owned */
+    int nslots;
+    struct gl_program_location *locations; /* owned */
+    int nlocations;
+};
+
+/* A name's unit in one namespace ("" for a reserved name: every namespace). */
+struct gl_slot_assignment {
+    char space[GL_PROGRAM_NAME_MAX];
+    char name[GL_PROGRAM_NAME_MAX];
+    enum gl_slot_kind kind;
+    int unit, count;
 };
 
 struct gl_program_cache {
     char root[1024];           /* the shaders/ folder */
     struct gl_program **items; /* owned */
     int count, capacity;
+    struct gl_slot_assignment *assigned; /* owned: reserved names, then each folder's */
+    int nassigned, assigned_capacity;
 };
 
 void gl_program_cache_init(struct gl_program_cache *cache, const char *shader_root);
@@ -41,6 +83,29 @@ bool gl_program_get_compute(struct gl_program_cache *cache, const char *comp, co
  * compile error; failed programs keep their previous, working version. */
 bool gl_program_cache_reload_changed(struct gl_program_cache *cache, bool *any_reloaded, struct error *err);
 
+/* The location of a uniform (-1 when the program does not use it), from
+ * the table read after link. */
 GLint gl_program_uniform(const struct gl_program *p, const char *name);
+
+/* Gives `name` of `kind` the units [unit, unit + count) in every program:
+ * for what the renderer binds once for all passes. Call before the first
+ * program is built. False when the units are taken. */
+bool gl_program_cache_reserve(struct gl_program_cache *cache, enum gl_slot_kind kind, const char *name, int unit,
+                              int count, struct error *err);
+
+/* The unit `name` was given in `p` (the first of an array), or -1 when the
+ * program does not use it (the linker may drop what a shader never reads). */
+int gl_program_unit(const struct gl_program *p, enum gl_slot_kind kind, const char *name);
+
+/* Bind by the shader's name. Each returns false, binding nothing, when the
+ * program does not use the name. `index` picks an element of a sampler
+ * array. */
+bool gl_program_bind_texture(const struct gl_program *p, const char *name, GLuint texture);
+bool gl_program_bind_texture_at(const struct gl_program *p, const char *name, int index, GLuint texture);
+/* Level 0, every layer when `layered` (an array image), else layer 0. */
+bool gl_program_bind_image(const struct gl_program *p, const char *name, GLuint texture, GLboolean layered,
+                           GLenum access, GLenum format);
+bool gl_program_bind_storage(const struct gl_program *p, const char *block, GLuint buffer);
+bool gl_program_bind_uniform_block(const struct gl_program *p, const char *block, GLuint buffer);
 
 #endif

@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "gl/gl_buffer.h"
-#include "graph/bindings.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
 
@@ -64,12 +63,12 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         if (!gm)
             return false;
         gl.UseProgram(prog->id);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_BASE_POSITIONS, gm->positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_BASE_NORMALS, gm->normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_TARGET_POSITIONS, m->target_count ? gm->target_positions : gm->positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_TARGET_NORMALS, m->target_count ? gm->target_normals : gm->normals);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_OUT_POSITIONS, g->deformed_positions);
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, DEFORM_SSBO_OUT_NORMALS, g->deformed_normals);
+        gl_program_bind_storage(prog, "BasePositions", gm->positions);
+        gl_program_bind_storage(prog, "BaseNormals", gm->normals);
+        gl_program_bind_storage(prog, "TargetPositions", m->target_count ? gm->target_positions : gm->positions);
+        gl_program_bind_storage(prog, "TargetNormals", m->target_count ? gm->target_normals : gm->normals);
+        gl_program_bind_storage(prog, "OutPositions", g->deformed_positions);
+        gl_program_bind_storage(prog, "OutNormals", g->deformed_normals);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_vertex_count"), (GLint)m->vertex_count);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_target_count"), m->target_count);
         for (int t = 0; t < SCENE_MAX_MORPH_TARGETS; t++) {

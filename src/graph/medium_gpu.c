@@ -1,7 +1,6 @@
 /* The scene's participating medium on the GPU (see medium_gpu.h). */
 #include <math.h>
 
-#include "graph/bindings.h"
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
 
@@ -37,7 +36,7 @@ bool medium_gpu_bind(struct renderer *r, const struct scene *scene, const struct
     bool present = medium_gpu_present(scene);
     gl.ProgramUniform1i(id, gl_program_uniform(program, "u_medium"), present ? 1 : 0);
     if (!present) {
-        gl.BindTextureUnit(MEDIUM_UNIT_DENSITY, 0);
+        gl_program_bind_texture(program, "u_medium_texture", 0);
         return true;
     }
     const struct medium *m = scene->medium;
@@ -61,9 +60,9 @@ bool medium_gpu_bind(struct renderer *r, const struct scene *scene, const struct
         gl.ProgramUniform3f(id, gl_program_uniform(program, "u_medium_grid_offset"),
                             0.5f / (float)m->nx - m->box_min.x * sx, 0.5f / (float)m->ny - m->box_min.y * sy,
                             0.5f / (float)m->nz - m->box_min.z * sz);
-        gl.BindTextureUnit(MEDIUM_UNIT_DENSITY, r->medium_density.id);
+        gl_program_bind_texture(program, "u_medium_texture", r->medium_density.id);
     } else {
-        gl.BindTextureUnit(MEDIUM_UNIT_DENSITY, 0); /* not sampled: a homogeneous medium */
+        gl_program_bind_texture(program, "u_medium_texture", 0); /* not sampled: a homogeneous medium */
     }
     return true;
 }

@@ -1,32 +1,38 @@
 /* Every pass the scripts can create, as `c.pass.<name>`. Adding a pass:
- * write src/passes/<name>.c with its descriptor and list it here. */
+ * write src/passes/<name>.c with its descriptor `<name>_pass` and add one
+ * X(<name>) line below (CMake builds every .c file in src/passes). */
 #include <string.h>
 
 #include "graph/pass.h"
 
-extern const struct pass_desc shadow_map_pass;
-extern const struct pass_desc shade_pass;
-extern const struct pass_desc environment_pass;
-extern const struct pass_desc fullscreen_pass;
-extern const struct pass_desc custom_pass;
-extern const struct pass_desc caustic_volumes_pass;
-extern const struct pass_desc water_surface_pass;
-extern const struct pass_desc refraction_pass;
-extern const struct pass_desc layered_refraction_pass;
-extern const struct pass_desc layered_caustics_pass;
-extern const struct pass_desc illumination_textures_pass;
-extern const struct pass_desc sliced_refraction_pass;
-extern const struct pass_desc photon_caustics_pass;
-extern const struct pass_desc volume_light_pass;
-extern const struct pass_desc beam_caustics_pass;
-extern const struct pass_desc receivers_pass;
-extern const struct pass_desc depth_layers_pass;
+/* One line per pass, in the order `caustica help passes` lists them. */
+#define PASS_REGISTRY(X) \
+    X(shadow_map) \
+    X(shade) \
+    X(environment) \
+    X(fullscreen) \
+    X(custom) \
+    X(caustic_volumes) \
+    X(water_surface) \
+    X(refraction) \
+    X(photon_caustics) \
+    X(layered_refraction) \
+    X(layered_caustics) \
+    X(illumination_textures) \
+    X(sliced_refraction) \
+    X(beam_caustics) \
+    X(volume_light) \
+    X(receivers) \
+    X(depth_layers) \
+    /* end */
 
-static const struct pass_desc *const registry[] = {
-    &shadow_map_pass, &shade_pass, &environment_pass, &fullscreen_pass, &custom_pass, &caustic_volumes_pass,
-    &water_surface_pass, &refraction_pass, &photon_caustics_pass, &layered_refraction_pass, &layered_caustics_pass, &illumination_textures_pass, &sliced_refraction_pass,
-    &beam_caustics_pass, &volume_light_pass, &receivers_pass, &depth_layers_pass,
-};
+#define PASS_DECLARE(name) extern const struct pass_desc name##_pass;
+PASS_REGISTRY(PASS_DECLARE)
+#undef PASS_DECLARE
+
+#define PASS_ENTRY(name) &name##_pass,
+static const struct pass_desc *const registry[] = {PASS_REGISTRY(PASS_ENTRY)};
+#undef PASS_ENTRY
 
 int pass_registry_count(void) { return (int)(sizeof registry / sizeof registry[0]); }
 

@@ -1,10 +1,15 @@
-#include "graph/bindings.h"
 #include "graph/renderer.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* What stays bound for every pass, reserved in every program before the
+ * first is built (common/frame.glsl); everything else a pass binds by name
+ * (gl_program_bind_*). */
+#define RENDERER_BINDING_FRAME 0
+#define RENDERER_UNIT_ENVIRONMENT 0
 
 bool renderer_create(struct renderer *r, const char *root, struct error *err)
 {
@@ -13,6 +18,12 @@ bool renderer_create(struct renderer *r, const char *root, struct error *err)
     char shader_root[1100];
     snprintf(shader_root, sizeof shader_root, "%s/shaders", root);
     gl_program_cache_init(&r->programs, shader_root);
+    if (!gl_program_cache_reserve(&r->programs, GL_SLOT_UNIFORM_BLOCK, "Frame", RENDERER_BINDING_FRAME, 1, err) ||
+        !gl_program_cache_reserve(&r->programs, GL_SLOT_TEXTURE, "u_environment", RENDERER_UNIT_ENVIRONMENT, 1,
+                                  err)) {
+        gl_program_cache_destroy(&r->programs);
+        return false;
+    }
     mesh_cache_init(&r->meshes);
     texture_cache_init(&r->textures);
     gl.CreateBuffers(1, &r->frame_ubo);
@@ -162,7 +173,7 @@ bool renderer_begin_frame(struct renderer *r, struct scene *scene, int width, in
     gl.NamedBufferSubData(r->frame_ubo, 0, sizeof *u, u);
     renderer_reset_state(r);
     /* The environment stays bound for every pass. */
-    gl.BindTextureUnit(UNIT_ENVIRONMENT,
+    gl.BindTextureUnit(RENDERER_UNIT_ENVIRONMENT,
                        scene->environment ? r->environment.id : r->dummy_cube.id);
     return gl_check("frame set-up", err);
 }
@@ -177,12 +188,12 @@ void renderer_reset_state(struct renderer *r)
     gl.DepthMask(GL_TRUE);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.DepthFunc(GL_LESS);
-    gl.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, r->frame_ubo);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, RENDERER_BINDING_FRAME, r->frame_ubo);
     gl.UseProgram(0);
     gl.BindVertexArray(0);
 }
 
-/* The material's textures at MATERIAL_UNIT_* and the uniforms of
+/* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
 struct material_locations {
     GLint set[3], transform[6], normal_scale;
@@ -206,7 +217,7 @@ static void material_locations_find(const struct gl_program *program, struct mat
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
                                    const struct material_locations *loc, const struct object *o)
 {
-    static const GLuint units[3] = {MATERIAL_UNIT_BASE_COLOR, MATERIAL_UNIT_NORMAL, MATERIAL_UNIT_EMISSIVE};
+    static const char *const samplers[3] = {"u_base_color_texture", "u_normal_texture", "u_emissive_texture"};
     const struct texture_ref *slots[3] = {&o->material.base_color, &o->material.normal, &o->material.emissive};
     for (int s = 0; s < 3; s++) {
         const struct texture_ref *ref = slots[s];
@@ -216,7 +227,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
         bool on = ref->texture && o->material.kind == MATERIAL_DIFFUSE && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s != 1, &id, &err);
-        gl.BindTextureUnit(units[s], on ? id : r->dummy_2d.id);
+        gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
         const float *m = ref->transform;
         gl.ProgramUniform3f(program->id, loc->transform[s * 2], m[0], m[2], m[4]);
@@ -299,10 +310,8 @@ void renderer_run_fullscreen(struct renderer *r, const struct gl_program *progra
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     gl.Viewport(0, 0, width, height);
     gl.UseProgram(program->id);
-    for (int i = 0; i < input_count && i < RENDERER_MAX_SHADER_INPUTS; i++) {
-        gl.BindTextureUnit((GLuint)i, inputs[i].texture);
-        gl.ProgramUniform1i(program->id, gl_program_uniform(program, inputs[i].sampler), i);
-    }
+    for (int i = 0; i < input_count && i < RENDERER_MAX_SHADER_INPUTS; i++)
+        gl_program_bind_texture(program, inputs[i].sampler, inputs[i].texture);
     for (int i = 0; i < uniform_count; i++) {
         GLint loc = gl_program_uniform(program, uniforms[i].name);
         const float *v = uniforms[i].value;
@@ -346,7 +355,7 @@ static bool tonemap_draw(struct renderer *r, const struct gl_texture *linear, fl
     gl.UseProgram(prog->id);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_exposure"), exposure);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_operator"), (GLint)op);
-    gl.BindTextureUnit(UNIT_IMAGE, linear->id);
+    gl_program_bind_texture(prog, "u_image", linear->id);
     renderer_draw_fullscreen(r);
     return true;
 }

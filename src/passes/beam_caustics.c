@@ -27,7 +27,6 @@
 
 #include "gl/gl_api.h"
 #include "gl/gl_buffer.h"
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -294,13 +293,15 @@ static bool draw_distance_impostor(struct beam_caustics_state *s, struct rendere
     return true;
 }
 
-static void bind_beam_buffers(const struct beam_caustics_state *s)
+/* Every program of the folder includes beams.glsl; each binds the buffers
+ * it uses (a program's unused block has no binding). */
+static void bind_beam_buffers(const struct gl_program *prog, const struct beam_caustics_state *s)
 {
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_VERTICES, s->vertices);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_CELLS, s->cells);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_BEAMS, s->beams);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_COUNTERS, s->counters);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BEAMS_SSBO_ADJACENCY, s->adjacency);
+    gl_program_bind_storage(prog, "BeamVertices", s->vertices);
+    gl_program_bind_storage(prog, "BeamCells", s->cells);
+    gl_program_bind_storage(prog, "Beams", s->beams);
+    gl_program_bind_storage(prog, "BeamCounters", s->counters);
+    gl_program_bind_storage(prog, "BeamAdjacency", s->adjacency);
 }
 
 static void set_lattice(const struct gl_program *prog, const struct beam_caustics_state *s)
@@ -315,6 +316,7 @@ static bool run_advance(struct renderer *r, const struct beam_caustics_state *s,
     if (!gl_program_get_compute(&r->programs, "beam_caustics/advance.comp", NULL, NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
+    bind_beam_buffers(prog, s);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_mode"), mode);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_capacity"), s->cell_capacity);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_beam_capacity"), s->beam_capacity);
@@ -337,11 +339,11 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     struct layers_trace settings = {.search = 5, .steps = 8, .max_interfaces = 2 * s->layers->layers + 2,
                                     .layer_extent = extent};
     layers_bind(s->layers, trace, f->scene, &settings);
-    bind_beam_buffers(s);
+    bind_beam_buffers(trace, s);
     set_lattice(trace, s);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
-    gl.BindTextureUnit(BEAMS_UNIT_DISTANCE, s->distance.id);
+    gl_program_bind_texture(trace, "u_distance", s->distance.id);
     gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
     gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
     if (!medium_gpu_bind(r, f->scene, trace, err))
@@ -375,6 +377,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counters);
     for (int level = 0; level <= s->refine; level++) {
         gl.UseProgram(refine->id);
+        bind_beam_buffers(refine, s);
         gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_in_offset"),
                             level == 0 ? 3 * s->cell_capacity : (level % 2) * s->cell_capacity);
         gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_out_offset"),
@@ -396,6 +399,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     if (!gl_program_get_compute(&r->programs, "beam_caustics/build.comp", NULL, NULL, &build, err))
         return false;
     gl.UseProgram(build->id);
+    bind_beam_buffers(build, s);
     set_lattice(build, s);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_kept_offset"), 2 * s->cell_capacity);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_beam_capacity"), s->beam_capacity);
@@ -432,9 +436,9 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
     if (!gl_program_get(&r->programs, "beam_caustics/volume.vert", "beam_caustics/volume.frag", NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
-    bind_beam_buffers(s);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal);
+    bind_beam_buffers(prog, s);
+    gl_program_bind_texture(prog, "u_scene_depth", s->receiver_depth);
+    gl_program_bind_texture(prog, "u_scene_normal", s->receiver_normal);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light"), slot);
     int samples = pass_int(p, BC_SAMPLES);
     if (samples == 0)
@@ -466,8 +470,8 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         return false;
     gl.UseProgram(blur->id);
     gl.ProgramUniform1f(blur->id, gl_program_uniform(blur, "u_sigma"), (float)pass_real(p, BC_BLUR));
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_DEPTH, s->receiver_depth);
-    gl.BindTextureUnit(BEAMS_UNIT_SCENE_NORMAL, s->receiver_normal);
+    gl_program_bind_texture(blur, "u_scene_depth", s->receiver_depth);
+    gl_program_bind_texture(blur, "u_scene_normal", s->receiver_normal);
     const struct gl_texture *src[2] = {&s->irradiance_raw, &s->irradiance_half};
     const struct gl_texture *dst[2] = {&s->irradiance_half, &irradiance->texture};
     for (int k = 0; k < 2; k++) {
@@ -475,7 +479,7 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         if (!gl_framebuffer_attach(&s->blur_fb, t, NULL, 1, NULL, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->blur_fb.id);
-        gl.BindTextureUnit(UNIT_IMAGE, src[k]->id);
+        gl_program_bind_texture(blur, "u_image", src[k]->id);
         gl.ProgramUniform2f(blur->id, gl_program_uniform(blur, "u_direction"), k == 0 ? 1.0f : 0.0f,
                             k == 0 ? 0.0f : 1.0f);
         renderer_draw_fullscreen(r);

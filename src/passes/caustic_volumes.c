@@ -21,7 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "graph/bindings.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/scene.h"
@@ -158,9 +157,9 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     if (!surface)
         return false;
     gl.UseProgram(build->id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, VOLUMES_SSBO_POSITIONS, surface->deformed_positions);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, VOLUMES_SSBO_NORMALS, surface->deformed_normals);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, VOLUMES_SSBO_VOLUMES, s->volumes);
+    gl_program_bind_storage(build, "Positions", surface->deformed_positions);
+    gl_program_bind_storage(build, "Normals", surface->deformed_normals);
+    gl_program_bind_storage(build, "Volumes", s->volumes);
     const struct frame_object *fw = frame_object_of(f->snapshot, water);
     if (!fw)
         return error_set(err, "caustic_volumes: the water surface is not in the scene (scene:add it)");
@@ -195,9 +194,9 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     if (!gl_program_get(&r->programs, "caustic_volumes/volume.vert", "caustic_volumes/volume.frag", NULL, &draw, err))
         return false;
     gl.UseProgram(draw->id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, VOLUMES_SSBO_VOLUMES, s->volumes);
-    gl.BindTextureUnit(VOLUMES_UNIT_POSITIONS, pos->texture.id);
-    gl.BindTextureUnit(VOLUMES_UNIT_NORMALS, nrm->texture.id);
+    gl_program_bind_storage(draw, "Volumes", s->volumes);
+    gl_program_bind_texture(draw, "u_positions", pos->texture.id);
+    gl_program_bind_texture(draw, "u_normals", nrm->texture.id);
     gl.ProgramUniform3f(draw->id, gl_program_uniform(draw, "u_attenuation"), water->material.absorption.x,
                         water->material.absorption.y, water->material.absorption.z);
     gl.ProgramUniform1f(draw->id, gl_program_uniform(draw, "u_cap"), (float)cap);

@@ -3,7 +3,6 @@
 #include <math.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
@@ -89,7 +88,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         int layer = i / 6, face = i % 6;
         /* the second layer reads the first's distances (what to peel) */
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), layer);
-        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, layer ? m->distance[0].id : r->dummy_cube.id);
+        gl_program_bind_texture(prog, "u_first", layer ? m->distance[0].id : r->dummy_cube.id);
         const struct gl_texture *colors[2] = {&m->color[layer], &m->distance[layer]};
         int layers[2] = {face, face};
         if (!gl_framebuffer_attach(&m->fb, colors, layers, 2, &m->depth_buffer, -1, err))

@@ -32,7 +32,6 @@
 
 #include "core/array.h"
 #include "core/hash.h"
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -664,7 +663,7 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     gl.Viewport(0, 0, size, size);
     gl.UseProgram(illum->id);
     gl.BindVertexArray(s->vao);
-    gl.BindTextureUnit(ILLUM_UNIT_TARGET, s->target.id);
+    gl_program_bind_texture(illum, "u_target", s->target.id);
     gl.Enable(GL_BLEND);
     gl.BlendFunc(GL_ONE, GL_ONE);
     for (int pl = 0; pl < planes; pl++) {
@@ -731,8 +730,8 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.Viewport(0, 0, f->width, f->height);
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     gl.Enable(GL_DEPTH_TEST);
-    gl.BindTextureUnit(ILLUM_UNIT_TARGET, s->target.id);
-    gl.BindTextureUnit(ILLUM_UNIT_TEXTURES, s->textures.id);
+    gl_program_bind_texture(map, "u_target", s->target.id);
+    gl_program_bind_texture(map, "u_textures", s->textures.id);
     /* glass objects are drawn too, writing depth only: what is behind them
      * is the refraction pass's to show, not this one's */
     draw_targets(p, r, f->scene, map);

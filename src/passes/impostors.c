@@ -3,7 +3,6 @@
 #include <math.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/renderer.h"
 
 void impostors_release(struct impostor_set *set)
@@ -149,9 +148,9 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
     if (!gl_program_get(&r->programs, "impostors/impostor.vert", "impostors/impostor_recursive.frag", NULL,
                         &prog, err))
         return false;
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, set->ubo);
-    gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, set->depth.id);
-    gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, set->color_previous.id);
+    gl_program_bind_storage(prog, "Impostors", set->ubo);
+    gl_program_bind_texture(prog, "u_impostor_depth", set->depth.id);
+    gl_program_bind_texture(prog, "u_impostor_color", set->color_previous.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), set->count);
     gl.Enable(GL_DEPTH_TEST);
     gl.Viewport(0, 0, set->size, set->size);

@@ -12,7 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -183,8 +182,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         .layer_extent = 2.0f * orad,
     };
     layers_bind(ls, photons, f->scene, &trace);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, receiver_depth);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
+    gl_program_bind_texture(photons, "u_scene_depth", receiver_depth);
+    gl_program_bind_texture(photons, "u_receiver_normal", receiver_normal);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
@@ -194,8 +193,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
      * past the edge as far as a footprint reaches (scene_trace.glsl). */
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"), 2.0f * (float)pass_real(p, LC_RADIUS) + 1.0f);
     float max_radius = (float)pass_real(p, LC_RADIUS);
-    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_program_bind_image(photons, "u_photons", s->photons.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     pass_stage_end(p, "photons");
@@ -208,10 +207,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
         return false;
     gl.UseProgram(splat->id);
-    gl.BindImageTexture(LAYERED_IMAGE_HITS, s->hits.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(LAYERED_IMAGE_PHOTONS, s->photons.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
+    gl_program_bind_image(splat, "u_hits", s->hits.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
+    gl_program_bind_image(splat, "u_photons", s->photons.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
+    gl_program_bind_image(splat, "u_flux", s->flux.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
+    gl_program_bind_texture(splat, "u_receiver_normal", receiver_normal);
     gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
@@ -229,9 +228,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
     gl.Viewport(0, 0, f->width, f->height);
     gl.UseProgram(resolve->id);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, receiver_depth);
-    gl.BindTextureUnit(LAYERED_UNIT_RECEIVER_NORMAL, receiver_normal);
-    gl.BindImageTexture(LAYERED_IMAGE_FLUX, s->flux.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    gl_program_bind_texture(resolve, "u_receiver_depth", receiver_depth);
+    gl_program_bind_texture(resolve, "u_receiver_normal", receiver_normal);
+    gl_program_bind_image(resolve, "u_flux", s->flux.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);

@@ -16,7 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -159,7 +158,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
         gl.Viewport(0, 0, f->width, f->height);
         gl.UseProgram(copy->id);
-        gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+        gl_program_bind_texture(copy, "u_image", in_color->texture.id);
         renderer_draw_fullscreen(r);
         return true;
     }
@@ -181,7 +180,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, color_only);
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
     renderer_draw_fullscreen(r);
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, both);
 
@@ -214,17 +213,17 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         .layer_extent = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.01f,
     };
     layers_bind(ls, prog, f->scene, &trace);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
-    gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, in_depth->texture.id);
+    gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
+    gl_program_bind_texture(prog, "u_scene_depth", in_depth->texture.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
                         pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), internal);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
     if (nearby && s->impostors.count > 0) {
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
-        gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
-        gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, s->impostors.color.id);
+        gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
+        gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
+        gl_program_bind_texture(prog, "u_impostor_color", s->impostors.color.id);
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), 3);

@@ -20,7 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -200,7 +199,7 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bits_fb.id);
     gl.Enable(GL_COLOR_LOGIC_OP);
     gl.LogicOp(GL_OR);
-    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
+    gl_program_bind_texture(voxelize, "u_bounds", ls->bounds.id);
     set_view_uniforms(ls, voxelize);
     draw_refractors(ls, r, scene, voxelize);
     gl.Disable(GL_COLOR_LOGIC_OP);
@@ -222,10 +221,10 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.ClearTexImage(ls->normal.id, 0, GL_RGBA, GL_FLOAT, zero_f);
     gl.UseProgram(peel->id);
     set_view_uniforms(ls, peel);
-    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
-    gl.BindTextureUnit(LAYERS_UNIT_BITS, ls->bits.id);
-    gl.BindImageTexture(LAYERS_IMAGE_DEPTH, ls->depth.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-    gl.BindImageTexture(LAYERS_IMAGE_INFO, ls->info.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    gl_program_bind_texture(peel, "u_bounds", ls->bounds.id);
+    gl_program_bind_texture(peel, "u_bits", ls->bits.id);
+    gl_program_bind_image(peel, "u_depth", ls->depth.id, GL_TRUE, GL_WRITE_ONLY, GL_R32F);
+    gl_program_bind_image(peel, "u_info", ls->info.id, GL_FALSE, GL_WRITE_ONLY, GL_RG32UI);
     gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (timed)
@@ -235,10 +234,10 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
      * its slice; it writes its normal, refractor and exact depth there. */
     gl.BindFramebuffer(GL_FRAMEBUFFER, ls->bounds_fb.id);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
-    gl.BindTextureUnit(LAYERS_UNIT_BITS, ls->bits.id);
-    gl.BindImageTexture(LAYERS_IMAGE_DEPTH, ls->depth.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-    gl.BindImageTexture(LAYERS_IMAGE_NORMAL, ls->normal.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_program_bind_texture(attributes, "u_bounds", ls->bounds.id);
+    gl_program_bind_texture(attributes, "u_bits", ls->bits.id);
+    gl_program_bind_image(attributes, "u_depth", ls->depth.id, GL_TRUE, GL_WRITE_ONLY, GL_R32F);
+    gl_program_bind_image(attributes, "u_normal", ls->normal.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     set_view_uniforms(ls, attributes);
     draw_refractors(ls, r, scene, attributes);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -248,9 +247,9 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
 
     /* §3.7: each layer's depth range, to bound the search along a ray. */
     gl.UseProgram(ranges->id);
-    gl.BindTextureUnit(LAYERS_UNIT_DEPTH, ls->depth.id);
-    gl.BindTextureUnit(LAYERS_UNIT_INFO, ls->info.id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_RANGES, ls->ranges);
+    gl_program_bind_texture(ranges, "u_depth", ls->depth.id);
+    gl_program_bind_texture(ranges, "u_info", ls->info.id);
+    gl_program_bind_storage(ranges, "Ranges", ls->ranges);
     gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (timed)
@@ -262,12 +261,12 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
 void layers_bind(const struct layer_set *ls, const struct gl_program *prog, const struct scene *scene,
                  const struct layers_trace *trace)
 {
-    gl.BindTextureUnit(LAYERS_UNIT_BOUNDS, ls->bounds.id);
-    gl.BindTextureUnit(LAYERS_UNIT_DEPTH, ls->depth.id);
-    gl.BindTextureUnit(LAYERS_UNIT_NORMAL, ls->normal.id);
-    gl.BindTextureUnit(LAYERS_UNIT_INFO, ls->info.id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_RANGES, ls->ranges);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, LAYERS_SSBO_MATERIALS, ls->materials);
+    gl_program_bind_texture(prog, "u_bounds", ls->bounds.id);
+    gl_program_bind_texture(prog, "u_layer_depth", ls->depth.id);
+    gl_program_bind_texture(prog, "u_layer_normal", ls->normal.id);
+    gl_program_bind_texture(prog, "u_layer_info", ls->info.id);
+    gl_program_bind_storage(prog, "LayerRanges", ls->ranges);
+    gl_program_bind_storage(prog, "LayerMaterials", ls->materials);
     set_view_uniforms(ls, prog);
     gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_view"), 1, GL_FALSE, ls->inv_view.m);
     gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_proj"), 1, GL_FALSE, ls->inv_proj.m);

@@ -17,7 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -191,9 +190,9 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
 
 static void bind_impostors(struct photon_state *s, const struct gl_program *prog)
 {
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
-    gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
+    gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
+    gl_program_bind_storage(prog, "PhotonWindows", s->windows);
+    gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
 }
 
@@ -247,9 +246,9 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
     GLuint box[4] = {(GLuint)buffer, (GLuint)buffer, 0u, 0u};
     gl.NamedBufferSubData(s->cover, 0, sizeof box, box);
     gl.UseProgram(cover->id);
-    gl.BindTextureUnit(PHOTON_UNIT_FRONT_DEPTH, s->light_depth[0].id);
-    gl.BindTextureUnit(PHOTON_UNIT_BACK_DEPTH, s->light_depth[1].id);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_COVER, s->cover);
+    gl_program_bind_texture(cover, "u_front_depth", s->light_depth[0].id);
+    gl_program_bind_texture(cover, "u_back_depth", s->light_depth[1].id);
+    gl_program_bind_storage(cover, "Cover", s->cover);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl.GetNamedBufferSubData(s->cover, 0, sizeof box, box);
@@ -342,11 +341,11 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 1, zero);
         gl.UseProgram(trace->id);
         bind_impostors(s, trace);
-        gl.BindTextureUnit(PHOTON_UNIT_FRONT_NORMAL, s->light_normal[0].id);
-        gl.BindTextureUnit(PHOTON_UNIT_BACK_NORMAL, s->light_normal[1].id);
-        gl.BindTextureUnit(PHOTON_UNIT_FRONT_DEPTH, s->light_depth[0].id);
-        gl.BindTextureUnit(PHOTON_UNIT_BACK_DEPTH, s->light_depth[1].id);
-        gl.BindTextureUnit(PHOTON_UNIT_FRONT_MATERIAL, s->light_material[0].id);
+        gl_program_bind_texture(trace, "u_front_normal", s->light_normal[0].id);
+        gl_program_bind_texture(trace, "u_back_normal", s->light_normal[1].id);
+        gl_program_bind_texture(trace, "u_front_depth", s->light_depth[0].id);
+        gl_program_bind_texture(trace, "u_back_depth", s->light_depth[1].id);
+        gl_program_bind_texture(trace, "u_front_material", s->light_material[0].id);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
                                    s->light_view_proj.m);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
@@ -385,8 +384,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             if (!gl_program_get_compute(&r->programs, "photon_caustics/bounds.comp", NULL, NULL, &bounds, err))
                 return false;
             gl.UseProgram(bounds->id);
-            gl.BindTextureUnit(PHOTON_UNIT_PHOTONS, s->photons.id);
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
+            gl_program_bind_texture(bounds, "u_photons", s->photons.id);
+            gl_program_bind_storage(bounds, "PhotonWindows", s->windows);
             gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
             gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             const GLuint zero_u = 0;
@@ -395,14 +394,14 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             if (!gl_program_get_compute(&r->programs, "photon_caustics/accumulate.comp", NULL, NULL, &acc, err))
                 return false;
             gl.UseProgram(acc->id);
-            gl.BindTextureUnit(PHOTON_UNIT_PHOTONS, s->photons.id);
-            gl.BindTextureUnit(PHOTON_UNIT_FLUX, s->photon_flux.id);
-            gl.BindImageTexture(PHOTON_IMAGE_COUNTS, s->counts.id, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+            gl_program_bind_texture(acc, "u_photons", s->photons.id);
+            gl_program_bind_texture(acc, "u_flux", s->photon_flux.id);
+            gl_program_bind_image(acc, "u_counts", s->counts.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
             gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
             gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_fit"), pass_flag(p, PHOTON_FIT));
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, PHOTON_SSBO_WINDOWS, s->windows);
+            gl_program_bind_storage(acc, "PhotonWindows", s->windows);
             gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
             gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
             struct gl_program *filt;
@@ -410,8 +409,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                 return false;
             gl.UseProgram(filt->id);
             bind_impostors(s, filt);
-            gl.BindImageTexture(PHOTON_IMAGE_COUNTS, s->counts.id, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-            gl.BindImageTexture(PHOTON_IMAGE_CAUSTICS, s->caustics.id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            gl_program_bind_image(filt, "u_counts", s->counts.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
+            gl_program_bind_image(filt, "u_caustics", s->caustics.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
             gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
             gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
@@ -445,7 +444,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         return false;
     gl.UseProgram(map->id);
     bind_impostors(s, map);
-    gl.BindTextureUnit(PHOTON_UNIT_CAUSTICS, s->caustics.id);
+    gl_program_bind_texture(map, "u_caustics", s->caustics.id);
     gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));

@@ -18,7 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -199,7 +198,7 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
             GLuint thickness;
             if (!mesh_cache_thickness(&r->meshes, m, &thickness, err))
                 return false;
-            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, REFRACTION_SSBO_THICKNESS, thickness);
+            gl_program_bind_storage(prog, "Thickness", thickness);
         }
         if (impostors)
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
@@ -244,7 +243,7 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
     vec3 eye = f->snapshot->eye;
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
-    gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, r->dummy_cube.id);
+    gl_program_bind_texture(prog, "u_first", r->dummy_cube.id);
     gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE,
                                f->snapshot->view_proj.m);
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->behind_fb.id);
@@ -281,7 +280,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.Viewport(0, 0, f->width, f->height);
         gl.Disable(GL_DEPTH_TEST);
         gl.UseProgram(pass_through->id);
-        gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+        gl_program_bind_texture(pass_through, "u_image", in_color->texture.id);
         renderer_draw_fullscreen(r);
         return true;
     }
@@ -350,39 +349,39 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         return false;
     gl.Disable(GL_DEPTH_TEST);
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, all_outputs);
-    gl.BindTextureUnit(REFRACTION_UNIT_FRONT_NORMAL, s->front_normal.id);
-    gl.BindTextureUnit(REFRACTION_UNIT_BACK_NORMAL, s->back_normal.id);
-    gl.BindTextureUnit(REFRACTION_UNIT_FRONT_DEPTH, s->front_depth.id);
-    gl.BindTextureUnit(REFRACTION_UNIT_BACK_DEPTH, s->back_depth.id);
+    gl_program_bind_texture(prog, "u_front_normal", s->front_normal.id);
+    gl_program_bind_texture(prog, "u_back_normal", s->back_normal.id);
+    gl_program_bind_texture(prog, "u_front_depth", s->front_depth.id);
+    gl_program_bind_texture(prog, "u_back_depth", s->back_depth.id);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
     if (distance) {
-        gl.BindTextureUnit(DISTANCE_MAP_UNIT_COLOR, s->distance.color[0].id);
-        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE, s->distance.distance[0].id);
-        gl.BindTextureUnit(DISTANCE_MAP_UNIT_COLOR_BEHIND, s->distance.color[1].id);
-        gl.BindTextureUnit(DISTANCE_MAP_UNIT_DISTANCE_BEHIND, s->distance.distance[1].id);
+        gl_program_bind_texture(prog, "u_distance_color", s->distance.color[0].id);
+        gl_program_bind_texture(prog, "u_distance_distance", s->distance.distance[0].id);
+        gl_program_bind_texture(prog, "u_distance_color_behind", s->distance.color[1].id);
+        gl_program_bind_texture(prog, "u_distance_distance_behind", s->distance.distance[1].id);
         gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), centre.x, centre.y, centre.z);
         /* the input image first: what the camera sees where the ray goes */
-        gl.BindTextureUnit(LAYERED_UNIT_SCENE, in_color->texture.id);
-        gl.BindTextureUnit(LAYERED_UNIT_SCENE_DEPTH, s->behind_depth.id);
-        gl.BindTextureUnit(REFRACTION_UNIT_BEHIND, s->behind_color.id);
-        gl.BindTextureUnit(REFRACTION_UNIT_INPUT_DEPTH, in_depth->texture.id);
+        gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
+        gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
+        gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
+        gl_program_bind_texture(prog, "u_input_depth", in_depth->texture.id);
         layers_bind_scene_trace(prog, f->scene);
         /* a surface the camera sees at more than about 63 degrees (its depth
          * changing by two pixel widths a pixel) is asked of the distance map
          * when the ray looks at it from elsewhere (scene_trace.glsl) */
         gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_grazing"), 2.0f);
     } else if (nearby && s->impostors.count > 0) {
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, IMPOSTOR_SSBO, s->impostors.ubo);
-        gl.BindTextureUnit(IMPOSTOR_UNIT_DEPTH, s->impostors.depth.id);
-        gl.BindTextureUnit(IMPOSTOR_UNIT_COLOR, s->impostors.color.id);
+        gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
+        gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
+        gl_program_bind_texture(prog, "u_impostor_color", s->impostors.color.id);
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"),
                         nearby && !distance ? s->impostors.count : 0);

@@ -10,7 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/pass.h"
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
@@ -108,7 +107,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         return false;
     gl.UseProgram(bgprog->id);
     if (bg)
-        gl.BindTextureUnit(UNIT_IMAGE, bg->texture.id);
+        gl_program_bind_texture(bgprog, "u_image", bg->texture.id);
     /* Only the colour attachment: the background has no normal or position. */
     const GLenum background_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -130,7 +129,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
         char slot[32];
         snprintf(slot, sizeof slot, "caustics%d", i);
         struct graph_resource *c = pass_frame_input(p, f, slot);
-        gl.BindTextureUnit((GLuint)(SHADE_UNIT_CAUSTICS + i), c ? c->texture.id : r->dummy_2d.id);
+        gl_program_bind_texture_at(prog, "u_caustics", i, c ? c->texture.id : r->dummy_2d.id);
         if (c)
             ncaustics = i + 1;
     }

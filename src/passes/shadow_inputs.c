@@ -1,7 +1,6 @@
 /* Shadow map inputs of a pass (see shadow_inputs.h). */
 #include <stdio.h>
 
-#include "graph/bindings.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
@@ -31,8 +30,8 @@ void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_pr
         if (!sh)
             continue;
         bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
-        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_2D + i), cube ? r->dummy_depth.id : sh->texture.id);
-        gl.BindTextureUnit((GLuint)(SHADE_UNIT_SHADOW_CUBE + i), cube ? sh->texture.id : r->dummy_cube.id);
+        gl_program_bind_texture_at(prog, "u_shadow_2d", i, cube ? r->dummy_depth.id : sh->texture.id);
+        gl_program_bind_texture_at(prog, "u_shadow_cubes", i, cube ? sh->texture.id : r->dummy_cube.id);
         int entries = sh->light_index >= 0 ? 1 : 0;
         for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
             if (r->frame.light_first[li] == sh->light_index)

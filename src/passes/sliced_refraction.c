@@ -19,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -153,7 +152,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
     gl.Viewport(0, 0, f->width, f->height);
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
+    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
     renderer_draw_fullscreen(r);
 
     /* the viewing rays through each glass object (§3: the table) */
@@ -235,8 +234,8 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         return false;
     virtual_camera_set(slice, &vc);
     virtual_camera_set(glass, &vc);
-    gl.BindTextureUnit(SLICED_UNIT_SCENE, in_color->texture.id);
-    gl.BindTextureUnit(SLICED_UNIT_SCENE_DEPTH, in_depth->texture.id);
+    gl_program_bind_texture(slice, "u_scene", in_color->texture.id);
+    gl_program_bind_texture(slice, "u_scene_depth", in_depth->texture.id);
     const float clear[4] = {0, 0, 0, 0};
     for (int i = 0; i < count; i++) {
         const struct gl_texture *layer[1] = {&s->slices};
@@ -262,7 +261,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.DepthMask(GL_FALSE);
     gl.Enable(GL_CULL_FACE);
     gl.CullFace(GL_BACK);
-    gl.BindTextureUnit(SLICED_UNIT_SLICES, s->slices.id);
+    gl_program_bind_texture(glass, "u_slices", s->slices.id);
     gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_slices_count"), count);
     for (int i = 0; i <= count; i++) {
         char name[32];
@@ -275,7 +274,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SLICED_SSBO_EXITS, s->exits[k++]);
+        gl_program_bind_storage(glass, "Exits", s->exits[k++]);
         renderer_draw_object(r, scene, glass, o);
     }
     pass_stage_end(p, "glass");

@@ -8,13 +8,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "graph/bindings.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
-#define VOLUME_LIGHT_MAX_ADD 4 /* sampler units VOLUME_LIGHT_UNIT_ADD.. */
+#define VOLUME_LIGHT_MAX_ADD 4 /* the sampler array u_add */
 
 struct volume_light_state {
     struct gl_framebuffer fb;
@@ -101,14 +100,14 @@ static bool volume_light_execute(struct pass *p, struct pass_frame *f, struct er
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
     gl.Viewport(0, 0, f->width, f->height);
     gl.UseProgram(prog->id);
-    gl.BindTextureUnit(UNIT_IMAGE, color->texture.id);
-    gl.BindTextureUnit(VOLUME_LIGHT_UNIT_DEPTH, depth ? depth->texture.id : r->dummy_depth.id);
+    gl_program_bind_texture(prog, "u_color", color->texture.id);
+    gl_program_bind_texture(prog, "u_depth", depth ? depth->texture.id : r->dummy_depth.id);
     int nadd = 0;
     for (int i = 0; i < VOLUME_LIGHT_MAX_ADD; i++) {
         char slot[32];
         snprintf(slot, sizeof slot, "add%d", i);
         struct graph_resource *a = pass_frame_input(p, f, slot);
-        gl.BindTextureUnit((GLuint)(VOLUME_LIGHT_UNIT_ADD + i), a ? a->texture.id : r->dummy_2d.id);
+        gl_program_bind_texture_at(prog, "u_add", i, a ? a->texture.id : r->dummy_2d.id);
         if (a)
             nadd = i + 1;
     }

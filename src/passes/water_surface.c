@@ -10,7 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "graph/bindings.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -98,17 +97,17 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
                         under ? "water_surface/underwater.frag" : "common/copy.frag", NULL, &copy, err))
         return false;
     gl.UseProgram(copy->id);
-    gl.BindTextureUnit(UNIT_IMAGE, in_color->texture.id);
-    gl.BindTextureUnit(SURFACE_UNIT_POSITION, in_pos->texture.id);
+    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
+    gl_program_bind_texture(copy, "u_scene_position", in_pos->texture.id);
     vec3 c = water->material.absorption;
     gl.ProgramUniform3f(copy->id, gl_program_uniform(copy, "u_absorption"), c.x, c.y, c.z);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "common/object.vert", "water_surface/surface.frag", NULL, &prog, err))
         return false;
-    gl.BindTextureUnit(SURFACE_UNIT_SCENE, in_color->texture.id);
-    gl.BindTextureUnit(SURFACE_UNIT_DEPTH, in_depth->texture.id);
-    gl.BindTextureUnit(SURFACE_UNIT_POSITION, in_pos->texture.id);
+    gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
+    gl_program_bind_texture(prog, "u_scene_depth", in_depth->texture.id);
+    gl_program_bind_texture(prog, "u_scene_position", in_pos->texture.id);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),

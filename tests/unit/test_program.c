@@ -1,0 +1,174 @@
+/* Binding by name (gl/gl_program.c): after link every sampler, image and
+ * buffer block gets a unit; one name keeps its unit in every program of a
+ * shader folder; reserved names keep theirs everywhere; binding by the
+ * shader's name reaches the data (a compute shader reads two textures and
+ * writes what it read into a buffer); uniform locations come from the
+ * table read after link. */
+#define _DEFAULT_SOURCE /* mkdtemp, usleep */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "core/fileio.h"
+#include "gl/gl_context.h"
+#include "gl/gl_program.h"
+#include "gl/gl_texture.h"
+
+static void write_shader(const char *root, const char *rel, const char *text)
+{
+    char path[1200], dir[1200];
+    snprintf(path, sizeof path, "%s/%s", root, rel);
+    snprintf(dir, sizeof dir, "%s", path);
+    *strrchr(dir, '/') = '\0';
+    char cmd[1300];
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", dir);
+    if (system(cmd) != 0)
+        return;
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static GLint sampler_value(const struct gl_program *p, const char *name)
+{
+    GLint v = -1;
+    gl.GetUniformiv(p->id, gl_program_uniform(p, name), &v);
+    return v;
+}
+
+static GLuint texel_texture(float r, float g, float b)
+{
+    struct gl_texture t;
+    struct error err;
+    if (!gl_texture_create(&t, GL_TEXTURE_2D, GL_RGBA32F, 1, 1, 1, &err))
+        return 0;
+    const float c[4] = {r, g, b, 1.0f};
+    gl.ClearTexImage(t.id, 0, GL_RGBA, GL_FLOAT, c);
+    return t.id;
+}
+
+int main(void)
+{
+    struct error err;
+    struct gl_context *ctx;
+    if (!gl_context_create(GL_BACKEND_OSMESA, 16, 16, "test", &ctx, &err)) {
+        fprintf(stderr, "test_program: no GL context: %s\n", err.message);
+        return 1;
+    }
+    char root[] = "/tmp/caustica-test-program.XXXXXX";
+    CHECK(mkdtemp(root) != NULL);
+    const char *head = "#version 450 core\nlayout(local_size_x = 1) in;\n"
+                       "uniform sampler2D u_env;\nlayout(std430) buffer Out { vec4 values[]; };\n";
+    char a[2048], b[2048], c[2048];
+    snprintf(a, sizeof a, "%s%s", head,
+             "uniform sampler2D u_x;\nuniform sampler2D u_y;\nuniform float u_gain;\n"
+             "void main() { values[0] = texelFetch(u_x, ivec2(0), 0) * u_gain;\n"
+             "  values[1] = texelFetch(u_y, ivec2(0), 0); values[2] = texelFetch(u_env, ivec2(0), 0); }\n");
+    snprintf(b, sizeof b, "%s%s", head,
+             "uniform sampler2D u_z[2];\nuniform sampler2D u_y;\nlayout(rgba32f) uniform image2D u_img;\n"
+             "void main() { values[3] = texelFetch(u_z[0], ivec2(0), 0) + texelFetch(u_z[1], ivec2(0), 0)\n"
+             "  + texelFetch(u_y, ivec2(0), 0); imageStore(u_img, ivec2(0), vec4(1)); }\n");
+    snprintf(c, sizeof c, "%s%s", head,
+             "uniform sampler2D u_w;\nvoid main() { values[4] = texelFetch(u_w, ivec2(0), 0); }\n");
+    write_shader(root, "first/a.comp", a);
+    write_shader(root, "first/b.comp", b);
+    write_shader(root, "second/c.comp", c);
+
+    struct gl_program_cache cache;
+    gl_program_cache_init(&cache, root);
+    CHECK(gl_program_cache_reserve(&cache, GL_SLOT_TEXTURE, "u_env", 0, 1, &err));
+    CHECK(!gl_program_cache_reserve(&cache, GL_SLOT_TEXTURE, "u_other", 0, 1, &err));
+    CHECK_CONTAINS(err.message, "reserved twice");
+    struct gl_program *pa, *pb, *pc;
+    CHECK(gl_program_get_compute(&cache, "first/a.comp", NULL, NULL, &pa, &err));
+    CHECK(gl_program_get_compute(&cache, "first/b.comp", NULL, NULL, &pb, &err));
+    CHECK(gl_program_get_compute(&cache, "second/c.comp", NULL, NULL, &pc, &err));
+    CHECK(strcmp(pa->space, "first") == 0 && strcmp(pc->space, "second") == 0);
+
+    /* the units, and the values the programs' samplers were given */
+    int x = gl_program_unit(pa, GL_SLOT_TEXTURE, "u_x"), y = gl_program_unit(pa, GL_SLOT_TEXTURE, "u_y");
+    int z = gl_program_unit(pb, GL_SLOT_TEXTURE, "u_z");
+    CHECK(gl_program_unit(pa, GL_SLOT_TEXTURE, "u_env") == 0);
+    CHECK(gl_program_unit(pc, GL_SLOT_TEXTURE, "u_env") == -1); /* declared, unread: the linker dropped it */
+    CHECK(x > 0 && y > 0 && x != y);
+    CHECK(gl_program_unit(pb, GL_SLOT_TEXTURE, "u_y") == y); /* one name, one unit in a folder */
+    CHECK(z > 0 && z != x && z != y && z + 1 != x && z + 1 != y); /* an array: two units of its own */
+    CHECK(sampler_value(pa, "u_x") == x && sampler_value(pa, "u_y") == y && sampler_value(pa, "u_env") == 0);
+    CHECK(sampler_value(pb, "u_z[1]") == z + 1);
+    CHECK(gl_program_unit(pb, GL_SLOT_IMAGE, "u_img") >= 0);
+    CHECK(gl_program_unit(pa, GL_SLOT_STORAGE, "Out") == gl_program_unit(pb, GL_SLOT_STORAGE, "Out"));
+    CHECK(gl_program_unit(pc, GL_SLOT_TEXTURE, "u_w") > 0); /* another folder: its own units, never 0 */
+    CHECK(gl_program_unit(pa, GL_SLOT_TEXTURE, "u_missing") == -1);
+    CHECK(!gl_program_bind_texture(pa, "u_missing", 0));
+    CHECK(!gl_program_bind_texture_at(pb, "u_z", 2, 0)); /* past the array's end */
+
+    /* locations from the table equal the GL's */
+    CHECK(gl_program_uniform(pa, "u_gain") == gl.GetUniformLocation(pa->id, "u_gain"));
+    CHECK(gl_program_uniform(pa, "u_gain") >= 0);
+    CHECK(gl_program_uniform(pa, "u_nothing") == -1);
+
+    /* bound by name, read by the shaders */
+    GLuint red = texel_texture(1, 0, 0), green = texel_texture(0, 1, 0), blue = texel_texture(0, 0, 1);
+    GLuint grey = texel_texture(0.5f, 0.5f, 0.5f), image = texel_texture(0, 0, 0);
+    GLuint out;
+    gl.CreateBuffers(1, &out);
+    gl.NamedBufferStorage(out, 5 * 4 * sizeof(float), NULL, GL_DYNAMIC_STORAGE_BIT);
+    const float zero = 0.0f;
+    gl.ClearNamedBufferData(out, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    gl.BindTextureUnit(0, grey); /* the reserved unit: bound once, as the renderer does */
+    gl.UseProgram(pa->id);
+    gl.ProgramUniform1f(pa->id, gl_program_uniform(pa, "u_gain"), 2.0f);
+    CHECK(gl_program_bind_texture(pa, "u_x", red));
+    CHECK(gl_program_bind_texture(pa, "u_y", green));
+    CHECK(gl_program_bind_storage(pa, "Out", out));
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl.UseProgram(pb->id); /* u_y and Out still bound: the folder's units */
+    CHECK(gl_program_bind_texture_at(pb, "u_z", 0, red));
+    CHECK(gl_program_bind_texture_at(pb, "u_z", 1, blue));
+    CHECK(gl_program_bind_image(pb, "u_img", image, GL_FALSE, GL_WRITE_ONLY, GL_RGBA32F));
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl.UseProgram(pc->id);
+    CHECK(gl_program_bind_texture(pc, "u_w", blue));
+    CHECK(gl_program_bind_storage(pc, "Out", out));
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    float v[20];
+    gl.GetNamedBufferSubData(out, 0, sizeof v, v);
+    CHECK_NEAR(v[0], 2.0, 1e-6); /* red * gain */
+    CHECK_NEAR(v[1], 0.0, 1e-6);
+    CHECK_NEAR(v[5], 1.0, 1e-6); /* green */
+    CHECK_NEAR(v[8], 0.5, 1e-6); /* the reserved unit's grey */
+    CHECK_NEAR(v[12], 1.0, 1e-6); /* red + blue + green */
+    CHECK_NEAR(v[13], 1.0, 1e-6);
+    CHECK_NEAR(v[14], 1.0, 1e-6);
+    CHECK_NEAR(v[18], 1.0, 1e-6); /* blue, through the other folder's unit */
+    float texel[4] = {0};
+    gl.GetTextureImage(image, 0, GL_RGBA, GL_FLOAT, sizeof texel, texel);
+    CHECK_NEAR(texel[0], 1.0, 1e-6);
+    CHECK(gl.GetError() == GL_NO_ERROR);
+
+    /* a reload keeps every name's unit */
+    write_shader(root, "first/a.comp", a); /* the same text, a newer time stamp */
+    usleep(20000);
+    write_shader(root, "first/a.comp", a);
+    bool reloaded = false;
+    CHECK(gl_program_cache_reload_changed(&cache, &reloaded, &err));
+    CHECK(gl_program_unit(pa, GL_SLOT_TEXTURE, "u_x") == x && gl_program_unit(pa, GL_SLOT_TEXTURE, "u_y") == y);
+    CHECK(sampler_value(pa, "u_x") == x);
+
+    gl.DeleteBuffers(1, &out);
+    GLuint textures[5] = {red, green, blue, grey, image};
+    gl.DeleteTextures(5, textures);
+    gl_program_cache_destroy(&cache);
+    gl_context_destroy(ctx);
+    char cmd[1100];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", root);
+    CHECK(system(cmd) == 0);
+    return check_finish("test_program");
+}
