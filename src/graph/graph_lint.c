@@ -36,21 +36,17 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
     for (int i = 0; i < g->count; i++)
         if (kept(&g->entries[i]) && g->entries[i].pass->desc->draws)
             drawn_by |= g->entries[i].pass->desc->draws(g->entries[i].pass);
-    bool glass = drawn_by & PASS_DRAWS_GLASS, water = drawn_by & PASS_DRAWS_WATER,
-         mirror = drawn_by & PASS_DRAWS_MIRROR, custom = drawn_by & PASS_DRAWS_ANYTHING;
+    bool custom = drawn_by & PASS_DRAWS_ANYTHING;
     for (int i = 0; i < scene->object_count && !custom && count < max; i++) {
         const struct object *o = scene->objects[i];
-        if (!o->visible || (view_proj && !object_in_view(o, *view_proj)))
-            continue;
-        enum material_kind kind = o->material.kind;
-        const char *what = kind == MATERIAL_GLASS ? "glass" : kind == MATERIAL_WATER ? "water" : "mirror";
-        bool drawn = kind == MATERIAL_DIFFUSE || (kind == MATERIAL_GLASS && glass) ||
-                     (kind == MATERIAL_WATER && water) || (kind == MATERIAL_MIRROR && mirror);
-        if (!drawn)
+        unsigned role = object_role(o);
+        if (!(role & OBJECT_ROLE_SPECULAR) || (view_proj && !object_in_view(o, *view_proj)))
+            continue; /* receivers: shade's */
+        if (!(role & drawn_by))
             snprintf(messages[count++], 400,
                      "object %d (%s) is drawn by no pass the output needs (shade draws it unless specular = false; "
                      "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
-                     i + 1, what, kind == MATERIAL_WATER ? ", water_surface" : "");
+                     i + 1, object_role_name(role), role == OBJECT_ROLE_WATER ? ", water_surface" : "");
     }
     /* A pass whose light is not in the scene makes nothing (the graph skips it). */
     for (int i = 0; i < g->count && count < max; i++) {
@@ -70,15 +66,12 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
             continue;
         for (int k = 0; k < scene->object_count && count < max; k++) {
             const struct object *o = scene->objects[k];
-            if (!o->visible || o->material.kind == MATERIAL_DIFFUSE)
+            if (!object_is(o, OBJECT_ROLE_SPECULAR))
                 continue;
             const char *why = p->desc->leaves_out(p, scene, o);
-            if (why) {
-                enum material_kind kind = o->material.kind;
+            if (why)
                 snprintf(messages[count++], 400, "pass '%s' (%s) leaves out object %d (%s): %s", p->name,
-                         p->desc->name, k + 1,
-                         kind == MATERIAL_GLASS ? "glass" : kind == MATERIAL_WATER ? "water" : "mirror", why);
-            }
+                         p->desc->name, k + 1, object_role_name(object_role(o)), why);
         }
     }
     /* A depth range the 24 bits of the depth buffers cannot resolve at the

@@ -157,9 +157,10 @@ struct pass_desc {
      * parameter `param` (one with `.block`): a depth-layer set for this
      * pass's light at its buffer size. NULL: the block's defaults. */
     bool (*configure_block)(const struct pass *p, int param, struct pass *block, struct error *err);
-    /* Which materials the pass draws into the image it makes (graph_lint's
-     * "glass no pass draws"): a mask of PASS_DRAWS_*. NULL: none (a pass
-     * that makes irradiance, depth or layers). */
+    /* Which objects the pass draws into the image it makes (graph_lint's
+     * "glass no pass draws"): a mask of OBJECT_ROLE_* (scene.h), or
+     * PASS_DRAWS_ANYTHING. NULL: none (a pass that makes irradiance, depth
+     * or layers). */
     unsigned (*draws)(const struct pass *p);
     /* Reuse by version (issue 26): what of the frame the pass's outputs
      * depend on besides its parameters and inputs, a mask of PASS_DEPENDS_*.
@@ -172,11 +173,7 @@ struct pass_desc {
 #define PASS_DEPENDS_GEOMETRY 2u /* objects: added, removed, moved, shown, hidden, their materials */
 #define PASS_DEPENDS_LIGHTS 4u   /* every light of the scene (a LIGHT parameter's own is always counted) */
 
-#define PASS_DRAWS_GLASS 1u
-#define PASS_DRAWS_WATER 2u
-#define PASS_DRAWS_MIRROR 4u
-#define PASS_DRAWS_SPECULAR (PASS_DRAWS_GLASS | PASS_DRAWS_WATER | PASS_DRAWS_MIRROR)
-#define PASS_DRAWS_ANYTHING 8u /* the script's own (custom, fullscreen): may draw anything, not checked */
+#define PASS_DRAWS_ANYTHING 0x100u /* the script's own (custom, fullscreen): may draw anything, not checked */
 
 /* Named stages of one frame of a pass, timed with GL timestamps
  * (`--timings` prints them under the pass): pass_stage_begin, then

@@ -225,7 +225,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         struct error err;
         /* Textures apply to diffuse surfaces only, in both renderers; a set
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
-        bool on = ref->texture && o->material.kind == MATERIAL_DIFFUSE && o->mesh->texcoords[ref->texcoord] &&
+        bool on = ref->texture && material_role(&o->material) == OBJECT_ROLE_RECEIVER && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s != 1, &id, &err);
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
@@ -257,7 +257,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
             continue;
         if ((filter & DRAW_CASTERS) && !o->cast_shadows)
             continue;
-        bool specular = material_is_specular(&o->material);
+        bool specular = object_is(o, OBJECT_ROLE_SPECULAR);
         if ((filter & DRAW_DIFFUSE) && specular)
             continue;
         if ((filter & DRAW_SPECULAR) && !specular)

@@ -218,7 +218,7 @@ static const char *caustic_volumes_leaves_out(const struct pass *p, const struct
                                               const struct object *o)
 {
     (void)scene;
-    if (o->material.kind == MATERIAL_WATER)
+    if (object_is(o, OBJECT_ROLE_WATER))
         return o == pass_object_at(p, VOLUMES_WATER)
                    ? NULL
                    : "only the water surface named by `water` makes caustic volumes: no caustics through this one "

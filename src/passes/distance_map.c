@@ -25,7 +25,7 @@ static bool diffuse_animated(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (o->visible && !material_is_specular(&o->material) && object_is_animated_geometry(o))
+        if (object_is(o, OBJECT_ROLE_RECEIVER) && object_is_animated_geometry(o))
             return true;
     }
     return false;

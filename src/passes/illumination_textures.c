@@ -144,11 +144,15 @@ static void illum_destroy(struct pass *p)
     p->state = NULL;
 }
 
-static bool is_refractor(const struct object *o) { return o->visible && o->material.kind == MATERIAL_GLASS; }
+/* The objects whose caustics it makes: closed glass (the light transport
+ * tables are per vertex of a closed object, §4.2); leaves_out says so of
+ * the others. */
+#define ILLUM_REFRACTORS OBJECT_ROLE_GLASS
+static bool is_refractor(const struct object *o) { return object_is(o, ILLUM_REFRACTORS); }
 /* A receiver of the caustics: one of `targets` when given, else any visible diffuse object. */
 static bool is_target(const struct pass *p, const struct object *o)
 {
-    if (!o->visible || o->material.kind != MATERIAL_DIFFUSE)
+    if (!object_is(o, OBJECT_ROLE_RECEIVER))
         return false;
     const struct pass_value *v = &p->values[IT_TARGETS];
     if (v->object_count == 0)
@@ -746,10 +750,10 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
 {
     (void)scene;
     (void)p;
-    if (o->material.kind == MATERIAL_WATER)
+    if (object_is(o, OBJECT_ROLE_WATER))
         return "the light transport tables are made for closed glass objects (Iwasaki et al. 4.2), not a water "
                "surface: no caustics through it (photon_caustics, caustic_volumes or layered_caustics make them)";
-    if (o->material.kind == MATERIAL_MIRROR)
+    if (object_is(o, OBJECT_ROLE_MIRROR))
         return "only glass refracts light into the illumination textures: no caustics off a mirror "
                "(photon_caustics makes them)";
     return NULL;

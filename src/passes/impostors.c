@@ -53,13 +53,13 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     struct impostor items[IMPOSTOR_MAX];
     for (int i = 0; i < scene->object_count && count < IMPOSTOR_MAX; i++) {
         struct object *o = scene->objects[i];
-        if (!o->visible || (material_is_specular(&o->material) && !include_specular))
+        if (!object_is(o, include_specular ? OBJECT_ROLE_RECEIVER | OBJECT_ROLE_SPECULAR : OBJECT_ROLE_RECEIVER))
             continue;
         vec3 lo, hi;
         object_world_bounds(o, &lo, &hi);
         struct impostor *im = &items[count++];
         im->object = o;
-        im->specular = material_is_specular(&o->material);
+        im->specular = object_is(o, OBJECT_ROLE_SPECULAR);
         im->center = vec3_scale(vec3_add(lo, hi), 0.5f);
         im->half = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);
         im->axis = vec3_normalize_or(vec3_sub(im->center, refractor_center), vec3_make(0, -1, 0));

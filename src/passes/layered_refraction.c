@@ -244,7 +244,7 @@ static bool layered_refraction_configure_block(const struct pass *p, int param, 
 static unsigned layered_refraction_draws(const struct pass *p)
 {
     (void)p;
-    return PASS_DRAWS_GLASS | PASS_DRAWS_WATER;
+    return OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER;
 }
 
 const struct pass_desc layered_refraction_pass = {

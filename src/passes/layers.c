@@ -51,14 +51,14 @@ void layers_release(struct layer_set *ls)
 
 bool layers_is_refractor(const struct object *o)
 {
-    return o->visible && (o->material.kind == MATERIAL_GLASS || o->material.kind == MATERIAL_WATER);
+    return object_is(o, OBJECT_ROLE_REFRACTOR);
 }
 
 const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
     (void)p;
     (void)scene;
-    return o->material.kind == MATERIAL_MIRROR
+    return object_is(o, OBJECT_ROLE_MIRROR)
                ? "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
                  "makes them)"
                : NULL;

@@ -163,7 +163,7 @@ static void refraction_destroy(struct pass *p)
  * objects through the impostors (which `shade` cannot). */
 static bool is_refractive(const struct object *o)
 {
-    return o->visible && material_is_specular(&o->material);
+    return object_is(o, OBJECT_ROLE_SPECULAR);
 }
 
 /* Never left out (its output is read later): with no refractive object in
@@ -405,7 +405,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     bool any_inside = false;
     for (int i = 0; i < f->scene->object_count; i++) {
         const struct object *o = f->scene->objects[i];
-        inside[i] = is_refractive(o) && o->material.kind != MATERIAL_MIRROR &&
+        inside[i] = object_is(o, OBJECT_ROLE_REFRACTOR) &&
                     object_contains_point(o, f->snapshot->eye);
         any_inside = any_inside || inside[i];
     }
@@ -425,7 +425,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
 static unsigned refraction_draws(const struct pass *p)
 {
     (void)p;
-    return PASS_DRAWS_SPECULAR;
+    return OBJECT_ROLE_SPECULAR;
 }
 
 const struct pass_desc refraction_pass = {

@@ -141,7 +141,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
 
 static unsigned shade_draws(const struct pass *p)
 {
-    return pass_flag(p, SHADE_SPECULAR) ? PASS_DRAWS_SPECULAR : 0u; /* one interface of each */
+    return pass_flag(p, SHADE_SPECULAR) ? OBJECT_ROLE_SPECULAR : 0u; /* one interface of each */
 }
 
 const struct pass_desc shade_pass = {

@@ -87,7 +87,10 @@ static void sliced_destroy(struct pass *p)
     p->state = NULL;
 }
 
-static bool is_refractor(const struct object *o) { return o->visible && o->material.kind == MATERIAL_GLASS; }
+/* The objects it refracts through: closed glass (Iwasaki et al. §3 slice the
+ * scene around a closed object); water and mirrors are another pass's. */
+#define SLICED_REFRACTORS OBJECT_ROLE_GLASS
+static bool is_refractor(const struct object *o) { return object_is(o, SLICED_REFRACTORS); }
 
 /* Per glass vertex (std430 Exit in glass.vert): exit point (w = 1 where a
  * path exists), direction, transmittance. */
@@ -185,7 +188,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     bool any = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (!o->visible || o->material.kind != MATERIAL_DIFFUSE)
+        if (!object_is(o, OBJECT_ROLE_RECEIVER))
             continue;
         vec3 olo, ohi;
         object_world_bounds(o, &olo, &ohi);
@@ -296,7 +299,7 @@ static const char *sliced_refraction_leaves_out(const struct pass *p, const stru
 static unsigned sliced_refraction_draws(const struct pass *p)
 {
     (void)p;
-    return PASS_DRAWS_GLASS;
+    return SLICED_REFRACTORS;
 }
 
 const struct pass_desc sliced_refraction_pass = {

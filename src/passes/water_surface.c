@@ -120,7 +120,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
 static unsigned water_surface_draws(const struct pass *p)
 {
     (void)p;
-    return PASS_DRAWS_WATER;
+    return OBJECT_ROLE_WATER;
 }
 
 const struct pass_desc water_surface_pass = {

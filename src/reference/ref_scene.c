@@ -83,7 +83,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
             dvec3 dw = from_vec3(w);
             lo = dv(fmin(lo.x, dw.x), fmin(lo.y, dw.y), fmin(lo.z, dw.z));
             hi = dv(fmax(hi.x, dw.x), fmax(hi.y, dw.y), fmax(hi.z, dw.z));
-            if (material_is_specular(&o->material)) {
+            if (material_role(&o->material) & OBJECT_ROLE_SPECULAR) {
                 slo = dv(fmin(slo.x, dw.x), fmin(slo.y, dw.y), fmin(slo.z, dw.z));
                 shi = dv(fmax(shi.x, dw.x), fmax(shi.y, dw.y), fmax(shi.z, dw.z));
             }

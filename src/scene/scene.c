@@ -19,7 +19,31 @@ const char *material_kind_name(enum material_kind kind)
     return "?";
 }
 
-bool material_is_specular(const struct material *m) { return m->kind != MATERIAL_DIFFUSE; }
+unsigned material_role(const struct material *m)
+{
+    switch (m->kind) {
+    case MATERIAL_GLASS: return OBJECT_ROLE_GLASS;
+    case MATERIAL_WATER: return OBJECT_ROLE_WATER;
+    case MATERIAL_MIRROR: return OBJECT_ROLE_MIRROR;
+    case MATERIAL_DIFFUSE: break;
+    }
+    return OBJECT_ROLE_RECEIVER;
+}
+
+const char *object_role_name(unsigned role)
+{
+    switch (role) {
+    case OBJECT_ROLE_GLASS: return "glass";
+    case OBJECT_ROLE_WATER: return "water";
+    case OBJECT_ROLE_MIRROR: return "mirror";
+    case OBJECT_ROLE_RECEIVER: return "receiver";
+    default: return "object";
+    }
+}
+
+unsigned object_role(const struct object *obj) { return obj->visible ? material_role(&obj->material) : 0u; }
+
+bool object_is(const struct object *obj, unsigned roles) { return (object_role(obj) & roles) != 0; }
 
 struct object *object_create(struct mesh *mesh)
 {
@@ -247,8 +271,10 @@ static bool bounds_of_visible(const struct scene *scene, enum bounds_filter filt
     bool any = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        bool specular = material_is_specular(&o->material);
-        if (!o->visible || (filter == BOUNDS_SPECULAR && !specular) || (filter == BOUNDS_DIFFUSE && specular))
+        unsigned want = filter == BOUNDS_SPECULAR ? OBJECT_ROLE_SPECULAR
+                        : filter == BOUNDS_DIFFUSE ? OBJECT_ROLE_RECEIVER
+                                                   : OBJECT_ROLE_SPECULAR | OBJECT_ROLE_RECEIVER;
+        if (!object_is(o, want))
             continue;
         vec3 a, b;
         object_world_bounds(o, &a, &b);
@@ -292,7 +318,7 @@ bool scene_specular_in_view(const struct scene *scene, mat4 view_proj)
 {
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        if (o->visible && material_is_specular(&o->material) && object_in_view(o, view_proj))
+        if (object_is(o, OBJECT_ROLE_SPECULAR) && object_in_view(o, view_proj))
             return true;
     }
     return false;

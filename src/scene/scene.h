@@ -139,7 +139,23 @@ void mesh_retain(struct mesh *mesh);
 void mesh_destroy(struct mesh *mesh);
 
 const char *material_kind_name(enum material_kind kind);
-bool material_is_specular(const struct material *m);
+
+/* What a surface is to light transport: the one predicate every pass, the
+ * graph's lint and the reference choose objects by. A pass names the roles
+ * it handles (its descriptor's `draws`, a caustics pass's refractors) and
+ * says which it leaves out; none decides from material kinds itself. */
+enum object_role {
+    OBJECT_ROLE_RECEIVER = 1u, /* diffuse: lit, shadowed, receives caustics */
+    OBJECT_ROLE_GLASS = 2u,    /* a closed refractor */
+    OBJECT_ROLE_WATER = 4u,    /* a water surface: refracts, its medium below */
+    OBJECT_ROLE_MIRROR = 8u,
+};
+#define OBJECT_ROLE_REFRACTOR (OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER)
+#define OBJECT_ROLE_SPECULAR (OBJECT_ROLE_REFRACTOR | OBJECT_ROLE_MIRROR)
+/* The material's role (one bit). */
+unsigned material_role(const struct material *m);
+/* "receiver", "glass", "water" or "mirror" for one role bit. */
+const char *object_role_name(unsigned role);
 
 enum deform_kind { DEFORM_NONE, DEFORM_WAVE, DEFORM_GLSL };
 
@@ -180,6 +196,10 @@ bool object_is_animated_geometry(const struct object *obj);
 mat4 object_model_matrix(const struct object *obj);
 bool object_contains_point(const struct object *obj, vec3 p);
 void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
+/* The object's role (material_role), 0 while it is invisible. */
+unsigned object_role(const struct object *obj);
+/* True when the object has one of `roles` (a mask of OBJECT_ROLE_*). */
+bool object_is(const struct object *obj, unsigned roles);
 
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
 

@@ -72,6 +72,24 @@ int main(void)
     object_world_bounds(o, &lo, &hi);
     CHECK_NEAR(hi.y, 1.25, 1e-5);
 
+    /* Roles: the one predicate; an invisible object has none. */
+    CHECK(object_role(o) == OBJECT_ROLE_RECEIVER);
+    static const enum material_kind kinds[4] = {MATERIAL_DIFFUSE, MATERIAL_GLASS, MATERIAL_WATER, MATERIAL_MIRROR};
+    static const unsigned roles[4] = {OBJECT_ROLE_RECEIVER, OBJECT_ROLE_GLASS, OBJECT_ROLE_WATER, OBJECT_ROLE_MIRROR};
+    static const char *const names[4] = {"receiver", "glass", "water", "mirror"};
+    for (int k = 0; k < 4; k++) {
+        o->material.kind = kinds[k];
+        CHECK(object_role(o) == roles[k]);
+        CHECK(strcmp(object_role_name(object_role(o)), names[k]) == 0);
+        CHECK(object_is(o, OBJECT_ROLE_SPECULAR) == (k > 0));
+        CHECK(object_is(o, OBJECT_ROLE_REFRACTOR) == (k == 1 || k == 2));
+        o->visible = false;
+        CHECK(object_role(o) == 0 && !object_is(o, roles[k]));
+        CHECK(material_role(&o->material) == roles[k]);
+        o->visible = true;
+    }
+    o->material.kind = MATERIAL_DIFFUSE;
+
     /* The scene: adding twice is once; versions change when objects do. */
     struct scene sc;
     scene_init(&sc);
