@@ -3,9 +3,9 @@
 // and §6): a cube map around the refractors' centre holding, per
 // direction, the distance to the nearest diffuse surface. A ray is
 // marched until it passes the stored distance, then bisected.
-uniform samplerCube u_distance;
+uniform samplerCube u_distance;  // distance_map_update_distances: the range where no receiver is within it
 uniform vec3 u_distance_center;
-uniform float u_distance_range;  // distances are stored over this range; the longest a ray is traced
+uniform float u_distance_range;  // the longest a ray is traced
 const int DISTANCE_STEPS = 48;
 
 // Is p beyond the receivers in its direction from the centre?
@@ -13,9 +13,8 @@ bool distance_beyond(vec3 p)
 {
     vec3 v = p - u_distance_center;
     float stored = texture(u_distance, v).r;
-    if (stored >= 0.999)
+    if (stored >= 0.999 * u_distance_range)
         return false; // no receiver in this direction (the cleared value)
-    stored *= u_distance_range;
     return dot(v, v) >= stored * stored;
 }
 

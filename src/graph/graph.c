@@ -471,43 +471,6 @@ static bool lights_present(const struct pass *p, const struct renderer *r, const
     return true;
 }
 
-/* Reuse by version (issue 26): the key of what a pass with `depends` made
- * its outputs from: its parameters (a light or an object by identity and
- * version), its inputs' versions, the frame's size, and the camera,
- * geometry and lights its descriptor names. */
-static uint64_t mix(uint64_t h, uint64_t v) { return (h ^ v) * 1099511628211u; }
-
-static uint64_t reuse_key(const struct graph *g, const struct graph_entry *e, const struct scene *scene,
-                          unsigned depends)
-{
-    const struct pass *p = e->pass;
-    uint64_t h = 14695981039346656037u;
-    h = mix(h, (uint64_t)g->width);
-    h = mix(h, (uint64_t)g->height);
-    for (int k = 0; k < p->desc->param_count; k++) {
-        const struct pass_value *v = &p->values[k];
-        double number = v->number;
-        uint64_t bits = 0;
-        memcpy(&bits, &number, sizeof bits < sizeof number ? sizeof bits : sizeof number);
-        h = mix(h, bits);
-        h = mix(h, (uint64_t)(uintptr_t)v->light);
-        h = mix(h, v->light ? v->light->version : 0u);
-        h = mix(h, (uint64_t)(uintptr_t)v->object);
-        h = mix(h, v->object ? v->object->version : 0u);
-        for (const char *c = v->string; c && *c; c++)
-            h = mix(h, (uint64_t)(unsigned char)*c);
-    }
-    for (int k = 0; k < p->input_count; k++)
-        h = mix(h, e->input_resources[k] >= 0 ? g->resources[e->input_resources[k]].version : 0u);
-    if (depends & PASS_DEPENDS_CAMERA)
-        h = mix(h, scene->camera.version);
-    if (depends & PASS_DEPENDS_GEOMETRY)
-        h = mix(h, scene_geometry_version(scene));
-    if (depends & PASS_DEPENDS_LIGHTS)
-        h = mix(h, scene_lights_version(scene));
-    return h;
-}
-
 /* The graph is frozen while it executes: a custom pass's run may not add
  * passes or release the graph under the loop (graph_add refuses). */
 bool graph_execute(struct graph *g, struct renderer *r, struct scene *scene, int frame, double time,
@@ -544,7 +507,7 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
             f.outputs[o] = e->output_resources[o] >= 0 ? &g->resources[e->output_resources[o]] : NULL;
         e->last_why[0] = '\0';
         unsigned depends = p->desc->depends ? p->desc->depends(p) : 0u;
-        uint64_t key = depends ? reuse_key(g, e, scene, depends) : 0u;
+        uint64_t key = depends ? pass_frame_key(p, &f, depends | PASS_DEPENDS_INPUTS) : 0u;
         if (!lights_present(p, r, scene, e->last_why, sizeof e->last_why))
             e->last_need = PASS_SKIP;
         else if (depends && e->reuse_valid && e->reuse_key == key && !r->frame.geometry_animated) {

@@ -1,5 +1,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "graph/pass.h"
+#include "core/hash.h"
+#include "graph/frame.h"
 #include "scene/scene.h"
 
 #include <math.h>
@@ -398,4 +400,53 @@ struct graph_resource *pass_frame_output(const struct pass *p, struct pass_frame
         if (strcmp(p->outputs[i].name, name) == 0)
             return f->outputs[i];
     return NULL;
+}
+
+uint64_t pass_key_mix(uint64_t key, const void *data, size_t size) { return hash_fnv1a(key, data, size); }
+
+static uint64_t key_mix_u64(uint64_t key, uint64_t v) { return hash_fnv1a(key, &v, sizeof v); }
+
+uint64_t pass_frame_key(const struct pass *p, const struct pass_frame *f, unsigned depends)
+{
+    uint64_t h = HASH_FNV1A_BASIS;
+    h = key_mix_u64(h, (uint64_t)f->width);
+    h = key_mix_u64(h, (uint64_t)f->height);
+    for (int k = 0; k < p->desc->param_count; k++) {
+        const struct pass_value *v = &p->values[k];
+        h = pass_key_mix(h, &v->number, sizeof v->number);
+        h = key_mix_u64(h, (uint64_t)(uintptr_t)v->light);
+        h = key_mix_u64(h, v->light ? v->light->version : 0u);
+        h = key_mix_u64(h, (uint64_t)(uintptr_t)v->object);
+        h = key_mix_u64(h, v->object ? v->object->version : 0u);
+        for (int i = 0; i < v->object_count; i++) {
+            h = key_mix_u64(h, (uint64_t)(uintptr_t)v->objects[i]);
+            h = key_mix_u64(h, v->objects[i]->version);
+        }
+        if (v->string)
+            h = pass_key_mix(h, v->string, strlen(v->string));
+        h = pass_key_mix(h, v->color, sizeof v->color);
+        for (int i = 0; i < v->list_count; i++) {
+            if (v->list && v->list[i])
+                h = pass_key_mix(h, v->list[i], strlen(v->list[i]) + 1);
+            if (v->keys && v->keys[i])
+                h = pass_key_mix(h, v->keys[i], strlen(v->keys[i]) + 1);
+            if (v->vectors)
+                h = pass_key_mix(h, v->vectors[i], sizeof v->vectors[i]);
+        }
+    }
+    if (depends & PASS_DEPENDS_INPUTS)
+        for (int k = 0; k < p->input_count; k++)
+            h = key_mix_u64(h, f->inputs[k] ? f->inputs[k]->version : 0u);
+    if (depends & PASS_DEPENDS_CAMERA)
+        h = key_mix_u64(h, f->scene->camera.version);
+    if (depends & PASS_DEPENDS_GEOMETRY)
+        h = key_mix_u64(h, scene_geometry_version(f->scene));
+    if (depends & PASS_DEPENDS_LIGHTS)
+        h = key_mix_u64(h, scene_lights_version(f->scene));
+    return h;
+}
+
+bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_key, uint64_t key)
+{
+    return made && made_key == key && !f->snapshot->geometry_animated;
 }

@@ -133,6 +133,21 @@ struct pass_frame {
 
 enum pass_need { PASS_RUN, PASS_REUSE, PASS_SKIP };
 
+/* Reuse by version, the one key (issue 26): what a pass made something
+ * from: its parameters (a light or object by identity and version), the
+ * frame's size, and what `depends` names of the camera, the geometry, the
+ * lights and its inputs' versions. The graph keys a whole pass's outputs
+ * with it (descriptor's `depends` plus the inputs); a pass keys a part that
+ * depends on less (photon_caustics' light-side textures: not the camera)
+ * with the same function, mixing in values it computes (a centre, a range)
+ * with pass_key_mix. */
+uint64_t pass_frame_key(const struct pass *p, const struct pass_frame *f, unsigned depends);
+uint64_t pass_key_mix(uint64_t key, const void *data, size_t size);
+/* Whether what was made under `made_key` (when `made`) stands for `key`:
+ * equal keys, and no visible geometry animates this frame (an animated
+ * mesh changes without a version). */
+bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_key, uint64_t key);
+
 struct pass_desc {
     const char *name;
     const char *summary;
@@ -172,6 +187,7 @@ struct pass_desc {
 #define PASS_DEPENDS_CAMERA 1u   /* the camera's view and projection */
 #define PASS_DEPENDS_GEOMETRY 2u /* objects: added, removed, moved, shown, hidden, their materials */
 #define PASS_DEPENDS_LIGHTS 4u   /* every light of the scene (a LIGHT parameter's own is always counted) */
+#define PASS_DEPENDS_INPUTS 8u   /* its inputs' versions (the graph's key of a whole pass always has them) */
 
 #define PASS_DRAWS_ANYTHING 0x100u /* the script's own (custom, fullscreen): may draw anything, not checked */
 

@@ -31,6 +31,7 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/distance_map.h"
 #include "passes/layers.h"
 
 #define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
@@ -50,14 +51,10 @@ struct beam_caustics_state {
     GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
-    struct gl_texture distance, distance_depth; /* the receivers' distance impostor ... */
-    bool distance_valid;                        /* ... drawn for this geometry, centre and range */
-    uint64_t distance_geometry;
-    vec3 distance_center;
-    float distance_range;
+    struct distance_map distance; /* the receivers' distance impostor (distances only) */
     GLuint receiver_normal, receiver_depth; /* this frame's, the receivers block's */
     struct gl_texture irradiance_raw, irradiance_half;
-    struct gl_framebuffer volumes_fb, blur_fb, distance_fb;
+    struct gl_framebuffer volumes_fb, blur_fb;
     GLuint fragments_query; /* GL_SAMPLES_PASSED around the volumes' draw: the fill rate */
     int width, height;
 };
@@ -157,11 +154,7 @@ static bool beam_caustics_create(struct pass *p, struct renderer *r, struct erro
     p->state = s;
     gl.GenQueries(1, &s->fragments_query);
     return gl_framebuffer_create(&s->volumes_fb, err) &&
-           gl_framebuffer_create(&s->blur_fb, err) && gl_framebuffer_create(&s->distance_fb, err) &&
-           gl_texture_create(&s->distance, GL_TEXTURE_CUBE_MAP, GL_R32F, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE, 6,
-                             err) &&
-           gl_texture_create(&s->distance_depth, GL_TEXTURE_CUBE_MAP, GL_DEPTH_COMPONENT32F, BEAMS_DISTANCE_SIZE,
-                             BEAMS_DISTANCE_SIZE, 6, err);
+           gl_framebuffer_create(&s->blur_fb, err);
 }
 
 static void release_buffers(struct beam_caustics_state *s)
@@ -188,11 +181,9 @@ static void beam_caustics_destroy(struct pass *p)
         return;
     release_buffers(s);
     release_targets(s);
-    gl_texture_destroy(&s->distance);
-    gl_texture_destroy(&s->distance_depth);
+    distance_map_release(&s->distance);
     gl_framebuffer_destroy(&s->volumes_fb);
     gl_framebuffer_destroy(&s->blur_fb);
-    gl_framebuffer_destroy(&s->distance_fb);
     if (s->fragments_query && gl_api_ready())
         gl.DeleteQueries(1, &s->fragments_query);
     free(s);
@@ -263,36 +254,6 @@ static bool ensure_targets(struct beam_caustics_state *s, int w, int h, struct e
     return true;
 }
 
-/* The receivers' distance impostor around `center` (Szirmay-Kalos et al.
- * 2005): six faces of the diffuse objects' distances over `range`. */
-static bool draw_distance_impostor(struct beam_caustics_state *s, struct renderer *r, const struct scene *scene,
-                                   vec3 center, float range, struct error *err)
-{
-    struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "beam_caustics/distance.vert", "beam_caustics/distance.frag", NULL, &prog, err))
-        return false;
-    mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-5f, 1e-5f), range);
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_range"), range);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.Viewport(0, 0, BEAMS_DISTANCE_SIZE, BEAMS_DISTANCE_SIZE);
-    for (int face = 0; face < 6; face++) {
-        const struct gl_texture *colors[1] = {&s->distance};
-        int layers[1] = {face};
-        if (!gl_framebuffer_attach(&s->distance_fb, colors, layers, 1, &s->distance_depth, face, err))
-            return false;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, s->distance_fb.id);
-        const float far_value[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-        gl.ClearNamedFramebufferfv(s->distance_fb.id, GL_COLOR, 0, far_value);
-        gl.Clear(GL_DEPTH_BUFFER_BIT);
-        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
-        renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
-    }
-    renderer_reset_state(r);
-    return true;
-}
-
 /* Every program of the folder includes beams.glsl; each binds the buffers
  * it uses (a program's unused block has no binding). */
 static void bind_beam_buffers(const struct gl_program *prog, const struct beam_caustics_state *s)
@@ -343,7 +304,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     set_lattice(trace, s);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
-    gl_program_bind_texture(trace, "u_distance", s->distance.id);
+    gl_program_bind_texture(trace, "u_distance", s->distance.distance[0].id);
     gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
     gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
     if (!medium_gpu_bind(r, f->scene, trace, err))
@@ -526,16 +487,8 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
 
     pass_stage_begin(p);
     /* the receivers' distance impostor changes only with the geometry */
-    uint64_t geometry = scene_geometry_version(f->scene);
-    if (!s->distance_valid || f->snapshot->geometry_animated || s->distance_geometry != geometry ||
-        s->distance_range != range || vec3_length(vec3_sub(s->distance_center, center)) != 0.0f) {
-        if (!draw_distance_impostor(s, r, f->scene, center, range, err))
-            return false;
-        s->distance_valid = true;
-        s->distance_geometry = geometry;
-        s->distance_center = center;
-        s->distance_range = range;
-    }
+    if (!distance_map_update_distances(&s->distance, r, p, f, center, BEAMS_DISTANCE_SIZE, range, err))
+        return false;
     pass_stage_end(p, "impostors");
     if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))
         return false;

@@ -35,10 +35,9 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
                          vec3 center, int size, struct error *err)
 {
     const struct scene *scene = f->scene;
-    bool current = m->built && m->size == size && !diffuse_animated(scene) &&
-                   m->built_geometry == scene_geometry_version(scene) && m->built_lights == scene_lights_version(scene) &&
-                   m->center.x == center.x && m->center.y == center.y && m->center.z == center.z;
-    if (current)
+    uint64_t key = pass_frame_key(shadow_pass, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS);
+    key = pass_key_mix(pass_key_mix(key, &center, sizeof center), &size, sizeof size);
+    if (m->built && m->built_key == key && !diffuse_animated(scene))
         return true;
     m->built = false;
     if (m->size != size || !m->color[0].id) {
@@ -107,7 +106,57 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         return false;
     m->center = center;
     m->built = true;
-    m->built_geometry = scene_geometry_version(scene);
-    m->built_lights = scene_lights_version(scene);
+    m->built_key = key;
+    return true;
+}
+
+bool distance_map_update_distances(struct distance_map *m, struct renderer *r, struct pass *owner,
+                                   struct pass_frame *f, vec3 center, int size, float range, struct error *err)
+{
+    const struct scene *scene = f->scene;
+    uint64_t key = pass_frame_key(owner, f, PASS_DEPENDS_GEOMETRY);
+    key = pass_key_mix(pass_key_mix(pass_key_mix(key, &center, sizeof center), &size, sizeof size), &range,
+                       sizeof range);
+    if (m->built && m->built_key == key && !diffuse_animated(scene))
+        return true;
+    m->built = false;
+    if (m->size != size || !m->distance[0].id || m->color[0].id) {
+        distance_map_release(m);
+        if (!gl_texture_create(&m->distance[0], GL_TEXTURE_CUBE_MAP, GL_R32F, size, size, 6, err) ||
+            !gl_texture_create(&m->depth_buffer, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err) ||
+            !gl_framebuffer_create(&m->fb, err))
+            return false;
+        m->size = size;
+    }
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distances.frag", NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-5f, 1e-5f), range);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);
+    gl.Viewport(0, 0, size, size);
+    for (int face = 0; face < 6; face++) {
+        const struct gl_texture *colors[1] = {&m->distance[0]};
+        int layers[1] = {face};
+        if (!gl_framebuffer_attach(&m->fb, colors, layers, 1, &m->depth_buffer, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, m->fb.id);
+        const float none[4] = {range, range, range, range};
+        gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 0, none);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+        renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
+    }
+    renderer_reset_state(r);
+    if (!gl_check("building the distance impostor", err))
+        return false;
+    m->center = center;
+    m->built = true;
+    m->built_key = key;
     return true;
 }

@@ -38,16 +38,25 @@ struct distance_map {
     struct gl_texture depth_buffer; /* for rendering its faces */
     struct gl_framebuffer fb;
     bool built;
-    uint64_t built_geometry, built_lights;
+    uint64_t built_key; /* the building pass's pass_frame_key (geometry, lights), the centre and size */
 };
 
 /* Renders the map around `center` (size x size per face): the visible
  * diffuse objects lit as `shade` lights them (Lambert, ambient, emission),
  * shadowed by the shadow maps of `shadow_pass`'s inputs when it has any
- * (shadow_inputs). A static scene keeps the last map (same centre, size,
- * geometry and lights). */
+ * (shadow_inputs). A static scene keeps the last map (pass_frame_key of
+ * `shadow_pass` with the geometry and lights, and the same centre and size;
+ * only the receivers' animation counts: a deforming glass dragon does not
+ * make it stale). */
 bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
                          vec3 center, int size, struct error *err);
+/* The distances alone (layer 0, no colour) around `center` out to `range`:
+ * the receivers' distance impostor beam_caustics traces its exits against
+ * (Szirmay-Kalos et al. 2005; Liktor & Dachsbacher §4.3). No surface within
+ * the range reads as the range; the faces are filtered (linear), as the
+ * beams' march expects. Reused as the full map is (the key with the range). */
+bool distance_map_update_distances(struct distance_map *m, struct renderer *r, struct pass *owner,
+                                   struct pass_frame *f, vec3 center, int size, float range, struct error *err);
 void distance_map_release(struct distance_map *m);
 
 #endif

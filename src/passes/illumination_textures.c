@@ -172,24 +172,11 @@ static void draw_targets(const struct pass *p, struct renderer *r, const struct 
             renderer_draw_object(r, scene, prog, scene->objects[i]);
 }
 
-static uint64_t mix(uint64_t h, uint64_t v) { return hash_fnv1a(h, &v, sizeof v); }
-
 /* Everything the textures depend on: the light, the glass, the targets and
- * the parameters; not the camera. */
-static uint64_t texture_key(struct pass *p, const struct scene *scene, const struct light *light)
+ * the parameters (pass_frame_key without the camera). */
+static uint64_t texture_key(struct pass *p, const struct pass_frame *f)
 {
-    uint64_t h = HASH_FNV1A_BASIS;
-    h = mix(h, light->version);
-    h = mix(h, scene->version);
-    for (int i = 0; i < scene->object_count; i++) {
-        const struct object *o = scene->objects[i];
-        h = mix(mix(mix(h, o->serial), o->version), (uint64_t)o->visible);
-    }
-    for (int k = IT_PLANES; k <= IT_INTERNAL; k++)
-        h = mix(h, (uint64_t)(pass_real(p, k) * 1000.0) + (uint64_t)pass_choice(p, IT_INTERNAL));
-    for (int k = 0; k < p->values[IT_TARGETS].object_count; k++)
-        h = mix(h, p->values[IT_TARGETS].objects[k]->serial);
-    return h;
+    return pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
 }
 
 static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
@@ -217,7 +204,7 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
                  subdivided ? " (coarse meshes subdivided for their tables)" : "",
                  s->tables[0].resolution < pass_int(p, IT_TABLE) ? " (fewer directions than `table` asks, to fit: a fine mesh)"
                                                                  : "");
-    bool reuse = s->valid && s->key == texture_key(p, f->scene, light) && !f->snapshot->geometry_animated;
+    bool reuse = pass_frame_reusable(f, s->valid, s->key, texture_key(p, f));
     snprintf(why, whylen, "%s%s",
              reuse ? "the illumination textures are reused (light, glass and targets unchanged: only the mapping runs)"
                    : "the illumination textures are made again (the light, the glass or a target changed)",
@@ -700,8 +687,8 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     if (!ensure_targets(s, pass_int(p, IT_SIZE), pass_int(p, IT_PLANES), f->width, f->height, err))
         return false;
     pass_stage_begin(p);
-    uint64_t key = texture_key(p, f->scene, light);
-    s->reused = s->valid && s->key == key && !f->snapshot->geometry_animated;
+    uint64_t key = texture_key(p, f);
+    s->reused = pass_frame_reusable(f, s->valid, s->key, key);
     if (!s->reused) {
         if (!build_textures(p, f, slot, err))
             return false;

@@ -17,10 +17,14 @@ void impostors_release(struct impostor_set *set)
     memset(set, 0, sizeof *set);
 }
 
-bool impostors_current(const struct impostor_set *set, const struct scene *scene, int size, bool animated)
+uint64_t impostors_key(const struct pass *p, const struct pass_frame *f)
 {
-    return set->built && !animated && set->size == size && set->built_geometry == scene_geometry_version(scene) &&
-           set->built_lights == scene_lights_version(scene);
+    return pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS);
+}
+
+bool impostors_current(const struct impostor_set *set, const struct pass_frame *f, uint64_t key)
+{
+    return pass_frame_reusable(f, set->built, set->built_key, key);
 }
 
 int impostors_find(const struct impostor_set *set, const struct object *object)
@@ -46,7 +50,7 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
 }
 
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
-                     int size, bool include_specular, struct error *err)
+                     int size, bool include_specular, uint64_t key, struct error *err)
 {
     set->built = false; /* until this build completes */
     int count = 0;
@@ -132,8 +136,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     if (!gl_check("building impostors", err))
         return false;
     set->built = true;
-    set->built_geometry = scene_geometry_version(scene);
-    set->built_lights = scene_lights_version(scene);
+    set->built_key = key;
     return true;
 }
 

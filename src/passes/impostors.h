@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "gl/gl_texture.h"
+#include "graph/pass.h"
 #include "scene/scene.h"
 
 #define IMPOSTOR_MAX 16
@@ -44,7 +45,7 @@ struct impostor_set {
     GLuint ubo;                     /* the impostors' frames (std430 SSBO) */
     /* what the last complete build was made from (§4: a static scene reuses it) */
     bool built;
-    uint64_t built_geometry, built_lights;
+    uint64_t built_key; /* the building pass's pass_frame_key */
 };
 
 /* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
@@ -52,16 +53,17 @@ struct impostor_set {
  * the reflectors and refractors too, their colour the environment they
  * reflect and refract (the recursion's level 0). */
 bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
-                     int size, bool include_specular, struct error *err);
+                     int size, bool include_specular, uint64_t key, struct error *err);
 /* One level of recursive reflection/refraction (Hu & Qin §2.2, Fig. 1b,
  * 24g): the specular objects' impostors are drawn again, reflecting and
  * refracting the impostors of the previous level. */
 bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err);
 void impostors_release(struct impostor_set *set);
-/* Whether the last build still stands for `scene` at `size`: no geometry
- * animates, and neither the geometry nor a light changed since (Hu & Qin
- * §4's reuse in a static scene). */
-bool impostors_current(const struct impostor_set *set, const struct scene *scene, int size, bool animated);
+/* The key a pass builds its impostors under: its pass_frame_key with the
+ * geometry and the lights (Hu & Qin §4's reuse in a static scene). */
+uint64_t impostors_key(const struct pass *p, const struct pass_frame *f);
+/* Whether the last build stands for `key` (and no geometry animates). */
+bool impostors_current(const struct impostor_set *set, const struct pass_frame *f, uint64_t key);
 /* Index of the impostor standing in for `object`, or -1. */
 int impostors_find(const struct impostor_set *set, const struct object *object);
 

@@ -165,9 +165,10 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     pass_stage_begin(p);
     bool nearby = pass_flag(p, LR_NEARBY);
     if (nearby) {
-        if (!impostors_current(&s->impostors, f->scene, pass_int(p, LR_IMPOSTOR), f->snapshot->geometry_animated) &&
+        uint64_t key = impostors_key(p, f);
+        if (!impostors_current(&s->impostors, f, key) &&
             !impostors_build(&s->impostors, r, f->scene, vec3_scale(vec3_add(lo, hi), 0.5f), pass_int(p, LR_IMPOSTOR),
-                             false, err))
+                             false, key, err))
             return false;
         pass_stage_end(p, "impostors");
     }

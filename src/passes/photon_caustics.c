@@ -33,7 +33,7 @@ struct photon_state {
     struct gl_texture caustics;                       /* rgba32f array, one layer per receiver */
     int buffer, texture, receivers;
     bool valid;
-    uint64_t light_version, geometry_version;
+    uint64_t key; /* what the photon buffer and caustic textures were made from (pass_frame_key) */
     mat4 light_view_proj, light_inverse;
     float fixed_point; /* flux -> integer count scale */
     GLuint windows;    /* SSBO: per receiver, the box its photons landed in (window.glsl) */
@@ -294,17 +294,17 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     specular_bounds(f->scene, &oc, &orad);
     int buffer = pass_int(p, PHOTON_BUFFER), texture = pass_int(p, PHOTON_TEXTURE);
     int iterations = pass_int(p, PHOTON_ITERATIONS);
-    uint64_t gv = scene_geometry_version(f->scene);
-    bool reuse = s->valid && s->light_version == light->version && s->geometry_version == gv && s->buffer == buffer &&
-                 s->texture == texture;
-    reuse = reuse && !f->snapshot->geometry_animated;
+    /* the light side depends on the light, the geometry and the parameters,
+     * not on the camera (§4) */
+    uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
+    bool reuse = pass_frame_reusable(f, s->valid, s->key, key);
     snprintf(p->report, sizeof p->report, "%s",
              reuse ? "the photon buffer and caustic textures reused (the light and the geometry did not change since "
                      "the last frame); the caustic mapping from the camera runs every frame"
                    : "photons traced from the light into new caustic textures");
     size_t used = strlen(p->report);
     if (!reuse) {
-        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, err) ||
+        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, key, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
             return false;
         /* The light's view of the refractors' bounding sphere. */
@@ -423,8 +423,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         if (s->coverage > 0.0f && used + 8 < sizeof p->report)
             snprintf(p->report + used, sizeof p->report - used, " (the light's view narrowed to the specular objects' "
                      "box, %.0f%% of the area it first had)", 100.0 * s->coverage);
-        s->light_version = light->version;
-        s->geometry_version = gv;
+        s->key = key;
     }
 
     /* §3.3: caustic mapping onto the receivers the camera sees. */

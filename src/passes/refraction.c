@@ -302,10 +302,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     } else if (nearby) {
         /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
         /* recursion redraws the impostors' colours: made again every frame */
-        if (!impostors_current(&s->impostors, f->scene, pass_int(p, REFRACTION_IMPOSTOR), f->snapshot->geometry_animated) ||
-            pass_int(p, REFRACTION_RECURSION) > 0) {
+        uint64_t key = impostors_key(p, f);
+        if (!impostors_current(&s->impostors, f, key) || pass_int(p, REFRACTION_RECURSION) > 0) {
             int levels = pass_int(p, REFRACTION_RECURSION);
-            if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, err))
+            if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key,
+                                 err))
                 return false;
             for (int level = 0; level < levels; level++)
                 if (!impostors_recurse(&s->impostors, r, f->scene, err))
