@@ -477,7 +477,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         !ensure_targets(s, f->width, f->height, err))
         return false;
     const struct frame_light *fl = &f->snapshot->lights[slot];
-    struct layers_light_view lv;
+    struct light_view lv;
     if (!layers_light_view(fl, lo, hi, &lv, "beam_caustics", err))
         return false;
     float extent = 2.0f * fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;

@@ -94,7 +94,7 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
         int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
         if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
             return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
-        struct layers_light_view lv;
+        struct light_view lv;
         if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
             return false;
         view = lv.view;

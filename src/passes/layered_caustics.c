@@ -149,7 +149,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
 
     /* The light's view of the refractors' bounding sphere (as photon_caustics). */
     const struct frame_light *fl = &f->snapshot->lights[slot];
-    struct layers_light_view lv;
+    struct light_view lv;
     if (!layers_light_view(fl, lo, hi, &lv, "layered_caustics", err))
         return false;
     bool ortho = lv.ortho;

@@ -314,35 +314,22 @@ bool layers_configure_camera_block(struct pass *block, int layers, int voxels, b
            pass_set_enum(block, "depths", exact_depth ? "exact" : "voxel", err);
 }
 
-bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
-                       const char *pass_name, struct error *err)
+/* The layers' margins: the eye of an orthographic view three radii back,
+ * planes from half a radius to six; a perspective view 2% wider than the
+ * sphere, its near plane 10% before it and its far 10% of a radius past. */
+static const struct light_view_margins layers_margins = {
+    .radius_scale = 1.02f, .eye_radii = 3.0f, .ortho_near_radii = 0.5f, .ortho_far_radii = 6.0f,
+    .fov_scale = 1.02f, .near_scale = 0.9f, .far_radii = 1.1f, .inside_half_angle = 0.0f,
+    .up_z_when_vertical = true,
+};
+
+bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct light_view *v, const char *pass_name,
+                       struct error *err)
 {
-    vec3 oc = vec3_scale(vec3_add(lo, hi), 0.5f);
-    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
-    vec3 up = vec3_make(0, 1, 0);
-    v->ortho = fl->kind == LIGHT_DIRECTIONAL;
-    if (v->ortho) {
-        vec3 d = vec3_normalize_or(fl->direction, vec3_make(0, -1, 0));
-        if (fabsf(d.y) > 0.99f)
-            up = vec3_make(0, 0, 1);
-        vec3 eye = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
-        v->view = mat4_look_at(eye, oc, up);
-        v->proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
-        v->half_extent = orad;
-        return true;
-    }
-    vec3 pos = fl->position;
-    vec3 to = vec3_sub(oc, pos);
-    float dist = vec3_length(to);
-    if (dist <= orad * 1.001f)
+    vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    float radius = 0.5f * vec3_length(vec3_sub(hi, lo));
+    if (!light_view_fit(fl->kind == LIGHT_DIRECTIONAL, fl->position, fl->direction, center, radius, &layers_margins, v))
         return error_set(err, "%s: the light is inside the refractors' bounding sphere "
                               "(move it out, or use a directional light)", pass_name);
-    if (fabsf(to.y) > 0.99f * dist)
-        up = vec3_make(0, 0, 1);
-    float half = asinf(fminf(orad / dist, 1.0f));
-    float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.02f, 170.0f);
-    v->view = mat4_look_at(pos, oc, up);
-    v->proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.9f, dist + orad * 1.1f);
-    v->half_extent = tanf(fov * 0.5f * (float)MATH_PI / 180.0f);
     return true;
 }

@@ -14,6 +14,7 @@
 #include "core/vecmath.h"
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
+#include "scene/light_view.h"
 #include "scene/scene.h"
 
 #define LAYERS_MAX 32        /* depth layers per pixel (the thesis's 32: 8 render targets x 4 channels) */
@@ -82,17 +83,6 @@ const char *layers_leaves_out(const struct pass *p, const struct scene *scene, c
  * only inside the scene's box. */
 void layers_bind_scene_trace(const struct gl_program *program, const struct scene *scene);
 
-/* A light's view of the refractors' bounding sphere (centre c, radius
- * `radius`): orthographic along a directional light, else a perspective
- * frustum from the light's position just wide enough. `half_extent` is
- * the image's half side: in world units (orthographic) or as the tangent
- * of the half angle (perspective). Shared by layered_caustics and
- * beam_caustics. */
-struct layers_light_view {
-    mat4 view, proj;
-    bool ortho;
-    float half_extent;
-};
 struct frame_light;
 /* The depth_layers block a reader of `light`'s layers asks the graph for
  * (its configure_block): this light, buffer x buffer texels, `layers`
@@ -103,7 +93,13 @@ bool layers_configure_block(struct pass *block, struct light *light, int buffer,
 /* The camera's depth_layers block (layered_refraction's): the frame's size,
  * `layers` layers of `voxels` slices, exact depths or the slices' own. */
 bool layers_configure_camera_block(struct pass *block, int layers, int voxels, bool exact_depth, struct error *err);
-bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct layers_light_view *v,
-                       const char *pass_name, struct error *err);
+/* A light's view of the refractors' box (lo, hi), through its bounding
+ * sphere widened by 2% (light_view_fit with the layers' margins):
+ * orthographic along a directional light, else a perspective frustum from
+ * the light's position just wide enough; an error naming `pass_name` when
+ * the light is inside the sphere. Shared by depth_layers, layered_caustics
+ * and beam_caustics. */
+bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct light_view *v, const char *pass_name,
+                       struct error *err);
 
 #endif

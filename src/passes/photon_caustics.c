@@ -20,6 +20,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "scene/light_view.h"
 #include "passes/impostors.h"
 #include "scene/scene.h"
 
@@ -307,22 +308,18 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, key, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
             return false;
-        /* The light's view of the refractors' bounding sphere. */
-        vec3 light_pos;
-        mat4 view, proj;
-        if (light->kind == LIGHT_DIRECTIONAL) {
-            vec3 d = vec3_normalize_or(light->direction, vec3_make(0, -1, 0));
-            light_pos = vec3_sub(oc, vec3_scale(d, 3.0f * orad));
-            view = mat4_look_at(light_pos, oc, vec3_make(0, 1, 0));
-            proj = mat4_ortho(-orad, orad, -orad, orad, 0.5f * orad, 6.0f * orad);
-        } else {
-            light_pos = light_center(light);
-            float dist = vec3_length(vec3_sub(oc, light_pos));
-            float half = dist > orad ? asinf(fminf(orad / dist, 1.0f)) : 1.2f;
-            float fov = fminf(2.0f * half * 180.0f / (float)MATH_PI * 1.05f, 170.0f);
-            view = mat4_look_at(light_pos, oc, vec3_make(0, 1, 0));
-            proj = mat4_perspective(fov, 1.0f, fmaxf(dist - orad, 1e-3f) * 0.5f, dist + 2.0f * orad);
-        }
+        /* The light's view of the refractors' bounding sphere (then narrowed
+         * to what they cover, fit_light_view): wider margins than the
+         * layers', and a light inside the sphere sees it at 69 degrees
+         * either side. */
+        static const struct light_view_margins margins = {
+            .radius_scale = 1.0f, .eye_radii = 3.0f, .ortho_near_radii = 0.5f, .ortho_far_radii = 6.0f,
+            .fov_scale = 1.05f, .near_scale = 0.5f, .far_radii = 2.0f, .inside_half_angle = 1.2f,
+            .up_z_when_vertical = false,
+        };
+        struct light_view lv;
+        light_view_fit(light->kind == LIGHT_DIRECTIONAL, light_center(light), light->direction, oc, orad, &margins, &lv);
+        mat4 view = lv.view, proj = lv.proj;
         s->light_view_proj = mat4_mul(proj, view);
         mat4_inverse(s->light_view_proj, &s->light_inverse);
 

@@ -11,6 +11,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "scene/light_view.h"
 #include "scene/scene.h"
 
 struct shadow_state {
@@ -125,9 +126,13 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         mat4 view, proj;
         vec3 dir = vec3_normalize_or(l->direction, vec3_make(0, -1, 0));
         if (l->kind == LIGHT_DIRECTIONAL) {
-            vec3 eye = vec3_sub(center, vec3_scale(dir, 2.0f * radius));
-            view = mat4_look_at(eye, center, vec3_make(0, 1, 0));
-            proj = mat4_ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
+            /* the whole scene's sphere, the eye two radii back */
+            static const struct light_view_margins margins = {
+                .radius_scale = 1.0f, .eye_radii = 2.0f, .ortho_near_radii = 0.0f, .ortho_far_radii = 4.0f};
+            struct light_view lv;
+            light_view_fit(true, l->position, dir, center, radius, &margins, &lv);
+            view = lv.view;
+            proj = lv.proj;
             out->range = 4.0f * radius;
         } else {
             view = mat4_look_at(l->position, vec3_add(l->position, dir), vec3_make(0, 1, 0));

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scene/light_view.h"
 #include "scene/scene.h"
 #include "scene/transport.h"
 
@@ -34,6 +35,37 @@ static bool winding_outward(const struct mesh *m)
             return false;
     }
     return true;
+}
+
+/* The clip-space w-divided position of p: inside [-1, 1]^3 when in view. */
+static vec3 project(const struct light_view *lv, vec3 p)
+{
+    mat4 vp = mat4_mul(lv->proj, lv->view);
+    const float *m = vp.m;
+    float c[4];
+    for (int r = 0; r < 4; r++)
+        c[r] = m[r] * p.x + m[4 + r] * p.y + m[8 + r] * p.z + m[12 + r];
+    return vec3_make(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
+}
+
+/* Every point of the sphere's surface (a sample of directions) in view. */
+static bool sphere_in_view(const struct light_view *lv, vec3 c, float r)
+{
+    for (int i = 0; i < 64; i++) {
+        float z = -1.0f + (2.0f * (float)i + 1.0f) / 64.0f, phi = 2.399963f * (float)i, s = sqrtf(1.0f - z * z);
+        vec3 q = project(lv, vec3_add(c, vec3_scale(vec3_make(s * cosf(phi), s * sinf(phi), z), r)));
+        if (!(fabsf(q.x) <= 1.0f && fabsf(q.y) <= 1.0f && fabsf(q.z) <= 1.0f))
+            return false;
+    }
+    return true;
+}
+
+static bool view_finite(const struct light_view *lv)
+{
+    for (int k = 0; k < 16; k++)
+        if (!isfinite(lv->view.m[k]) || !isfinite(lv->proj.m[k]))
+            return false;
+    return isfinite(lv->half_extent);
 }
 
 int main(void)
@@ -89,6 +121,33 @@ int main(void)
         o->visible = true;
     }
     o->material.kind = MATERIAL_DIFFUSE;
+
+    /* The light's view of a sphere: in view whole, orthographic and
+     * perspective, straight down too; a light inside refused or widened as
+     * the margins say; degenerate input stays finite. */
+    {
+        const struct light_view_margins m = {.radius_scale = 1.02f, .eye_radii = 3.0f, .ortho_near_radii = 0.5f,
+                                             .ortho_far_radii = 6.0f, .fov_scale = 1.02f, .near_scale = 0.9f,
+                                             .far_radii = 1.1f, .up_z_when_vertical = true};
+        struct light_view lv;
+        vec3 c = vec3_make(1, 2, -3);
+        CHECK(light_view_fit(true, vec3_make(0, 0, 0), vec3_make(0.3f, -1, 0.2f), c, 2.0f, &m, &lv));
+        CHECK(lv.ortho && sphere_in_view(&lv, c, 2.0f) && view_finite(&lv));
+        CHECK(light_view_fit(true, vec3_make(0, 0, 0), vec3_make(0, -1, 0), c, 2.0f, &m, &lv));
+        CHECK(sphere_in_view(&lv, c, 2.0f) && view_finite(&lv));
+        CHECK(light_view_fit(false, vec3_make(4, 9, 0), vec3_make(0, -1, 0), c, 2.0f, &m, &lv));
+        CHECK(!lv.ortho && sphere_in_view(&lv, c, 2.0f) && view_finite(&lv));
+        CHECK(light_view_fit(false, vec3_make(1, 12, -3), vec3_make(0, -1, 0), c, 2.0f, &m, &lv)); /* above */
+        CHECK(sphere_in_view(&lv, c, 2.0f) && view_finite(&lv));
+        CHECK(!light_view_fit(false, vec3_make(1, 2.5f, -3), vec3_make(0, -1, 0), c, 2.0f, &m, &lv)); /* inside */
+        struct light_view_margins wide = m;
+        wide.inside_half_angle = 1.2f;
+        CHECK(light_view_fit(false, vec3_make(1, 2.5f, -3), vec3_make(0, -1, 0), c, 2.0f, &wide, &lv));
+        CHECK(view_finite(&lv));
+        CHECK(light_view_fit(true, c, vec3_make(0, 0, 0), c, 0.0f, &m, &lv) && view_finite(&lv));
+        CHECK(light_view_fit(false, vec3_make(0, 5, 0), vec3_make(0, 0, 0), vec3_make(0, 0, 0), 0.0f, &m, &lv));
+        CHECK(view_finite(&lv));
+    }
 
     /* The scene: adding twice is once; versions change when objects do. */
     struct scene sc;
