@@ -1,17 +1,33 @@
 #version 450 core
-// An object in world space for the camera: its world position and normal
-// (fragment shaders that need only these: receivers, G-buffers).
+// An object in world space: its world position, normal and texture
+// coordinates, projected by the camera, or by the matrix uniform a program's
+// defines name as OBJECT_VIEW_PROJ (a distance map's cube face, an
+// impostor's view): the one object vertex shader of shade, the receivers,
+// the water surface, the distance maps and the impostors.
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_texcoord0;
+layout(location = 3) in vec2 a_texcoord1;
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
+#ifdef OBJECT_VIEW_PROJ
+uniform mat4 OBJECT_VIEW_PROJ;
+#endif
 out vec3 v_world;
 out vec3 v_normal;
+out vec2 v_texcoord0;
+out vec2 v_texcoord1;
 void main()
 {
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;
     v_normal = mat3(u_normal_matrix) * a_normal;
+    v_texcoord0 = a_texcoord0;
+    v_texcoord1 = a_texcoord1;
+#ifdef OBJECT_VIEW_PROJ
+    gl_Position = OBJECT_VIEW_PROJ * w;
+#else
     gl_Position = u_view_proj * w;
+#endif
 }

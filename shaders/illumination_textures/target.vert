@@ -1,5 +1,7 @@
 #version 450 core
-// The targets seen by the virtual camera (§4.2): their normal map and depth.
+// The targets seen by the virtual camera (§4.2; illumination_textures) and
+// those drawn into a sliced object image (Iwasaki et al. [13];
+// sliced_refraction): world position and normal, projected by vc_clip.
 #include "illumination_textures/virtual_camera.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

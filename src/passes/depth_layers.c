@@ -35,14 +35,10 @@ static const struct pass_param_desc params[] = {
     [DL_VIEW] = {.name = "view", .type = PASS_PARAM_ENUM, .default_string = "light", .choices = "light|camera",
      .help = "whose view of the refractors (glass and water): `light`'s, or the camera's at the frame's size"},
     [DL_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .help = "the light, for view = \"light\""},
-    [DL_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
-     .help = "the light's view, buffer x buffer texels"},
-    [DL_LAYERS] = {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = LAYERS_MAX,
-     .help = "depth layers per texel"},
-    [DL_VOXELS] = {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128,
-     .max = LAYERS_MAX_VOXELS, .multiple = 128, .help = "slices per texel, a multiple of 128"},
-    [DL_DEPTHS] = {.name = "depths", .type = PASS_PARAM_ENUM, .default_string = "exact", .choices = "exact|voxel",
-     .help = "each layer's depth: the surface's own, or its slice's centre (§3.4.2)"},
+    [DL_BUFFER] = LAYERS_PARAM_BUFFER("the light's view, buffer x buffer texels"),
+    [DL_LAYERS] = LAYERS_PARAM_LAYERS(8, "depth layers per texel"),
+    [DL_VOXELS] = LAYERS_PARAM_VOXELS("slices per texel, a multiple of 128"),
+    [DL_DEPTHS] = LAYERS_PARAM_DEPTHS("each layer's depth: the surface's own, or its slice's centre (§3.4.2)"),
 };
 
 static bool depth_layers_declare(struct pass *p, struct error *err)

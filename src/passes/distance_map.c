@@ -7,6 +7,9 @@
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
+/* common/object.vert projected by each cube face's matrix */
+#define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ u_face_view_proj\n"
+
 void distance_map_release(struct distance_map *m)
 {
     for (int layer = 0; layer < 2; layer++) {
@@ -63,7 +66,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         m->size = size;
     }
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distance.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag", DISTANCE_MAP_VIEW, &prog, err))
         return false;
     gl.UseProgram(prog->id);
     if (shadow_pass)
@@ -129,7 +132,7 @@ bool distance_map_update_distances(struct distance_map *m, struct renderer *r, s
         m->size = size;
     }
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distances.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distances.frag", DISTANCE_MAP_VIEW, &prog, err))
         return false;
     gl.UseProgram(prog->id);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);

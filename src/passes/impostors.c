@@ -5,6 +5,9 @@
 
 #include "graph/renderer.h"
 
+/* common/object.vert projected by the impostor's parallel view (set_impostor_view) */
+#define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ u_impostor_view_proj\n"
+
 void impostors_release(struct impostor_set *set)
 {
     gl_texture_destroy(&set->depth);
@@ -113,7 +116,7 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     gl.NamedBufferSubData(set->ubo, 0, sizeof gpu, gpu);
 
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "impostors/impostor.vert", "impostors/impostor.frag", NULL, &prog,
+    if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, &prog,
                         err))
         return false;
     gl.Enable(GL_DEPTH_TEST);
@@ -148,7 +151,7 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
     gl.CopyImageSubData(set->color.id, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, set->color_previous.id, GL_TEXTURE_2D_ARRAY, 0, 0,
                         0, 0, set->size, set->size, set->count);
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "impostors/impostor.vert", "impostors/impostor_recursive.frag", NULL,
+    if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor_recursive.frag", IMPOSTOR_VIEW,
                         &prog, err))
         return false;
     gl_program_bind_storage(prog, "Impostors", set->ubo);

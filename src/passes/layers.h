@@ -83,6 +83,27 @@ const char *layers_leaves_out(const struct pass *p, const struct scene *scene, c
  * only inside the scene's box. */
 void layers_bind_scene_trace(const struct gl_program *program, const struct scene *scene);
 
+/* The layer group: the parameters every pass that builds or reads a layer
+ * set takes, defined once (type, default, range, the voxels' multiple of
+ * 128: one 32-bit word per RGBA channel, §3.3); each pass gives its own help
+ * text, and a reader may keep another default layer count. */
+#define LAYERS_PARAM_BUFFER(help_text)                                                                        \
+    {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,             \
+     .help = help_text}
+#define LAYERS_PARAM_LAYERS(default_layers, help_text)                                                        \
+    {.name = "layers", .type = PASS_PARAM_INTEGER, .default_number = default_layers, .min = 1,                \
+     .max = LAYERS_MAX, .help = help_text}
+#define LAYERS_PARAM_VOXELS(help_text)                                                                        \
+    {.name = "voxels", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 128, .max = LAYERS_MAX_VOXELS, \
+     .multiple = 128, .help = help_text}
+#define LAYERS_PARAM_DEPTHS(help_text)                                                                        \
+    {.name = "depths", .type = PASS_PARAM_ENUM, .default_string = "exact", .choices = "exact|voxel",          \
+     .help = help_text}
+#define LAYERS_PARAM_SEARCH(help_text)                                                                        \
+    {.name = "search", .type = PASS_PARAM_INTEGER, .default_number = 5, .min = 0, .max = 16, .help = help_text}
+#define LAYERS_PARAM_STEPS(help_text)                                                                         \
+    {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 8, .min = 1, .max = 64, .help = help_text}
+
 struct frame_light;
 /* The depth_layers block a reader of `light`'s layers asks the graph for
  * (its configure_block): this light, buffer x buffer texels, `layers`

@@ -436,7 +436,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     if (s->impostors.count == 0)
         return true;
     struct gl_program *map;
-    if (!gl_program_get(&r->programs, "shade/shade.vert", "photon_caustics/map.frag", NULL, &map, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "photon_caustics/map.frag", NULL, &map, err))
         return false;
     gl.UseProgram(map->id);
     bind_impostors(s, map);

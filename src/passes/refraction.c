@@ -236,7 +236,8 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
 {
     struct renderer *r = f->renderer;
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "distance_map/distance.vert", "distance_map/distance.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
+                        "#define OBJECT_VIEW_PROJ u_face_view_proj\n", &prog, err))
         return false;
     gl.UseProgram(prog->id);
     shadow_inputs_bind(p, f, prog);

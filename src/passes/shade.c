@@ -119,7 +119,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
 
     /* Objects. */
     struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "shade/shade.vert", "shade/shade.frag", NULL, &prog, err))
+    if (!gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", NULL, &prog, err))
         return false;
     shadow_inputs_bind(p, f, prog);
     if (!medium_gpu_bind(r, f->scene, prog, err))

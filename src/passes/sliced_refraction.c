@@ -231,7 +231,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         s->count = count;
     }
     struct gl_program *slice, *glass;
-    if (!gl_program_get(&r->programs, "sliced_refraction/slice.vert", "sliced_refraction/slice.frag", NULL, &slice,
+    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "sliced_refraction/slice.frag", NULL, &slice,
                         err) ||
         !gl_program_get(&r->programs, "sliced_refraction/glass.vert", "sliced_refraction/glass.frag", NULL, &glass, err))
         return false;
