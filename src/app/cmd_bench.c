@@ -427,311 +427,360 @@ static void write_frontier(FILE *f, const struct technique_list *list, const str
     }
 }
 
-int cmd_bench(struct app *app, struct cli *cli)
-{
-    if (cli->npositional != 1) {
-        fprintf(stderr, "caustica: bench needs one scene script\n");
-        cli_usage(stderr);
-        return EXIT_USAGE;
-    }
-    const char *script = cli->positional[0];
-    const char *dir = cli->output ? cli->output : "bench";
-    struct error err;
-    struct sweep sweeps[16];
-    int combos = 1;
-    for (int i = 0; i < cli->nsweeps; i++) {
-        if (!parse_sweep(cli->sweeps[i], &sweeps[i], &err)) {
-            cli_print_error(&err);
-            return EXIT_USAGE;
-        }
-        combos *= sweeps[i].count;
-        if (combos > MAX_COMBOS) {
-            fprintf(stderr, "caustica: bench: more than %d combinations\n", MAX_COMBOS);
-            return EXIT_USAGE;
-        }
-    }
+/* One bench run: what it measures, and what it has measured so far. */
+enum { CURVE_LEVELS = 4, MAX_CURVES = 7 };
+struct bench {
+    struct app *app;
+    const struct cli *cli;
+    const char *script, *dir;
     char cache[4200];
-    snprintf(cache, sizeof cache, "%s/cache", dir);
-    if (!dir_ensure(dir, &err) || !dir_ensure(cache, &err)) {
-        cli_print_error(&err);
-        return EXIT_SCENE_ERROR;
+    struct sweep sweeps[16];
+    int combos;
+    struct technique_list *list;
+    bool technique_sweep;
+    int scene_frames;
+    struct variant *variants;
+    int nvariants;
+    struct result *results;
+    struct result curve[CURVE_LEVELS * MAX_CURVES]; /* the reference's own curve */
+    int ncurve;
+    struct truth *truths;
+    int ntruths;
+    struct truth_set *sets;
+    int nsets;
+    int ncolumns;
+    const char *columns[16];
+    int frames, frame;        /* timing: frames from `frame` */
+    int error_frames[MAX_ERROR_FRAMES], nerror;
+    int level_max;            /* the reference curve's largest iteration count */
+    struct ref_options truth_options;
+    char pass_names[MAX_PASSES][PASS_NAME_MAX];
+    int npasses;
+    int width, height;
+    bool caustic;             /* errors ranked in the caustic region */
+    bool *on_front;           /* per variant: on its technique's frontier */
+};
+
+static void bench_release(struct bench *b)
+{
+    for (int i = 0; i < b->ntruths; i++)
+        truth_release(&b->truths[i]);
+    free(b->on_front);
+    free(b->truths);
+    free(b->sets);
+    free(b->results);
+    free(b->variants);
+    free(b->list);
+}
+
+/* The sweeps, the scene's frame count and techniques, and the variants. */
+static bool bench_plan(struct bench *b, int *exit_code, struct error *err)
+{
+    const struct cli *cli = b->cli;
+    b->combos = 1;
+    *exit_code = EXIT_USAGE;
+    for (int i = 0; i < cli->nsweeps; i++) {
+        if (!parse_sweep(cli->sweeps[i], &b->sweeps[i], err))
+            return false;
+        b->combos *= b->sweeps[i].count;
+        if (b->combos > MAX_COMBOS)
+            return error_set(err, "bench: more than %d combinations", MAX_COMBOS);
     }
+    *exit_code = EXIT_SCENE_ERROR;
+    snprintf(b->cache, sizeof b->cache, "%s/cache", b->dir);
+    if (!dir_ensure(b->dir, err) || !dir_ensure(b->cache, err))
+        return false;
+    b->list = calloc(1, sizeof *b->list);
+    b->variants = calloc(MAX_COMBOS, sizeof *b->variants);
+    b->results = calloc(MAX_COMBOS, sizeof *b->results);
+    b->truths = calloc(MAX_TRUTHS, sizeof *b->truths);
+    b->sets = calloc(MAX_TRUTHS, sizeof *b->sets);
+    if (!b->list || !b->variants || !b->results || !b->truths || !b->sets)
+        return error_set(err, "out of memory");
     /* The scene as the script returns it: its frame count, and the techniques it declares. */
-    struct technique_list *list = calloc(1, sizeof *list);
-    struct variant *variants = calloc(MAX_COMBOS, sizeof *variants);
-    struct result *results = calloc(MAX_COMBOS, sizeof *results);
-    struct truth *truths = calloc(MAX_TRUTHS, sizeof *truths);
-    struct truth_set *sets = calloc(MAX_TRUTHS, sizeof *sets);
-    if (!list || !variants || !results || !truths || !sets) {
-        free(list), free(variants), free(results), free(truths), free(sets);
-        fprintf(stderr, "caustica: out of memory\n");
-        return EXIT_SCENE_ERROR;
-    }
-    bool technique_sweep = false;
-    int scene_frames = 1, nvariants = 0;
-    bool ok = true;
-    {
-        struct session_options so = {.script = script, .params = cli->params, .width = cli->width,
-                                     .height = cli->height, .past_last_frame = true};
-        struct session *probe = NULL;
-        ok = session_open(app, &so, &probe, &err);
-        if (ok) {
-            scene_frames = probe->frames;
-            struct error no_table;
-            bool declared = techniques_read(probe, list, &no_table);
-            for (int i = 0; i < cli->nsweeps; i++) {
-                if (strcmp(sweeps[i].key, "technique") != 0 || (!declared && strcmp(cli->sweeps[i], "technique=all") != 0))
-                    continue; /* without a declaration technique=a,b is an ordinary scene parameter */
-                technique_sweep = true;
-                if (!declared)
-                    ok = error_set(&err, "%s", no_table.message);
-                else if (cli->nsweeps != 1)
-                    ok = error_set(&err, "--sweep technique=... sweeps each technique's own settings (the scene's "
-                                         "techniques table); give it alone");
-                else
-                    ok = techniques_select(list, cli->sweeps[i] + strlen("technique="), &err);
-            }
-            session_close(probe);
+    b->scene_frames = 1;
+    struct session_options so = {.script = b->script, .params = cli->params, .width = cli->width,
+                                 .height = cli->height, .past_last_frame = true};
+    struct session *probe = NULL;
+    bool ok = session_open(b->app, &so, &probe, err);
+    if (ok) {
+        b->scene_frames = probe->frames;
+        struct error no_table;
+        bool declared = techniques_read(probe, b->list, &no_table);
+        for (int i = 0; i < cli->nsweeps; i++) {
+            if (strcmp(b->sweeps[i].key, "technique") != 0 ||
+                (!declared && strcmp(cli->sweeps[i], "technique=all") != 0))
+                continue; /* without a declaration technique=a,b is an ordinary scene parameter */
+            b->technique_sweep = true;
+            if (!declared)
+                ok = error_set(err, "%s", no_table.message);
+            else if (cli->nsweeps != 1)
+                ok = error_set(err, "--sweep technique=... sweeps each technique's own settings (the scene's "
+                                    "techniques table); give it alone");
+            else
+                ok = techniques_select(b->list, cli->sweeps[i] + strlen("technique="), err);
         }
+        session_close(probe);
     }
-    if (ok && technique_sweep)
-        ok = technique_variants(list, &cli->params, variants, &nvariants, &err);
+    if (ok && b->technique_sweep)
+        ok = technique_variants(b->list, &cli->params, b->variants, &b->nvariants, err);
     else if (ok) {
-        nvariants = combos;
-        ok = sweep_variants(sweeps, cli->nsweeps, &cli->params, variants, combos, &err);
+        b->nvariants = b->combos;
+        ok = sweep_variants(b->sweeps, cli->nsweeps, &cli->params, b->variants, b->combos, err);
     }
     if (!ok) {
-        cli_print_error(&err);
-        free(list), free(variants), free(results), free(truths), free(sets);
-        return technique_sweep ? EXIT_USAGE : EXIT_SCENE_ERROR;
+        *exit_code = b->technique_sweep ? EXIT_USAGE : EXIT_SCENE_ERROR;
+        return false;
     }
-    int ncolumns = technique_sweep ? 2 : cli->nsweeps;
-    const char *columns[16];
-    for (int k = 0; k < cli->nsweeps && !technique_sweep; k++)
-        columns[k] = sweeps[k].key;
-    if (technique_sweep) {
-        columns[0] = "technique";
-        columns[1] = "settings";
+    b->ncolumns = b->technique_sweep ? 2 : cli->nsweeps;
+    for (int k = 0; k < cli->nsweeps && !b->technique_sweep; k++)
+        b->columns[k] = b->sweeps[k].key;
+    if (b->technique_sweep) {
+        b->columns[0] = "technique";
+        b->columns[1] = "settings";
     }
-    int frames = bench_timing_frames(cli);
-    int frame = cli->frame;
-    int error_frames[MAX_ERROR_FRAMES];
-    int nerror = pick_error_frames(cli->error_frames ? cli->error_frames : technique_sweep ? 3 : 1, frame,
-                                   scene_frames, error_frames);
-    if (nerror > 1) {
+    b->frames = bench_timing_frames(cli);
+    b->frame = cli->frame;
+    b->nerror = pick_error_frames(cli->error_frames ? cli->error_frames : b->technique_sweep ? 3 : 1, b->frame,
+                                  b->scene_frames, b->error_frames);
+    if (b->nerror > 1) {
         printf("errors: the mean over frames");
-        for (int i = 0; i < nerror; i++)
-            printf("%s %d", i ? "," : "", error_frames[i]);
-        printf(" of %d\n", scene_frames);
+        for (int i = 0; i < b->nerror; i++)
+            printf("%s %d", i ? "," : "", b->error_frames[i]);
+        printf(" of %d\n", b->scene_frames);
     }
     /* The reference curve: L/8, L/4, L/2, L iterations against 16 L. */
-    int level_max = cli->ref_spp > 0 ? cli->ref_spp : 8;
-    struct ref_options truth_options;
-    ref_options_default(&truth_options);
-    truth_options.photons = cli->ref_photons > 0 ? cli->ref_photons : 100000;
-    truth_options.iterations = 16 * level_max;
-    truth_options.progress = true;
-    truth_options.antialias = cli->antialias;
+    b->level_max = cli->ref_spp > 0 ? cli->ref_spp : 8;
+    ref_options_default(&b->truth_options);
+    b->truth_options.photons = cli->ref_photons > 0 ? cli->ref_photons : 100000;
+    b->truth_options.iterations = 16 * b->level_max;
+    b->truth_options.progress = true;
+    b->truth_options.antialias = cli->antialias;
+    b->npasses = -1;
+    return true;
+}
 
-    char pass_names[MAX_PASSES][PASS_NAME_MAX];
-    int npasses = -1, ntruths = 0, nsets = 0;
-    int width = 0, height = 0;
-    for (int c = 0; ok && c < nvariants; c++) {
-        const struct variant *v = &variants[c];
-        struct result *r = &results[c];
-        snprintf(r->label, sizeof r->label, "%s", v->label);
-        memcpy(r->values, v->values, sizeof r->values);
-        r->technique = v->technique;
-        struct session_options so = {.script = script, .params = v->params, .width = cli->width, .height = cli->height,
-                                     .past_last_frame = true};
-        struct session *s = NULL;
-        ok = session_open(app, &so, &s, &err) && apply_overrides(s, v, &err) &&
-             session_render(s, frame, &err) /* warm-up: shader compilation, uploads */ &&
-             session_reload(s, &err) && apply_overrides(s, v, &err);
-        double totals[1024], per_pass[MAX_PASSES][1024];
-        struct image images[MAX_ERROR_FRAMES];
-        bool have[MAX_ERROR_FRAMES] = {false};
-        memset(images, 0, sizeof images);
-        for (int f = 0; ok && f < frames; f++) {
-            ok = session_render(s, frame + f, &err);
-            if (!ok)
-                break;
-            for (int e = 0; ok && e < nerror; e++)
-                if (error_frames[e] == frame + f && !have[e])
-                    have[e] = ok = session_read_linear(s, &images[e], &err);
-            const struct graph *g = s->graph;
-            if (npasses < 0)
-                npasses = 0;
-            /* every kept pass counts in the frame; the columns are the union
-             * of the passes seen in any variant */
-            double total = app->renderer.deform_ms;
-            for (int p = 0; p < MAX_PASSES; p++)
-                per_pass[p][f] = -1.0;
-            for (int i = 0; i < g->count; i++) {
-                const struct graph_entry *e = &g->entries[i];
-                if (e->state != GRAPH_PASS_KEPT)
-                    continue;
-                total += e->last_ms;
-                int col = -1;
-                for (int p = 0; p < npasses; p++)
-                    if (strcmp(pass_names[p], e->pass->name) == 0)
-                        col = p;
-                if (col < 0 && npasses < MAX_PASSES) {
-                    col = npasses++;
-                    snprintf(pass_names[col], PASS_NAME_MAX, "%s", e->pass->name);
-                    for (int c2 = 0; c2 < c; c2++)
-                        results[c2].pass_ms[col] = -1.0; /* earlier variants did not have it */
-                }
-                if (col >= 0)
-                    per_pass[col][f] = e->last_ms;
-            }
-            totals[f] = total;
+/* One timed frame's kept passes into per_pass[column][f] (the columns are
+ * the union of the passes seen in any variant); returns the frame's total. */
+static double bench_frame_times(struct bench *b, const struct graph *g, int variant, int f,
+                                double per_pass[MAX_PASSES][1024])
+{
+    if (b->npasses < 0)
+        b->npasses = 0;
+    double total = b->app->renderer.deform_ms;
+    for (int p = 0; p < MAX_PASSES; p++)
+        per_pass[p][f] = -1.0;
+    for (int i = 0; i < g->count; i++) {
+        const struct graph_entry *e = &g->entries[i];
+        if (e->state != GRAPH_PASS_KEPT)
+            continue;
+        total += e->last_ms;
+        int col = -1;
+        for (int p = 0; p < b->npasses; p++)
+            if (strcmp(b->pass_names[p], e->pass->name) == 0)
+                col = p;
+        if (col < 0 && b->npasses < MAX_PASSES) {
+            col = b->npasses++;
+            snprintf(b->pass_names[col], PASS_NAME_MAX, "%s", e->pass->name);
+            for (int c2 = 0; c2 < variant; c2++)
+                b->results[c2].pass_ms[col] = -1.0; /* earlier variants did not have it */
         }
-        for (int i = 0; ok && i < s->graph->count; i++) {
-            const struct graph_entry *e = &s->graph->entries[i];
-            size_t filled = strlen(r->report);
-            if (e->state == GRAPH_PASS_KEPT && e->pass->report[0] && filled + 4 < sizeof r->report)
-                snprintf(r->report + filled, sizeof r->report - filled, "%s%.40s: %.200s", filled ? "; " : "",
-                         e->pass->name, e->pass->report);
-        }
-        if (ok) {
-            r->frame_ms = median(totals, frames);
-            for (int p = 0; p < npasses; p++)
-                r->pass_ms[p] = per_pass[p][0] < 0 ? -1.0 : median(per_pass[p], frames);
-            width = s->width;
-            height = s->height;
-        }
-        /* the error frames the timing run did not pass through (in order:
-         * going back reloads the script, and its pass settings with it) */
-        for (int e = 0; ok && e < nerror; e++) {
-            if (have[e])
-                continue;
-            if (error_frames[e] < s->advanced)
-                ok = session_reload(s, &err) && apply_overrides(s, v, &err);
-            ok = ok && session_render(s, error_frames[e], &err);
-            have[e] = ok = ok && session_read_linear(s, &images[e], &err);
-        }
-        session_close(s);
-        /* the ground truths for these scene parameters (pass parameters and
-         * a technique's selectors do not change them) */
-        uint64_t set_key = hash_params(1469598103934665603ULL, &v->truth_params);
-        int set = -1;
-        for (int i = 0; i < nsets; i++)
-            if (sets[i].key == set_key)
-                set = i;
-        if (ok && set < 0) {
-            if (nsets >= MAX_TRUTHS)
-                ok = error_set(&err, "more than %d distinct scenes", MAX_TRUTHS);
-            else {
-                set = nsets++;
-                struct truth_set *ts = &sets[set];
-                ts->key = set_key;
-                ts->params = v->truth_params;
-                ts->width = width;
-                ts->height = height;
-                size_t filled = 0;
-                for (int k = 0; k < cli->nsweeps && !technique_sweep; k++) {
-                    if (strchr(sweeps[k].key, '.'))
-                        continue;
-                    snprintf(ts->values[k], sizeof ts->values[k], "%s", v->values[k]);
-                    int w = snprintf(ts->label + filled, sizeof ts->label - filled, "%s%s=%s", filled ? " " : "",
-                                     sweeps[k].key, v->values[k]);
-                    if (w > 0 && filled + (size_t)w < sizeof ts->label)
-                        filled += (size_t)w;
-                }
-            }
-        }
-        r->truth = set;
-        int with_mask = 0;
-        for (int e = 0; ok && e < nerror; e++) {
-            int t = -1;
-            for (int i = 0; i < ntruths; i++)
-                if (truths[i].set == set && truths[i].frame == error_frames[e])
-                    t = i;
-            if (t < 0) {
-                if (ntruths >= MAX_TRUTHS) {
-                    ok = error_set(&err, "more than %d ground truths (scenes x error frames)", MAX_TRUTHS);
-                    break;
-                }
-                ok = get_truth(app, script, &v->truth_params, error_frames[e], width, height, &truth_options, cache,
-                               &truths[ntruths], &err);
-                if (ok) {
-                    truths[ntruths].set = set;
-                    t = ntruths++;
-                }
-            }
-            struct image_metrics m;
-            ok = ok && image_metrics_compute(&images[e], &truths[t].image, NULL, &m, &err);
-            if (ok)
-                metrics_add(&r->all, &m, e);
-            if (ok && truths[t].has_mask) {
-                ok = image_metrics_compute(&images[e], &truths[t].image, &truths[t].mask, &m, &err);
-                if (ok)
-                    metrics_add(&r->caustic, &m, with_mask++);
-            }
-        }
-        r->has_caustic = with_mask > 0;
-        for (int e = 0; e < nerror; e++)
-            image_destroy(&images[e]);
-        if (ok) {
-            printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms,
-                   results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0, r->all.rel_rmse,
-                   r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0);
-            if (r->report[0])
-                printf("    %s\n", r->report);
-            fflush(stdout);
-        }
+        if (col >= 0)
+            per_pass[col][f] = e->last_ms;
     }
-    /* The reference's own curve, for each distinct scene (its scene
-     * parameters): 1/8, 1/4, 1/2 and all of the truth's iterations / 16,
-     * over the same error frames. */
-    enum { CURVE_LEVELS = 4, MAX_CURVES = 7 };
-    struct result curve[CURVE_LEVELS * MAX_CURVES];
-    int ncurve = 0;
-    for (int t = 0; ok && t < nsets && t < MAX_CURVES; t++) {
-        for (int level = level_max / 8; ok && level <= level_max; level *= 2) {
-            struct result *r = &curve[ncurve++];
+    return total;
+}
+
+/* Times variant `c` (median of the frames after a warm-up) and reads its
+ * images on the error frames. */
+static bool bench_time_variant(struct bench *b, int c, struct image images[MAX_ERROR_FRAMES], struct error *err)
+{
+    const struct variant *v = &b->variants[c];
+    struct result *r = &b->results[c];
+    snprintf(r->label, sizeof r->label, "%s", v->label);
+    memcpy(r->values, v->values, sizeof r->values);
+    r->technique = v->technique;
+    struct session_options so = {.script = b->script, .params = v->params, .width = b->cli->width,
+                                 .height = b->cli->height, .past_last_frame = true};
+    struct session *s = NULL;
+    bool ok = session_open(b->app, &so, &s, err) && apply_overrides(s, v, err) &&
+              session_render(s, b->frame, err) /* warm-up: shader compilation, uploads */ &&
+              session_reload(s, err) && apply_overrides(s, v, err);
+    static double totals[1024], per_pass[MAX_PASSES][1024];
+    bool have[MAX_ERROR_FRAMES] = {false};
+    for (int f = 0; ok && f < b->frames; f++) {
+        ok = session_render(s, b->frame + f, err);
+        for (int e = 0; ok && e < b->nerror; e++)
+            if (b->error_frames[e] == b->frame + f && !have[e])
+                have[e] = ok = session_read_linear(s, &images[e], err);
+        if (ok)
+            totals[f] = bench_frame_times(b, s->graph, c, f, per_pass);
+    }
+    for (int i = 0; ok && i < s->graph->count; i++) {
+        const struct graph_entry *e = &s->graph->entries[i];
+        size_t filled = strlen(r->report);
+        if (e->state == GRAPH_PASS_KEPT && e->pass->report[0] && filled + 4 < sizeof r->report)
+            snprintf(r->report + filled, sizeof r->report - filled, "%s%.40s: %.200s", filled ? "; " : "",
+                     e->pass->name, e->pass->report);
+    }
+    if (ok) {
+        r->frame_ms = median(totals, b->frames);
+        for (int p = 0; p < b->npasses; p++)
+            r->pass_ms[p] = per_pass[p][0] < 0 ? -1.0 : median(per_pass[p], b->frames);
+        b->width = s->width;
+        b->height = s->height;
+    }
+    /* the error frames the timing run did not pass through (in order:
+     * going back reloads the script, and its pass settings with it) */
+    for (int e = 0; ok && e < b->nerror; e++) {
+        if (have[e])
+            continue;
+        if (b->error_frames[e] < s->advanced)
+            ok = session_reload(s, err) && apply_overrides(s, v, err);
+        ok = ok && session_render(s, b->error_frames[e], err);
+        have[e] = ok = ok && session_read_linear(s, &images[e], err);
+    }
+    if (s)
+        session_close(s);
+    return ok;
+}
+
+/* The truth set of variant `v`'s scene parameters (pass parameters and a
+ * technique's selectors do not change the scene), made on first need. */
+static bool bench_truth_set(struct bench *b, const struct variant *v, int *out, struct error *err)
+{
+    uint64_t set_key = hash_params(1469598103934665603ULL, &v->truth_params);
+    for (int i = 0; i < b->nsets; i++)
+        if (b->sets[i].key == set_key) {
+            *out = i;
+            return true;
+        }
+    if (b->nsets >= MAX_TRUTHS)
+        return error_set(err, "more than %d distinct scenes", MAX_TRUTHS);
+    int set = b->nsets++;
+    struct truth_set *ts = &b->sets[set];
+    ts->key = set_key;
+    ts->params = v->truth_params;
+    ts->width = b->width;
+    ts->height = b->height;
+    size_t filled = 0;
+    for (int k = 0; k < b->cli->nsweeps && !b->technique_sweep; k++) {
+        if (strchr(b->sweeps[k].key, '.'))
+            continue;
+        snprintf(ts->values[k], sizeof ts->values[k], "%s", v->values[k]);
+        int w = snprintf(ts->label + filled, sizeof ts->label - filled, "%s%s=%s", filled ? " " : "",
+                         b->sweeps[k].key, v->values[k]);
+        if (w > 0 && filled + (size_t)w < sizeof ts->label)
+            filled += (size_t)w;
+    }
+    *out = set;
+    return true;
+}
+
+/* The truth of set `set` at error frame `frame` (rendered or read from the cache). */
+static bool bench_truth(struct bench *b, const struct variant *v, int set, int frame, int *out, struct error *err)
+{
+    for (int i = 0; i < b->ntruths; i++)
+        if (b->truths[i].set == set && b->truths[i].frame == frame) {
+            *out = i;
+            return true;
+        }
+    if (b->ntruths >= MAX_TRUTHS)
+        return error_set(err, "more than %d ground truths (scenes x error frames)", MAX_TRUTHS);
+    if (!get_truth(b->app, b->script, &v->truth_params, frame, b->width, b->height, &b->truth_options, b->cache,
+                   &b->truths[b->ntruths], err))
+        return false;
+    b->truths[b->ntruths].set = set;
+    *out = b->ntruths++;
+    return true;
+}
+
+/* `image`'s error against truth `t`, whole and in the caustic region, added
+ * to r's means (e: how many frames are in them already). */
+static bool bench_add_error(const struct truth *t, const struct image *image, struct result *r, int e,
+                            int *with_mask, struct error *err)
+{
+    struct image_metrics m;
+    if (!image_metrics_compute(image, &t->image, NULL, &m, err))
+        return false;
+    metrics_add(&r->all, &m, e);
+    if (t->has_mask) {
+        if (!image_metrics_compute(image, &t->image, &t->mask, &m, err))
+            return false;
+        metrics_add(&r->caustic, &m, (*with_mask)++);
+    }
+    return true;
+}
+
+/* Variant c: timed, then measured against its truths; one line on stdout. */
+static bool bench_variant(struct bench *b, int c, struct error *err)
+{
+    struct result *r = &b->results[c];
+    struct image images[MAX_ERROR_FRAMES];
+    memset(images, 0, sizeof images);
+    bool ok = bench_time_variant(b, c, images, err) && bench_truth_set(b, &b->variants[c], &r->truth, err);
+    int with_mask = 0;
+    for (int e = 0; ok && e < b->nerror; e++) {
+        int t = -1;
+        ok = bench_truth(b, &b->variants[c], r->truth, b->error_frames[e], &t, err) &&
+             bench_add_error(&b->truths[t], &images[e], r, e, &with_mask, err);
+    }
+    r->has_caustic = with_mask > 0;
+    for (int e = 0; e < b->nerror; e++)
+        image_destroy(&images[e]);
+    if (ok) {
+        printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms,
+               b->results[0].frame_ms > 0 ? r->frame_ms / b->results[0].frame_ms : 0.0, r->all.rel_rmse,
+               r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0);
+        if (r->report[0])
+            printf("    %s\n", r->report);
+        fflush(stdout);
+    }
+    return ok;
+}
+
+/* The reference's own curve, for each distinct scene (its scene
+ * parameters): 1/8, 1/4, 1/2 and all of the truth's iterations / 16,
+ * over the same error frames. */
+static bool bench_reference_curve(struct bench *b, struct error *err)
+{
+    bool ok = true;
+    for (int t = 0; ok && t < b->nsets && t < MAX_CURVES; t++) {
+        const struct truth_set *ts = &b->sets[t];
+        for (int level = b->level_max / 8; ok && level <= b->level_max; level *= 2) {
+            struct result *r = &b->curve[b->ncurve++];
             memset(r, 0, sizeof *r);
             r->truth = t;
             r->technique = -1;
-            snprintf(r->label, sizeof r->label, "reference %d it%s%s", level, sets[t].label[0] ? " " : "",
-                     sets[t].label);
-            for (int k = 0; k < ncolumns; k++)
-                snprintf(r->values[k], sizeof r->values[k], "%s", technique_sweep ? "" : sets[t].values[k]);
-            if (technique_sweep) {
+            snprintf(r->label, sizeof r->label, "reference %d it%s%s", level, ts->label[0] ? " " : "", ts->label);
+            for (int k = 0; k < b->ncolumns; k++)
+                snprintf(r->values[k], sizeof r->values[k], "%s", b->technique_sweep ? "" : ts->values[k]);
+            if (b->technique_sweep) {
                 snprintf(r->values[0], sizeof r->values[0], "reference");
                 snprintf(r->values[1], sizeof r->values[1], "%d it", level);
             }
             int with_mask = 0;
-            for (int e = 0; ok && e < nerror; e++) {
+            for (int e = 0; ok && e < b->nerror; e++) {
                 int ti = -1;
-                for (int i = 0; i < ntruths; i++)
-                    if (truths[i].set == t && truths[i].frame == error_frames[e])
+                for (int i = 0; i < b->ntruths; i++)
+                    if (b->truths[i].set == t && b->truths[i].frame == b->error_frames[e])
                         ti = i;
-                struct ref_options ro = truth_options;
+                struct ref_options ro = b->truth_options;
                 ro.iterations = level;
                 ro.progress = false;
-                ro.seed = truth_options.seed + 1000u + (uint64_t)level; /* independent of the truth's samples */
-                struct session_options so = {.script = script, .params = sets[t].params, .width = sets[t].width,
-                                             .height = sets[t].height, .past_last_frame = true};
+                ro.seed = b->truth_options.seed + 1000u + (uint64_t)level; /* independent of the truth's samples */
+                struct session_options so = {.script = b->script, .params = ts->params, .width = ts->width,
+                                             .height = ts->height, .past_last_frame = true};
                 struct session *s = NULL;
                 struct image img = {0};
                 struct ref_stats st = {0};
-                ok = session_open(app, &so, &s, &err);
+                ok = session_open(b->app, &so, &s, err);
                 if (ok) {
-                    ok = session_reference(s, error_frames[e], &ro, &img, &st, &err);
+                    ok = session_reference(s, b->error_frames[e], &ro, &img, &st, err);
                     session_close(s);
                 }
                 r->frame_ms += (st.seconds * 1000.0 - r->frame_ms) / (e + 1);
-                struct image_metrics m;
-                ok = ok && image_metrics_compute(&img, &truths[ti].image, NULL, &m, &err);
-                if (ok)
-                    metrics_add(&r->all, &m, e);
-                if (ok && truths[ti].has_mask) {
-                    ok = image_metrics_compute(&img, &truths[ti].image, &truths[ti].mask, &m, &err);
-                    if (ok)
-                        metrics_add(&r->caustic, &m, with_mask++);
-                }
+                ok = ok && bench_add_error(&b->truths[ti], &img, r, e, &with_mask, err);
                 image_destroy(&img);
             }
             r->has_caustic = with_mask > 0;
@@ -740,161 +789,193 @@ int cmd_bench(struct app *app, struct cli *cli)
                        r->all.rel_rmse, r->caustic.rel_rmse);
         }
     }
+    return ok;
+}
+
+static const struct result *bench_row(const struct bench *b, int c)
+{
+    return c < b->nvariants ? &b->results[c] : &b->curve[c - b->nvariants];
+}
+
+/* results.csv and results.md (md left open for the frontier). */
+static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/results.csv", b->dir);
+    FILE *csv = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/results.md", b->dir);
+    FILE *md = fopen(path, "w");
+    if (!csv || !md) {
+        if (csv)
+            fclose(csv);
+        if (md)
+            fclose(md);
+        return error_set(err, "%s: cannot write the results", b->dir);
+    }
+    fprintf(csv, "kind");
+    fprintf(md, "| variant |");
+    for (int k = 0; k < b->ncolumns; k++)
+        fprintf(csv, ",%s", b->columns[k]);
+    fprintf(csv, ",frame_ms,frame_ratio");
+    fprintf(md, " frame ms | × first |");
+    for (int p = 0; p < b->npasses; p++) {
+        fprintf(csv, ",%s_ms", b->pass_names[p]);
+        fprintf(md, " %s ms |", b->pass_names[p]);
+    }
+    fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error\n");
+    fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | passes' reports |\n|---|");
+    for (int p = 0; p < b->npasses + 6; p++)
+        fprintf(md, "---:|");
+    fprintf(md, "---|\n");
+    for (int c = 0; c < b->nvariants + b->ncurve; c++) {
+        const struct result *r = bench_row(b, c);
+        fprintf(csv, "%s", c < b->nvariants ? "gpu" : "reference");
+        for (int k = 0; k < b->ncolumns; k++)
+            fprintf(csv, ",%s", r->values[k]); /* a reference row: its scene's parameters */
+        /* the frame time relative to the first variant (e.g. plain shading) */
+        double ratio = b->results[0].frame_ms > 0 ? r->frame_ms / b->results[0].frame_ms : 0.0;
+        fprintf(csv, ",%.4f,%.4f", r->frame_ms, ratio);
+        fprintf(md, "| %s | %.3f | %.2f |", r->label, r->frame_ms, ratio);
+        for (int p = 0; p < b->npasses; p++) {
+            if (c < b->nvariants && r->pass_ms[p] >= 0) {
+                fprintf(csv, ",%.4f", r->pass_ms[p]);
+                fprintf(md, " %.3f |", r->pass_ms[p]);
+            } else {
+                fprintf(csv, ",");
+                fprintf(md, " |");
+            }
+        }
+        char caustic_text[32] = "";
+        if (r->has_caustic)
+            snprintf(caustic_text, sizeof caustic_text, "%.6g", r->caustic.rel_rmse);
+        fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                caustic_text, ranked_error(r, b->caustic));
+        fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                r->has_caustic ? caustic_text : "-", c < b->nvariants ? r->report : "");
+    }
+    if (b->nerror > 1) {
+        fprintf(md, "\nErrors are means over frames");
+        for (int i = 0; i < b->nerror; i++)
+            fprintf(md, "%s %d", i ? "," : "", b->error_frames[i]);
+        fprintf(md, " (of %d); times are medians of %d frames from frame %d.\n", b->scene_frames, b->frames,
+                b->frame);
+    }
+    fclose(csv);
+    *md_out = md;
+    return true;
+}
+
+/* A technique sweep's frontier table (results.md, frontier.md, stdout) and
+ * the CSV kept for `caustica choose`. */
+static bool bench_write_frontier(struct bench *b, FILE *md, struct error *err)
+{
+    mark_frontier(b->results, b->nvariants, b->caustic, b->on_front);
+    char machine[400], path[4400];
+    snprintf(machine, sizeof machine, "%dx%d, %s, %ld CPU cores", b->width, b->height,
+             b->app->gl ? b->app->gl->renderer : "?", sysconf(_SC_NPROCESSORS_ONLN));
+    snprintf(path, sizeof path, "%s/frontier.md", b->dir);
+    FILE *fr = fopen(path, "w");
+    if (!fr)
+        return error_set(err, "%s: cannot write", path);
+    write_frontier(fr, b->list, b->results, b->nvariants, b->curve, b->ncurve, b->caustic, machine);
+    fclose(fr);
+    fputs("\n", md);
+    write_frontier(md, b->list, b->results, b->nvariants, b->curve, b->ncurve, b->caustic, machine);
+    write_frontier(stdout, b->list, b->results, b->nvariants, b->curve, b->ncurve, b->caustic, machine);
+    char cached[4400], from[4400];
+    snprintf(from, sizeof from, "%s/results.csv", b->dir);
+    return bench_sweep_cache_path(b->cli, b->dir, cached, sizeof cached, err) && copy_file(from, cached, err);
+}
+
+/* plot.svg: every variant and each reference curve, error against time. */
+static bool bench_write_plot(struct bench *b, struct error *err)
+{
+    static struct plot_point points[MAX_COMBOS + CURVE_LEVELS * MAX_CURVES];
+    int np = 0;
+    int techniques = b->technique_sweep ? b->list->count : 1;
+    for (int c = 0; c < b->nvariants + b->ncurve; c++) {
+        const struct result *r = bench_row(b, c);
+        points[np].x = r->frame_ms;
+        points[np].y = ranked_error(r, b->caustic);
+        /* series 0 (or one per technique): the GPU variants; then one reference curve per scene */
+        points[np].series = c < b->nvariants ? (b->technique_sweep ? r->technique : 0) : techniques + r->truth;
+        points[np].joined = c < b->nvariants ? b->on_front[c] : true;
+        snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
+        np++;
+    }
+    char title[600];
+    if (b->nerror > 1)
+        snprintf(title, sizeof title, "%s: error against time (mean of %d frames, %dx%d)", b->script, b->nerror,
+                 b->width, b->height);
+    else
+        snprintf(title, sizeof title, "%s: error against time (frame %d, %dx%d)", b->script, b->frame, b->width,
+                 b->height);
+    struct plot plot = {
+        .title = title,
+        .x_label = "time per frame (ms), log",
+        .y_label = b->caustic ? "rel_rmse in the caustic region, log" : "rel_rmse, log",
+        .series_names = {"GPU variants"},
+        .series_lines = {false},
+        .series_count = 1,
+        .points = points,
+        .count = np,
+    };
+    if (b->technique_sweep) {
+        for (int t = 0; t < b->list->count && t < PLOT_MAX_SERIES; t++) {
+            plot.series_names[t] = b->list->items[t].name;
+            plot.series_lines[t] = true; /* its frontier */
+        }
+        plot.series_count = b->list->count;
+    }
+    char names[MAX_CURVES][260];
+    for (int t = 0; t < b->nsets && t < MAX_CURVES && techniques + t < PLOT_MAX_SERIES; t++) {
+        snprintf(names[t], sizeof names[t], "reference%s%s", b->sets[t].label[0] ? ": " : "", b->sets[t].label);
+        plot.series_names[techniques + t] = names[t];
+        plot.series_lines[techniques + t] = true;
+        plot.series_count = techniques + t + 1;
+    }
+    char path[4400];
+    snprintf(path, sizeof path, "%s/plot.svg", b->dir);
+    return bench_plot_write_svg(path, &plot, err);
+}
+
+int cmd_bench(struct app *app, struct cli *cli)
+{
+    if (cli->npositional != 1) {
+        fprintf(stderr, "caustica: bench needs one scene script\n");
+        cli_usage(stderr);
+        return EXIT_USAGE;
+    }
+    struct bench b = {.app = app, .cli = cli, .script = cli->positional[0], .dir = cli->output ? cli->output : "bench"};
+    struct error err;
+    int code = EXIT_SCENE_ERROR;
+    bool ok = bench_plan(&b, &code, &err);
+    if (ok)
+        code = EXIT_SCENE_ERROR;
+    for (int c = 0; ok && c < b.nvariants; c++)
+        ok = bench_variant(&b, c, &err);
+    ok = ok && bench_reference_curve(&b, &err);
     /* the error ranked: the caustic region's where there is one (or the
      * scene's techniques table says "image") */
-    bool caustic = nsets > 0 && results[0].has_caustic &&
-                   !(technique_sweep && list->metric == TECHNIQUE_METRIC_IMAGE);
-    /* results.csv, results.md, plot.svg */
-    char path[4400];
-    FILE *csv = NULL, *md = NULL;
-    if (ok) {
-        snprintf(path, sizeof path, "%s/results.csv", dir);
-        csv = fopen(path, "w");
-        snprintf(path, sizeof path, "%s/results.md", dir);
-        md = fopen(path, "w");
-        ok = csv && md;
-        if (!ok)
-            error_set(&err, "%s: cannot write the results", dir);
-    }
-    if (ok) {
-        fprintf(csv, "kind");
-        fprintf(md, "| variant |");
-        for (int k = 0; k < ncolumns; k++)
-            fprintf(csv, ",%s", columns[k]);
-        fprintf(csv, ",frame_ms,frame_ratio");
-        fprintf(md, " frame ms | × first |");
-        for (int p = 0; p < npasses; p++) {
-            fprintf(csv, ",%s_ms", pass_names[p]);
-            fprintf(md, " %s ms |", pass_names[p]);
-        }
-        fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error\n");
-        fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | passes' reports |\n|---|");
-        for (int p = 0; p < npasses + 6; p++)
-            fprintf(md, "---:|");
-        fprintf(md, "---|\n");
-        for (int c = 0; c < nvariants + ncurve; c++) {
-            const struct result *r = c < nvariants ? &results[c] : &curve[c - nvariants];
-            fprintf(csv, "%s", c < nvariants ? "gpu" : "reference");
-            for (int k = 0; k < ncolumns; k++)
-                fprintf(csv, ",%s", r->values[k]); /* a reference row: its scene's parameters */
-            /* the frame time relative to the first variant (e.g. plain shading) */
-            double ratio = results[0].frame_ms > 0 ? r->frame_ms / results[0].frame_ms : 0.0;
-            fprintf(csv, ",%.4f,%.4f", r->frame_ms, ratio);
-            fprintf(md, "| %s | %.3f | %.2f |", r->label, r->frame_ms, ratio);
-            for (int p = 0; p < npasses; p++) {
-                if (c < nvariants && r->pass_ms[p] >= 0) {
-                    fprintf(csv, ",%.4f", r->pass_ms[p]);
-                    fprintf(md, " %.3f |", r->pass_ms[p]);
-                } else {
-                    fprintf(csv, ",");
-                    fprintf(md, " |");
-                }
-            }
-            char caustic_text[32] = "";
-            if (r->has_caustic)
-                snprintf(caustic_text, sizeof caustic_text, "%.6g", r->caustic.rel_rmse);
-            fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                    caustic_text, ranked_error(r, caustic));
-            fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                    r->has_caustic ? caustic_text : "-", c < nvariants ? r->report : "");
-        }
-        if (nerror > 1) {
-            fprintf(md, "\nErrors are means over frames");
-            for (int i = 0; i < nerror; i++)
-                fprintf(md, "%s %d", i ? "," : "", error_frames[i]);
-            fprintf(md, " (of %d); times are medians of %d frames from frame %d.\n", scene_frames, frames, frame);
-        }
-    }
-    if (csv)
-        fclose(csv);
-    bool *on_front = calloc((size_t)nvariants + 1, sizeof *on_front);
-    if (ok && technique_sweep) {
-        /* the frontier table, in results.md, frontier.md and on stdout */
-        mark_frontier(results, nvariants, caustic, on_front);
-        char machine[400];
-        snprintf(machine, sizeof machine, "%dx%d, %s, %ld CPU cores", width, height, app->gl ? app->gl->renderer : "?",
-                 sysconf(_SC_NPROCESSORS_ONLN));
-        snprintf(path, sizeof path, "%s/frontier.md", dir);
-        FILE *fr = fopen(path, "w");
-        if (!fr)
-            ok = error_set(&err, "%s: cannot write", path);
-        else {
-            write_frontier(fr, list, results, nvariants, curve, ncurve, caustic, machine);
-            fclose(fr);
-            fputs("\n", md);
-            write_frontier(md, list, results, nvariants, curve, ncurve, caustic, machine);
-            write_frontier(stdout, list, results, nvariants, curve, ncurve, caustic, machine);
-        }
-    }
+    b.caustic = b.nsets > 0 && b.results[0].has_caustic &&
+                !(b.technique_sweep && b.list->metric == TECHNIQUE_METRIC_IMAGE);
+    FILE *md = NULL;
+    ok = ok && bench_write_tables(&b, &md, &err);
+    b.on_front = ok ? calloc((size_t)b.nvariants + 1, sizeof *b.on_front) : NULL;
+    if (ok && !b.on_front)
+        ok = error_set(&err, "out of memory");
+    if (ok && b.technique_sweep)
+        ok = bench_write_frontier(&b, md, &err);
     if (md)
         fclose(md);
-    if (ok && technique_sweep) {
-        /* kept for `caustica choose` */
-        char cached[4400], from[4400];
-        snprintf(from, sizeof from, "%s/results.csv", dir);
-        ok = bench_sweep_cache_path(cli, dir, cached, sizeof cached, &err) && copy_file(from, cached, &err);
-    }
-    if (ok) {
-        struct plot_point points[MAX_COMBOS + CURVE_LEVELS * MAX_CURVES];
-        int np = 0;
-        int techniques = technique_sweep ? list->count : 1;
-        for (int c = 0; c < nvariants + ncurve; c++) {
-            const struct result *r = c < nvariants ? &results[c] : &curve[c - nvariants];
-            points[np].x = r->frame_ms;
-            points[np].y = ranked_error(r, caustic);
-            /* series 0 (or one per technique): the GPU variants; then one reference curve per scene */
-            points[np].series = c < nvariants ? (technique_sweep ? r->technique : 0) : techniques + r->truth;
-            points[np].joined = c < nvariants ? on_front[c] : true;
-            snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
-            np++;
-        }
-        char title[600];
-        snprintf(title, sizeof title, "%s: error against time (%s %d, %dx%d)", script, nerror > 1 ? "frames" : "frame",
-                 nerror > 1 ? nerror : frame, width, height);
-        if (nerror > 1)
-            snprintf(title, sizeof title, "%s: error against time (mean of %d frames, %dx%d)", script, nerror, width,
-                     height);
-        struct plot plot = {
-            .title = title,
-            .x_label = "time per frame (ms), log",
-            .y_label = caustic ? "rel_rmse in the caustic region, log" : "rel_rmse, log",
-            .series_names = {"GPU variants"},
-            .series_lines = {false},
-            .series_count = 1,
-            .points = points,
-            .count = np,
-        };
-        if (technique_sweep) {
-            for (int t = 0; t < list->count && t < PLOT_MAX_SERIES; t++) {
-                plot.series_names[t] = list->items[t].name;
-                plot.series_lines[t] = true; /* its frontier */
-            }
-            plot.series_count = list->count;
-        }
-        char names[MAX_CURVES][260];
-        for (int t = 0; t < nsets && t < MAX_CURVES && techniques + t < PLOT_MAX_SERIES; t++) {
-            snprintf(names[t], sizeof names[t], "reference%s%s", sets[t].label[0] ? ": " : "", sets[t].label);
-            plot.series_names[techniques + t] = names[t];
-            plot.series_lines[techniques + t] = true;
-            plot.series_count = techniques + t + 1;
-        }
-        snprintf(path, sizeof path, "%s/plot.svg", dir);
-        ok = bench_plot_write_svg(path, &plot, &err);
-        if (ok)
-            printf("wrote %s/results.csv, %s/results.md%s and %s/plot.svg\n", dir, dir,
-                   technique_sweep ? ", frontier.md" : "", dir);
-    }
-    free(on_front);
-    for (int i = 0; i < ntruths; i++)
-        truth_release(&truths[i]);
-    free(truths);
-    free(sets);
-    free(results);
-    free(variants);
-    free(list);
+    ok = ok && bench_write_plot(&b, &err);
+    if (ok)
+        printf("wrote %s/results.csv, %s/results.md%s and %s/plot.svg\n", b.dir, b.dir,
+               b.technique_sweep ? ", frontier.md" : "", b.dir);
+    bench_release(&b);
     if (!ok) {
         cli_print_error(&err);
-        return EXIT_SCENE_ERROR;
+        return code;
     }
     return 0;
 }

@@ -1038,6 +1038,240 @@ static double noise_estimate(const struct pixel *pixels, size_t npix, int iterat
     return level > 0.0 ? 0.5 * sqrt(diff / level) : 0.0;
 }
 
+/* What a render adds up over its iterations. */
+struct sppm_totals {
+    long long emitted, caustic_total;
+    double caustic_power[3];
+    double photon_passes;                  /* iterations whose photons were traced, a cut-short one counting as its fraction */
+    double gather_seconds, gather_photons; /* the last volume gather's cost */
+    double volume_radius;
+};
+
+/* One iteration's photons (Hachisuka & Jensen 2009): traced into the
+ * visible points' grid (the first iteration after a pilot that aims the
+ * lights), reduced in chunk order, the volume photons gathered, and each
+ * visible point's radius and flux updated. */
+static void photon_iteration(struct job *job, int it, int threads, size_t npix, struct sppm_totals *t)
+{
+    const struct ref_scene *rs = job->rs;
+    struct budget *budget = job->budget;
+    struct pixel *pixels = job->pixels;
+    struct photon_hits *chunks = job->chunks;
+    struct volume_photons *volume_chunks = job->volume_chunks;
+    if (it == 0)
+        pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
+    struct grid grid;
+    grid_build(&grid, pixels, (int)npix);
+    job->grid = &grid;
+    /* With a medium, the volume gather after the photons must fit in the
+     * budget too: reserve what the last one cost per photon for this
+     * iteration's photons (the first iteration, with nothing to go by,
+     * gives photons half of what is left). */
+    budget->photon_deadline = budget->deadline;
+    atomic_store(&budget->photons_cut, 0);
+    if (budget->deadline > 0 && job->medium->present) {
+        double now = log_now(), left = budget->deadline - now;
+        double reserve = t->gather_photons > 0 ? t->gather_seconds * (double)job->photons_total / t->gather_photons
+                                               : 0.5 * left;
+        budget->photon_deadline = now + fmax(left - reserve, 0.1 * left);
+    }
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        long begin, end;
+        chunk_range(job, c, &begin, &end);
+        budget->chunk_reached[c] = begin; /* a chunk no thread reached traced nothing */
+    }
+    run_threads(job, threads, photon_thread);
+    /* An iteration cut short by the budget traced a fraction f of its
+     * photons: it counts as f of an iteration (the estimate divides the flux
+     * by the photons traced, as a photon map does), rather than being scaled
+     * up to a whole one, which would give its few photons a weight they
+     * cannot carry. Each light's photons are scaled by f x (its photons) /
+     * (those traced), 1 unless the cut left the lights unevenly traced;
+     * without a budget every scale is 1 and f = 1. */
+    long traced_of[SCENE_MAX_GPU_LIGHTS];
+    long long traced = 0;
+    for (int l = 0; l < rs->light_count; l++) {
+        traced_of[l] = photons_traced(job, budget, l);
+        traced += traced_of[l];
+    }
+    double pass_fraction = job->photons_total > 0 ? (double)traced / (double)job->photons_total : 0.0;
+    double scale[SCENE_MAX_GPU_LIGHTS];
+    for (int l = 0; l < rs->light_count; l++)
+        scale[l] = traced_of[l] > 0 ? pass_fraction * (double)job->photons_of[l] / (double)traced_of[l] : 0.0;
+    /* Reduce in chunk order: the same sums whatever the thread count. */
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            const struct photon_hit *hit = &chunks[c].items[k];
+            struct pixel *px = &pixels[hit->pixel];
+            double f = scale[hit->light];
+            px->phi = dv_add(px->phi, dv(hit->flux[0] * f, hit->flux[1] * f, hit->flux[2] * f));
+            px->m++;
+        }
+        chunks[c].count = 0;
+        t->caustic_total += job->caustic_photons[c];
+        /* (the power statistic is scaled for the whole pass, exact unless
+         * several lights share a pass the budget cut short) */
+        for (int k = 0; k < 3; k++)
+            t->caustic_power[k] += job->caustic_power[c][k];
+    }
+    grid_release(&grid);
+    adapt_emission(job->aims, job->emitters, rs->light_count);
+    t->emitted += traced;
+    t->photon_passes += pass_fraction;
+    job->pass_fraction = pass_fraction;
+    if (job->medium->present) {
+        for (int c = 0; c < PHOTON_CHUNKS; c++)
+            for (size_t k = 0; k < volume_chunks[c].count; k++) {
+                struct volume_photon *vp = &volume_chunks[c].items[k];
+                for (int q = 0; q < 3; q++)
+                    vp->flux[q] = (float)(vp->flux[q] * scale[vp->light]);
+            }
+        /* Volume caustics: gather this iteration's volume photons with the
+         * current radius, which shrinks as r^3 ~ i^(alpha - 1) (Knaus &
+         * Zwicker 2011), so the average over iterations converges. */
+        struct volume_grid vgrid;
+        volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
+        job->volume_grid = &vgrid;
+        double gather_start = log_now();
+        run_threads(job, threads, volume_thread);
+        t->gather_seconds = log_now() - gather_start;
+        t->gather_photons = (double)traced;
+        volume_grid_release(&vgrid);
+        for (int c = 0; c < PHOTON_CHUNKS; c++)
+            volume_chunks[c].count = 0;
+        t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
+    }
+    /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
+    for (size_t i = 0; i < npix; i++) {
+        struct pixel *px = &pixels[i];
+        if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
+            dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
+            px->half[it % 2] = dv_add(px->half[it % 2], e);
+        }
+        if (px->m > 0) {
+            double n_new = px->n + SPPM_ALPHA * (double)px->m;
+            double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
+            double shrink = (r_new * r_new) / (px->radius * px->radius);
+            px->tau = dv_scale(dv_add(px->tau, px->phi), shrink);
+            px->n = n_new;
+            px->radius = r_new;
+        }
+        px->phi = dv(0, 0, 0);
+        px->m = 0;
+    }
+}
+
+/* After iteration `it`: the eye-path and volume estimates into the noise
+ * halves, the report line and the progress line. */
+static void iteration_report(const struct job *job, int it, size_t npix, double start, const struct sppm_totals *t)
+{
+    const struct ref_options *o = job->o;
+    struct pixel *pixels = job->pixels;
+    for (size_t i = 0; i < npix; i++) {
+        struct pixel *px = &pixels[i];
+        dvec3 d = dv_add(dv_sub(px->direct, px->direct_seen), dv_sub(px->volume, px->volume_seen));
+        px->half[it % 2] = dv_add(px->half[it % 2], d);
+        px->direct_seen = px->direct;
+        px->volume_seen = px->volume;
+    }
+    bool tty = job->budget->tty;
+    if (o->report) {
+        double noise = noise_estimate(pixels, npix, it + 1);
+        if (tty)
+            fputc('\n', stderr);
+        if (it == 0)
+            fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)\n",
+                    t->emitted, log_now() - start);
+        else
+            fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)\n",
+                    it + 1, t->emitted, log_now() - start, 100.0 * noise);
+    }
+    if (tty) {
+        double elapsed = log_now() - start;
+        /* Under a time budget the iteration count is open-ended: show the
+         * clock against the budget instead of a count that will never be
+         * reached. */
+        if (o->time_budget > 0)
+            fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s                ", it + 1,
+                    t->emitted, elapsed, o->time_budget);
+        else
+            fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left                  ", it + 1,
+                    o->iterations, t->emitted, elapsed / (it + 1) * (o->iterations - it - 1));
+        fflush(stderr);
+    }
+}
+
+/* The estimates into the image (and the caustic part into caustic_out):
+ * direct and volume radiance averaged over their samples, plus the photon
+ * estimate L = tau / (passes pi R^2) (each pass carries the lights' power
+ * between its photons, flux per photon = power / photons). */
+static void write_estimates(const struct pixel *pixels, size_t npix, const struct sppm_totals *t, struct image *out,
+                            struct image *caustic_out)
+{
+    double passes = t->photon_passes > 0 ? t->photon_passes : 1;
+    for (size_t i = 0; i < npix; i++) {
+        const struct pixel *px = &pixels[i];
+        dvec3 l = px->samples > 0 ? dv_scale(px->direct, 1.0 / px->samples) : dv(0, 0, 0);
+        /* (volume_samples sums the gathers' pass fractions) */
+        dvec3 volume = px->volume_samples > 0 ? dv_scale(px->volume, 1.0 / px->volume_samples) : dv(0, 0, 0);
+        l = dv_add(l, volume);
+        dvec3 lc = dv(0, 0, 0);
+        if (t->emitted > 0 && px->radius > 0 && px->n > 0)
+            lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
+        l = dv_add(l, lc);
+        if (caustic_out) {
+            /* the caustic part: surface caustics and volume caustics */
+            float *cd = caustic_out->rgba + i * 4;
+            cd[0] = (float)(lc.x + volume.x);
+            cd[1] = (float)(lc.y + volume.y);
+            cd[2] = (float)(lc.z + volume.z);
+            cd[3] = 1.0f;
+        }
+        float *dst = out->rgba + i * 4;
+        dst[0] = (float)l.x;
+        dst[1] = (float)l.y;
+        dst[2] = (float)l.z;
+        dst[3] = 1.0f;
+    }
+}
+
+/* The render's buffers: per pixel, per photon chunk, the budget. */
+struct sppm_buffers {
+    struct pixel *pixels;
+    struct photon_hits *chunks;
+    struct volume_photons *volume_chunks;
+    struct aim_log *aims;
+    struct budget *budget;
+};
+
+static void sppm_buffers_release(struct sppm_buffers *b)
+{
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        if (b->chunks)
+            free(b->chunks[c].items);
+        if (b->volume_chunks)
+            free(b->volume_chunks[c].items);
+        if (b->aims)
+            free(b->aims[c].items);
+    }
+    free(b->aims);
+    free(b->budget);
+    free(b->volume_chunks);
+    free(b->chunks);
+    free(b->pixels);
+}
+
+static bool sppm_buffers_create(struct sppm_buffers *b, size_t npix)
+{
+    memset(b, 0, sizeof *b);
+    b->pixels = calloc(npix, sizeof *b->pixels);
+    b->chunks = calloc(PHOTON_CHUNKS, sizeof *b->chunks);
+    b->volume_chunks = calloc(PHOTON_CHUNKS, sizeof *b->volume_chunks);
+    b->aims = calloc(PHOTON_CHUNKS, sizeof *b->aims);
+    b->budget = calloc(1, sizeof *b->budget);
+    return b->pixels && b->chunks && b->volume_chunks && b->aims && b->budget;
+}
+
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                       struct image *caustic_out, struct ref_stats *stats, struct error *err)
 {
@@ -1063,19 +1297,11 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
             return false;
         }
     size_t npix = (size_t)o->width * (size_t)o->height;
-    struct pixel *pixels = calloc(npix, sizeof *pixels);
-    struct photon_hits *chunks = calloc(PHOTON_CHUNKS, sizeof *chunks);
-    struct volume_photons *volume_chunks = calloc(PHOTON_CHUNKS, sizeof *volume_chunks);
-    struct aim_log *aims = calloc(PHOTON_CHUNKS, sizeof *aims);
-    struct budget *budget = calloc(1, sizeof *budget);
-    if (!pixels || !chunks || !volume_chunks || !aims || !budget || !image_create(out, o->width, o->height, err) ||
+    struct sppm_buffers buf;
+    if (!sppm_buffers_create(&buf, npix) || !image_create(out, o->width, o->height, err) ||
         (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
         image_destroy(out);
-        free(pixels);
-        free(chunks);
-        free(volume_chunks);
-        free(aims);
-        free(budget);
+        sppm_buffers_release(&buf);
         for (int l = 0; l < rs.light_count; l++)
             ref_emitter_release(&emitters[l]);
         ref_scene_release(&rs);
@@ -1089,24 +1315,25 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         threads = 1;
     struct ref_medium medium;
     ref_medium_init(&medium, scene->medium);
-    double volume_radius = 0.0;
+    struct sppm_totals totals = {0};
     if (medium.present) {
         dvec3 ext = dv_sub(medium.hi, medium.lo);
-        volume_radius = o->volume_radius > 0 ? o->volume_radius : 0.01 * sqrt(dv_dot(ext, ext));
+        totals.volume_radius = o->volume_radius > 0 ? o->volume_radius : 0.01 * sqrt(dv_dot(ext, ext));
     }
     struct media camera_media;
     dvec3 cam_origin, cam_dir;
     ref_scene_camera_ray(&rs, o->width * 0.5, o->height * 0.5, o->width, o->height, &cam_origin, &cam_dir);
     media_at(&rs, cam_origin, &camera_media);
 
+    struct budget *budget = buf.budget;
     atomic_init(&budget->cut, 0);
     atomic_init(&budget->photons_cut, 0);
     budget->start = start;
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
     budget->tty = o->progress && isatty(STDERR_FILENO);
-    struct job job = {.rs = &rs, .o = o, .pixels = pixels, .camera_media = &camera_media, .medium = &medium,
-                      .volume_chunks = volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size, .chunks = chunks,
-                      .budget = budget, .emitters = emitters, .aims = aims};
+    struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
+                      .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
+                      .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
         caustics = false;
     for (int l = 0; l < rs.light_count; l++) {
@@ -1114,12 +1341,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         for (int k = 0; k < 3; k++)
             job.emit_shift[l][k] = ref_rng_uniform(&shift_rng);
     }
-    long long emitted = 0, caustic_total = 0;
-    double caustic_power[3] = {0, 0, 0};
-    double photon_passes = 0; /* iterations whose photons were traced, a cut-short one counting as its fraction */
-    double gather_seconds = 0.0, gather_photons = 0.0; /* the last volume gather's cost */
     int it = 0;
-    bool tty = budget->tty;
     for (; it < o->iterations; it++) {
         job.iteration = it;
         budget->iteration = it;
@@ -1128,200 +1350,32 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         run_threads(&job, threads, camera_thread);
         if (atomic_load(&budget->cut))
             break; /* the eye pass ran out of time: no photons for a half-traced set of visible points */
-        if (caustics) {
-            if (it == 0)
-                pilot_photons(&job, threads, budget, volume_chunks, o->photons, pixels, npix);
-            struct grid grid;
-            grid_build(&grid, pixels, (int)npix);
-            job.grid = &grid;
-            /* With a medium, the volume gather after the photons must fit in
-             * the budget too: reserve what the last one cost per photon for
-             * this iteration's photons (the first iteration, with nothing to
-             * go by, gives photons half of what is left). */
-            budget->photon_deadline = budget->deadline;
-            atomic_store(&budget->photons_cut, 0);
-            if (budget->deadline > 0 && medium.present) {
-                double now = log_now(), left = budget->deadline - now;
-                double reserve = gather_photons > 0 ? gather_seconds * (double)job.photons_total / gather_photons
-                                                    : 0.5 * left;
-                budget->photon_deadline = now + fmax(left - reserve, 0.1 * left);
-            }
-            for (int c = 0; c < PHOTON_CHUNKS; c++) {
-                long begin, end;
-                chunk_range(&job, c, &begin, &end);
-                budget->chunk_reached[c] = begin; /* a chunk no thread reached traced nothing */
-            }
-            run_threads(&job, threads, photon_thread);
-            /* An iteration cut short by the budget traced a fraction f of
-             * its photons: it counts as f of an iteration (the estimate
-             * divides the flux by the photons traced, as a photon map does),
-             * rather than being scaled up to a whole one, which would give
-             * its few photons a weight they cannot carry. Each light's
-             * photons are scaled by f x (its photons) / (those traced), 1
-             * unless the cut left the lights unevenly traced; without a
-             * budget every scale is 1 and f = 1. */
-            long traced_of[SCENE_MAX_GPU_LIGHTS];
-            long long traced = 0;
-            for (int l = 0; l < rs.light_count; l++) {
-                traced_of[l] = photons_traced(&job, budget, l);
-                traced += traced_of[l];
-            }
-            double pass_fraction = job.photons_total > 0 ? (double)traced / (double)job.photons_total : 0.0;
-            double scale[SCENE_MAX_GPU_LIGHTS];
-            for (int l = 0; l < rs.light_count; l++)
-                scale[l] = traced_of[l] > 0 ? pass_fraction * (double)job.photons_of[l] / (double)traced_of[l] : 0.0;
-            /* Reduce in chunk order: the same sums whatever the thread count. */
-            for (int c = 0; c < PHOTON_CHUNKS; c++) {
-                for (size_t k = 0; k < chunks[c].count; k++) {
-                    const struct photon_hit *hit = &chunks[c].items[k];
-                    struct pixel *px = &pixels[hit->pixel];
-                    double f = scale[hit->light];
-                    px->phi = dv_add(px->phi, dv(hit->flux[0] * f, hit->flux[1] * f, hit->flux[2] * f));
-                    px->m++;
-                }
-                chunks[c].count = 0;
-                caustic_total += job.caustic_photons[c];
-                /* (the power statistic is scaled for the whole pass, exact
-                 * unless several lights share a pass the budget cut short) */
-                for (int k = 0; k < 3; k++)
-                    caustic_power[k] += job.caustic_power[c][k];
-            }
-            grid_release(&grid);
-            adapt_emission(aims, emitters, rs.light_count);
-            emitted += traced;
-            photon_passes += pass_fraction;
-            job.pass_fraction = pass_fraction;
-            if (medium.present) {
-                for (int c = 0; c < PHOTON_CHUNKS; c++)
-                    for (size_t k = 0; k < volume_chunks[c].count; k++) {
-                        struct volume_photon *vp = &volume_chunks[c].items[k];
-                        for (int q = 0; q < 3; q++)
-                            vp->flux[q] = (float)(vp->flux[q] * scale[vp->light]);
-                    }
-                /* Volume caustics: gather this iteration's volume photons with
-                 * the current radius, which shrinks as r^3 ~ i^(alpha - 1)
-                 * (Knaus & Zwicker 2011), so the average over iterations
-                 * converges. */
-                struct volume_grid vgrid;
-                volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, volume_radius);
-                job.volume_grid = &vgrid;
-                double gather_start = log_now();
-                run_threads(&job, threads, volume_thread);
-                gather_seconds = log_now() - gather_start;
-                gather_photons = (double)traced;
-                volume_grid_release(&vgrid);
-                for (int c = 0; c < PHOTON_CHUNKS; c++)
-                    volume_chunks[c].count = 0;
-                volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
-            }
-            /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
-            for (size_t i = 0; i < npix; i++) {
-                struct pixel *px = &pixels[i];
-                if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
-                    dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
-                    px->half[it % 2] = dv_add(px->half[it % 2], e);
-                }
-                if (px->m > 0) {
-                    double n_new = px->n + SPPM_ALPHA * (double)px->m;
-                    double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
-                    double shrink = (r_new * r_new) / (px->radius * px->radius);
-                    px->tau = dv_scale(dv_add(px->tau, px->phi), shrink);
-                    px->n = n_new;
-                    px->radius = r_new;
-                }
-                px->phi = dv(0, 0, 0);
-                px->m = 0;
-            }
-        }
-        /* this iteration's eye-path and volume estimates, for the noise report */
-        for (size_t i = 0; i < npix; i++) {
-            struct pixel *px = &pixels[i];
-            dvec3 d = dv_add(dv_sub(px->direct, px->direct_seen), dv_sub(px->volume, px->volume_seen));
-            px->half[it % 2] = dv_add(px->half[it % 2], d);
-            px->direct_seen = px->direct;
-            px->volume_seen = px->volume;
-        }
-        if (o->report) {
-            double noise = noise_estimate(pixels, npix, it + 1);
-            if (tty)
-                fputc('\n', stderr);
-            if (it == 0)
-                fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)\n",
-                        emitted, log_now() - start);
-            else
-                fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)\n",
-                        it + 1, emitted, log_now() - start, 100.0 * noise);
-        }
-        double elapsed = log_now() - start;
-        if (tty) {
-            /* Under a time budget the iteration count is open-ended: show the
-             * clock against the budget instead of a count that will never be
-             * reached. */
-            if (o->time_budget > 0)
-                fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s                ", it + 1,
-                        emitted, elapsed, o->time_budget);
-            else
-                fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left                  ", it + 1,
-                        o->iterations, emitted, elapsed / (it + 1) * (o->iterations - it - 1));
-            fflush(stderr);
-        }
+        if (caustics)
+            photon_iteration(&job, it, threads, npix, &totals);
+        iteration_report(&job, it, npix, start, &totals);
         /* (photons stopped early only to leave the gather its time do not
          * end the render: the next iteration may still fit) */
+        double elapsed = log_now() - start;
         if (atomic_load(&budget->cut) || (o->time_budget > 0 && elapsed >= o->time_budget)) {
             it++;
             break;
         }
     }
-    if (tty)
+    if (budget->tty)
         fputc('\n', stderr);
-    int iterations = it > 0 ? it : 1;
-    double passes = photon_passes > 0 ? photon_passes : 1;
-    for (size_t i = 0; i < npix; i++) {
-        const struct pixel *px = &pixels[i];
-        dvec3 l = px->samples > 0 ? dv_scale(px->direct, 1.0 / px->samples) : dv(0, 0, 0);
-        dvec3 volume = px->volume_samples > 0 ? dv_scale(px->volume, 1.0 / px->volume_samples) : dv(0, 0, 0);
-        l = dv_add(l, volume);
-        /* (volume_samples sums the gathers' pass fractions) */
-        /* Each photon pass carries the lights' power between its photons
-         * (flux per photon = power / photons), so tau averages over the
-         * passes: L = tau / (passes pi R^2). */
-        dvec3 lc = dv(0, 0, 0);
-        if (emitted > 0 && px->radius > 0 && px->n > 0)
-            lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
-        l = dv_add(l, lc);
-        if (caustic_out) {
-            /* the caustic part: surface caustics and volume caustics */
-            float *cd = caustic_out->rgba + i * 4;
-            cd[0] = (float)(lc.x + volume.x);
-            cd[1] = (float)(lc.y + volume.y);
-            cd[2] = (float)(lc.z + volume.z);
-            cd[3] = 1.0f;
-        }
-        float *dst = out->rgba + i * 4;
-        dst[0] = (float)l.x;
-        dst[1] = (float)l.y;
-        dst[2] = (float)l.z;
-        dst[3] = 1.0f;
-    }
+    write_estimates(buf.pixels, npix, &totals, out, caustic_out);
     if (stats) {
-        stats->noise = noise_estimate(pixels, npix, photon_passes > 0 ? (int)ceil(photon_passes) : (it > 0 ? it : 1));
-        stats->iterations = iterations;
-        stats->photons = emitted;
-        stats->caustic_photons = caustic_total;
+        double passes = totals.photon_passes > 0 ? totals.photon_passes : 1;
+        stats->noise = noise_estimate(buf.pixels, npix,
+                                      totals.photon_passes > 0 ? (int)ceil(totals.photon_passes) : (it > 0 ? it : 1));
+        stats->iterations = it > 0 ? it : 1;
+        stats->photons = totals.emitted;
+        stats->caustic_photons = totals.caustic_total;
         stats->seconds = log_now() - start;
         for (int k = 0; k < 3; k++)
-            stats->caustic_power[k] = caustic_power[k] / passes;
+            stats->caustic_power[k] = totals.caustic_power[k] / passes;
     }
-    for (int c = 0; c < PHOTON_CHUNKS; c++) {
-        free(chunks[c].items);
-        free(volume_chunks[c].items);
-        free(aims[c].items);
-    }
-    free(aims);
-    free(budget);
-    free(volume_chunks);
-    free(chunks);
-    free(pixels);
+    sppm_buffers_release(&buf);
     for (int l = 0; l < rs.light_count; l++)
         ref_emitter_release(&emitters[l]);
     ref_scene_release(&rs);

@@ -1,4 +1,4 @@
-/* Objects, lights, materials and the scene that borrows them. */
+/* Objects, lights and the scene that borrows them (materials: material.c). */
 #include "scene/scene.h"
 #include "scene/water.h"
 
@@ -7,39 +7,6 @@
 
 #include "core/array.h"
 #include <string.h>
-
-const char *material_kind_name(enum material_kind kind)
-{
-    switch (kind) {
-    case MATERIAL_DIFFUSE: return "diffuse";
-    case MATERIAL_GLASS: return "glass";
-    case MATERIAL_MIRROR: return "mirror";
-    case MATERIAL_WATER: return "water";
-    }
-    return "?";
-}
-
-unsigned material_role(const struct material *m)
-{
-    switch (m->kind) {
-    case MATERIAL_GLASS: return OBJECT_ROLE_GLASS;
-    case MATERIAL_WATER: return OBJECT_ROLE_WATER;
-    case MATERIAL_MIRROR: return OBJECT_ROLE_MIRROR;
-    case MATERIAL_DIFFUSE: break;
-    }
-    return OBJECT_ROLE_RECEIVER;
-}
-
-const char *object_role_name(unsigned role)
-{
-    switch (role) {
-    case OBJECT_ROLE_GLASS: return "glass";
-    case OBJECT_ROLE_WATER: return "water";
-    case OBJECT_ROLE_MIRROR: return "mirror";
-    case OBJECT_ROLE_RECEIVER: return "receiver";
-    default: return "object";
-    }
-}
 
 unsigned object_role(const struct object *obj) { return obj->visible ? material_role(&obj->material) : 0u; }
 

@@ -1,5 +1,5 @@
 /* Textures: their texels, the reference's sampling (the GPU's filter at
- * level 0), and the material's references to them. */
+ * level 0) and the texture references materials hold (material.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -189,39 +189,4 @@ vec3 texture_sample(const struct texture_ref *ref, const float uv_in[2], bool sr
     vec3 a = vec3_lerp(texel(t, x0, y0, srgb), texel(t, x1, y0, srgb), ax);
     vec3 b = vec3_lerp(texel(t, x0, y1, srgb), texel(t, x1, y1, srgb), ax);
     return vec3_lerp(a, b, ay);
-}
-
-void material_init(struct material *m, enum material_kind kind)
-{
-    memset(m, 0, sizeof *m);
-    m->kind = kind;
-    m->color = kind == MATERIAL_MIRROR ? vec3_make(1, 1, 1) : vec3_make(0.8f, 0.8f, 0.8f);
-    m->ior = kind == MATERIAL_WATER ? 1.33f : 1.5f;
-    texture_ref_init(&m->base_color);
-    texture_ref_init(&m->normal);
-    texture_ref_init(&m->emissive);
-}
-
-void material_assign(struct material *dst, const struct material *src)
-{
-    if (dst == src)
-        return;
-    texture_retain(src->base_color.texture);
-    texture_retain(src->normal.texture);
-    texture_retain(src->emissive.texture);
-    material_release(dst);
-    *dst = *src;
-}
-
-void material_release(struct material *m)
-{
-    texture_destroy(m->base_color.texture);
-    texture_destroy(m->normal.texture);
-    texture_destroy(m->emissive.texture);
-    m->base_color.texture = m->normal.texture = m->emissive.texture = NULL;
-}
-
-bool material_has_textures(const struct material *m)
-{
-    return m->base_color.texture || m->normal.texture || m->emissive.texture;
 }

@@ -1,0 +1,74 @@
+/* Materials: their kinds, the role each gives an object (the one
+ * predicate passes, lint and the reference choose objects by), and the
+ * references a material holds to its textures. */
+#include <string.h>
+
+#include "scene/scene.h"
+
+const char *material_kind_name(enum material_kind kind)
+{
+    switch (kind) {
+    case MATERIAL_DIFFUSE: return "diffuse";
+    case MATERIAL_GLASS: return "glass";
+    case MATERIAL_MIRROR: return "mirror";
+    case MATERIAL_WATER: return "water";
+    }
+    return "?";
+}
+
+unsigned material_role(const struct material *m)
+{
+    switch (m->kind) {
+    case MATERIAL_GLASS: return OBJECT_ROLE_GLASS;
+    case MATERIAL_WATER: return OBJECT_ROLE_WATER;
+    case MATERIAL_MIRROR: return OBJECT_ROLE_MIRROR;
+    case MATERIAL_DIFFUSE: break;
+    }
+    return OBJECT_ROLE_RECEIVER;
+}
+
+const char *object_role_name(unsigned role)
+{
+    switch (role) {
+    case OBJECT_ROLE_GLASS: return "glass";
+    case OBJECT_ROLE_WATER: return "water";
+    case OBJECT_ROLE_MIRROR: return "mirror";
+    case OBJECT_ROLE_RECEIVER: return "receiver";
+    default: return "object";
+    }
+}
+
+void material_init(struct material *m, enum material_kind kind)
+{
+    memset(m, 0, sizeof *m);
+    m->kind = kind;
+    m->color = kind == MATERIAL_MIRROR ? vec3_make(1, 1, 1) : vec3_make(0.8f, 0.8f, 0.8f);
+    m->ior = kind == MATERIAL_WATER ? 1.33f : 1.5f;
+    texture_ref_init(&m->base_color);
+    texture_ref_init(&m->normal);
+    texture_ref_init(&m->emissive);
+}
+
+void material_assign(struct material *dst, const struct material *src)
+{
+    if (dst == src)
+        return;
+    texture_retain(src->base_color.texture);
+    texture_retain(src->normal.texture);
+    texture_retain(src->emissive.texture);
+    material_release(dst);
+    *dst = *src;
+}
+
+void material_release(struct material *m)
+{
+    texture_destroy(m->base_color.texture);
+    texture_destroy(m->normal.texture);
+    texture_destroy(m->emissive.texture);
+    m->base_color.texture = m->normal.texture = m->emissive.texture = NULL;
+}
+
+bool material_has_textures(const struct material *m)
+{
+    return m->base_color.texture || m->normal.texture || m->emissive.texture;
+}
