@@ -12,6 +12,7 @@
 #include <embree3/rtcore.h>
 
 #include "core/error.h"
+#include "core/optics.h"
 #include "graph/renderer.h"
 #include "scene/scene.h"
 
@@ -36,12 +37,11 @@ static inline dvec3 ref_reflect(dvec3 d, dvec3 n) { return dv_sub(d, dv_scale(n,
  * n_to); false under total internal reflection, never a NaN. */
 static inline bool ref_refract(dvec3 d, dvec3 n, double eta, dvec3 *t)
 {
-    double cos_i = -dv_dot(d, n);
-    double sin2_t = eta * eta * (1.0 - cos_i * cos_i > 0.0 ? 1.0 - cos_i * cos_i : 0.0);
-    if (sin2_t >= 1.0)
+    const double dd[3] = {d.x, d.y, d.z}, nn[3] = {n.x, n.y, n.z};
+    double tt[3];
+    if (!optics_refract(dd, nn, eta, tt))
         return false;
-    double cos_t = sqrt(1.0 - sin2_t > 0.0 ? 1.0 - sin2_t : 0.0);
-    *t = dv_normalize_or(dv_add(dv_scale(d, eta), dv_scale(n, eta * cos_i - cos_t)), d);
+    *t = dv(tt[0], tt[1], tt[2]);
     return true;
 }
 

@@ -69,13 +69,14 @@ bool transport_table_matches(const struct transport_table *t, const struct mesh 
            t->absorption.z == mat->absorption.z && t->resolution == resolution && t->internal == internal;
 }
 
-/* Refraction of unit d about unit n facing against it; false under TIR. */
+/* Refraction of unit d about unit n facing against it (core/optics.h); false under TIR. */
 static bool refract3(vec3 d, vec3 n, double eta, vec3 *t)
 {
-    double c = -vec3_dot(d, n), k = 1.0 - eta * eta * (1.0 - c * c);
-    if (k < 0.0)
+    const double dd[3] = {d.x, d.y, d.z}, nn[3] = {n.x, n.y, n.z};
+    double tt[3];
+    if (!optics_refract(dd, nn, eta, tt))
         return false;
-    *t = vec3_normalize_or(vec3_add(vec3_scale(d, (float)eta), vec3_scale(n, (float)(eta * c - sqrt(k)))), d);
+    *t = vec3_make((float)tt[0], (float)tt[1], (float)tt[2]);
     return true;
 }
 
@@ -164,6 +165,11 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
 }
 
 
+/* The tracer's version: bumped whenever the tables it makes change, so that
+ * a table cached by an older build is traced again (2: refraction from
+ * core/optics.c, in double). */
+#define TRANSPORT_TRACER_VERSION 2
+
 /* Everything the table depends on. */
 static uint64_t table_hash(const struct mesh *m, const struct material *mat, int resolution,
                            enum transport_internal internal)
@@ -174,7 +180,7 @@ static uint64_t table_hash(const struct mesh *m, const struct material *mat, int
     h = hash_fnv1a(h, m->indices, m->index_count * sizeof(uint32_t));
     float values[5] = {mat->ior, mat->ideal ? 1.0f : 0.0f, mat->absorption.x, mat->absorption.y, mat->absorption.z};
     h = hash_fnv1a(h, values, sizeof values);
-    int settings[3] = {resolution, (int)internal, TRANSPORT_FLOATS};
+    int settings[4] = {resolution, (int)internal, TRANSPORT_FLOATS, TRANSPORT_TRACER_VERSION};
     return hash_fnv1a(h, settings, sizeof settings);
 }
 

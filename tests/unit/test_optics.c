@@ -45,5 +45,28 @@ int main(void)
     CHECK(optics_fresnel_of(0.7, 1.0 / 1.5, true) == 0.0);
     CHECK(optics_fresnel_of(critical - 1e-6, 1.5, true) == 1.0);
     CHECK_NEAR(optics_fresnel_of(1.0, 1.0 / 1.5, false), 0.04, 1e-12);
-    return check_finish("test_optics");
+        /* Snell: a 45-degree ray into glass bends to asin(sin45 / 1.5); TIR from
+     * inside past the critical angle; eta 1 goes straight through; the
+     * result is unit and never NaN, grazing included. */
+    {
+        const double d[3] = {sqrt(0.5), -sqrt(0.5), 0.0}, n[3] = {0.0, 1.0, 0.0};
+        double t[3];
+        CHECK(optics_refract(d, n, 1.0 / 1.5, t));
+        CHECK_NEAR(t[0], sqrt(0.5) / 1.5, 1e-12);
+        CHECK_NEAR(t[0] * t[0] + t[1] * t[1] + t[2] * t[2], 1.0, 1e-12);
+        CHECK(t[1] < 0.0);
+        const double up[3] = {sqrt(0.5), sqrt(0.5), 0.0}, down_n[3] = {0.0, -1.0, 0.0};
+        CHECK(!optics_refract(up, down_n, 1.5, t)); /* 45 degrees inside glass: past 41.8 */
+        CHECK(optics_refract(d, n, 1.0, t));
+        CHECK_NEAR(t[0], d[0], 1e-12);
+        CHECK_NEAR(t[1], d[1], 1e-12);
+        const double graze[3] = {1.0, 0.0, 0.0};
+        CHECK(optics_refract(graze, n, 1.0 / 1.5, t));
+        CHECK(isfinite(t[0]) && isfinite(t[1]) && isfinite(t[2]));
+        CHECK(!optics_refract(graze, n, 1.5, t)); /* grazing from the denser side: TIR */
+        const double zero[3] = {0.0, 0.0, 0.0};
+        if (optics_refract(zero, n, 1.5, t))
+            CHECK(isfinite(t[0]) && isfinite(t[1]) && isfinite(t[2]));
+    }
+return check_finish("test_optics");
 }
