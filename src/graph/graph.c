@@ -420,8 +420,6 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
             snprintf(res->name, sizeof res->name, "%s.%s", p->name, d->name);
             res->decl = *d;
             res->producer = i;
-            res->light_index = -1;
-            res->matrix = mat4_identity();
             if (d->bundle) { /* the producer's record: no texture */
                 res->bundle = d->bundle;
                 e->output_resources[o] = g->resource_count++;
@@ -524,11 +522,9 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
              * far depth) rather than as last frame's. */
             const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
             for (int o = 0; o < p->output_count; o++) {
-                if (f.outputs[o] && f.outputs[o]->bundle)
-                    f.outputs[o]->record = NULL; /* its readers find nothing made this frame */
                 if (f.outputs[o]) {
-                    f.outputs[o]->light_index = -1; /* a shadow map of no light this frame */
-                    f.outputs[o]->version++;        /* emptied: its readers' keys change */
+                    f.outputs[o]->record = NULL; /* its readers find nothing made this frame (a shadow map of no light) */
+                    f.outputs[o]->version++;     /* emptied: its readers' keys change */
                 }
                 if (f.outputs[o] && f.outputs[o]->texture.id) {
                     bool depth = gl_format_is_depth(f.outputs[o]->texture.format);

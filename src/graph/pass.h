@@ -109,12 +109,8 @@ struct graph_resource {
     const char *bundle;        /* a bundle's record type, NULL for a texture */
     void *record;              /* a bundle's record, owned by its producer (set in its execute) */
     uint64_t version;          /* bumped each time its producer runs (what readers' reuse keys hold) */
+    const char *record_type;   /* a texture's typed record besides its texels (a shadow map's), or NULL */
     int producer;      /* index of the pass in the graph */
-    mat4 matrix;
-    int light_index;   /* index into the frame's GPU light list, -1 if none */
-    float range;
-    float bias;
-    int kind;          /* producer-defined (shadow map: light kind) */
 };
 
 /* What a pass sees while it runs. */

@@ -1,5 +1,6 @@
 /* Shadow map inputs of a pass (see shadow_inputs.h). */
 #include <stdio.h>
+#include <string.h>
 
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
@@ -30,22 +31,26 @@ void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_pr
         if (!sh)
             continue;
         bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
+        static const struct shadow_record none = {.matrix = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}},
+                                                  .light_index = -1};
+        const struct shadow_record *rec =
+            sh->record && sh->record_type && strcmp(sh->record_type, SHADOW_RECORD) == 0 ? sh->record : &none;
         gl_program_bind_texture_at(prog, "u_shadow_2d", i, cube ? r->dummy_depth.id : sh->texture.id);
         gl_program_bind_texture_at(prog, "u_shadow_cubes", i, cube ? sh->texture.id : r->dummy_cube.id);
-        int entries = sh->light_index >= 0 ? 1 : 0;
+        int entries = rec->light_index >= 0 ? 1 : 0;
         for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
-            if (r->frame.light_first[li] == sh->light_index)
+            if (r->frame.light_first[li] == rec->light_index)
                 entries = r->frame.light_entries[li];
         snprintf(name, sizeof name, "u_shadow_first[%d]", nshadow);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), sh->light_index);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), rec->light_index);
         snprintf(name, sizeof name, "u_shadow_count[%d]", nshadow);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), entries);
         snprintf(name, sizeof name, "u_shadow_cube[%d]", nshadow);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, name), cube ? 1 : 0);
         snprintf(name, sizeof name, "u_shadow_matrix[%d]", nshadow);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, sh->matrix.m);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, rec->matrix.m);
         snprintf(name, sizeof name, "u_shadow_params[%d]", nshadow);
-        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), sh->range, sh->bias,
+        gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), rec->range, rec->bias,
                             1.0f / (float)sh->texture.width, 0.0f);
         nshadow++;
     }

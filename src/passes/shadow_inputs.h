@@ -10,7 +10,19 @@
 #include "gl/gl_program.h"
 #include "graph/pass.h"
 
-#define SHADOW_INPUTS_MAX 4 /* sampler units SHADE_UNIT_SHADOW_2D.. and SHADE_UNIT_SHADOW_CUBE.. */
+#define SHADOW_INPUTS_MAX 4 /* the sampler arrays u_shadow_2d[4] and u_shadow_cubes[4] */
+
+/* What a shadow map's depth texture carries for its readers: the
+ * resource's typed record (record_type SHADOW_RECORD), owned by the
+ * shadow_map pass, NULL on a frame it made nothing. */
+#define SHADOW_RECORD "shadow_map"
+struct shadow_record {
+    mat4 matrix;     /* the light's view-projection (2D), or its translation to the origin (cube) */
+    int light_index; /* the light's first entry in the frame's GPU light list */
+    int kind;        /* enum light_kind */
+    float range;     /* far plane, or the cube's distance range */
+    float bias;
+};
 
 /* Declares one input slot per name in the list parameter `param`. */
 bool shadow_inputs_declare(struct pass *p, int param, struct error *err);

@@ -11,6 +11,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 #include "scene/light_view.h"
 #include "scene/scene.h"
 
@@ -18,8 +19,8 @@ struct shadow_state {
     struct gl_framebuffer fb;
     struct gl_texture cube_depth; /* depth buffer for the cube faces */
     bool valid;
-    uint64_t light_version, geometry_version;
-    int width, height;
+    uint64_t key;                /* pass_frame_key of what the map was made from */
+    struct shadow_record record; /* what the depth texture carries for its readers */
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -82,9 +83,12 @@ static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *
 {
     struct shadow_state *s = p->state;
     struct light *l = pass_light_at(p, SHADOW_LIGHT);
-    /* Hu & Qin §4: in a static scene shadow maps are reused, not redrawn. */
-    if (s->valid && s->light_version == l->version && s->geometry_version == scene_geometry_version(f->scene) &&
-        !f->snapshot->casters_animated && s->width == f->width && s->height == f->height) {
+    (void)l;
+    /* Hu & Qin §4: in a static scene shadow maps are reused, not redrawn
+     * (the light, by its version, is a parameter; only casters that animate
+     * count, not every animated object). */
+    if (s->valid && s->key == pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY) && !f->snapshot->casters_animated &&
+        f->outputs[0]->record == &s->record) {
         snprintf(why, whylen, "reused: the light and the casters did not change since the last frame");
         return PASS_REUSE;
     }
@@ -100,8 +104,10 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     int size = out->texture.width;
     if (scene_light_index(f->scene, l) < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
-    out->light_index = renderer_light_slot(r, f->scene, l);
-    out->kind = (int)l->kind;
+    struct shadow_record *rec = &s->record;
+    out->record = NULL; /* until the map is made */
+    rec->light_index = renderer_light_slot(r, f->scene, l);
+    rec->kind = (int)l->kind;
 
     vec3 lo, hi;
     bool any = scene_bounds(f->scene, &lo, &hi);
@@ -133,15 +139,15 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
             light_view_fit(true, l->position, dir, center, radius, &margins, &lv);
             view = lv.view;
             proj = lv.proj;
-            out->range = 4.0f * radius;
+            rec->range = 4.0f * radius;
         } else {
             view = mat4_look_at(l->position, vec3_add(l->position, dir), vec3_make(0, 1, 0));
             float far = vec3_length(vec3_sub(center, l->position)) + radius;
             float fov = fminf(2.0f * l->angle + 2.0f, 179.0f);
             proj = mat4_perspective(fov, 1.0f, fmaxf(far * 1e-3f, 1e-3f), fmaxf(far, 1e-2f));
-            out->range = far;
+            rec->range = far;
         }
-        out->matrix = mat4_mul(proj, view);
+        rec->matrix = mat4_mul(proj, view);
         if (!gl_framebuffer_attach(&s->fb, NULL, NULL, 0, &out->texture, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->fb.id);
@@ -149,14 +155,14 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         /* Slope-scaled offset against acne; the constant bias is applied when sampling. */
         gl.Enable(GL_POLYGON_OFFSET_FILL);
         gl.PolygonOffset(1.5f, 2.0f);
-        gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, out->matrix.m);
+        gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, rec->matrix.m);
         renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
     } else {
         vec3 pos = light_center(l);
         float range = vec3_length(vec3_sub(center, pos)) + radius;
         range = fmaxf(range, 1e-2f);
-        out->range = range;
-        out->matrix = mat4_translate(vec3_scale(pos, -1.0f));
+        rec->range = range;
+        rec->matrix = mat4_translate(vec3_scale(pos, -1.0f));
         mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-4f, 1e-3f), range);
         gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_light_position"), pos.x, pos.y, pos.z);
         gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_range"), range);
@@ -174,12 +180,11 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
             renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
         }
     }
-    out->bias = bias;
+    rec->bias = bias;
+    out->record = rec;
+    out->record_type = SHADOW_RECORD;
     s->valid = true;
-    s->light_version = l->version;
-    s->geometry_version = scene_geometry_version(f->scene);
-    s->width = f->width;
-    s->height = f->height;
+    s->key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
     return true;
 }
 
