@@ -78,6 +78,136 @@ bool pass_set_objects(struct pass *p, int param, struct object *const *objects, 
     return true;
 }
 
+static void release_list(struct pass_value *v)
+{
+    for (int k = 0; k < v->list_count; k++) {
+        if (v->list)
+            free(v->list[k]);
+        if (v->keys)
+            free(v->keys[k]);
+    }
+    free(v->list);
+    free(v->keys);
+    free(v->vectors);
+    free(v->vector_sizes);
+    v->list = v->keys = NULL;
+    v->vectors = NULL;
+    v->vector_sizes = NULL;
+    v->list_count = 0;
+}
+
+static char *copy_string(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = malloc(n);
+    if (c)
+        memcpy(c, s, n);
+    return c;
+}
+
+static const char *type_word(enum pass_param_type t);
+
+/* The parameter `param` of the expected type, or an error naming it. */
+static bool check_param(const struct pass *p, int param, unsigned types, struct error *err)
+{
+    if (param < 0 || param >= p->desc->param_count)
+        return error_set(err, "%s: no parameter %d", p->desc->name, param);
+    if (!(types & (1u << p->desc->params[param].type)))
+        return error_set(err, "bad argument '%s' to '%s' (%s expected)", p->desc->params[param].name, p->desc->name,
+                         type_word(p->desc->params[param].type));
+    return true;
+}
+
+bool pass_set_list(struct pass *p, int param, const char *const *items, int count, struct error *err)
+{
+    if (!check_param(p, param, 1u << PASS_PARAM_INPUT_LIST, err))
+        return false;
+    const struct pass_param_desc *d = &p->desc->params[param];
+    if (d->max > 0 && count > (int)d->max)
+        return error_set(err, "bad argument '%s' to '%s' (at most %d inputs, got %d)", d->name, p->desc->name,
+                         (int)d->max, count);
+    for (int k = 0; k < count; k++)
+        if (!items[k] || !strchr(items[k], '.'))
+            return error_set(err, "bad argument '%s' to '%s' (item %d: \"pass.output\" expected, got '%s')", d->name,
+                             p->desc->name, k + 1, items[k] ? items[k] : "nil");
+    struct pass_value *v = &p->values[param];
+    release_list(v);
+    v->list = calloc((size_t)count + 1, sizeof *v->list);
+    if (!v->list)
+        return error_set(err, "out of memory");
+    for (int k = 0; k < count; k++) {
+        v->list[k] = copy_string(items[k]);
+        if (!v->list[k])
+            return error_set(err, "out of memory");
+        v->list_count = k + 1;
+    }
+    v->set = true;
+    return true;
+}
+
+bool pass_set_map(struct pass *p, int param, const char *const *keys, const char *const *values,
+                  const float (*vectors)[4], const int *sizes, int count, struct error *err)
+{
+    unsigned maps = 1u << PASS_PARAM_INPUT_MAP | 1u << PASS_PARAM_OUTPUT_MAP | 1u << PASS_PARAM_UNIFORM_MAP;
+    if (!check_param(p, param, maps, err))
+        return false;
+    const struct pass_param_desc *d = &p->desc->params[param];
+    bool uniforms = d->type == PASS_PARAM_UNIFORM_MAP;
+    for (int k = 0; k < count; k++) {
+        if (!keys[k] || !keys[k][0])
+            return error_set(err, "bad argument '%s' to '%s' (entry %d has no name)", d->name, p->desc->name, k + 1);
+        if (uniforms) {
+            if (!vectors || !sizes || sizes[k] < 1 || sizes[k] > 4)
+                return error_set(err, "bad argument '%s' to '%s' (uniform '%s': 1 to 4 numbers expected)", d->name,
+                                 p->desc->name, keys[k]);
+            for (int c = 0; c < sizes[k]; c++)
+                if (!isfinite(vectors[k][c]))
+                    return error_set(err, "bad argument '%s' to '%s' (uniform '%s': not a finite number)", d->name,
+                                     p->desc->name, keys[k]);
+        } else if (!values || !values[k]) {
+            return error_set(err, "bad argument '%s' to '%s' ('%s': string expected)", d->name, p->desc->name,
+                             keys[k]);
+        }
+    }
+    struct pass_value *v = &p->values[param];
+    release_list(v);
+    v->keys = calloc((size_t)count + 1, sizeof *v->keys);
+    v->list = calloc((size_t)count + 1, sizeof *v->list);
+    v->vectors = calloc((size_t)count + 1, sizeof *v->vectors);
+    v->vector_sizes = calloc((size_t)count + 1, sizeof *v->vector_sizes);
+    if (!v->keys || !v->list || !v->vectors || !v->vector_sizes)
+        return error_set(err, "out of memory");
+    for (int k = 0; k < count; k++) {
+        v->keys[k] = copy_string(keys[k]);
+        v->list[k] = copy_string(uniforms ? "" : values[k]);
+        if (!v->keys[k] || !v->list[k])
+            return error_set(err, "out of memory");
+        if (uniforms) {
+            memcpy(v->vectors[k], vectors[k], sizeof v->vectors[k]);
+            v->vector_sizes[k] = sizes[k];
+        }
+        v->list_count = k + 1;
+    }
+    v->set = true;
+    return true;
+}
+
+bool pass_set_color(struct pass *p, int param, vec3 color, struct error *err)
+{
+    if (!check_param(p, param, 1u << PASS_PARAM_COLOR, err))
+        return false;
+    if (!isfinite(color.x) || !isfinite(color.y) || !isfinite(color.z))
+        return error_set(err, "bad argument '%s' to '%s' (a colour of finite numbers expected)",
+                         p->desc->params[param].name, p->desc->name);
+    struct pass_value *v = &p->values[param];
+    v->color[0] = color.x;
+    v->color[1] = color.y;
+    v->color[2] = color.z;
+    v->color[3] = 1.0f;
+    v->set = true;
+    return true;
+}
+
 void pass_stage_begin(struct pass *p)
 {
     if (!p->stages.queries[0])
@@ -120,15 +250,7 @@ void pass_destroy(struct pass *p)
         p->desc->destroy(p);
     for (int i = 0; i < p->desc->param_count; i++) {
         free(p->values[i].string);
-        for (int k = 0; k < p->values[i].list_count; k++) {
-            free(p->values[i].list[k]);
-            if (p->values[i].keys)
-                free(p->values[i].keys[k]);
-        }
-        free(p->values[i].list);
-        free(p->values[i].keys);
-        free(p->values[i].vectors);
-        free(p->values[i].vector_sizes);
+        release_list(&p->values[i]);
         light_destroy(p->values[i].light);
         object_destroy(p->values[i].object);
         release_objects(&p->values[i]);
@@ -293,6 +415,20 @@ bool pass_declare(struct pass *p, struct error *err)
     const struct pass_desc *d = p->desc;
     for (int i = 0; i < d->param_count; i++) {
         const struct pass_param_desc *pd = &d->params[i];
+        if (pd->type == PASS_PARAM_INPUT_LIST) {
+            /* one slot per item: "<name>0", "<name>1", ... */
+            const struct pass_value *v = &p->values[i];
+            if (pd->max > 0 && v->list_count > (int)pd->max)
+                return error_set(err, "bad argument '%s' to '%s' (at most %d inputs, got %d)", pd->name, d->name,
+                                 (int)pd->max, v->list_count);
+            for (int k = 0; k < v->list_count; k++) {
+                char slot[PASS_NAME_MAX];
+                snprintf(slot, sizeof slot, "%.40s%d", pd->name, k);
+                if (!pass_declare_input(p, slot, v->list[k], err))
+                    return false;
+            }
+            continue;
+        }
         if (pd->type != PASS_PARAM_INPUT)
             continue;
         const char *source = p->values[i].string;

@@ -41,7 +41,7 @@ struct pass_param_desc {
     const char *name;
     enum pass_param_type type;
     double default_number; /* number, integer, boolean (0/1) */
-    double min, max;       /* number, integer: accepted range */
+    double min, max;       /* number, integer: accepted range; an input list: max = the most items */
     int multiple;          /* integer: > 0, the value must be a multiple of it (checked here, once) */
     const char *default_string; /* string/enum default; NULL = none */
     const char *choices;   /* enum: "a|b|c" */
@@ -247,6 +247,14 @@ bool pass_set_boolean(struct pass *p, const char *name, bool value, struct error
 bool pass_set_enum(struct pass *p, const char *name, const char *choice, struct error *err);
 /* STRING and INPUT parameters (a path is stored as given: resolve it first). */
 bool pass_set_string(struct pass *p, const char *name, const char *value, struct error *err);
+/* By index: an input list (each item "pass.output", at most the
+ * descriptor's max); a map (input and output maps: a string per key, the
+ * source or the format; a uniform map: 1 to 4 finite numbers per key), in
+ * the order given; a colour (finite). Each replaces the old value. */
+bool pass_set_list(struct pass *p, int param, const char *const *items, int count, struct error *err);
+bool pass_set_map(struct pass *p, int param, const char *const *keys, const char *const *values,
+                  const float (*vectors)[4], const int *sizes, int count, struct error *err);
+bool pass_set_color(struct pass *p, int param, vec3 color, struct error *err);
 
 /* Reading them, by the parameter's index in the descriptor's `params`
  * (a pass names its indices with an enum and fills `params` with

@@ -45,41 +45,42 @@ static const char *type_name(enum pass_param_type t)
     return "?";
 }
 
-static char *dup_string(lua_State *L, const char *s)
+/* Scratch memory that Lua owns (freed by the collector, so an error
+ * raised while reading leaks nothing). */
+static void *scratch(lua_State *L, size_t size)
 {
-    char *d = strdup(s);
-    if (!d)
-        luaL_error(L, "out of memory");
-    return d;
+    void *m = lua_newuserdatauv(L, size > 0 ? size : 1, 0);
+    memset(m, 0, size > 0 ? size : 1);
+    return m;
 }
 
-/* Reads one map entry list (string keys) into v->keys / v->list / vectors. */
-static void read_map(lua_State *L, int idx, struct pass_value *v, const struct pass_param_desc *d, const char *fn)
+/* Reads a map table into keys, values (strings) and vectors: the array part
+ * first ({"color", "mask"}: an output map's names, format rgba32f), then
+ * the string keys sorted so the declaration order does not depend on
+ * hashing; pass_set_map validates and stores them. The strings stay alive
+ * in the table at idx while they are read. */
+static void read_map(lua_State *L, int idx, struct pass *p, int param, const char *fn)
 {
+    const struct pass_param_desc *d = &p->desc->params[param];
     int n = 0;
     lua_pushnil(L);
     while (lua_next(L, idx)) {
         n++;
         lua_pop(L, 1);
     }
-    v->keys = calloc((size_t)n + 1, sizeof *v->keys);
-    v->list = calloc((size_t)n + 1, sizeof *v->list);
-    v->vectors = calloc((size_t)n + 1, sizeof *v->vectors);
-    v->vector_sizes = calloc((size_t)n + 1, sizeof *v->vector_sizes);
-    if (!v->keys || !v->list || !v->vectors || !v->vector_sizes)
-        luaL_error(L, "out of memory");
-    /* Ordered: array part first ({"color", "mask"}), then string keys sorted
-     * so the declaration order does not depend on hashing. */
+    const char **keys = scratch(L, (size_t)n * sizeof *keys);
+    const char **values = scratch(L, (size_t)n * sizeof *values);
+    float(*vectors)[4] = scratch(L, (size_t)n * sizeof *vectors);
+    int *sizes = scratch(L, (size_t)n * sizeof *sizes);
     int count = 0;
     int len = (int)lua_rawlen(L, idx);
     for (int i = 1; i <= len; i++) {
         lua_rawgeti(L, idx, i);
         if (d->type != PASS_PARAM_OUTPUT_MAP || !lua_isstring(L, -1))
             luaL_error(L, "bad argument '%s' to '%s' (%s expected)", d->name, fn, type_name(d->type));
-        v->keys[count] = dup_string(L, lua_tostring(L, -1));
-        v->list[count] = dup_string(L, "rgba32f");
-        v->list_count = ++count;
-        lua_pop(L, 1);
+        keys[count] = lua_tostring(L, -1);
+        values[count++] = "rgba32f";
+        lua_pop(L, 1); /* the string stays in the table */
     }
     lua_pushnil(L);
     while (lua_next(L, idx)) {
@@ -89,44 +90,48 @@ static void read_map(lua_State *L, int idx, struct pass_value *v, const struct p
         }
         const char *key = lua_tostring(L, -2);
         int at = count;
-        while (at > 0 && strcmp(v->keys[at - 1], key) > 0 && at > len) {
-            v->keys[at] = v->keys[at - 1];
-            v->list[at] = v->list[at - 1];
-            memcpy(v->vectors[at], v->vectors[at - 1], sizeof v->vectors[0]);
-            v->vector_sizes[at] = v->vector_sizes[at - 1];
+        while (at > 0 && strcmp(keys[at - 1], key) > 0 && at > len) {
+            keys[at] = keys[at - 1];
+            values[at] = values[at - 1];
+            memcpy(vectors[at], vectors[at - 1], sizeof vectors[0]);
+            sizes[at] = sizes[at - 1];
             at--;
         }
-        v->keys[at] = dup_string(L, key);
-        v->list[at] = NULL;
-        v->vector_sizes[at] = 0;
+        keys[at] = key;
+        values[at] = NULL;
+        sizes[at] = 0;
+        memset(vectors[at], 0, sizeof vectors[0]);
         if (d->type == PASS_PARAM_UNIFORM_MAP) {
             if (lua_isnumber(L, -1)) {
-                v->vectors[at][0] = lutil_check_number(L, -1, fn, d->name);
-                v->vector_sizes[at] = 1;
+                vectors[at][0] = lutil_check_number(L, -1, fn, d->name);
+                sizes[at] = 1;
             } else if (lua_istable(L, -1)) {
                 int m = (int)lua_rawlen(L, -1);
                 if (m < 1 || m > 4)
                     luaL_error(L, "bad argument '%s' to '%s' (uniform '%s': 1 to 4 numbers expected)", d->name, fn, key);
                 for (int i = 0; i < m; i++) {
                     lua_rawgeti(L, -1, i + 1);
-                    v->vectors[at][i] = lutil_check_number(L, -1, fn, d->name);
+                    vectors[at][i] = lutil_check_number(L, -1, fn, d->name);
                     lua_pop(L, 1);
                 }
-                v->vector_sizes[at] = m;
+                sizes[at] = m;
             } else {
                 luaL_error(L, "bad argument '%s' to '%s' (uniform '%s': number or vector expected, got %s)", d->name,
                            fn, key, luaL_typename(L, -1));
             }
-            v->list[at] = dup_string(L, "");
         } else {
             if (!lua_isstring(L, -1))
                 luaL_error(L, "bad argument '%s' to '%s' ('%s': string expected, got %s)", d->name, fn, key,
                            luaL_typename(L, -1));
-            v->list[at] = dup_string(L, lua_tostring(L, -1));
+            values[at] = lua_tostring(L, -1); /* a string value: alive in the table */
         }
-        v->list_count = ++count;
+        count++;
         lua_pop(L, 1);
     }
+    struct error err;
+    if (!pass_set_map(p, param, keys, values, (const float(*)[4])vectors, sizes, count, &err))
+        luaL_error(L, "%s", err.message);
+    lua_pop(L, 4); /* the scratch arrays */
 }
 
 static void read_param(lua_State *L, struct pass *p, int i, int idx)
@@ -204,43 +209,37 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
             luaL_error(L, "out of memory");
         break;
     }
-    case PASS_PARAM_INPUT_LIST:
-        if (t == LUA_TSTRING) {
-            v->list = calloc(1, sizeof *v->list);
-            if (!v->list)
-                luaL_error(L, "out of memory");
-            v->list[0] = dup_string(L, lua_tostring(L, idx));
-            v->list_count = 1;
-        } else if (t == LUA_TTABLE) {
-            int n = (int)lua_rawlen(L, idx);
-            v->list = calloc((size_t)n + 1, sizeof *v->list);
-            if (!v->list)
-                luaL_error(L, "out of memory");
-            for (int k = 0; k < n; k++) {
-                lua_rawgeti(L, idx, k + 1);
-                if (!lua_isstring(L, -1))
-                    lutil_field_error(L, fn, d->name, type_name(d->type), -1);
-                v->list[k] = dup_string(L, lua_tostring(L, -1));
-                v->list_count = k + 1;
-                lua_pop(L, 1);
-            }
-        } else {
+    case PASS_PARAM_INPUT_LIST: {
+        int n = t == LUA_TSTRING ? 1 : t == LUA_TTABLE ? (int)lua_rawlen(L, idx) : -1;
+        if (n < 0)
             lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+        const char **items = scratch(L, (size_t)(n > 0 ? n : 0) * sizeof *items);
+        if (t == LUA_TSTRING)
+            items[0] = lua_tostring(L, idx);
+        for (int k = 0; t == LUA_TTABLE && k < n; k++) {
+            lua_rawgeti(L, idx, k + 1);
+            if (lua_type(L, -1) != LUA_TSTRING)
+                lutil_field_error(L, fn, d->name, type_name(d->type), -1);
+            items[k] = lua_tostring(L, -1); /* alive in the table */
+            lua_pop(L, 1);
         }
+        struct error err;
+        if (!pass_set_list(p, i, items, n, &err))
+            luaL_error(L, "%s", err.message);
+        lua_pop(L, 1);
         break;
+    }
     case PASS_PARAM_INPUT_MAP:
     case PASS_PARAM_OUTPUT_MAP:
     case PASS_PARAM_UNIFORM_MAP:
         if (t != LUA_TTABLE)
             lutil_field_error(L, fn, d->name, type_name(d->type), idx);
-        read_map(L, idx, v, d, fn);
+        read_map(L, idx, p, i, fn);
         break;
     case PASS_PARAM_COLOR: {
-        vec3 c = lutil_check_color(L, idx, fn, d->name);
-        v->color[0] = c.x;
-        v->color[1] = c.y;
-        v->color[2] = c.z;
-        v->color[3] = 1.0f;
+        struct error err;
+        if (!pass_set_color(p, i, lutil_check_color(L, idx, fn, d->name), &err))
+            luaL_error(L, "%s", err.message);
         break;
     }
     case PASS_PARAM_TABLE:

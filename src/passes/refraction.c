@@ -96,7 +96,7 @@ static const struct pass_param_desc params[] = {
              "(Szirmay-Kalos et al. 2005: floors and walls too); map = the distance map alone; impostors = the "
              "paper's one rectangle per object "
              "(§2.2), which large receivers break (README)"},
-    [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+    [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
      .help = "shadow maps for lighting the distance map's surfaces as shade does (e.g. \"shadow.depth\"); "
              "without them they are unshadowed"},
     [REFRACTION_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 8,
@@ -107,9 +107,7 @@ static const struct pass_param_desc params[] = {
 
 static bool refraction_declare(struct pass *p, struct error *err)
 {
-    /* color and depth are declared from the descriptor (pass_declare). */
-    if (!shadow_inputs_declare(p, REFRACTION_SHADOW, err))
-        return false;
+    /* color, depth and shadow0.. are declared from the descriptor (pass_declare). */
     /* tir: r = total internal reflection at the paper's two interfaces (1
      * or 0; 0 off the refractors), g = all the path met (`internal`);
      * exit: rgb = the direction the path first leaves the refractor in,

@@ -32,11 +32,11 @@ enum shade_param {
 };
 
 static const struct pass_param_desc params[] = {
-    [SHADE_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+    [SHADE_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
      .help = "shadow map(s) from shadow_map passes, e.g. \"shadow.depth\" or {\"s1.depth\", \"s2.depth\"}"},
     [SHADE_BACKGROUND] = {.name = "background", .type = PASS_PARAM_INPUT,
      .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},
-    [SHADE_CAUSTICS] = {.name = "caustics", .type = PASS_PARAM_INPUT_LIST,
+    [SHADE_CAUSTICS] = {.name = "caustics", .type = PASS_PARAM_INPUT_LIST, .max = SHADE_MAX_CAUSTICS,
      .help = "screen-space caustic irradiance added on diffuse surfaces (one or a list, summed: several lights)"},
     [SHADE_SPECULAR] = {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "draw glass, water and mirrors (false: leave them to a later pass)"},
@@ -44,19 +44,7 @@ static const struct pass_param_desc params[] = {
 
 static bool shade_declare(struct pass *p, struct error *err)
 {
-    if (!shadow_inputs_declare(p, SHADE_SHADOW, err))
-        return false;
-    /* background (an INPUT) is declared from the descriptor (pass_declare). */
-    const struct pass_value *caustics = &p->values[SHADE_CAUSTICS];
-    if (caustics->list_count > SHADE_MAX_CAUSTICS)
-        return error_set(err, "bad argument 'caustics' to 'shade' (at most %d inputs, got %d)", SHADE_MAX_CAUSTICS,
-                         caustics->list_count);
-    for (int i = 0; i < caustics->list_count; i++) {
-        char slot[32];
-        snprintf(slot, sizeof slot, "caustics%d", i);
-        if (!pass_declare_input(p, slot, caustics->list[i], err))
-            return false;
-    }
+    /* shadow0.., background and caustics0.. are declared from the descriptor (pass_declare). */
     return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err) &&
            pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, 0, 0, err) &&
            pass_declare_output(p, "normal", GL_RGBA16F, GL_TEXTURE_2D, 0, 0, err) &&

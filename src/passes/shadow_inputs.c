@@ -5,21 +5,6 @@
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
-bool shadow_inputs_declare(struct pass *p, int param, struct error *err)
-{
-    const struct pass_value *shadows = &p->values[param];
-    if (shadows->list_count > SHADOW_INPUTS_MAX)
-        return error_set(err, "bad argument '%s' to '%s' (at most %d shadow maps, got %d)",
-                         p->desc->params[param].name, p->desc->name, SHADOW_INPUTS_MAX, shadows->list_count);
-    for (int i = 0; i < shadows->list_count; i++) {
-        char slot[32];
-        snprintf(slot, sizeof slot, "shadow%d", i);
-        if (!pass_declare_input(p, slot, shadows->list[i], err))
-            return false;
-    }
-    return true;
-}
-
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
 {
     struct renderer *r = f->renderer;

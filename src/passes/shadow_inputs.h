@@ -1,5 +1,6 @@
-/* Shadow map inputs of a pass (shade, volume_light): declared as slots
- * shadow0..3 from a list parameter, bound with the uniforms of
+/* Shadow map inputs of a pass (shade, volume_light, refraction): the slots
+ * shadow0..3 of an input list parameter `shadow` (declared from the
+ * descriptor, .max = SHADOW_INPUTS_MAX), bound with the uniforms of
  * shaders/common/shadows.glsl. */
 #ifndef CAUSTICA_SHADOW_INPUTS_H
 #define CAUSTICA_SHADOW_INPUTS_H
@@ -24,8 +25,6 @@ struct shadow_record {
     float bias;
 };
 
-/* Declares one input slot per name in the list parameter `param`. */
-bool shadow_inputs_declare(struct pass *p, int param, struct error *err);
 /* Binds the shadow maps and sets the uniforms on `program`. */
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *program);
 

@@ -32,9 +32,9 @@ static const struct pass_param_desc params[] = {
      .help = "the scene's surfaces (e.g. \"shade.color\"), attenuated by the medium in front of them"},
     [VL_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
      .help = "its depth buffer; default: the depth output of the pass that made color"},
-    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST,
+    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
      .help = "shadow map(s) of the lights, shadowing the light in the medium (a light without one is unshadowed)"},
-    [VL_ADD] = {.name = "add", .type = PASS_PARAM_INPUT_LIST,
+    [VL_ADD] = {.name = "add", .type = PASS_PARAM_INPUT_LIST, .max = VOLUME_LIGHT_MAX_ADD,
      .help = "radiance images added on top, e.g. \"beams.inscatter\" (volume caustics)"},
     [VL_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 32, .min = 1, .max = 1024,
      .help = "samples along each pixel's ray through the medium (jittered per pixel)"},
@@ -42,18 +42,7 @@ static const struct pass_param_desc params[] = {
 
 static bool volume_light_declare(struct pass *p, struct error *err)
 {
-    if (!shadow_inputs_declare(p, VL_SHADOW, err))
-        return false;
-    const struct pass_value *add = &p->values[VL_ADD];
-    if (add->list_count > VOLUME_LIGHT_MAX_ADD)
-        return error_set(err, "bad argument 'add' to 'volume_light' (at most %d inputs, got %d)", VOLUME_LIGHT_MAX_ADD,
-                         add->list_count);
-    for (int i = 0; i < add->list_count; i++) {
-        char slot[32];
-        snprintf(slot, sizeof slot, "add%d", i);
-        if (!pass_declare_input(p, slot, add->list[i], err))
-            return false;
-    }
+    /* shadow0.. and add0.. are declared from the descriptor (pass_declare). */
     return pass_declare_output(p, "color", GL_RGBA32F, GL_TEXTURE_2D, 0, 0, err);
 }
 

@@ -20,9 +20,10 @@ static struct pass *make(const char *kind, const char *param, const char *value,
         struct pass_value *v = &p->values[i];
         v->set = true;
         if (d->params[i].type == PASS_PARAM_INPUT_LIST) {
-            v->list = calloc(1, sizeof *v->list);
-            v->list[0] = strdup(value);
-            v->list_count = 1;
+            struct error e;
+            const char *items[1] = {value};
+            if (!pass_set_list(p, i, items, 1, &e))
+                fprintf(stderr, "list failed: %s\n", e.message);
         } else {
             v->string = strdup(value);
         }
@@ -37,6 +38,43 @@ static struct pass *make(const char *kind, const char *param, const char *value,
 static void test_setters(void)
 {
     struct error err;
+    /* lists, maps and colours by index: capped, checked, copied */
+    {
+        struct pass *sh = pass_create(pass_registry_find("shade"));
+        int caustics = pass_param_index(sh->desc, "caustics");
+        const char *five[5] = {"a.irradiance", "b.irradiance", "c.irradiance", "d.irradiance", "e.irradiance"};
+        CHECK(!pass_set_list(sh, caustics, five, 5, &err));
+        CHECK_CONTAINS(err.message, "at most 4 inputs, got 5");
+        const char *bad[2] = {"a.irradiance", "nodot"};
+        CHECK(!pass_set_list(sh, caustics, bad, 2, &err));
+        CHECK_CONTAINS(err.message, "item 2");
+        char name[32] = "x.irradiance";
+        const char *two[2] = {name, "y.irradiance"};
+        CHECK(pass_set_list(sh, caustics, two, 2, &err));
+        name[0] = 'z'; /* the pass keeps its own copy */
+        CHECK(strcmp(sh->values[caustics].list[0], "x.irradiance") == 0 && sh->values[caustics].list_count == 2);
+        CHECK(pass_declare(sh, &err));
+        bool declared = false;
+        for (int k = 0; k < sh->input_count; k++)
+            declared = declared || (strcmp(sh->inputs[k].name, "caustics1") == 0 &&
+                                    strcmp(sh->inputs[k].source, "y.irradiance") == 0);
+        CHECK(declared);
+        CHECK(!pass_set_color(sh, caustics, vec3_make(1, 1, 1), &err)); /* not a colour parameter */
+        pass_destroy(sh);
+        struct pass *custom = pass_create(pass_registry_find("fullscreen"));
+        int uniforms = pass_param_index(custom->desc, "uniforms");
+        CHECK(uniforms >= 0);
+        if (uniforms >= 0) {
+            const char *keys[2] = {"u_gain", "u_tint"};
+            const float vectors[2][4] = {{2, 0, 0, 0}, {1, NAN, 0, 0}};
+            const int sizes[2] = {1, 3};
+            CHECK(!pass_set_map(custom, uniforms, keys, NULL, vectors, sizes, 2, &err));
+            CHECK_CONTAINS(err.message, "u_tint");
+            CHECK(pass_set_map(custom, uniforms, keys, NULL, vectors, sizes, 1, &err));
+            CHECK(custom->values[uniforms].list_count == 1 && custom->values[uniforms].vector_sizes[0] == 1);
+        }
+        pass_destroy(custom);
+    }
     struct light *lamp = light_create(LIGHT_POINT);
     struct pass *shadow = make("shadow_map", NULL, NULL, lamp);
     CHECK(pass_set_number(shadow, "size", 512, &err));
