@@ -102,15 +102,13 @@ static void pass_outputs(const struct pass_desc *desc, char *out, size_t outlen)
         if (!d->required)
             continue;
         if (d->type == PASS_PARAM_INPUT) {
-            p->values[i].string = strdup("input.source");
-            p->values[i].set = p->values[i].string != NULL;
+            pass_set_string(p, d->name, "input.source", NULL);
         } else if (d->type == PASS_PARAM_LIGHT) {
             pass_set_light(p, i, light);
         } else if (d->type == PASS_PARAM_OBJECT) {
             pass_set_object(p, i, object);
         } else if (d->type == PASS_PARAM_STRING) {
-            p->values[i].string = strdup(d->is_path ? "shader.frag" : "value");
-            p->values[i].set = p->values[i].string != NULL;
+            pass_set_string(p, d->name, d->is_path ? "shader.frag" : "value", NULL);
         } else if (d->type == PASS_PARAM_FUNCTION) {
             p->values[i].set = true; /* declare() does not call it */
         } else {

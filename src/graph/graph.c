@@ -181,7 +181,7 @@ static bool add_block(struct graph *g, struct graph_entry *list, int *count, int
     if (block) {
         for (int k = 0; k < desc->param_count; k++)
             if (desc->params[k].merge_or && want->values[k].number != 0.0)
-                block->values[k].number = 1.0;
+                pass_set_boolean(block, desc->params[k].name, true, NULL);
         pass_destroy(want);
         *used = block;
         return true;
@@ -197,7 +197,7 @@ static bool add_block(struct graph *g, struct graph_entry *list, int *count, int
             block = entry.pass;
             for (int k = 0; k < desc->param_count; k++) /* merged flags start again from this reader's */
                 if (desc->params[k].merge_or)
-                    block->values[k].number = want->values[k].number;
+                    pass_set_boolean(block, desc->params[k].name, want->values[k].number != 0.0, NULL);
             pass_destroy(want);
         }
     if (!block) {
