@@ -35,12 +35,11 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/illumination_geometry.h"
 #include "passes/virtual_camera.h"
 #include "scene/transport.h"
 
 #define ILLUM_MAX_REFRACTORS 8
-#define ILLUM_MAX_PLANES 16
-#define ILLUM_VERTEX_FLOATS 9 /* position, intensity, direction */
 
 /* A glass mesh whose longest edge is more than this fraction of its
  * bounding diagonal is subdivided for its table (scene/mesh_subdivide.c):
@@ -232,27 +231,10 @@ static bool ensure_targets(struct illum_state *s, int size, int planes, int w, i
     return gl_framebuffer_attach(&s->target_fb, tc, NULL, 1, &s->target_depth, -1, err);
 }
 
-/* One illumination volume: the three outgoing rays of a surface triangle
- * and the flux through it. */
-struct volume {
-    vec3 o[3], d[3];
-    vec3 flux;
-};
-
-struct volume_list {
-    struct volume *items;
-    int count, capacity;
-};
-
-/* One glass vertex this frame: where it is, and the light leaving for it. */
-struct vertex_path {
-    vec3 world, exit_position, exit_direction, transmittance;
-    bool ok;
-};
-
-/* §4.1: the volumes of every glass object for one light sample. */
+/* §4.1: the volumes of every glass object for one light sample
+ * (illumination_geometry.c). */
 static bool collect_volumes(struct illum_state *s, const struct frame *fr, const struct scene *scene,
-                            const struct frame_light *light, struct volume_list *out, struct error *err)
+                            const struct frame_light *light, struct illum_volume_list *out, struct error *err)
 {
     int t = 0;
     for (int i = 0; i < scene->object_count && t < s->table_count; i++) {
@@ -262,120 +244,10 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
         const struct mesh *m = s->table_mesh[t];
         const struct transport_table *table = &s->tables[t++];
         const struct frame_object *fo = frame_object_of(fr, o);
-        mat4 model = fo ? fo->model : object_model_matrix(o), inverse;
-        if (!mat4_inverse(model, &inverse))
-            continue;
-        size_t nv = m->vertex_count;
-        struct vertex_path *vp = malloc(nv * sizeof *vp);
-        if (!vp)
-            return error_set(err, "illumination_textures: out of memory");
-        for (size_t v = 0; v < nv; v++) {
-            vec3 pw = mat4_transform_point(model, vec3_make(m->positions[v * 3], m->positions[v * 3 + 1],
-                                                            m->positions[v * 3 + 2]));
-            vec3 dw = light->kind == LIGHT_DIRECTIONAL ? light->direction
-                                                        : vec3_normalize_or(vec3_sub(pw, light->position), vec3_make(0, -1, 0));
-            /* the light's direction in the object's frame: a rotation or
-             * translation of the object needs no new table */
-            vec3 dl = vec3_normalize_or(mat4_transform_dir(inverse, dw), dw);
-            vec3 lp, ld;
-            vp[v].world = pw;
-            vp[v].ok = transport_lookup(table, v, dl, &lp, &ld, &vp[v].transmittance);
-            if (vp[v].ok) {
-                vp[v].exit_position = mat4_transform_point(model, lp);
-                vp[v].exit_direction = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
-            }
-        }
-        for (size_t k = 0; k + 2 < m->index_count; k += 3) {
-            const struct vertex_path *a = &vp[m->indices[k]], *b = &vp[m->indices[k + 1]], *c = &vp[m->indices[k + 2]];
-            if (!a->ok || !b->ok || !c->ok)
-                continue;
-            vec3 pa = a->world, pb = b->world, pc = c->world;
-            vec3 cr = vec3_cross(vec3_sub(pb, pa), vec3_sub(pc, pa));
-            float area2 = vec3_length(cr);
-            if (!(area2 > 1e-20f))
-                continue; /* a zero-area triangle carries no light */
-            vec3 centre = vec3_scale(vec3_add(vec3_add(pa, pb), pc), 1.0f / 3.0f);
-            vec3 dw = light->kind == LIGHT_DIRECTIONAL ? light->direction : vec3_normalize_or(vec3_sub(centre, light->position), vec3_make(0, -1, 0));
-            float cos_theta = -vec3_dot(vec3_scale(cr, 1.0f / area2), dw);
-            if (cos_theta <= 0.0f)
-                continue; /* faces away from the light */
-            /* eq. 1: L_in cos(theta) S, the flux through the triangle, times F_t */
-            vec3 e = light->intensity;
-            if (light->kind != LIGHT_DIRECTIONAL) {
-                vec3 dd = vec3_sub(centre, light->position);
-                e = vec3_scale(e, 1.0f / fmaxf(vec3_dot(dd, dd), 1e-12f));
-                if (light->kind == LIGHT_SPOT) {
-                    float ca = vec3_dot(dw, light->direction), lo = light->cos_outer;
-                    float hi = fmaxf(light->cos_inner, lo + 1e-4f), x = fminf(fmaxf((ca - lo) / (hi - lo), 0.0f), 1.0f);
-                    e = vec3_scale(e, x * x * (3.0f - 2.0f * x));
-                }
-            }
-            vec3 ft = vec3_scale(vec3_add(vec3_add(a->transmittance, b->transmittance), c->transmittance), 1.0f / 3.0f);
-            if (!array_grow((void **)&out->items, &out->capacity, out->count, sizeof *out->items, err)) {
-                free(vp);
-                return error_prefix(err, "illumination_textures");
-            }
-            out->items[out->count++] = (struct volume){
-                .o = {a->exit_position, b->exit_position, c->exit_position},
-                .d = {a->exit_direction, b->exit_direction, c->exit_direction},
-                .flux = vec3_scale(vec3_mul(e, ft), 0.5f * area2 * cos_theta)};
-        }
-        free(vp);
+        if (!illum_volumes_collect(m, table, fo ? fo->model : object_model_matrix(o), light, out, err))
+            return false;
     }
     return true;
-}
-
-static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
-
-/* Whether the rasterizer would draw any fragment of the triangle with
- * texture-space (texel unit) corners a, b, c: a texel centre inside it.
- * Only asked of triangles a few texels across. */
-static bool covers_a_texel_centre(const float a[2], const float b[2], const float c[2])
-{
-    float x0 = fminf(a[0], fminf(b[0], c[0])), x1 = fmaxf(a[0], fmaxf(b[0], c[0]));
-    float y0 = fminf(a[1], fminf(b[1], c[1])), y1 = fmaxf(a[1], fmaxf(b[1], c[1]));
-    float area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    if (area == 0.0f)
-        return false;
-    for (float y = floorf(y0 - 0.5f) + 0.5f; y <= y1; y += 1.0f)
-        for (float x = floorf(x0 - 0.5f) + 0.5f; x <= x1; x += 1.0f) {
-            float e0 = (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
-            float e1 = (c[0] - b[0]) * (y - b[1]) - (c[1] - b[1]) * (x - b[0]);
-            float e2 = (a[0] - c[0]) * (y - c[1]) - (a[1] - c[1]) * (x - c[0]);
-            if (area > 0.0f ? (e0 >= 0 && e1 >= 0 && e2 >= 0) : (e0 <= 0 && e1 <= 0 && e2 <= 0))
-                return true;
-        }
-    return false;
-}
-
-struct weighted { float x, w; };
-
-static int compare_weighted(const void *a, const void *b)
-{
-    float x = ((const struct weighted *)a)->x, y = ((const struct weighted *)b)->x;
-    return (x > y) - (x < y);
-}
-
-/* The values below which fractions lo and hi of the weight lie. */
-static void weighted_range(struct weighted *v, size_t n, float lo, float hi, float *a, float *b)
-{
-    qsort(v, n, sizeof *v, compare_weighted);
-    double total = 0.0, run = 0.0;
-    for (size_t i = 0; i < n; i++)
-        total += v[i].w;
-    *a = v[0].x, *b = v[n - 1].x;
-    bool found_a = false;
-    for (size_t i = 0; i < n; i++) {
-        run += v[i].w;
-        if (!found_a && run >= lo * total) {
-            *a = v[i].x;
-            found_a = true;
-        }
-        if (run >= hi * total) {
-            *b = v[i].x;
-            break;
-        }
-    }
 }
 
 /* Builds the tables (when new), the virtual camera, the planes and the
@@ -429,23 +301,16 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
             return false;
     }
     pass_stage_end(p, "tables");
-    struct volume_list vols = {0};
+    struct illum_volume_list vols = {0};
     int first = r->frame.light_first[slot], entries = r->frame.light_entries[slot];
     for (int e = 0; e < entries; e++) /* a linear light: each point sample's volumes (Fig. 6d) */
         if (!collect_volumes(s, &r->frame, scene, &r->frame.lights[first + e], &vols, err)) {
             free(vols.items);
             return false;
         }
-    /* the average transmitted direction, weighted by flux */
-    vec3 sum = {0, 0, 0};
-    for (int i = 0; i < vols.count; i++) {
-        const struct volume *v = &vols.items[i];
-        float w = v->flux.x + v->flux.y + v->flux.z;
-        sum = vec3_add(sum, vec3_scale(vec3_add(vec3_add(v->d[0], v->d[1]), v->d[2]), w));
-    }
     const float zero[4] = {0, 0, 0, 0};
     gl.ClearTexImage(s->textures.id, 0, GL_RGBA, GL_FLOAT, zero);
-    vec3 d = vec3_normalize_or(sum, vec3_make(0, -1, 0));
+    vec3 d = illum_mean_direction(&vols); /* the average transmitted direction, weighted by flux */
     vec3 lo, hi;
     bool any_target = false;
     for (int i = 0; i < scene->object_count; i++) {
@@ -475,43 +340,15 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         dmax = fmaxf(dmax, z);
     }
     float pd[ILLUM_MAX_PLANES];
-    for (int i = 0; i < planes; i++)
-        pd[i] = planes == 1 ? 0.5f * (dmin + dmax) : dmin + (dmax - dmin) * (float)i / (float)(planes - 1);
-    /* the square where 99% of the flux crosses the planes */
-    float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    struct weighted *wu = malloc((size_t)vols.count * (size_t)planes * sizeof *wu);
-    struct weighted *wv = malloc((size_t)vols.count * (size_t)planes * sizeof *wv);
-    size_t nw = 0;
-    for (int i = 0; wu && wv && i < vols.count; i++)
-        for (int pl = 0; pl < planes; pl++) {
-            const struct volume *vol = &vols.items[i];
-            vec3 o = vec3_scale(vec3_add(vec3_add(vol->o[0], vol->o[1]), vol->o[2]), 1.0f / 3.0f);
-            vec3 dd = vec3_normalize_or(vec3_add(vec3_add(vol->d[0], vol->d[1]), vol->d[2]), d);
-            float cd = vec3_dot(dd, d);
-            float t = cd > 1e-4f ? (pd[pl] - vec3_dot(o, d)) / cd : -1.0f;
-            if (!(t >= 0.0f) || !isfinite(t))
-                continue;
-            vec3 q = vec3_add(o, vec3_scale(dd, t));
-            float w = vol->flux.x + vol->flux.y + vol->flux.z;
-            wu[nw] = (struct weighted){vec3_dot(q, u), w};
-            wv[nw] = (struct weighted){vec3_dot(q, v), w};
-            nw++;
-        }
-    if (nw > 0) {
-        weighted_range(wu, nw, 0.005f, 0.995f, &umin, &umax);
-        weighted_range(wv, nw, 0.005f, 0.995f, &vmin, &vmax);
-    }
-    free(wu);
-    free(wv);
-    if (!(umin <= umax) || !(vmin <= vmax)) {
+    illum_planes_spread(dmin, dmax, planes, pd);
+    /* the square where 99% of the flux crosses the planes, no larger than
+     * the targets' own extent */
+    float cu, cv, half;
+    if (!illum_flux_square(&vols, d, u, v, pd, planes, 0.5f * vec3_length(vec3_sub(hi, lo)), &cu, &cv, &half)) {
         free(vols.items);
         s->planes = 0;
         return true;
     }
-    /* a square no larger than the targets' own extent */
-    float target_half = 0.5f * vec3_length(vec3_sub(hi, lo));
-    float half = clampf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.05f, 1e-4f, fmaxf(target_half, 1e-4f));
-    float cu = 0.5f * (umin + umax), cv = 0.5f * (vmin + vmax);
     s->vc.d = d, s->vc.u = u, s->vc.v = v;
     s->vc.center[0] = cu, s->vc.center[1] = cv, s->vc.half = half;
     float pad = 0.01f * (dmax - dmin) + 1e-4f;
@@ -523,8 +360,10 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "illumination_textures/target.frag", NULL,
                         &target, err) ||
         !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
-                        "illumination_textures/illumination.frag", NULL, &illum, err))
+                        "illumination_textures/illumination.frag", NULL, &illum, err)) {
+        free(vols.items);
         return false;
+    }
     virtual_camera_set(target, &s->vc);
     virtual_camera_set(illum, &s->vc);
     const float no_target[4] = {0, 0, 0, 1e30f};
@@ -550,86 +389,18 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
             }
         }
         if (seen_min <= seen_max)
-            for (int i = 0; i < planes; i++)
-                pd[i] = planes == 1 ? 0.5f * (seen_min + seen_max)
-                                    : seen_min + (seen_max - seen_min) * (float)i / (float)(planes - 1);
+            illum_planes_spread(seen_min, seen_max, planes, pd);
     }
     free(texels);
     memcpy(s->plane_depth, pd, sizeof pd);
     pass_stage_end(p, "targets");
     /* §4.2: intersection triangles, eq. 3 without cos(gamma) at each vertex */
-    float texel = 2.0f * half / (float)size, texel_area = texel * texel;
-    size_t nverts = (size_t)vols.count * (size_t)planes * 3;
-    float *buf = malloc(nverts * ILLUM_VERTEX_FLOATS * sizeof(float));
-    float *points = malloc((size_t)vols.count * (size_t)planes * 3 * ILLUM_VERTEX_FLOATS * sizeof(float));
-    size_t plane_first[ILLUM_MAX_PLANES], plane_count[ILLUM_MAX_PLANES], n = 0;
-    size_t point_first[ILLUM_MAX_PLANES], point_count[ILLUM_MAX_PLANES], np = 0;
-    if (!buf || !points) {
-        free(buf);
-        free(points);
-        free(vols.items);
-        return error_set(err, "illumination_textures: out of memory for %zu vertices", nverts);
-    }
-    for (int pl = 0; pl < planes; pl++) {
-        plane_first[pl] = n;
-        point_first[pl] = np;
-        for (int i = 0; i < vols.count; i++) {
-            const struct volume *vol = &vols.items[i];
-            vec3 q[3];
-            float cd[3];
-            bool valid = true;
-            for (int k = 0; k < 3 && valid; k++) {
-                cd[k] = vec3_dot(vol->d[k], d);
-                float t = cd[k] > 1e-4f ? (pd[pl] - vec3_dot(vol->o[k], d)) / cd[k] : -1.0f;
-                valid = t >= 0.0f && isfinite(t);
-                if (valid)
-                    q[k] = vec3_add(vol->o[k], vec3_scale(vol->d[k], t));
-            }
-            if (!valid)
-                continue; /* a ray parallel to the plane, or the plane behind where it leaves */
-            float s0 = 0.5f * vec3_length(vec3_cross(vec3_sub(q[1], q[0]), vec3_sub(q[2], q[0])));
-            bool tiny = !(s0 >= texel_area);
-            if (!tiny && s0 < 16.0f * texel_area) {
-                /* a triangle a few texels across that no texel centre falls
-                 * in would be lost by the rasterizer: a point instead */
-                float t2[3][2];
-                for (int k = 0; k < 3; k++) {
-                    t2[k][0] = ((vec3_dot(q[k], u) - cu) / (2.0f * half) + 0.5f) * (float)size;
-                    t2[k][1] = ((vec3_dot(q[k], v) - cv) / (2.0f * half) + 0.5f) * (float)size;
-                }
-                tiny = !covers_a_texel_centre(t2[0], t2[1], t2[2]);
-            }
-            if (tiny) {
-                /* S_0 -> 0 (a focus on the plane), or a triangle the texels
-                 * miss: three points inside it, at barycentric (2/3, 1/6,
-                 * 1/6) and its turns, a third of its flux each, one texel
-                 * apiece (a sliver spanning several texels spreads along) */
-                vec3 dd = vec3_normalize_or(vec3_add(vec3_add(vol->d[0], vol->d[1]), vol->d[2]), d);
-                vec3 in = vec3_scale(vol->flux, 1.0f / (3.0f * texel_area * fmaxf(vec3_dot(dd, d), 1e-4f)));
-                for (int k = 0; k < 3; k++) {
-                    float *o = points + np * ILLUM_VERTEX_FLOATS;
-                    vec3 c = vec3_add(vec3_scale(q[k], 2.0f / 3.0f),
-                                      vec3_scale(vec3_add(q[(k + 1) % 3], q[(k + 2) % 3]), 1.0f / 6.0f));
-                    o[0] = c.x, o[1] = c.y, o[2] = c.z;
-                    o[3] = in.x, o[4] = in.y, o[5] = in.z;
-                    o[6] = dd.x, o[7] = dd.y, o[8] = dd.z;
-                    np++;
-                }
-                continue;
-            }
-            for (int k = 0; k < 3; k++) {
-                float *o = buf + (n + (size_t)k) * ILLUM_VERTEX_FLOATS;
-                vec3 in = vec3_scale(vol->flux, 1.0f / (s0 * fmaxf(cd[k], 1e-4f)));
-                o[0] = q[k].x, o[1] = q[k].y, o[2] = q[k].z;
-                o[3] = in.x, o[4] = in.y, o[5] = in.z;
-                o[6] = vol->d[k].x, o[7] = vol->d[k].y, o[8] = vol->d[k].z;
-            }
-            n += 3;
-        }
-        plane_count[pl] = n - plane_first[pl];
-        point_count[pl] = np - point_first[pl];
-    }
+    struct illum_intersections x;
+    bool made = illum_intersect(&vols, d, u, v, pd, planes, cu, cv, half, size, &x, err);
     free(vols.items);
+    if (!made)
+        return false;
+    size_t n = x.triangle_vertices, np = x.point_vertices;
     /* the points after the triangles in one buffer */
     size_t tri_bytes = n * ILLUM_VERTEX_FLOATS * sizeof(float), point_bytes = np * ILLUM_VERTEX_FLOATS * sizeof(float);
     size_t bytes = tri_bytes + point_bytes;
@@ -642,11 +413,10 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         gl.VertexArrayVertexBuffer(s->vao, 0, s->vbo, 0, ILLUM_VERTEX_FLOATS * sizeof(float));
     }
     if (tri_bytes)
-        gl.NamedBufferSubData(s->vbo, 0, (GLsizeiptr)tri_bytes, buf);
+        gl.NamedBufferSubData(s->vbo, 0, (GLsizeiptr)tri_bytes, x.triangles);
     if (point_bytes)
-        gl.NamedBufferSubData(s->vbo, (GLintptr)tri_bytes, (GLsizeiptr)point_bytes, points);
-    free(buf);
-    free(points);
+        gl.NamedBufferSubData(s->vbo, (GLintptr)tri_bytes, (GLsizeiptr)point_bytes, x.points);
+    illum_intersections_release(&x);
     pass_stage_end(p, "volumes");
 
 
@@ -663,10 +433,10 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         if (!gl_framebuffer_attach(&s->texture_fb, layer, layer_index, 1, NULL, -1, err))
             return false;
         gl.BindFramebuffer(GL_FRAMEBUFFER, s->texture_fb.id);
-        if (plane_count[pl] > 0)
-            gl.DrawArrays(GL_TRIANGLES, (GLint)plane_first[pl], (GLsizei)plane_count[pl]);
-        if (point_count[pl] > 0)
-            gl.DrawArrays(GL_POINTS, (GLint)(n + point_first[pl]), (GLsizei)point_count[pl]);
+        if (x.count[pl] > 0)
+            gl.DrawArrays(GL_TRIANGLES, (GLint)x.first[pl], (GLsizei)x.count[pl]);
+        if (x.point_count[pl] > 0)
+            gl.DrawArrays(GL_POINTS, (GLint)(n + x.point_first[pl]), (GLsizei)x.point_count[pl]);
     }
     renderer_reset_state(r);
     pass_stage_end(p, "textures");
