@@ -13,6 +13,7 @@
 #include "common/frame.glsl"
 uniform sampler2D u_receiver_normal;
 layout(r32ui) uniform uimage2DArray u_flux;
+#include "common/bilinear.glsl"
 #include "common/fixed_point.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform readonly image2DArray u_hits;
@@ -47,13 +48,11 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
 void deposit(vec2 at, vec3 flux)
 {
     // bilinear into the four pixels around `at` (pixel centres at +0.5)
-    vec2 f = at - 0.5;
-    ivec2 c = ivec2(floor(f));
-    vec2 t = f - vec2(c);
-    float w[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
-    ivec2 o[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(0, 1), ivec2(1, 1));
+    ivec2 cells[4];
+    float w[4];
+    bilinear_taps(at, cells, w);
     for (int i = 0; i < 4; i++) {
-        ivec2 q = c + o[i];
+        ivec2 q = cells[i];
         if (w[i] <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(u_viewport.xy))))
             continue;
         if (texelFetch(u_receiver_normal, q, 0).w < 0.5)

@@ -17,6 +17,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2D u_photons;
 uniform sampler2D u_flux;
 layout(r32ui) uniform uimage2DArray u_counts;
+#include "common/bilinear.glsl"
 #include "common/fixed_point.glsl"
 uniform int u_texture;
 uniform float u_footprint; // texels (0: a point)
@@ -26,14 +27,12 @@ int receiver;
 
 void deposit(vec2 at, vec3 flux) // `at` in texels (centres at +0.5)
 {
-    vec2 f = at - 0.5;
-    ivec2 c = ivec2(floor(f));
-    vec2 t = f - vec2(c);
-    float w[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
-    ivec2 o[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(0, 1), ivec2(1, 1));
+    ivec2 cells[4];
+    float w[4];
+    bilinear_taps(at, cells, w);
     for (int i = 0; i < 4; i++) {
         // clamped at the texture's edge: the flux stays on the receiver
-        ivec2 q = clamp(c + o[i], ivec2(0), ivec2(u_texture - 1));
+        ivec2 q = clamp(cells[i], ivec2(0), ivec2(u_texture - 1));
         if (w[i] <= 0.0)
             continue;
         for (int k = 0; k < 3; k++)

@@ -1,4 +1,6 @@
 #version 450 core
+// The refractor's surfaces for refraction's two passes (surfaces.frag: the front
+// and back normals and depths; refract.frag: the refraction itself).
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

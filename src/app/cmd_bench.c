@@ -747,7 +747,8 @@ static bool bench_reference_curve(struct bench *b, struct error *err)
     bool ok = true;
     for (int t = 0; ok && t < b->nsets && t < MAX_CURVES; t++) {
         const struct truth_set *ts = &b->sets[t];
-        for (int level = b->level_max / 8; ok && level <= b->level_max; level *= 2) {
+        /* (at least 1 iteration: --ref-spp under 8 would start the doubling at 0) */
+        for (int level = b->level_max >= 8 ? b->level_max / 8 : 1; ok && level <= b->level_max; level *= 2) {
             struct result *r = &b->curve[b->ncurve++];
             memset(r, 0, sizeof *r);
             r->truth = t;

@@ -315,7 +315,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
 
     /* Initial pass: front- and back-facing normals and depths. */
     struct gl_program *surf;
-    if (!gl_program_get(&r->programs, "refraction/surfaces.vert", "refraction/surfaces.frag", defines, &surf, err))
+    if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/surfaces.frag", defines, &surf, err))
         return false;
     const float zero[4] = {0, 0, 0, 0};
     gl.Enable(GL_DEPTH_TEST);
