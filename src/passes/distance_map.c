@@ -34,13 +34,26 @@ static bool diffuse_animated(const struct scene *scene)
     return false;
 }
 
+/* The key a map around `center` at `size` (and `range`, 0 for the full
+ * map) is made under: the building pass's pass_frame_key with what the
+ * map's kind depends on. Sets *key; true when the map already stands for
+ * it (no receiver animates: a deforming glass dragon does not count). */
+static bool map_current(const struct distance_map *m, const struct pass *owner, const struct pass_frame *f,
+                        unsigned depends, vec3 center, int size, float range, uint64_t *key)
+{
+    uint64_t k = pass_frame_key(owner, f, depends);
+    k = pass_key_mix(k, &center, sizeof center);
+    k = pass_key_mix(k, &size, sizeof size);
+    *key = pass_key_mix(k, &range, sizeof range);
+    return m->built && m->built_key == *key && !diffuse_animated(f->scene);
+}
+
 bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
                          vec3 center, int size, struct error *err)
 {
     const struct scene *scene = f->scene;
-    uint64_t key = pass_frame_key(shadow_pass, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS);
-    key = pass_key_mix(pass_key_mix(key, &center, sizeof center), &size, sizeof size);
-    if (m->built && m->built_key == key && !diffuse_animated(scene))
+    uint64_t key;
+    if (map_current(m, shadow_pass, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS, center, size, 0.0f, &key))
         return true;
     m->built = false;
     if (m->size != size || !m->color[0].id) {
@@ -117,10 +130,8 @@ bool distance_map_update_distances(struct distance_map *m, struct renderer *r, s
                                    struct pass_frame *f, vec3 center, int size, float range, struct error *err)
 {
     const struct scene *scene = f->scene;
-    uint64_t key = pass_frame_key(owner, f, PASS_DEPENDS_GEOMETRY);
-    key = pass_key_mix(pass_key_mix(pass_key_mix(key, &center, sizeof center), &size, sizeof size), &range,
-                       sizeof range);
-    if (m->built && m->built_key == key && !diffuse_animated(scene))
+    uint64_t key;
+    if (map_current(m, owner, f, PASS_DEPENDS_GEOMETRY, center, size, range, &key))
         return true;
     m->built = false;
     if (m->size != size || !m->distance[0].id || m->color[0].id) {
