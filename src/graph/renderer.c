@@ -333,6 +333,21 @@ void renderer_draw_fullscreen(struct renderer *r)
     gl.BindVertexArray(0);
 }
 
+bool renderer_draw_copy(struct renderer *r, GLuint framebuffer, int width, int height, GLuint texture,
+                        struct error *err)
+{
+    struct gl_program *copy;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.Viewport(0, 0, width, height);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.UseProgram(copy->id);
+    gl_program_bind_texture(copy, "u_image", texture);
+    renderer_draw_fullscreen(r);
+    return true;
+}
+
 bool tonemap_parse(const char *name, enum tonemap_operator *out)
 {
     if (strcmp(name, "clamp") == 0)

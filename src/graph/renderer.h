@@ -84,6 +84,10 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
 void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                           struct object *object);
 void renderer_draw_fullscreen(struct renderer *r);
+/* `texture` copied over the whole of `framebuffer` (its colour attachments
+ * as set), depth test off: a pass that passes its input through. */
+bool renderer_draw_copy(struct renderer *r, GLuint framebuffer, int width, int height, GLuint texture,
+                        struct error *err);
 
 /* A user fragment shader over the whole of `fb` (its targets attached):
  * inputs on texture units 0.. with their samplers set, uniforms by name

@@ -142,21 +142,11 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
 
     /* the image as it is, then the refractors over it */
     const struct gl_texture *oc[2] = {&f->outputs[0]->texture, &f->outputs[1]->texture};
-    struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
-        return false;
     vec3 lo, hi;
     if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj) ||
-        !ls->built) {
-        if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err))
-            return false;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
-        gl.Viewport(0, 0, f->width, f->height);
-        gl.UseProgram(copy->id);
-        gl_program_bind_texture(copy, "u_image", in_color->texture.id);
-        renderer_draw_fullscreen(r);
-        return true;
-    }
+        !ls->built)
+        return gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err) &&
+               renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err);
     pass_stage_begin(p);
     bool nearby = pass_flag(p, LR_NEARBY);
     if (nearby) {
@@ -170,14 +160,11 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
 
     if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 2, NULL, -1, err))
         return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
     static const GLenum color_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
     static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, color_only);
-    gl.UseProgram(copy->id);
-    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
-    renderer_draw_fullscreen(r);
+    if (!renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err))
+        return false;
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 2, both);
 
     /* The marches of the light exits reflect back inside (`internal`) cost

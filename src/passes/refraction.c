@@ -269,19 +269,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     if (!scene_specular_in_view(f->scene, f->snapshot->view_proj)) {
         /* nothing to refract on screen: the image as it is (no impostors, no surfaces) */
         const struct gl_texture *only[1] = {&f->outputs[0]->texture};
-        struct gl_program *pass_through;
-        if (!gl_framebuffer_attach(&s->out_fb, only, NULL, 1, NULL, -1, err) ||
-            !gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &pass_through, err))
+        if (!gl_framebuffer_attach(&s->out_fb, only, NULL, 1, NULL, -1, err))
             return false;
         gl_texture_clear(&f->outputs[1]->texture, clear);
         gl_texture_clear(&f->outputs[2]->texture, clear);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
-        gl.Viewport(0, 0, f->width, f->height);
-        gl.Disable(GL_DEPTH_TEST);
-        gl.UseProgram(pass_through->id);
-        gl_program_bind_texture(pass_through, "u_image", in_color->texture.id);
-        renderer_draw_fullscreen(r);
-        return true;
+        return renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err);
     }
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
@@ -344,13 +336,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     static const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     static const GLenum all_outputs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, color_only);
-    struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
+    if (!renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err))
         return false;
-    gl.Disable(GL_DEPTH_TEST);
-    gl.UseProgram(copy->id);
-    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
-    renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;

@@ -146,17 +146,10 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     int count = pass_int(p, SR_SLICES), size = pass_int(p, SR_SIZE), resolution = pass_int(p, SR_TABLE);
 
     /* the input as it is, then the glass over it */
-    struct gl_program *copy;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "common/copy.frag", NULL, &copy, err))
-        return false;
     const struct gl_texture *oc[1] = {&out->texture};
-    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, &in_depth->texture, -1, err))
+    if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, &in_depth->texture, -1, err) ||
+        !renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err))
         return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.UseProgram(copy->id);
-    gl_program_bind_texture(copy, "u_image", in_color->texture.id);
-    renderer_draw_fullscreen(r);
 
     /* the viewing rays through each glass object (§3: the table) */
     pass_stage_begin(p);
