@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES = cmake make gcc g++ pkg-config liblua5.4-dev libglfw3-dev libosmesa6-dev libegl-dev \
            libegl-mesa0 libgl1-mesa-dri libgl1 libglx-mesa0 libtinygltf-dev libpng-dev libjpeg62-turbo-dev libopenexr-dev libembree-dev xvfb xauth
 
-.PHONY: all deps farm-deps build demo test test-farm fuzz matrix clean
+.PHONY: all deps farm-deps build demo test test-farm fuzz matrix install clean
 
 all: build
 
@@ -43,6 +43,13 @@ demo: build
 	$(BUILD)/caustica render scenes/demo.lua -o out/demo/demo.png --timings
 	$(BUILD)/caustica record scenes/demo.lua -o out/demo/frames --frames 0:59 --size 256x256
 	@echo "demo images: out/demo/demo.png and out/demo/frames/frame_0000.png .. frame_0059.png"
+
+# Installs the binary in $(PREFIX)/bin and its shaders, Lua modules,
+# scenes, assets and docs in $(PREFIX)/share (it needs no source tree then).
+PREFIX ?= /usr/local
+install: build
+	@cmake --install $(BUILD) --prefix "$(PREFIX)"
+	@echo "installed $(PREFIX)/bin/caustica (data in $(PREFIX)/share/caustica)"
 
 # The technique x case matrix (docs/OPTICS_MATRIX.md), written again from its test.
 matrix: build

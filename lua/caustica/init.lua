@@ -12,6 +12,7 @@ c.graph = graph.graph
 c.pass = graph.pass
 c.image = image
 c.param = host.param
+c.asset = host.asset
 
 -- Small helpers for animation scripts.
 c.anim = {}
@@ -32,5 +33,29 @@ function c.anim.orbit(t, radius, height, turns)
   local a = 2 * math.pi * (turns or 0.1) * t
   return { radius * math.cos(a), height, radius * math.sin(a) }
 end
+
+-- A name the API does not have is an error that lists the ones it has
+-- (`c.mesh.cylindr` would otherwise be "attempt to call a nil value"); the
+-- level-2 error points at the script's line.
+local function known_names(t, what)
+  local mt = getmetatable(t) or {}   -- c.texture keeps its __call
+  mt.__index = function(_, name)
+    local known = {}
+    for k in pairs(t) do known[#known + 1] = tostring(k) end
+    table.sort(known)
+    local near = host.suggest(tostring(name), known)
+    error(string.format("unknown %s '%s'%s (known: %s)", what, tostring(name),
+                        near and string.format(" (did you mean '%s'?)", near) or "",
+                        table.concat(known, ", ")), 2)
+  end
+  setmetatable(t, mt)
+end
+known_names(c.mesh, "mesh")
+known_names(c.material, "material")
+known_names(c.light, "light")
+known_names(c.texture, "texture")
+known_names(c.deform, "deformer")
+known_names(c.anim, "c.anim function")
+known_names(c, "c field")
 
 return c

@@ -24,12 +24,23 @@ struct app {
     const char *allow_read[8]; /* --allow-read DIR: more folders a sandboxed script may read */
     int allow_read_count;
     const char *allow_write;   /* --allow-write DIR: a folder a sandboxed script may write */
+    /* Folders c.asset searches before the project's scenes/assets: the
+     * --asset-path ones first, then $CAUSTICA_ASSET_PATH's (split at ':'). */
+    const char *asset_path[8];
+    int asset_path_count;      /* --asset-path folders */
+    char asset_env[4096];      /* $CAUSTICA_ASSET_PATH, its ':' made NULs */
+    const char *asset_env_dirs[8];
+    int asset_env_count;
     int render_depth;          /* c.image.render nesting (a script that renders itself) */
 };
 
-/* Finds the project folder: $CAUSTICA_ROOT, else the build's source folder. */
+/* Finds the project folder: $CAUSTICA_ROOT; else the folder the binary was
+ * installed with (<prefix>/share/caustica beside <prefix>/bin/caustica);
+ * else the source tree it was built from. Reads $CAUSTICA_ASSET_PATH. */
 void app_init(struct app *app);
 bool app_ensure_gl(struct app *app, struct error *err);
 void app_shutdown(struct app *app);
+/* The asset folders in search order (--asset-path, then $CAUSTICA_ASSET_PATH); returns the count. */
+int app_asset_dirs(const struct app *app, const char **dirs, int max);
 
 #endif

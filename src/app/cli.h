@@ -54,9 +54,17 @@ struct cli {
     struct lua_params params;
 };
 
-/* Parses argv after the verb; prints the problem and returns false on bad usage. */
-bool cli_parse(int argc, char **argv, struct app *app, struct cli *cli);
+/* Parses argv after `verb` (GNU style: --opt value, --opt=value, -- ends
+ * the options); an option the verb does not take, an unknown one (with the
+ * nearest name) or a bad value prints one line and the hint, and returns false. */
+bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct cli *cli);
+/* Every verb's synopsis and summary. */
 void cli_usage(FILE *out);
+/* "see `caustica VERB --help`" on stderr, after a usage error's line. */
+void cli_usage_hint(const char *verb);
+bool cli_is_verb(const char *name);
+/* The verb nearest a misspelt one, or NULL. */
+const char *cli_suggest_verb(const char *word);
 void cli_print_error(const struct error *err);
 
 int cmd_render(struct app *app, struct cli *cli);
@@ -69,7 +77,7 @@ int cmd_reference(struct app *app, struct cli *cli);
 int cmd_bench(struct app *app, struct cli *cli);
 int cmd_choose(struct app *app, struct cli *cli);
 int cmd_convert(struct app *app, struct cli *cli);
-/* The usage lines of one verb (its line, continuation lines, the common options). */
+/* One verb's synopsis, and every option it takes with its meaning, default and limits. */
 void cli_usage_verb(FILE *out, const char *verb);
 /* `caustica help [passes | PASS] [--markdown]`: the pass reference from the descriptors. */
 int cmd_help(int argc, char **argv);

@@ -944,7 +944,7 @@ int cmd_bench(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
         fprintf(stderr, "caustica: bench needs one scene script\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     struct bench b = {.app = app, .cli = cli, .script = cli->positional[0], .dir = cli->output ? cli->output : "bench"};

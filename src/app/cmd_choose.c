@@ -195,7 +195,7 @@ int cmd_choose(struct app *app, struct cli *cli)
     if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0)) {
         fprintf(stderr, "caustica: choose needs one scene script and --error E (the largest error accepted) or --time "
                         "MS (the milliseconds a frame may take), or both\n");
-        cli_usage_verb(stderr, "choose");
+        cli_usage_hint("choose");
         return EXIT_USAGE;
     }
     const char *script = cli->positional[0];

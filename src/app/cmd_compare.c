@@ -10,7 +10,7 @@ int cmd_compare(struct app *app, struct cli *cli)
     (void)app;
     if (cli->npositional != 2) {
         fprintf(stderr, "caustica: compare needs two images\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     struct image a = {0}, b = {0}, m = {0};

@@ -11,7 +11,7 @@ int cmd_convert(struct app *app, struct cli *cli)
     (void)app;
     if (cli->npositional != 2) {
         fprintf(stderr, "caustica: convert needs an input and an output image\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     struct image img = {0};

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "app/cli.h"
+#include "core/suggest.h"
 #include "graph/pass.h"
 #include "scene/scene.h"
 #include "scene/water.h"
@@ -188,9 +189,20 @@ int cmd_help(int argc, char **argv)
     bool markdown = false;
     const char *topic = NULL;
     for (int i = 0; i < argc; i++) {
-        if (strcmp(argv[i], "--markdown") == 0)
+        if (strcmp(argv[i], "--markdown") == 0) {
             markdown = true;
-        else if (!topic)
+        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            printf("usage:\n  caustica help                   every verb\n"
+                   "  caustica help passes            every pass with its parameters\n"
+                   "  caustica help PASS              one pass: what it reads and makes, each parameter's "
+                   "meaning, default and range\n"
+                   "  caustica help VERB              the same as caustica VERB --help\n"
+                   "options:\n  --markdown                      the pass reference as Markdown\n");
+            return 0;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            fprintf(stderr, "caustica: help: unknown option '%s'\nsee `caustica help --help`\n", argv[i]);
+            return EXIT_USAGE;
+        } else if (!topic)
             topic = argv[i];
         else {
             fprintf(stderr, "caustica: help takes one topic, got '%s' too\n", argv[i]);
@@ -210,9 +222,21 @@ int cmd_help(int argc, char **argv)
         }
         return 0;
     }
+    if (cli_is_verb(topic)) {
+        cli_usage_verb(stdout, topic);
+        return 0;
+    }
     const struct pass_desc *d = pass_registry_find(topic);
     if (!d) {
-        fprintf(stderr, "caustica: help: no pass named '%s' (known passes:", topic);
+        const char *names[64];
+        size_t n = 0;
+        for (int i = 0; i < pass_registry_count() && n < 64; i++)
+            names[n++] = pass_registry_get(i)->name;
+        const char *near = suggest_nearest(topic, names, n);
+        fprintf(stderr, "caustica: help: no pass named '%s'", topic);
+        if (near)
+            fprintf(stderr, " (did you mean '%s'?)", near);
+        fprintf(stderr, " (known passes:");
         for (int i = 0; i < pass_registry_count(); i++)
             fprintf(stderr, "%s %s", i ? "," : "", pass_registry_get(i)->name);
         fprintf(stderr, ")\n");

@@ -10,7 +10,7 @@ int cmd_reference(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1 || !cli->output) {
         fprintf(stderr, "caustica: reference needs one scene script and -o OUT.pfm\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output)) {

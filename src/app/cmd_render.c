@@ -57,7 +57,7 @@ int cmd_render(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
         fprintf(stderr, "caustica: render needs one scene script\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     const char *out = cli->output ? cli->output : "out.png";
@@ -113,7 +113,7 @@ int cmd_record(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1 || !cli->output) {
         fprintf(stderr, "caustica: record needs one scene script and -o DIR or -o PATTERN (out/shot_####.png)\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     struct error err;

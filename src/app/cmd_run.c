@@ -161,7 +161,7 @@ int cmd_run(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
         fprintf(stderr, "caustica: run needs one scene script\n");
-        cli_usage(stderr);
+        cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
     struct error err;

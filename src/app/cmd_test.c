@@ -123,9 +123,12 @@ int cmd_test(struct app *app, struct cli *cli)
     long passed = 0, failed = 0;
     struct test_report report = {0};
     for (int i = 0; i < count; i++) {
+        const char *asset_dirs[LUA_HOST_ASSET_DIRS_MAX];
+        int asset_dir_count = app_asset_dirs(app, asset_dirs, LUA_HOST_ASSET_DIRS_MAX);
         struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true,
                                       .render = session_render_service, .render_context = app,
-                                      .update_refs = cli->update_refs, .filter = cli->filter};
+                                      .update_refs = cli->update_refs, .filter = cli->filter,
+                                      .asset_dirs = asset_dirs, .asset_dir_count = asset_dir_count};
         struct error err;
         lua_State *L = lua_host_create(&ho, &err);
         bool ok = L && lua_host_run_file(L, files[i], 0, &err);

@@ -36,14 +36,17 @@ int main(int argc, char **argv)
         static struct app app;
         static struct cli cli;
         app_init(&app);
-        if (!cli_parse(argc - 2, argv + 2, &app, &cli))
+        if (!cli_parse(verbs[i].name, argc - 2, argv + 2, &app, &cli))
             return EXIT_USAGE;
-        cli.verb = verbs[i].name;
         int rc = verbs[i].run(&app, &cli);
         app_shutdown(&app);
         return rc;
     }
-    fprintf(stderr, "caustica: unknown command '%s'\n", argv[1]);
-    cli_usage(stderr);
+    const char *near = cli_suggest_verb(argv[1]);
+    if (near)
+        fprintf(stderr, "caustica: unknown command '%s' (did you mean '%s'?)\n", argv[1], near);
+    else
+        fprintf(stderr, "caustica: unknown command '%s'\n", argv[1]);
+    cli_usage_hint(NULL);
     return EXIT_USAGE;
 }

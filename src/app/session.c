@@ -114,6 +114,8 @@ static void unload(struct session *s)
 
 static bool load(struct session *s, struct error *err)
 {
+    const char *asset_dirs[LUA_HOST_ASSET_DIRS_MAX];
+    int asset_dir_count = app_asset_dirs(s->app, asset_dirs, LUA_HOST_ASSET_DIRS_MAX);
     struct lua_host_options ho = {
         .root = s->app->root,
         .script_path = s->script,
@@ -126,7 +128,10 @@ static bool load(struct session *s, struct error *err)
         .memory_limit = s->app->script_memory,
         .read_dirs = s->app->allow_read,
         .read_dir_count = s->app->allow_read_count,
+        .asset_dirs = asset_dirs,
+        .asset_dir_count = asset_dir_count,
     };
+    log_info("data folder %s (lua/, shaders/, scenes/assets)", s->app->root);
     s->L = lua_host_create(&ho, err);
     if (!s->L)
         return false;

@@ -48,6 +48,31 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
                      i + 1, object_role_name(role), role == OBJECT_ROLE_WATER ? ", water_surface" : "");
     }
+    /* A refractor drawn twice: a pass that looks its "color" input up
+     * behind the glass or water it draws (the descriptor says), over an
+     * image in which the pass that made it already drew them (shade {
+     * specular = true } before layered_refraction): the refracted image
+     * shows the glass inside itself (rel 0.066 on issue 29's scene). */
+    for (int i = 0; i < g->count && count < max; i++) {
+        const struct pass *p = g->entries[i].pass;
+        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0;
+        if (!p->desc->color_behind_refractors || !(mine & OBJECT_ROLE_REFRACTOR) || (mine & PASS_DRAWS_ANYTHING))
+            continue;
+        for (int k = 0; k < p->input_count && count < max; k++) {
+            if (strcmp(p->inputs[k].name, "color") != 0)
+                continue;
+            const struct pass *maker = producer(g, p->inputs[k].source);
+            unsigned theirs = maker && maker->desc->draws ? maker->desc->draws(maker) : 0;
+            unsigned both = mine & theirs & OBJECT_ROLE_REFRACTOR;
+            if (both && !(theirs & PASS_DRAWS_ANYTHING))
+                snprintf(messages[count++], 400,
+                         "pass '%s' (%s) draws the %s over '%s', in which pass '%s' (%s) already drew %s: it shows "
+                         "twice, refracted through itself%s",
+                         p->name, p->desc->name, object_role_name(both & OBJECT_ROLE_GLASS ? OBJECT_ROLE_GLASS : both),
+                         p->inputs[k].source, maker->name, maker->desc->name, both & OBJECT_ROLE_GLASS ? "it" : "them",
+                         strcmp(maker->desc->name, "shade") == 0 ? " (give that shade specular = false)" : "");
+        }
+    }
     /* A pass whose light is not in the scene makes nothing (the graph skips it). */
     for (int i = 0; i < g->count && count < max; i++) {
         const struct pass *p = g->entries[i].pass;

@@ -173,6 +173,12 @@ struct pass_desc {
      * PASS_DRAWS_ANYTHING. NULL: none (a pass that makes irradiance, depth
      * or layers). */
     unsigned (*draws)(const struct pass *p);
+    /* The pass looks its `color` input up where rays leave the refractors
+     * it draws, so an input that already shows them (shade { specular =
+     * true }) shows them inside themselves: graph_lint warns. False for a
+     * pass whose lookup steps over them (refraction's, sliced_refraction's:
+     * measured within 0.8% and 0.04%). */
+    bool color_behind_refractors;
     /* Reuse by version (issue 26): what of the frame the pass's outputs
      * depend on besides its parameters and inputs, a mask of PASS_DEPENDS_*.
      * The graph reuses last frame's outputs while none of it changed (and no

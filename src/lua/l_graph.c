@@ -10,6 +10,7 @@
 #include <lauxlib.h>
 #include <lua.h>
 
+#include "core/suggest.h"
 #include "graph/graph.h"
 #include "lua/l_scene.h"
 #include "lua/l_util.h"
@@ -102,7 +103,7 @@ static void read_map(lua_State *L, int idx, struct pass *p, int param, const cha
         sizes[at] = 0;
         memset(vectors[at], 0, sizeof vectors[0]);
         if (d->type == PASS_PARAM_UNIFORM_MAP) {
-            if (lua_isnumber(L, -1)) {
+            if (lua_type(L, -1) == LUA_TNUMBER) {
                 vectors[at][0] = lutil_check_number(L, -1, fn, d->name);
                 sizes[at] = 1;
             } else if (lua_istable(L, -1)) {
@@ -462,6 +463,14 @@ static int pass_table_index(lua_State *L)
         luaL_addstring(&b, pass_registry_get(i)->name);
     }
     luaL_pushresult(&b);
+    const char *names[64];
+    size_t n = 0;
+    for (int i = 0; i < pass_registry_count() && n < 64; i++)
+        names[n++] = pass_registry_get(i)->name;
+    const char *near = name ? suggest_nearest(name, names, n) : NULL;
+    if (near)
+        return luaL_error(L, "unknown pass '%s' (did you mean '%s'?) (known passes: %s)", name, near,
+                          lua_tostring(L, -1));
     return luaL_error(L, "unknown pass '%s' (known passes: %s)", name ? name : "?", lua_tostring(L, -1));
 }
 

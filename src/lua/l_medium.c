@@ -27,7 +27,7 @@ static double call_density(void *user, vec3 p)
     lua_pushnumber(c->L, p.y);
     lua_pushnumber(c->L, p.z);
     lua_call(c->L, 3, 1);
-    if (!lua_isnumber(c->L, -1))
+    if (lua_type(c->L, -1) != LUA_TNUMBER)
         lutil_error(c->L, "medium density function must return a number, got %s", luaL_typename(c->L, -1));
     double d = lua_tonumber(c->L, -1);
     lua_pop(c->L, 1);

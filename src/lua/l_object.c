@@ -115,6 +115,57 @@ static int mesh_torus(lua_State *L)
     return push_mesh(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
 }
 
+/* c.mesh.cylinder / c.mesh.cone { radius, height, segments }: about +y,
+ * centred at the origin like the box and the sphere. */
+static int mesh_round(lua_State *L, const char *fn, bool cone)
+{
+    float radius = 0.5f, height = 1.0f;
+    int segments = 64;
+    static const char *const fields[] = {"radius", "height", "segments", NULL};
+    if (options(L, fn, fields)) {
+        lutil_opt_number(L, 1, fn, "radius", &radius);
+        lutil_opt_number(L, 1, fn, "height", &height);
+        lutil_opt_integer(L, 1, fn, "segments", &segments);
+    }
+    struct error err;
+    return push_mesh(L, cone ? mesh_create_cone(radius, height, segments, &err)
+                             : mesh_create_cylinder(radius, height, segments, &err), &err);
+}
+
+static int mesh_cylinder(lua_State *L) { return mesh_round(L, "cylinder", false); }
+static int mesh_cone(lua_State *L) { return mesh_round(L, "cone", true); }
+
+/* c.mesh.lathe { profile = {{r, y}, ...}, segments }: the profile turned about +y. */
+static int mesh_lathe(lua_State *L)
+{
+    int segments = 64;
+    static const char *const fields[] = {"profile", "segments", NULL};
+    luaL_checktype(L, 1, LUA_TTABLE);
+    lutil_check_fields(L, 1, "lathe", fields);
+    lutil_opt_integer(L, 1, "lathe", "segments", &segments);
+    if (lua_getfield(L, 1, "profile") != LUA_TTABLE)
+        return lutil_field_error(L, "lathe", "profile", "a list of {radius, height} points", -1);
+    int count = (int)lua_rawlen(L, -1);
+    if (count < 2 || count > 4096)
+        return lutil_error(L, "bad argument 'profile' to 'lathe' (2..4096 points expected, got %d)", count);
+    float *profile = lua_newuserdatauv(L, (size_t)count * 2 * sizeof(float), 0); /* freed by Lua on error */
+    for (int i = 0; i < count; i++) {
+        lua_rawgeti(L, -2, i + 1);
+        for (int k = 0; k < 2; k++) {
+            if (lua_type(L, -1) != LUA_TTABLE || lua_rawgeti(L, -1, k + 1) != LUA_TNUMBER)
+                return lutil_error(L, "bad argument 'profile' to 'lathe' (point %d: {radius, height} expected)",
+                                   i + 1);
+            profile[i * 2 + k] = (float)lua_tonumber(L, -1);
+            lua_pop(L, 1);
+        }
+        lua_pop(L, 1);
+    }
+    struct error err;
+    struct mesh *m = mesh_create_lathe("lathe", profile, count, segments, &err);
+    lua_pop(L, 2);
+    return push_mesh(L, m, &err);
+}
+
 struct mesh *lmesh_check(lua_State *L, int idx)
 {
     struct l_mesh *u = luaL_checkudata(L, idx, MESH_MT);
@@ -316,7 +367,7 @@ static int set_morph_weights(lua_State *L)
                    o->mesh->target_count, o->mesh->target_count == 1 ? "" : "s", n);
     for (int i = 0; i < n; i++) {
         lua_rawgeti(L, 3, i + 1);
-        if (!lua_isnumber(L, -1))
+        if (lua_type(L, -1) != LUA_TNUMBER)
             lutil_field_error(L, "object", "morph_weights", "table of numbers", -1);
         float w = (float)lua_tonumber(L, -1);
         if (!isfinite(w))
@@ -659,7 +710,9 @@ void lobject_open(lua_State *L)
     lua_pushcfunction(L, water_new);
     lua_setfield(L, -2, "water");
     static const luaL_Reg meshes[] = {{"load", mesh_load}, {"sphere", mesh_sphere}, {"plane", mesh_plane},
-                                      {"box", mesh_box}, {"grid", mesh_grid}, {"torus", mesh_torus}, {NULL, NULL}};
+                                      {"box", mesh_box}, {"grid", mesh_grid}, {"torus", mesh_torus},
+                                      {"cylinder", mesh_cylinder}, {"cone", mesh_cone}, {"lathe", mesh_lathe},
+                                      {NULL, NULL}};
     luaL_newlib(L, meshes);
     lua_setfield(L, -2, "mesh");
     static const luaL_Reg deformers[] = {{"wave", deform_wave}, {"glsl", deform_glsl}, {NULL, NULL}};

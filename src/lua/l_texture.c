@@ -43,7 +43,7 @@ static void opt_pair(lua_State *L, int t, const char *field, float out[2])
     } else if (type == LUA_TTABLE) {
         for (int i = 0; i < 2; i++) {
             lua_geti(L, -1, i + 1);
-            if (!lua_isnumber(L, -1))
+            if (lua_type(L, -1) != LUA_TNUMBER)
                 lutil_field_error(L, "texture", field, "{x, y} numbers", -2);
             out[i] = lutil_check_number(L, -1, "texture", field);
             lua_pop(L, 1);

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/suggest.h"
+
 /* "file:line: " of the innermost Lua code on the stack: a setter runs
  * under __newindex (and a constructor's lutil_assign_fields), so the level
  * luaL_where(L, 1) sees is C; the script line is further out. */
@@ -64,6 +66,13 @@ void lutil_check_fields(lua_State *L, int idx, const char *fn, const char *const
             }
             luaL_pushresult(&b);
             const char *key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : luaL_typename(L, -2);
+            size_t n = 0;
+            while (allowed[n])
+                n++;
+            const char *near = lua_type(L, -2) == LUA_TSTRING ? suggest_nearest(key, allowed, n) : NULL;
+            if (near)
+                luaL_error(L, "unknown field '%s' in '%s' (did you mean '%s'?) (expected one of: %s)", key, fn, near,
+                           lua_tostring(L, -1));
             luaL_error(L, "unknown field '%s' in '%s' (expected one of: %s)", key, fn, lua_tostring(L, -1));
         }
     }
@@ -82,7 +91,7 @@ bool lutil_to_vec3(lua_State *L, int idx, vec3 *out)
     float c[3];
     for (int i = 0; i < 3; i++) {
         lua_rawgeti(L, idx, i + 1);
-        if (!lua_isnumber(L, -1)) {
+        if (lua_type(L, -1) != LUA_TNUMBER) {
             lua_pop(L, 1);
             return false;
         }
@@ -126,7 +135,7 @@ vec3 lutil_check_color(lua_State *L, int idx, const char *fn, const char *field)
 
 float lutil_check_number(lua_State *L, int idx, const char *fn, const char *field)
 {
-    if (!lua_isnumber(L, idx))
+    if (lua_type(L, idx) != LUA_TNUMBER)
         lutil_field_error(L, fn, field, "number", idx);
     double d = lua_tonumber(L, idx);
     if (!isfinite(d) || fabs(d) > 3.4e38)
@@ -142,7 +151,7 @@ quat lutil_check_quat(lua_State *L, int idx, const char *fn, const char *field)
         lutil_field_error(L, fn, field, "quaternion {x, y, z, w}", idx);
     for (int i = 0; i < 4; i++) {
         lua_rawgeti(L, idx, i + 1);
-        if (!lua_isnumber(L, -1))
+        if (lua_type(L, -1) != LUA_TNUMBER)
             lutil_field_error(L, fn, field, "quaternion {x, y, z, w}", idx);
         c[i] = (float)lua_tonumber(L, -1);
         if (!isfinite(c[i]))
@@ -201,7 +210,7 @@ void lutil_opt_integer(lua_State *L, int t, const char *fn, const char *field, i
 {
     if (lua_getfield(L, t, field) != LUA_TNIL) {
         if (!lua_isinteger(L, -1)) {
-            if (lua_isnumber(L, -1))
+            if (lua_type(L, -1) == LUA_TNUMBER)
                 lutil_error(L, "bad argument '%s' to '%s' (integer expected, got %g)", field, fn,
                             (double)lua_tonumber(L, -1));
             lutil_field_error(L, fn, field, "integer", -1);

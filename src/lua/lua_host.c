@@ -8,12 +8,14 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <lauxlib.h>
 #include <lualib.h>
 
 #include "core/fileio.h"
 #include "core/log.h"
+#include "core/suggest.h"
 
 #define HOST_KEY "caustica.host"
 
@@ -27,8 +29,11 @@ struct host_state {
     char write_dir[4096];
     char filter[256];
     /* Real paths of the folders a sandboxed script may read. */
-    char read_roots[12][PATH_MAX];
+    char read_roots[24][PATH_MAX];
     int read_root_count;
+    /* Real paths of the folders c.asset searches, the project's last. */
+    char asset_dirs[LUA_HOST_ASSET_DIRS_MAX + 1][PATH_MAX];
+    int asset_dir_count;
     /* The time limit: the call in progress must end by `deadline`. */
     double deadline;
     int call_depth;
@@ -187,10 +192,75 @@ static int host_root(lua_State *L)
     return 1;
 }
 
+bool lua_host_find_asset(lua_State *L, const char *name, char *out, size_t outlen, struct error *err)
+{
+    struct host_state *h = host_of(L);
+    if (!name || !name[0] || name[0] == '/')
+        return error_set(err, "c.asset needs a path inside an asset folder (e.g. \"env/room\"), got '%s'",
+                         name ? name : "");
+    for (const char *p = name; *p; p++)
+        if (p[0] == '.' && p[1] == '.' && (p == name || p[-1] == '/') && (p[2] == '/' || !p[2]))
+            return error_set(err, "c.asset '%s': '..' may not leave the asset folders", name);
+    char searched[1024] = "";
+    for (int i = 0; h && i < h->asset_dir_count; i++) {
+        char path[PATH_MAX + 512];
+        path_join(h->asset_dirs[i], name, path, sizeof path);
+        /* an EXR layer ("x.exr:layer") or a cube map's folder both count */
+        char file[sizeof path];
+        snprintf(file, sizeof file, "%s", path);
+        char *layer = strstr(file, ".exr:");
+        if (layer)
+            layer[4] = '\0';
+        if (access(file, R_OK) == 0) {
+            if (strlen(path) >= outlen)
+                return error_set(err, "c.asset '%s': the path is too long", name);
+            snprintf(out, outlen, "%s", path);
+            return true;
+        }
+        size_t n = strlen(searched);
+        snprintf(searched + n, sizeof searched - n, "%s%s", n ? ", " : "", h->asset_dirs[i]);
+    }
+    return error_set(err, "c.asset '%s': not found in the asset folders (%s; add one with --asset-path DIR or "
+                     "CAUSTICA_ASSET_PATH)", name, searched);
+}
+
+/* host.suggest(word, {names}): the name nearest a misspelt word, or nil. */
+static int host_suggest(lua_State *L)
+{
+    const char *word = luaL_checkstring(L, 1);
+    luaL_checktype(L, 2, LUA_TTABLE);
+    const char *names[256];
+    size_t n = 0;
+    lua_Integer len = luaL_len(L, 2);
+    for (lua_Integer i = 1; i <= len && n < 256; i++) {
+        lua_rawgeti(L, 2, i);
+        if (lua_type(L, -1) == LUA_TSTRING)
+            names[n++] = lua_tostring(L, -1); /* kept alive by the table */
+        lua_pop(L, 1);
+    }
+    const char *near = suggest_nearest(word, names, n);
+    if (near)
+        lua_pushstring(L, near);
+    else
+        lua_pushnil(L);
+    return 1;
+}
+
+static int host_asset(lua_State *L)
+{
+    const char *name = luaL_checkstring(L, 1);
+    char path[PATH_MAX + 512];
+    struct error err;
+    if (!lua_host_find_asset(L, name, path, sizeof path, &err))
+        return luaL_error(L, "%s", err.message);
+    lua_pushstring(L, path);
+    return 1;
+}
+
 int luaopen_caustica_host(lua_State *L)
 {
     static const luaL_Reg funcs[] = {{"param", host_param}, {"script_dir", host_script_dir}, {"root", host_root},
-                                     {"test_options", host_test_options}, {"mkdir", host_mkdir}, {NULL, NULL}};
+                                     {"asset", host_asset}, {"suggest", host_suggest}, {"test_options", host_test_options}, {"mkdir", host_mkdir}, {NULL, NULL}};
     luaL_newlib(L, funcs);
     return 1;
 }
@@ -529,6 +599,19 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
     add_read_root(h, h->write_dir);
     for (int i = 0; i < options->read_dir_count; i++)
         add_read_root(h, options->read_dirs[i]);
+    h->options.asset_dirs = NULL;
+    h->options.asset_dir_count = 0;
+    char project_assets[sizeof h->root + 32];
+    snprintf(project_assets, sizeof project_assets, "%s/scenes/assets", h->root);
+    for (int i = 0; i <= options->asset_dir_count && h->asset_dir_count <= LUA_HOST_ASSET_DIRS_MAX; i++) {
+        const char *folder = i < options->asset_dir_count ? options->asset_dirs[i] : project_assets;
+        if (folder && folder[0] && realpath(folder, h->asset_dirs[h->asset_dir_count])) {
+            add_read_root(h, h->asset_dirs[h->asset_dir_count]);
+            h->asset_dir_count++;
+        } else if (folder && folder[0] && i < options->asset_dir_count) {
+            log_warn("asset folder %s: %s (left out of the search)", folder, strerror(errno));
+        }
+    }
     lua_setfield(L, LUA_REGISTRYINDEX, HOST_KEY);
     if (options->timeout > 0)
         lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);

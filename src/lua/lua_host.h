@@ -55,6 +55,8 @@ struct lua_render_reply {
 typedef bool (*lua_render_service)(void *context, const struct lua_render_request *request, struct image *out,
                                    struct lua_render_reply *reply, struct error *err);
 
+#define LUA_HOST_ASSET_DIRS_MAX 16
+
 struct lua_host_options {
     const char *root;        /* project folder: lua/ and shaders/ */
     const char *script_path; /* the scene or test script */
@@ -69,6 +71,10 @@ struct lua_host_options {
     double memory_limit;     /* bytes of Lua heap (0: no limit) */
     const char *const *read_dirs; /* more folders a sandboxed script may read (--allow-read) */
     int read_dir_count;
+    /* Folders c.asset searches, in order, before <root>/scenes/assets
+     * (--asset-path, then $CAUSTICA_ASSET_PATH); a sandboxed script may read them. */
+    const char *const *asset_dirs;
+    int asset_dir_count;
 };
 
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
@@ -87,6 +93,10 @@ bool lua_host_check_read(lua_State *L, const char *path, struct error *err);
 bool lua_host_check_write(lua_State *L, const char *path, struct error *err);
 /* `rel` against the running script's folder (absolute paths unchanged). */
 void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen);
+/* c.asset: `name` found in the asset folders (see lua_host_options), the
+ * first that holds it, as an absolute path in `out`; false with a message
+ * naming the folders searched. */
+bool lua_host_find_asset(lua_State *L, const char *name, char *out, size_t outlen, struct error *err);
 /* The project folder the host was made with. */
 const char *lua_host_root(lua_State *L);
 /* The scene or graph userdata at `idx`, or NULL when it is something else. */

@@ -232,6 +232,7 @@ static unsigned layered_refraction_draws(const struct pass *p)
 
 const struct pass_desc layered_refraction_pass = {
     .draws = layered_refraction_draws,
+    .color_behind_refractors = true,
     .configure_block = layered_refraction_configure_block,
     .name = "layered_refraction",
     .summary = "Chaudhari 2008: refraction through every interface of deforming objects by voxelization and depth-layer peeling",

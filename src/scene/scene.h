@@ -115,6 +115,14 @@ struct mesh *mesh_create_grid(float size, int resolution, struct error *err);
 /* A size_x by size_z grid of cells_x by cells_z cells in the xz plane, +y up. */
 struct mesh *mesh_create_grid_xz(float size_x, float size_z, int cells_x, int cells_z, struct error *err);
 struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides, struct error *err);
+/* Surfaces of revolution about +y (scene/mesh_lathe.c): `count` (radius,
+ * height) pairs, in either order; a point on the axis closes the surface
+ * there. Creases over ~35 degrees keep two normals. u runs around, v along
+ * the profile (0 at its top). Centred like the box: a cylinder or cone of
+ * height h spans y in [-h/2, h/2], the cone's apex at the top. */
+struct mesh *mesh_create_lathe(const char *name, const float *profile, int count, int segments, struct error *err);
+struct mesh *mesh_create_cylinder(float radius, float height, int segments, struct error *err);
+struct mesh *mesh_create_cone(float radius, float height, int segments, struct error *err);
 struct mesh *mesh_load_gltf(const char *path, struct error *err);
 /* Takes ownership of the arrays (malloc'd). */
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,

@@ -1,6 +1,7 @@
 #include <float.h>
 
 #include "check.h"
+#include "core/suggest.h"
 #include "core/vecmath.h"
 
 int main(void)
@@ -51,5 +52,20 @@ int main(void)
     CHECK_NEAR(r.z, -1, 1e-6);
     quat z = quat_normalize((quat){0, 0, 0, 0});
     CHECK(z.w == 1.0f);
+    /* "did you mean": a typo, a swap, an abbreviation; nothing for a word
+     * far from every name */
+    static const char *const verbs[] = {"render", "record", "reference", "run", "bench", "choose"};
+    CHECK(suggest_nearest("rendr", verbs, 6) && strcmp(suggest_nearest("rendr", verbs, 6), "render") == 0);
+    CHECK(suggest_nearest("bnech", verbs, 6) && strcmp(suggest_nearest("bnech", verbs, 6), "bench") == 0);
+    CHECK(suggest_nearest("refer", verbs, 6) && strcmp(suggest_nearest("refer", verbs, 6), "reference") == 0);
+    CHECK(suggest_nearest("re", verbs, 6) == NULL);
+    CHECK(suggest_nearest("compile", verbs, 6) == NULL);
+    CHECK(suggest_nearest("", verbs, 6) == NULL);
+    static const char *const fields[] = {"radius", "height", "segments"};
+    CHECK(suggest_nearest("Radius", fields, 3) && strcmp(suggest_nearest("Radius", fields, 3), "radius") == 0);
+    char long_word[200];
+    memset(long_word, 'x', sizeof long_word - 1);
+    long_word[sizeof long_word - 1] = '\0';
+    CHECK(suggest_nearest(long_word, fields, 3) == NULL);
     return check_finish("test_math");
 }

@@ -37,6 +37,28 @@ static bool winding_outward(const struct mesh *m)
     return true;
 }
 
+/* The volume a closed mesh encloses (divergence theorem): positive when
+ * its triangles face out. */
+static double mesh_volume(const struct mesh *m)
+{
+    double v = 0.0;
+    for (size_t t = 0; t < m->index_count; t += 3) {
+        const float *a = m->positions + m->indices[t] * 3, *b = m->positions + m->indices[t + 1] * 3,
+                    *c = m->positions + m->indices[t + 2] * 3;
+        v += ((double)a[0] * (b[1] * c[2] - b[2] * c[1]) - (double)a[1] * (b[0] * c[2] - b[2] * c[0]) +
+              (double)a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+    }
+    return v;
+}
+
+static bool texcoords_in_unit_square(const struct mesh *m)
+{
+    for (size_t i = 0; m->texcoords[0] && i < m->vertex_count * 2; i++)
+        if (!(m->texcoords[0][i] >= 0.0f && m->texcoords[0][i] <= 1.0f))
+            return false;
+    return m->texcoords[0] != NULL;
+}
+
 /* The clip-space w-divided position of p: inside [-1, 1]^3 when in view. */
 static vec3 project(const struct light_view *lv, vec3 p)
 {
@@ -214,6 +236,52 @@ int main(void)
             mesh_destroy(f2);
         mesh_destroy(flat);
     }
+    /* Surfaces of revolution: closed, facing out, the volume of the
+     * polygon turned (a 256-gon's area is 0.99990 of the circle's). */
+    {
+        struct mesh *cyl = mesh_create_cylinder(0.5f, 2.0f, 256, &err);
+        CHECK(cyl && normals_unit(cyl) && winding_outward(cyl) && texcoords_in_unit_square(cyl));
+        if (cyl) {
+            double polygon = 0.5 * 256 * sin(2 * MATH_PI / 256);
+            CHECK_NEAR(mesh_volume(cyl), polygon * 0.25 * 2.0, 1e-4);
+            CHECK_NEAR(cyl->bounds_min.y, -1.0, 1e-6);
+            CHECK_NEAR(cyl->bounds_max.y, 1.0, 1e-6);
+            CHECK(mesh_contains_point(cyl, vec3_make(0.45f, 0.9f, 0.0f)));
+            CHECK(!mesh_contains_point(cyl, vec3_make(0.55f, 0.0f, 0.0f)));
+            /* the rim is a crease: a side vertex's normal is horizontal */
+            bool side = false;
+            for (size_t i = 0; i < cyl->vertex_count; i++)
+                side |= fabsf(cyl->positions[i * 3 + 1] - 1.0f) < 1e-6f && fabsf(cyl->normals[i * 3 + 1]) < 1e-6f;
+            CHECK(side);
+            mesh_destroy(cyl);
+        }
+        struct mesh *cone = mesh_create_cone(1.0f, 3.0f, 256, &err);
+        CHECK(cone && normals_unit(cone) && winding_outward(cone));
+        if (cone) {
+            double polygon = 0.5 * 256 * sin(2 * MATH_PI / 256);
+            CHECK_NEAR(mesh_volume(cone), polygon * 3.0 / 3.0, 1e-4);
+            mesh_destroy(cone);
+        }
+        /* a profile given top to bottom faces out all the same; a repeated
+         * point is dropped, not a zero-area ring */
+        const float down[10] = {0, 1, 1, 1, 1, 1, 1, -1, 0, -1};
+        struct mesh *lathe = mesh_create_lathe("lathe", down, 5, 32, &err);
+        CHECK(lathe && winding_outward(lathe) && mesh_volume(lathe) > 0.0);
+        mesh_destroy(lathe);
+        /* an open profile (a bowl) has no inside, but its winding holds */
+        const float bowl[8] = {0, -0.5f, 0.4f, -0.45f, 0.6f, 0.0f, 0.7f, 0.5f};
+        struct mesh *open = mesh_create_lathe("bowl", bowl, 4, 48, &err);
+        CHECK(open && normals_unit(open) && winding_outward(open));
+        mesh_destroy(open);
+        const float axis_only[4] = {0, 0, 0, 1}, nan_point[4] = {1, 0, NAN, 1}, negative[4] = {-1, 0, 1, 1};
+        CHECK(mesh_create_lathe("lathe", axis_only, 2, 16, &err) == NULL);
+        CHECK(mesh_create_lathe("lathe", nan_point, 2, 16, &err) == NULL && strstr(err.message, "point 2"));
+        CHECK(mesh_create_lathe("lathe", negative, 2, 16, &err) == NULL);
+        CHECK(mesh_create_lathe("lathe", down, 5, 2, &err) == NULL);
+        CHECK(mesh_create_cylinder(0.0f, 1.0f, 16, &err) == NULL);
+        CHECK(mesh_create_cone(1.0f, INFINITY, 16, &err) == NULL);
+    }
+
     /* A transport table that fits: fewer directions for a fine mesh, none
      * for one too fine for any. */
     CHECK(transport_fit_resolution(1000, 16) == 16);
