@@ -17,7 +17,7 @@ struct app {
     bool renderer_ready;
     struct renderer renderer;
     int window_width, window_height; /* for the window backend */
-    /* The sandbox's limits (README, security): wall time of one script call
+    /* The sandbox's limits (docs/SECURITY.md): wall time of one script call
      * (seconds, 0 = none) and the Lua heap (bytes, 0 = none). */
     double script_timeout;
     double script_memory;

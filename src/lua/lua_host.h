@@ -83,7 +83,7 @@ void lua_host_destroy(lua_State *L);
 bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct error *err);
 /* Calls the function at the top of the stack with `nargs` arguments below it. */
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err);
-/* The sandbox's file rules (README, security). Reading: the script's own
+/* The sandbox's file rules (docs/SECURITY.md). Reading: the script's own
  * folder and below, the project folder (lua/, shaders/, scenes/ assets), the
  * output folder and --allow-read folders. Writing: only inside the output
  * folder the verb allows (none for `render`, the frames folder for `record`)

@@ -13,7 +13,7 @@
  * surface facing the centre beyond it. A ray that passes behind an object
  * (hidden from the centre, seen from the ray's origin: the wall beside a
  * box) finds what is behind it in the second layer; one layer leaves it
- * nothing (misses along every such ray in the identity test, README). */
+ * nothing (misses along every such ray in the identity test, docs/techniques/hu_qin.md). */
 #ifndef CAUSTICA_DISTANCE_MAP_H
 #define CAUSTICA_DISTANCE_MAP_H
 

@@ -76,7 +76,7 @@ static const struct pass_param_desc params[] = {
     [IT_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
      .help = "the light (directional or point; a linear light as its point samples, accumulated, Fig. 6d)"},
     [IT_PLANES] = {.name = "planes", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = ILLUM_MAX_PLANES,
-     .help = "virtual planes across the targets (§4.2; the paper uses 4: too few where a focus lies between them, see the README)"},
+     .help = "virtual planes across the targets (§4.2; the paper uses 4: too few where a focus lies between them, see docs/techniques/iwasaki.md)"},
     [IT_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
      .help = "illumination texture size (the paper uses 512; 256 is the bench's best here: finer texels leave more sub-texel triangles as points)"},
     [IT_TABLE] = {.name = "table", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 2, .max = 64,

@@ -67,7 +67,7 @@ static const struct pass_param_desc params[] = {
     [PHOTON_BUFFER] = {.name = "buffer", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 2048,
      .help = "photon buffer size (photons = buffer^2 at most), 64-512 in the paper"},
     [PHOTON_K] = {.name = "k", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 8,
-     .help = "filter radius (§3.2; 0: none, the footprints spread the photons instead; README)"},
+     .help = "filter radius (§3.2; 0: none, the footprints spread the photons instead; docs/techniques/hu_qin.md)"},
     [PHOTON_S] = {.name = "s", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 1e6,
      .help = "filter scale; 1 keeps the photons' energy (irradiance)"},
     [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
@@ -80,13 +80,13 @@ static const struct pass_param_desc params[] = {
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
     [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 16, .min = 0, .max = 64,
      .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
-             "many texels from its landing point; 0 = a point per photon, the paper's (README)"},
+             "many texels from its landing point; 0 = a point per photon, the paper's (docs/techniques/hu_qin.md)"},
     [PHOTON_FIT] = {.name = "fit", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "each receiver's caustic texture covers the box its photons landed in, not the whole receiver "
-             "(more texels where the caustic is; README)"},
+             "(more texels where the caustic is; docs/techniques/hu_qin.md)"},
     [PHOTON_PIXEL_SAMPLES] = {.name = "pixel_samples", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 16,
      .help = "caustic lookups per pixel along each screen axis where its footprint spans more caustic texels "
-             "(the pixel's mean light; 1: its centre; README)"},
+             "(the pixel's mean light; 1: its centre; docs/techniques/hu_qin.md)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)

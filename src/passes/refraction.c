@@ -95,7 +95,7 @@ static const struct pass_param_desc params[] = {
              "space (exact where it shows what the ray meets), then a two-layer distance map around the refractors "
              "(Szirmay-Kalos et al. 2005: floors and walls too); map = the distance map alone; impostors = the "
              "paper's one rectangle per object "
-             "(§2.2), which large receivers break (README)"},
+             "(§2.2), which large receivers break (docs/techniques/hu_qin.md)"},
     [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
      .help = "shadow maps for lighting the distance map's surfaces as shade does (e.g. \"shadow.depth\"); "
              "without them they are unshadowed"},

@@ -9,8 +9,8 @@ mkdir -p "$BLOCKS"
 made=()
 cleanup_blocks() { rm -f "${made[@]}"; }
 trap 'cleanup_blocks; rm -rf "$WORK"' EXIT
-for doc in README.md docs/*.md; do
-  awk -v dir="$BLOCKS" -v doc="$(basename "$doc" .md)" '
+for doc in README.md docs/*.md docs/*/*.md; do
+  awk -v dir="$BLOCKS" -v doc="$(sed "s,/,_,g; s,\.md$,," <<<"$doc")" '
     /^<!-- not run/ { skip = 1; next }
     /^```/ {
       if (inside) { inside = 0; close(file); next }
