@@ -67,10 +67,10 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
             if (both && !(theirs & PASS_DRAWS_ANYTHING))
                 snprintf(messages[count++], 400,
                          "pass '%s' (%s) draws the %s over '%s', in which pass '%s' (%s) already drew %s: it shows "
-                         "twice, refracted through itself%s",
+                         "twice, refracted through itself (shade { specular = false } leaves glass and water to a "
+                         "later pass)",
                          p->name, p->desc->name, object_role_name(both & OBJECT_ROLE_GLASS ? OBJECT_ROLE_GLASS : both),
-                         p->inputs[k].source, maker->name, maker->desc->name, both & OBJECT_ROLE_GLASS ? "it" : "them",
-                         strcmp(maker->desc->name, "shade") == 0 ? " (give that shade specular = false)" : "");
+                         p->inputs[k].source, maker->name, maker->desc->name, both & OBJECT_ROLE_GLASS ? "it" : "them");
         }
     }
     /* A pass whose light is not in the scene makes nothing (the graph skips it). */

@@ -46,6 +46,8 @@ grep -q -- "--ref-spp N .*default 8; >= 8" <<<"$(tr -s ' \n' ' ' <"$WORK/help")"
   && pass "VERB --help gives each option's meaning, default and limits" || fail "bench --help" "$(cat "$WORK/help")"
 "$CAUSTICA" convert --help | grep -q "reads .png, .pfm, .hdr, .exr (IN.exr:layer for one layer); writes .png, .pfm, .hdr, .exr" \
   && pass "convert --help names every format it reads and writes" || fail "convert --help" "$("$CAUSTICA" convert --help | head -4)"
+"$CAUSTICA" record --help | tr -s ' \n' ' ' | grep -q "out/f_####.png (.png, .pfm, .hdr, .exr)" \
+  && pass "record --help names every frame format" || fail "record --help" "$("$CAUSTICA" record --help | head -8)"
 "$CAUSTICA" help --help >"$WORK/help" 2>&1 && grep -q "caustica help PASS" "$WORK/help" && pass "help --help" \
   || fail "help --help" "$(cat "$WORK/help")"
 "$CAUSTICA" help record | grep -q "^  caustica record " && pass "help VERB is VERB --help" || fail "help record" "no usage"

@@ -1,5 +1,6 @@
 # No stale default in the docs: every `pass { param, param = value, ... }`
-# signature that docs/LUA_API.md's "As built" section lists, and every "`param` value" of
+# signature in the README and docs/ (LUA_API's "As built", the technique
+# pages), and every "`param` value" of
 # the README's table of defaults, equals what `caustica help PASS` says the
 # code's default is. (The pass reference itself is generated: docs_test.sh.)
 source "$(dirname "$0")/lib.sh"
@@ -22,17 +23,18 @@ check() { # check WHERE PASS PARAM VALUE
   same "$4" "$code" || fail "$1: $2's $3" "the docs say $4, the code's default is $code"
 }
 
-# LUA_API.md "As built": `pass { name, name = value, ... }` signatures (enum lists: the first choice).
+# `pass { name, name = value, ... }` or `c.pass.pass { ... }` signatures anywhere in the docs but the
+# generated pass reference (enum lists: the first choice).
 while read -r span; do
-    pass=${span#\`}; pass=${pass%% *}
+    pass=${span#\`}; pass=${pass#c.pass.}; pass=${pass%% *}
     [[ $passes == *" $pass "* ]] || continue
     # a signature (some parameters named without a value), not an example such as `shade { specular = false }`
     grep -qE '[{,] *[a-z_]+ *[,}]' <<<"$span" || continue
     while read -r item; do
-      check "docs/LUA_API.md" "$pass" "${item%% =*}" "${item#*= }"
+      check "the docs" "$pass" "${item%% =*}" "${item#*= }"
     done < <(grep -oE '[a-z_]+ = ("[^"]*"|-?[0-9][0-9.e+-]*|true|false)' <<<"$span")
     echo "$pass" >>"$WORK/lua_api_passes"
-done < <(sed -n '/^## As built/,/^## Pass reference/p' docs/LUA_API.md | tr '\n' ' ' | grep -oE '`[a-z_]+ \{[^`}]*\}')
+done < <(cat README.md docs/*.md docs/techniques/*.md | sed '/^<!-- BEGIN passes/,/^<!-- END passes/d' | tr '\n' ' ' | grep -oE '`(c\.pass\.)?[a-z_]+ \{[^`}]*\}')
 # README: the table under "How the defaults were chosen".
 while IFS='|' read -r _ col_pass col_defaults _; do
   pass=$(grep -oE '`[a-z_]+`' <<<"$col_pass" | head -1 | tr -d '`')
@@ -44,8 +46,8 @@ while IFS='|' read -r _ col_pass col_defaults _; do
 done < <(sed -n '/^### How the defaults were chosen/,/^## /p' README.md | grep '^| `')
 n_api=$(sort -u "$WORK/lua_api_passes" 2>/dev/null | wc -l)
 n_readme=$(sort -u "$WORK/readme_passes" 2>/dev/null | wc -l)
-[ "$n_api" -ge 8 ] && pass "docs/LUA_API.md lists defaults of $n_api passes, each as the code has it" \
-  || fail "LUA_API defaults" "only $n_api passes found in the As built section"
+[ "$n_api" -ge 8 ] && pass "the docs' signatures give defaults of $n_api passes ($checked values), each as the code has it" \
+  || fail "the docs' defaults" "only $n_api passes found in signatures"
 [ "$n_readme" -ge 6 ] && pass "the README's table of defaults covers $n_readme passes, each as the code has it" \
   || fail "README defaults" "only $n_readme passes found in its table"
 # The check itself catches a stale value.

@@ -48,6 +48,16 @@ awk -v dir="$HOME_DIR" '
     fi
   done
 } >"$STEPS"
+# The README's quick start first, as its reader would: the script saved as
+# glass.lua, then its shell block's commands.
+{
+  echo "cd \"$HOME_DIR\""
+  awk '/^## Quick start/ { q = 1 } q && /^```lua/ { inside = 1; next } inside && /^```/ { exit } inside' README.md \
+    | sed 's/^/  /' | { echo "cat >glass.lua <<'LUA'"; sed 's/^  //'; echo "LUA"; }
+  awk '/^## Quick start/ { q = 1 } q && /^```sh/ { inside = 1; next } inside && /^```/ { exit } inside' README.md \
+    | sed 's/ *#.*$//' | while IFS= read -r line; do [ -n "$line" ] && printf 'echo "$ %s"\n%s\n' "$line" "$line"; done
+} >"$WORK/quickstart.sh"
+sed -i "3r $WORK/quickstart.sh" "$STEPS"
 steps=$(ls "$HOME_DIR"/.script.* | wc -l)
 [ "$steps" -ge 5 ] && pass "the tutorial has $steps steps" || fail "tutorial steps" "found $steps"
 
@@ -69,7 +79,7 @@ if "${RUN[@]}" >"$WORK/tutorial.log" 2>&1; then
 else
   fail "the tutorial from the installed prefix $hidden" "$(tail -8 "$WORK/tutorial.log")"
 fi
-for img in step1.png step2.png step3.png step4.png step5.png frames/frame_0012.png truth.pfm truth.png table.pfm; do
+for img in glass.png glass.pfm step1.png step2.png step3.png step4.png step5.png frames/frame_0012.png truth.pfm truth.png table.pfm; do
   [ -s "$HOME_DIR/$img" ] && pass "the tutorial made $img" || fail "the tutorial's $img" "missing"
 done
 grep -q "rel_rmse=" "$WORK/tutorial.log" && pass "compare printed the error against the truth" \
