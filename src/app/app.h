@@ -31,6 +31,7 @@ struct app {
     char asset_env[4096];      /* $CAUSTICA_ASSET_PATH, its ':' made NULs */
     const char *asset_env_dirs[8];
     int asset_env_count;
+    int threads;               /* --threads N: the reference's workers (0: the CPUs this process may use) */
     int render_depth;          /* c.image.render nesting (a script that renders itself) */
 };
 

@@ -34,7 +34,7 @@ static const struct cli_verb {
      "opens a window and plays the scene (space pauses, left/right step, s screenshot, r reload)"},
     {"test", VB_TEST, "[PATH ...] [options]", "runs regression tests (Lua files of caustica.test cases)"},
     {"info", VB_INFO, "SCENE.lua [options]", "prints the scene, the render graph (with the blocks it adds) and lint"},
-    {"reference", VB_REFERENCE, "SCENE.lua -o OUT.pfm|OUT.hdr [options]",
+    {"reference", VB_REFERENCE, "SCENE.lua -o OUT.pfm|OUT.hdr|OUT.exr [options]",
      "renders the exact ground truth on the CPU (progressive photon mapping)"},
     {"compare", VB_COMPARE, "A B [options]", "prints the error of image A against image B (rel_rmse, PSNR, ...)"},
     {"convert", VB_CONVERT, "IN OUT [options]",
@@ -58,7 +58,7 @@ static const struct cli_option {
     {"--output", "-o", "DIR|PATTERN", VB_RECORD,
      "a folder (frames as DIR/frame_0000.png), or a pattern such as out/f_####.png (.png, .pfm, .hdr, .exr); "
      "required"},
-    {"--output", "-o", "OUT", VB_REFERENCE, "the image, .pfm or .hdr (linear radiance); required"},
+    {"--output", "-o", "OUT", VB_REFERENCE, "the image, .pfm, .hdr or .exr (linear radiance); required"},
     {"--output", "-o", "DIR", VB_BENCH | VB_CHOOSE,
      "the folder of results (results.md, results.csv, plot.svg) and cached ground truths; default bench"},
     {"--frame", NULL, "N", VB_RENDER | VB_REFERENCE, "the frame to render; default 0; >= 0"},
@@ -69,7 +69,10 @@ static const struct cli_option {
     {"--frames", NULL, "N", VB_RUN, "play N frames, then exit (default: until the window closes)"},
     {"--frames", NULL, "N", VB_BENCH | VB_CHOOSE,
      "frames timed per variant, the median taken (default 5; 3 with a technique sweep; at most 1024)"},
-    {"--video", NULL, "OUT.mp4|OUT.gif", VB_RECORD, "also encode the frames with ffmpeg"},
+    {"--video", NULL, "OUT.mp4|OUT.gif", VB_RECORD,
+     "also encode every frame of the set with ffmpeg (H.264, BT.709/sRGB tagged, an odd size padded by a pixel; "
+     "not with --shard)"},
+    {"--crf", NULL, "Q", VB_RECORD, "the video's quality, 0 (lossless) .. 51 (worst); default 18"},
     {"--overwrite", NULL, NULL, VB_RECORD, "render frames whose file exists (default: skip them)"},
     {"--shard", NULL, "i/n", VB_RECORD,
      "render every n-th frame of the set from the i-th, 0 <= i < n (one job of an array)"},
@@ -116,11 +119,15 @@ static const struct cli_option {
     {"--error", NULL, "E", VB_CHOOSE, "the largest relative error accepted (> 0, e.g. 0.1)"},
     {"--time", NULL, "MS", VB_CHOOSE, "the milliseconds a frame may take (> 0)"},
     {"--cached", NULL, NULL, VB_CHOOSE, "read the bench cache only, never run the sweep"},
+    {"--threads", NULL, "N", VB_REFERENCE | VB_BENCH | VB_CHOOSE | VB_TEST,
+     "worker threads of the CPU reference, 1..1024 (default: the CPUs this process may use: its affinity "
+     "mask, e.g. taskset or a Slurm cpuset, and its cgroup's CPU quota)"},
     {"--backend", NULL, "osmesa|egl", VB_ALL,
      "the GL context: osmesa (default; Mesa on the CPU) or egl (headless, a GPU where there is one)"},
     {"--trusted", NULL, NULL, VB_ALL,
      "run the script without the sandbox (it may then read and write anywhere)"},
     {"--verbose", "-v", NULL, VB_ALL, "log each step, and Lua tracebacks"},
+    {"--quiet", "-q", NULL, VB_ALL, "no progress lines and no \"wrote ...\" (errors and warnings still)"},
     {"--script-timeout", NULL, "S", VB_ALL,
      "seconds one call into the script may take (default 30; 0 = no limit)"},
     {"--script-memory", NULL, "MB", VB_ALL,
@@ -289,6 +296,7 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
     unsigned verb_bit = known ? known->bit : VB_ALL;
     cli->frames_from = cli->frames_to = -1;
     cli->max_error = cli->max_time_ms = -1.0;
+    cli->crf = 18;
     bool options_end = false;
     for (int i = 0; i < argc; i++) {
         const char *arg = argv[i];
@@ -468,6 +476,14 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
             app->trusted = true;
         } else if (strcmp(a, "--verbose") == 0) {
             log_set_verbose(true);
+        } else if (strcmp(a, "--quiet") == 0) {
+            log_set_quiet(true);
+        } else if (strcmp(a, "--crf") == 0) {
+            if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
+                return usage_error("--crf needs a quality in 0..51, got '%s'", next);
+        } else if (strcmp(a, "--threads") == 0) {
+            if (!parse_int(next, &app->threads) || app->threads < 1 || app->threads > 1024)
+                return usage_error("--threads needs a count in 1..1024, got '%s'", next);
         } else if (strcmp(a, "--asset-path") == 0) {
             if (app->asset_path_count >= 8)
                 return usage_error("at most 8 --asset-path folders (%s)", next);

@@ -25,6 +25,7 @@ struct cli {
     const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */
     int aov_count;
     const char *video;       /* --video OUT.mp4|OUT.gif (record): the frames encoded by ffmpeg */
+    int crf;                 /* --crf (record --video): x264's quality, default 18 */
     int shard_index, shard_count; /* --shard i/n (record): every n-th frame of the set from the i-th */
     int width, height;       /* --size */
     const char *screenshot;

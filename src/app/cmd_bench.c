@@ -953,8 +953,19 @@ int cmd_bench(struct app *app, struct cli *cli)
     bool ok = bench_plan(&b, &code, &err);
     if (ok)
         code = EXIT_SCENE_ERROR;
-    for (int c = 0; ok && c < b.nvariants; c++)
+    double started = log_now();
+    for (int c = 0; ok && c < b.nvariants; c++) {
+        /* where a long sweep stands, on stderr (the table lines are stdout's) */
+        if (!log_quiet() && b.nvariants > 1) {
+            double spent = log_now() - started;
+            if (c > 0)
+                fprintf(stderr, "caustica: bench: variant %d/%d (%.0f s so far, about %.0f s left)\n", c + 1,
+                        b.nvariants, spent, spent / c * (b.nvariants - c));
+            else
+                fprintf(stderr, "caustica: bench: variant 1/%d\n", b.nvariants);
+        }
         ok = bench_variant(&b, c, &err);
+    }
     ok = ok && bench_reference_curve(&b, &err);
     /* the error ranked: the caustic region's where there is one (or the
      * scene's techniques table says "image") */

@@ -13,8 +13,9 @@ int cmd_reference(struct app *app, struct cli *cli)
         cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
-    if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output)) {
-        fprintf(stderr, "caustica: -o %s: the reference is linear radiance, write it as .pfm or .hdr\n", cli->output);
+    if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output) && !image_path_is_exr(cli->output)) {
+        fprintf(stderr, "caustica: -o %s: the reference is linear radiance, write it as .pfm, .hdr or .exr\n",
+                cli->output);
         return EXIT_USAGE;
     }
     struct error err;
@@ -48,14 +49,15 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.aov = (enum ref_aov)cli->aov;
     o.antialias = cli->antialias;
     struct image img = {0};
-    struct ref_stats st;
+    struct ref_stats st = {0};
     bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);
     if (ok && o.aov != REF_AOV_NONE)
         printf("%s: the %s output (two interfaces, traced exactly) -> %s\n", s->script,
                o.aov == REF_AOV_TIR ? "tir" : "exit", cli->output);
     else if (ok)
-        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s, noise ~%.2g%% -> %s\n", s->script,
-               st.iterations, st.photons, st.caustic_photons, st.seconds, 100.0 * st.noise, cli->output);
+        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s on %d thread%s, noise ~%.2g%% -> %s\n",
+               s->script, st.iterations, st.photons, st.caustic_photons, st.seconds, st.threads,
+               st.threads == 1 ? "" : "s", 100.0 * st.noise, cli->output);
     image_destroy(&img);
     session_close(s);
     if (!ok) {

@@ -101,12 +101,28 @@ int cmd_render(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    /* Without -o the user did not say where: say it (always). */
-    if (!cli->output && !cli->timings)
+    /* Say where it went (a farm's log, and a user who gave no -o). */
+    if (!log_quiet())
         printf("wrote %s\n", out);
-    else if (!cli->timings)
-        log_info("wrote %s", out);
     return 0;
+}
+
+/* Removes the folders dir_ensure_all made for this run (from `dir` up to
+ * `created`), each only while empty. */
+static void remove_created_folders(const char *dir, const char *created)
+{
+    if (!created[0])
+        return;
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    for (;;) {
+        if (rmdir(path) != 0 || strcmp(path, created) == 0)
+            return;
+        char *slash = strrchr(path, '/');
+        if (!slash || slash == path)
+            return;
+        *slash = '\0';
+    }
 }
 
 int cmd_record(struct app *app, struct cli *cli)
@@ -125,26 +141,40 @@ int cmd_record(struct app *app, struct cli *cli)
         fprintf(stderr, "caustica: --video %s: a video must end in .mp4 or .gif\n", cli->video);
         return EXIT_USAGE;
     }
+    if (cli->video && cli->shard_count > 0) {
+        fprintf(stderr, "caustica: --video with --shard would encode only this shard's frames; run record again "
+                        "without --shard once every shard is done (the frames on disk are skipped) to encode them all\n");
+        return EXIT_USAGE;
+    }
     /* -o DIR writes DIR/frame_####.png; -o out/shot_####.png names each file
-     * by its frame (a run of # is the zero-padded frame number). */
-    bool pattern = output_pattern_is_pattern(cli->output);
+     * by its frame (a run of # is the zero-padded frame number; %04d is
+     * taken as ####, and out/shot.png, which every frame would overwrite,
+     * as out/shot_####.png). */
+    char output[4096], note[4400];
+    if (!output_pattern_normalize(cli->output, output, sizeof output, note, sizeof note)) {
+        fprintf(stderr, "caustica: -o %s: the path is too long\n", cli->output);
+        return EXIT_USAGE;
+    }
+    if (note[0] && !log_quiet())
+        fprintf(stderr, "caustica: %s\n", note);
+    bool pattern = output_pattern_is_pattern(output);
     char dir[4096];
     if (pattern) {
-        if (!image_path_is_png(cli->output) && !image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output) &&
-            !image_path_is_exr(cli->output)) {
+        if (!image_path_is_png(output) && !image_path_is_pfm(output) && !image_path_is_hdr(output) &&
+            !image_path_is_exr(output)) {
             fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .pfm, .hdr or .exr\n", cli->output);
             return EXIT_USAGE;
         }
-        if (strchr(cli->output, '/') && strchr(strchr(cli->output, '#'), '/')) {
+        if (strchr(output, '/') && strchr(strchr(output, '#'), '/')) {
             fprintf(stderr, "caustica: -o %s: the # run must be in the file name, not in a folder\n", cli->output);
             return EXIT_USAGE;
         }
-        path_dirname(cli->output, dir, sizeof dir);
+        path_dirname(output, dir, sizeof dir);
     } else {
-        snprintf(dir, sizeof dir, "%s", cli->output);
+        snprintf(dir, sizeof dir, "%s", output);
     }
-    bool existed = file_exists(dir);
-    if (!dir_ensure(dir, &err)) {
+    char created[4096];
+    if (!dir_ensure_all(dir, created, sizeof created, &err)) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
@@ -154,8 +184,7 @@ int cmd_record(struct app *app, struct cli *cli)
         log_info("removed %d stale temporary file%s of an earlier run from %s", stale, stale == 1 ? "" : "s", dir);
     struct session *s;
     if (!open_session(app, cli, app->allow_write ? app->allow_write : dir, &s)) {
-        if (!existed)
-            rmdir(dir); /* made for this run, and still empty: nothing left behind */
+        remove_created_folders(dir, created); /* made for this run, still empty: nothing left behind */
         return EXIT_SCENE_ERROR;
     }
     /* The frames: the set given (in order, each once), or the script's. */
@@ -174,6 +203,18 @@ int cmd_record(struct app *app, struct cli *cli)
         fprintf(stderr, "caustica: out of memory for the list of frames\n");
         return EXIT_SCENE_ERROR;
     }
+    /* The whole set checked before the first frame: not two frames, then an error. */
+    for (int k = 0; k < count; k++) {
+        if (frames[k] >= s->frames) {
+            fprintf(stderr, "caustica: --frames: frame %d is past the script's last frame %d (it returns frames = %d; "
+                            "raise it, or ask for frames up to %d)\n", frames[k], s->frames - 1, s->frames,
+                    s->frames - 1);
+            free(frames);
+            session_close(s);
+            remove_created_folders(dir, created);
+            return EXIT_SCENE_ERROR;
+        }
+    }
     /* A shard of a farm's array job: every n-th frame of the set, from the
      * i-th (interleaved, so each shard spans the whole animation). */
     if (cli->shard_count > 0) {
@@ -191,7 +232,7 @@ int cmd_record(struct app *app, struct cli *cli)
     char first[4200] = "", last[4200] = "";
     for (int k = 0; k < count && ok; k++) {
         char path[4200];
-        if (!output_pattern_path(cli->output, frames[k], path, sizeof path)) {
+        if (!output_pattern_path(output, frames[k], path, sizeof path)) {
             ok = error_set(&err, "-o %s: the path of frame %d is too long", cli->output, frames[k]);
             break;
         }
@@ -201,6 +242,7 @@ int cmd_record(struct app *app, struct cli *cli)
             skipped++;
             continue;
         }
+        double frame_start = log_now();
         ok = session_render(s, frames[k], &err) && session_write_image(s, path, &err);
         if (!ok)
             break;
@@ -210,13 +252,19 @@ int cmd_record(struct app *app, struct cli *cli)
         written++;
         double elapsed = log_now() - start;
         double fps = elapsed > 0 ? written / elapsed : 0;
-        if (tty) {
+        if (log_quiet()) {
+        } else if (tty) {
             fprintf(stderr, "\rframe %d (%d/%d)  %.1f fps  %.0f s left   ", frames[k], k + 1, count, fps,
                     fps > 0 ? (count - k - 1) / fps : 0.0);
             fflush(stderr);
+        } else {
+            /* off a terminal (a farm's log): one line a frame on stdout, as it
+             * is written (stderr keeps errors and warnings only) */
+            printf("frame %d (%d/%d) %.2f s -> %s\n", frames[k], k + 1, count, log_now() - frame_start, path);
+            fflush(stdout);
         }
     }
-    if (tty)
+    if (tty && !log_quiet() && written)
         fputc('\n', stderr);
     session_close(s);
     /* The video preview: every frame of the set, written now or before. */
@@ -225,10 +273,10 @@ int cmd_record(struct app *app, struct cli *cli)
         int n = 0;
         for (int k = 0; paths && k < count; k++) {
             char path[4200];
-            if (output_pattern_path(cli->output, frames[k], path, sizeof path) && file_exists(path))
+            if (output_pattern_path(output, frames[k], path, sizeof path) && file_exists(path))
                 paths[n++] = strdup(path);
         }
-        ok = paths && video_encode((const char *const *)paths, n, video_fps, cli->video, &err);
+        ok = paths && video_encode((const char *const *)paths, n, video_fps, cli->video, cli->crf, &err);
         if (!paths)
             error_set(&err, "out of memory");
         for (int k = 0; paths && k < n; k++)
@@ -242,9 +290,9 @@ int cmd_record(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    if (written)
+    if (written && !log_quiet())
         printf("wrote %d frame%s: %s .. %s\n", written, written == 1 ? "" : "s", first, last);
-    if (skipped)
+    if (skipped && !log_quiet())
         printf("skipped %d frame%s already written (--overwrite renders them again)\n", skipped,
                skipped == 1 ? "" : "s");
     if (!written && !skipped)

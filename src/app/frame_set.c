@@ -133,6 +133,54 @@ int *frame_set_list(const struct frame_set *set, int *count)
 
 bool output_pattern_is_pattern(const char *pattern) { return strchr(pattern, '#') != NULL; }
 
+static bool image_extension(const char *path, size_t *at)
+{
+    static const char *const exts[] = {".png", ".pfm", ".hdr", ".exr"};
+    size_t n = strlen(path);
+    for (int i = 0; i < 4; i++)
+        if (n > 4 && strcmp(path + n - 4, exts[i]) == 0 && path[n - 5] != '/') {
+            *at = n - 4;
+            return true;
+        }
+    return false;
+}
+
+bool output_pattern_normalize(const char *given, char *out, size_t size, char *note, size_t notelen)
+{
+    note[0] = '\0';
+    size_t o = 0;
+    bool printf_style = false;
+    for (const char *p = given; *p;) {
+        /* %d or %0Nd (ffmpeg's and Blender's convention): N #, or one # */
+        int width = 0, used = 0;
+        if (p[0] == '%' && (sscanf(p, "%%0%dd%n", &width, &used) == 1 || (p[1] == 'd' && (used = 2) > 0)) &&
+            used > 0 && p[used - 1] == 'd' && width >= 0 && width <= 9) {
+            for (int k = 0; k < (width > 0 ? width : 1); k++) {
+                if (o + 1 >= size)
+                    return false;
+                out[o++] = '#';
+            }
+            p += used;
+            printf_style = true;
+            continue;
+        }
+        if (o + 1 >= size)
+            return false;
+        out[o++] = *p++;
+    }
+    out[o] = '\0';
+    size_t at;
+    if (!printf_style && !strchr(out, '#') && image_extension(out, &at)) {
+        /* a file name without a frame number: every frame would overwrite it */
+        if (strlen(out) + 5 >= size)
+            return false;
+        memmove(out + at + 5, out + at, strlen(out + at) + 1);
+        memcpy(out + at, "_####", 5);
+        snprintf(note, notelen, "-o %s names no frame number: writing %s", given, out);
+    }
+    return true;
+}
+
 bool output_pattern_path(const char *pattern, int frame, char *out, size_t size)
 {
     if (!output_pattern_is_pattern(pattern)) {

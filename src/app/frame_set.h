@@ -28,5 +28,10 @@ int *frame_set_list(const struct frame_set *set, int *count);
 bool output_pattern_path(const char *pattern, int frame, char *out, size_t size);
 /* Does `pattern` hold a run of #? */
 bool output_pattern_is_pattern(const char *pattern);
+/* record's -o as given, made a pattern of # runs: %04d (or %d) becomes
+ * #### (#); an image file name without a frame number (out/f.png) becomes
+ * out/f_####.png, with `note` saying so (else note is ""). False when it does
+ * not fit `size`. */
+bool output_pattern_normalize(const char *given, char *out, size_t size, char *note, size_t notelen);
 
 #endif

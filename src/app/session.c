@@ -406,6 +406,8 @@ bool session_reference_parts(struct session *s, int frame, const struct ref_opti
     if (!renderer_begin_frame(r, s->scene, s->width, s->height, frame, (double)frame / s->fps, err))
         return error_prefix(err, "%s", s->script);
     struct ref_options o = *options;
+    if (o.threads <= 0)
+        o.threads = s->app->threads; /* --threads; 0 still: the CPUs this process may use */
     o.width = s->width;
     o.height = s->height;
     if (!ref_render_parts(r, s->scene, &o, out, caustic, stats, err))

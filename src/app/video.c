@@ -38,7 +38,7 @@ bool video_find_program(const char *name)
     return false;
 }
 
-bool video_encode(const char *const *paths, int count, double fps, const char *output, struct error *err)
+bool video_encode(const char *const *paths, int count, double fps, const char *output, int crf, struct error *err)
 {
     if (!video_find_program("ffmpeg"))
         return error_set(err, "--video %s: ffmpeg is not installed (apt-get install ffmpeg); the frames are on disk",
@@ -65,20 +65,35 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
         fprintf(f, "'\nduration %.9f\n", 1.0 / fps);
     }
     fclose(f);
-    char rate[32];
-    snprintf(rate, sizeof rate, "fps=%g", fps);
+    char filters[128], quality[16], temporary[4200];
     bool gif = ends_with(output, ".gif");
+    /* 4:2:0 chroma wants even sizes: pad an odd one by a pixel (libx264 refuses it otherwise) */
+    snprintf(filters, sizeof filters, gif ? "fps=%g" : "fps=%g,pad=ceil(iw/2)*2:ceil(ih/2)*2", fps);
+    snprintf(quality, sizeof quality, "%d", crf);
+    /* a name starting with '-' must not reach ffmpeg as an option */
+    char dir[4096];
+    path_dirname(output, dir, sizeof dir);
+    const char *base = strrchr(output, '/') ? strrchr(output, '/') + 1 : output;
+    snprintf(temporary, sizeof temporary, "%s/.%s.caustica-tmp%s", dir, base, gif ? ".gif" : ".mp4");
     const char *argv_mp4[] = {"ffmpeg", "-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i", list,
-                              "-vf", rate, "-pix_fmt", "yuv420p", output, NULL};
+                              "-vf", filters, "-c:v", "libx264", "-crf", quality, "-pix_fmt", "yuv420p",
+                              "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "iec61966-2-1",
+                              "-color_range", "tv", "-movflags", "+faststart", temporary, NULL};
     const char *argv_gif[] = {"ffmpeg", "-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i", list,
-                              "-vf", rate, output, NULL};
+                              "-vf", filters, temporary, NULL};
     pid_t pid;
     int rc = posix_spawnp(&pid, "ffmpeg", NULL, NULL, (char *const *)(gif ? argv_gif : argv_mp4), environ);
     int status = 0;
     bool ok = rc == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
     remove(list);
-    if (!ok)
+    if (!ok) {
+        remove(temporary);
         return error_set(err, "--video %s: ffmpeg failed (exit %d); the frames are on disk", output,
                          WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    }
+    if (rename(temporary, output) != 0) {
+        remove(temporary);
+        return error_set(err, "--video %s: cannot move the encoded video into place", output);
+    }
     return true;
 }

@@ -145,6 +145,36 @@ bool path_check_writable_dir(const char *path, struct error *err)
     return true;
 }
 
+bool dir_ensure_all(const char *path, char *created, size_t created_len, struct error *err)
+{
+    if (created_len)
+        created[0] = '\0';
+    char buf[4096];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return error_set(err, "%s: path too long", path);
+    /* each ancestor from the top, then the folder itself (mkdir -p) */
+    for (char *p = buf + 1; ; p++) {
+        bool last = *p == '\0';
+        if (*p != '/' && !last)
+            continue;
+        char saved = *p;
+        *p = '\0';
+        struct stat st;
+        if (buf[0] && stat(buf, &st) != 0) {
+            if (mkdir(buf, 0777) != 0)
+                return error_set(err, "%s: cannot create folder: %s", buf, strerror(errno));
+            if (created_len && !created[0])
+                snprintf(created, created_len, "%s", buf);
+        } else if (buf[0] && !S_ISDIR(st.st_mode)) {
+            return error_set(err, "%s: exists and is not a folder", buf);
+        }
+        *p = saved;
+        if (last)
+            break;
+    }
+    return dir_ensure(path, err);
+}
+
 bool dir_ensure(const char *path, struct error *err)
 {
     struct stat st;

@@ -28,5 +28,8 @@ int path_remove_stale_temporaries(const char *dir);
 bool path_check_writable_dir(const char *path, struct error *err);
 /* Creates a directory (one level) when it does not exist. */
 bool dir_ensure(const char *path, struct error *err);
+/* mkdir -p: `path` and every missing folder above it; `created` gets the
+ * topmost folder it made ("" when it made none), to remove on failure. */
+bool dir_ensure_all(const char *path, char *created, size_t created_len, struct error *err);
 
 #endif

@@ -10,6 +10,10 @@ static bool verbose_enabled;
 void log_set_verbose(bool verbose) { verbose_enabled = verbose; }
 bool log_verbose(void) { return verbose_enabled; }
 
+static bool quiet_enabled;
+void log_set_quiet(bool quiet) { quiet_enabled = quiet; }
+bool log_quiet(void) { return quiet_enabled; }
+
 void log_info(const char *fmt, ...)
 {
     if (!verbose_enabled)

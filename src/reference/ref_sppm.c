@@ -19,6 +19,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/cpus.h"
 #include "core/log.h"
 #include "core/vecmath.h"
 #include "core/optics.h"
@@ -1310,7 +1311,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     double fov = (double)scene->camera.fov * MATH_PI / 180.0;
     double pixel_angle = 2.0 * tan(0.5 * fov) / o->height;
     double pixel_size = (double)scene->camera.ortho_width / (double)o->width;
-    int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    int threads = o->threads > 0 ? o->threads : cpus_available();
     if (threads < 1)
         threads = 1;
     struct ref_medium medium;
@@ -1372,6 +1373,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         stats->photons = totals.emitted;
         stats->caustic_photons = totals.caustic_total;
         stats->seconds = log_now() - start;
+        stats->threads = threads < 64 ? threads : 64; /* run_threads' cap */
         for (int k = 0; k < 3; k++)
             stats->caustic_power[k] = totals.caustic_power[k] / passes;
     }

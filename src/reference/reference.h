@@ -30,7 +30,7 @@ struct ref_options {
     double volume_radius;  /* initial volume gather radius; 0: 1% of the medium box diagonal */
     bool progress;       /* print progress with time left on stderr */
     bool report;         /* print the noise estimate after every iteration on stderr */
-    int threads;         /* 0: all cores */
+    int threads;         /* 0: the CPUs this process may use (core/cpus.h) */
     enum ref_aov aov;    /* REF_AOV_NONE: the image */
     bool antialias;      /* each iteration's camera ray through a random point of its pixel (the pixel's
                           * mean, SPPM's stochastic visible points), not its centre (what the
@@ -43,6 +43,7 @@ struct ref_stats {
     long long caustic_photons; /* photons that reached a diffuse surface after a specular one */
     double caustic_power[3]; /* W reaching diffuse surfaces by light-specular+-diffuse paths */
     double seconds;
+    int threads;           /* worker threads it ran on */
     /* Relative noise of the image: half the RMS difference of the means of
      * the even and the odd iterations' own estimates, over the RMS of the
      * image (the standard error of the mean; it measures variance, not the

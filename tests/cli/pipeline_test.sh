@@ -1,0 +1,71 @@
+# A farm's and a compositor's view (issue 30): one log line per frame off a
+# terminal, `wrote` for render, --quiet; record's -o made as mkdir -p,
+# `x.png` and `%04d` taken as frame patterns, the whole frame set checked
+# before the first frame; the reference's worker threads follow the CPUs the
+# process may use (taskset) or --threads, and it writes EXR.
+source "$(dirname "$0")/lib.sh"
+cat >"$WORK/anim.lua" <<'EOF'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+local lamp = scene:add(c.light.point { position = {1, 2, 1}, intensity = {5, 5, 5} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.5, 0} })
+local ball = scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 } })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, size = {16, 16}, frames = 6,
+         update = function(t) ball.position = {math.sin(t), 0, 0} end }
+EOF
+
+# One line per frame in a log (not a terminal: setsid, stdout and stderr to a file), on stdout.
+setsid "$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/log_frames" >"$WORK/log" 2>&1 </dev/null
+n=$(grep -cE '^frame [0-9]+ \([0-9]+/6\) [0-9.]+ s -> .*frame_000[0-5]\.png$' "$WORK/log")
+[ "$n" = 6 ] && grep -q "^wrote 6 frames" "$WORK/log" && pass "record off a terminal: one line per frame, as written" \
+  || fail "record's log" "$n frame lines: $(cat "$WORK/log")"
+"$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/quiet_frames" --quiet >"$WORK/log" 2>&1
+[ ! -s "$WORK/log" ] && [ -f "$WORK/quiet_frames/frame_0005.png" ] && pass "--quiet: no lines, the frames still written" \
+  || fail "--quiet" "$(cat "$WORK/log")"
+"$CAUSTICA" render "$WORK/anim.lua" -o "$WORK/one.png" >"$WORK/log" 2>&1
+grep -qx "wrote $WORK/one.png" "$WORK/log" && pass "render says where it wrote" || fail "render's wrote line" "$(cat "$WORK/log")"
+
+# bench says which variant it is on and how long is left.
+"$CAUSTICA" bench "$WORK/anim.lua" --sweep shade.specular=true,false --frames 2 --ref-photons 5000 -o "$WORK/bench" \
+  >/dev/null 2>"$WORK/err"
+grep -q "^caustica: bench: variant 1/2$" "$WORK/err" && grep -qE "^caustica: bench: variant 2/2 \([0-9]+ s so far, about [0-9]+ s left\)$" "$WORK/err" \
+  && pass "bench: variant i/N and the time left" || fail "bench progress" "$(cat "$WORK/err")"
+
+# record -o: nested folders made; x.png and %04d are patterns.
+"$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/n1/n2/f_####.png" --frames 0-1 >/dev/null 2>"$WORK/err" &&
+  [ -f "$WORK/n1/n2/f_0001.png" ] && pass "record -o makes nested folders (mkdir -p)" || fail "nested -o" "$(cat "$WORK/err")"
+"$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/r7/f.png" --frames 2 >/dev/null 2>"$WORK/err" &&
+  [ -f "$WORK/r7/f_0000.png" ] && [ -f "$WORK/r7/f_0001.png" ] && [ ! -d "$WORK/r7/f.png" ] &&
+  grep -q "names no frame number: writing $WORK/r7/f_####.png" "$WORK/err" \
+  && pass "-o x.png without # is x_####.png, and says so" || fail "-o x.png" "$(ls "$WORK/r7" 2>&1) $(cat "$WORK/err")"
+"$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/pct/shot_%04d.png" --frames 3-4 >/dev/null 2>"$WORK/err" &&
+  [ -f "$WORK/pct/shot_0003.png" ] && [ -f "$WORK/pct/shot_0004.png" ] && pass "-o shot_%04d.png is a frame pattern" \
+  || fail "%04d" "$(ls "$WORK/pct" 2>&1) $(cat "$WORK/err")"
+expect_error "a frame set past the script's end is refused before any frame" 1 \
+  "--frames: frame 6 is past the script's last frame 5" "$WORK/past" -- \
+  "$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/past/f_####.png" --frames 4-7
+[ ! -e "$WORK/past" ] && pass "and leaves no folder behind" || fail "refused set" "left $(ls -R "$WORK/past")"
+expect_error "--video with --shard is refused" 2 "--video with --shard would encode only this shard's frames" - -- \
+  "$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/v" --shard 0/2 --video "$WORK/v.mp4"
+
+# The reference's threads: the CPUs this process may use, or --threads.
+cpus=$(nproc)
+"$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.pfm" --spp 1 --photons 2000 >"$WORK/log" 2>&1
+grep -q "on $cpus thread" "$WORK/log" && pass "the reference runs one worker per CPU it may use ($cpus)" \
+  || fail "reference threads" "$(cat "$WORK/log")"
+if command -v taskset >/dev/null; then
+  taskset -c 0 "$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.pfm" --spp 1 --photons 2000 >"$WORK/log" 2>&1
+  grep -q "on 1 thread," "$WORK/log" && pass "under taskset -c 0 it runs one worker thread" \
+    || fail "reference under taskset" "$(cat "$WORK/log")"
+fi
+"$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref3.pfm" --spp 1 --photons 2000 --threads 3 >"$WORK/log" 2>&1
+grep -q "on 3 threads" "$WORK/log" && cmp -s "$WORK/ref.pfm" "$WORK/ref3.pfm" \
+  && pass "--threads 3: three workers, the same image as one (deterministic for a seed)" \
+  || fail "--threads" "$(cat "$WORK/log"); same image: $(cmp "$WORK/ref.pfm" "$WORK/ref3.pfm" && echo yes)"
+"$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.exr" --spp 1 --photons 2000 >/dev/null 2>"$WORK/err" &&
+  line=$("$CAUSTICA" compare "$WORK/ref.exr" "$WORK/ref.pfm") && [ "$(metric rmse "$line")" = 0 ] \
+  && pass "reference -o x.exr writes the same linear image" || fail "reference EXR" "$(cat "$WORK/err") ${line:-}"
+finish
