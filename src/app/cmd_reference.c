@@ -50,7 +50,20 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.antialias = cli->antialias;
     struct image img = {0};
     struct ref_stats st = {0};
-    bool ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);
+    bool ok;
+    if (image_path_is_exr(cli->output) && o.aov == REF_AOV_NONE) {
+        /* EXR: the image, its caustic part as the layer "caustic", and the header a compositor reads */
+        struct image caustic = {0};
+        struct image_layer layer = {.name = "caustic", .image = &caustic};
+        struct image_exr_info info;
+        ok = session_reference_parts(s, cli->frame, &o, &img, &caustic, &st, &err);
+        session_exr_info(s, &info);
+        info.renderer = "caustica reference (CPU, progressive photon mapping)";
+        ok = ok && image_write_exr(cli->output, &img, &layer, 1, &info, &err);
+        image_destroy(&caustic);
+    } else {
+        ok = session_reference(s, cli->frame, &o, &img, &st, &err) && image_write(cli->output, &img, &err);
+    }
     if (ok && o.aov != REF_AOV_NONE)
         printf("%s: the %s output (two interfaces, traced exactly) -> %s\n", s->script,
                o.aov == REF_AOV_TIR ? "tir" : "exit", cli->output);

@@ -315,6 +315,44 @@ bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err)
     return true;
 }
 
+/* A depth buffer's window depths made what compositors call Z: the distance
+ * along the camera's view axis (camera-space -z), +inf where nothing was
+ * drawn (the far plane). */
+static void depth_to_distance(struct image *img, const mat4 *proj)
+{
+    mat4 inv;
+    if (!mat4_inverse(*proj, &inv))
+        return;
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; i++) {
+        float d = img->rgba[i * 4];
+        if (!(d < 1.0f)) {
+            img->rgba[i * 4] = INFINITY;
+            continue;
+        }
+        /* clip (0, 0, 2d - 1, 1) back to the camera: z / w of the inverse */
+        float zn = 2.0f * d - 1.0f;
+        float z = inv.m[10] * zn + inv.m[14], w = inv.m[11] * zn + inv.m[15];
+        img->rgba[i * 4] = w != 0.0f ? -z / w : INFINITY;
+    }
+}
+
+/* The EXR header's camera and caustica attributes for the frame just rendered. */
+void session_exr_info(const struct session *s, struct image_exr_info *info)
+{
+    const struct frame *f = &s->app->renderer.frame;
+    memset(info, 0, sizeof *info);
+    info->camera = true;
+    memcpy(info->world_to_camera, f->view.m, sizeof info->world_to_camera);
+    memcpy(info->world_to_ndc, f->view_proj.m, sizeof info->world_to_ndc);
+    info->frame = f->index;
+    info->time = f->time;
+    info->fps = s->fps;
+    info->scene = s->script;
+    info->renderer = s->app->gl ? s->app->gl->renderer : NULL;
+    info->output = s->graph && graph_output(s->graph) ? graph_output(s->graph)->name : NULL;
+}
+
 bool session_write_image(struct session *s, const char *path, struct error *err)
 {
     if (image_path_is_exr(path)) {
@@ -322,6 +360,7 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         struct image img, layers_img[SESSION_MAX_AOVS];
         struct image_layer layers[SESSION_MAX_AOVS];
         int n = 0;
+        bool object_id = false;
         if (!session_read_linear(s, &img, err))
             return false;
         bool ok = true;
@@ -344,13 +383,21 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
             }
             ok = read_resource(s, res, &layers_img[n], err);
             if (ok) {
+                size_t len = strlen(s->aovs[i]);
                 layers[n].name = s->aovs[i];
                 layers[n].image = &layers_img[n];
                 layers[n].depth = gl_format_is_depth(res->texture.format);
+                if (layers[n].depth)
+                    depth_to_distance(&layers_img[n], &s->app->renderer.frame.proj);
+                /* shade's and the receivers' normals keep the object id + 1 in w: its own channel */
+                layers[n].object_id = len > 7 && strcmp(s->aovs[i] + len - 7, ".normal") == 0 && !object_id;
+                object_id |= layers[n].object_id;
                 n++;
             }
         }
-        ok = ok && image_write_exr(path, &img, layers, n, err);
+        struct image_exr_info info;
+        session_exr_info(s, &info);
+        ok = ok && image_write_exr(path, &img, layers, n, &info, err);
         for (int i = 0; i < n; i++)
             image_destroy(&layers_img[i]);
         image_destroy(&img);

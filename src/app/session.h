@@ -63,6 +63,8 @@ bool session_read_srgb(struct session *s, uint8_t **rgba, struct error *err);
 struct ref_options;
 struct ref_stats;
 /* The ground truth of `frame` at the session's size (src/reference). */
+/* The EXR header of the frame last rendered (or traced): camera, frame, time, scene, renderer. */
+void session_exr_info(const struct session *s, struct image_exr_info *info);
 bool session_reference(struct session *s, int frame, const struct ref_options *options, struct image *out,
                        struct ref_stats *stats, struct error *err);
 /* ... also giving the caustic part alone (`caustic` may be NULL). */

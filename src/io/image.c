@@ -316,7 +316,7 @@ bool image_write(const char *path, const struct image *img, struct error *err)
     if (image_path_is_hdr(path))
         return image_write_hdr(path, img, err);
     if (image_path_is_exr(path))
-        return image_write_exr(path, img, NULL, 0, err);
+        return image_write_exr(path, img, NULL, 0, NULL, err);
     if (!image_path_is_png(path))
         return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
     size_t n = (size_t)img->width * (size_t)img->height;

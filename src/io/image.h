@@ -52,11 +52,24 @@ bool image_path_is_pfm(const char *path);
 struct image_layer {
     const char *name;
     const struct image *image;
-    bool depth; /* one channel, "name.Z", from the image's R (a depth buffer) */
+    bool depth;     /* one channel, "name.Z", from the image's R (a depth: the caller makes it a distance) */
+    bool object_id; /* its A is an object id + 1 (0: none): written as the top-level "objectId" channel, not name.A */
+};
+/* What a compositor reads from the header besides the pixels: the standard
+ * chromaticities (Rec. 709 / sRGB primaries, D65: the renderer's linear
+ * RGB), worldToCamera and worldToNDC (OpenEXR's row-vector matrices, which
+ * are OpenGL's column-major arrays as they are), and caustica's own. */
+struct image_exr_info {
+    bool camera;                         /* the matrices below are set */
+    float world_to_camera[16], world_to_ndc[16];
+    int frame;
+    double time, fps;
+    const char *scene, *renderer, *output; /* NULL: left out */
 };
 bool image_path_is_exr(const char *path);
+/* `info` may be NULL (no camera, no caustica attributes; the chromaticities still). */
 bool image_write_exr(const char *path, const struct image *img, const struct image_layer *layers, int nlayers,
-                     struct error *err);
+                     const struct image_exr_info *info, struct error *err);
 bool image_read_exr(const char *path, struct image *img, struct error *err);
 /* One named layer's R, G, B, A (NULL: the top-level channels). */
 bool image_read_exr_layer(const char *path, const char *layer, struct image *img, struct error *err);

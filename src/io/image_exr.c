@@ -32,6 +32,15 @@ static bool channel_source(const char *name, const struct image *img, const stru
     const char *dot = strrchr(name, '.');
     const char *c = dot ? dot + 1 : name;
     static const char comps[] = "RGBA";
+    if (!dot && strcmp(name, "objectId") == 0) {
+        for (int i = 0; i < nlayers; i++)
+            if (layers[i].object_id) {
+                *base = layers[i].image->rgba;
+                *component = 3;
+                return true;
+            }
+        return false;
+    }
     const char *k = c[0] == 'Z' ? comps : strchr(comps, c[0]); /* a depth layer's Z is its image's R */
     if (!k || !c[0] || c[1])
         return false;
@@ -48,8 +57,44 @@ static bool channel_source(const char *name, const struct image *img, const stru
     return false;
 }
 
+/* The header's attributes besides the required ones (see image_exr_info). */
+static exr_result_t write_attributes(exr_context_t ctxt, int part, const struct image_exr_info *info)
+{
+    /* Rec. 709 primaries and D65 white: sRGB's, the renderer's linear RGB */
+    const exr_attr_chromaticities_t rec709 = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+    exr_result_t rv = exr_attr_set_chromaticities(ctxt, part, "chromaticities", &rec709);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_string(ctxt, part, "software", "caustica " CAUSTICA_VERSION);
+    if (!info)
+        return rv;
+    if (rv == EXR_ERR_SUCCESS && info->camera) {
+        exr_attr_m44f_t to_camera, to_ndc;
+        memcpy(to_camera.m, info->world_to_camera, sizeof to_camera.m);
+        memcpy(to_ndc.m, info->world_to_ndc, sizeof to_ndc.m);
+        rv = exr_attr_set_m44f(ctxt, part, "worldToCamera", &to_camera);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_attr_set_m44f(ctxt, part, "worldToNDC", &to_ndc);
+    }
+    if (rv == EXR_ERR_SUCCESS && info->fps > 0) {
+        /* framesPerSecond as a rational: fps * 1000 / 1000 */
+        exr_attr_rational_t fps = {(int32_t)(info->fps * 1000.0 + 0.5), 1000};
+        rv = exr_attr_set_rational(ctxt, part, "framesPerSecond", &fps);
+    }
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_int(ctxt, part, "caustica:frame", info->frame);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_attr_set_float(ctxt, part, "caustica:time", (float)info->time);
+    if (rv == EXR_ERR_SUCCESS && info->scene)
+        rv = exr_attr_set_string(ctxt, part, "caustica:scene", info->scene);
+    if (rv == EXR_ERR_SUCCESS && info->renderer)
+        rv = exr_attr_set_string(ctxt, part, "caustica:renderer", info->renderer);
+    if (rv == EXR_ERR_SUCCESS && info->output)
+        rv = exr_attr_set_string(ctxt, part, "caustica:output", info->output);
+    return rv;
+}
+
 bool image_write_exr(const char *path, const struct image *img, const struct image_layer *layers, int nlayers,
-                     struct error *err)
+                     const struct image_exr_info *info, struct error *err)
 {
     for (int i = 0; i < nlayers; i++)
         if (layers[i].image->width != img->width || layers[i].image->height != img->height)
@@ -72,13 +117,19 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
     static const char *const names[4] = {"R", "G", "B", "A"};
     for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(ctxt, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
-    for (int i = 0; i < nlayers && rv == EXR_ERR_SUCCESS; i++)
-        for (int c = 0; c < (layers[i].depth ? 1 : 4) && rv == EXR_ERR_SUCCESS; c++) {
+    for (int i = 0; i < nlayers && rv == EXR_ERR_SUCCESS; i++) {
+        int channels = layers[i].depth ? 1 : layers[i].object_id ? 3 : 4;
+        for (int c = 0; c < channels && rv == EXR_ERR_SUCCESS; c++) {
             char name[300];
             snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].depth ? "Z" : names[c]);
             rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
         }
-    step = "defining the channels";
+        if (rv == EXR_ERR_SUCCESS && layers[i].object_id)
+            rv = exr_add_channel(ctxt, part, "objectId", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    }
+    if (rv == EXR_ERR_SUCCESS)
+        rv = write_attributes(ctxt, part, info);
+    step = "defining the channels and attributes";
     if (rv == EXR_ERR_SUCCESS) {
         rv = exr_write_header(ctxt);
         step = "writing the header";

@@ -31,16 +31,57 @@ if command -v exrheader >/dev/null; then
     || fail "depth layer" "$(exrheader "$WORK/d.exr" 2>&1 | head -12)"
 fi
 "$CAUSTICA" convert "$WORK/d.exr:shade.depth" "$WORK/depth.pfm" >/dev/null 2>&1 \
-  && python3 - "$WORK/depth.pfm" <<'PY' && pass "the depth layer holds window depths (floor nearer at the bottom)" || fail "depth values" "$(cat "$WORK/d.err")"
+  && python3 - "$WORK/depth.pfm" <<'PY' && pass "the depth layer holds camera distances (floor nearer at the bottom)" || fail "depth values" "$(cat "$WORK/d.err")"
 import struct, sys
 data = open(sys.argv[1], "rb").read()
 head, dims, scale, body = data.split(b"\n", 3)
 w, h = map(int, dims.split())
 v = struct.unpack("<%df" % (w * h * 3), body[: w * h * 12])
-# PFM rows run bottom to top: the floor's bottom row is nearer than its top row; both are in (0, 1)
+# PFM rows run bottom to top: the floor's bottom row is nearer than its top row (or the sky, +inf)
 bottom, top = v[(w // 2) * 3], v[((h - 1) * w + w // 2) * 3]
-sys.exit(0 if 0 < bottom < top <= 1 else 1)
+sys.exit(0 if 0.5 < bottom < top else 1)
 PY
+# What a compositor reads (issue 30): Z is the distance along the view axis (+inf where nothing is
+# drawn), the object id its own channel, and the header's chromaticities, camera and frame.
+cat >"$WORK/z.lua" <<'EOF'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 0, 3}, target = {0, 0, 0}, fov = 40 } }
+scene:add(c.light.directional { direction = {0, 0, -1}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 1 }, rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2) })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, size = {32, 32}, fps = 24 }
+EOF
+"$CAUSTICA" render "$WORK/z.lua" -o "$WORK/z.exr" --aov shade.depth --aov shade.normal --frame 0 >/dev/null 2>"$WORK/z.err" \
+  || fail "the Z scene" "$(cat "$WORK/z.err")"
+if command -v exrheader >/dev/null; then
+  exrheader "$WORK/z.exr" >"$WORK/z.head" 2>&1
+  grep -q "^chromaticities (type chromaticities)" "$WORK/z.head" && grep -q "red   (0.64 0.33)" "$WORK/z.head" &&
+    grep -q "^worldToCamera (type m44f)" "$WORK/z.head" && grep -q "^worldToNDC (type m44f)" "$WORK/z.head" &&
+    grep -q "^framesPerSecond (type rational): 24000/1000" "$WORK/z.head" &&
+    grep -q '^caustica:frame (type int): 0' "$WORK/z.head" && grep -q '^caustica:scene (type string): ".*z.lua"' "$WORK/z.head" &&
+    grep -q '^software (type string): "caustica ' "$WORK/z.head" && grep -q "^    objectId, 32-bit floating-point" "$WORK/z.head" &&
+    ! grep -q "shade.normal.A" "$WORK/z.head" \
+    && pass "exrheader: chromaticities, worldToCamera, worldToNDC, framesPerSecond, caustica's attributes, objectId" \
+    || fail "EXR header" "$(cat "$WORK/z.head")"
+fi
+if command -v oiiotool >/dev/null; then
+  oiiotool "$WORK/z.exr" --ch shade.depth.Z -o "$WORK/zz.exr" >/dev/null 2>&1
+  stats=$(oiiotool --stats "$WORK/zz.exr" 2>&1)
+  grep -qE "Stats Min: 3\.0000[0-9]+ " <<<"$stats" && grep -qE "Stats Max: 3\.0000[0-9]+ " <<<"$stats" &&
+    [ "$(sed -n 's/.*Stats InfCount: \([0-9]*\).*/\1/p' <<<"$stats")" -gt 0 ] \
+    && pass "oiiotool: Z is 3 on a plane 3 in front of the camera, +inf beside it" || fail "Z values" "$stats"
+  oiiotool "$WORK/z.exr" --ch objectId -o "$WORK/id.exr" >/dev/null 2>&1
+  grep -q "Stats Max: 1.000000" <<<"$(oiiotool --stats "$WORK/id.exr" 2>&1)" && pass "oiiotool: objectId is 1 on the first object" \
+    || fail "objectId" "$(oiiotool --stats "$WORK/id.exr" 2>&1)"
+  oiiotool --info -v "$WORK/z.exr" 2>&1 | grep -qi "worldtocamera" && pass "oiiotool --info -v reads the camera" \
+    || fail "oiiotool --info" "$(oiiotool --info -v "$WORK/z.exr" 2>&1 | head -20)"
+fi
+# The reference writes EXR too: the image and its caustic part as a layer.
+"$CAUSTICA" reference "$WORK/z.lua" -o "$WORK/ref.exr" --spp 1 --photons 1000 >/dev/null 2>"$WORK/r.err" &&
+  "$CAUSTICA" convert "$WORK/ref.exr:caustic" "$WORK/caustic.pfm" >/dev/null 2>>"$WORK/r.err" \
+  && pass "reference -o x.exr with its caustic layer" || fail "reference EXR" "$(cat "$WORK/r.err")"
 head -c 300 "$WORK/a.exr" >"$WORK/broken.exr"
 expect_error "a truncated EXR" 1 "broken.exr" - -- "$CAUSTICA" compare "$WORK/broken.exr" "$WORK/a.pfm"
 # An equirectangular environment from an EXR: the sky converted from its .hdr renders the same.
