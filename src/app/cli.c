@@ -36,7 +36,9 @@ static const struct cli_verb {
     {"info", VB_INFO, "SCENE.lua [options]", "prints the scene, the render graph (with the blocks it adds) and lint"},
     {"reference", VB_REFERENCE, "SCENE.lua -o OUT.pfm|OUT.hdr|OUT.exr [options]",
      "renders the exact ground truth on the CPU (progressive photon mapping)"},
-    {"compare", VB_COMPARE, "A B [options]", "prints the error of image A against image B (rel_rmse, PSNR, ...)"},
+    {"compare", VB_COMPARE, "A B [options]",
+     "prints the error of image A against image B: rmse, rel_rmse (over B's RMS), psnr, ssim, max, nan, and "
+     "log_rmse (of log(1 + value): robust to a few hot pixels)"},
     {"convert", VB_CONVERT, "IN OUT [options]",
      "converts an image: reads .png, .pfm, .hdr, .exr (IN.exr:layer for one layer); writes .png, .pfm, .hdr, .exr"},
     {"bench", VB_BENCH, "SCENE.lua [--sweep key=v1,v2,...]... [options]",
@@ -90,7 +92,10 @@ static const struct cli_option {
     {"--keys", NULL, "K,K,...", VB_RUN, "keys pressed on the first frame (space, left, right, s, r)"},
     {"--update-refs", NULL, NULL, VB_TEST, "write the reference images the tests compare with"},
     {"--filter", NULL, "TEXT", VB_TEST, "run only the cases whose name contains TEXT"},
-    {"--report", NULL, "OUT.html", VB_TEST, "also write a page of the cases' images and errors"},
+    {"--report", NULL, "OUT.html", VB_TEST,
+     "also write one self-contained page: every case, and each failed comparison's images (rendered, compared "
+     "with, difference) side by side with a flip view"},
+    {"--junit", NULL, "OUT.xml", VB_TEST, "also write the results as JUnit XML (what CI servers read)"},
     {"--report", NULL, NULL, VB_REFERENCE, "print the noise estimate of each iteration"},
     {"--no-render", NULL, NULL, VB_INFO, "describe the graph without rendering a frame"},
     {"--photons", NULL, "N", VB_REFERENCE, "photons per iteration (default 200000; >= 0)"},
@@ -102,7 +107,7 @@ static const struct cli_option {
     {"--radius", NULL, "R", VB_REFERENCE,
      "the initial gather radius in scene units (> 0; default from the scene's size)"},
     {"--antialias", NULL, NULL, VB_REFERENCE, "pixel means instead of pixel centres"},
-    {"--mask", NULL, "M", VB_COMPARE, "compare only where the mask image is non-zero"},
+    {"--mask", NULL, "M", VB_COMPARE, "compare only where the mask image (.png, .pfm, .hdr, .exr) is non-zero"},
     {"--exposure", NULL, "E", VB_CONVERT, "multiply the colour by E before writing (> 0; default 1)"},
     {"--sweep", NULL, "KEY=V1,V2,...", VB_BENCH,
      "the values of one parameter to try (a scene parameter, or pass.param); technique=all|NAME,... tries the "
@@ -481,6 +486,8 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--crf") == 0) {
             if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
                 return usage_error("--crf needs a quality in 0..51, got '%s'", next);
+        } else if (strcmp(a, "--junit") == 0) {
+            cli->junit = next;
         } else if (strcmp(a, "--threads") == 0) {
             if (!parse_int(next, &app->threads) || app->threads < 1 || app->threads > 1024)
                 return usage_error("--threads needs a count in 1..1024, got '%s'", next);

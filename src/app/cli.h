@@ -36,6 +36,7 @@ struct cli {
     bool report;             /* --report: the reference's noise estimate per iteration */
     bool antialias;          /* --antialias (reference), --ref-antialias (bench, choose): pixel means */
     const char *report_html; /* --report OUT.html (test): the HTML report */
+    const char *junit;       /* --junit OUT.xml (test): JUnit XML for CI servers */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */
     const char *filter;
     long photons;            /* --photons (reference) */

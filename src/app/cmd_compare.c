@@ -1,4 +1,5 @@
-/* `caustica compare A B [--mask M]`: one line of key=value metrics. */
+/* `caustica compare A B [--mask M]`: one line of key=value metrics (the
+ * mask any image format: a pixel counts where its luminance is > 0). */
 #include <stdio.h>
 
 #include "app/cli.h"
@@ -20,8 +21,8 @@ int cmd_compare(struct app *app, struct cli *cli)
     struct image_metrics r;
     ok = ok && image_metrics_compute(&a, &b, cli->mask ? &m : NULL, &r, &err);
     if (ok)
-        printf("rmse=%.6g rel_rmse=%.6g psnr=%.4g ssim=%.6g max=%.6g nan=%ld\n", r.rmse, r.rel_rmse, r.psnr, r.ssim,
-               r.max, r.nan);
+        printf("rmse=%.6g rel_rmse=%.6g psnr=%.4g ssim=%.6g max=%.6g nan=%ld log_rmse=%.6g\n", r.rmse, r.rel_rmse,
+               r.psnr, r.ssim, r.max, r.nan, r.log_rmse);
     image_destroy(&a);
     image_destroy(&b);
     image_destroy(&m);

@@ -144,7 +144,7 @@ int cmd_test(struct app *app, struct cli *cli)
                     passed += (long)lua_tointeger(L, -2);
                     failed += (long)lua_tointeger(L, -1);
                     lua_pop(L, 2);
-                    if (cli->report_html)
+                    if (cli->report_html || cli->junit)
                         collect_results(L, &report);
                 }
             }
@@ -153,7 +153,7 @@ int cmd_test(struct app *app, struct cli *cli)
             printf("FAIL %s: %s\n", files[i], err.message);
             failed++;
             struct test_case_result r = {.file = files[i], .name = "(the file)", .message = err.message};
-            if (cli->report_html)
+            if (cli->report_html || cli->junit)
                 test_report_add(&report, &r);
         }
         fflush(stdout);
@@ -176,6 +176,15 @@ int cmd_test(struct app *app, struct cli *cli)
             fprintf(stderr, "caustica: test: report in %s\n", cli->report_html);
         else
             cli_print_error(&err);
+    }
+    if (cli->junit) {
+        struct error err;
+        bool junit = test_report_write_junit(&report, cli->junit, &err);
+        if (junit)
+            fprintf(stderr, "caustica: test: JUnit XML in %s\n", cli->junit);
+        else
+            cli_print_error(&err);
+        written = written && junit;
     }
     test_report_release(&report);
     printf("%ld passed, %ld failed\n", passed, failed);

@@ -6,6 +6,7 @@
 
 #include "app/test_report.h"
 #include "core/fileio.h"
+#include "io/image.h"
 
 static char *copy(const char *s)
 {
@@ -66,6 +67,35 @@ static void put_text(FILE *f, const char *s)
     }
 }
 
+static const char *base_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* A PNG as a data: URI, so that the page stands alone (uploaded as a CI
+ * artifact, mailed); a file that cannot be read becomes an empty image. */
+static void put_data_uri(FILE *f, const char *path)
+{
+    static const char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    fputs("data:image/png;base64,", f);
+    FILE *in = fopen(path, "rb");
+    if (!in)
+        return;
+    unsigned char b[3];
+    size_t n;
+    while ((n = fread(b, 1, 3, in)) > 0) {
+        unsigned v = (unsigned)b[0] << 16 | (n > 1 ? (unsigned)b[1] << 8 : 0u) | (n > 2 ? b[2] : 0u);
+        fputc(table[v >> 18 & 63], f);
+        fputc(table[v >> 12 & 63], f);
+        fputc(n > 1 ? table[v >> 6 & 63] : '=', f);
+        fputc(n > 2 ? table[v & 63] : '=', f);
+        if (n < 3)
+            break;
+    }
+    fclose(in);
+}
+
 bool test_report_write(const struct test_report *report, const char *path, struct error *err)
 {
     FILE *f = fopen(path, "w");
@@ -77,8 +107,10 @@ bool test_report_write(const struct test_report *report, const char *path, struc
     fprintf(f, "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>caustica test: %d passed, %d failed"
                "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
                "td,th{border:1px solid #ccc;padding:4px 8px;text-align:left;vertical-align:top}"
-               ".ok{color:#070}.fail{color:#b00}figure{display:inline-block;margin:0 1em 1em 0}"
-               "img{image-rendering:pixelated;width:256px;border:1px solid #999}</style></head><body>\n",
+               ".ok{color:#070}.fail{color:#b00}.row{display:flex;flex-wrap:wrap;gap:1em}figure{margin:0}"
+               "img{image-rendering:pixelated;width:256px;border:1px solid #999}"
+               ".flip{position:relative}.flip .b{position:absolute;left:0;top:0;opacity:0}"
+               ".flip:hover .b{opacity:1}</style></head><body>\n",
             report->count - failed, failed);
     fprintf(f, "<h1>caustica test: %d passed, %d failed</h1>\n", report->count - failed, failed);
     for (int i = 0; i < report->count; i++) {
@@ -92,16 +124,26 @@ bool test_report_write(const struct test_report *report, const char *path, struc
         fputs("</h2>\n<p>", f);
         put_text(f, r->message);
         fputs("</p>\n", f);
-        static const char *const captions[3] = {"rendered", "compared with (golden)", "difference"};
+        static const char *const captions[3] = {"rendered", "compared with", "difference (scaled)"};
+        fputs("<div class=\"row\">", f);
         for (int k = 0; k < 3; k++) {
             if (!r->images[k])
                 continue;
-            fputs("<figure><img src=\"file://", f);
-            put_text(f, r->images[k]);
+            fputs("<figure><img src=\"", f);
+            put_data_uri(f, r->images[k]);
             fprintf(f, "\"><figcaption>%s<br><code>", captions[k]);
-            put_text(f, r->images[k]);
+            put_text(f, base_name(r->images[k]));
             fputs("</code></figcaption></figure>\n", f);
         }
+        if (r->images[0] && r->images[1]) {
+            /* flip: the rendered image, the other one while the pointer is over it */
+            fputs("<figure class=\"flip\"><img class=\"a\" src=\"", f);
+            put_data_uri(f, r->images[0]);
+            fputs("\"><img class=\"b\" src=\"", f);
+            put_data_uri(f, r->images[1]);
+            fputs("\"><figcaption>flip: rendered; hover: compared with</figcaption></figure>", f);
+        }
+        fputs("</div>\n", f);
     }
     fputs("<h2>All cases</h2>\n<table><tr><th>file</th><th>case</th><th>result</th><th>s</th></tr>\n", f);
     for (int i = 0; i < report->count; i++) {
@@ -118,4 +160,70 @@ bool test_report_write(const struct test_report *report, const char *path, struc
     if (fclose(f) != 0 || !ok)
         return error_set(err, "--report %s: write failed", path);
     return true;
+}
+
+/* The file's cases, counted. */
+static void suite_counts(const struct test_report *report, const char *file, int *tests, int *failures, double *time)
+{
+    *tests = *failures = 0;
+    *time = 0.0;
+    for (int i = 0; i < report->count; i++)
+        if (strcmp(report->cases[i].file, file) == 0) {
+            (*tests)++;
+            *failures += !report->cases[i].ok;
+            *time += report->cases[i].seconds;
+        }
+}
+
+bool test_report_write_junit(const struct test_report *report, const char *path, struct error *err)
+{
+    char tmp[4200];
+    FILE *f = image_file_begin(path, tmp, sizeof tmp, err);
+    if (!f)
+        return error_prefix(err, "--junit");
+    int failed = 0;
+    double total = 0.0;
+    for (int i = 0; i < report->count; i++) {
+        failed += !report->cases[i].ok;
+        total += report->cases[i].seconds;
+    }
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"caustica\" tests=\"%d\" "
+               "failures=\"%d\" errors=\"0\" time=\"%.3f\">\n", report->count, failed, total);
+    for (int i = 0; i < report->count; i++) {
+        const char *file = report->cases[i].file;
+        bool first = true;
+        for (int k = 0; k < i; k++)
+            first = first && strcmp(report->cases[k].file, file) != 0;
+        if (!first)
+            continue; /* one suite per file, at its first case */
+        int tests, failures;
+        double time;
+        suite_counts(report, file, &tests, &failures, &time);
+        fputs("  <testsuite name=\"", f);
+        put_text(f, file);
+        fprintf(f, "\" tests=\"%d\" failures=\"%d\" errors=\"0\" skipped=\"0\" time=\"%.3f\">\n", tests, failures,
+                time);
+        for (int k = i; k < report->count; k++) {
+            const struct test_case_result *r = &report->cases[k];
+            if (strcmp(r->file, file) != 0)
+                continue;
+            fputs("    <testcase classname=\"", f);
+            put_text(f, file);
+            fputs("\" name=\"", f);
+            put_text(f, r->name);
+            fprintf(f, "\" time=\"%.3f\"", r->seconds);
+            if (r->ok) {
+                fputs("/>\n", f);
+                continue;
+            }
+            fputs(">\n      <failure message=\"", f);
+            put_text(f, r->message);
+            fputs("\" type=\"failure\">", f);
+            put_text(f, r->message);
+            fputs("</failure>\n    </testcase>\n", f);
+        }
+        fputs("  </testsuite>\n", f);
+    }
+    fputs("</testsuites>\n", f);
+    return image_file_finish(f, tmp, path, !ferror(f), err);
 }

@@ -62,7 +62,7 @@ bool image_metrics_compute(const struct image *a, const struct image *b, const s
         return error_set(err, "the mask is %dx%d, the images %dx%d", mask->width, mask->height, a->width,
                          a->height);
     size_t n = (size_t)a->width * (size_t)a->height;
-    double sum_sq = 0.0, ref_sq = 0.0, max = 0.0;
+    double sum_sq = 0.0, ref_sq = 0.0, max = 0.0, log_sq = 0.0;
     long count = 0, nan = 0;
     for (size_t i = 0; i < n; i++) {
         if (!in_mask(mask, i))
@@ -76,6 +76,9 @@ bool image_metrics_compute(const struct image *a, const struct image *b, const s
             }
             double d = va - vb;
             sum_sq += d * d;
+            /* log(1 + x): HDR-friendly, a spike 100x too bright counts ~4.6, not 100 */
+            double dl = log1p(fmax(va, 0.0)) - log1p(fmax(vb, 0.0));
+            log_sq += dl * dl;
             ref_sq += vb * vb;
             if (fabs(d) > max)
                 max = fabs(d);
@@ -86,6 +89,7 @@ bool image_metrics_compute(const struct image *a, const struct image *b, const s
     out->nan = nan;
     out->max = max;
     out->rmse = sqrt(math_safe_div_d(sum_sq, samples, 0.0));
+    out->log_rmse = sqrt(math_safe_div_d(log_sq, samples, 0.0));
     double ref_rms = sqrt(math_safe_div_d(ref_sq, samples, 0.0));
     out->rel_rmse = math_safe_div_d(out->rmse, ref_rms, out->rmse > 0 ? INFINITY : 0.0);
     out->psnr = out->rmse > 0 ? 20.0 * log10(1.0 / out->rmse) : 999.0;

@@ -11,6 +11,8 @@
 struct image_metrics {
     double rmse;     /* root mean square difference over RGB */
     double rel_rmse; /* rmse divided by the RMS of the reference (b) */
+    double log_rmse; /* the robust one: RMS difference of log(1 + value), so that one caustic
+                      * spike does not swamp the rest (rel_rmse 3.47 from a single hot pixel) */
     double psnr;     /* dB, peak 1.0; +inf written as 999 for identical images */
     double ssim;     /* mean SSIM of luminance, 8x8 windows */
     double max;      /* largest absolute channel difference */

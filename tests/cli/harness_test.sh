@@ -19,7 +19,11 @@ LUA
   && pass "--update-refs writes refs/ beside the test" || fail "--update-refs" "$(cat "$WORK/update.txt")"
 "$CAUSTICA" test "$WORK/mine" >"$WORK/same.txt" 2>&1 && pass "the golden matches" || fail "golden" "$(cat "$WORK/same.txt")"
 sed -i 's/FRAME_TO_USE or 0/10/' "$WORK/mine/look_test.lua"
-"$CAUSTICA" test "$WORK/mine" --report "$WORK/report.html" >"$WORK/fail.txt" 2>&1
+cat >"$WORK/mine/other_test.lua" <<'LUA'
+local t = require "caustica.test"
+t.case("a & b < c, passing", function() t.expect(1 + 1 == 2, "arithmetic") end)
+LUA
+"$CAUSTICA" test "$WORK/mine" --report "$WORK/report.html" --junit "$WORK/junit.xml" >"$WORK/fail.txt" 2>&1
 rc=$?
 line=$(grep "^FAIL" "$WORK/fail.txt")
 [ "$rc" = 1 ] && grep -q "look_test.lua:5: differs from the golden $WORK/mine/refs/demo.png: rmse [0-9.]* (at most 0.0078" <<<"$line" \
@@ -30,8 +34,19 @@ for kind in new ref diff; do
   grep -qF "$f" <<<"$line" && "$CAUSTICA" compare "$f" "$f" >/dev/null 2>&1 || ok=0
 done
 [ "$ok" = 1 ] && pass "new, ref and diff images written and named" || fail "failure images" "$line $(ls "$WORK/mine/out" 2>&1)"
-[ "$(grep -c '<img src="file://' "$WORK/report.html")" = 3 ] && grep -q "0 passed, 1 failed" "$WORK/report.html" \
-  && pass "--report: one page, the three images side by side" || fail "--report" "$(head -c 600 "$WORK/report.html")"
+[ "$(grep -c '<img src="data:image/png;base64,' "$WORK/report.html")" = 3 ] && grep -q 'class="flip"' "$WORK/report.html" &&
+  ! grep -q "file://" "$WORK/report.html" && grep -q "1 passed, 1 failed" "$WORK/report.html" \
+  && pass "--report: one self-contained page, the three images side by side and a flip view" \
+  || fail "--report" "$(head -c 600 "$WORK/report.html")"
+if command -v xmllint >/dev/null; then
+  xmllint --noout --schema tests/data/junit.xsd "$WORK/junit.xml" >"$WORK/xsd.txt" 2>&1 &&
+    grep -q '<testsuites name="caustica" tests="2" failures="1"' "$WORK/junit.xml" &&
+    grep -q '<testcase classname="[^"]*look_test.lua" name="the demo against its golden" time="[0-9.]*">' "$WORK/junit.xml" &&
+    grep -q '<failure message="[^"]*look_test.lua:5: differs from the golden' "$WORK/junit.xml" &&
+    grep -q 'name="a &amp; b &lt; c, passing"' "$WORK/junit.xml" \
+    && pass "--junit: valid JUnit XML (tests/data/junit.xsd), a suite per file, the failure's message" \
+    || fail "--junit" "$(cat "$WORK/xsd.txt" "$WORK/junit.xml")"
+fi
 expect_error "a filter that matches nothing" 1 "no case matches --filter 'nothing like this'" - -- \
   "$CAUSTICA" test "$WORK/mine" --filter "nothing like this"
 finish

@@ -68,4 +68,28 @@ grep -q "on 3 threads" "$WORK/log" && cmp -s "$WORK/ref.pfm" "$WORK/ref3.pfm" \
 "$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.exr" --spp 1 --photons 2000 >/dev/null 2>"$WORK/err" &&
   line=$("$CAUSTICA" compare "$WORK/ref.exr" "$WORK/ref.pfm") && [ "$(metric rmse "$line")" = 0 ] \
   && pass "reference -o x.exr writes the same linear image" || fail "reference EXR" "$(cat "$WORK/err") ${line:-}"
+# compare: a mask from a PNG, and a robust metric one hot pixel cannot swamp.
+python3 - "$WORK" <<'PY'
+import struct, sys, zlib
+w = h = 16
+def pfm(path, hot):
+    px = [0.2] * (w * h * 3)
+    if hot:
+        px[0:3] = [500.0, 500.0, 500.0]
+    open(path, "wb").write(b"PF\n%d %d\n-1.0\n" % (w, h) + struct.pack("<%df" % len(px), *px))
+pfm(sys.argv[1] + "/flat.pfm", False)
+pfm(sys.argv[1] + "/hot.pfm", True)
+# a PNG mask: white but for the first row (PFM's first row is the image's bottom row; PNG's top)
+rows = b"".join(b"\0" + bytes([0 if y == h - 1 else 255] * w) for y in range(h))
+chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)) + \
+      chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+open(sys.argv[1] + "/mask.png", "wb").write(png)
+PY
+line=$("$CAUSTICA" compare "$WORK/hot.pfm" "$WORK/flat.pfm")
+awk -v r="$(metric rel_rmse "$line")" -v l="$(metric log_rmse "$line")" 'BEGIN { exit !(r > 100 && l < 0.5) }' \
+  && pass "compare's log_rmse stays small where one hot pixel makes rel_rmse $(metric rel_rmse "$line")" \
+  || fail "log_rmse" "$line"
+line=$("$CAUSTICA" compare "$WORK/hot.pfm" "$WORK/flat.pfm" --mask "$WORK/mask.png")
+[ "$(metric rmse "$line")" = 0 ] && pass "compare --mask with a PNG leaves the hot row out" || fail "--mask PNG" "$line"
 finish
