@@ -15,4 +15,7 @@
 int bench_timing_frames(const struct cli *cli);
 bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, size_t size, struct error *err);
 
+/* The GL renderer's name as the bench cache records it (its commas made ';'). */
+void bench_renderer_label(const char *renderer, char *out, size_t size);
+
 #endif

@@ -25,6 +25,54 @@ static void escape(FILE *f, const char *s)
     }
 }
 
+/* A time as people read it: "68.2 ms", "1.2 s", "14 s" (not 1.17e+03 ms). */
+void bench_plot_format_ms(double ms, char *out, size_t size)
+{
+    if (!(ms >= 0) || !isfinite(ms))
+        snprintf(out, size, "-");
+    else if (ms < 1000.0)
+        snprintf(out, size, "%.3g ms", ms);
+    else if (ms < 10000.0)
+        snprintf(out, size, "%.1f s", ms / 1000.0);
+    else
+        snprintf(out, size, "%.0f s", ms / 1000.0);
+}
+
+/* An axis tick in ms: "20", "500", then "1 s", "2 s" (no exponents). */
+static void format_tick_ms(double ms, char *out, size_t size)
+{
+    if (ms < 1000.0)
+        snprintf(out, size, "%g", ms);
+    else
+        snprintf(out, size, "%g s", ms / 1000.0);
+}
+
+/* Label placement: the first of a few spots beside a point whose box
+ * overlaps no label placed before (else the first spot). */
+struct label_box {
+    double x0, y0, x1, y1;
+};
+static void place_label(struct label_box *boxes, int *nboxes, int max, double px, double py, double w, double h,
+                        double *x, double *y)
+{
+    static const double spots[][2] = {{5, -4}, {5, 12}, {-5, -4}, {-5, 12}, {8, 4}, {-8, 4}, {0, -10}, {0, 18}};
+    int best = 0;
+    for (int k = 0; k < 8; k++) {
+        double lx = spots[k][0] < 0 ? px + spots[k][0] - w : px + spots[k][0], ly = py + spots[k][1];
+        bool clear = true;
+        for (int b = 0; b < *nboxes && clear; b++)
+            clear = lx + w < boxes[b].x0 || lx > boxes[b].x1 || ly < boxes[b].y0 || ly - h > boxes[b].y1;
+        if (clear) {
+            best = k;
+            break;
+        }
+    }
+    *x = spots[best][0] < 0 ? px + spots[best][0] - w : px + spots[best][0];
+    *y = py + spots[best][1];
+    if (*nboxes < max)
+        boxes[(*nboxes)++] = (struct label_box){*x, *y - h, *x + w, *y};
+}
+
 static bool drawable(const struct plot_point *p)
 {
     return p->x > 0 && p->y > 0 && isfinite(p->x) && isfinite(p->y);
@@ -85,7 +133,7 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
             longest = strlen(plot->points[i].label);
     const double right = fmin(fmax(400.0, 5.6 * (double)(longest + 28) + 30.0), 900.0);
     const double W = 580 + right, left = 80, top = 50, bottom = 60;
-    double legend_h = 20.0 * plot->series_count + 10;
+    double legend_h = 20.0 * plot->series_count + 50; /* the series, then filled / hollow */
     double H = fmax(520, top + legend_h + line * drawn + 20);
     double pw = W - left - right, ph = fmin(H, 520) - top - bottom;
     char tmp[4200];
@@ -109,8 +157,24 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         double mantissa = ticks[k] / pow(10.0, floor(log10(ticks[k]) + 1e-9));
         bool labelled = nt <= 8 || fabs(mantissa - 1) < 1e-6 || fabs(mantissa - 2) < 1e-6 ||
                         fabs(mantissa - 3) < 1e-6 || fabs(mantissa - 5) < 1e-6;
-        if (labelled)
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", x, top + ph + 18, ticks[k]);
+        if (labelled) {
+            char text[32];
+            format_tick_ms(ticks[k], text, sizeof text);
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", x, top + ph + 18, text);
+        }
+    }
+    /* the frame-time budgets a reader asks about: 30 fps, 10 fps, 1 fps */
+    static const double guides[3] = {1000.0 / 30.0, 100.0, 1000.0};
+    static const char *const guide_names[3] = {"33 ms (30 fps)", "100 ms", "1 s"};
+    for (int k = 0; k < 3; k++) {
+        double l = log10(guides[k]);
+        if (l < lx0 || l > lx1)
+            continue;
+        double x = PX(guides[k]);
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\" stroke-dasharray=\"5 4\"/>\n",
+                x, top, x, top + ph);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"#555\">%s</text>\n", x + 3, top + 12,
+                guide_names[k]);
     }
     nt = log_ticks(ly0, ly1, ticks, 64);
     for (int k = 0; k < nt; k++) {
@@ -154,6 +218,18 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         escape(f, plot->series_names[s]);
         fputs("</text>\n", f);
     }
+    {
+        /* what the two kinds of marker mean */
+        double ly = top + 10 + 20 * plot->series_count;
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"#444\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                   "font-size=\"10\">on its technique's frontier (nothing faster is as good)</text>\n",
+                tx, ly, tx + 10, ly + 4);
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"white\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                   "font-size=\"10\">hollow: dominated (a faster setting is as good or better)</text>\n",
+                tx, ly + 18, tx + 10, ly + 22);
+    }
+    struct label_box boxes[512];
+    int nboxes = 0;
     /* the points: a marker with its number, and the numbered side table */
     for (int i = 0; i < plot->count; i++) {
         const struct plot_point *p = &plot->points[i];
@@ -165,12 +241,17 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         bool hollow = plot->series_lines[p->series % PLOT_MAX_SERIES] && !p->joined;
         fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"%s\"/>\n", PX(p->x), PY(p->y),
                 hollow ? "white" : c, c);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", PX(p->x) + 5, PY(p->y) - 4, c,
-                number);
+        double lx, ly;
+        char num[16];
+        snprintf(num, sizeof num, "%d", number);
+        place_label(boxes, &nboxes, 512, PX(p->x), PY(p->y), 5.5 * (double)strlen(num), 9, &lx, &ly);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", lx, ly, c, number);
         fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"10\" fill=\"%s\">%d  ", tx,
                 top + legend_h + line * number, c, number);
         escape(f, p->label);
-        fprintf(f, " (%.3g ms, %.3g)</text>\n", p->x, p->y);
+        char time[32];
+        bench_plot_format_ms(p->x, time, sizeof time);
+        fprintf(f, " (%s, %.3g)</text>\n", time, p->y);
     }
 #undef PX
 #undef PY

@@ -24,6 +24,7 @@
 #include "app/techniques.h"
 #include "core/fileio.h"
 #include "core/hash.h"
+#include "core/cpus.h"
 #include "core/log.h"
 #include "graph/graph.h"
 #include "reference/image_metrics.h"
@@ -798,6 +799,19 @@ static const struct result *bench_row(const struct bench *b, int c)
     return c < b->nvariants ? &b->results[c] : &b->curve[c - b->nvariants];
 }
 
+void bench_renderer_label(const char *renderer, char *out, size_t size)
+{
+    snprintf(out, size, "%s", renderer && renderer[0] ? renderer : "unknown renderer");
+    for (char *p = out; *p; p++)
+        if (*p == ',' || *p == '\n')
+            *p = ';';
+}
+
+static void bench_renderer_name(const struct bench *b, char *out, size_t size)
+{
+    bench_renderer_label(b->app->gl ? b->app->gl->renderer : NULL, out, size);
+}
+
 /* results.csv and results.md (md left open for the frontier). */
 static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err)
 {
@@ -814,6 +828,12 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         return error_set(err, "%s: cannot write the results", b->dir);
     }
     fprintf(csv, "kind");
+    {
+        char renderer[256];
+        bench_renderer_name(b, renderer, sizeof renderer);
+        fprintf(md, "Measured on %s, %d CPU%s, at %dx%d.\n\n", renderer, cpus_available(),
+                cpus_available() == 1 ? "" : "s", b->width, b->height);
+    }
     fprintf(md, "| variant |");
     for (int k = 0; k < b->ncolumns; k++)
         fprintf(csv, ",%s", b->columns[k]);
@@ -823,7 +843,11 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         fprintf(csv, ",%s_ms", b->pass_names[p]);
         fprintf(md, " %s ms |", b->pass_names[p]);
     }
-    fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error\n");
+    fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error,renderer,cpus\n");
+    /* which machine measured it: the GL renderer (its commas made ';': the
+     * CSV has none) and the CPUs the process could use */
+    char renderer[256];
+    bench_renderer_name(b, renderer, sizeof renderer);
     fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | passes' reports |\n|---|");
     for (int p = 0; p < b->npasses + 6; p++)
         fprintf(md, "---:|");
@@ -849,8 +873,9 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         char caustic_text[32] = "";
         if (r->has_caustic)
             snprintf(caustic_text, sizeof caustic_text, "%.6g", r->caustic.rel_rmse);
-        fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                caustic_text, ranked_error(r, b->caustic));
+        fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g,%s,%d\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                caustic_text, ranked_error(r, b->caustic), c < b->nvariants ? renderer : "CPU reference",
+                cpus_available());
         fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
                 r->has_caustic ? caustic_text : "-", c < b->nvariants ? r->report : "");
     }
@@ -872,8 +897,8 @@ static bool bench_write_frontier(struct bench *b, FILE *md, struct error *err)
 {
     mark_frontier(b->results, b->nvariants, b->caustic, b->on_front);
     char machine[400], path[4400];
-    snprintf(machine, sizeof machine, "%dx%d, %s, %ld CPU cores", b->width, b->height,
-             b->app->gl ? b->app->gl->renderer : "?", sysconf(_SC_NPROCESSORS_ONLN));
+    snprintf(machine, sizeof machine, "%dx%d, %s, %d CPU cores", b->width, b->height,
+             b->app->gl ? b->app->gl->renderer : "?", cpus_available());
     snprintf(path, sizeof path, "%s/frontier.md", b->dir);
     FILE *fr = fopen(path, "w");
     if (!fr)

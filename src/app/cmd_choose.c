@@ -19,6 +19,7 @@
 
 struct row {
     char technique[64], settings[256];
+    char renderer[256]; /* the GL renderer that measured it ("" in a cache from before it was recorded) */
     double ms, error;
     bool excluded; /* the technique leaves out part of the scene */
 };
@@ -45,7 +46,7 @@ static bool read_rows(const char *path, struct row *rows, int *count, struct err
         return error_set(err, "%s: cannot read", path);
     char line[8192];
     char *fields[128];
-    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, n = 0;
+    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, n = 0;
     bool header = true;
     while (fgets(line, sizeof line, f)) {
         line[strcspn(line, "\r\n")] = '\0';
@@ -60,6 +61,8 @@ static bool read_rows(const char *path, struct row *rows, int *count, struct err
                     col_ms = i;
                 else if (strcmp(fields[i], "error") == 0)
                     col_error = i;
+                else if (strcmp(fields[i], "renderer") == 0)
+                    col_renderer = i;
             }
             header = false;
             if (col_technique < 0 || col_settings < 0 || col_ms < 0 || col_error < 0) {
@@ -76,6 +79,7 @@ static bool read_rows(const char *path, struct row *rows, int *count, struct err
         snprintf(r->settings, sizeof r->settings, "%s", fields[col_settings]);
         r->ms = atof(fields[col_ms]);
         r->error = atof(fields[col_error]);
+        snprintf(r->renderer, sizeof r->renderer, "%s", col_renderer >= 0 && nf > col_renderer ? fields[col_renderer] : "");
     }
     fclose(f);
     *count = n;
@@ -234,6 +238,19 @@ int cmd_choose(struct app *app, struct cli *cli)
         free(rows);
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
+    }
+    /* Times measured on another renderer (a cache from an llvmpipe node read
+     * on a GPU node) do not hold here: say so, once. */
+    if (app_ensure_gl(app, &err)) {
+        char here[256];
+        bench_renderer_label(app->gl->renderer, here, sizeof here);
+        if (!rows[0].renderer[0])
+            fprintf(stderr, "caustica: choose: warning: the cached sweep does not say which renderer measured it; "
+                            "its times may not be this machine's (%s)\n", here);
+        else if (strcmp(rows[0].renderer, here) != 0)
+            fprintf(stderr, "caustica: choose: warning: the cached sweep was measured on %s, this machine renders "
+                            "with %s: its frame times do not hold here (run bench again on this machine, or keep "
+                            "another -o DIR per machine)\n", rows[0].renderer, here);
     }
     /* Techniques that leave out part of the scene are not considered (one
      * line each says which and why). The script's techniques, read once. */

@@ -92,4 +92,33 @@ awk -v r="$(metric rel_rmse "$line")" -v l="$(metric log_rmse "$line")" 'BEGIN {
   || fail "log_rmse" "$line"
 line=$("$CAUSTICA" compare "$WORK/hot.pfm" "$WORK/flat.pfm" --mask "$WORK/mask.png")
 [ "$(metric rmse "$line")" = 0 ] && pass "compare --mask with a PNG leaves the hot row out" || fail "--mask PNG" "$line"
+# bench records the renderer and CPUs that measured; choose says when the cache is another machine's.
+cat >"$WORK/tech.lua" <<'EOF'
+local c = require "caustica"
+local technique = c.param("technique", "plain")
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+local sun = scene:add(c.light.directional { direction = {0.3, -1, -0.2}, intensity = {2, 2, 2} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.5, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass {} })
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 256 })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = technique == "plain" })
+if technique == "plain" then g:output("shade.color") else
+  g:add("glass", c.pass.layered_refraction { color = "shade.color" })
+  g:output("glass.color")
+end
+return { scene = scene, graph = g, size = {24, 24}, techniques = { metric = "image", { "plain" }, { "layered" } } }
+EOF
+"$CAUSTICA" choose "$WORK/tech.lua" --time 10000 --frames 1 --ref-photons 2000 --ref-spp 8 -o "$WORK/cb" >/dev/null 2>"$WORK/err"
+csv=$(ls "$WORK"/cb/cache/sweep_*.csv 2>/dev/null | head -1)
+here=$(sed -n '2p' "$csv" | awk -F, '{print $(NF-1)}')
+[ -n "$csv" ] && head -1 "$csv" | grep -q ",renderer,cpus$" && [ -n "$here" ] && grep -q "^Measured on $here, [0-9]* CPU" "$WORK/cb/results.md" \
+  && pass "bench records the renderer and CPUs in its cache and tables ($here)" || fail "bench's renderer" "$(head -2 "$csv" 2>&1)"
+svg="$WORK/cb/plot.svg"
+grep -q "hollow: dominated" "$svg" && ! grep -qE "[0-9]e[+-][0-9]+ ms" "$svg" \
+  && pass "the plot: a legend for hollow points, no 1e+03 ms (guides: tests/unit/test_plot.c)" || fail "plot" "$(head -c 800 "$svg")"
+[ -n "$csv" ] && sed -i "2,\$s/$here/NVIDIA H200 (a GPU node)/" "$csv"
+"$CAUSTICA" choose "$WORK/tech.lua" --time 10000 --frames 1 --ref-photons 2000 --ref-spp 8 -o "$WORK/cb" --cached >/dev/null 2>"$WORK/err"
+grep -q "warning: the cached sweep was measured on NVIDIA H200 (a GPU node), this machine renders with $here" "$WORK/err" \
+  && pass "choose says when the cache was measured on another renderer" || fail "choose's renderer warning" "$(cat "$WORK/err")"
 finish
