@@ -71,6 +71,8 @@ static const struct cli_option {
     {"--frames", NULL, "N", VB_RUN, "play N frames, then exit (default: until the window closes)"},
     {"--frames", NULL, "N", VB_BENCH | VB_CHOOSE,
      "frames timed per variant, the median taken (default 5; 3 with a technique sweep; at most 1024)"},
+    {"--frame-count", NULL, "N", VB_RENDER | VB_RECORD | VB_RUN,
+     "the animation's length in frames instead of the script's `frames` (1..10000000): record renders 0..N-1"},
     {"--video", NULL, "OUT.mp4|OUT.gif", VB_RECORD,
      "also encode every frame of the set with ffmpeg (H.264, BT.709/sRGB tagged, an odd size padded by a pixel; "
      "not with --shard)"},
@@ -486,6 +488,9 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--crf") == 0) {
             if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
                 return usage_error("--crf needs a quality in 0..51, got '%s'", next);
+        } else if (strcmp(a, "--frame-count") == 0) {
+            if (!parse_int(next, &cli->frame_count) || cli->frame_count < 1 || cli->frame_count > 10000000)
+                return usage_error("--frame-count needs a count in 1..10000000, got '%s'", next);
         } else if (strcmp(a, "--junit") == 0) {
             cli->junit = next;
         } else if (strcmp(a, "--threads") == 0) {

@@ -20,6 +20,7 @@ struct cli {
     int frame;               /* --frame */
     int frames_from, frames_to; /* --frames: the set's first and last frame (N: 0..N-1) */
     bool frames_set;
+    int frame_count;         /* --frame-count N (render, record, run): the animation's length instead of the script's */
     struct frame_set frame_set; /* --frames as given (record renders exactly these) */
     bool overwrite;          /* --overwrite (record): render frames whose file exists */
     const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */

@@ -71,7 +71,7 @@ static bool read_result(struct session *s, struct error *err)
         return false;
     if (frames < 1 || frames > 1e7 || !(fps > 0) || fps > 1e4 || !(exposure >= 0) || !isfinite(exposure))
         return error_set(err, "%s: frames must be >= 1, fps in (0, 10000] and exposure >= 0", script);
-    s->frames = (int)frames;
+    s->frames = s->options.frame_count > 0 ? s->options.frame_count : (int)frames; /* --frame-count wins */
     s->fps = fps;
     s->exposure = (float)exposure;
     s->tonemap = TONEMAP_CLAMP;

@@ -20,6 +20,7 @@ struct session_options {
     const char *write_dir;   /* where a sandboxed script may write */
     bool past_last_frame;    /* frames past the script's count are allowed (bench times still scenes over
                                 several frames) */
+    int frame_count;         /* --frame-count: the animation's length instead of the script's `frames` (0: its) */
 };
 
 #define SESSION_MAX_AOVS 8

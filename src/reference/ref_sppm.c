@@ -14,6 +14,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -260,9 +261,34 @@ struct budget {
     long chunk_reached[PHOTON_CHUNKS]; /* where each chunk's photons stopped (its end, unless cut) */
     double start, last_print;
     bool tty;
+    bool log_lines;         /* progress asked for, off a terminal: one line an iteration */
     int iteration;
     long long emitted_before;
+    int line_length;        /* of the progress line on the terminal, to blank what a shorter one leaves */
+    double last_line;       /* when the last whole progress line went to the log */
 };
+
+/* The one progress writer: on a terminal, the line rewritten in place
+ * (padded over the longer line before it); off one, nothing here (the
+ * iteration lines are whole lines). */
+static void progress_line(struct budget *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void progress_line(struct budget *b, const char *fmt, ...)
+{
+    if (!b->tty)
+        return;
+    char text[256];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return;
+    if (n > (int)sizeof text - 1)
+        n = (int)sizeof text - 1;
+    fprintf(stderr, "\r%s%*s", text, b->line_length > n ? b->line_length - n : 0, "");
+    b->line_length = n;
+    fflush(stderr);
+}
 
 static bool budget_photons_spent(struct budget *b)
 {
@@ -806,12 +832,11 @@ static void photon_progress(const struct job *j, int chunks_done)
         return;
     b->last_print = now;
     if (b->deadline > 0)
-        fprintf(stderr, "\rreference: iteration %d (%d%% of its photons), %.1f s of %.1f s   ", b->iteration + 1,
-                100 * chunks_done / PHOTON_CHUNKS, now - b->start, b->deadline - b->start);
+        progress_line(b, "reference: iteration %d (%d%% of its photons), %.1f s of %.1f s", b->iteration + 1,
+                      100 * chunks_done / PHOTON_CHUNKS, now - b->start, b->deadline - b->start);
     else
-        fprintf(stderr, "\rreference: iteration %d/%d (%d%% of its photons), %.1f s   ", b->iteration + 1,
-                j->o->iterations, 100 * chunks_done / PHOTON_CHUNKS, now - b->start);
-    fflush(stderr);
+        progress_line(b, "reference: iteration %d/%d (%d%% of its photons), %.1f s", b->iteration + 1,
+                      j->o->iterations, 100 * chunks_done / PHOTON_CHUNKS, now - b->start);
 }
 
 /* Photons in 64 fixed chunks (so the sums do not depend on the thread
@@ -1178,8 +1203,10 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
     bool tty = job->budget->tty;
     if (o->report) {
         double noise = noise_estimate(pixels, npix, it + 1);
-        if (tty)
+        if (tty) {
             fputc('\n', stderr);
+            job->budget->line_length = 0;
+        }
         if (it == 0)
             fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)\n",
                     t->emitted, log_now() - start);
@@ -1187,17 +1214,26 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
             fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)\n",
                     it + 1, t->emitted, log_now() - start, 100.0 * noise);
     }
-    if (tty) {
-        double elapsed = log_now() - start;
-        /* Under a time budget the iteration count is open-ended: show the
-         * clock against the budget instead of a count that will never be
-         * reached. */
+    double elapsed = log_now() - start;
+    /* Under a time budget the iteration count is open-ended: show the
+     * clock against the budget instead of a count that will never be
+     * reached. */
+    if (tty && o->time_budget > 0)
+        progress_line(job->budget, "reference: iteration %d, %lld photons, %.1f s of %.1f s", it + 1, t->emitted,
+                      elapsed, o->time_budget);
+    else if (tty)
+        progress_line(job->budget, "reference: iteration %d/%d, %lld photons, %.0f s left", it + 1, o->iterations,
+                      t->emitted, elapsed / (it + 1) * (o->iterations - it - 1));
+    else if (job->budget->log_lines && !o->report &&
+             (it == 0 || it + 1 == o->iterations || log_now() - job->budget->last_line >= 5.0)) {
+        /* a farm's log: whole lines, the first and last iteration and one every 5 s between */
+        job->budget->last_line = log_now();
         if (o->time_budget > 0)
-            fprintf(stderr, "\rreference: iteration %d, %lld photons, %.1f s of %.1f s                ", it + 1,
-                    t->emitted, elapsed, o->time_budget);
+            fprintf(stderr, "reference: iteration %d, %lld photons, %.1f s of %.1f s\n", it + 1, t->emitted, elapsed,
+                    o->time_budget);
         else
-            fprintf(stderr, "\rreference: iteration %d/%d, %lld photons, %.0f s left                  ", it + 1,
-                    o->iterations, t->emitted, elapsed / (it + 1) * (o->iterations - it - 1));
+            fprintf(stderr, "reference: iteration %d/%d, %lld photons, %.1f s\n", it + 1, o->iterations, t->emitted,
+                    elapsed);
         fflush(stderr);
     }
 }
@@ -1331,7 +1367,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     atomic_init(&budget->photons_cut, 0);
     budget->start = start;
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
-    budget->tty = o->progress && isatty(STDERR_FILENO);
+    budget->tty = o->progress && isatty(STDERR_FILENO) && !log_quiet();
+    budget->log_lines = o->progress && !budget->tty && !log_quiet();
     struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
                       .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims};

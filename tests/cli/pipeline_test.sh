@@ -48,6 +48,9 @@ expect_error "a frame set past the script's end is refused before any frame" 1 \
   "--frames: frame 6 is past the script's last frame 5" "$WORK/past" -- \
   "$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/past/f_####.png" --frames 4-7
 [ ! -e "$WORK/past" ] && pass "and leaves no folder behind" || fail "refused set" "left $(ls -R "$WORK/past")"
+"$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/longer" --frame-count 8 --quiet 2>"$WORK/err" &&
+  [ "$(ls "$WORK/longer" | wc -l)" = 8 ] && pass "--frame-count 8 records eight frames of a six-frame script" \
+  || fail "--frame-count" "$(ls "$WORK/longer" 2>&1) $(cat "$WORK/err")"
 expect_error "--video with --shard is refused" 2 "--video with --shard would encode only this shard's frames" - -- \
   "$CAUSTICA" record "$WORK/anim.lua" -o "$WORK/v" --shard 0/2 --video "$WORK/v.mp4"
 
@@ -56,6 +59,8 @@ cpus=$(nproc)
 "$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.pfm" --spp 1 --photons 2000 >"$WORK/log" 2>&1
 grep -q "on $cpus thread" "$WORK/log" && pass "the reference runs one worker per CPU it may use ($cpus)" \
   || fail "reference threads" "$(cat "$WORK/log")"
+grep -qE "^reference: iteration 1/1, [0-9]+ photons, [0-9.]+ s$" "$WORK/log" && ! grep -q $'\r' "$WORK/log" \
+  && pass "the reference's progress off a terminal: whole lines, no carriage returns" || fail "reference log" "$(cat -A "$WORK/log")"
 if command -v taskset >/dev/null; then
   taskset -c 0 "$CAUSTICA" reference "$WORK/anim.lua" -o "$WORK/ref.pfm" --spp 1 --photons 2000 >"$WORK/log" 2>&1
   grep -q "on 1 thread," "$WORK/log" && pass "under taskset -c 0 it runs one worker thread" \
