@@ -111,6 +111,9 @@ static const struct cli_option {
     {"--antialias", NULL, NULL, VB_REFERENCE, "pixel means instead of pixel centres"},
     {"--mask", NULL, "M", VB_COMPARE, "compare only where the mask image (.png, .pfm, .hdr, .exr) is non-zero"},
     {"--exposure", NULL, "E", VB_CONVERT, "multiply the colour by E before writing (> 0; default 1)"},
+    {"--tonemap", NULL, "clamp|reinhard|aces", VB_CONVERT,
+     "to a .png through the same tone mapping as render -o x.png with the script's tonemap (default: a plain "
+     "clamp, without the renderer)"},
     {"--sweep", NULL, "KEY=V1,V2,...", VB_BENCH,
      "the values of one parameter to try (a scene parameter, or pass.param); technique=all|NAME,... tries the "
      "techniques the scene's `techniques` table declares; repeatable, at most 16"},
@@ -488,6 +491,8 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--crf") == 0) {
             if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
                 return usage_error("--crf needs a quality in 0..51, got '%s'", next);
+        } else if (strcmp(a, "--tonemap") == 0) {
+            cli->tonemap = next;
         } else if (strcmp(a, "--frame-count") == 0) {
             if (!parse_int(next, &cli->frame_count) || cli->frame_count < 1 || cli->frame_count > 10000000)
                 return usage_error("--frame-count needs a count in 1..10000000, got '%s'", next);

@@ -54,6 +54,7 @@ struct cli {
     double max_error;        /* --error E (choose): the largest error accepted (< 0: not given) */
     double max_time_ms;      /* --time T (choose): milliseconds a frame may take (< 0: not given) */
     double exposure;         /* --exposure (convert) */
+    const char *tonemap;     /* --tonemap clamp|reinhard|aces (convert to .png): render's tone mapping */
     struct lua_params params;
 };
 

@@ -126,4 +126,25 @@ grep -q "hollow: dominated" "$svg" && ! grep -qE "[0-9]e[+-][0-9]+ ms" "$svg" \
 "$CAUSTICA" choose "$WORK/tech.lua" --time 10000 --frames 1 --ref-photons 2000 --ref-spp 8 -o "$WORK/cb" --cached >/dev/null 2>"$WORK/err"
 grep -q "warning: the cached sweep was measured on NVIDIA H200 (a GPU node), this machine renders with $here" "$WORK/err" \
   && pass "choose says when the cache was measured on another renderer" || fail "choose's renderer warning" "$(cat "$WORK/err")"
+# convert --tonemap: the same tone mapping as render -o x.png (the renderer's own present pass).
+cat >"$WORK/aces.lua" <<'EOF'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} }, background = {0.3, 0.5, 0.9} }
+scene:add(c.light.point { position = {0.5, 2, 1}, intensity = {30, 28, 25} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.5, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.diffuse { color = {0.9, 0.3, 0.2} } })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, size = {32, 32}, tonemap = "aces", exposure = 1.5 }
+EOF
+"$CAUSTICA" render "$WORK/aces.lua" -o "$WORK/aces.png" -q && "$CAUSTICA" render "$WORK/aces.lua" -o "$WORK/aces.pfm" -q &&
+  "$CAUSTICA" convert "$WORK/aces.pfm" "$WORK/conv.png" --tonemap aces --exposure 1.5 &&
+  line=$("$CAUSTICA" compare "$WORK/aces.png" "$WORK/conv.png") && [ "$(metric rmse "$line")" = 0 ] \
+  && "$CAUSTICA" convert "$WORK/aces.pfm" "$WORK/plain.png" && line=$("$CAUSTICA" compare "$WORK/aces.png" "$WORK/plain.png") \
+  && [ "$(metric rmse "$line")" != 0 ] \
+  && pass "convert --tonemap aces --exposure 1.5 equals render's PNG (without it, a plain clamp differs)" \
+  || fail "convert --tonemap" "${line:-}"
+expect_error "convert --tonemap to a linear format" 2 "--tonemap: " - -- \
+  "$CAUSTICA" convert "$WORK/aces.pfm" "$WORK/x.exr" --tonemap aces
 finish
