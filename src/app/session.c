@@ -395,6 +395,15 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
                 n++;
             }
         }
+        /* alpha: coverage, 0 where only the background shows (OpenEXR's
+         * "luminous" pixels: colour with no coverage, left as it is) */
+        float *coverage = ok ? malloc((size_t)img.width * (size_t)img.height * sizeof(float)) : NULL;
+        if (ok && !coverage)
+            ok = error_set(err, "out of memory");
+        ok = ok && renderer_coverage(&s->app->renderer, s->scene, img.width, img.height, coverage, err);
+        for (size_t i = 0; ok && i < (size_t)img.width * (size_t)img.height; i++)
+            img.rgba[i * 4 + 3] = coverage[i];
+        free(coverage);
         struct image_exr_info info;
         session_exr_info(s, &info);
         ok = ok && image_write_exr(path, &img, layers, n, &info, err);

@@ -84,6 +84,11 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
 void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                           struct object *object);
 void renderer_draw_fullscreen(struct renderer *r);
+/* Which pixels an object's surface covers (1) and which show only the
+ * background or environment (0), at the frame's camera: an EXR's alpha.
+ * `out` is width x height floats, rows top to bottom. */
+bool renderer_coverage(struct renderer *r, const struct scene *scene, int width, int height, float *out,
+                       struct error *err);
 /* `texture` copied over the whole of `framebuffer` (its colour attachments
  * as set), depth test off: a pass that passes its input through. */
 bool renderer_draw_copy(struct renderer *r, GLuint framebuffer, int width, int height, GLuint texture,

@@ -72,6 +72,11 @@ if command -v oiiotool >/dev/null; then
   grep -qE "Stats Min: 3\.0000[0-9]+ " <<<"$stats" && grep -qE "Stats Max: 3\.0000[0-9]+ " <<<"$stats" &&
     [ "$(sed -n 's/.*Stats InfCount: \([0-9]*\).*/\1/p' <<<"$stats")" -gt 0 ] \
     && pass "oiiotool: Z is 3 on a plane 3 in front of the camera, +inf beside it" || fail "Z values" "$stats"
+  oiiotool "$WORK/z.exr" --ch A -o "$WORK/alpha.exr" >/dev/null 2>&1
+  inf=$(sed -n 's/.*Stats InfCount: \([0-9]*\).*/\1/p' <<<"$stats")
+  avg=$(oiiotool --stats "$WORK/alpha.exr" 2>&1 | sed -n 's/.*Stats Avg: \([0-9.]*\).*/\1/p')
+  awk -v a="$avg" -v inf="$inf" 'BEGIN { exit !(inf > 0 && (a - (1 - inf / 1024.0))^2 < 1e-10) }' \
+    && pass "alpha is coverage: 0 exactly where Z is +inf (mean $avg)" || fail "coverage alpha" "mean $avg, $inf background pixels"
   oiiotool "$WORK/z.exr" --ch objectId -o "$WORK/id.exr" >/dev/null 2>&1
   grep -q "Stats Max: 1.000000" <<<"$(oiiotool --stats "$WORK/id.exr" 2>&1)" && pass "oiiotool: objectId is 1 on the first object" \
     || fail "objectId" "$(oiiotool --stats "$WORK/id.exr" 2>&1)"
