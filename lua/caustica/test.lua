@@ -45,6 +45,17 @@ local function save_failure_images(new, ref)
   return string.format("; wrote %s, %s and %s (the difference scaled by %.4g)", paths.new, paths.ref, paths.diff, scale)
 end
 
+-- With --report, a passing image case keeps the image it rendered (out/
+-- beside the test) for the report's thumbnails.
+local function save_thumbnail(img)
+  if not (options.report and current) or current.images then return end
+  local dir = host.script_dir() .. "/out"
+  if not pcall(host.mkdir, dir) then return end
+  local stem = current.file:match("([^/]*)%.lua$") or "test"
+  local path = string.format("%s/%s.%s.new.png", dir, stem, slug(current.name))
+  if pcall(function() img:save(path) end) then current.images = { new = path } end
+end
+
 --- Registers a test case.
 function t.case(name, fn)
   assert(type(name) == "string", "t.case: a name expected")
@@ -99,6 +110,7 @@ function t.expect_close(a, b, tol)
   if #problems > 0 then
     fail("images differ: " .. table.concat(problems, ", ") .. save_failure_images(a, b), 2)
   end
+  save_thumbnail(a)
   return m
 end
 
@@ -200,6 +212,7 @@ function t.expect_golden(img, name, tol)
                        m.rmse, tostring(tol.rmse or "-"), m.max, tostring(tol.max or "-"), m.nan,
                        save_failure_images(clamped, ref)), 2)
   end
+  save_thumbnail(clamped)
   return m
 end
 

@@ -128,6 +128,7 @@ int cmd_test(struct app *app, struct cli *cli)
         struct lua_host_options ho = {.root = app->root, .script_path = files[i], .trusted = true,
                                       .render = session_render_service, .render_context = app,
                                       .update_refs = cli->update_refs, .filter = cli->filter,
+                                      .report = cli->report_html != NULL,
                                       .asset_dirs = asset_dirs, .asset_dir_count = asset_dir_count};
         struct error err;
         lua_State *L = lua_host_create(&ho, &err);

@@ -110,7 +110,7 @@ bool test_report_write(const struct test_report *report, const char *path, struc
                ".ok{color:#070}.fail{color:#b00}.row{display:flex;flex-wrap:wrap;gap:1em}figure{margin:0}"
                "img{image-rendering:pixelated;width:256px;border:1px solid #999}"
                ".flip{position:relative}.flip .b{position:absolute;left:0;top:0;opacity:0}"
-               ".flip:hover .b{opacity:1}</style></head><body>\n",
+               ".flip:hover .b{opacity:1}img.thumb{width:64px}</style></head><body>\n",
             report->count - failed, failed);
     fprintf(f, "<h1>caustica test: %d passed, %d failed</h1>\n", report->count - failed, failed);
     for (int i = 0; i < report->count; i++) {
@@ -145,15 +145,22 @@ bool test_report_write(const struct test_report *report, const char *path, struc
         }
         fputs("</div>\n", f);
     }
-    fputs("<h2>All cases</h2>\n<table><tr><th>file</th><th>case</th><th>result</th><th>s</th></tr>\n", f);
+    fputs("<h2>All cases</h2>\n<table><tr><th>file</th><th>case</th><th>result</th><th>s</th><th>image</th></tr>\n", f);
     for (int i = 0; i < report->count; i++) {
         const struct test_case_result *r = &report->cases[i];
         fputs("<tr><td>", f);
         put_text(f, r->file);
         fputs("</td><td>", f);
         put_text(f, r->name);
-        fprintf(f, "</td><td class=\"%s\">%s</td><td>%.2f</td></tr>\n", r->ok ? "ok" : "fail", r->ok ? "ok" : "FAIL",
+        fprintf(f, "</td><td class=\"%s\">%s</td><td>%.2f</td><td>", r->ok ? "ok" : "fail", r->ok ? "ok" : "FAIL",
                 r->seconds);
+        if (r->images[0]) {
+            /* a thumbnail of what the case rendered (a passing one too) */
+            fputs("<img class=\"thumb\" src=\"", f);
+            put_data_uri(f, r->images[0]);
+            fputs("\">", f);
+        }
+        fputs("</td></tr>\n", f);
     }
     fputs("</table>\n</body></html>\n", f);
     bool ok = !ferror(f);

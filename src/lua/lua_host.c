@@ -166,6 +166,8 @@ static int host_test_options(lua_State *L)
     lua_createtable(L, 0, 2);
     lua_pushboolean(L, h->options.update_refs);
     lua_setfield(L, -2, "update_refs");
+    lua_pushboolean(L, h->options.report);
+    lua_setfield(L, -2, "report");
     if (h->options.filter) {
         lua_pushstring(L, h->options.filter);
         lua_setfield(L, -2, "filter");

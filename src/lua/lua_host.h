@@ -67,6 +67,7 @@ struct lua_host_options {
     void *render_context;
     bool update_refs;        /* caustica test --update-refs */
     const char *filter;      /* caustica test --filter */
+    bool report;             /* caustica test --report: keep a thumbnail of every image case, passing too */
     double timeout;          /* seconds one call into the script may run (0: no limit) */
     double memory_limit;     /* bytes of Lua heap (0: no limit) */
     const char *const *read_dirs; /* more folders a sandboxed script may read (--allow-read) */

@@ -22,7 +22,12 @@ sed -i 's/FRAME_TO_USE or 0/10/' "$WORK/mine/look_test.lua"
 cat >"$WORK/mine/other_test.lua" <<'LUA'
 local t = require "caustica.test"
 t.case("a & b < c, passing", function() t.expect(1 + 1 == 2, "arithmetic") end)
+t.case("an image that passes", function()
+  local img = t.render("ROOT/scenes/demo.lua", { size = {16, 16} })
+  t.expect_close(img, img)
+end)
 LUA
+sed -i "s#ROOT/#$ROOT/#" "$WORK/mine/other_test.lua"
 "$CAUSTICA" test "$WORK/mine" --report "$WORK/report.html" --junit "$WORK/junit.xml" >"$WORK/fail.txt" 2>&1
 rc=$?
 line=$(grep "^FAIL" "$WORK/fail.txt")
@@ -35,12 +40,13 @@ for kind in new ref diff; do
 done
 [ "$ok" = 1 ] && pass "new, ref and diff images written and named" || fail "failure images" "$line $(ls "$WORK/mine/out" 2>&1)"
 [ "$(grep -c '<img src="data:image/png;base64,' "$WORK/report.html")" = 3 ] && grep -q 'class="flip"' "$WORK/report.html" &&
-  ! grep -q "file://" "$WORK/report.html" && grep -q "1 passed, 1 failed" "$WORK/report.html" \
-  && pass "--report: one self-contained page, the three images side by side and a flip view" \
+  ! grep -q "file://" "$WORK/report.html" && grep -q "2 passed, 1 failed" "$WORK/report.html" &&
+  [ "$(grep -o '<img class="thumb" src="data:image/png;base64,' "$WORK/report.html" | wc -l)" = 2 ] \
+  && pass "--report: one self-contained page, the three images side by side, a flip view, thumbnails of passing image cases" \
   || fail "--report" "$(head -c 600 "$WORK/report.html")"
 if command -v xmllint >/dev/null; then
   xmllint --noout --schema tests/data/junit.xsd "$WORK/junit.xml" >"$WORK/xsd.txt" 2>&1 &&
-    grep -q '<testsuites name="caustica" tests="2" failures="1"' "$WORK/junit.xml" &&
+    grep -q '<testsuites name="caustica" tests="3" failures="1"' "$WORK/junit.xml" &&
     grep -q '<testcase classname="[^"]*look_test.lua" name="the demo against its golden" time="[0-9.]*">' "$WORK/junit.xml" &&
     grep -q '<failure message="[^"]*look_test.lua:5: differs from the golden' "$WORK/junit.xml" &&
     grep -q 'name="a &amp; b &lt; c, passing"' "$WORK/junit.xml" \
