@@ -107,7 +107,7 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
             continue;
         xmin = fmin(xmin, p->x);
         xmax = fmax(xmax, p->x);
-        ymin = fmin(ymin, p->y);
+        ymin = fmin(ymin, p->y_low > 0 && isfinite(p->y_low) ? fmin(p->y, p->y_low) : p->y);
         ymax = fmax(ymax, p->y);
         drawn++;
     }
@@ -133,7 +133,7 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
             longest = strlen(plot->points[i].label);
     const double right = fmin(fmax(400.0, 5.6 * (double)(longest + 28) + 30.0), 900.0);
     const double W = 580 + right, left = 80, top = 50, bottom = 60;
-    double legend_h = 20.0 * plot->series_count + 50; /* the series, then filled / hollow */
+    double legend_h = 20.0 * plot->series_count + 66; /* the series, then filled / hollow, the bars */
     double H = fmax(520, top + legend_h + line * drawn + 20);
     double pw = W - left - right, ph = fmin(H, 520) - top - bottom;
     char tmp[4200];
@@ -227,6 +227,13 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"white\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
                    "font-size=\"10\">hollow: dominated (a faster setting is as good or better)</text>\n",
                 tx, ly + 18, tx + 10, ly + 22);
+        bool bars = false;
+        for (int i = 0; i < plot->count; i++)
+            bars |= plot->points[i].y_low > 0 && plot->points[i].y_low < 0.98 * plot->points[i].y;
+        if (bars)
+            fprintf(f, "<line x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                       "font-size=\"10\">bar: the error less the truth's own (from the reference curve)</text>\n",
+                    tx, ly + 30, tx, ly + 42, tx + 10, ly + 40);
     }
     struct label_box boxes[512];
     int nboxes = 0;
@@ -239,6 +246,13 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         number++;
         /* a point off its series' line (dominated by a faster, better one) is hollow */
         bool hollow = plot->series_lines[p->series % PLOT_MAX_SERIES] && !p->joined;
+        if (p->y_low > 0 && isfinite(p->y_low) && p->y_low < 0.98 * p->y) {
+            /* how much of the error may be the truth's own */
+            fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>"
+                       "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>\n",
+                    PX(p->x), PY(p->y), PX(p->x), PY(p->y_low), c, PX(p->x) - 3, PY(p->y_low), PX(p->x) + 3,
+                    PY(p->y_low), c);
+        }
         fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"%s\"/>\n", PX(p->x), PY(p->y),
                 hollow ? "white" : c, c);
         double lx, ly;

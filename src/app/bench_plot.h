@@ -14,6 +14,7 @@ struct plot_point {
     char label[128];
     int series;        /* 0.. : colour and legend entry */
     bool joined;       /* on its series' line (when the series has one), joined in the order of x */
+    double y_low;      /* > 0: a bar from y down to y_low (the error less the truth's own noise) */
 };
 
 struct plot {

@@ -64,6 +64,7 @@ struct result {
     char report[300]; /* the passes' lines about the last frame (beam counts, fill rate) */
     int truth;        /* the ground truth set (scene parameters) it was measured against */
     int technique;
+    int iterations;   /* a reference curve row's iterations (0: a GPU variant) */
 };
 
 static int compare_doubles(const void *a, const void *b)
@@ -445,6 +446,7 @@ struct bench {
     struct result *results;
     struct result curve[CURVE_LEVELS * MAX_CURVES]; /* the reference's own curve */
     int ncurve;
+    double truth_error[MAX_CURVES]; /* the truth's own error (noise and bias), bounded from the curve; < 0: unknown */
     struct truth *truths;
     int ntruths;
     struct truth_set *sets;
@@ -754,6 +756,7 @@ static bool bench_reference_curve(struct bench *b, struct error *err)
             memset(r, 0, sizeof *r);
             r->truth = t;
             r->technique = -1;
+            r->iterations = level;
             snprintf(r->label, sizeof r->label, "reference %d it%s%s", level, ts->label[0] ? " " : "", ts->label);
             for (int k = 0; k < b->ncolumns; k++)
                 snprintf(r->values[k], sizeof r->values[k], "%s", b->technique_sweep ? "" : ts->values[k]);
@@ -792,6 +795,27 @@ static bool bench_reference_curve(struct bench *b, struct error *err)
         }
     }
     return ok;
+}
+
+/* How much of a measured error may be the truth's own: a curve run of k
+ * iterations against the truth of K has error e_k^2 ~ n_k^2 + n_K^2 with
+ * n_K = n_k sqrt(k / K) (noise falls as 1/sqrt(iterations)), so n_K ~
+ * e_k sqrt(k / (K + k)); the least over the curve bounds it (the curve's
+ * bias counts against it too: an upper bound). */
+static void bench_truth_error(struct bench *b)
+{
+    for (int t = 0; t < MAX_CURVES; t++)
+        b->truth_error[t] = -1.0;
+    double K = b->truth_options.iterations;
+    for (int c = 0; c < b->ncurve; c++) {
+        const struct result *r = &b->curve[c];
+        double e = ranked_error(r, b->caustic), k = r->iterations;
+        if (r->truth < 0 || r->truth >= MAX_CURVES || !(e > 0) || !(k > 0) || !isfinite(e))
+            continue;
+        double bound = e * sqrt(k / (K + k));
+        if (b->truth_error[r->truth] < 0 || bound < b->truth_error[r->truth])
+            b->truth_error[r->truth] = bound;
+    }
 }
 
 static const struct result *bench_row(const struct bench *b, int c)
@@ -879,6 +903,11 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
                 r->has_caustic ? caustic_text : "-", c < b->nvariants ? r->report : "");
     }
+    for (int t = 0; t < b->nsets && t < MAX_CURVES; t++)
+        if (b->truth_error[t] > 0)
+            fprintf(md, "\nThe ground truth's own error%s%s (its noise and bias, bounded from the reference curve): "
+                        "at most %.4g; an error near it is the truth's as much as the variant's (the plot's bars).\n",
+                    b->sets[t].label[0] ? " for " : "", b->sets[t].label, b->truth_error[t]);
     if (b->nerror > 1) {
         fprintf(md, "\nErrors are means over frames");
         for (int i = 0; i < b->nerror; i++)
@@ -926,6 +955,10 @@ static bool bench_write_plot(struct bench *b, struct error *err)
         /* series 0 (or one per technique): the GPU variants; then one reference curve per scene */
         points[np].series = c < b->nvariants ? (b->technique_sweep ? r->technique : 0) : techniques + r->truth;
         points[np].joined = c < b->nvariants ? b->on_front[c] : true;
+        /* the bar: down to the error with the truth's own taken out (in quadrature) */
+        double n = c < b->nvariants && r->truth >= 0 && r->truth < MAX_CURVES ? b->truth_error[r->truth] : -1.0;
+        points[np].y_low = n > 0 ? sqrt(fmax(points[np].y * points[np].y - n * n, 0.0025 * points[np].y * points[np].y))
+                                 : 0.0;
         snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
         np++;
     }
@@ -996,6 +1029,8 @@ int cmd_bench(struct app *app, struct cli *cli)
      * scene's techniques table says "image") */
     b.caustic = b.nsets > 0 && b.results[0].has_caustic &&
                 !(b.technique_sweep && b.list->metric == TECHNIQUE_METRIC_IMAGE);
+    if (ok)
+        bench_truth_error(&b); /* in the ranked metric */
     FILE *md = NULL;
     ok = ok && bench_write_tables(&b, &md, &err);
     b.on_front = ok ? calloc((size_t)b.nvariants + 1, sizeof *b.on_front) : NULL;

@@ -24,8 +24,9 @@ grep -q "<svg" "$B/plot.svg" && grep -q "reference: floor=0.75" "$B/plot.svg" &&
 grep -q ">1  floor=0.75 (" "$B/plot.svg" && grep -q ">10  reference 8 it floor=1.0 (" "$B/plot.svg" \
   && pass "the points are numbered, with a side table" || fail "numbered points" "$(grep -o '>[0-9]*  [^<]*' "$B/plot.svg" | head)"
 # the caustic-region error of the reference falls from 1 to 8 iterations
-first=$(grep '^reference,' "$B/results.csv" | head -1 | awk -F, '{print $NF}')
-last=$(grep '^reference,' "$B/results.csv" | sed -n 4p | awk -F, '{print $NF}')
+ecol=$(head -1 "$B/results.csv" | tr ',' '\n' | grep -nx error | cut -d: -f1)
+first=$(grep '^reference,' "$B/results.csv" | head -1 | cut -d, -f"$ecol")
+last=$(grep '^reference,' "$B/results.csv" | sed -n 4p | cut -d, -f"$ecol")
 awk "BEGIN { exit !($last < $first) }" && pass "reference error falls ($first -> $last)" || fail "reference error falls" "$first -> $last"
 ls "$B"/cache/truth_*.pfm >/dev/null 2>&1 && pass "ground truth cached" || fail "cache" "no files"
 grep -q "rendering the ground truth" "$WORK/err.txt" && pass "first run renders the truth" || fail "first run" "$(cat "$WORK/err.txt")"

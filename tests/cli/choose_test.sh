@@ -37,10 +37,13 @@ cache=$(ls "$B"/cache/sweep_*.csv 2>/dev/null | head -1)
 # A cached sweep with known numbers: choose must read it, not run anything.
 head -1 "$cache" >"$WORK/header"
 cols=$(head -1 "$cache" | tr ',' '\n' | wc -l)
-row() { # kind technique settings ms error
+err_col=$(head -1 "$cache" | tr ',' '\n' | grep -nx error | cut -d: -f1)
+row() { # kind technique settings ms error (in the error column; renderer and cpus left empty)
   local line="$1,$2,$3,$4,1"
-  for ((i = 6; i < cols; i++)); do line="$line,"; done
-  echo "$line,$5"
+  for ((i = 6; i <= cols; i++)); do
+    if [ "$i" = "$err_col" ]; then line="$line,$5"; else line="$line,"; fi
+  done
+  echo "$line"
 }
 {
   cat "$WORK/header"

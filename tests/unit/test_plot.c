@@ -39,7 +39,7 @@ int main(void)
         {.x = 21, .y = 0.49, .label = "c", .series = 1, .joined = true},
         {.x = 20.2, .y = 0.5, .label = "d", .series = 1, .joined = true},
         {.x = 150, .y = 0.2, .label = "e", .series = 0, .joined = true},
-        {.x = 1170, .y = 0.1, .label = "f", .series = 1, .joined = true},
+        {.x = 1170, .y = 0.1, .label = "f", .series = 1, .joined = true, .y_low = 0.06},
     };
     struct plot plot = {.title = "t", .x_label = "frame time", .y_label = "error", .series_names = {"one", "two"},
                         .series_lines = {true, true}, .series_count = 2, .points = points, .count = 6};
@@ -53,6 +53,7 @@ int main(void)
         CHECK(strstr(svg, "stroke-dasharray"));
         CHECK(strstr(svg, "(1.2 s, 0.1)") && !strstr(svg, "e+03"));
         CHECK(strstr(svg, "hollow: dominated"));
+        CHECK(strstr(svg, "bar: the error less the truth's own") && strstr(svg, "stroke-opacity=\"0.6\""));
         CHECK(strstr(svg, "fill=\"white\" stroke=\"#1f77b4\"")); /* b: off its line, hollow */
         /* the numbers 1-4 of the crowded points: no two at the same spot */
         double xs[4], ys[4];
