@@ -81,5 +81,16 @@ grep -q "wrote $WORK/v.mp4 (3 frames at" "$WORK/video.txt" && [ "$(cat "$WORK/v.
 if command -v ffmpeg >/dev/null; then
   "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 --video "$WORK/real.gif" >/dev/null 2>&1 \
     && [ -s "$WORK/real.gif" ] && pass "ffmpeg encodes a GIF" || fail "ffmpeg GIF" "no file"
+  # an odd size: libx264's 4:2:0 needs even ones, so the frames are padded by a pixel
+  "$CAUSTICA" record $SCENE -o "$WORK/odd" --frames 0-2 --size 33x33 --video "$WORK/odd.mp4" >/dev/null 2>"$WORK/odd.err"
+  if command -v ffprobe >/dev/null; then
+    probe=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height,color_primaries,color_transfer \
+      -of csv=p=0 "$WORK/odd.mp4" 2>&1)
+    [ "$probe" = "34,34,iec61966-2-1,bt709" ] && ! ls "$WORK"/.odd.mp4* >/dev/null 2>&1 \
+      && pass "a 33x33 recording encodes as 34x34 H.264 tagged BT.709 / sRGB, no temporary left" \
+      || fail "odd-size video" "$probe $(cat "$WORK/odd.err")"
+  else
+    [ -s "$WORK/odd.mp4" ] && pass "a 33x33 recording encodes" || fail "odd-size video" "$(cat "$WORK/odd.err")"
+  fi
 fi
 finish
