@@ -289,6 +289,17 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err)
     return true;
 }
 
+bool image_path_file(const char *path, char *out, size_t size)
+{
+    const char *colon = strstr(path, ".exr:");
+    size_t n = colon ? (size_t)(colon + 4 - path) : strlen(path);
+    if (n + 1 > size)
+        return false;
+    memcpy(out, path, n);
+    out[n] = '\0';
+    return true;
+}
+
 bool image_read(const char *path, struct image *img, struct error *err)
 {
     /* "file.exr:layer" reads a named layer of an EXR */

@@ -34,6 +34,9 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err);
 /* Picks the format by extension (.png, .pfm, .hdr or .exr). PNG gets a plain clamp and
  * sRGB encoding; tone-mapped output comes from the GPU path instead. */
 bool image_read(const char *path, struct image *img, struct error *err);
+/* The file a path names, without a reader's suffix ("x.exr:layer" -> "x.exr"):
+ * what a sandbox must check, since it is what gets opened. False when too long. */
+bool image_path_file(const char *path, char *out, size_t size);
 bool image_write(const char *path, const struct image *img, struct error *err);
 /* Radiance RGBE (.hdr): what POV-Ray (+FH) and most HDR tools write. Reads
  * flat and run-length encoded scanlines; writes flat ones. */

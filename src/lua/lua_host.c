@@ -16,6 +16,7 @@
 #include "core/fileio.h"
 #include "core/log.h"
 #include "core/suggest.h"
+#include "io/image.h"
 
 #define HOST_KEY "caustica.host"
 
@@ -318,10 +319,14 @@ bool lua_host_check_read(lua_State *L, const char *path, struct error *err)
     struct host_state *h = host_of(L);
     if (!h || h->options.trusted)
         return true;
+    /* the file that will be opened: "x.exr:layer/name" opens x.exr, so x.exr is what is checked */
+    char file[PATH_MAX];
+    if (!image_path_file(path, file, sizeof file))
+        return error_set(err, "%.200s...: the path is too long", path);
     char real[PATH_MAX];
     bool exists;
-    if (!real_path_of(path, real, &exists))
-        return true; /* the folder does not exist: the reader says "no such file" */
+    if (!real_path_of(file, real, &exists))
+        return error_set(err, "%s: no such file (its folder does not exist)", file);
     for (int i = 0; i < h->read_root_count; i++)
         if (inside(real, h->read_roots[i]))
             return true;

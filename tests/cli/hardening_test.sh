@@ -321,4 +321,23 @@ if grep -q "64 pixels had NaN or Inf values, written as 0" "$WORK/err" && [ "$(m
 else
   fail "NaN in output" "$(head -1 "$WORK/err") / $line"
 fi
+# Issue 31: a reader's suffix ("x.exr:layer") does not carry a read out of the sandbox: the file
+# that is opened is what is checked, and a path whose folder does not exist is refused.
+mkdir -p "$WORK/outside" "$WORK/inside"
+"$CAUSTICA" convert scenes/assets/env/sky.hdr "$WORK/outside/secret.exr" >/dev/null 2>&1
+printf 'local c = require "caustica"\nlocal img = c.image.load(c.param("path", ""))\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/inside/peek.lua"
+for p in "$WORK/outside/secret.exr:a/b" "$WORK/outside/secret.exr:x/y.exr" "$WORK/outside/secret.exr"; do
+  expect_error "no read outside the sandbox through '${p#$WORK/}'" 1 "a sandboxed scene script may read only" - -- \
+    "$CAUSTICA" render "$WORK/inside/peek.lua" --set path="$p" -o "$WORK/x.png"
+done
+printf 'local c = require "caustica"\nlocal e = c.cubemap(c.param("path", ""))\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/inside/cube.lua"
+expect_error "no cube map outside the sandbox through a layer suffix" 1 "a sandboxed scene script may read only" - -- \
+  "$CAUSTICA" render "$WORK/inside/cube.lua" --set path="$WORK/outside/secret.exr:a/b.exr" -o "$WORK/x.png"
+expect_error "a path whose folder does not exist is refused, not waved through" 1 "no such file (its folder does not exist)" - -- \
+  "$CAUSTICA" render "$WORK/inside/peek.lua" --set path="$WORK/nowhere/at/all.exr" -o "$WORK/x.png"
+"$CAUSTICA" render "$WORK/inside/peek.lua" --set path="$WORK/outside/secret.exr:a/b" --allow-read "$WORK/outside" \
+  -o "$WORK/x.png" 2>"$WORK/err"
+grep -q "no layer 'a/b'" "$WORK/err" && pass "with --allow-read the layer is looked up (and missing)" || fail "allowed read" "$(cat "$WORK/err")"
 finish
