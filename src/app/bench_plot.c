@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/fileio.h"
 
@@ -137,10 +138,15 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
     double H = fmax(520, top + legend_h + line * drawn + 20);
     double pw = W - left - right, ph = fmin(H, 520) - top - bottom;
     char tmp[4200];
-    path_temporary(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        return error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    int fd = path_temporary_create(path, tmp, sizeof tmp, err);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        if (fd >= 0) {
+            close(fd);
+            remove(tmp);
+        }
+        return fd >= 0 ? error_set(err, "%s: cannot write: %s", path, strerror(errno)) : false;
+    }
 #define PX(v) (left + (log10(v) - lx0) / (lx1 - lx0) * pw)
 #define PY(v) (top + ph - (log10(v) - ly0) / (ly1 - ly0) * ph)
     fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" "

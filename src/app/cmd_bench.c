@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app/bench.h"
@@ -204,6 +205,12 @@ static bool get_truth(struct app *app, const char *script, const struct lua_para
     char path[4400], cpath[4400];
     snprintf(path, sizeof path, "%s/truth_%016llx.pfm", cache_dir, (unsigned long long)t->key);
     snprintf(cpath, sizeof cpath, "%s/truth_%016llx_caustic.pfm", cache_dir, (unsigned long long)t->key);
+    /* a cache entry is read only as a regular file of its own (no link to elsewhere, no FIFO) */
+    struct stat entry, caustic_entry;
+    bool linked = (lstat(path, &entry) == 0 && !S_ISREG(entry.st_mode)) ||
+                  (lstat(cpath, &caustic_entry) == 0 && !S_ISREG(caustic_entry.st_mode));
+    if (linked)
+        return error_set(err, "%s: a cached truth that is not a regular file (a link, a FIFO): refused; remove it", path);
     if (file_exists(path) && file_exists(cpath) && image_read_pfm(path, &t->image, err) &&
         image_read_pfm(cpath, &t->caustic, err)) {
         log_info("ground truth from the cache: %s", path);
@@ -261,12 +268,22 @@ static bool copy_file(const char *from, const char *to, struct error *err)
     size_t size;
     if (!file_read_all(from, &data, &size, err))
         return false;
-    FILE *f = fopen(to, "wb");
+    /* into the cache through an exclusive temporary and a rename: a link
+     * planted at the entry's name is replaced, never written through */
+    char tmp[4400];
+    int fd = path_temporary_create(to, tmp, sizeof tmp, err);
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (fd >= 0 && !f)
+        close(fd);
     bool ok = f && fwrite(data, 1, size, f) == size;
     if (f && fclose(f) != 0)
         ok = false;
     free(data);
-    return ok ? true : error_set(err, "%s: cannot write", to);
+    if (ok && rename(tmp, to) != 0)
+        ok = false;
+    if (!ok && fd >= 0)
+        remove(tmp);
+    return ok ? true : fd < 0 ? false : error_set(err, "%s: cannot write", to);
 }
 
 /* The frames the error is measured on: --frame alone, or K spread evenly

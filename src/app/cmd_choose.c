@@ -7,8 +7,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "app/bench.h"
+#include "core/fileio.h"
 #include "app/cli.h"
 #include "app/techniques.h"
 #include "graph/graph.h"
@@ -41,9 +43,9 @@ static int split(char *line, char **fields, int max)
 
 static bool read_rows(const char *path, struct row *rows, int *count, struct error *err)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = file_open_read(path, true, err); /* a cache entry: no link, no FIFO */
     if (!f)
-        return error_set(err, "%s: cannot read", path);
+        return false;
     char line[8192];
     char *fields[128];
     int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, n = 0;
@@ -216,7 +218,12 @@ int cmd_choose(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    FILE *probe = fopen(cached, "r");
+    struct stat st;
+    FILE *probe = lstat(cached, &st) == 0 ? file_open_read(cached, true, &err) : NULL;
+    if (!probe && lstat(cached, &st) == 0) {
+        cli_print_error(&err); /* a link or a FIFO where the cache entry should be: never read, never replaced */
+        return EXIT_SCENE_ERROR;
+    }
     if (probe) {
         fclose(probe);
         fprintf(stderr, "caustica: choose: the sweep from the bench cache %s\n", cached);

@@ -13,15 +13,10 @@
 
 bool file_read_all(const char *path, char **data, size_t *size, struct error *err)
 {
-    FILE *f = fopen(path, "rb");
+    /* A folder opens and "seeks" to a huge size, a FIFO blocks: only regular files. */
+    FILE *f = file_open_read(path, false, err);
     if (!f)
-        return error_set(err, "%s: cannot open: %s", path, strerror(errno));
-    /* A folder opens and "seeks" to a huge size: only regular files. */
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fclose(f);
-        return error_set(err, "%s: not a regular file%s", path, S_ISDIR(st.st_mode) ? " (it is a folder)" : "");
-    }
+        return false;
     if (fseek(f, 0, SEEK_END) != 0) {
         fclose(f);
         return error_set(err, "%s: cannot seek", path);
@@ -97,6 +92,54 @@ void path_temporary(const char *path, char *out, size_t outlen)
     snprintf(out, outlen, "%.*s.%s" PATH_TEMPORARY_MARK "%ld", dir_len, path, path + dir_len, (long)getpid());
 }
 
+int path_temporary_create(const char *path, char *out, size_t outlen, struct error *err)
+{
+    char base[4096];
+    path_temporary(path, base, sizeof base);
+    if ((size_t)snprintf(out, outlen, "%s.XXXXXX", base) >= outlen) {
+        error_set(err, "%s: path too long", path);
+        return -1;
+    }
+    int fd = mkstemp(out); /* O_CREAT | O_EXCL: never an existing file, never through a link */
+    if (fd < 0) {
+        error_set(err, "%s: cannot create a temporary beside it: %s", path, strerror(errno));
+        return -1;
+    }
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(fd, 0666 & ~mask); /* mkstemp's 0600 would make every image private */
+    return fd;
+}
+
+FILE *file_open_read(const char *path, bool no_follow, struct error *err)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | (no_follow ? O_NOFOLLOW : 0));
+    if (fd < 0) {
+        if (errno == ELOOP && no_follow)
+            error_set(err, "%s: is a symbolic link; a cache entry is never read through one", path);
+        else
+            error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        error_set(err, "%s: not a regular file%s", path,
+                  S_ISDIR(st.st_mode) ? " (it is a folder)" : S_ISFIFO(st.st_mode) ? " (a FIFO: refused, it would block)"
+                                                                                   : " (a device or socket)");
+        close(fd);
+        return NULL;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0)
+        fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        close(fd);
+    }
+    return f;
+}
+
 int path_remove_stale_temporaries(const char *dir)
 {
     DIR *d = opendir(dir && dir[0] ? dir : ".");
@@ -110,7 +153,7 @@ int path_remove_stale_temporaries(const char *dir)
             continue;
         char *end;
         long pid = strtol(mark + strlen(PATH_TEMPORARY_MARK), &end, 10);
-        if (*end || pid <= 0)
+        if ((*end && *end != '.') || pid <= 0) /* ".<pid>" or ".<pid>.XXXXXX" */
             continue;
         /* A writer that still runs keeps its file (kill(pid, 0) succeeds
          * or says EPERM); only a dead one's is stale. */

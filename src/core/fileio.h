@@ -5,6 +5,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "core/error.h"
 
@@ -21,6 +22,15 @@ void path_join(const char *dir, const char *rel, char *out, size_t outlen);
  * in the same folder. */
 #define PATH_TEMPORARY_MARK ".caustica-tmp."
 void path_temporary(const char *path, char *out, size_t outlen);
+/* Creates that temporary exclusively (O_EXCL, with an unpredictable suffix:
+ * ".<name>.caustica-tmp.<pid>.XXXXXX"), so a file or link planted at a
+ * guessable name in a shared folder is never written through; mode 0666
+ * less the umask. The open descriptor, or -1 with `err` set. */
+int path_temporary_create(const char *path, char *out, size_t outlen, struct error *err);
+/* Opens a file to read, refusing what is not a regular file (a FIFO would
+ * block forever, a device or folder is no image) without blocking on it;
+ * `no_follow`: a link as the last component is refused too (cache entries). */
+FILE *file_open_read(const char *path, bool no_follow, struct error *err);
 /* Removes the temporaries of writers that no longer run (a record killed
  * with SIGKILL) from `dir`; returns how many. */
 int path_remove_stale_temporaries(const char *dir);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <png.h>
 
@@ -88,10 +89,15 @@ FILE *image_file_begin(const char *path, char *tmp, size_t tmplen, struct error 
 {
     if (!path_check_writable_dir(path, err))
         return NULL;
-    path_temporary(path, tmp, tmplen);
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
+    int fd = path_temporary_create(path, tmp, tmplen, err);
+    if (fd < 0)
+        return NULL;
+    FILE *f = fdopen(fd, "wb");
+    if (!f) {
         error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        close(fd);
+        remove(tmp);
+    }
     return f;
 }
 
@@ -249,9 +255,9 @@ bool image_write_pfm(const char *path, const struct image *img, struct error *er
 
 bool image_read_pfm(const char *path, struct image *img, struct error *err)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = file_open_read(path, false, err);
     if (!f)
-        return error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return false;
     char magic[3] = "";
     int w = 0, h = 0;
     double scale = 0;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <openexr.h>
 
@@ -101,13 +102,19 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
             return error_set(err, "%s: layer '%s' is %dx%d, the image %dx%d", path, layers[i].name,
                              layers[i].image->width, layers[i].image->height, img->width, img->height);
     char tmp[4200];
-    path_temporary(path, tmp, sizeof tmp);
+    /* made exclusively first (an unpredictable name, never a planted link), then OpenEXR writes it */
+    int fd = path_temporary_create(path, tmp, sizeof tmp, err);
+    if (fd < 0)
+        return false;
+    close(fd);
     exr_context_t ctxt = NULL;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
     exr_result_t rv = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
-    if (rv != EXR_ERR_SUCCESS)
+    if (rv != EXR_ERR_SUCCESS) {
+        remove(tmp);
         return exr_failed(rv, path, "opening for writing", err);
+    }
     int part = 0;
     bool ok = true;
     const char *step = "";

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/log.h"
+#include "core/fileio.h"
 #include "io/image.h"
 
 #define HDR_MAX_SIDE 65536
@@ -110,9 +111,9 @@ static bool read_scanline(FILE *f, unsigned char *line, int w)
 
 bool image_read_hdr(const char *path, struct image *img, struct error *err)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = file_open_read(path, false, err);
     if (!f)
-        return error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return false;
     char line[512];
     bool magic = fgets(line, sizeof line, f) && strncmp(line, "#?", 2) == 0;
     bool rgbe = true;

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <time.h>
 
 #include <embree3/rtcore.h>
@@ -218,7 +219,8 @@ struct cache_header {
 static bool cache_read(const char *path, uint64_t hash, size_t vertex_count, int resolution, float *entries,
                        size_t count)
 {
-    FILE *f = fopen(path, "rb");
+    struct error ignored; /* a missing, linked or odd entry is traced again (not read through a link, not a FIFO) */
+    FILE *f = file_open_read(path, true, &ignored);
     if (!f)
         return false;
     struct cache_header h;
@@ -233,10 +235,16 @@ static void cache_write(const char *path, uint64_t hash, size_t vertex_count, in
                         size_t count)
 {
     char tmp[4200];
-    path_temporary(path, tmp, sizeof tmp);
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
+    struct error ignored;
+    int fd = path_temporary_create(path, tmp, sizeof tmp, &ignored); /* never through a planted link */
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (!f) {
+        if (fd >= 0) {
+            close(fd);
+            remove(tmp);
+        }
         return;
+    }
     struct cache_header h = {{'C', 'A', 'U', 'S', 'T', 'T', 'B', '1'}, hash, vertex_count, resolution, TRANSPORT_FLOATS,
                              hash_fnv1a(HASH_FNV1A_BASIS, entries, count * sizeof(float))};
     bool ok = fwrite(&h, sizeof h, 1, f) == 1 && fwrite(entries, sizeof(float), count, f) == count;

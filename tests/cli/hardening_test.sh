@@ -270,9 +270,11 @@ rm -f "$O"
 
 # ---- output ---------------------------------------------------------------
 mkdir -p "$WORK/frames"
-touch "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" "$WORK/frames/.frame_0005.png.caustica-tmp.$$"
+touch "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" "$WORK/frames/.frame_0005.png.caustica-tmp.$$" \
+  "$WORK/frames/.frame_0006.png.caustica-tmp.999999999.Ab3xYz"
 "$CAUSTICA" record scenes/demo.lua -o "$WORK/frames" --frames 0:1 --size 16x16 >/dev/null 2>&1
-if [ ! -e "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" ] && [ -e "$WORK/frames/.frame_0005.png.caustica-tmp.$$" ]; then
+if [ ! -e "$WORK/frames/.frame_0004.png.caustica-tmp.999999999" ] && [ -e "$WORK/frames/.frame_0005.png.caustica-tmp.$$" ] &&
+   [ ! -e "$WORK/frames/.frame_0006.png.caustica-tmp.999999999.Ab3xYz" ]; then
   pass "a killed run's temporaries are removed, a running writer's kept"
 else
   fail "stale temporaries" "$(ls -a "$WORK/frames")"
@@ -340,4 +342,47 @@ expect_error "a path whose folder does not exist is refused, not waved through" 
 "$CAUSTICA" render "$WORK/inside/peek.lua" --set path="$WORK/outside/secret.exr:a/b" --allow-read "$WORK/outside" \
   -o "$WORK/x.png" 2>"$WORK/err"
 grep -q "no layer 'a/b'" "$WORK/err" && pass "with --allow-read the layer is looked up (and missing)" || fail "allowed read" "$(cat "$WORK/err")"
+# Shared folders (issue 31): a cache entry planted as a link is replaced, never written through; a
+# FIFO where an image or a cache entry should be is refused at once instead of blocking.
+mkdir -p "$WORK/shared"
+echo "someone else's file" >"$WORK/victim.txt"
+cat >"$WORK/shared/still.lua" <<'EOF'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+scene:add(c.light.directional { direction = {0.2, -1, -0.3}, intensity = {2, 2, 2} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.5, 0} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass {} })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, size = {16, 16} }
+EOF
+"$CAUSTICA" bench "$WORK/shared/still.lua" --sweep shade.specular=true,false --frames 1 --ref-photons 2000 \
+  -o "$WORK/shared/b" -q >/dev/null 2>&1
+truth=$(ls "$WORK"/shared/b/cache/truth_*[0-9a-f].pfm 2>/dev/null | head -1)
+if [ -n "$truth" ]; then
+  rm -f "$truth" && ln -s "$WORK/victim.txt" "$truth"
+  "$CAUSTICA" bench "$WORK/shared/still.lua" --sweep shade.specular=true,false --frames 1 --ref-photons 2000 \
+    -o "$WORK/shared/b" -q >/dev/null 2>"$WORK/err"
+  grep -q "a cached truth that is not a regular file (a link, a FIFO): refused" "$WORK/err" &&
+    [ "$(cat "$WORK/victim.txt")" = "someone else's file" ] \
+    && pass "a cached truth planted as a link is refused, its target untouched" || fail "truth link" "$(cat "$WORK/err")"
+  rm -f "$truth"
+  mkfifo "$truth"
+  timeout 20 "$CAUSTICA" bench "$WORK/shared/still.lua" --sweep shade.specular=true,false --frames 1 --ref-photons 2000 \
+    -o "$WORK/shared/b" -q >/dev/null 2>"$WORK/err"
+  rc=$?
+  [ $rc = 1 ] && grep -q "refused" "$WORK/err" && pass "a FIFO at a cached truth: refused at once (no block)" \
+    || fail "truth FIFO" "exit $rc: $(cat "$WORK/err")"
+  rm -f "$truth"
+else
+  fail "bench cache" "no cached truth"
+fi
+mkfifo "$WORK/shared/pipe.pfm"
+printf 'local c = require "caustica"\nlocal img = c.image.load("pipe.pfm")\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/shared/fifo.lua"
+timeout 20 "$CAUSTICA" render "$WORK/shared/fifo.lua" -o "$WORK/x.png" >/dev/null 2>"$WORK/err"
+rc=$?
+[ $rc = 1 ] && grep -q "pipe.pfm: not a regular file (a FIFO: refused, it would block)" "$WORK/err" \
+  && pass "c.image.load of a FIFO is refused at once" || fail "image FIFO" "exit $rc: $(cat "$WORK/err")"
 finish
