@@ -6,12 +6,25 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <png.h>
 
 #include "core/fileio.h"
 #include "core/log.h"
+
+bool image_check_header(const char *path, long long width, long long height, unsigned long long min_bytes,
+                        unsigned long long file_bytes, struct error *err)
+{
+    if (width < 1 || height < 1 || (unsigned long long)width * (unsigned long long)height > IMAGE_MAX_PIXELS)
+        return error_set(err, "%s: a %lldx%lld image is out of range (at most %llu pixels)", path, width, height,
+                         (unsigned long long)IMAGE_MAX_PIXELS);
+    if (min_bytes > file_bytes)
+        return error_set(err, "%s: truncated: its header says %lldx%lld, which needs at least %llu bytes, the file has "
+                              "%llu", path, width, height, min_bytes, file_bytes);
+    return true;
+}
 
 bool image_create(struct image *img, int width, int height, struct error *err)
 {
@@ -270,6 +283,17 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err)
     if (scale > 0) {
         fclose(f);
         return error_set(err, "%s: big-endian PFM is not supported", path);
+    }
+    /* what the header claims against what the file holds, before any allocation */
+    struct stat st;
+    long at = ftell(f);
+    unsigned long long left = fstat(fileno(f), &st) == 0 && at >= 0 && st.st_size >= at
+                                  ? (unsigned long long)(st.st_size - at) : 0;
+    if (!image_check_header(path, w, h,
+                            w > 0 && h > 0 ? (unsigned long long)w * (unsigned long long)h * (unsigned)channels * 4u : 0,
+                            left, err)) {
+        fclose(f);
+        return false;
     }
     if (!image_create(img, w, h, err)) {
         fclose(f);

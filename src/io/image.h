@@ -15,6 +15,14 @@ struct image {
     float *rgba; /* owned, width * height * 4 */
 };
 
+/* The most pixels one image read from a file may have (2^27: 16384 x 8192, a
+ * large equirectangular sky; 2 GiB as float RGBA). Every reader checks it,
+ * and that the file can hold what its header claims, before it allocates. */
+#define IMAGE_MAX_PIXELS (1ull << 27)
+/* Whether a header's width x height may be read from a file of `file_bytes`
+ * that needs at least `min_bytes` for it; false with a message naming both. */
+bool image_check_header(const char *path, long long width, long long height, unsigned long long min_bytes,
+                        unsigned long long file_bytes, struct error *err);
 bool image_create(struct image *img, int width, int height, struct error *err);
 void image_destroy(struct image *img);
 void image_flip_rows(struct image *img);

@@ -60,7 +60,13 @@ static void jpeg_failed(j_common_ptr cinfo)
     longjmp(f->jump, 1);
 }
 
-static void jpeg_quiet(j_common_ptr cinfo, int level) { (void)cinfo, (void)level; }
+/* Warnings of a damaged file are not printed by the library, but counted
+ * (the default emit_message would count them; this one replaces it). */
+static void jpeg_quiet(j_common_ptr cinfo, int level)
+{
+    if (level < 0)
+        cinfo->err->num_warnings++;
+}
 
 static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uint8_t **out, int *width, int *height,
                         struct error *err)
@@ -72,7 +78,7 @@ static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uin
     uint8_t *volatile row = NULL;
     cinfo.err = jpeg_std_error(&failure.mgr);
     failure.mgr.error_exit = jpeg_failed;
-    failure.mgr.emit_message = jpeg_quiet; /* warnings of a damaged file are not printed by the library */
+    failure.mgr.emit_message = jpeg_quiet;
     if (setjmp(failure.jump)) {
         jpeg_destroy_decompress(&cinfo);
         free(buf);
@@ -82,6 +88,14 @@ static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uin
     jpeg_create_decompress(&cinfo);
     jpeg_mem_src(&cinfo, bytes, (unsigned long)size);
     jpeg_read_header(&cinfo, TRUE);
+    /* at least about 2 bits for each 8x8 block of a JPEG's data: a header
+     * claiming 16384x4096 in 3000 bytes is refused before the image is made */
+    unsigned long long least = (unsigned long long)cinfo.image_width * cinfo.image_height / 256ull;
+    if (least > size) {
+        jpeg_destroy_decompress(&cinfo);
+        return error_set(err, "%s: truncated: its header says %ux%u, which needs at least %llu bytes, the file has %zu",
+                         name, cinfo.image_width, cinfo.image_height, least, size);
+    }
     if (!size_ok(name, cinfo.image_width, cinfo.image_height, err)) {
         jpeg_destroy_decompress(&cinfo);
         return false;
@@ -109,14 +123,17 @@ static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uin
             buf[(y * w + x) * 4 + 3] = 255;
         }
     }
-    bool complete = cinfo.output_scanline == h;
+    /* libjpeg pads a truncated file with grey and only warns ("premature end
+     * of data"): a warning means the file is damaged, and the image is refused */
+    bool complete = cinfo.output_scanline == h && cinfo.err->num_warnings == 0;
     if (complete)
         jpeg_finish_decompress(&cinfo);
+    complete = complete && cinfo.err->num_warnings == 0;
     jpeg_destroy_decompress(&cinfo);
     free(row);
     if (!complete) {
         free(buf);
-        return error_set(err, "%s: JPEG ends early", name);
+        return error_set(err, "%s: the JPEG ends early or is damaged (libjpeg warned): refused", name);
     }
     *out = buf;
     *width = (int)w;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <openexr.h>
@@ -221,6 +222,18 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
     if (w < 1 || h < 1 || w > 16384 || h > 16384) {
         exr_finish(&ctxt);
         return error_set(err, "%s: an EXR of %dx%d is out of range (1..16384)", path, w, h);
+    }
+    /* every chunk has an 8-byte entry in the offset table and at least an
+     * 8-byte header (its line, its size): the file must hold them before a
+     * w x h image is allocated (a 377-byte file claiming 16384^2 took 4 GB) */
+    int32_t chunks = 0;
+    struct stat st;
+    rv = exr_get_chunk_count(ctxt, 0, &chunks);
+    if (rv != EXR_ERR_SUCCESS || stat(path, &st) != 0 ||
+        !image_check_header(path, w, h, 16ull * (unsigned long long)(chunks > 0 ? chunks : 1),
+                            (unsigned long long)st.st_size, err)) {
+        exr_finish(&ctxt);
+        return rv != EXR_ERR_SUCCESS ? exr_failed(rv, path, "reading the chunk table", err) : false;
     }
     if (!image_create(img, w, h, err)) {
         exr_finish(&ctxt);

@@ -385,4 +385,58 @@ timeout 20 "$CAUSTICA" render "$WORK/shared/fifo.lua" -o "$WORK/x.png" >/dev/nul
 rc=$?
 [ $rc = 1 ] && grep -q "pipe.pfm: not a regular file (a FIFO: refused, it would block)" "$WORK/err" \
   && pass "c.image.load of a FIFO is refused at once" || fail "image FIFO" "exit $rc: $(cat "$WORK/err")"
+# Readers check before they allocate (issue 31): a header that claims more than its file holds is
+# refused at once, with both numbers.
+printf 'PF\n32768 32768\n-1.0\n\x00\x00\x80\x3f' >"$WORK/huge.pfm"
+expect_error "a 26-byte PFM claiming 32768^2" 1 "huge.pfm: a 32768x32768 image is out of range" - -- \
+  "$CAUSTICA" compare "$WORK/huge.pfm" "$WORK/huge.pfm"
+printf 'PF\n4000 4000\n-1.0\n\x00\x00\x80\x3f' >"$WORK/short.pfm"
+expect_error "a PFM whose header claims more data than it holds" 1 \
+  "short.pfm: truncated: its header says 4000x4000, which needs at least 192000000 bytes, the file has 4" - -- \
+  "$CAUSTICA" compare "$WORK/short.pfm" "$WORK/short.pfm"
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 10000 +X 10000\n\x02\x02\x27\x10' >"$WORK/short.hdr"
+expect_error "a 51-byte HDR claiming 10000^2" 1 "short.hdr: truncated: its header says 10000x10000" - -- \
+  "$CAUSTICA" compare "$WORK/short.hdr" "$WORK/short.hdr"
+"$CAUSTICA" convert tests/data/quadrants.png "$WORK/small.exr" >/dev/null 2>&1
+python3 - "$WORK/small.exr" "$WORK/wide.exr" <<'PY'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read())
+for name in (b"dataWindow\0box2i\0", b"displayWindow\0box2i\0"):
+    at = data.index(name) + len(name) + 4           # past the attribute's size
+    data[at:at + 16] = struct.pack("<4i", 0, 0, 8191, 16383)
+open(sys.argv[2], "wb").write(bytes(data))
+PY
+start=$(date +%s)
+expect_error "a small EXR whose dataWindow claims 8192x16384" 1 "wide.exr: truncated: its header says 8192x16384" - -- \
+  "$CAUSTICA" compare "$WORK/wide.exr" "$WORK/wide.exr"
+[ $(( $(date +%s) - start )) -lt 10 ] && pass "and refused within seconds, not after 4 GB" || fail "wide EXR" "took too long"
+if command -v ffmpeg >/dev/null; then
+  ffmpeg -v error -y -f lavfi -i testsrc=size=512x512 -frames:v 1 "$WORK/t.jpg" 2>/dev/null
+  head -c $(( $(stat -c %s "$WORK/t.jpg") / 2 )) "$WORK/t.jpg" >"$WORK/cut.jpg"
+  cat >"$WORK/tex.lua" <<'EOF'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 2, 0.01}, target = {0, 0, 0} } }
+scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene:add(c.object { mesh = c.mesh.plane { size = 2 },
+                     material = c.material.diffuse { color = c.texture(c.param("path", "")) } })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:output("shade.color")
+return { scene = scene, graph = g, size = {8, 8} }
+EOF
+  "$CAUSTICA" render "$WORK/tex.lua" --set path="$WORK/t.jpg" --allow-read "$WORK" -o "$WORK/x.png" >/dev/null 2>"$WORK/err" \
+    && pass "a whole JPEG loads" || fail "whole JPEG" "$(cat "$WORK/err")"
+  rm -f "$WORK/x.png"
+  expect_error "a truncated JPEG is refused, not padded with grey" 1 "cut.jpg: the JPEG ends early or is damaged" "$WORK/x.png" -- \
+    "$CAUSTICA" render "$WORK/tex.lua" --set path="$WORK/cut.jpg" --allow-read "$WORK" -o "$WORK/x.png"
+  python3 - "$WORK/t.jpg" "$WORK/tall.jpg" <<'PY'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read()[:3000])
+at = data.index(b"\xff\xc0")                        # SOF0: length, precision, height, width
+data[at + 5:at + 9] = struct.pack(">HH", 4096, 16384)
+open(sys.argv[2], "wb").write(bytes(data))
+PY
+  expect_error "a 3000-byte JPEG claiming 16384x4096" 1 "tall.jpg: truncated: its header says 16384x4096" "$WORK/x.png" -- \
+    "$CAUSTICA" render "$WORK/tex.lua" --set path="$WORK/tall.jpg" --allow-read "$WORK" -o "$WORK/x.png"
+fi
 finish
