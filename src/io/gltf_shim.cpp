@@ -427,11 +427,22 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     }
     std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
+        // the spec allows unsigned byte, short and int indices only: a FLOAT
+        // accessor's NaN or 7.5e28 would reach a cast to uint32_t
+        if (prim.indices < (int)model.accessors.size()) {
+            int type = model.accessors[(size_t)prim.indices].componentType;
+            if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                throw Fail{"mesh '" + mesh.name + "': indices must be unsigned integers (glTF 2.0 3.7.2.1), got "
+                           "component type " + std::to_string(type)};
+        }
         std::vector<double> raw = read_accessor(model, prim.indices, 1, "indices");
         idx.reserve(raw.size());
         for (double v : raw) {
-            if (v < 0 || v >= (double)nv)
-                throw Fail{"mesh '" + mesh.name + "': index " + std::to_string((long long)v) +
+            if (!std::isfinite(v) || v < 0 || v >= (double)nv || v != std::floor(v))
+                throw Fail{"mesh '" + mesh.name + "': index " + (std::isfinite(v) && std::fabs(v) < 1e18
+                                                                     ? std::to_string((long long)v)
+                                                                     : std::string("(not finite)")) +
                            " is out of range (the primitive has " + std::to_string(nv) + " vertices)"};
             idx.push_back((uint32_t)v);
         }

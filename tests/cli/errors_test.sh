@@ -13,6 +13,9 @@ expect_error "truncated .glb" 1 "truncated.glb" "$O" -- \
   "$CAUSTICA" render tests/scenes/mesh_file.lua --set path="$WORK/truncated.glb" -o "$O"
 expect_error "out-of-range indices" 1 "bad_indices.gltf: mesh '': index 5 is out of range" "$O" -- \
   "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/bad_indices.gltf -o "$O"
+expect_error "FLOAT indices (NaN among them) are refused before any cast" 1 \
+  "float_indices.gltf: mesh '': indices must be unsigned integers (glTF 2.0 3.7.2.1), got component type 5126" "$O" -- \
+  "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/float_indices.gltf -o "$O"
 expect_error "NaN positions" 1 "nan_positions.gltf" "$O" -- \
   "$CAUSTICA" render tests/scenes/mesh_file.lua --set path=../data/nan_positions.gltf -o "$O"
 expect_error "error names the script line" 1 "mesh_file.lua:7:" "$O" -- \
