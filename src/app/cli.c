@@ -366,12 +366,25 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--overwrite") == 0) {
             cli->overwrite = true;
         } else if (strcmp(a, "--shard") == 0) {
-            int used = 0;
-            if (sscanf(next, "%d/%d%n", &cli->shard_index, &cli->shard_count, &used) != 2 || next[used] ||
-                cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
+            /* each half through parse_int (overflow checked: 0/99999999999 is refused, not wrapped) */
+            char half[64];
+            const char *slash = strchr(next, '/');
+            bool parsed = slash && (size_t)(slash - next) < sizeof half;
+            if (parsed) {
+                snprintf(half, sizeof half, "%.*s", (int)(slash - next), next);
+                parsed = parse_int(half, &cli->shard_index) && parse_int(slash + 1, &cli->shard_count);
+            }
+            if (!parsed || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
                 return usage_error("--shard needs i/n with 0 <= i < n (e.g. $SLURM_ARRAY_TASK_ID/4), got '%s'", next);
         } else if (strcmp(a, "--size") == 0) {
-            if (sscanf(next, "%dx%d", &cli->width, &cli->height) != 2 || cli->width < 1 || cli->height < 1 ||
+            char half[64];
+            const char *x = strchr(next, 'x');
+            bool parsed = x && (size_t)(x - next) < sizeof half;
+            if (parsed) {
+                snprintf(half, sizeof half, "%.*s", (int)(x - next), next);
+                parsed = parse_int(half, &cli->width) && parse_int(x + 1, &cli->height);
+            }
+            if (!parsed || cli->width < 1 || cli->height < 1 ||
                 cli->width > 16384 || cli->height > 16384)
                 return usage_error("--size needs WxH (1..16384), got '%s'", next);
         } else if (strcmp(a, "--backend") == 0) {

@@ -4,6 +4,7 @@
  * — read from `bench`'s cache when it was measured with the same options,
  * run otherwise — with the graph lines to paste into the script. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,7 +51,9 @@ static bool read_rows(const char *path, struct row *rows, int *count, struct err
     char *fields[128];
     int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, n = 0;
     bool header = true;
+    int line_number = 0;
     while (fgets(line, sizeof line, f)) {
+        line_number++;
         line[strcspn(line, "\r\n")] = '\0';
         int nf = split(line, fields, 128);
         if (header) {
@@ -79,8 +82,17 @@ static bool read_rows(const char *path, struct row *rows, int *count, struct err
         struct row *r = &rows[n++];
         snprintf(r->technique, sizeof r->technique, "%s", fields[col_technique]);
         snprintf(r->settings, sizeof r->settings, "%s", fields[col_settings]);
-        r->ms = atof(fields[col_ms]);
-        r->error = atof(fields[col_error]);
+        /* numbers checked, not taken on trust: "abc" would be 0.0 ms, the fastest */
+        char *end_ms, *end_error;
+        r->ms = strtod(fields[col_ms], &end_ms);
+        r->error = strtod(fields[col_error], &end_error);
+        if (end_ms == fields[col_ms] || *end_ms || end_error == fields[col_error] || *end_error || !isfinite(r->ms) ||
+            !isfinite(r->error) || r->ms < 0 || r->error < 0) {
+            fclose(f);
+            return error_set(err, "%s:%d: frame_ms '%s' and error '%s' must be finite numbers >= 0 (a damaged cache "
+                                  "entry: remove it, and bench measures again)", path, line_number,
+                             fields[col_ms], fields[col_error]);
+        }
         snprintf(r->renderer, sizeof r->renderer, "%s", col_renderer >= 0 && nf > col_renderer ? fields[col_renderer] : "");
     }
     fclose(f);

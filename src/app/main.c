@@ -1,5 +1,6 @@
 /* caustica: the command line. Exit status: 0 success, 1 a scene, asset or
  * render error (message on stderr), 2 bad usage. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -7,6 +8,9 @@
 
 int main(int argc, char **argv)
 {
+    /* past `ulimit -f` a write fails with EFBIG, which is reported as the
+     * file's error, instead of the signal killing the process mid-frame */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc >= 2 && strcmp(argv[1], "help") == 0)
         return cmd_help(argc - 2, argv + 2);
     if (argc >= 2 && strcmp(argv[1], "--version") == 0) {

@@ -46,8 +46,9 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
     if (count == 0)
         return error_set(err, "--video %s: no frames to encode", output);
     /* ffmpeg's concat list: every frame in order, each shown 1/fps */
+    /* a relative name starting with '-' reaches ffmpeg as ./-name, never as an option */
     char list[4200];
-    snprintf(list, sizeof list, "%s.frames.txt", output);
+    snprintf(list, sizeof list, "%s%s.frames.txt", output[0] == '-' ? "./" : "", output);
     FILE *f = fopen(list, "w");
     if (!f)
         return error_set(err, "--video %s: cannot write %s", output, list);

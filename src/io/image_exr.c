@@ -22,8 +22,31 @@ bool image_path_is_exr(const char *path)
     return n > 4 && (strcmp(path + n - 4, ".exr") == 0 || strcmp(path + n - 4, ".EXR") == 0);
 }
 
+/* OpenEXR's own messages (it would print them on stderr before caustica's
+ * line): kept for that one line instead, with the system's reason where it
+ * gives one (a full disk). One image is read or written at a time. */
+static char exr_last_message[512];
+
+static void exr_keep_message(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt, (void)code;
+    snprintf(exr_last_message, sizeof exr_last_message, "%s", msg ? msg : "");
+}
+
+static void exr_initializer(exr_context_initializer_t *init)
+{
+    exr_context_initializer_t defaults = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    *init = defaults;
+    init->flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    init->error_handler_fn = exr_keep_message;
+    exr_last_message[0] = '\0';
+}
+
 static bool exr_failed(exr_result_t rv, const char *path, const char *what, struct error *err)
 {
+    if (exr_last_message[0])
+        return error_set(err, "%s: %s failed: %s (%s)", path, what, exr_get_default_error_message(rv),
+                         exr_last_message);
     return error_set(err, "%s: %s failed: %s", path, what, exr_get_default_error_message(rv));
 }
 
@@ -109,8 +132,8 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
         return false;
     close(fd);
     exr_context_t ctxt = NULL;
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    exr_context_initializer_t init;
+    exr_initializer(&init);
     exr_result_t rv = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
     if (rv != EXR_ERR_SUCCESS) {
         remove(tmp);
@@ -200,8 +223,8 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
 {
     memset(img, 0, sizeof *img);
     exr_context_t ctxt = NULL;
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.flags |= EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    exr_context_initializer_t init;
+    exr_initializer(&init);
     exr_result_t rv = exr_start_read(&ctxt, path, &init);
     if (rv != EXR_ERR_SUCCESS)
         return exr_failed(rv, path, "reading", err);

@@ -54,6 +54,12 @@ row() { # kind technique settings ms error (in the error column; renderer and cp
   row gpu beams caustics.refine=2 80 0.12
   row reference "" "8 it" 1 0.01
 } >"$cache"
+cp "$cache" "$WORK/good.csv"
+sed -i '2s/^gpu,plain,defaults,5,/gpu,plain,defaults,abc,/' "$cache"
+"$CAUSTICA" choose scenes/compare/fog.lua --error 0.25 "${OPTS[@]}" --cached >/dev/null 2>"$WORK/bad.txt"
+[ $? = 1 ] && grep -q ":2: frame_ms 'abc' and error '0.9' must be finite numbers >= 0" "$WORK/bad.txt" \
+  && pass "a cache row whose time is not a number is refused with its line" || fail "cache numbers" "$(cat "$WORK/bad.txt")"
+cp "$WORK/good.csv" "$cache"
 "$CAUSTICA" choose scenes/compare/fog.lua --error 0.25 "${OPTS[@]}" >"$WORK/c1.txt" 2>"$WORK/c1e.txt"
 grep -q "from the bench cache" "$WORK/c1e.txt" && ! grep -q "rendering" "$WORK/c1e.txt" \
   && pass "choose reads the cached sweep" || fail "cache read" "$(cat "$WORK/c1e.txt")"
@@ -142,6 +148,7 @@ pcache=$(ls "$P"/cache/sweep_*.csv 2>/dev/null | head -1)
 if [ -n "$pcache" ]; then
   head -1 "$pcache" >"$WORK/pheader"
   cols=$(head -1 "$pcache" | tr ',' '\n' | wc -l)
+  err_col=$(head -1 "$pcache" | tr ',' '\n' | grep -nx error | cut -d: -f1)
   { cat "$WORK/pheader"; row gpu photons defaults 30 0.2; row gpu iwasaki defaults 5 0.1; } >"$pcache"
   "$CAUSTICA" choose "$WORK/pool.lua" --error 0.5 "${POPTS[@]}" >"$WORK/p1.txt" 2>"$WORK/p1e.txt"
   grep -q "choose: iwasaki is not considered: pass 'caustics' (illumination_textures) leaves out object 2 (water)" "$WORK/p1e.txt" \
