@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "app/cli.h"
+#include "app/watchdog.h"
 
 int main(int argc, char **argv)
 {
@@ -42,6 +43,9 @@ int main(int argc, char **argv)
         app_init(&app);
         if (!cli_parse(verbs[i].name, argc - 2, argv + 2, &app, &cli))
             return EXIT_USAGE;
+        /* the script time limit inside C functions too: a second past it */
+        if (app.script_timeout > 0 && !watchdog_start(1.0))
+            fprintf(stderr, "caustica: warning: no watchdog thread: --script-timeout holds only for Lua code\n");
         int rc = verbs[i].run(&app, &cli);
         app_shutdown(&app);
         return rc;

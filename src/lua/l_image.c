@@ -13,14 +13,33 @@
 #include "lua/lua_host.h"
 #include "reference/image_metrics.h"
 
+/* An image userdata: the image, and the bytes of it charged to the
+ * script's memory limit (released with it). */
+struct l_image {
+    struct image image; /* first: the userdata is the image */
+    size_t charged;
+};
+
 struct image *limage_check(lua_State *L, int idx) { return luaL_checkudata(L, idx, IMAGE_MT); }
 
 struct image *limage_push(lua_State *L)
 {
-    struct image *img = lua_newuserdatauv(L, sizeof *img, 0);
-    memset(img, 0, sizeof *img);
+    struct l_image *u = lua_newuserdatauv(L, sizeof *u, 0);
+    memset(u, 0, sizeof *u);
     luaL_setmetatable(L, IMAGE_MT);
-    return img;
+    return &u->image;
+}
+
+void limage_charge(lua_State *L, struct image *img, long long width, long long height)
+{
+    struct l_image *u = (struct l_image *)img;
+    size_t bytes = width > 0 && height > 0 ? (size_t)width * (size_t)height * 4 * sizeof(float) : 0;
+    char what[96];
+    snprintf(what, sizeof what, "a %lldx%lld image", width, height);
+    struct error err;
+    if (!lua_host_charge(L, bytes, what, &err))
+        luaL_error(L, "%s", err.message);
+    u->charged += bytes;
 }
 
 static int image_load_l(lua_State *L)
@@ -33,15 +52,19 @@ static int image_load_l(lua_State *L)
     struct image *img = limage_push(L);
     if (!image_read(path, img, &err))
         return luaL_error(L, "%s", err.message);
+    limage_charge(L, img, img->width, img->height); /* its size is known once read (readers cap it) */
     return 1;
 }
 
 static int image_new_l(lua_State *L)
 {
-    int w = (int)luaL_checkinteger(L, 1), h = (int)luaL_checkinteger(L, 2);
+    lua_Integer w = luaL_checkinteger(L, 1), h = luaL_checkinteger(L, 2);
+    if (w < 1 || h < 1 || w > 32768 || h > 32768)
+        return luaL_error(L, "image.new: %lldx%lld is out of range (1..32768 a side)", (long long)w, (long long)h);
     struct image *img = limage_push(L);
+    limage_charge(L, img, w, h); /* before the pixels exist */
     struct error err;
-    if (!image_create(img, w, h, &err))
+    if (!image_create(img, (int)w, (int)h, &err))
         return luaL_error(L, "%s", err.message);
     return 1;
 }
@@ -79,7 +102,10 @@ static int image_compare_l(lua_State *L)
 
 static int image_gc(lua_State *L)
 {
-    image_destroy(limage_check(L, 1));
+    struct l_image *u = (struct l_image *)limage_check(L, 1);
+    image_destroy(&u->image);
+    lua_host_uncharge(L, u->charged);
+    u->charged = 0;
     return 0;
 }
 
@@ -154,6 +180,7 @@ static int image_clamped_l(lua_State *L)
 {
     struct image *img = limage_check(L, 1);
     struct image *out = limage_push(L);
+    limage_charge(L, out, img->width, img->height);
     struct error err;
     if (!image_create(out, img->width, img->height, &err))
         return luaL_error(L, "%s", err.message);
@@ -174,6 +201,7 @@ static int image_difference_l(lua_State *L)
         return luaL_error(L, "image.difference: sizes differ (%dx%d and %dx%d)", a->width, a->height, b->width,
                           b->height);
     struct image *out = limage_push(L);
+    limage_charge(L, out, a->width, a->height);
     struct error err;
     if (!image_create(out, a->width, a->height, &err))
         return luaL_error(L, "%s", err.message);

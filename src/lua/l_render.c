@@ -98,6 +98,7 @@ int limage_render(lua_State *L)
     struct lua_render_reply reply;
     if (!host->render(host->render_context, &request, img, &reply, &err))
         return luaL_error(L, "%s", err.message);
+    limage_charge(L, img, img->width, img->height);
     /* second result: per-pass milliseconds */
     lua_newtable(L);
     for (int i = 0; i < reply.pass_count; i++) {
@@ -157,6 +158,7 @@ int limage_reference(lua_State *L)
     struct lua_render_reply st;
     if (!host->render(host->render_context, &request, img, &st, &err))
         return luaL_error(L, "%s", err.message);
+    limage_charge(L, img, img->width, img->height);
     lua_createtable(L, 0, 4);
     lua_pushinteger(L, st.iterations);
     lua_setfield(L, -2, "iterations");

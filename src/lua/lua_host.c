@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,6 +63,37 @@ static void *host_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
         m->used = m->used - old + nsize;
     return p;
 }
+
+bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error *err)
+{
+    void *ud = NULL;
+    if (lua_getallocf(L, &ud) != host_alloc || !ud)
+        return true;
+    struct host_memory *m = ud;
+    if (m->limit && (bytes > m->limit || m->used > m->limit - bytes))
+        return error_set(err, "%s needs %.0f MB, which would take the script past --script-memory %.0f MB (%.0f MB "
+                              "in use; raise it, 0 = no limit)", what, (double)bytes / 1048576.0,
+                         (double)m->limit / 1048576.0, (double)m->used / 1048576.0);
+    m->used += bytes;
+    return true;
+}
+
+void lua_host_uncharge(lua_State *L, size_t bytes)
+{
+    void *ud = NULL;
+    if (lua_getallocf(L, &ud) != host_alloc || !ud)
+        return;
+    struct host_memory *m = ud;
+    m->used = m->used > bytes ? m->used - bytes : 0;
+}
+
+/* The deadline of the call into a script now in progress, for the
+ * watchdog (lua_host_watched_deadline): the count hook cannot stop work
+ * inside a C function (a backtracking string pattern, a long image
+ * operation) nor a message handler or finalizer, which run without hooks. */
+static _Atomic double watched_deadline;
+
+double lua_host_watched_deadline(void) { return atomic_load(&watched_deadline); }
 
 static double now_seconds(void)
 {
@@ -648,7 +680,13 @@ void lua_host_destroy(lua_State *L)
         return;
     void *mem;
     lua_getallocf(L, &mem);
+    /* finalizers (__gc) run here without hooks: the watchdog holds them to
+     * the script's time limit (at most 5 s) */
+    struct host_state *h = host_of(L);
+    if (h && h->options.timeout > 0)
+        atomic_store(&watched_deadline, now_seconds() + (h->options.timeout < 5.0 ? h->options.timeout : 5.0));
     lua_close(L);
+    atomic_store(&watched_deadline, 0.0);
     free(mem);
 }
 
@@ -728,6 +766,7 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
     /* The time limit counts from the outermost call into the script. */
     if (h && h->call_depth++ == 0 && h->options.timeout > 0) {
         h->deadline = now_seconds() + h->options.timeout;
+        atomic_store(&watched_deadline, h->deadline);
         lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
     }
     int base = lua_gettop(L) - nargs;
@@ -735,8 +774,10 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
     lua_insert(L, base);
     int rc = lua_pcall(L, nargs, nresults, base);
     lua_remove(L, base);
-    if (h && --h->call_depth == 0)
+    if (h && --h->call_depth == 0) {
         h->deadline = 0;
+        atomic_store(&watched_deadline, 0.0);
+    }
     if (rc == LUA_ERRMEM) {
         void *ud;
         lua_getallocf(L, &ud);

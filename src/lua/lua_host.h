@@ -78,6 +78,10 @@ struct lua_host_options {
     int asset_dir_count;
 };
 
+/* When the call into a script now in progress must end (monotonic
+ * seconds, as log_now), 0 when none is: what the app's watchdog
+ * (app/watchdog.c) enforces where the count hook cannot. */
+double lua_host_watched_deadline(void);
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
 void lua_host_destroy(lua_State *L);
 /* Runs a file, leaving `nresults` values on the stack. */
@@ -98,6 +102,11 @@ void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outl
  * first that holds it, as an absolute path in `out`; false with a message
  * naming the folders searched. */
 bool lua_host_find_asset(lua_State *L, const char *name, char *out, size_t outlen, struct error *err);
+/* Memory a script causes outside the Lua heap (its images' pixels) counted
+ * against --script-memory with the heap: charge before (or right after)
+ * allocating, false with a message when it would pass the limit. */
+bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error *err);
+void lua_host_uncharge(lua_State *L, size_t bytes);
 /* The project folder the host was made with. */
 const char *lua_host_root(lua_State *L);
 /* The scene or graph userdata at `idx`, or NULL when it is something else. */

@@ -453,4 +453,32 @@ for ext in pfm exr; do
     && pass "past ulimit -f: one line naming big.$ext and 'File too large', nothing left" \
     || fail "ulimit -f ($ext)" "rc $(cat "$WORK/rc"): $(cat "$WORK/err")"
 done
+# Limits that hold against C-side work (issue 31): --script-timeout stops a backtracking pattern, a
+# long gsub, a looping message handler and a looping __gc within a second of the limit (the
+# watchdog: they run where the count hook cannot); --script-memory counts images' pixels.
+limit_case() { # NAME LUA-LINES
+  printf 'local c = require "caustica"\n%s\nlocal g = c.graph()\ng:add("shade", c.pass.shade {})\ng:output("shade.color")\nreturn { scene = c.scene {}, graph = g, size = {8, 8} }\n' \
+    "$2" >"$WORK/limit.lua"
+  local start=$(date +%s.%N)
+  timeout 30 "$CAUSTICA" render "$WORK/limit.lua" --script-timeout 1 -o "$WORK/limit.png" >/dev/null 2>"$WORK/err"
+  local rc=$? took=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+  [ $rc = 1 ] && grep -q "ran past --script-timeout" "$WORK/err" && [ "$(wc -l <"$WORK/err")" = 1 ] &&
+    awk -v t="$took" 'BEGIN { exit !(t < 6) }' \
+    && pass "--script-timeout 1 stops $1 in ${took} s, with one line" || fail "$1" "exit $rc after ${took} s: $(cat "$WORK/err")"
+  rm -f "$WORK/limit.png"
+}
+limit_case "a backtracking pattern" 'local r = ("a"):rep(40):find(("a?"):rep(40) .. ("a"):rep(40) .. "b")'
+limit_case "a gsub over 100 kB" 'local r = (("x"):rep(100000)):gsub("(.-)(.-)(.-)c", "")'
+limit_case "a looping message handler" 'xpcall(function() error("x") end, function() while true do end end)'
+limit_case "a looping __gc" 'setmetatable({}, { __gc = function() while true do end end })'
+printf 'local c = require "caustica"\nlocal img = c.image.new(16384, 16384)\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/bigimage.lua"
+expect_error "--script-memory 64 counts an image's pixels (16384^2 is refused before it is made)" 1 \
+  "bigimage.lua:2: a 16384x16384 image needs 4096 MB, which would take the script past --script-memory 64 MB" - -- \
+  "$CAUSTICA" render "$WORK/bigimage.lua" --script-memory 64 -o "$WORK/x.png"
+printf 'local c = require "caustica"\nlocal keep = {}\nfor i = 1, 8 do keep[i] = c.image.new(1024, 1024) end\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/manyimages.lua"
+expect_error "--script-memory 64: the fourth 16 MB image is one too many" 1 \
+  "manyimages.lua:3: a 1024x1024 image needs 16 MB, which would take the script past --script-memory 64 MB" - -- \
+  "$CAUSTICA" render "$WORK/manyimages.lua" --script-memory 64 -o "$WORK/x.png"
 finish
