@@ -25,12 +25,16 @@ endforeach()
 
 # Fuzz inputs replayed in every build: the seed corpus and each crash kept
 # from fuzzing (tests/fuzz/README.md).
-foreach(name gltf script)
+foreach(name gltf script image bench_csv)
   add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
   target_link_libraries(replay_${name} PRIVATE caustica_core)
 endforeach()
 add_test(NAME fuzz_gltf_regressions COMMAND replay_gltf
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_gltf ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_gltf)
+add_test(NAME fuzz_image_regressions COMMAND replay_image
+         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_image ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_image)
+add_test(NAME fuzz_bench_csv_regressions COMMAND replay_bench_csv
+         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_bench_csv ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_bench_csv)
 # The script corpus is made from the scene scripts (tests/fuzz/script_corpus.sh).
 add_test(NAME fuzz_script_regressions COMMAND sh -c
          "${CMAKE_SOURCE_DIR}/tests/fuzz/script_corpus.sh ${CMAKE_BINARY_DIR}/corpus_script && \

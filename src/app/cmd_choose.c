@@ -11,94 +11,13 @@
 #include <sys/stat.h>
 
 #include "app/bench.h"
+#include "app/bench_cache.h"
 #include "core/fileio.h"
 #include "app/cli.h"
 #include "app/techniques.h"
 #include "graph/graph.h"
 #include "graph/graph_lint.h"
 #include "scene/scene.h"
-
-#define MAX_ROWS 512
-
-struct row {
-    char technique[64], settings[256];
-    char renderer[256]; /* the GL renderer that measured it ("" in a cache from before it was recorded) */
-    double ms, error;
-    bool excluded; /* the technique leaves out part of the scene */
-};
-
-/* Splits a CSV line in place (the bench's fields have no commas or quotes). */
-static int split(char *line, char **fields, int max)
-{
-    int n = 0;
-    for (char *p = line; n < max;) {
-        fields[n++] = p;
-        char *comma = strchr(p, ',');
-        if (!comma)
-            break;
-        *comma = '\0';
-        p = comma + 1;
-    }
-    return n;
-}
-
-static bool read_rows(const char *path, struct row *rows, int *count, struct error *err)
-{
-    FILE *f = file_open_read(path, true, err); /* a cache entry: no link, no FIFO */
-    if (!f)
-        return false;
-    char line[8192];
-    char *fields[128];
-    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, n = 0;
-    bool header = true;
-    int line_number = 0;
-    while (fgets(line, sizeof line, f)) {
-        line_number++;
-        line[strcspn(line, "\r\n")] = '\0';
-        int nf = split(line, fields, 128);
-        if (header) {
-            for (int i = 0; i < nf; i++) {
-                if (strcmp(fields[i], "technique") == 0)
-                    col_technique = i;
-                else if (strcmp(fields[i], "settings") == 0)
-                    col_settings = i;
-                else if (strcmp(fields[i], "frame_ms") == 0)
-                    col_ms = i;
-                else if (strcmp(fields[i], "error") == 0)
-                    col_error = i;
-                else if (strcmp(fields[i], "renderer") == 0)
-                    col_renderer = i;
-            }
-            header = false;
-            if (col_technique < 0 || col_settings < 0 || col_ms < 0 || col_error < 0) {
-                fclose(f);
-                return error_set(err, "%s: not a technique sweep's results (no technique, settings, frame_ms and "
-                                      "error columns)", path);
-            }
-            continue;
-        }
-        if (nf <= col_error || strcmp(fields[0], "gpu") != 0 || n >= MAX_ROWS)
-            continue;
-        struct row *r = &rows[n++];
-        snprintf(r->technique, sizeof r->technique, "%s", fields[col_technique]);
-        snprintf(r->settings, sizeof r->settings, "%s", fields[col_settings]);
-        /* numbers checked, not taken on trust: "abc" would be 0.0 ms, the fastest */
-        char *end_ms, *end_error;
-        r->ms = strtod(fields[col_ms], &end_ms);
-        r->error = strtod(fields[col_error], &end_error);
-        if (end_ms == fields[col_ms] || *end_ms || end_error == fields[col_error] || *end_error || !isfinite(r->ms) ||
-            !isfinite(r->error) || r->ms < 0 || r->error < 0) {
-            fclose(f);
-            return error_set(err, "%s:%d: frame_ms '%s' and error '%s' must be finite numbers >= 0 (a damaged cache "
-                                  "entry: remove it, and bench measures again)", path, line_number,
-                             fields[col_ms], fields[col_error]);
-        }
-        snprintf(r->renderer, sizeof r->renderer, "%s", col_renderer >= 0 && nf > col_renderer ? fields[col_renderer] : "");
-    }
-    fclose(f);
-    *count = n;
-    return n > 0 ? true : error_set(err, "%s: no measured variants", path);
-}
 
 /* One pass's constructor as a script writes it: the parameters the script
  * (or the chosen settings) set. Lights and objects by their index in the
@@ -251,9 +170,9 @@ int cmd_choose(struct app *app, struct cli *cli)
         if (rc != 0)
             return rc;
     }
-    struct row *rows = calloc(MAX_ROWS, sizeof *rows);
+    struct bench_row *rows = calloc(BENCH_CACHE_MAX_ROWS, sizeof *rows);
     int n = 0;
-    if (!rows || !read_rows(cached, rows, &n, &err)) {
+    if (!rows || !bench_cache_read(cached, rows, &n, &err)) {
         free(rows);
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
@@ -353,7 +272,7 @@ int cmd_choose(struct app *app, struct cli *cli)
         free(rows);
         return EXIT_SCENE_ERROR;
     }
-    struct row chosen = rows[best];
+    struct bench_row chosen = rows[best];
     free(rows);
     /* the chosen technique's graph: the script opened with its selecting
      * parameters and settings */
