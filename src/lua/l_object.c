@@ -19,8 +19,19 @@ static int push_mesh(lua_State *L, struct mesh *m, struct error *err)
 {
     if (!m)
         return lutil_error(L, "%s", err->message);
+    /* its arrays count against --script-memory: positions, normals, two
+     * texture coordinate sets, indices and morph targets */
+    size_t bytes = m->vertex_count * 10 * sizeof(float) + m->index_count * sizeof(uint32_t) +
+                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float);
+    char what[160];
+    snprintf(what, sizeof what, "mesh '%.100s' (%zu vertices)", m->name, m->vertex_count);
+    if (!lua_host_charge(L, bytes, what, err)) {
+        mesh_destroy(m);
+        return lutil_error(L, "%s", err->message);
+    }
     struct l_mesh *u = lua_newuserdatauv(L, sizeof *u, 0);
     u->mesh = m;
+    u->charged = bytes;
     luaL_setmetatable(L, MESH_MT);
     return 1;
 }
@@ -179,6 +190,8 @@ static int mesh_gc(lua_State *L)
     struct l_mesh *u = luaL_checkudata(L, 1, MESH_MT);
     mesh_destroy(u->mesh);
     u->mesh = NULL;
+    lua_host_uncharge(L, u->charged);
+    u->charged = 0;
     return 0;
 }
 

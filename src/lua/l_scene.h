@@ -20,7 +20,10 @@
 #define MEDIUM_MT "caustica.Medium"
 #define TEXTURE_MT "caustica.Texture" /* userdata: struct texture_ref (l_texture.c) */
 
-struct l_mesh { struct mesh *mesh; };
+struct l_mesh {
+    struct mesh *mesh;
+    size_t charged; /* bytes counted against --script-memory while the script holds it */
+};
 struct l_object { struct object *obj; };
 struct l_light { struct light *light; };
 struct l_environment { struct environment *env; };

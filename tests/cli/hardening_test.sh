@@ -481,4 +481,8 @@ printf 'local c = require "caustica"\nlocal keep = {}\nfor i = 1, 8 do keep[i] =
 expect_error "--script-memory 64: the fourth 16 MB image is one too many" 1 \
   "manyimages.lua:3: a 1024x1024 image needs 16 MB, which would take the script past --script-memory 64 MB" - -- \
   "$CAUSTICA" render "$WORK/manyimages.lua" --script-memory 64 -o "$WORK/x.png"
+printf 'local c = require "caustica"\nlocal m = c.mesh.grid { size = 1, resolution = 2000 }\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/bigmesh.lua"
+expect_error "--script-memory 64 counts a mesh's arrays" 1 "bigmesh.lua:2: mesh 'grid' (4004001 vertices) needs 244 MB" - -- \
+  "$CAUSTICA" render "$WORK/bigmesh.lua" --script-memory 64 -o "$WORK/x.png"
 finish
