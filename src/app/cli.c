@@ -250,6 +250,17 @@ static bool parse_int(const char *s, int *out)
     return true;
 }
 
+/* "A<sep>B" as two ints, each through parse_int (overflow checked). */
+static bool parse_int_pair(const char *s, char sep, int *a, int *b)
+{
+    const char *at = strchr(s, sep);
+    char first[64];
+    if (!at || (size_t)(at - s) >= sizeof first)
+        return false;
+    snprintf(first, sizeof first, "%.*s", (int)(at - s), s);
+    return parse_int(first, a) && parse_int(at + 1, b);
+}
+
 static const char *usage_verb; /* the verb being parsed, for the hint */
 
 static bool usage_error(const char *fmt, const char *arg)
@@ -366,25 +377,11 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--overwrite") == 0) {
             cli->overwrite = true;
         } else if (strcmp(a, "--shard") == 0) {
-            /* each half through parse_int (overflow checked: 0/99999999999 is refused, not wrapped) */
-            char half[64];
-            const char *slash = strchr(next, '/');
-            bool parsed = slash && (size_t)(slash - next) < sizeof half;
-            if (parsed) {
-                snprintf(half, sizeof half, "%.*s", (int)(slash - next), next);
-                parsed = parse_int(half, &cli->shard_index) && parse_int(slash + 1, &cli->shard_count);
-            }
-            if (!parsed || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
+            /* 0/99999999999 is refused, not wrapped */
+            if (!parse_int_pair(next, '/', &cli->shard_index, &cli->shard_count) || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
                 return usage_error("--shard needs i/n with 0 <= i < n (e.g. $SLURM_ARRAY_TASK_ID/4), got '%s'", next);
         } else if (strcmp(a, "--size") == 0) {
-            char half[64];
-            const char *x = strchr(next, 'x');
-            bool parsed = x && (size_t)(x - next) < sizeof half;
-            if (parsed) {
-                snprintf(half, sizeof half, "%.*s", (int)(x - next), next);
-                parsed = parse_int(half, &cli->width) && parse_int(x + 1, &cli->height);
-            }
-            if (!parsed || cli->width < 1 || cli->height < 1 ||
+            if (!parse_int_pair(next, 'x', &cli->width, &cli->height) || cli->width < 1 || cli->height < 1 ||
                 cli->width > 16384 || cli->height > 16384)
                 return usage_error("--size needs WxH (1..16384), got '%s'", next);
         } else if (strcmp(a, "--backend") == 0) {

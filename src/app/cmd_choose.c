@@ -150,8 +150,9 @@ int cmd_choose(struct app *app, struct cli *cli)
         return EXIT_SCENE_ERROR;
     }
     struct stat st;
-    FILE *probe = lstat(cached, &st) == 0 ? file_open_read(cached, true, &err) : NULL;
-    if (!probe && lstat(cached, &st) == 0) {
+    bool present = lstat(cached, &st) == 0;
+    FILE *probe = present ? file_open_read(cached, true, &err) : NULL;
+    if (present && !probe) {
         cli_print_error(&err); /* a link or a FIFO where the cache entry should be: never read, never replaced */
         return EXIT_SCENE_ERROR;
     }
