@@ -25,14 +25,21 @@ endforeach()
 
 # Fuzz inputs replayed in every build: the seed corpus and each crash kept
 # from fuzzing (tests/fuzz/README.md).
-foreach(name gltf script image bench_csv)
+foreach(name gltf script bench_csv)
   add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
   target_link_libraries(replay_${name} PRIVATE caustica_core)
 endforeach()
 add_test(NAME fuzz_gltf_regressions COMMAND replay_gltf
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_gltf ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_gltf)
-add_test(NAME fuzz_image_regressions COMMAND replay_image
-         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_image ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_image)
+# The image readers: one harness each, built from one source.
+set(CAUSTICA_IMAGE_FUZZ_FORMATS png jpeg exr hdr pfm)
+foreach(format ${CAUSTICA_IMAGE_FUZZ_FORMATS})
+  add_executable(replay_${format} tests/fuzz/replay_main.c tests/fuzz/fuzz_image_reader.c)
+  target_compile_definitions(replay_${format} PRIVATE FUZZ_IMAGE_FORMAT=${format})
+  target_link_libraries(replay_${format} PRIVATE caustica_core)
+  add_test(NAME fuzz_${format}_regressions COMMAND replay_${format}
+           ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_${format} ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_${format})
+endforeach()
 add_test(NAME fuzz_bench_csv_regressions COMMAND replay_bench_csv
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_bench_csv ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_bench_csv)
 # The script corpus is made from the scene scripts (tests/fuzz/script_corpus.sh).

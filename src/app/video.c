@@ -45,13 +45,21 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
                          output);
     if (count == 0)
         return error_set(err, "--video %s: no frames to encode", output);
-    /* ffmpeg's concat list: every frame in order, each shown 1/fps */
-    /* a relative name starting with '-' reaches ffmpeg as ./-name, never as an option */
-    char list[4200];
-    snprintf(list, sizeof list, "%s%s.frames.txt", output[0] == '-' ? "./" : "", output);
+    /* ffmpeg writes the list and the video by name, through any link: both
+     * live in a private folder (0700) beside the output, where nobody else
+     * can plant one, and the video is renamed into place at the end. */
+    char folder[4200], list[4300], temporary[4300];
+    if (!path_temporary_dir_create(output, folder, sizeof folder, err))
+        return false;
+    /* a folder named "-..." would reach ffmpeg as an option: ./-name */
+    const char *dot = folder[0] == '-' ? "./" : "";
+    snprintf(list, sizeof list, "%s%s/frames.txt", dot, folder);
     FILE *f = fopen(list, "w");
-    if (!f)
+    if (!f) {
+        path_temporary_dir_remove(folder);
         return error_set(err, "--video %s: cannot write %s", output, list);
+    }
+    /* ffmpeg's concat list: every frame in order, each shown 1/fps */
     for (int i = 0; i < count; i++) {
         char absolute[4200];
         if (!realpath(paths[i], absolute))
@@ -66,16 +74,12 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
         fprintf(f, "'\nduration %.9f\n", 1.0 / fps);
     }
     fclose(f);
-    char filters[128], quality[16], temporary[4200];
+    char filters[128], quality[16];
     bool gif = ends_with(output, ".gif");
     /* 4:2:0 chroma wants even sizes: pad an odd one by a pixel (libx264 refuses it otherwise) */
     snprintf(filters, sizeof filters, gif ? "fps=%g" : "fps=%g,pad=ceil(iw/2)*2:ceil(ih/2)*2", fps);
     snprintf(quality, sizeof quality, "%d", crf);
-    /* a name starting with '-' must not reach ffmpeg as an option */
-    char dir[4096];
-    path_dirname(output, dir, sizeof dir);
-    const char *base = strrchr(output, '/') ? strrchr(output, '/') + 1 : output;
-    snprintf(temporary, sizeof temporary, "%s/.%s.caustica-tmp%s", dir, base, gif ? ".gif" : ".mp4");
+    snprintf(temporary, sizeof temporary, "%s%s/video%s", dot, folder, gif ? ".gif" : ".mp4");
     const char *argv_mp4[] = {"ffmpeg", "-y", "-loglevel", "error", "-f", "concat", "-safe", "0", "-i", list,
                               "-vf", filters, "-c:v", "libx264", "-crf", quality, "-pix_fmt", "yuv420p",
                               "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "iec61966-2-1",
@@ -86,15 +90,14 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
     int rc = posix_spawnp(&pid, "ffmpeg", NULL, NULL, (char *const *)(gif ? argv_gif : argv_mp4), environ);
     int status = 0;
     bool ok = rc == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    remove(list);
     if (!ok) {
-        remove(temporary);
+        path_temporary_dir_remove(folder);
         return error_set(err, "--video %s: ffmpeg failed (exit %d); the frames are on disk", output,
                          WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     }
-    if (rename(temporary, output) != 0) {
-        remove(temporary);
+    bool moved = rename(temporary, output) == 0;
+    path_temporary_dir_remove(folder);
+    if (!moved)
         return error_set(err, "--video %s: cannot move the encoded video into place", output);
-    }
     return true;
 }

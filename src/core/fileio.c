@@ -111,6 +111,34 @@ int path_temporary_create(const char *path, char *out, size_t outlen, struct err
     return fd;
 }
 
+bool path_temporary_dir_create(const char *path, char *out, size_t outlen, struct error *err)
+{
+    char base[4096];
+    path_temporary(path, base, sizeof base);
+    if ((size_t)snprintf(out, outlen, "%s.XXXXXX", base) >= outlen)
+        return error_set(err, "%s: path too long", path);
+    if (!mkdtemp(out))
+        return error_set(err, "%s: cannot create a temporary folder beside it: %s", path, strerror(errno));
+    return true;
+}
+
+void path_temporary_dir_remove(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        char path[4400];
+        struct stat st;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
+            unlink(path);
+    }
+    closedir(d);
+    rmdir(dir);
+}
+
 FILE *file_open_read(const char *path, bool no_follow, struct error *err)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | (no_follow ? O_NOFOLLOW : 0));
@@ -161,7 +189,15 @@ int path_remove_stale_temporaries(const char *dir)
             continue;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir && dir[0] ? dir : ".", e->d_name);
-        if (unlink(path) == 0)
+        struct stat st;
+        if (lstat(path, &st) != 0)
+            continue;
+        if (S_ISDIR(st.st_mode)) { /* a video encoder's private folder */
+            if (st.st_uid == geteuid()) {
+                path_temporary_dir_remove(path);
+                removed += access(path, F_OK) != 0;
+            }
+        } else if (unlink(path) == 0)
             removed++;
     }
     closedir(d);

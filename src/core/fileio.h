@@ -27,6 +27,13 @@ void path_temporary(const char *path, char *out, size_t outlen);
  * guessable name in a shared folder is never written through; mode 0666
  * less the umask. The open descriptor, or -1 with `err` set. */
 int path_temporary_create(const char *path, char *out, size_t outlen, struct error *err);
+/* A private folder (mode 0700, mkdtemp) beside `path` for a program that
+ * writes files by name (ffmpeg): ".<name>.caustica-tmp.<pid>.XXXXXX", where
+ * no one else can plant a link; path_temporary_dir_remove empties (regular
+ * files only) and removes it, as path_remove_stale_temporaries does for a
+ * dead writer's. */
+bool path_temporary_dir_create(const char *path, char *out, size_t outlen, struct error *err);
+void path_temporary_dir_remove(const char *dir);
 /* Opens a file to read, refusing what is not a regular file (a FIFO would
  * block forever, a device or folder is no image) without blocking on it;
  * `no_follow`: a link as the last component is refused too (cache entries). */

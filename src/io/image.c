@@ -280,10 +280,14 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err)
         return error_set(err, "%s: not a PFM file (expected a 'PF' or 'Pf' header)", path);
     }
     int channels = magic[1] == 'F' ? 3 : 1;
-    if (scale > 0) {
+    if (!(scale < 0 || scale > 0)) { /* 0 or NaN: neither byte order */
         fclose(f);
-        return error_set(err, "%s: big-endian PFM is not supported", path);
+        return error_set(err, "%s: not a PFM file (its scale must be non-zero: < 0 little-endian, > 0 big-endian)",
+                         path);
     }
+    /* the scale's sign says the file's byte order; the host's is tested */
+    const uint32_t probe = 1;
+    bool swap = (scale > 0) == (*(const uint8_t *)&probe == 1);
     /* what the header claims against what the file holds, before any allocation */
     struct stat st;
     long at = ftell(f);
@@ -303,6 +307,12 @@ bool image_read_pfm(const char *path, struct image *img, struct error *err)
     bool ok = row != NULL;
     for (int y = h - 1; ok && y >= 0; y--) {
         ok = fread(row, sizeof(float), (size_t)w * (size_t)channels, f) == (size_t)w * (size_t)channels;
+        for (size_t i = 0; ok && swap && i < (size_t)w * (size_t)channels; i++) {
+            uint32_t bits;
+            memcpy(&bits, &row[i], 4);
+            bits = (bits >> 24) | ((bits >> 8) & 0xff00u) | ((bits << 8) & 0xff0000u) | (bits << 24);
+            memcpy(&row[i], &bits, 4);
+        }
         for (int x = 0; ok && x < w; x++) {
             float *px = img->rgba + ((size_t)y * (size_t)w + (size_t)x) * 4;
             for (int c = 0; c < 3; c++)

@@ -133,14 +133,17 @@ bool image_read_hdr(const char *path, struct image *img, struct error *err)
         return error_set(err, "%s: only RGBE images stored '-Y h +X w' up to %d pixels a side are read", path,
                          HDR_MAX_SIDE);
     }
-    /* the least a file of w x h holds: each scanline's 4-byte header (or
-     * flat pixels) and, run-length encoded, 2 bytes per 127 pixels of each
-     * of its 4 channels; checked before the image is allocated */
+    /* the least a file of w x h holds, checked before the image is
+     * allocated: a scanline is either flat (4 bytes a pixel) or run-length
+     * encoded (a 4-byte header and at least 2 bytes per 127 pixels of each
+     * of its 4 channels), whichever is smaller (flat, for w < 3) */
     struct stat st;
     long at = ftell(f);
     unsigned long long left = fstat(fileno(f), &st) == 0 && at >= 0 && st.st_size >= at
                                   ? (unsigned long long)(st.st_size - at) : 0;
-    unsigned long long least = (unsigned long long)h * (4ull + 8ull * (((unsigned long long)w + 126) / 127));
+    unsigned long long flat = 4ull * (unsigned long long)w;
+    unsigned long long encoded = 4ull + 8ull * (((unsigned long long)w + 126) / 127);
+    unsigned long long least = (unsigned long long)h * (flat < encoded ? flat : encoded);
     if (!image_check_header(path, w, h, least, left, err)) {
         fclose(f);
         return false;

@@ -378,6 +378,19 @@ if [ -n "$truth" ]; then
 else
   fail "bench cache" "no cached truth"
 fi
+# --video: ffmpeg writes its list and its output by name; links planted at the names a video used to
+# be encoded through (the list beside the output, a hidden temporary) are never written through.
+if command -v ffmpeg >/dev/null 2>&1; then
+  mkdir -p "$WORK/shared/vid"
+  ln -s "$WORK/victim_list" "$WORK/shared/vid/v.mp4.frames.txt"
+  ln -s "$WORK/victim_video" "$WORK/shared/vid/.v.mp4.caustica-tmp.mp4"
+  "$CAUSTICA" record "$WORK/shared/still.lua" --frame-count 2 -o "$WORK/shared/vid/f.png" \
+    --video "$WORK/shared/vid/v.mp4" -q >/dev/null 2>"$WORK/err"
+  [ -s "$WORK/shared/vid/v.mp4" ] && [ ! -e "$WORK/victim_list" ] && [ ! -e "$WORK/victim_video" ] &&
+    [ "$(ls -A "$WORK/shared/vid" | grep -c caustica-tmp)" = 1 ] \
+    && pass "--video: links planted at its old temporary names are not written through, nothing left" \
+    || fail "video links" "$(ls -la "$WORK/shared/vid"; cat "$WORK/err")"
+fi
 mkfifo "$WORK/shared/pipe.pfm"
 printf 'local c = require "caustica"\nlocal img = c.image.load("pipe.pfm")\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
   >"$WORK/shared/fifo.lua"

@@ -92,6 +92,57 @@ int main(void)
         unlink(hdr);
     }
 
+    /* tiny images round-trip: a 2x2 and a 1x1 HDR are flat scanlines,
+     * smaller than an encoded scanline's least size (the size check before
+     * allocation once refused them) */
+    for (int side = 1; side <= 2; side++) {
+        struct image tiny;
+        CHECK(image_create(&tiny, side, side, &err));
+        for (int i = 0; i < side * side * 4; i++)
+            tiny.rgba[i] = 0.25f * (float)(i % 4);
+        CHECK(image_write(hdr, &tiny, &err));
+        CHECK(image_read(hdr, &b, &err));
+        CHECK(b.width == side && b.height == side);
+        CHECK_NEAR(b.rgba[4 * (side * side - 1) + 2], 0.5, 0.5 / 128);
+        image_destroy(&b);
+        image_destroy(&tiny);
+    }
+    unlink(hdr);
+
+    /* PFM in both byte orders: the scale's sign says which (< 0 little-
+     * endian, > 0 big-endian); the same pixel values either way, and a zero
+     * scale refused */
+    {
+        char pfm[256];
+        snprintf(pfm, sizeof pfm, "%s/order.pfm", dir);
+        const float values[6] = {0.5f, 1.5f, -2.0f, 3.25f, 0.0f, 1e-3f};
+        for (int big = 0; big <= 2; big++) {
+            FILE *f = fopen(pfm, "wb");
+            CHECK(f != NULL);
+            fprintf(f, "PF\n2 1\n%s\n", big == 2 ? "0" : big ? "1.0" : "-1.0");
+            for (int i = 0; i < 6; i++) {
+                uint32_t bits;
+                memcpy(&bits, &values[i], 4);
+                unsigned char bytes[4];
+                for (int k = 0; k < 4; k++)
+                    bytes[k] = (unsigned char)(bits >> (big ? 24 - 8 * k : 8 * k));
+                fwrite(bytes, 1, 4, f);
+            }
+            fclose(f);
+            if (big == 2) {
+                CHECK(!image_read(pfm, &b, &err));
+                CHECK_CONTAINS(err.message, "non-zero");
+                continue;
+            }
+            CHECK(image_read(pfm, &b, &err));
+            CHECK(b.width == 2 && b.height == 1);
+            CHECK(b.rgba[0] == 0.5f && b.rgba[1] == 1.5f && b.rgba[2] == -2.0f);
+            CHECK(b.rgba[4] == 3.25f && b.rgba[5] == 0.0f && b.rgba[6] == 1e-3f);
+            image_destroy(&b);
+        }
+        unlink(pfm);
+    }
+
     /* no temporary files are left behind */
     char tmp[300];
     path_temporary(png, tmp, sizeof tmp);
