@@ -8,24 +8,28 @@
 #include <jpeglib.h>
 #include <png.h>
 
-static bool size_ok(const char *name, unsigned long w, unsigned long h, struct error *err)
+static bool size_ok(const char *name, unsigned long w, unsigned long h, unsigned long long max_bytes,
+                    struct error *err)
 {
     if (w == 0 || h == 0 || w > IMAGE_DECODE_MAX_SIDE || h > IMAGE_DECODE_MAX_SIDE ||
         (unsigned long long)w * h > IMAGE_DECODE_MAX_TEXELS)
         return error_set(err, "%s: image of %lux%lu texels (at most %d per side and %u in all)", name, w, h,
                          IMAGE_DECODE_MAX_SIDE, IMAGE_DECODE_MAX_TEXELS);
+    if ((unsigned long long)w * h * 4ull > max_bytes)
+        return error_set(err, "%s: image of %lux%lu texels needs %.2f MB, more than the %.2f MB it may use", name, w,
+                         h, (double)w * (double)h * 4.0 / 1048576.0, (double)max_bytes / 1048576.0);
     return true;
 }
 
-static bool decode_png(const char *name, const uint8_t *bytes, size_t size, uint8_t **out, int *width, int *height,
-                       struct error *err)
+static bool decode_png(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                       uint8_t **out, int *width, int *height, struct error *err)
 {
     png_image pi;
     memset(&pi, 0, sizeof pi);
     pi.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_memory(&pi, bytes, size))
         return error_set(err, "%s: cannot read PNG: %s", name, pi.message);
-    if (!size_ok(name, pi.width, pi.height, err)) {
+    if (!size_ok(name, pi.width, pi.height, max_bytes, err)) {
         png_image_free(&pi);
         return false;
     }
@@ -68,8 +72,8 @@ static void jpeg_quiet(j_common_ptr cinfo, int level)
         cinfo->err->num_warnings++;
 }
 
-static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uint8_t **out, int *width, int *height,
-                        struct error *err)
+static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                        uint8_t **out, int *width, int *height, struct error *err)
 {
     struct jpeg_decompress_struct cinfo;
     struct jpeg_failure failure;
@@ -96,7 +100,7 @@ static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uin
         return error_set(err, "%s: truncated: its header says %ux%u, which needs at least %llu bytes, the file has %zu",
                          name, cinfo.image_width, cinfo.image_height, least, size);
     }
-    if (!size_ok(name, cinfo.image_width, cinfo.image_height, err)) {
+    if (!size_ok(name, cinfo.image_width, cinfo.image_height, max_bytes, err)) {
         jpeg_destroy_decompress(&cinfo);
         return false;
     }
@@ -141,13 +145,15 @@ static bool decode_jpeg(const char *name, const uint8_t *bytes, size_t size, uin
     return true;
 }
 
-bool image_decode_rgba8(const char *name, const uint8_t *bytes, size_t size, uint8_t **rgba, int *width,
-                        int *height, struct error *err)
+bool image_decode_rgba8(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                        uint8_t **rgba, int *width, int *height, struct error *err)
 {
+    if (max_bytes == 0)
+        max_bytes = 4ull * IMAGE_DECODE_MAX_TEXELS;
     static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
     if (size >= 8 && memcmp(bytes, png_signature, 8) == 0)
-        return decode_png(name, bytes, size, rgba, width, height, err);
+        return decode_png(name, bytes, size, max_bytes, rgba, width, height, err);
     if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
-        return decode_jpeg(name, bytes, size, rgba, width, height, err);
+        return decode_jpeg(name, bytes, size, max_bytes, rgba, width, height, err);
     return error_set(err, "%s: not a PNG or JPEG image (textures are PNG or JPEG)", name);
 }

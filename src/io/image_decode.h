@@ -16,8 +16,10 @@
 #define IMAGE_DECODE_MAX_TEXELS (1u << 26)
 
 /* RGBA8 texels (row 0 the top row) owned by the caller; `name` is the
- * file or glTF image named in messages. */
-bool image_decode_rgba8(const char *name, const uint8_t *bytes, size_t size, uint8_t **rgba, int *width,
-                        int *height, struct error *err);
+ * file or glTF image named in messages. `max_bytes` (0: only the caps
+ * above) bounds the texels' size, checked from the header before they are
+ * allocated: what a script's --script-memory leaves it. */
+bool image_decode_rgba8(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                        uint8_t **rgba, int *width, int *height, struct error *err);
 
 #endif

@@ -151,10 +151,7 @@ static void push_texture_slot(lua_State *L, const struct texture_ref *slot)
         lua_pushnil(L);
         return;
     }
-    struct texture_ref *u = lua_newuserdatauv(L, sizeof *u, 0);
-    *u = *slot;
-    texture_retain(u->texture);
-    luaL_setmetatable(L, TEXTURE_MT);
+    ltexture_push_ref(L, slot);
 }
 
 static int get_texture(lua_State *L)

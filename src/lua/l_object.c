@@ -20,9 +20,11 @@ static int push_mesh(lua_State *L, struct mesh *m, struct error *err)
     if (!m)
         return lutil_error(L, "%s", err->message);
     /* its arrays count against --script-memory: positions, normals, two
-     * texture coordinate sets, indices and morph targets */
+     * texture coordinate sets, indices and morph targets, and its
+     * material's textures (checked against what was left before each was
+     * decoded) */
     size_t bytes = m->vertex_count * 10 * sizeof(float) + m->index_count * sizeof(uint32_t) +
-                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float);
+                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float) + mesh_texture_bytes(m);
     char what[160];
     snprintf(what, sizeof what, "mesh '%.100s' (%zu vertices)", m->name, m->vertex_count);
     if (!lua_host_charge(L, bytes, what, err)) {
@@ -44,7 +46,11 @@ static int mesh_load(lua_State *L)
     struct error err;
     if (!lua_host_check_read(L, path, &err))
         return lutil_error(L, "%s", err.message);
-    return push_mesh(L, mesh_load_gltf(path, &err), &err);
+    unsigned long long left = lua_host_memory_left(L);
+    struct mesh *m = mesh_load_gltf(path, left, &err);
+    if (!m && left && strstr(err.message, "more than the"))
+        return lutil_error(L, "%s (what --script-memory leaves the script; raise it, 0 = no limit)", err.message);
+    return push_mesh(L, m, &err);
 }
 
 /* An optional option table at 1 with these fields only. */

@@ -18,7 +18,7 @@
 #define DEFORMER_MT "caustica.Deformer"
 #define SCENE_MT "caustica.Scene"
 #define MEDIUM_MT "caustica.Medium"
-#define TEXTURE_MT "caustica.Texture" /* userdata: struct texture_ref (l_texture.c) */
+#define TEXTURE_MT "caustica.Texture" /* userdata: struct l_texture (l_texture.c) */
 
 struct l_mesh {
     struct mesh *mesh;
@@ -49,5 +49,8 @@ void lmedium_open(lua_State *L);
 void ltexture_open(lua_State *L);
 /* The texture reference of a Texture value, or NULL when it is something else. */
 const struct texture_ref *ltexture_test(lua_State *L, int idx);
+/* Pushes a Texture value for a reference a material holds (retained; not
+ * charged again: the value that made the texture was). */
+void ltexture_push_ref(lua_State *L, const struct texture_ref *ref);
 
 #endif

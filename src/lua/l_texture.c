@@ -10,28 +10,54 @@
 #include "lua/l_util.h"
 #include "lua/lua_host.h"
 
+/* A Texture value: the reference, and the bytes charged against
+ * --script-memory for it (its texels, when this value made the texture). */
+struct l_texture {
+    struct texture_ref ref;
+    size_t charged;
+};
+
 static struct texture_ref *check_texture(lua_State *L, int idx)
 {
-    struct texture_ref *u = luaL_checkudata(L, idx, TEXTURE_MT);
-    if (!u->texture)
+    struct l_texture *u = luaL_checkudata(L, idx, TEXTURE_MT);
+    if (!u->ref.texture)
         lscene_released(L, idx, "texture");
-    return u;
+    return &u->ref;
 }
 
 const struct texture_ref *ltexture_test(lua_State *L, int idx)
 {
-    struct texture_ref *u = luaL_testudata(L, idx, TEXTURE_MT);
-    return u && u->texture ? u : NULL;
+    struct l_texture *u = luaL_testudata(L, idx, TEXTURE_MT);
+    return u && u->ref.texture ? &u->ref : NULL;
 }
 
-/* Takes the caller's reference to t. */
+void ltexture_push_ref(lua_State *L, const struct texture_ref *ref)
+{
+    struct l_texture *u = lua_newuserdatauv(L, sizeof *u, 0);
+    u->ref = *ref;
+    u->charged = 0;
+    texture_retain(u->ref.texture);
+    luaL_setmetatable(L, TEXTURE_MT);
+}
+
+/* Takes the caller's reference to t, and charges its texels against
+ * --script-memory (the decoders checked them against what was left before
+ * allocating; a checker is small but counted all the same). */
 static struct texture_ref *push_texture(lua_State *L, struct texture *t)
 {
-    struct texture_ref *u = lua_newuserdatauv(L, sizeof *u, 0);
-    texture_ref_init(u);
-    u->texture = t;
+    struct error err;
+    char what[600];
+    snprintf(what, sizeof what, "texture '%.500s' (%dx%d)", t->name, t->width, t->height);
+    if (!lua_host_charge(L, texture_bytes(t), what, &err)) {
+        texture_destroy(t);
+        lutil_error(L, "%s", err.message);
+    }
+    struct l_texture *u = lua_newuserdatauv(L, sizeof *u, 0);
+    texture_ref_init(&u->ref);
+    u->ref.texture = t;
+    u->charged = texture_bytes(t);
     luaL_setmetatable(L, TEXTURE_MT);
-    return u;
+    return &u->ref;
 }
 
 /* A pair {x, y} or one number for both. */
@@ -61,9 +87,12 @@ static struct texture *load_file(lua_State *L, const char *rel)
     struct error err;
     if (!lua_host_check_read(L, path, &err))
         lutil_error(L, "%s", err.message);
-    struct texture *t = texture_load(path, &err);
+    unsigned long long left = lua_host_memory_left(L);
+    struct texture *t = texture_load(path, left, &err);
     if (!t)
-        lutil_error(L, "%s", err.message);
+        lutil_error(L, "%s%s", err.message,
+                    left && strstr(err.message, "more than the") ? " (what --script-memory leaves the script; raise it, "
+                                                                   "0 = no limit)" : "");
     return t;
 }
 
@@ -138,17 +167,19 @@ static int texture_checker(lua_State *L)
 
 static int texture_gc(lua_State *L)
 {
-    struct texture_ref *u = luaL_checkudata(L, 1, TEXTURE_MT);
-    texture_destroy(u->texture);
-    u->texture = NULL;
+    struct l_texture *u = luaL_checkudata(L, 1, TEXTURE_MT);
+    texture_destroy(u->ref.texture);
+    u->ref.texture = NULL;
+    lua_host_uncharge(L, u->charged);
+    u->charged = 0;
     return 0;
 }
 
 static int texture_tostring(lua_State *L)
 {
-    struct texture_ref *u = luaL_checkudata(L, 1, TEXTURE_MT);
-    if (u->texture)
-        lua_pushfstring(L, "Texture(%s, %dx%d)", u->texture->name, u->texture->width, u->texture->height);
+    const struct texture *t = ((struct l_texture *)luaL_checkudata(L, 1, TEXTURE_MT))->ref.texture;
+    if (t)
+        lua_pushfstring(L, "Texture(%s, %dx%d)", t->name, t->width, t->height);
     else
         lua_pushstring(L, "Texture(released)");
     return 1;

@@ -78,6 +78,17 @@ bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error 
     return true;
 }
 
+unsigned long long lua_host_memory_left(lua_State *L)
+{
+    void *ud = NULL;
+    if (lua_getallocf(L, &ud) != host_alloc || !ud)
+        return 0;
+    struct host_memory *m = ud;
+    if (!m->limit)
+        return 0;
+    return m->used < m->limit ? (unsigned long long)(m->limit - m->used) : 1ull;
+}
+
 void lua_host_uncharge(lua_State *L, size_t bytes)
 {
     void *ud = NULL;

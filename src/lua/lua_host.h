@@ -107,6 +107,10 @@ bool lua_host_find_asset(lua_State *L, const char *name, char *out, size_t outle
  * allocating, false with a message when it would pass the limit. */
 bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error *err);
 void lua_host_uncharge(lua_State *L, size_t bytes);
+/* What --script-memory leaves the script, for a reader to check a header
+ * against before it allocates: 0 when there is no limit (at least 1 when
+ * there is one, so that 0 never reads as "none"). */
+unsigned long long lua_host_memory_left(lua_State *L);
 /* The project folder the host was made with. */
 const char *lua_host_root(lua_State *L);
 /* The scene or graph userdata at `idx`, or NULL when it is something else. */

@@ -265,7 +265,15 @@ struct mesh *mesh_create_box(vec3 size, struct error *err)
     return m;
 }
 
-struct mesh *mesh_load_gltf(const char *path, struct error *err)
+size_t mesh_texture_bytes(const struct mesh *m)
+{
+    if (!m || !m->has_material)
+        return 0;
+    return texture_bytes(m->material.base_color.texture) + texture_bytes(m->material.normal.texture) +
+           texture_bytes(m->material.emissive.texture);
+}
+
+struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err)
 {
     struct gltf_mesh g;
     if (!gltf_load(path, &g, err))
@@ -334,7 +342,16 @@ struct mesh *mesh_load_gltf(const char *path, struct error *err)
                 continue;
             char name[700];
             snprintf(name, sizeof name, "%s %s", path, gt->name);
-            struct texture *t = texture_decode(name, gt->bytes, gt->size, err);
+            unsigned long long used = mesh_texture_bytes(m);
+            if (texture_budget && used >= texture_budget) {
+                error_set(err, "%s: no memory left for its texture %s (its textures may take %.1f MB)", path,
+                          gt->name, (double)texture_budget / 1048576.0);
+                gltf_mesh_free(&g);
+                mesh_destroy(m);
+                return NULL;
+            }
+            struct texture *t =
+                texture_decode(name, gt->bytes, gt->size, texture_budget ? texture_budget - used : 0, err);
             if (!t) {
                 gltf_mesh_free(&g);
                 mesh_destroy(m);

@@ -69,10 +69,14 @@ struct texture *texture_create(const char *name, int width, int height, struct e
 /* A checker of `squares` x `squares` squares over uv [0,1]^2, one texel
  * each, sampled nearest and repeating: sharp edges on both renderers. */
 struct texture *texture_create_checker(int squares, vec3 a, vec3 b, struct error *err);
-/* Decodes a PNG or JPEG file (PNG: libpng, JPEG: libjpeg). */
-struct texture *texture_load(const char *path, struct error *err);
+/* Decodes a PNG or JPEG file (PNG: libpng, JPEG: libjpeg); `max_bytes`
+ * bounds its texels before they are allocated (0: only the decoder's caps). */
+struct texture *texture_load(const char *path, unsigned long long max_bytes, struct error *err);
 /* Decodes PNG or JPEG bytes (by their signature); `name` for messages. */
-struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t size, struct error *err);
+struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                               struct error *err);
+/* The bytes of a texture's texels (what a script is charged for it). */
+size_t texture_bytes(const struct texture *t);
 void texture_retain(struct texture *t);
 void texture_destroy(struct texture *t);
 /* The identity transform, texcoord 0, scale 1, no texture. */
@@ -123,7 +127,11 @@ struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides
 struct mesh *mesh_create_lathe(const char *name, const float *profile, int count, int segments, struct error *err);
 struct mesh *mesh_create_cylinder(float radius, float height, int segments, struct error *err);
 struct mesh *mesh_create_cone(float radius, float height, int segments, struct error *err);
-struct mesh *mesh_load_gltf(const char *path, struct error *err);
+/* `texture_budget`: the bytes its material's textures may take together,
+ * checked before each is decoded (0: only the decoder's caps). */
+struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err);
+/* The bytes of the textures a mesh's material holds. */
+size_t mesh_texture_bytes(const struct mesh *m);
 /* Takes ownership of the arrays (malloc'd). */
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err);

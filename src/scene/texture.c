@@ -77,24 +77,30 @@ struct texture *texture_create_checker(int squares, vec3 a, vec3 b, struct error
     return t;
 }
 
-struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t size, struct error *err)
+struct texture *texture_decode(const char *name, const uint8_t *bytes, size_t size, unsigned long long max_bytes,
+                               struct error *err)
 {
     uint8_t *rgba;
     int w, h;
-    if (!image_decode_rgba8(name, bytes, size, &rgba, &w, &h, err))
+    if (!image_decode_rgba8(name, bytes, size, max_bytes, &rgba, &w, &h, err))
         return NULL;
     return wrap_texels(name, w, h, rgba, err);
 }
 
-struct texture *texture_load(const char *path, struct error *err)
+struct texture *texture_load(const char *path, unsigned long long max_bytes, struct error *err)
 {
     char *data;
     size_t size;
     if (!file_read_all(path, &data, &size, err))
         return NULL;
-    struct texture *t = texture_decode(path, (const uint8_t *)data, size, err);
+    struct texture *t = texture_decode(path, (const uint8_t *)data, size, max_bytes, err);
     free(data);
     return t;
+}
+
+size_t texture_bytes(const struct texture *t)
+{
+    return t ? (size_t)t->width * (size_t)t->height * 4 : 0;
 }
 
 void texture_retain(struct texture *t)

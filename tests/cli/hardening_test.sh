@@ -498,4 +498,27 @@ printf 'local c = require "caustica"\nlocal m = c.mesh.grid { size = 1, resoluti
   >"$WORK/bigmesh.lua"
 expect_error "--script-memory 64 counts a mesh's arrays" 1 "bigmesh.lua:2: mesh 'grid' (4004001 vertices) needs 244 MB" - -- \
   "$CAUSTICA" render "$WORK/bigmesh.lua" --script-memory 64 -o "$WORK/x.png"
+# Textures count too: a 2048^2 PNG (16 MB of texels) is refused at 8 MB from its header, before it is
+# decoded; textures kept in a table add up; dropped ones are given back.
+printf 'local c = require "caustica"\nc.image.new(2048, 2048):save("%s")\nc.image.new(512, 512):save("%s")\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  "$WORK/tex2048.png" "$WORK/tex512.png" >"$WORK/maketex.lua"
+"$CAUSTICA" render "$WORK/maketex.lua" --allow-write "$WORK" -o "$WORK/x.png" >/dev/null 2>&1
+printf 'local c = require "caustica"\nlocal t = c.texture("%s")\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  "$WORK/tex2048.png" >"$WORK/bigtex.lua"
+expect_error "--script-memory 8 counts a texture's texels, checked from its header" 1 \
+  "bigtex.lua:2: $WORK/tex2048.png: image of 2048x2048 texels needs 16.00 MB, more than the" - -- \
+  "$CAUSTICA" render "$WORK/bigtex.lua" --script-memory 8 --allow-read "$WORK" -o "$WORK/x.png"
+printf 'local c = require "caustica"\nlocal keep = {}\nfor i = 1, 40 do keep[i] = c.texture("%s") end\nlocal g = c.graph()\ng:add("shade", c.pass.shade {})\ng:output("shade.color")\nreturn { scene = c.scene {}, graph = g, size = {8, 8} }\n' \
+  "$WORK/tex512.png" >"$WORK/manytex.lua"
+expect_error "--script-memory 8: 1 MB textures kept in a table add up" 1 \
+  "tex512.png: image of 512x512 texels needs 1.00 MB, more than the" - -- \
+  "$CAUSTICA" render "$WORK/manytex.lua" --script-memory 8 --allow-read "$WORK" -o "$WORK/x.png"
+printf 'local c = require "caustica"\nlocal keep = {}\nfor i = 1, 60 do keep[i] = c.mesh.load(c.asset("khronos/BoxTextured/BoxTextured.glb")) end\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
+  >"$WORK/meshtex.lua"
+expect_error "--script-memory 8: a glTF's textures count with its mesh, checked before each is decoded" 1 \
+  "BoxTextured.glb image 0 '': image of 256x256 texels needs 0.25 MB, more than the" - -- \
+  "$CAUSTICA" render "$WORK/meshtex.lua" --script-memory 8 -o "$WORK/x.png"
+sed 's/keep\[i\] = c.texture/keep[1] = c.texture/; s/ end$/ collectgarbage() end/' "$WORK/manytex.lua" >"$WORK/droptex.lua"
+"$CAUSTICA" render "$WORK/droptex.lua" --script-memory 8 --allow-read "$WORK" -o "$WORK/x.png" >/dev/null 2>"$WORK/err" \
+  && pass "--script-memory 8: forty 1 MB textures, each dropped, are given back" || fail "dropped textures" "$(cat "$WORK/err")"
 finish

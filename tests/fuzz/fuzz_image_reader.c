@@ -89,7 +89,7 @@ static void decode(const uint8_t *data, size_t size)
     uint8_t *rgba = NULL;
     int w = 0, h = 0;
     struct error err;
-    if (image_decode_rgba8(name, bytes, n, &rgba, &w, &h, &err))
+    if (image_decode_rgba8(name, bytes, n, 0, &rgba, &w, &h, &err))
         free(rgba);
     free(bytes);
 }

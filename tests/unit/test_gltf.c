@@ -81,7 +81,7 @@ int main(void)
     CHECK_NEAR(m.material.attenuation_color[0], 0.5, 1e-6);
     gltf_mesh_free(&m);
     /* ... and a mesh loaded from it gives objects that glass, with sigma = -ln(c) / d */
-    struct mesh *mesh = mesh_load_gltf(asset("tests/data/glass_material.gltf"), &err);
+    struct mesh *mesh = mesh_load_gltf(asset("tests/data/glass_material.gltf"), 0, &err);
     CHECK(mesh && mesh->has_material && mesh->material.kind == MATERIAL_GLASS);
     struct object *obj = object_create(mesh);
     CHECK(obj->material.kind == MATERIAL_GLASS);
@@ -93,7 +93,7 @@ int main(void)
 
     /* textures: BoxTextured's PNG in the BIN chunk with its sampler, and an
      * external image with KHR_texture_transform */
-    struct mesh *box = mesh_load_gltf(asset("scenes/assets/khronos/BoxTextured/BoxTextured.glb"), &err);
+    struct mesh *box = mesh_load_gltf(asset("scenes/assets/khronos/BoxTextured/BoxTextured.glb"), 0, &err);
     CHECK(box != NULL);
     if (box) {
         CHECK(box->texcoords[0] != NULL && box->texcoords[1] == NULL);
@@ -103,7 +103,7 @@ int main(void)
         CHECK(box->material.normal.texture == NULL);
         mesh_destroy(box);
     }
-    struct mesh *quad = mesh_load_gltf(asset("tests/data/transform_quad.gltf"), &err);
+    struct mesh *quad = mesh_load_gltf(asset("tests/data/transform_quad.gltf"), 0, &err);
     CHECK(quad != NULL);
     if (quad) {
         const struct texture_ref *ref = &quad->material.base_color;

@@ -46,21 +46,30 @@ int main(void)
     unsigned long jsize = 0;
     unsigned char *jpeg = make_jpeg(16, 8, 128, &jsize);
     CHECK(jpeg && jsize > 0);
-    struct texture *t = texture_decode("grey.jpg", jpeg, jsize, &err);
+    struct texture *t = texture_decode("grey.jpg", jpeg, jsize, 0, &err);
     CHECK(t != NULL);
     CHECK(t->width == 16 && t->height == 8);
     CHECK(abs(t->texels[(3 * 16 + 5) * 4] - 128) <= 2 && t->texels[3] == 255);
     texture_destroy(t);
 
+    /* A budget (what --script-memory leaves a script) is checked from the
+     * header: 16x8 texels need 512 bytes; 511 refuses, 512 reads */
+    t = texture_decode("budget.jpg", jpeg, jsize, 511, &err);
+    CHECK(t == NULL);
+    CHECK(strstr(err.message, "more than the") != NULL);
+    t = texture_decode("budget.jpg", jpeg, jsize, 512, &err);
+    CHECK(t != NULL && texture_bytes(t) == 512);
+    texture_destroy(t);
+
     /* A JPEG cut short or with a corrupt body is an error, never a crash */
-    t = texture_decode("cut.jpg", jpeg, jsize / 2, &err);
+    t = texture_decode("cut.jpg", jpeg, jsize / 2, 0, &err);
     CHECK(t == NULL);
     CHECK(strstr(err.message, "cut.jpg") != NULL);
     unsigned char *bad = malloc(jsize);
     memcpy(bad, jpeg, jsize);
     for (unsigned long i = 20; i < jsize; i += 7)
         bad[i] ^= 0x5a;
-    t = texture_decode("corrupt.jpg", bad, jsize, &err);
+    t = texture_decode("corrupt.jpg", bad, jsize, 0, &err);
     if (t) /* libjpeg may recover a damaged scan: then it is an image of the right size */
         CHECK(t->width == 16 && t->height == 8);
     texture_destroy(t);
@@ -71,10 +80,10 @@ int main(void)
     static const unsigned char huge_png[] = {
         0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
         0x00, 0x01, 0x86, 0xa0, 0x00, 0x01, 0x86, 0xa0, 8, 6, 0, 0, 0, 0x00, 0x00, 0x00, 0x00};
-    t = texture_decode("huge.png", huge_png, sizeof huge_png, &err);
+    t = texture_decode("huge.png", huge_png, sizeof huge_png, 0, &err);
     CHECK(t == NULL);
     CHECK(strstr(err.message, "huge.png") != NULL);
-    t = texture_decode("text.png", (const unsigned char *)"hello", 5, &err);
+    t = texture_decode("text.png", (const unsigned char *)"hello", 5, 0, &err);
     CHECK(t == NULL && strstr(err.message, "not a PNG or JPEG") != NULL);
 
     /* Sampling: a 2 x 1 texture, black then white, linear bytes (normal slot) */
