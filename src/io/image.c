@@ -13,6 +13,7 @@
 
 #include "core/fileio.h"
 #include "core/log.h"
+#include "io/image_decode.h"
 
 bool image_check_header(const char *path, long long width, long long height, unsigned long long min_bytes,
                         unsigned long long file_bytes, struct error *err)
@@ -189,26 +190,17 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
 
 bool image_read_png_rgba8(const char *path, uint8_t **out, int *width, int *height, struct error *err)
 {
-    png_image pi;
-    memset(&pi, 0, sizeof pi);
-    pi.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&pi, path))
-        return error_set(err, "%s: cannot read PNG: %s", path, pi.message);
-    pi.format = PNG_FORMAT_RGBA;
-    size_t size = PNG_IMAGE_SIZE(pi);
-    uint8_t *buf = malloc(size);
-    if (!buf) {
-        png_image_free(&pi);
-        return error_set(err, "%s: out of memory", path);
-    }
-    if (!png_image_finish_read(&pi, NULL, buf, 0, NULL)) {
-        free(buf);
-        return error_set(err, "%s: cannot decode PNG: %s", path, pi.message);
-    }
-    *out = buf;
-    *width = (int)pi.width;
-    *height = (int)pi.height;
-    return true;
+    /* the one PNG decoder (io/image_decode.c), with its checks and caps */
+    char *data;
+    size_t size;
+    if (!file_read_all(path, &data, &size, err))
+        return false;
+    static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+    bool ok = size >= 8 && memcmp(data, signature, 8) == 0
+                  ? image_decode_rgba8(path, (const uint8_t *)data, size, 0, out, width, height, err)
+                  : error_set(err, "%s: cannot read PNG: not a PNG file (no PNG signature)", path);
+    free(data);
+    return ok;
 }
 
 bool image_read_png(const char *path, struct image *img, struct error *err)

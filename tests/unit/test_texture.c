@@ -83,6 +83,22 @@ int main(void)
     t = texture_decode("huge.png", huge_png, sizeof huge_png, 0, &err);
     CHECK(t == NULL);
     CHECK(strstr(err.message, "huge.png") != NULL);
+    /* Chunks are checked before libpng allocates them: a tEXt chunk that
+     * claims 1.7 GB in a 60-byte file (fuzz_png: it cost 1.7 GB and 4 s),
+     * and an 8192x8192 RGBA header with 10 bytes of image data (deflate
+     * cannot pack 256 MB into fewer than ~260 kB) */
+    static const unsigned char text_png[] = {
+        0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0, 0, 0, 16, 0, 0, 0, 12,
+        8, 0, 0, 0, 0, 0, 0, 0, 0, 0x65, 0xee, 0x00, 0xe7, 't', 'E', 'X', 't', 'a', 0, 'b', 0, 0, 0, 0};
+    t = texture_decode("text_chunk.png", text_png, sizeof text_png, 0, &err);
+    CHECK(t == NULL);
+    CHECK(strstr(err.message, "chunk 'tEXt' claims 1710096615 bytes") != NULL);
+    static const unsigned char thin_png[] = {
+        0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0, 0, 0x20, 0, 0, 0, 0x20, 0,
+        8, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 'I', 'D', 'A', 'T', 0x78, 0x9c, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    t = texture_decode("thin.png", thin_png, sizeof thin_png, 0, &err);
+    CHECK(t == NULL);
+    CHECK(strstr(err.message, "needs at least 260119 bytes of image data, the file has 10") != NULL);
     t = texture_decode("text.png", (const unsigned char *)"hello", 5, 0, &err);
     CHECK(t == NULL && strstr(err.message, "not a PNG or JPEG") != NULL);
 
