@@ -1,5 +1,6 @@
 #define _GNU_SOURCE
 #include "lua/lua_host.h"
+#include "lua/lua_pattern.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -575,6 +576,22 @@ static void apply_sandbox(lua_State *L)
     luaL_dostring(L, "local tb = debug.traceback; debug = { traceback = tb }; package.loaded.debug = debug");
 }
 
+static void timeout_hook(lua_State *L, lua_Debug *ar);
+
+/* The same limit inside the pattern matcher (lua_pattern.c), which asks
+ * every 2^20 steps; the error names the script's line that called it. */
+static void pattern_deadline(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
+        return;
+    lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 1); /* a pcall around it cannot keep the script going */
+    char msg[160];
+    snprintf(msg, sizeof msg, "script ran longer than %g s (in a string pattern; raise --script-timeout, 0 = no limit)",
+             h->options.timeout);
+    luaL_error(L, "%s", msg);
+}
+
 /* The time limit: a count hook looks at the clock every 10,000 VM
  * instructions. The error it raises can be caught by a pcall in the script
  * (`while true do pcall(loop) end`), so once the deadline has passed it
@@ -665,6 +682,12 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
     lua_setfield(L, LUA_REGISTRYINDEX, HOST_KEY);
     if (options->timeout > 0)
         lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
+    /* string.find, match, gmatch and gsub with a matcher that looks at the
+     * clock as it works: a backtracking pattern ends with the time limit's
+     * error in the script, not by the watchdog ending the process */
+    lua_getglobal(L, "string");
+    lua_pattern_register(L, -1, pattern_deadline);
+    lua_pop(L, 1);
 
     /* Modules: the C ones preloaded, the Lua ones from <root>/lua. */
     lua_getglobal(L, "package");
