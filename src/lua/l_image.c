@@ -146,7 +146,9 @@ static int image_stats_l(lua_State *L)
                           img->width, img->height);
     double sum[3] = {0, 0, 0}, max = 0;
     long nan = 0, n = 0;
-    for (int y = y0; y < y1; y++)
+    for (int y = y0; y < y1; y++) {
+        if ((y & 63) == 0)
+            lua_host_check_deadline(L, "image:stats");
         for (int x = x0; x < x1; x++, n++) {
             const float *p = img->rgba + ((size_t)y * (size_t)img->width + (size_t)x) * 4;
             for (int c = 0; c < 3; c++) {
@@ -159,6 +161,7 @@ static int image_stats_l(lua_State *L)
                     max = p[c];
             }
         }
+    }
     lua_createtable(L, 0, 4);
     lua_createtable(L, 3, 0);
     for (int c = 0; c < 3; c++) {
@@ -186,6 +189,8 @@ static int image_clamped_l(lua_State *L)
         return luaL_error(L, "%s", err.message);
     size_t n = (size_t)img->width * (size_t)img->height * 4;
     for (size_t i = 0; i < n; i++) {
+        if ((i & ((1u << 22) - 1)) == 0)
+            lua_host_check_deadline(L, "image:clamped");
         float v = img->rgba[i];
         out->rgba[i] = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
     }
@@ -208,6 +213,8 @@ static int image_difference_l(lua_State *L)
     size_t n = (size_t)a->width * (size_t)a->height;
     float largest = 0.0f;
     for (size_t i = 0; i < n * 4; i++) {
+        if ((i & ((1u << 22) - 1)) == 0)
+            lua_host_check_deadline(L, "image.difference");
         float d = fabsf(a->rgba[i] - b->rgba[i]);
         if (!isfinite(d))
             d = 0.0f;

@@ -578,19 +578,21 @@ static void apply_sandbox(lua_State *L)
 
 static void timeout_hook(lua_State *L, lua_Debug *ar);
 
-/* The same limit inside the pattern matcher (lua_pattern.c), which asks
- * every 2^20 steps; the error names the script's line that called it. */
-static void pattern_deadline(lua_State *L)
+void lua_host_check_deadline(lua_State *L, const char *where)
 {
     struct host_state *h = host_of(L);
     if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
         return;
     lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 1); /* a pcall around it cannot keep the script going */
-    char msg[160];
-    snprintf(msg, sizeof msg, "script ran longer than %g s (in a string pattern; raise --script-timeout, 0 = no limit)",
-             h->options.timeout);
+    char msg[200];
+    snprintf(msg, sizeof msg, "script ran longer than %g s (in %s; raise --script-timeout, 0 = no limit)",
+             h->options.timeout, where);
     luaL_error(L, "%s", msg);
 }
+
+/* The same limit inside the pattern matcher (lua_pattern.c), which asks
+ * every 2^20 steps; the error names the script's line that called it. */
+static void pattern_deadline(lua_State *L) { lua_host_check_deadline(L, "a string pattern"); }
 
 /* The time limit: a count hook looks at the clock every 10,000 VM
  * instructions. The error it raises can be caught by a pcall in the script

@@ -82,6 +82,11 @@ struct lua_host_options {
  * seconds, as log_now), 0 when none is: what the app's watchdog
  * (app/watchdog.c) enforces where the count hook cannot. */
 double lua_host_watched_deadline(void);
+/* For long loops in C functions a script calls: raises the time limit's
+ * Lua error ("script ran longer than S s (in WHERE; …)", at the calling
+ * line) once the call's deadline has passed; returns otherwise. Callers
+ * hold nothing that the error would leak (results are userdata). */
+void lua_host_check_deadline(lua_State *L, const char *where);
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
 void lua_host_destroy(lua_State *L);
 /* Runs a file, leaving `nresults` values on the stack. */

@@ -488,6 +488,8 @@ limit_case "a gsub over 100 kB" 'local r = (("x"):rep(100000)):gsub("(.-)(.-)(.-
 limit_case "string.find(100 kB, '.-.-.-b')" 'local r = string.find(("a"):rep(1e5), ".-.-.-b")' "$pattern_stop"
 limit_case "a backtracking gmatch inside pcall" 'while true do pcall(function() for _ in ("a"):rep(40):gmatch(("a?"):rep(40) .. ("a"):rep(40) .. "b") do end end) end' \
   "script ran longer than 1 s"
+limit_case "image operations in a loop (checked inside the C loop)" 'local a, b = c.image.new(2048, 2048), c.image.new(2048, 2048); while true do c.image.difference(a, b) end' \
+  "limit.lua:2: script ran longer than 1 s (in image.difference; raise --script-timeout, 0 = no limit)"
 limit_case "a looping message handler" 'xpcall(function() error("x") end, function() while true do end end)'
 limit_case "a looping __gc" 'setmetatable({}, { __gc = function() while true do end end })'
 printf 'local c = require "caustica"\nlocal img = c.image.new(16384, 16384)\nreturn { scene = c.scene {}, graph = c.graph(), size = {8, 8} }\n' \
