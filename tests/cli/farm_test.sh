@@ -66,7 +66,7 @@ expect_error "no ffmpeg" 1 "ffmpeg is not installed (apt-get install ffmpeg); th
 mkdir -p "$WORK/fakebin"
 cat >"$WORK/fakebin/ffmpeg" <<'SH'
 #!/bin/sh
-for a in "$@"; do case "$a" in *.frames.txt) cp "$a" "$FAKE_LOG.list";; esac; done
+for a in "$@"; do case "$a" in *frames.txt) cp "$a" "$FAKE_LOG.list";; esac; done
 echo "$@" >"$FAKE_LOG"
 for last in "$@"; do :; done
 echo video >"$last"
@@ -75,7 +75,7 @@ chmod +x "$WORK/fakebin/ffmpeg"
 FAKE_LOG="$WORK/ffmpeg.log" PATH="$WORK/fakebin:$PATH" "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 \
   --video "$WORK/v.mp4" >"$WORK/video.txt" 2>&1
 grep -q "wrote $WORK/v.mp4 (3 frames at" "$WORK/video.txt" && [ "$(cat "$WORK/v.mp4")" = video ] \
-  && grep -q -- "-f concat .*pad=ceil(iw/2)\*2:ceil(ih/2)\*2 .*-crf 18 -pix_fmt yuv420p .*-color_trc iec61966-2-1 .* $WORK/\.v\.mp4\.caustica-tmp\.mp4" "$WORK/ffmpeg.log" \
+  && grep -q -- "-f concat .*pad=ceil(iw/2)\*2:ceil(ih/2)\*2 .*-crf 18 -pix_fmt yuv420p .*-color_trc iec61966-2-1 .* $WORK/\.v\.mp4\.caustica-tmp\.[0-9]*\.[A-Za-z0-9]*/video\.mp4" "$WORK/ffmpeg.log" \
   && [ "$(grep -c "^file '.*frame_000[0-2].png'" "$WORK/ffmpeg.log.list")" = 3 ] \
   && pass "--video hands every frame to ffmpeg in order (padded to even sizes, tagged sRGB, through a temporary)" || fail "--video" "$(cat "$WORK/video.txt" "$WORK/ffmpeg.log" 2>&1)"
 if command -v ffmpeg >/dev/null; then
