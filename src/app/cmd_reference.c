@@ -68,9 +68,17 @@ int cmd_reference(struct app *app, struct cli *cli)
         printf("%s: the %s output (two interfaces, traced exactly) -> %s\n", s->script,
                o.aov == REF_AOV_TIR ? "tir" : "exit", cli->output);
     else if (ok)
-        printf("%s: %d iterations, %lld photons (%lld caustic), %.2f s on %d thread%s, noise ~%.2g%% -> %s\n",
-               s->script, st.iterations, st.photons, st.caustic_photons, st.seconds, st.threads,
-               st.threads == 1 ? "" : "s", 100.0 * st.noise, cli->output);
+    {
+        /* the noise estimate compares even and odd iterations: one has none */
+        char noise[48];
+        if (st.iterations > 1)
+            snprintf(noise, sizeof noise, "noise ~%.2g%%", 100.0 * st.noise);
+        else
+            snprintf(noise, sizeof noise, "noise unknown (one iteration)");
+        printf("%s: %d iteration%s, %lld photons (%lld caustic), %.2f s on %d thread%s, %s -> %s\n", s->script,
+               st.iterations, st.iterations == 1 ? "" : "s", st.photons, st.caustic_photons, st.seconds, st.threads,
+               st.threads == 1 ? "" : "s", noise, cli->output);
+    }
     image_destroy(&img);
     session_close(s);
     if (!ok) {

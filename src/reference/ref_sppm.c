@@ -321,6 +321,9 @@ struct job {
     /* volume photons */
     struct volume_photons *volume_chunks;
     struct volume_grid *volume_grid;
+    int volume_rows;    /* which rows a volume gather does: VOLUME_ROWS_* */
+    int volume_samples; /* stratified points per segment (VOLUME_SAMPLES but in a budget's first gather) */
+    atomic_int volume_rows_left; /* rows a first gather under a budget could not reach */
     struct budget *budget;
     /* photons: light l emits photons_of[l] of them, photon k of the
      * iteration belongs to the light whose range [first_of[l], first_of[l] +
@@ -663,10 +666,11 @@ static void gather_volume(struct job *j, int x, int y)
                                       (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
     const struct ref_medium *rm = j->medium;
     for (int k = 0; k < px->segment_count; k++) {
-        double t0 = px->segments[k].t0, t1 = px->segments[k].t1, step = (t1 - t0) / VOLUME_SAMPLES;
+        int samples = j->volume_samples > 0 ? j->volume_samples : VOLUME_SAMPLES;
+        double t0 = px->segments[k].t0, t1 = px->segments[k].t1, step = (t1 - t0) / samples;
         dvec3 o = px->segments[k].origin, d = px->segments[k].dir;
         dvec3 sum = dv(0, 0, 0);
-        for (int s = 0; s < VOLUME_SAMPLES; s++) {
+        for (int s = 0; s < samples; s++) {
             double t = t0 + step * (s + ref_rng_uniform(&rng));
             dvec3 p = dv_add(o, dv_scale(d, t));
             dvec3 l = volume_estimate(j->volume_grid, rm->g, p, d);
@@ -678,12 +682,28 @@ static void gather_volume(struct job *j, int x, int y)
     }
 }
 
+/* The rows a volume gather does: all, or (the first gather under a time
+ * budget) every VOLUME_PROBE_STRIDE-th row first at VOLUME_PROBE_SAMPLES
+ * points a ray, timed (1/128 of the whole gather's cost), then the rest. */
+enum { VOLUME_ROWS_ALL, VOLUME_ROWS_PROBE, VOLUME_ROWS_REST };
+#define VOLUME_PROBE_STRIDE 32
+#define VOLUME_PROBE_SAMPLES 2
+
 static void *volume_thread(void *arg)
 {
     struct job *j = arg;
     for (int y = j->thread; y < j->o->height; y += j->threads) {
+        bool probe_row = y % VOLUME_PROBE_STRIDE == 0;
+        if ((j->volume_rows == VOLUME_ROWS_PROBE && !probe_row) || (j->volume_rows == VOLUME_ROWS_REST && probe_row))
+            continue;
         if (j->iteration > 0 && budget_spent(j->budget))
             return NULL;
+        if (j->volume_rows == VOLUME_ROWS_REST && budget_spent(j->budget)) {
+            /* the last resort of a first gather the probe misjudged: the
+             * row keeps no medium light, and the warning counts it */
+            atomic_fetch_add(&j->volume_rows_left, 1);
+            continue;
+        }
         for (int x = 0; x < j->o->width; x++)
             gather_volume(j, x, y);
     }
@@ -843,7 +863,7 @@ static void photon_progress(const struct job *j, int chunks_done)
  * count). The clock is checked every PHOTON_BATCH photons, after each
  * thread's first batch: a budget ends within a batch's time whatever the
  * photon count, and the photons traced are counted per light. */
-#define PHOTON_BATCH 1024
+#define PHOTON_BATCH 64 /* a few ms of photons even on a loaded machine: the budget ends within that */
 static void *photon_thread(void *arg)
 {
     struct job *j = arg;
@@ -960,7 +980,11 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
     grid_build(&grid, pixels, (int)npix);
     job->grid = &grid;
     atomic_uint *counts = calloc(npix, sizeof *counts);
+    /* the pilot only aims: under a budget it may take a quarter of what is
+     * left, so that the estimate's own photons get the rest */
     budget->photon_deadline = budget->deadline;
+    if (budget->deadline > 0)
+        budget->photon_deadline = log_now() + 0.25 * fmax(budget->deadline - log_now(), 0.0);
     for (int round = 0; counts && round < PILOT_ROUNDS; round++) {
         for (size_t i = 0; i < npix; i++)
             atomic_store(&counts[i], 0u);
@@ -969,8 +993,10 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
         run_threads(job, threads, photon_thread);
         for (int c = 0; c < PHOTON_CHUNKS; c++)
             volume_chunks[c].count = 0;
+        bool pilot_spent = atomic_load(&budget->photons_cut) != 0;
         atomic_store(&budget->photons_cut, 0);
-        if (adapt_emission(job->aims, job->emitters, light_count) >= PILOT_USEFUL || budget_spent(budget))
+        if (adapt_emission(job->aims, job->emitters, light_count) >= PILOT_USEFUL || pilot_spent ||
+            budget_spent(budget))
             break;
     }
     grid_release(&grid);
@@ -1071,7 +1097,33 @@ struct sppm_totals {
     double photon_passes;                  /* iterations whose photons were traced, a cut-short one counting as its fraction */
     double gather_seconds, gather_photons; /* the last volume gather's cost */
     double volume_radius;
+    /* seconds spent in each stage so far (--report): the eye pass, the
+     * pilot, photon tracing, the volume gather, the per-pixel update */
+    double stage_eye, stage_pilot, stage_photons, stage_gather, stage_update;
+    double gather_kept;   /* the share of the first gather's volume photons kept for the budget (1: all) */
+    int gather_samples;   /* the points per ray segment it used (0: VOLUME_SAMPLES) */
+    int gather_rows_left; /* rows it could not reach at all */
 };
+
+/* Keeps each volume photon with probability `keep` (a hash of its place
+ * and the seed, so a run is repeatable for the photons it traced), its
+ * flux divided by `keep`: an unbiased thinning (Russian roulette). */
+static void volume_photons_thin(struct volume_photons *chunks, double keep, uint64_t seed)
+{
+    for (int c = 0; c < PHOTON_CHUNKS; c++) {
+        size_t kept = 0;
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            struct ref_rng rng = ref_rng_seed(seed, 7000003u + (uint64_t)c, (uint64_t)k);
+            if (ref_rng_uniform(&rng) >= keep)
+                continue;
+            struct volume_photon vp = chunks[c].items[k];
+            for (int q = 0; q < 3; q++)
+                vp.flux[q] = (float)(vp.flux[q] / keep);
+            chunks[c].items[kept++] = vp;
+        }
+        chunks[c].count = kept;
+    }
+}
 
 /* One iteration's photons (Hachisuka & Jensen 2009): traced into the
  * visible points' grid (the first iteration after a pilot that aims the
@@ -1084,8 +1136,11 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     struct pixel *pixels = job->pixels;
     struct photon_hits *chunks = job->chunks;
     struct volume_photons *volume_chunks = job->volume_chunks;
+    double stage_start = log_now();
     if (it == 0)
         pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
+    t->stage_pilot += log_now() - stage_start;
+    stage_start = log_now();
     struct grid grid;
     grid_build(&grid, pixels, (int)npix);
     job->grid = &grid;
@@ -1093,13 +1148,15 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
      * budget too: reserve what the last one cost per photon for this
      * iteration's photons (the first iteration, with nothing to go by,
      * gives photons half of what is left). */
-    budget->photon_deadline = budget->deadline;
+    /* the work after the photons (the per-pixel update, the estimates, the
+     * file) gets 3% of the budget, so the whole stays inside it */
+    budget->photon_deadline = budget->deadline > 0 ? budget->deadline - 0.03 * job->o->time_budget : 0.0;
     atomic_store(&budget->photons_cut, 0);
     if (budget->deadline > 0 && job->medium->present) {
         double now = log_now(), left = budget->deadline - now;
         double reserve = t->gather_photons > 0 ? t->gather_seconds * (double)job->photons_total / t->gather_photons
                                                : 0.5 * left;
-        budget->photon_deadline = now + fmax(left - reserve, 0.1 * left);
+        budget->photon_deadline = fmin(budget->photon_deadline, now + fmax(left - reserve, 0.1 * left));
     }
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         long begin, end;
@@ -1142,6 +1199,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     }
     grid_release(&grid);
     adapt_emission(job->aims, job->emitters, rs->light_count);
+    t->stage_photons += log_now() - stage_start;
     t->emitted += traced;
     t->photon_passes += pass_fraction;
     job->pass_fraction = pass_fraction;
@@ -1159,8 +1217,46 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
         job->volume_grid = &vgrid;
         double gather_start = log_now();
+        if (it == 0 && budget->deadline > 0) {
+            /* The first gather under a budget has no earlier one to go by:
+             * every 16th row first, timed, and if the rest would pass the
+             * deadline the volume photons are thinned for it (each kept
+             * with probability f, its flux divided by f: the same
+             * expectation, more noise), so the budget holds however the
+             * machine is loaded. */
+            job->volume_rows = VOLUME_ROWS_PROBE;
+            job->volume_samples = VOLUME_PROBE_SAMPLES;
+            run_threads(job, threads, volume_thread);
+            job->volume_samples = VOLUME_SAMPLES;
+            /* the rest at full samples: the cost is about linear in them */
+            double rest = (log_now() - gather_start) * (VOLUME_PROBE_STRIDE - 1) * VOLUME_SAMPLES / VOLUME_PROBE_SAMPLES;
+            double left = budget->deadline - log_now();
+            if (rest > 0.9 * left) {
+                /* fewer points along each ray first (the march is most of
+                 * the cost, photons or not), then fewer photons */
+                double fit = fmax(0.9 * left / rest, 0.0);
+                int samples = (int)floor(VOLUME_SAMPLES * fit);
+                job->volume_samples = samples < 1 ? 1 : samples;
+                t->gather_samples = job->volume_samples;
+                double still = rest * job->volume_samples / VOLUME_SAMPLES;
+                if (still > 0.9 * left) {
+                    double keep = fmax(0.9 * left / still, 1e-3);
+                    volume_photons_thin(volume_chunks, keep, job->o->seed);
+                    volume_grid_release(&vgrid);
+                    volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
+                    t->gather_kept = keep;
+                }
+            }
+            job->volume_rows = VOLUME_ROWS_REST;
+            atomic_store(&job->volume_rows_left, 0);
+        }
         run_threads(job, threads, volume_thread);
+        if (job->volume_rows == VOLUME_ROWS_REST)
+            t->gather_rows_left = atomic_load(&job->volume_rows_left);
+        job->volume_rows = VOLUME_ROWS_ALL;
+        job->volume_samples = VOLUME_SAMPLES;
         t->gather_seconds = log_now() - gather_start;
+        t->stage_gather += t->gather_seconds;
         t->gather_photons = (double)traced;
         volume_grid_release(&vgrid);
         for (int c = 0; c < PHOTON_CHUNKS; c++)
@@ -1168,6 +1264,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
     }
     /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
+    stage_start = log_now();
     for (size_t i = 0; i < npix; i++) {
         struct pixel *px = &pixels[i];
         if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
@@ -1185,6 +1282,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         px->phi = dv(0, 0, 0);
         px->m = 0;
     }
+    t->stage_update += log_now() - stage_start;
 }
 
 /* After iteration `it`: the eye-path and volume estimates into the noise
@@ -1208,11 +1306,13 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
             job->budget->line_length = 0;
         }
         if (it == 0)
-            fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)\n",
+            fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)",
                     t->emitted, log_now() - start);
         else
-            fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)\n",
+            fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)",
                     it + 1, t->emitted, log_now() - start, 100.0 * noise);
+        fprintf(stderr, "; so far: eye %.2f s, pilot %.2f s, photons %.2f s, volume gather %.2f s, update %.2f s\n",
+                t->stage_eye, t->stage_pilot, t->stage_photons, t->stage_gather, t->stage_update);
     }
     double elapsed = log_now() - start;
     /* Under a time budget the iteration count is open-ended: show the
@@ -1352,7 +1452,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         threads = 1;
     struct ref_medium medium;
     ref_medium_init(&medium, scene->medium);
-    struct sppm_totals totals = {0};
+    struct sppm_totals totals = {.gather_kept = 1.0};
     if (medium.present) {
         dvec3 ext = dv_sub(medium.hi, medium.lo);
         totals.volume_radius = o->volume_radius > 0 ? o->volume_radius : 0.01 * sqrt(dv_dot(ext, ext));
@@ -1385,7 +1485,9 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         budget->iteration = it;
         memset(job.caustic_photons, 0, sizeof job.caustic_photons);
         memset(job.caustic_power, 0, sizeof job.caustic_power);
+        double eye_start = log_now();
         run_threads(&job, threads, camera_thread);
+        totals.stage_eye += log_now() - eye_start;
         if (atomic_load(&budget->cut))
             break; /* the eye pass ran out of time: no photons for a half-traced set of visible points */
         if (caustics)
@@ -1401,6 +1503,33 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     }
     if (budget->tty)
         fputc('\n', stderr);
+    /* A budget that did not buy one whole iteration says so: the image is
+     * an unbiased estimate, but a noisier one than a single iteration at
+     * the scene's settings, which a user of --time-budget would not guess. */
+    if (o->time_budget > 0) {
+        char parts[5][96];
+        int n = 0;
+        double elapsed = log_now() - start;
+        if (totals.stage_eye > o->time_budget)
+            snprintf(parts[n++], sizeof parts[0], "the first eye pass alone took %.1f s", totals.stage_eye);
+        if (caustics && totals.photon_passes < 0.999)
+            snprintf(parts[n++], sizeof parts[0], "%.2g%% of one iteration's photons",
+                     100.0 * totals.photon_passes);
+        if (totals.gather_samples > 0)
+            snprintf(parts[n++], sizeof parts[0], "the medium's gather at %d of %d points a ray",
+                     totals.gather_samples, VOLUME_SAMPLES);
+        if (totals.gather_kept < 1.0)
+            snprintf(parts[n++], sizeof parts[0], "with %.2g%% of its photons", 100.0 * totals.gather_kept);
+        if (totals.gather_rows_left > 0)
+            snprintf(parts[n++], sizeof parts[0], "%d rows left without the medium's light", totals.gather_rows_left);
+        char list[512] = "";
+        for (int i = 0; i < n; i++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", parts[i]);
+        if (n > 0)
+            log_warn("reference: --time-budget %g s bought less than one full iteration (%s; %.2f s in all): the image "
+                     "is %s than one iteration would make it; raise --time-budget",
+                     o->time_budget, list, elapsed, totals.gather_rows_left > 0 ? "incomplete, and noisier" : "noisier");
+    }
     write_estimates(buf.pixels, npix, &totals, out, caustic_out);
     if (stats) {
         double passes = totals.photon_passes > 0 ? totals.photon_passes : 1;
