@@ -16,8 +16,9 @@
 enum {
     VB_RENDER = 1u << 0, VB_RECORD = 1u << 1, VB_RUN = 1u << 2, VB_TEST = 1u << 3, VB_INFO = 1u << 4,
     VB_REFERENCE = 1u << 5, VB_COMPARE = 1u << 6, VB_CONVERT = 1u << 7, VB_BENCH = 1u << 8, VB_CHOOSE = 1u << 9,
+    VB_MERGE = 1u << 10,
     VB_SCENE = VB_RENDER | VB_RECORD | VB_RUN | VB_INFO | VB_REFERENCE | VB_BENCH | VB_CHOOSE,
-    VB_ALL = 0x3ffu,
+    VB_ALL = 0x7ffu,
 };
 
 static const struct cli_verb {
@@ -39,6 +40,9 @@ static const struct cli_verb {
     {"compare", VB_COMPARE, "A B [options]",
      "prints the error of image A against image B: rmse, rel_rmse (over B's RMS), psnr, ssim, max, nan, and "
      "log_rmse (of log(1 + value): robust to a few hot pixels)"},
+    {"merge", VB_MERGE, "PART... -o OUT.pfm|OUT.hdr|OUT.exr",
+     "averages the parts of a reference rendered with --shard (each PART beside its PART.part) into the estimate "
+     "one run of all their passes makes"},
     {"convert", VB_CONVERT, "IN OUT [options]",
      "converts an image: reads .png, .pfm, .hdr, .exr (IN.exr:layer for one layer); writes .png, .pfm, .hdr, .exr"},
     {"bench", VB_BENCH, "SCENE.lua [--sweep key=v1,v2,...]... [options]",
@@ -61,6 +65,7 @@ static const struct cli_option {
      "a folder (frames as DIR/frame_0000.png), or a pattern such as out/f_####.png (.png, .pfm, .hdr, .exr); "
      "required"},
     {"--output", "-o", "OUT", VB_REFERENCE, "the image, .pfm, .hdr or .exr (linear radiance); required"},
+    {"--output", "-o", "OUT", VB_MERGE, "the merged image, .pfm, .hdr or .exr (and OUT.part beside it); required"},
     {"--output", "-o", "DIR", VB_BENCH | VB_CHOOSE,
      "the folder of results (results.md, results.csv, plot.svg) and cached ground truths; default bench"},
     {"--frame", NULL, "N", VB_RENDER | VB_REFERENCE, "the frame to render; default 0; >= 0"},
@@ -80,6 +85,10 @@ static const struct cli_option {
     {"--overwrite", NULL, NULL, VB_RECORD, "render frames whose file exists (default: skip them)"},
     {"--shard", NULL, "i/n", VB_RECORD,
      "render every n-th frame of the set from the i-th, 0 <= i < n (one job of an array)"},
+    {"--shard", NULL, "i/n", VB_REFERENCE,
+     "render the independent passes p of --spp with p % n == i (probabilistic progressive photon mapping: passes "
+     "share no state), writing OUT and OUT.part for caustica merge; 0/1 renders all of them in one run; not with "
+     "--time-budget"},
     {"--size", NULL, "WxH", VB_SCENE,
      "the image size in pixels, 1..16384 each (default: the script's size, else 512x512)"},
     {"--set", NULL, "NAME=VALUE", VB_SCENE,

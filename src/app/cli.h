@@ -81,6 +81,7 @@ int cmd_reference(struct app *app, struct cli *cli);
 int cmd_bench(struct app *app, struct cli *cli);
 int cmd_choose(struct app *app, struct cli *cli);
 int cmd_convert(struct app *app, struct cli *cli);
+int cmd_merge(struct app *app, struct cli *cli);
 /* One verb's synopsis, and every option it takes with its meaning, default and limits. */
 void cli_usage_verb(FILE *out, const char *verb);
 /* `caustica help [passes | PASS] [--markdown]`: the pass reference from the descriptors. */

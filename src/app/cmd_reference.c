@@ -5,6 +5,7 @@
 #include "app/cli.h"
 #include "core/fileio.h"
 #include "reference/reference.h"
+#include "reference/reference_part.h"
 
 int cmd_reference(struct app *app, struct cli *cli)
 {
@@ -41,6 +42,16 @@ int cmd_reference(struct app *app, struct cli *cli)
         if (cli->spp <= 0)
             o.iterations = 1 << 30; /* until the budget is spent */
     }
+    if (cli->shard_count > 0) {
+        if (cli->time_budget > 0 || cli->aov) {
+            fprintf(stderr, "caustica: reference --shard renders a fixed set of passes: not with %s\n",
+                    cli->time_budget > 0 ? "--time-budget (the shards' passes would not add up)" : "--aov");
+            session_close(s);
+            return EXIT_USAGE;
+        }
+        o.shard_index = cli->shard_index;
+        o.shard_count = cli->shard_count;
+    }
     if (cli->seed > 0)
         o.seed = (uint64_t)cli->seed;
     o.initial_radius = cli->radius;
@@ -67,8 +78,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     if (ok && o.aov != REF_AOV_NONE)
         printf("%s: the %s output (two interfaces, traced exactly) -> %s\n", s->script,
                o.aov == REF_AOV_TIR ? "tir" : "exit", cli->output);
-    else if (ok)
-    {
+    else if (ok) {
         /* the noise estimate compares even and odd iterations: one has none */
         char noise[48];
         if (st.iterations > 1)
@@ -78,6 +88,17 @@ int cmd_reference(struct app *app, struct cli *cli)
         printf("%s: %d iteration%s, %lld photons (%lld caustic), %.2f s on %d thread%s, %s -> %s\n", s->script,
                st.iterations, st.iterations == 1 ? "" : "s", st.photons, st.caustic_photons, st.seconds, st.threads,
                st.threads == 1 ? "" : "s", noise, cli->output);
+    }
+    if (ok && o.shard_count > 0) {
+        /* what caustica merge needs to weigh this part and to check that
+         * parts belong together */
+        struct reference_part part = {.frame = cli->frame, .width = img.width, .height = img.height,
+                                      .seed = o.seed, .photons = o.photons, .passes_total = o.iterations,
+                                      .shard_count = o.shard_count, .passes = st.passes, .photons_emitted = st.photons};
+        snprintf(part.scene, sizeof part.scene, "%.1000s", s->script);
+        part.shards[0] = o.shard_index;
+        part.shard_parts = 1;
+        ok = reference_part_write(cli->output, &part, &err);
     }
     image_destroy(&img);
     session_close(s);

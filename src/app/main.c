@@ -29,7 +29,7 @@ int main(int argc, char **argv)
         {"render", cmd_render}, {"record", cmd_record}, {"run", cmd_run},
         {"test", cmd_test},     {"info", cmd_info},     {"compare", cmd_compare},
         {"reference", cmd_reference}, {"bench", cmd_bench}, {"choose", cmd_choose},
-        {"convert", cmd_convert},
+        {"convert", cmd_convert}, {"merge", cmd_merge},
     };
     for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++) {
         if (strcmp(argv[1], verbs[i].name) != 0)

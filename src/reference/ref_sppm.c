@@ -177,6 +177,8 @@ struct pixel {
     dvec3 direct_seen, volume_seen, half[2];
     dvec3 tau;              /* SPPM flux */
     double radius, n;
+    double r1;              /* independent passes: the first pass's radius (the pilot's), 0: none found */
+    dvec3 pppm;             /* independent passes: the sum of their photon estimates */
     struct visible_point vp;
     dvec3 phi;              /* this iteration's photons */
     long m;
@@ -333,6 +335,8 @@ struct job {
     long gathered;            /* this thread's photon-to-pixel deposits so far (tells a useful photon) */
     atomic_uint *pilot_counts; /* during the pilot: photons per pixel, and no flux kept */
     double pass_fraction;     /* of the photons of the pass just traced (1 unless the budget cut it) */
+    bool independent;         /* passes that share no state (ref_options.shard_count > 0) */
+    bool pilot_done;          /* the pilot ran before the passes (independent passes) */
     double emit_shift[SCENE_MAX_GPU_LIGHTS][3]; /* each light's random rotation of its emission sequence */
     long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
     long photons_total;
@@ -1097,6 +1101,8 @@ struct sppm_totals {
     double photon_passes;                  /* iterations whose photons were traced, a cut-short one counting as its fraction */
     double gather_seconds, gather_photons; /* the last volume gather's cost */
     double volume_radius;
+    double volume_radius_first; /* independent passes: pass 0's, the others' shrink from it */
+    int independent_passes;     /* independent passes done (0: SPPM) */
     /* seconds spent in each stage so far (--report): the eye pass, the
      * pilot, photon tracing, the volume gather, the per-pixel update */
     double stage_eye, stage_pilot, stage_photons, stage_gather, stage_update;
@@ -1104,6 +1110,18 @@ struct sppm_totals {
     int gather_samples;   /* the points per ray segment it used (0: VOLUME_SAMPLES) */
     int gather_rows_left; /* rows it could not reach at all */
 };
+
+/* Independent passes: pass p's gather area (surface: r^2; volume: r^3)
+ * over pass 0's, prod_{i=1..p} (i + alpha) / (i + 1) (Knaus & Zwicker
+ * 2011, eq. 15 with alpha = 2/3): fixed by p alone, so a pass needs no
+ * other to know its radius. */
+static double pass_shrink(int p)
+{
+    double f = 1.0;
+    for (int i = 1; i <= p; i++)
+        f *= (i + SPPM_ALPHA) / (i + 1.0);
+    return f;
+}
 
 /* Keeps each volume photon with probability `keep` (a hash of its place
  * and the seed, so a run is repeatable for the photons it traced), its
@@ -1137,7 +1155,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     struct photon_hits *chunks = job->chunks;
     struct volume_photons *volume_chunks = job->volume_chunks;
     double stage_start = log_now();
-    if (it == 0)
+    if (it == 0 && !job->pilot_done)
         pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
     t->stage_pilot += log_now() - stage_start;
     stage_start = log_now();
@@ -1198,7 +1216,8 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
             t->caustic_power[k] += job->caustic_power[c][k];
     }
     grid_release(&grid);
-    adapt_emission(job->aims, job->emitters, rs->light_count);
+    if (!job->independent) /* independent passes keep the pilot's aim: no pass may depend on another */
+        adapt_emission(job->aims, job->emitters, rs->light_count);
     t->stage_photons += log_now() - stage_start;
     t->emitted += traced;
     t->photon_passes += pass_fraction;
@@ -1213,6 +1232,8 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         /* Volume caustics: gather this iteration's volume photons with the
          * current radius, which shrinks as r^3 ~ i^(alpha - 1) (Knaus &
          * Zwicker 2011), so the average over iterations converges. */
+        if (job->independent)
+            t->volume_radius = t->volume_radius_first * cbrt(pass_shrink(job->iteration));
         struct volume_grid vgrid;
         volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
         job->volume_grid = &vgrid;
@@ -1261,7 +1282,8 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         volume_grid_release(&vgrid);
         for (int c = 0; c < PHOTON_CHUNKS; c++)
             volume_chunks[c].count = 0;
-        t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
+        if (!job->independent)
+            t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
     }
     /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
     stage_start = log_now();
@@ -1270,8 +1292,10 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
             dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
             px->half[it % 2] = dv_add(px->half[it % 2], e);
+            if (job->independent)
+                px->pppm = dv_add(px->pppm, e);
         }
-        if (px->m > 0) {
+        if (px->m > 0 && !job->independent) {
             double n_new = px->n + SPPM_ALPHA * (double)px->m;
             double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
             double shrink = (r_new * r_new) / (px->radius * px->radius);
@@ -1353,7 +1377,9 @@ static void write_estimates(const struct pixel *pixels, size_t npix, const struc
         dvec3 volume = px->volume_samples > 0 ? dv_scale(px->volume, 1.0 / px->volume_samples) : dv(0, 0, 0);
         l = dv_add(l, volume);
         dvec3 lc = dv(0, 0, 0);
-        if (t->emitted > 0 && px->radius > 0 && px->n > 0)
+        if (t->independent_passes > 0)
+            lc = dv_scale(px->pppm, 1.0 / t->independent_passes); /* the passes' mean */
+        else if (t->emitted > 0 && px->radius > 0 && px->n > 0)
             lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
         l = dv_add(l, lc);
         if (caustic_out) {
@@ -1479,19 +1505,53 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         for (int k = 0; k < 3; k++)
             job.emit_shift[l][k] = ref_rng_uniform(&shift_rng);
     }
+    totals.volume_radius_first = totals.volume_radius;
+    job.independent = o->shard_count > 0;
+    if (job.independent) {
+        /* The pilot, the same in every shard (it depends on the seed
+         * alone): pass 0's eye paths aim the lights and give each pixel its
+         * first radius; what they gathered is not kept, since a shard
+         * without pass 0 renders none of it. */
+        double eye_start = log_now();
+        job.iteration = 0;
+        run_threads(&job, threads, camera_thread);
+        totals.stage_eye += log_now() - eye_start;
+        if (caustics) {
+            double pilot_start = log_now();
+            pilot_photons(&job, threads, budget, buf.volume_chunks, o->photons, buf.pixels, npix);
+            totals.stage_pilot += log_now() - pilot_start;
+            job.pilot_done = true;
+        }
+        for (size_t i = 0; i < npix; i++) {
+            struct pixel *px = &buf.pixels[i];
+            double r1 = px->radius;
+            memset(px, 0, sizeof *px);
+            px->r1 = r1;
+        }
+    }
     int it = 0;
-    for (; it < o->iterations; it++) {
-        job.iteration = it;
+    int pass = job.independent ? o->shard_index : 0, pass_stride = job.independent ? o->shard_count : 1;
+    for (; pass < o->iterations; it++, pass += pass_stride) {
+        job.iteration = job.independent ? pass : it;
         budget->iteration = it;
         memset(job.caustic_photons, 0, sizeof job.caustic_photons);
         memset(job.caustic_power, 0, sizeof job.caustic_power);
+        /* independent passes: pass p's radius from its index alone */
+        double shrink = job.independent ? sqrt(pass_shrink(pass)) : 1.0;
+        for (size_t i = 0; job.independent && i < npix; i++)
+            buf.pixels[i].radius = buf.pixels[i].r1 * shrink;
         double eye_start = log_now();
         run_threads(&job, threads, camera_thread);
         totals.stage_eye += log_now() - eye_start;
         if (atomic_load(&budget->cut))
             break; /* the eye pass ran out of time: no photons for a half-traced set of visible points */
+        for (size_t i = 0; job.independent && i < npix; i++)
+            if (buf.pixels[i].r1 <= 0.0) /* no visible point in pass 0: this pass's own first radius */
+                buf.pixels[i].radius *= shrink;
         if (caustics)
             photon_iteration(&job, it, threads, npix, &totals);
+        if (job.independent)
+            totals.independent_passes++;
         iteration_report(&job, it, npix, start, &totals);
         /* (photons stopped early only to leave the gather its time do not
          * end the render: the next iteration may still fit) */
@@ -1540,6 +1600,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         stats->caustic_photons = totals.caustic_total;
         stats->seconds = log_now() - start;
         stats->threads = threads < 64 ? threads : 64; /* run_threads' cap */
+        stats->passes = totals.independent_passes;
         for (int k = 0; k < 3; k++)
             stats->caustic_power[k] = totals.caustic_power[k] / passes;
     }

@@ -35,6 +35,13 @@ struct ref_options {
     bool antialias;      /* each iteration's camera ray through a random point of its pixel (the pixel's
                           * mean, SPPM's stochastic visible points), not its centre (what the
                           * rasterizer samples) */
+    /* Independent passes (probabilistic progressive photon mapping, Knaus
+     * & Zwicker 2011) when shard_count > 0: pass p (0 <= p < iterations)
+     * has its own eye paths, photons and a gather radius fixed by p alone,
+     * so passes share no state and any set of them can be rendered apart
+     * and averaged (caustica merge). This run renders the passes p with
+     * p % shard_count == shard_index. 0: SPPM (Hachisuka & Jensen 2009). */
+    int shard_index, shard_count;
 };
 
 struct ref_stats {
@@ -44,6 +51,7 @@ struct ref_stats {
     double caustic_power[3]; /* W reaching diffuse surfaces by light-specular+-diffuse paths */
     double seconds;
     int threads;           /* worker threads it ran on */
+    int passes;            /* independent passes rendered (shard_count > 0), else 0 */
     /* Relative noise of the image: half the RMS difference of the means of
      * the even and the odd iterations' own estimates, over the RMS of the
      * image (the standard error of the mean; it measures variance, not the

@@ -50,6 +50,41 @@ kill $hogs 2>/dev/null
 "$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm" | grep -q "nan=0" && pass "the cut-short image is finite" \
   || fail "finite" "$("$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm")"
 
+# Distributed reference: --shard i/n renders the independent passes p % n == i; caustica merge averages
+# the parts into what one run of all the passes gives (floating-point rounding apart), for a surface
+# caustic and a volume caustic (with the EXR's caustic layer), at any thread count.
+for scene in "tests/scenes/ball_lens.lua" "tests/scenes/fog.lua --set ball=true"; do
+  # shellcheck disable=SC2086
+  "$CAUSTICA" reference $scene -o "$WORK/one.exr" --size 32x32 --photons 5000 --spp 8 --shard 0/1 --threads 1 -q \
+    >/dev/null
+  for i in 0 1 2 3; do
+    # shellcheck disable=SC2086
+    "$CAUSTICA" reference $scene -o "$WORK/part$i.exr" --size 32x32 --photons 5000 --spp 8 --shard $i/4 -q \
+      >/dev/null
+  done
+  [ "$scene" = tests/scenes/ball_lens.lua ] && cp "$WORK/part1.exr" "$WORK/ball1.exr" && cp "$WORK/part1.exr.part" "$WORK/ball1.exr.part"
+  "$CAUSTICA" merge "$WORK"/part[0-3].exr -o "$WORK/merged.exr" >"$WORK/out.txt" 2>&1
+  rel=$(metric rel_rmse "$("$CAUSTICA" compare "$WORK/merged.exr" "$WORK/one.exr" 2>&1)")
+  relc=$(metric rel_rmse "$("$CAUSTICA" compare "$WORK/merged.exr:caustic" "$WORK/one.exr:caustic" 2>&1)")
+  grep -q "merged 4 parts (8 of 8 passes" "$WORK/out.txt" && [ -n "$rel" ] && [ -n "$relc" ] &&
+    awk "BEGIN { exit !($rel < 1e-6 && $relc < 1e-6) }" \
+    && pass "4 shards merged == one run of the same 8 passes (rel $rel, caustic layer $relc; $scene)" \
+    || fail "merge ($scene)" "rel '$rel' '$relc': $(cat "$WORK/out.txt")"
+done
+grep -q "^shards 0,1,2,3$" "$WORK/merged.exr.part" && grep -q "^passes 8$" "$WORK/merged.exr.part" \
+  && pass "the merged image's .part says what it holds" || fail "merged .part" "$(cat "$WORK/merged.exr.part")"
+"$CAUSTICA" merge "$WORK/part0.exr" "$WORK/part2.exr" -o "$WORK/half.pfm" >/dev/null 2>"$WORK/err.txt" &&
+  grep -q "warning: merged 2 of 4 shards (4 of 8 passes).*missing: 1, 3" "$WORK/err.txt" \
+  && pass "merging some shards says which are missing" || fail "missing shards" "$(cat "$WORK/err.txt")"
+expect_error "a shard merged twice is refused" 1 "shard 0/4 is already in an earlier part" "$WORK/twice.pfm" -- \
+  "$CAUSTICA" merge "$WORK/part0.exr" "$WORK/part0.exr" -o "$WORK/twice.pfm"
+expect_error "parts of another scene are refused" 1 "ball1.exr: a part of tests/scenes/ball_lens.lua, not of tests/scenes/fog.lua" \
+  "$WORK/mixed.pfm" -- "$CAUSTICA" merge "$WORK/half.pfm" "$WORK/ball1.exr" -o "$WORK/mixed.pfm"
+expect_error "an image without its .part is refused" 1 "not a reference part" "$WORK/none.pfm" -- \
+  "$CAUSTICA" merge "$WORK/budget.pfm" -o "$WORK/none.pfm"
+expect_error "--shard with --time-budget is refused" 2 "not with --time-budget" - -- \
+  "$CAUSTICA" reference tests/scenes/ball_lens.lua -o "$WORK/x.pfm" --shard 0/2 --time-budget 1
+
 # --report: one line per iteration, the noise estimate falling
 "$CAUSTICA" reference tests/scenes/ball_lens.lua -o "$WORK/r.hdr" --size 32x32 --photons 20000 --spp 6 --report \
   >"$WORK/out.txt" 2>"$WORK/err.txt"

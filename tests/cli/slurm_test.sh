@@ -83,4 +83,17 @@ for f in "$WORK"/local/*.png; do cmp -s "$f" "$OUT/$(basename "$f")" && same=$((
   || fail "frames" "$same of 8 equal: $(ls "$OUT" 2>&1 | tr '\n' ' ')"
 grep -q "frame_0001.png .. .*frame_0005.png" "$C/log/task-1.log" && pass "task 1 rendered frames 1 and 5" \
   || fail "task 1" "$(cat "$C/log/task-1.log" 2>&1)"
+# One reference frame over the array: 4 tasks, 8 independent passes, merged; equal to one run of the same
+# 8 passes but for floating-point rounding.
+CAUSTICA="$CAUSTICA" CAUSTICA_SIZE=32x32 CAUSTICA_PHOTONS=5000 timeout 300 sbatch --wait --array=0-3 --chdir="$ROOT" \
+  --output="$C/log/ref-%a.log" examples/slurm/reference_array.sh tests/scenes/ball_lens.lua "$WORK/ref" 8 \
+  >"$WORK/sbatch_ref.txt" 2>&1 \
+  && "$CAUSTICA" merge "$WORK"/ref.part_*.exr -o "$WORK/ref.exr" >/dev/null 2>"$WORK/merge.err" \
+  && pass "sbatch --array=0-3 reference_array.sh, then caustica merge" \
+  || fail "the reference array job" "$(cat "$WORK/sbatch_ref.txt" "$WORK/merge.err" "$C"/log/ref-*.log 2>&1 | tail -5)"
+"$CAUSTICA" reference tests/scenes/ball_lens.lua -o "$WORK/ref_local.exr" --size 32x32 --photons 5000 --spp 8 \
+  --shard 0/1 >/dev/null 2>&1
+rel=$(metric rel_rmse "$("$CAUSTICA" compare "$WORK/ref.exr" "$WORK/ref_local.exr" 2>&1)")
+[ -n "$rel" ] && awk "BEGIN { exit !($rel < 1e-6) }" && pass "the merged reference == one local run of the 8 passes (rel $rel)" \
+  || fail "merged reference" "rel_rmse '$rel'"
 finish
