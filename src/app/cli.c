@@ -10,8 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/fileio.h"
 #include "core/log.h"
 #include "core/suggest.h"
+#include "io/image.h"
 
 enum {
     VB_RENDER = 1u << 0, VB_RECORD = 1u << 1, VB_RUN = 1u << 2, VB_TEST = 1u << 3, VB_INFO = 1u << 4,
@@ -240,6 +242,20 @@ void cli_usage_verb(FILE *out, const char *verb)
 }
 
 void cli_print_error(const struct error *err) { fprintf(stderr, "caustica: %s\n", err->message); }
+
+int cli_check_radiance_output(const struct cli *cli, const char *what)
+{
+    if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output) && !image_path_is_exr(cli->output)) {
+        fprintf(stderr, "caustica: -o %s: %s is linear radiance, write it as .pfm, .hdr or .exr\n", cli->output, what);
+        return EXIT_USAGE;
+    }
+    struct error err;
+    if (!path_check_writable_dir(cli->output, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    return 0;
+}
 
 void cli_usage_hint(const char *verb)
 {

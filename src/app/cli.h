@@ -70,6 +70,10 @@ bool cli_is_verb(const char *name);
 /* The verb nearest a misspelt one, or NULL. */
 const char *cli_suggest_verb(const char *word);
 void cli_print_error(const struct error *err);
+/* -o as linear radiance (.pfm, .hdr or .exr) in a folder that exists and
+ * is writable: 0, or the exit status after one line saying what is wrong
+ * (`what`: "the reference", "a merged reference"). */
+int cli_check_radiance_output(const struct cli *cli, const char *what);
 
 int cmd_render(struct app *app, struct cli *cli);
 int cmd_record(struct app *app, struct cli *cli);

@@ -48,16 +48,10 @@ int cmd_merge(struct app *app, struct cli *cli)
         cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
-    if (!image_path_is_pfm(cli->output) && !image_path_is_hdr(cli->output) && !image_path_is_exr(cli->output)) {
-        fprintf(stderr, "caustica: -o %s: a merged reference is linear radiance, write it as .pfm, .hdr or .exr\n",
-                cli->output);
-        return EXIT_USAGE;
-    }
+    int status = cli_check_radiance_output(cli, "a merged reference");
+    if (status != 0)
+        return status;
     struct error err;
-    if (!path_check_writable_dir(cli->output, &err)) {
-        cli_print_error(&err);
-        return EXIT_SCENE_ERROR;
-    }
     struct reference_part *first = calloc(2, sizeof *first);
     bool *have = calloc(REFERENCE_PART_MAX_SHARDS, sizeof *have);
     double *sum = NULL, *sum_caustic = NULL;
