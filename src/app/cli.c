@@ -130,6 +130,10 @@ static const struct cli_option {
      "techniques the scene's `techniques` table declares; repeatable, at most 16"},
     {"--ref-photons", NULL, "N", VB_BENCH | VB_CHOOSE,
      "photons per iteration of the ground truth (default 100000)"},
+    {"--truth", NULL, "FILE", VB_BENCH,
+     "the ground truth from FILE (reference -o, or caustica merge's: .pfm, .hdr, .exr, its caustic region from the "
+     "EXR's `caustic` layer) instead of rendering one: one scene (sweep pass parameters or techniques) and one "
+     "error frame; a FILE.part's frame and size are checked"},
     {"--ref-spp", NULL, "N", VB_BENCH | VB_CHOOSE,
      "the longest reference run of the error-time curve, in iterations (default 8; >= 8)"},
     {"--ref-antialias", NULL, NULL, VB_BENCH | VB_CHOOSE,
@@ -478,6 +482,8 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
             cli->ref_photons = strtol(next, &end, 10);
             if (end == next || *end || cli->ref_photons < 0)
                 return usage_error("--ref-photons needs a count >= 0, got '%s'", next);
+        } else if (strcmp(a, "--truth") == 0) {
+            cli->truth = next;
         } else if (strcmp(a, "--ref-spp") == 0) {
             if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
                 return usage_error("--ref-spp needs a count >= 8, got '%s'", next);

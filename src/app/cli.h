@@ -49,6 +49,7 @@ struct cli {
     int nsweeps;
     long ref_photons;        /* --ref-photons (bench) */
     int ref_spp;             /* --ref-spp: the longest reference run of the curve (bench) */
+    const char *truth;       /* --truth: bench's ground truth from a file (a merged reference) */
     int error_frames;        /* --error-frames K (bench, choose): errors averaged over K frames spread over the
                                 animation (0: 1 frame, or 3 with --sweep technique=...) */
     double max_error;        /* --error E (choose): the largest error accepted (< 0: not given) */

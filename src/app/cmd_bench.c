@@ -30,6 +30,7 @@
 #include "graph/graph.h"
 #include "reference/image_metrics.h"
 #include "reference/reference.h"
+#include "reference/reference_part.h"
 
 #define MAX_VALUES 16
 #define MAX_COMBOS 256
@@ -697,6 +698,45 @@ static bool bench_truth_set(struct bench *b, const struct variant *v, int *out, 
     return true;
 }
 
+/* The truth from --truth FILE: a reference's image (a merged one, from
+ * any number of nodes), its caustic layer where it is an EXR with one; its
+ * .part, where there is one, must be of this frame and size. */
+static bool truth_from_file(const char *path, int frame, int w, int h, struct truth *t, struct error *err)
+{
+    char part_path[4300];
+    snprintf(part_path, sizeof part_path, "%s.part", path);
+    if (file_exists(part_path)) {
+        struct reference_part *part = malloc(sizeof *part);
+        if (!part)
+            return error_set(err, "--truth %s: out of memory", path);
+        bool ok = reference_part_read(path, part, err);
+        if (ok && (part->frame != frame || part->width != w || part->height != h))
+            ok = error_set(err, "--truth %s: a reference of frame %d at %dx%d; bench measures frame %d at %dx%d", path,
+                           part->frame, part->width, part->height, frame, w, h);
+        free(part);
+        if (!ok)
+            return false;
+    }
+    if (!image_read(path, &t->image, err))
+        return false;
+    if (t->image.width != w || t->image.height != h)
+        return error_set(err, "--truth %s: %dx%d, bench measures %dx%d (--size)", path, t->image.width,
+                         t->image.height, w, h);
+    t->frame = frame;
+    char layer[4300];
+    snprintf(layer, sizeof layer, "%s:caustic", path);
+    struct error ignore;
+    if (image_path_is_exr(path) && image_read(layer, &t->caustic, &ignore)) {
+        t->has_mask = caustic_mask(&t->image, &t->caustic, &t->mask, &ignore);
+    } else {
+        log_warn("--truth %s: no caustic layer (reference -o x.exr writes one): errors over the whole image only",
+                 path);
+        t->has_mask = false;
+    }
+    log_info("ground truth from %s", path);
+    return true;
+}
+
 /* The truth of set `set` at error frame `frame` (rendered or read from the cache). */
 static bool bench_truth(struct bench *b, const struct variant *v, int set, int frame, int *out, struct error *err)
 {
@@ -707,9 +747,17 @@ static bool bench_truth(struct bench *b, const struct variant *v, int set, int f
         }
     if (b->ntruths >= MAX_TRUTHS)
         return error_set(err, "more than %d ground truths (scenes x error frames)", MAX_TRUTHS);
-    if (!get_truth(b->app, b->script, &v->truth_params, frame, b->width, b->height, &b->truth_options, b->cache,
-                   &b->truths[b->ntruths], err))
+    if (b->cli->truth) {
+        if (set != 0 || b->nerror > 1)
+            return error_set(err, "--truth %s is one frame of one scene: %s", b->cli->truth,
+                             set != 0 ? "this sweep changes the scene (sweep pass parameters or techniques with it)"
+                                      : "use --error-frames 1");
+        if (!truth_from_file(b->cli->truth, frame, b->width, b->height, &b->truths[b->ntruths], err))
+            return false;
+    } else if (!get_truth(b->app, b->script, &v->truth_params, frame, b->width, b->height, &b->truth_options,
+                          b->cache, &b->truths[b->ntruths], err)) {
         return false;
+    }
     b->truths[b->ntruths].set = set;
     *out = b->ntruths++;
     return true;

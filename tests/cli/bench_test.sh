@@ -34,6 +34,22 @@ grep -q "rendering the ground truth" "$WORK/err.txt" && pass "first run renders 
   -o "$B" --ref-photons 20000 --ref-spp 8 >"$WORK/out2.txt" 2>"$WORK/err2.txt"
 grep -q "rendering the ground truth" "$WORK/err2.txt" && fail "second run" "rendered the truth again" || pass "second run reuses the cache"
 
+# A truth from elsewhere (issue 28): a reference rendered in two shards and merged is bench's ground
+# truth (no truth rendered), its .part checked against the frame and size bench measures.
+for i in 0 1; do
+  "$CAUSTICA" reference scenes/demo.lua -o "$WORK/tp$i.exr" --size 64x64 --photons 1000 --spp 8 --shard $i/2 -q >/dev/null
+done
+"$CAUSTICA" merge "$WORK/tp0.exr" "$WORK/tp1.exr" -o "$WORK/truth.exr" -q
+"$CAUSTICA" bench scenes/demo.lua --sweep shadow.size=256,1024 --size 64x64 --frames 2 -o "$WORK/bt" \
+  --ref-photons 1000 --ref-spp 8 --truth "$WORK/truth.exr" >"$WORK/bt.txt" 2>&1
+! grep -q "rendering the ground truth" "$WORK/bt.txt" && [ "$(grep -c '^| shadow.size=' "$WORK/bt/results.md")" = 2 ] \
+  && pass "bench --truth: a merged reference is the ground truth, none rendered" || fail "bench --truth" "$(cat "$WORK/bt.txt")"
+"$CAUSTICA" bench scenes/demo.lua --sweep shadow.size=256,1024 --size 32x32 --frames 1 -o "$WORK/bt2" \
+  --ref-photons 1000 --ref-spp 8 --truth "$WORK/truth.exr" >/dev/null 2>"$WORK/bt2.txt"
+rc=$?
+[ $rc = 1 ] && grep -q "a reference of frame 0 at 64x64; bench measures frame 0 at 32x32" "$WORK/bt2.txt" \
+  && pass "bench --truth of another size is refused" || fail "bench --truth size" "exit $rc: $(cat "$WORK/bt2.txt")"
+
 # The demo with a sweep of a pass parameter.
 "$CAUSTICA" bench scenes/demo.lua --sweep shadow.size=256,1024 --size 64x64 --frames 2 -o "$WORK/demo" \
   --ref-photons 1000 --ref-spp 8 >"$WORK/demo.txt" 2>&1 && [ -s "$WORK/demo/results.md" ] \
