@@ -25,7 +25,7 @@ endforeach()
 
 # Fuzz inputs replayed in every build: the seed corpus and each crash kept
 # from fuzzing (tests/fuzz/README.md).
-foreach(name gltf script bench_csv)
+foreach(name gltf script bench_csv reference_part)
   add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
   target_link_libraries(replay_${name} PRIVATE caustica_core)
 endforeach()
@@ -42,6 +42,8 @@ foreach(format ${CAUSTICA_IMAGE_FUZZ_FORMATS})
 endforeach()
 add_test(NAME fuzz_bench_csv_regressions COMMAND replay_bench_csv
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_bench_csv ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_bench_csv)
+add_test(NAME fuzz_reference_part_regressions COMMAND replay_reference_part
+         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_reference_part ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_reference_part)
 # The script corpus is made from the scene scripts (tests/fuzz/script_corpus.sh).
 add_test(NAME fuzz_script_regressions COMMAND sh -c
          "${CMAKE_SOURCE_DIR}/tests/fuzz/script_corpus.sh ${CMAKE_BINARY_DIR}/corpus_script && \
