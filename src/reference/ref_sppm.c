@@ -642,10 +642,20 @@ static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 
         return sum;
     long cx = (long)floor(x.x / g->cell), cy = (long)floor(x.y / g->cell), cz = (long)floor(x.z / g->cell);
     double r2 = g->radius * g->radius;
+    /* two of the 27 cells may hash to one slot: each slot is read once, or
+     * its photons would count twice */
+    size_t seen[27];
+    int nseen = 0;
     for (long z = cz - 1; z <= cz + 1; z++)
         for (long y = cy - 1; y <= cy + 1; y++)
             for (long xx = cx - 1; xx <= cx + 1; xx++) {
                 size_t h = volume_hash(g, xx, y, z);
+                bool again = false;
+                for (int i = 0; i < nseen && !again; i++)
+                    again = seen[i] == h;
+                if (again)
+                    continue;
+                seen[nseen++] = h;
                 for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
                     const struct volume_photon *p = &g->items[k];
                     dvec3 d = dv(p->position[0] - x.x, p->position[1] - x.y, p->position[2] - x.z);
@@ -721,6 +731,10 @@ static void gather(struct job *j, struct photon_hits *hits, int light, dvec3 p, 
     size_t h = cell_hash(g, (long)floor(q.x / g->cell), (long)floor(q.y / g->cell), (long)floor(q.z / g->cell));
     for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
         int i = g->items[k];
+        /* a point spanning two cells that hash to one slot is in it twice,
+         * next to itself (grid_build fills point by point): once only */
+        if (k > g->start[h] && g->items[k - 1] == i)
+            continue;
         const struct pixel *px = &j->pixels[i];
         dvec3 d = dv_sub(px->vp.position, p);
         if (dv_dot(d, d) > px->radius * px->radius)
