@@ -341,6 +341,7 @@ struct job {
     long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
     long photons_total;
     struct grid *grid;
+    struct grid *photon_grid; /* the iterations' grid, its arrays kept between them */
     struct photon_hits *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
     double caustic_power[PHOTON_CHUNKS][3]; /* flux the photons brought to diffuse surfaces */
@@ -455,13 +456,25 @@ static void *camera_thread(void *arg)
 
 /* ---- photons ------------------------------------------------------------ */
 
-/* A hash grid over the visible points (cell = the largest radius). */
+/* A hash grid over the visible points (cell = the largest radius). Each
+ * entry carries all a gather reads (the point, its radius squared, normal
+ * and weight), so a photon's candidates come from one array rather than
+ * from the pixels, whose records are large: the gather was bound by those
+ * cache misses (half the ball lens's photon time at 512^2). */
+struct grid_item {
+    double x, y, z, radius2;
+    int pixel;
+};
+
 struct grid {
     double cell;
     dvec3 origin;
-    size_t size;      /* hash table slots */
-    size_t *start;    /* size + 1 offsets into items */
-    int *items;       /* pixel indices */
+    size_t size;             /* hash table slots */
+    size_t *start;           /* size + 1 offsets into items */
+    struct grid_item *items; /* by slot */
+    /* what the arrays hold: kept from one build to the next (every
+     * iteration builds the grid again; fresh arrays cost page faults) */
+    size_t start_capacity, items_capacity;
 };
 
 static size_t cell_hash(const struct grid *g, long x, long y, long z)
@@ -485,14 +498,24 @@ static void grid_build(struct grid *g, const struct pixel *pixels, int count)
     g->cell = rmax > 0 ? rmax : 1.0;
     g->origin = valid ? lo : dv(0, 0, 0);
     g->size = (size_t)(valid > 0 ? valid * 2 : 1);
-    g->start = calloc(g->size + 1, sizeof *g->start);
+    if (g->start_capacity < g->size + 1) {
+        free(g->start);
+        g->start = malloc((g->size + 1) * sizeof *g->start);
+        g->start_capacity = g->start ? g->size + 1 : 0;
+    }
+    if (g->start)
+        memset(g->start, 0, (g->size + 1) * sizeof *g->start);
     /* two passes: count, then fill (counting sort by cell) */
     for (int pass = 0; pass < 2; pass++) {
         size_t *fill = NULL;
         if (pass == 1) {
             for (size_t s = 0; s < g->size; s++)
                 g->start[s + 1] += g->start[s];
-            g->items = malloc((g->start[g->size] + 1) * sizeof *g->items);
+            if (g->items_capacity < g->start[g->size] + 1) {
+                free(g->items);
+                g->items = malloc((g->start[g->size] + 1) * sizeof *g->items);
+                g->items_capacity = g->items ? g->start[g->size] + 1 : 0;
+            }
             fill = malloc((g->size + 1) * sizeof *fill);
             memcpy(fill, g->start, (g->size + 1) * sizeof *fill);
         }
@@ -511,7 +534,8 @@ static void grid_build(struct grid *g, const struct pixel *pixels, int count)
                         if (pass == 0)
                             g->start[h + 1]++;
                         else
-                            g->items[fill[h]++] = i;
+                            g->items[fill[h]++] = (struct grid_item){p->vp.position.x, p->vp.position.y,
+                                                                     p->vp.position.z, p->radius * p->radius, i};
                     }
         }
         free(fill);
@@ -730,15 +754,16 @@ static void gather(struct job *j, struct photon_hits *hits, int light, dvec3 p, 
     dvec3 q = dv_sub(p, g->origin);
     size_t h = cell_hash(g, (long)floor(q.x / g->cell), (long)floor(q.y / g->cell), (long)floor(q.z / g->cell));
     for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
-        int i = g->items[k];
+        const struct grid_item *item = &g->items[k];
+        int i = item->pixel;
         /* a point spanning two cells that hash to one slot is in it twice,
          * next to itself (grid_build fills point by point): once only */
-        if (k > g->start[h] && g->items[k - 1] == i)
+        if (k > g->start[h] && g->items[k - 1].pixel == i)
+            continue;
+        double dx = item->x - p.x, dy = item->y - p.y, dz = item->z - p.z;
+        if (dx * dx + dy * dy + dz * dz > item->radius2)
             continue;
         const struct pixel *px = &j->pixels[i];
-        dvec3 d = dv_sub(px->vp.position, p);
-        if (dv_dot(d, d) > px->radius * px->radius)
-            continue;
         /* same side of the same kind of surface, arriving from the lit side */
         if (dv_dot(px->vp.normal, dir) >= 0.0 || fabs(dv_dot(px->vp.normal, n_surface)) < 0.5)
             continue;
@@ -994,7 +1019,7 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
      * first radius (the last round's, the best aimed). */
     for (size_t i = 0; i < npix; i++)
         pixels[i].radius *= PILOT_RADIUS;
-    struct grid grid;
+    struct grid grid = {0};
     grid_build(&grid, pixels, (int)npix);
     job->grid = &grid;
     atomic_uint *counts = calloc(npix, sizeof *counts);
@@ -1173,9 +1198,8 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
     t->stage_pilot += log_now() - stage_start;
     stage_start = log_now();
-    struct grid grid;
-    grid_build(&grid, pixels, (int)npix);
-    job->grid = &grid;
+    grid_build(job->photon_grid, pixels, (int)npix);
+    job->grid = job->photon_grid;
     /* With a medium, the volume gather after the photons must fit in the
      * budget too: reserve what the last one cost per photon for this
      * iteration's photons (the first iteration, with nothing to go by,
@@ -1229,7 +1253,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         for (int k = 0; k < 3; k++)
             t->caustic_power[k] += job->caustic_power[c][k];
     }
-    grid_release(&grid);
+    job->grid = NULL;
     if (!job->independent) /* independent passes keep the pilot's aim: no pass may depend on another */
         adapt_emission(job->aims, job->emitters, rs->light_count);
     t->stage_photons += log_now() - stage_start;
@@ -1509,9 +1533,11 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
     budget->tty = o->progress && isatty(STDERR_FILENO) && !log_quiet();
     budget->log_lines = o->progress && !budget->tty && !log_quiet();
+    struct grid photon_grid = {0};
     struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
-                      .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims};
+                      .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims,
+                      .photon_grid = &photon_grid};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
         caustics = false;
     for (int l = 0; l < rs.light_count; l++) {
@@ -1618,6 +1644,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         for (int k = 0; k < 3; k++)
             stats->caustic_power[k] = totals.caustic_power[k] / passes;
     }
+    grid_release(&photon_grid);
     sppm_buffers_release(&buf);
     for (int l = 0; l < rs.light_count; l++)
         ref_emitter_release(&emitters[l]);
