@@ -65,12 +65,18 @@ static void *host_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
     return p;
 }
 
-bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error *err)
+/* The host's memory account of a state it made (NULL for any other). */
+static struct host_memory *memory_of(lua_State *L)
 {
     void *ud = NULL;
-    if (lua_getallocf(L, &ud) != host_alloc || !ud)
+    return lua_getallocf(L, &ud) == host_alloc ? ud : NULL;
+}
+
+bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error *err)
+{
+    struct host_memory *m = memory_of(L);
+    if (!m)
         return true;
-    struct host_memory *m = ud;
     if (m->limit && (bytes > m->limit || m->used > m->limit - bytes))
         return error_set(err, "%s needs %.0f MB, which would take the script past --script-memory %.0f MB (%.0f MB "
                               "in use; raise it, 0 = no limit)", what, (double)bytes / 1048576.0,
@@ -81,22 +87,17 @@ bool lua_host_charge(lua_State *L, size_t bytes, const char *what, struct error 
 
 unsigned long long lua_host_memory_left(lua_State *L)
 {
-    void *ud = NULL;
-    if (lua_getallocf(L, &ud) != host_alloc || !ud)
-        return 0;
-    struct host_memory *m = ud;
-    if (!m->limit)
+    struct host_memory *m = memory_of(L);
+    if (!m || !m->limit)
         return 0;
     return m->used < m->limit ? (unsigned long long)(m->limit - m->used) : 1ull;
 }
 
 void lua_host_uncharge(lua_State *L, size_t bytes)
 {
-    void *ud = NULL;
-    if (lua_getallocf(L, &ud) != host_alloc || !ud)
-        return;
-    struct host_memory *m = ud;
-    m->used = m->used > bytes ? m->used - bytes : 0;
+    struct host_memory *m = memory_of(L);
+    if (m)
+        m->used = m->used > bytes ? m->used - bytes : 0;
 }
 
 /* The deadline of the call into a script now in progress, for the

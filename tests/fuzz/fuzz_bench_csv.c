@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "app/bench_cache.h"
+#include "fuzz_files.h"
 
 static char path[320];
 static struct bench_row rows[BENCH_CACHE_MAX_ROWS];
@@ -18,20 +19,16 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argc;
     (void)argv;
     char dir[256];
-    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-csv.%ld", (long)getpid());
+    if (!fuzz_private_dir("csv", dir, sizeof dir))
+        return 1;
     snprintf(path, sizeof path, "%s/sweep.csv", dir);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "mkdir -p %s", dir);
-    return system(cmd) == 0 ? 0 : 1;
+    return 0;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f)
+    if (!fuzz_write_file(path, data, size))
         return 0;
-    fwrite(data, 1, size, f);
-    fclose(f);
     int count = 0;
     struct error err;
     bench_cache_read(path, rows, &count, &err);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_files.h"
 #include "io/gltf.h"
 
 static char dir[256];
@@ -16,10 +17,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-gltf.%ld", (long)getpid());
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "mkdir -p %s", dir);
-    return system(cmd) == 0 ? 0 : 1;
+    return fuzz_private_dir("gltf", dir, sizeof dir) ? 0 : 1;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -27,11 +25,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     char path[320];
     bool binary = size >= 4 && memcmp(data, "glTF", 4) == 0;
     snprintf(path, sizeof path, "%s/input.%s", dir, binary ? "glb" : "gltf");
-    FILE *f = fopen(path, "wb");
-    if (!f)
+    if (!fuzz_write_file(path, data, size))
         return 0;
-    fwrite(data, 1, size, f);
-    fclose(f);
     struct gltf_mesh m;
     struct error err;
     if (gltf_load(path, &m, &err))

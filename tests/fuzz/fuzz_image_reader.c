@@ -16,6 +16,7 @@
 
 #include "io/image.h"
 #include "io/image_decode.h"
+#include "fuzz_files.h"
 
 #define FUZZ_STRINGIFY2(x) #x
 #define FUZZ_STRINGIFY(x) FUZZ_STRINGIFY2(x)
@@ -30,10 +31,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-%s.%ld", format, (long)getpid());
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "mkdir -p %s", dir);
-    return system(cmd) == 0 ? 0 : 1;
+    return fuzz_private_dir(format, dir, sizeof dir) ? 0 : 1;
 }
 
 static void read_path(const char *path)
@@ -51,11 +49,8 @@ static void read_file(const uint8_t *data, size_t size)
 {
     char path[320];
     snprintf(path, sizeof path, "%s/input.%s", dir, format);
-    FILE *f = fopen(path, "wb");
-    if (!f)
+    if (!fuzz_write_file(path, data, size))
         return;
-    fwrite(data, 1, size, f);
-    fclose(f);
     read_path(path);
     if (strcmp(format, "exr") == 0) {
         char layer[340];

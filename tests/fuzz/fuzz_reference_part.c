@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_files.h"
 #include "reference/reference_part.h"
 
 static char image[320], part_path[340];
@@ -19,21 +20,17 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argc;
     (void)argv;
     char dir[256];
-    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-part.%ld", (long)getpid());
+    if (!fuzz_private_dir("part", dir, sizeof dir))
+        return 1;
     snprintf(image, sizeof image, "%s/x.pfm", dir);
     snprintf(part_path, sizeof part_path, "%s.part", image);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "mkdir -p %s", dir);
-    return system(cmd) == 0 ? 0 : 1;
+    return 0;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    FILE *f = fopen(part_path, "wb");
-    if (!f)
+    if (!fuzz_write_file(part_path, data, size))
         return 0;
-    fwrite(data, 1, size, f);
-    fclose(f);
     struct error err;
     if (reference_part_read(image, &part, &err)) {
         /* what merge relies on once the read succeeds */

@@ -12,6 +12,7 @@
 
 #include "app/app.h"
 #include "app/session.h"
+#include "fuzz_files.h"
 
 static char dir[256];
 static struct app app;
@@ -20,10 +21,11 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(dir, sizeof dir, "/tmp/caustica-fuzz-script.%ld", (long)getpid());
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "mkdir -p %s/out", dir);
-    if (system(cmd) != 0)
+    char out[320];
+    if (!fuzz_private_dir("script", dir, sizeof dir))
+        return 1;
+    snprintf(out, sizeof out, "%s/out", dir);
+    if (mkdir(out, 0700) != 0 && errno != EEXIST)
         return 1;
     app_init(&app);
     /* The seed scripts name assets as "scenes/assets/...": a link beside the
@@ -44,11 +46,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     char path[320], out[320];
     snprintf(path, sizeof path, "%s/scene.lua", dir);
     snprintf(out, sizeof out, "%s/out", dir);
-    FILE *f = fopen(path, "wb");
-    if (!f)
+    if (!fuzz_write_file(path, data, size))
         return 0;
-    fwrite(data, 1, size, f);
-    fclose(f);
     struct session_options o = {.script = path, .width = 16, .height = 16, .write_dir = out};
     struct session *s;
     struct error err;
