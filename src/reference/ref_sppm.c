@@ -26,6 +26,7 @@
 #include "core/optics.h"
 #include "reference/ref_emit.h"
 #include "reference/ref_media.h"
+#include "reference/ref_photon_map.h"
 #include "reference/ref_rng.h"
 #include "reference/ref_scene.h"
 #include "reference/reference.h"
@@ -257,7 +258,7 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
 /* What the threads of one render share: the clock they all stop by. */
 struct budget {
     double deadline;        /* log_now() time; 0: none */
-    double photon_deadline; /* when photons stop: the deadline less the time the volume gather after them needs */
+    double photon_deadline; /* when photons stop: the deadline less what the gathers after them need */
     atomic_int cut;         /* set when an eye or gather pass stopped early for the deadline */
     atomic_int photons_cut; /* set when the photon pass did */
     long chunk_reached[PHOTON_CHUNKS]; /* where each chunk's photons stopped (its end, unless cut) */
@@ -268,7 +269,26 @@ struct budget {
     long long emitted_before;
     int line_length;        /* of the progress line on the terminal, to blank what a shorter one leaves */
     double last_line;       /* when the last whole progress line went to the log */
+    bool map_warned;        /* the photon map's out-of-memory warning was given */
+    double gather_share;    /* of a photon stage's time, what the surface gather after the tracing took, last time */
 };
+
+/* A photon stage that must end by `until` (0: no budget) stops tracing
+ * early enough for the surface gather after it, as long as the last one
+ * took (the first guess, before any was measured, is a quarter). */
+static double photon_deadline_before_gather(const struct budget *b, double until)
+{
+    if (until <= 0.0)
+        return 0.0;
+    double now = log_now();
+    return now + fmax(until - now, 0.0) * (1.0 - b->gather_share);
+}
+
+static void gather_share_measured(struct budget *b, double trace_seconds, double gather_seconds)
+{
+    if (trace_seconds + gather_seconds > 0.0)
+        b->gather_share = fmin(gather_seconds / (trace_seconds + gather_seconds), 0.9);
+}
 
 /* The one progress writer: on a terminal, the line rewritten in place
  * (padded over the longer line before it); off one, nothing here (the
@@ -332,17 +352,16 @@ struct job {
      * photons_of[l]) holds it */
     struct ref_emitter *emitters;
     struct aim_log *aims;     /* PHOTON_CHUNKS of them */
-    long gathered;            /* this thread's photon-to-pixel deposits so far (tells a useful photon) */
-    atomic_uint *pilot_counts; /* during the pilot: photons per pixel, and no flux kept */
     double pass_fraction;     /* of the photons of the pass just traced (1 unless the budget cut it) */
     bool independent;         /* passes that share no state (ref_options.shard_count > 0) */
     bool pilot_done;          /* the pilot ran before the passes (independent passes) */
     double emit_shift[SCENE_MAX_GPU_LIGHTS][3]; /* each light's random rotation of its emission sequence */
     long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
     long photons_total;
-    struct grid *grid;
-    struct grid *photon_grid; /* the iterations' grid, its arrays kept between them */
-    struct photon_hits *chunks;
+    struct ref_photon_map *photon_map; /* the iterations' map, its arrays kept between them */
+    const double *light_scale;         /* the gather's scale of each light's photons */
+    bool gather_counts_only;           /* the pilot's gather: photons per pixel into m, no flux */
+    struct ref_surface_photons *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
     double caustic_power[PHOTON_CHUNKS][3]; /* flux the photons brought to diffuse surfaces */
 };
@@ -455,122 +474,6 @@ static void *camera_thread(void *arg)
 }
 
 /* ---- photons ------------------------------------------------------------ */
-
-/* A hash grid over the visible points (cell = the largest radius). Each
- * entry carries all a gather reads (the point, its radius squared, normal
- * and weight), so a photon's candidates come from one array rather than
- * from the pixels, whose records are large: the gather was bound by those
- * cache misses (half the ball lens's photon time at 512^2). */
-struct grid_item {
-    double x, y, z, radius2;
-    int pixel;
-};
-
-struct grid {
-    double cell;
-    dvec3 origin;
-    size_t size;             /* hash table slots */
-    size_t *start;           /* size + 1 offsets into items */
-    struct grid_item *items; /* by slot */
-    /* what the arrays hold: kept from one build to the next (every
-     * iteration builds the grid again; fresh arrays cost page faults) */
-    size_t start_capacity, items_capacity;
-};
-
-static size_t cell_hash(const struct grid *g, long x, long y, long z)
-{
-    uint64_t h = ((uint64_t)x * 73856093u) ^ ((uint64_t)y * 19349663u) ^ ((uint64_t)z * 83492791u);
-    return (size_t)(h % g->size);
-}
-
-static void grid_build(struct grid *g, const struct pixel *pixels, int count)
-{
-    double rmax = 0;
-    int valid = 0;
-    dvec3 lo = dv(INFINITY, INFINITY, INFINITY);
-    for (int i = 0; i < count; i++)
-        if (pixels[i].vp.valid) {
-            rmax = fmax(rmax, pixels[i].radius);
-            lo = dv(fmin(lo.x, pixels[i].vp.position.x), fmin(lo.y, pixels[i].vp.position.y),
-                    fmin(lo.z, pixels[i].vp.position.z));
-            valid++;
-        }
-    g->cell = rmax > 0 ? rmax : 1.0;
-    g->origin = valid ? lo : dv(0, 0, 0);
-    g->size = (size_t)(valid > 0 ? valid * 2 : 1);
-    if (g->start_capacity < g->size + 1) {
-        free(g->start);
-        g->start = malloc((g->size + 1) * sizeof *g->start);
-        g->start_capacity = g->start ? g->size + 1 : 0;
-    }
-    if (g->start)
-        memset(g->start, 0, (g->size + 1) * sizeof *g->start);
-    /* two passes: count, then fill (counting sort by cell) */
-    for (int pass = 0; pass < 2; pass++) {
-        size_t *fill = NULL;
-        if (pass == 1) {
-            for (size_t s = 0; s < g->size; s++)
-                g->start[s + 1] += g->start[s];
-            if (g->items_capacity < g->start[g->size] + 1) {
-                free(g->items);
-                g->items = malloc((g->start[g->size] + 1) * sizeof *g->items);
-                g->items_capacity = g->items ? g->start[g->size] + 1 : 0;
-            }
-            fill = malloc((g->size + 1) * sizeof *fill);
-            memcpy(fill, g->start, (g->size + 1) * sizeof *fill);
-        }
-        for (int i = 0; i < count; i++) {
-            const struct pixel *p = &pixels[i];
-            if (!p->vp.valid)
-                continue;
-            dvec3 q = dv_sub(p->vp.position, g->origin);
-            long x0 = (long)floor((q.x - p->radius) / g->cell), x1 = (long)floor((q.x + p->radius) / g->cell);
-            long y0 = (long)floor((q.y - p->radius) / g->cell), y1 = (long)floor((q.y + p->radius) / g->cell);
-            long z0 = (long)floor((q.z - p->radius) / g->cell), z1 = (long)floor((q.z + p->radius) / g->cell);
-            for (long z = z0; z <= z1; z++)
-                for (long y = y0; y <= y1; y++)
-                    for (long x = x0; x <= x1; x++) {
-                        size_t h = cell_hash(g, x, y, z);
-                        if (pass == 0)
-                            g->start[h + 1]++;
-                        else
-                            g->items[fill[h]++] = (struct grid_item){p->vp.position.x, p->vp.position.y,
-                                                                     p->vp.position.z, p->radius * p->radius, i};
-                    }
-        }
-        free(fill);
-    }
-}
-
-static void grid_release(struct grid *g)
-{
-    free(g->start);
-    free(g->items);
-    memset(g, 0, sizeof *g);
-}
-
-struct photon_hit {
-    int pixel, light;
-    float flux[3];
-};
-
-struct photon_hits {
-    struct photon_hit *items;
-    size_t count, capacity;
-};
-
-static void hits_push(struct photon_hits *h, int pixel, int light, dvec3 flux)
-{
-    if (h->count == h->capacity) {
-        size_t cap = h->capacity ? h->capacity * 2 : 1024;
-        struct photon_hit *p = realloc(h->items, cap * sizeof *p);
-        if (!p)
-            return; /* out of memory: the photon is lost, the estimate stays finite */
-        h->items = p;
-        h->capacity = cap;
-    }
-    h->items[h->count++] = (struct photon_hit){pixel, light, {(float)flux.x, (float)flux.y, (float)flux.z}};
-}
 
 /* Volume caustic photons: where light that went through specular
  * surfaces scattered in the medium (flux already weighted by sigma_s). */
@@ -748,33 +651,6 @@ static void *volume_thread(void *arg)
     return NULL;
 }
 
-static void gather(struct job *j, struct photon_hits *hits, int light, dvec3 p, dvec3 n_surface, dvec3 dir, dvec3 flux)
-{
-    const struct grid *g = j->grid;
-    dvec3 q = dv_sub(p, g->origin);
-    size_t h = cell_hash(g, (long)floor(q.x / g->cell), (long)floor(q.y / g->cell), (long)floor(q.z / g->cell));
-    for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
-        const struct grid_item *item = &g->items[k];
-        int i = item->pixel;
-        /* a point spanning two cells that hash to one slot is in it twice,
-         * next to itself (grid_build fills point by point): once only */
-        if (k > g->start[h] && g->items[k - 1].pixel == i)
-            continue;
-        double dx = item->x - p.x, dy = item->y - p.y, dz = item->z - p.z;
-        if (dx * dx + dy * dy + dz * dz > item->radius2)
-            continue;
-        const struct pixel *px = &j->pixels[i];
-        /* same side of the same kind of surface, arriving from the lit side */
-        if (dv_dot(px->vp.normal, dir) >= 0.0 || fabs(dv_dot(px->vp.normal, n_surface)) < 0.5)
-            continue;
-        j->gathered++;
-        if (j->pilot_counts)
-            atomic_fetch_add_explicit(&j->pilot_counts[i], 1u, memory_order_relaxed);
-        else
-            hits_push(hits, i, light, dv_mul(px->vp.weight, flux));
-    }
-}
-
 /* What each chunk's photons were aimed at, and whether they reached a
  * visible point: (light << 40) | (entry << 1) | useful, for the adaptive
  * emission (ref_emitter_adapt). */
@@ -797,10 +673,10 @@ static void aim_push(struct aim_log *log, int light, size_t entry, bool useful)
 }
 
 static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
-                              int target_object, unsigned target_primitive, struct photon_hits *hits,
-                              long long *caustic, double *power, struct volume_photons *volume);
+                              int target_object, unsigned target_primitive, struct ref_surface_photons *hits,
+                              long long *caustic, double *power, struct volume_photons *volume, uint32_t aim);
 
-static void trace_photon(struct job *j, int light, long index, struct photon_hits *hits, long long *caustic,
+static void trace_photon(struct job *j, int light, long index, struct ref_surface_photons *hits, long long *caustic,
                          double *power, struct volume_photons *volume, struct aim_log *aims)
 {
     const struct ref_scene *rs = j->rs;
@@ -820,15 +696,17 @@ static void trace_photon(struct job *j, int light, long index, struct photon_hit
     if (!ref_emitter_sample(&j->emitters[light], rs, &rs->lights[light], j->photons_of[light], point, &origin, &dir,
                             &flux, &target_object, &target_primitive, &entry))
         return;
-    long gathered_before = j->gathered;
     size_t volume_before = volume->count;
-    trace_photon_path(j, light, &rng, origin, dir, flux, target_object, target_primitive, hits, caustic, power, volume);
-    aim_push(aims, light, entry, j->gathered > gathered_before || volume->count > volume_before);
+    /* a surface photon is marked useful by the gather (ref_sppm_mark_useful),
+     * a volume photon now: it is gathered wherever it lies */
+    trace_photon_path(j, light, &rng, origin, dir, flux, target_object, target_primitive, hits, caustic, power, volume,
+                      (uint32_t)aims->count);
+    aim_push(aims, light, entry, volume->count > volume_before);
 }
 
 static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
-                              int target_object, unsigned target_primitive, struct photon_hits *hits,
-                              long long *caustic, double *power, struct volume_photons *volume)
+                              int target_object, unsigned target_primitive, struct ref_surface_photons *hits,
+                              long long *caustic, double *power, struct volume_photons *volume, uint32_t aim)
 {
     const struct ref_scene *rs = j->rs;
     struct ref_rng rng = *rng_in;
@@ -868,7 +746,12 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
                 power[0] += flux.x;
                 power[1] += flux.y;
                 power[2] += flux.z;
-                gather(j, hits, light, h.position, h.geometric_normal, dir, flux);
+                struct ref_surface_photon ph = {
+                    {(float)h.position.x, (float)h.position.y, (float)h.position.z},
+                    {(float)dir.x, (float)dir.y, (float)dir.z},
+                    {(float)h.geometric_normal.x, (float)h.geometric_normal.y, (float)h.geometric_normal.z},
+                    {(float)flux.x, (float)flux.y, (float)flux.z}, light, aim};
+                ref_surface_photons_push(hits, &ph); /* out of memory: the photon is lost, the estimate stays finite */
             }
             return; /* L D paths are direct light, gathered by shadow rays */
         }
@@ -993,6 +876,70 @@ static double adapt_emission(struct aim_log *aims, struct ref_emitter *emitters,
     return logged > 0.0 ? useful / logged : 0.0;
 }
 
+/* ---- the surface gather --------------------------------------------------- */
+
+/* Rows interleaved over the threads; each pixel sums the photons within
+ * its radius (ref_photon_map.h: the gather from the pixels' side). */
+static void *surface_gather_thread(void *arg)
+{
+    struct job *j = arg;
+    for (int y = j->thread; y < j->o->height; y += j->threads)
+        for (int x = 0; x < j->o->width; x++) {
+            struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+            if (!px->vp.valid || !(px->radius > 0.0))
+                continue;
+            dvec3 flux;
+            long m = ref_photon_map_gather(j->photon_map, px->vp.position, px->vp.normal, px->radius, j->light_scale,
+                                           &flux);
+            px->m += m;
+            if (m > 0 && !j->gather_counts_only)
+                px->phi = dv_add(px->phi, dv_mul(px->vp.weight, flux));
+        }
+    return NULL;
+}
+
+/* Gathers the traced surface photons into the visible points (their flux
+ * into phi and their count into m, or for the pilot only the count), each
+ * light's photons scaled by light_scale, tells each chunk's aim log which
+ * of its photons a visible point took (the adaptive emission's "useful"),
+ * and empties the chunks. */
+static void gather_surface_photons(struct job *job, int threads, const double *light_scale, bool counts_only)
+{
+    struct ref_photon_map *map = job->photon_map;
+    size_t npix = (size_t)job->o->width * (size_t)job->o->height;
+    double rmax = 0.0;
+    for (size_t i = 0; i < npix; i++)
+        if (job->pixels[i].vp.valid && job->pixels[i].radius > 0.0)
+            rmax = fmax(rmax, job->pixels[i].radius);
+    if (rmax > 0.0) {
+        ref_photon_map_prepare(map, rmax);
+        size_t per_level[REF_PHOTON_MAP_LEVELS] = {0};
+        for (size_t i = 0; i < npix; i++)
+            if (job->pixels[i].vp.valid && job->pixels[i].radius > 0.0)
+                per_level[ref_photon_map_level_of(map, job->pixels[i].radius)]++;
+        if (!ref_photon_map_build(map, job->chunks, PHOTON_CHUNKS, per_level, threads)) {
+            if (!job->budget->map_warned)
+                log_warn("reference: out of memory for the photon map: an iteration's caustic photons are lost "
+                         "(fewer --photons would fit)");
+            job->budget->map_warned = true;
+            map->count = 0;
+        }
+        if (map->count > 0) {
+            job->light_scale = light_scale;
+            job->gather_counts_only = counts_only;
+            run_threads(job, threads, surface_gather_thread);
+        }
+        size_t i = 0;
+        for (int c = 0; c < PHOTON_CHUNKS && map->count > 0; c++)
+            for (size_t k = 0; k < job->chunks[c].count; k++, i++)
+                if (ref_photon_map_was_used(map, i) &&
+                    job->chunks[c].items[k].aim < job->aims[c].count)
+                    job->aims[c].items[job->chunks[c].items[k].aim] |= 1u;
+    }
+    for (int c = 0; c < PHOTON_CHUNKS; c++)
+        job->chunks[c].count = 0;
+}
+
 #define PILOT_RADIUS 2.0   /* the pilot counts photons within this many first radii */
 #define GATHER_PHOTONS 40.0 /* photons a first radius is chosen to hold, about, per iteration */
 #define RADIUS_MIN 0.0625   /* the first radius stays within these multiples of two pixel footprints */
@@ -1019,35 +966,37 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
      * first radius (the last round's, the best aimed). */
     for (size_t i = 0; i < npix; i++)
         pixels[i].radius *= PILOT_RADIUS;
-    struct grid grid = {0};
-    grid_build(&grid, pixels, (int)npix);
-    job->grid = &grid;
-    atomic_uint *counts = calloc(npix, sizeof *counts);
     /* the pilot only aims: under a budget it may take a quarter of what is
      * left, so that the estimate's own photons get the rest */
-    budget->photon_deadline = budget->deadline;
+    double pilot_deadline = budget->deadline;
     if (budget->deadline > 0)
-        budget->photon_deadline = log_now() + 0.25 * fmax(budget->deadline - log_now(), 0.0);
-    for (int round = 0; counts && round < PILOT_ROUNDS; round++) {
+        pilot_deadline = log_now() + 0.25 * fmax(budget->deadline - log_now(), 0.0);
+    /* The counts that set the radii must come from photons aimed as the
+     * estimate's will be: once the aim has settled (or the rounds are
+     * used up), one more round counts on the final pdf and is not adapted
+     * after. Counting on the round before the last adaptation undercounted
+     * wherever that adaptation moved photons into view (flat water seen
+     * close up: two photons where 40 were meant, and the radius pinned at
+     * its largest). */
+    bool settled = false;
+    for (int round = 0; round <= PILOT_ROUNDS; round++) {
         for (size_t i = 0; i < npix; i++)
-            atomic_store(&counts[i], 0u);
-        job->pilot_counts = counts;
+            pixels[i].m = 0;
         job->iteration = -1 - round;
+        budget->photon_deadline = photon_deadline_before_gather(budget, pilot_deadline);
+        double trace_start = log_now();
         run_threads(job, threads, photon_thread);
+        double gather_start = log_now();
+        gather_surface_photons(job, threads, NULL, true);
+        gather_share_measured(budget, gather_start - trace_start, log_now() - gather_start);
         for (int c = 0; c < PHOTON_CHUNKS; c++)
             volume_chunks[c].count = 0;
         bool pilot_spent = atomic_load(&budget->photons_cut) != 0;
         atomic_store(&budget->photons_cut, 0);
-        if (adapt_emission(job->aims, job->emitters, light_count) >= PILOT_USEFUL || pilot_spent ||
-            budget_spent(budget))
-            break;
+        if (settled || pilot_spent || budget_spent(budget))
+            break; /* the aims this round logged feed the first iteration's adaptation */
+        settled = adapt_emission(job->aims, job->emitters, light_count) >= PILOT_USEFUL || round + 1 == PILOT_ROUNDS;
     }
-    grid_release(&grid);
-    job->grid = NULL;
-    job->pilot_counts = NULL;
-    for (size_t i = 0; i < npix; i++)
-        pixels[i].m = counts ? (long)atomic_load(&counts[i]) : 0;
-    free(counts);
     /* A first radius for the photon density (Issue 15, "a gather that
      * adapts", a k-nearest-neighbour choice): where the last round's m
      * photons fell within R_c = PILOT_RADIUS x R0, an iteration's photons
@@ -1144,7 +1093,7 @@ struct sppm_totals {
     int independent_passes;     /* independent passes done (0: SPPM) */
     /* seconds spent in each stage so far (--report): the eye pass, the
      * pilot, photon tracing, the volume gather, the per-pixel update */
-    double stage_eye, stage_pilot, stage_photons, stage_gather, stage_update;
+    double stage_eye, stage_pilot, stage_photons, stage_photon_gather, stage_gather, stage_update;
     double gather_kept;   /* the share of the first gather's volume photons kept for the budget (1: all) */
     int gather_samples;   /* the points per ray segment it used (0: VOLUME_SAMPLES) */
     int gather_rows_left; /* rows it could not reach at all */
@@ -1191,15 +1140,12 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     const struct ref_scene *rs = job->rs;
     struct budget *budget = job->budget;
     struct pixel *pixels = job->pixels;
-    struct photon_hits *chunks = job->chunks;
     struct volume_photons *volume_chunks = job->volume_chunks;
     double stage_start = log_now();
     if (it == 0 && !job->pilot_done)
         pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
     t->stage_pilot += log_now() - stage_start;
     stage_start = log_now();
-    grid_build(job->photon_grid, pixels, (int)npix);
-    job->grid = job->photon_grid;
     /* With a medium, the volume gather after the photons must fit in the
      * budget too: reserve what the last one cost per photon for this
      * iteration's photons (the first iteration, with nothing to go by,
@@ -1214,12 +1160,15 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
                                                : 0.5 * left;
         budget->photon_deadline = fmin(budget->photon_deadline, now + fmax(left - reserve, 0.1 * left));
     }
+    budget->photon_deadline = photon_deadline_before_gather(budget, budget->photon_deadline);
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         long begin, end;
         chunk_range(job, c, &begin, &end);
         budget->chunk_reached[c] = begin; /* a chunk no thread reached traced nothing */
     }
     run_threads(job, threads, photon_thread);
+    double gather_start = log_now();
+    t->stage_photons += gather_start - stage_start;
     /* An iteration cut short by the budget traced a fraction f of its
      * photons: it counts as f of an iteration (the estimate divides the flux
      * by the photons traced, as a photon map does), rather than being scaled
@@ -1237,26 +1186,20 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     double scale[SCENE_MAX_GPU_LIGHTS];
     for (int l = 0; l < rs->light_count; l++)
         scale[l] = traced_of[l] > 0 ? pass_fraction * (double)job->photons_of[l] / (double)traced_of[l] : 0.0;
-    /* Reduce in chunk order: the same sums whatever the thread count. */
+    /* Each pixel sums its photons in the map's order: the same sums
+     * whatever the thread count. */
+    gather_surface_photons(job, threads, scale, false);
+    gather_share_measured(budget, gather_start - stage_start, log_now() - gather_start);
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
-        for (size_t k = 0; k < chunks[c].count; k++) {
-            const struct photon_hit *hit = &chunks[c].items[k];
-            struct pixel *px = &pixels[hit->pixel];
-            double f = scale[hit->light];
-            px->phi = dv_add(px->phi, dv(hit->flux[0] * f, hit->flux[1] * f, hit->flux[2] * f));
-            px->m++;
-        }
-        chunks[c].count = 0;
         t->caustic_total += job->caustic_photons[c];
         /* (the power statistic is scaled for the whole pass, exact unless
          * several lights share a pass the budget cut short) */
         for (int k = 0; k < 3; k++)
             t->caustic_power[k] += job->caustic_power[c][k];
     }
-    job->grid = NULL;
     if (!job->independent) /* independent passes keep the pilot's aim: no pass may depend on another */
         adapt_emission(job->aims, job->emitters, rs->light_count);
-    t->stage_photons += log_now() - stage_start;
+    t->stage_photon_gather += log_now() - gather_start;
     t->emitted += traced;
     t->photon_passes += pass_fraction;
     job->pass_fraction = pass_fraction;
@@ -1275,7 +1218,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         struct volume_grid vgrid;
         volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
         job->volume_grid = &vgrid;
-        double gather_start = log_now();
+        double volume_start = log_now();
         if (it == 0 && budget->deadline > 0) {
             /* The first gather under a budget has no earlier one to go by:
              * every 16th row first, timed, and if the rest would pass the
@@ -1288,7 +1231,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
             run_threads(job, threads, volume_thread);
             job->volume_samples = VOLUME_SAMPLES;
             /* the rest at full samples: the cost is about linear in them */
-            double rest = (log_now() - gather_start) * (VOLUME_PROBE_STRIDE - 1) * VOLUME_SAMPLES / VOLUME_PROBE_SAMPLES;
+            double rest = (log_now() - volume_start) * (VOLUME_PROBE_STRIDE - 1) * VOLUME_SAMPLES / VOLUME_PROBE_SAMPLES;
             double left = budget->deadline - log_now();
             if (rest > 0.9 * left) {
                 /* fewer points along each ray first (the march is most of
@@ -1314,7 +1257,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
             t->gather_rows_left = atomic_load(&job->volume_rows_left);
         job->volume_rows = VOLUME_ROWS_ALL;
         job->volume_samples = VOLUME_SAMPLES;
-        t->gather_seconds = log_now() - gather_start;
+        t->gather_seconds = log_now() - volume_start;
         t->stage_gather += t->gather_seconds;
         t->gather_photons = (double)traced;
         volume_grid_release(&vgrid);
@@ -1373,8 +1316,11 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
         else
             fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)",
                     it + 1, t->emitted, log_now() - start, 100.0 * noise);
-        fprintf(stderr, "; so far: eye %.2f s, pilot %.2f s, photons %.2f s, volume gather %.2f s, update %.2f s\n",
-                t->stage_eye, t->stage_pilot, t->stage_photons, t->stage_gather, t->stage_update);
+        fprintf(stderr,
+                "; so far: eye %.2f s, pilot %.2f s, photons %.2f s, photon gather %.2f s, volume gather %.2f s, "
+                "update %.2f s\n",
+                t->stage_eye, t->stage_pilot, t->stage_photons, t->stage_photon_gather, t->stage_gather,
+                t->stage_update);
     }
     double elapsed = log_now() - start;
     /* Under a time budget the iteration count is open-ended: show the
@@ -1439,7 +1385,7 @@ static void write_estimates(const struct pixel *pixels, size_t npix, const struc
 /* The render's buffers: per pixel, per photon chunk, the budget. */
 struct sppm_buffers {
     struct pixel *pixels;
-    struct photon_hits *chunks;
+    struct ref_surface_photons *chunks;
     struct volume_photons *volume_chunks;
     struct aim_log *aims;
     struct budget *budget;
@@ -1449,7 +1395,7 @@ static void sppm_buffers_release(struct sppm_buffers *b)
 {
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         if (b->chunks)
-            free(b->chunks[c].items);
+            ref_surface_photons_release(&b->chunks[c]);
         if (b->volume_chunks)
             free(b->volume_chunks[c].items);
         if (b->aims)
@@ -1530,14 +1476,15 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     atomic_init(&budget->cut, 0);
     atomic_init(&budget->photons_cut, 0);
     budget->start = start;
+    budget->gather_share = 0.25;
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
     budget->tty = o->progress && isatty(STDERR_FILENO) && !log_quiet();
     budget->log_lines = o->progress && !budget->tty && !log_quiet();
-    struct grid photon_grid = {0};
+    struct ref_photon_map photon_map = {0};
     struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
                       .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims,
-                      .photon_grid = &photon_grid};
+                      .photon_map = &photon_map};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)
         caustics = false;
     for (int l = 0; l < rs.light_count; l++) {
@@ -1644,7 +1591,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         for (int k = 0; k < 3; k++)
             stats->caustic_power[k] = totals.caustic_power[k] / passes;
     }
-    grid_release(&photon_grid);
+    ref_photon_map_release(&photon_map);
     sppm_buffers_release(&buf);
     for (int l = 0; l < rs.light_count; l++)
         ref_emitter_release(&emitters[l]);

@@ -93,7 +93,7 @@ first=$(grep "noise ~" "$WORK/err.txt" | head -1 | sed 's/.*noise ~\([0-9.e+-]*\
 last=$(grep "noise ~" "$WORK/err.txt" | tail -1 | sed 's/.*noise ~\([0-9.e+-]*\)%.*/\1/')
 [ "$n" = 5 ] && awk "BEGIN { exit !($last < $first) }" && pass "--report: 5 estimates, falling ($first% -> $last%)" \
   || fail "--report" "$(cat "$WORK/err.txt")"
-[ "$(grep -c "so far: eye [0-9.]* s, pilot [0-9.]* s, photons [0-9.]* s, volume gather [0-9.]* s, update" "$WORK/err.txt")" = 6 ] \
+[ "$(grep -c "so far: eye [0-9.]* s, pilot [0-9.]* s, photons [0-9.]* s, photon gather [0-9.]* s, volume gather [0-9.]* s, update" "$WORK/err.txt")" = 6 ] \
   && pass "--report: where the time went, stage by stage, each iteration" || fail "--report stages" "$(cat "$WORK/err.txt")"
 [ -s "$WORK/r.hdr" ] && head -c 10 "$WORK/r.hdr" | grep -q "#?RADIANCE" && pass "reference writes .hdr" \
   || fail "hdr" "no Radiance file"

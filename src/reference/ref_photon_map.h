@@ -1,0 +1,114 @@
+/* The reference's surface photons of one iteration and the map that
+ * gathers them for the visible points.
+ *
+ * Stochastic progressive photon mapping (Hachisuka & Jensen 2009) can be
+ * run either way round: each photon looks for the visible points whose
+ * radius holds it, or each visible point looks for the photons within its
+ * radius. The sums are the same; the memory traffic is not. Photons land
+ * in a random order, so the first way reads a random pixel record for
+ * every deposit (at 512^2 each photon lands within the radius of some 50
+ * pixels: two thirds of the photon stage were those cache misses). Here
+ * photons are only stored while they are traced, then every pixel, in
+ * image order, reads the few grid cells its radius covers from arrays
+ * sorted by cell, so neighbouring pixels read the same cells from cache.
+ *
+ * The visible points' radii span a wide range (a focused caustic is
+ * gathered tightly, a dim floor widely), so the map keeps grids whose
+ * cells are the largest radius halved again and again, and a point reads
+ * the grid whose cell is at least its radius and less than twice it: at
+ * most 3 cells along each axis, about 4 times the disc's area scanned,
+ * whatever the radius. A grid few points would read is not built: they
+ * read the next coarser one (more photons scanned for those few, one
+ * pass over all the photons saved). The grids are built in parallel.
+ */
+#ifndef CAUSTICA_REF_PHOTON_MAP_H
+#define CAUSTICA_REF_PHOTON_MAP_H
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "reference/ref_scene.h" /* dvec3 */
+
+/* Where light that went through specular surfaces met a diffuse one: the
+ * point, the direction it travelled, the surface's geometric normal, its
+ * flux, the light it came from and its entry in the chunk's aim log (so
+ * that the gather can tell the emission which photons were useful). */
+struct ref_surface_photon {
+    float position[3], dir[3], normal[3], flux[3];
+    int light;
+    uint32_t aim;
+};
+
+/* One chunk's photons, in the order they were traced. */
+struct ref_surface_photons {
+    struct ref_surface_photon *items;
+    size_t count, capacity;
+};
+
+/* False when out of memory (the photon is lost; the estimate stays finite). */
+bool ref_surface_photons_push(struct ref_surface_photons *list, const struct ref_surface_photon *photon);
+void ref_surface_photons_release(struct ref_surface_photons *list);
+
+#define REF_PHOTON_MAP_LEVELS 24
+
+struct ref_photon_map_entry {
+    float x, y, z; /* relative to the map's origin */
+    uint32_t photon;
+};
+
+struct ref_photon_map_level {
+    bool built;
+    double cell;
+    uint32_t *start;                      /* slots + 1 offsets into entries */
+    struct ref_photon_map_entry *entries; /* by slot, each slot in photon order */
+};
+
+struct ref_photon_map {
+    dvec3 origin;
+    double top;   /* level L's cell is top / 2^L */
+    size_t count, slots;
+    /* the photons in the order of the most read level's cells (so that
+     * the records a pixel reads lie together), and where each came from
+     * in chunk order, and back */
+    struct ref_surface_photon *photons;
+    uint32_t *original, *rank;
+    atomic_uchar *used; /* per photon (in the map's order): a visible point gathered it */
+    struct ref_photon_map_level levels[REF_PHOTON_MAP_LEVELS];
+    int read_level[REF_PHOTON_MAP_LEVELS];     /* the built level a radius of each level reads */
+    /* the arrays' sizes, kept from one build to the next */
+    size_t photons_capacity, original_capacity, rank_capacity, used_capacity;
+    size_t slots_capacity[REF_PHOTON_MAP_LEVELS], entries_capacity[REF_PHOTON_MAP_LEVELS];
+};
+
+/* Sets the levels for radii up to rmax (> 0). */
+void ref_photon_map_prepare(struct ref_photon_map *map, double rmax);
+
+/* The level whose cell suits a radius r (at least r, less than 2r where
+ * the levels reach that far down). */
+int ref_photon_map_level_of(const struct ref_photon_map *map, double r);
+
+/* Builds the map over the chunks' photons (in chunk order, so that sums do
+ * not depend on the thread count), on up to `threads` threads: the levels
+ * that at least 1/64 of the points read (points_per_level, by
+ * ref_photon_map_level_of), and the coarsest one that any point reads.
+ * False when out of memory. */
+bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_photons *chunks, int nchunks,
+                          const size_t points_per_level[REF_PHOTON_MAP_LEVELS], int threads);
+
+/* The photons within r of p that arrived on the side of the surface whose
+ * normal is n (travelling against it) on a surface of the same kind
+ * (normals within 60 degrees either way): their flux, each scaled by
+ * light_scale[light] (NULL: 1), summed into *flux; returns how many.
+ * Marks them used. */
+long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
+                           dvec3 *flux);
+
+/* Whether the gathers took photon i (i counts the chunks' photons in
+ * chunk order, as the build read them). */
+bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i);
+
+void ref_photon_map_release(struct ref_photon_map *map);
+
+#endif
