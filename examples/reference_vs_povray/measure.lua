@@ -3,7 +3,9 @@
 -- machine in the same sitting. Run from the project root:
 --   build/caustica test examples/reference_vs_povray/measure.lua
 -- (POV_COUNTS, REF_BUDGETS and SCENES in the environment override the
--- lists below; the table goes to stdout and to results.md here.)
+-- lists below; SIZE and BLOCK the image size, 128, and the error's block,
+-- 4: SIZE=512 BLOCK=1 measures per pixel at 512^2; CAUSTICA the binary,
+-- build/caustica; the table goes to stdout and to results.md in OUT.)
 local t = require "caustica.test"
 local c = require "caustica"
 local cf = dofile("examples/reference_vs_povray/closed_form.lua")
@@ -11,7 +13,7 @@ local cf = dofile("examples/reference_vs_povray/closed_form.lua")
 local dir = "examples/reference_vs_povray"
 local out = os.getenv("OUT") or "/tmp/caustica-vs-povray"
 os.execute("mkdir -p " .. out)
-local size, block = 128, 4
+local size, block = tonumber(os.getenv("SIZE") or 128), tonumber(os.getenv("BLOCK") or 4)
 local function list(env, default)
   local s = os.getenv(env)
   if not s then return default end
@@ -28,10 +30,19 @@ local ref_budgets = list("REF_BUDGETS", { 1, 2, 4, 8 })
 POV_MEDIA = 1 / (4 * math.pi)
 
 local function fresnel_t(deg, n) return 1 - cf.fresnel(math.cos(math.rad(deg)), 1 / n) end
+-- The ball lens at three floor depths: before its paraxial focus (the
+-- marginal rays' cusp, seen from closer so the camera stays below the
+-- ball), at it, and beyond it. `file` names the twin scene files, `set` the
+-- parameters both read (--set for caustica, Declare for POV-Ray).
+local function ball(depth, height)
+  return { file = "ball_lens", set = { depth = depth, height = height }, truth = function()
+    return cf.ball_lens { radius = 0.5, ior = 1.5, depth = depth, height = height, fov = 60, size = size, block = block }
+  end }
+end
 local scenes = {
-  ball_lens = function()
-    return cf.ball_lens { radius = 0.5, ior = 1.5, depth = 0.75, height = 0.2, fov = 60, size = size, block = block }
-  end,
+  ball_lens = ball(0.75, 0.2),
+  ball_lens_before = ball(0.65, 0.1),
+  ball_lens_beyond = ball(1.0, 0.2),
   tir_cube = function()
     return cf.tir_cube { ior = 2.42, angle = 30, floor_y = -1.0, height = 0.4, cx = 0.25, fov = 90, size = size,
                          block = block }
@@ -57,6 +68,20 @@ local scenes = {
   end,
 }
 local order = list("SCENES", { "ball_lens", "tir_cube", "flat_water", "sine_water", "fog_lens" })
+local function scene_of(name)
+  local s = scenes[name]
+  if type(s) == "function" then return { file = name, set = {}, truth = s } end
+  return s
+end
+local function settings_for(s, pov)
+  local l = {}
+  for k, v in pairs(s.set) do
+    l[#l + 1] = pov and string.format(" Declare=%s=%g", k:sub(1, 1):upper() .. k:sub(2), v)
+      or string.format(" --set %s=%g", k, v)
+  end
+  table.sort(l)
+  return table.concat(l)
+end
 
 -- relative RMS error of the block means of `img` (scaled by `scale` into
 -- irradiance) against the closed form's
@@ -106,7 +131,8 @@ local function row(...) lines[#lines + 1] = "| " .. table.concat({ ... }, " | ")
 
 t.case("caustica reference vs POV-Ray on closed-form scenes", function()
   for _, name in ipairs(order) do
-    local truth = scenes[name]()
+    local sc = scene_of(name)
+    local truth = sc.truth()
     save_truth(truth, string.format("%s/%s_closed_form.pfm", out, name))
     -- POV-Ray: photon counts (its photon shooting is single-threaded, the
     -- trace uses both cores: +WT2); it reports radiance = irradiance x
@@ -116,13 +142,15 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
     if name == "fog_lens" and not os.getenv("POV_COUNTS") then
       -- media: photons and samples along each ray both set its quality
       settings = { { count = 30000, samples = 10 }, { count = 100000, samples = 20 }, { count = 300000, samples = 50 } }
+      -- (at 512^2 the last takes POV-Ray minutes: its media samples grow with the pixels)
+      if size > 256 then settings[3] = nil end
     end
     for _, set in ipairs(settings) do
       local count = set.count
       local file = string.format("%s/%s_pov_%d.hdr", out, name, count)
       local rc, secs = timed(string.format(
-        "povray -D +I%s/%s.pov +O%s +FH +W%d +H%d +WT2 -A Declare=Count=%d Declare=Samples=%d",
-        dir, name, file, size, size, count, set.samples))
+        "povray -D +I%s/%s.pov +O%s +FH +W%d +H%d +WT2 -A Declare=Count=%d Declare=Samples=%d%s",
+        dir, sc.file, file, size, size, count, set.samples, settings_for(sc, true)))
       t.expect(rc == 0, "povray failed on " .. name)
       row(name, "POV-Ray 3.7", "count " .. count .. (name == "fog_lens" and (", samples " .. set.samples) or ""),
         string.format("%.2f", secs),
@@ -132,8 +160,9 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
     if name == "fog_lens" and not os.getenv("REF_BUDGETS") then budgets = { 2, 4, 8, 16 } end
     for _, budget in ipairs(budgets) do
       local file = string.format("%s/%s_ref_%g.hdr", out, name, budget)
-      local rc, secs = timed(string.format("build/caustica reference %s/%s.lua -o %s --time-budget %g --photons %d",
-        dir, name, file, budget, tonumber(os.getenv("REF_PHOTONS") or 200000)))
+      local rc, secs = timed(string.format(
+        "%s reference %s/%s.lua -o %s --size %dx%d --time-budget %g --photons %d%s",
+        os.getenv("CAUSTICA") or "build/caustica", dir, sc.file, file, size, size, budget, tonumber(os.getenv("REF_PHOTONS") or 200000), settings_for(sc, false)))
       t.expect(rc == 0, "caustica reference failed on " .. name)
       row(name, "caustica reference", "budget " .. budget .. " s", string.format("%.2f", secs),
         string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, truth.radiance_units and 1 or math.pi)))

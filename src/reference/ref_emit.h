@@ -41,11 +41,14 @@ void ref_emitter_release(struct ref_emitter *e);
 
 /* Adaptive emission (Issue 15, "photons only where they matter"): after
  * each iteration, each entry's pdf becomes its share of the light's view
- * times the fraction of its photons so far that reached a visible point,
- * estimated as (useful + 1) / (tried + 2) (never 0: no direction a caustic
- * can come from is ever given density 0). Every iteration samples from a
- * pdf fixed before it starts and divides by it, so each iteration's
- * estimate stays unbiased (adaptive importance sampling). */
+ * times a usefulness: for an entry that has sent a photon to a visible
+ * point, the highest useful fraction any entry has (so that every photon
+ * the camera's pixels gather carries the same flux, and the emission's
+ * stratification survives), and for one that has not, its fraction's
+ * posterior mean 1 / (tried + 2) (never 0: no direction a caustic can come
+ * from is ever given density 0). Every iteration samples from a pdf fixed
+ * before it starts and divides by it, so each iteration's estimate stays
+ * unbiased (adaptive importance sampling). */
 void ref_emitter_adapt(struct ref_emitter *e);
 
 /* The three numbers in [0, 1) that place photon `index` of a light: the

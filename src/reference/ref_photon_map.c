@@ -143,6 +143,34 @@ static bool build_levels(struct ref_photon_map *map, const bool wanted[REF_PHOTO
     return ok;
 }
 
+/* Which levels to build: the coarsest any point reads, and any other that
+ * at least 1/64 of the points read; each level reads the nearest built one
+ * at or above it. Returns the built level most points read (-1: none). */
+static int choose_levels(struct ref_photon_map *map, const size_t points_per_level[REF_PHOTON_MAP_LEVELS],
+                         bool wanted[REF_PHOTON_MAP_LEVELS])
+{
+    size_t points = 0;
+    int coarsest = -1, most = -1;
+    for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++) {
+        wanted[l] = false;
+        points += points_per_level[l];
+        if (coarsest < 0 && points_per_level[l] > 0)
+            coarsest = l;
+        if (points_per_level[l] > 0 && (most < 0 || points_per_level[l] > points_per_level[most]))
+            most = l;
+    }
+    if (coarsest < 0)
+        return -1;
+    int read = coarsest;
+    for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++) {
+        wanted[l] = l == coarsest || (l > coarsest && points_per_level[l] * 64 >= points);
+        if (wanted[l])
+            read = l;
+        map->read_level[l] = l < coarsest ? coarsest : read;
+    }
+    return map->read_level[most];
+}
+
 bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_photons *chunks, int nchunks,
                           const size_t points_per_level[REF_PHOTON_MAP_LEVELS], int threads)
 {
@@ -172,28 +200,10 @@ bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_p
     map->slots = 1;
     while (map->slots < 2 * n)
         map->slots *= 2;
-    /* which levels to build: the coarsest read, and any other that enough
-     * points read; each level reads the nearest built one at or above it */
-    size_t points = 0;
-    int coarsest = -1, most = -1;
-    for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++) {
-        points += points_per_level[l];
-        if (coarsest < 0 && points_per_level[l] > 0)
-            coarsest = l;
-        if (points_per_level[l] > 0 && (most < 0 || points_per_level[l] > points_per_level[most]))
-            most = l;
-    }
-    if (coarsest < 0 || n == 0)
+    bool wanted[REF_PHOTON_MAP_LEVELS];
+    int most = choose_levels(map, points_per_level, wanted);
+    if (most < 0 || n == 0)
         return true;
-    bool wanted[REF_PHOTON_MAP_LEVELS] = {false};
-    int read = coarsest;
-    for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++) {
-        wanted[l] = l == coarsest || (l > coarsest && points_per_level[l] * 64 >= points);
-        if (wanted[l])
-            read = l;
-        map->read_level[l] = l < coarsest ? coarsest : read;
-    }
-    most = map->read_level[most];
     /* The most read level first; then the photons are put in its order
      * (the other levels, built after, index them in that order): a pixel's
      * photons then lie together in memory whichever level it reads. */
@@ -224,9 +234,18 @@ bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_p
     for (size_t k = 0; k < n; k++)
         map->rank[map->original[k]] = (uint32_t)k;
     wanted[most] = false;
-    bool ok = build_levels(map, wanted, threads);
-    wanted[most] = true;
-    return ok;
+    return build_levels(map, wanted, threads);
+}
+
+bool ref_photon_map_build_levels(struct ref_photon_map *map, const size_t points_per_level[REF_PHOTON_MAP_LEVELS],
+                                 int threads)
+{
+    bool wanted[REF_PHOTON_MAP_LEVELS];
+    for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++)
+        map->levels[l].built = false;
+    if (choose_levels(map, points_per_level, wanted) < 0 || map->count == 0)
+        return true;
+    return build_levels(map, wanted, threads);
 }
 
 bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i)
@@ -234,8 +253,12 @@ bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i)
     return i < map->count && atomic_load_explicit(&map->used[map->rank[i]], memory_order_relaxed) != 0;
 }
 
-long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
-                           dvec3 *flux)
+/* The photons within r of p on the lit side of a surface like the one
+ * whose normal is n: their scaled flux summed into *flux, or with `rings`
+ * their grey flux split between the inner half radius and the ring. */
+#define SCAN_BLOCK 64
+static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
+                 dvec3 *flux, struct ref_photon_rings *rings, long limit)
 {
     if (map->count == 0 || !(r > 0.0))
         return 0;
@@ -252,7 +275,13 @@ long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, d
     x1 = x1 > x0 + 2 ? x0 + 2 : x1;
     y1 = y1 > y0 + 2 ? y0 + 2 : y1;
     z1 = z1 > z0 + 2 ? z0 + 2 : z1;
-    float fx = (float)qx, fy = (float)qy, fz = (float)qz, r2 = (float)(r * r);
+    float fx = (float)qx, fy = (float)qy, fz = (float)qz, r2 = (float)(r * r), inner2 = 0.25f * r2;
+    float nx = (float)n.x, ny = (float)n.y, nz = (float)n.z;
+    /* two directions across the surface, for the moments */
+    dvec3 u = fabs(n.x) < 0.9 ? dv(0.0, n.z, -n.y) : dv(-n.z, 0.0, n.x); /* n x (1,0,0) or n x (0,1,0) */
+    double ul = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+    u = ul > 0.0 ? dv(u.x / ul, u.y / ul, u.z / ul) : dv(1, 0, 0);
+    dvec3 v = dv(n.y * u.z - n.z * u.y, n.z * u.x - n.x * u.z, n.x * u.y - n.y * u.x);
     /* two cells may hash to one slot: each slot is read once, or its
      * photons would count twice */
     size_t seen[27];
@@ -269,28 +298,86 @@ long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, d
                 if (again)
                     continue;
                 seen[nseen++] = s;
-                for (uint32_t k = lv->start[s]; k < lv->start[s + 1]; k++) {
-                    const struct ref_photon_map_entry *e = &lv->entries[k];
-                    float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
-                    if (dx * dx + dy * dy + dz * dz > r2)
-                        continue; /* outside the disc, or a far cell sharing the slot */
-                    const struct ref_surface_photon *ph = &map->photons[e->photon];
-                    /* same side of the same kind of surface, arriving from the lit side */
-                    double along = n.x * ph->dir[0] + n.y * ph->dir[1] + n.z * ph->dir[2];
-                    double same = n.x * ph->normal[0] + n.y * ph->normal[1] + n.z * ph->normal[2];
-                    if (along >= 0.0 || fabs(same) < 0.5)
-                        continue;
-                    double f = light_scale ? light_scale[ph->light] : 1.0;
-                    sx += ph->flux[0] * f;
-                    sy += ph->flux[1] * f;
-                    sz += ph->flux[2] * f;
-                    count++;
-                    if (!atomic_load_explicit(&map->used[e->photon], memory_order_relaxed))
-                        atomic_store_explicit(&map->used[e->photon], 1, memory_order_relaxed);
+                /* a slot in blocks: first the distance test alone, without
+                 * branches (every entry written, the count moved on by the
+                 * test), then the photons inside */
+                for (uint32_t k0 = lv->start[s], end = lv->start[s + 1]; k0 < end; k0 += SCAN_BLOCK) {
+                    uint32_t k1 = end - k0 > SCAN_BLOCK ? k0 + SCAN_BLOCK : end;
+                    uint32_t inside[SCAN_BLOCK];
+                    float inside_d2[SCAN_BLOCK];
+                    int found = 0;
+                    for (uint32_t k = k0; k < k1; k++) {
+                        const struct ref_photon_map_entry *e = &lv->entries[k];
+                        float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
+                        float d2 = dx * dx + dy * dy + dz * dz;
+                        inside[found] = k;
+                        inside_d2[found] = d2;
+                        found += d2 <= r2; /* outside: the disc's, or a far cell sharing the slot */
+                    }
+                    for (int h = 0; h < found; h++) {
+                        const struct ref_photon_map_entry *e = &lv->entries[inside[h]];
+                        const struct ref_surface_photon *ph = &map->photons[e->photon];
+                        /* same side of the same kind of surface, arriving from the lit side */
+                        float along = nx * ph->dir[0] + ny * ph->dir[1] + nz * ph->dir[2];
+                        float same = nx * ph->normal[0] + ny * ph->normal[1] + nz * ph->normal[2];
+                        if (along >= 0.0f || fabsf(same) < 0.5f)
+                            continue;
+                        count++;
+                        if (limit > 0 && count > limit)
+                            return count;
+                        double f = light_scale ? light_scale[ph->light] : 1.0;
+                        if (rings) {
+                            double g = f * (ph->flux[0] + ph->flux[1] + ph->flux[2]) / 3.0;
+                            if (inside_d2[h] <= inner2) {
+                                rings->inner += g;
+                                rings->inner_sq += g * g;
+                                for (int c = 0; c < 3; c++)
+                                    rings->inner_flux[c] += f * ph->flux[c];
+                                rings->inner_count++;
+                            } else {
+                                rings->ring += g;
+                                rings->ring_sq += g * g;
+                            }
+                            float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
+                            double a = (dx * u.x + dy * u.y + dz * u.z) / r, b = (dx * v.x + dy * v.y + dz * v.z) / r;
+                            rings->moment[0] += g * a;
+                            rings->moment_sq[0] += g * g * a * a;
+                            rings->moment[1] += g * b;
+                            rings->moment_sq[1] += g * g * b * b;
+                        }
+                        if (!flux)
+                            continue;
+                        sx += ph->flux[0] * f;
+                        sy += ph->flux[1] * f;
+                        sz += ph->flux[2] * f;
+                        if (!atomic_load_explicit(&map->used[e->photon], memory_order_relaxed))
+                            atomic_store_explicit(&map->used[e->photon], 1, memory_order_relaxed);
+                    }
                 }
             }
-    *flux = dv(sx, sy, sz);
+    if (flux)
+        *flux = dv(sx, sy, sz);
     return count;
+}
+
+long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
+                           dvec3 *flux, struct ref_photon_rings *rings)
+{
+    *flux = dv(0, 0, 0);
+    if (rings)
+        *rings = (struct ref_photon_rings){0};
+    return scan(map, p, n, r, light_scale, flux, rings, 0);
+}
+
+void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, struct ref_photon_rings *rings)
+{
+    *rings = (struct ref_photon_rings){0};
+    scan(map, p, n, r, NULL, NULL, rings, 0);
+}
+
+long ref_photon_map_count(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, long limit)
+{
+    return scan(map, p, n, r, NULL, NULL, NULL, limit);
 }
 
 void ref_photon_map_release(struct ref_photon_map *map)

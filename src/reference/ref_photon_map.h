@@ -97,13 +97,38 @@ int ref_photon_map_level_of(const struct ref_photon_map *map, double r);
 bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_photons *chunks, int nchunks,
                           const size_t points_per_level[REF_PHOTON_MAP_LEVELS], int threads);
 
+/* The photons a gather at p with radius r would take, in two parts: the
+ * inner disc (radius r / 2) and the ring around it, each as the sum of
+ * their grey flux and of its square (the variance of a sum of photons is
+ * about the sum of their squares); and the first moments of their flux
+ * along two directions across the surface, sum g (d.u) / r, with the sums
+ * of their squares (both 0 on average where the light is even). The
+ * structure test's sums. */
+struct ref_photon_rings {
+    double inner, inner_sq, ring, ring_sq;
+    double moment[2], moment_sq[2];
+    double inner_flux[3]; /* the inner disc's (scaled) flux, and how many photons */
+    long inner_count;
+};
+void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, struct ref_photon_rings *rings);
+
 /* The photons within r of p that arrived on the side of the surface whose
  * normal is n (travelling against it) on a surface of the same kind
  * (normals within 60 degrees either way): their flux, each scaled by
- * light_scale[light] (NULL: 1), summed into *flux; returns how many.
- * Marks them used. */
+ * light_scale[light] (NULL: 1), summed into *flux, and with `rings` (may be
+ * NULL) their grey flux split as ref_photon_map_rings does; returns how
+ * many. Marks them used. */
 long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
-                           dvec3 *flux);
+                           dvec3 *flux, struct ref_photon_rings *rings);
+
+/* How many photons a gather at p with radius r would take, counted up to
+ * limit + 1 (limit 0: all). */
+long ref_photon_map_count(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, long limit);
+
+/* Builds the levels again over the photons the map holds, for other radii
+ * (as ref_photon_map_build chooses them). False when out of memory. */
+bool ref_photon_map_build_levels(struct ref_photon_map *map, const size_t points_per_level[REF_PHOTON_MAP_LEVELS],
+                                 int threads);
 
 /* Whether the gathers took photon i (i counts the chunks' photons in
  * chunk order, as the build read them). */

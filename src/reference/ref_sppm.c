@@ -176,8 +176,18 @@ struct pixel {
     /* the noise estimate: sums of the even and the odd iterations' own
      * estimates (eye path + volume + this iteration's photons / pi R^2) */
     dvec3 direct_seen, volume_seen, half[2];
+    dvec3 half_photons[2];  /* the photon estimates, each weighted by its pass's fraction (a cut-short pass counts less) */
     dvec3 tau;              /* SPPM flux */
     double radius, n;
+    /* the structure test, iteration by iteration (structure_restart): the
+     * least radius (0: not tested), the sums of the inner disc's density
+     * less the ring's and of its variance since the radius was last
+     * halved, and the photon passes before that (tau counts those after) */
+    double radius_floor, structure_diff, structure_var, passes_before;
+    double passes_missed;   /* passes since then whose gather the budget stopped before this pixel's row */
+    double structure_moment[2], structure_moment_var[2];
+    dvec3 phi_inner;        /* this iteration's photons within half the radius, and their count */
+    long m_inner;
     double r1;              /* independent passes: the first pass's radius (the pilot's), 0: none found */
     dvec3 pppm;             /* independent passes: the sum of their photon estimates */
     struct visible_point vp;
@@ -271,6 +281,9 @@ struct budget {
     double last_line;       /* when the last whole progress line went to the log */
     bool map_warned;        /* the photon map's out-of-memory warning was given */
     double gather_share;    /* of a photon stage's time, what the surface gather after the tracing took, last time */
+    bool gather_seen;       /* an iteration's gather has set gather_share (before it, the pilot's rates predict it) */
+    double seconds_per_traced, seconds_per_mapped, seconds_per_gathered; /* the pilot's rates: a photon traced, put
+                                                                          * in the map, taken by a visible point */
 };
 
 /* A photon stage that must end by `until` (0: no budget) stops tracing
@@ -353,6 +366,7 @@ struct job {
     struct ref_emitter *emitters;
     struct aim_log *aims;     /* PHOTON_CHUNKS of them */
     double pass_fraction;     /* of the photons of the pass just traced (1 unless the budget cut it) */
+    double gather_until;      /* when an iteration's surface gather stops (0: no budget) */
     bool independent;         /* passes that share no state (ref_options.shard_count > 0) */
     bool pilot_done;          /* the pilot ran before the passes (independent passes) */
     double emit_shift[SCENE_MAX_GPU_LIGHTS][3]; /* each light's random rotation of its emission sequence */
@@ -361,6 +375,9 @@ struct job {
     struct ref_photon_map *photon_map; /* the iterations' map, its arrays kept between them */
     const double *light_scale;         /* the gather's scale of each light's photons */
     bool gather_counts_only;           /* the pilot's gather: photons per pixel into m, no flux */
+    struct radius_search *radius_search; /* the pilot's radius passes: per pixel */
+    bool radius_search_knn;              /* their kind: k nearest neighbours, or the structure test */
+    double radius_search_until;          /* their deadline (0: none), checked every row */
     struct ref_surface_photons *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
     double caustic_power[PHOTON_CHUNKS][3]; /* flux the photons brought to diffuse surfaces */
@@ -883,18 +900,47 @@ static double adapt_emission(struct aim_log *aims, struct ref_emitter *emitters,
 static void *surface_gather_thread(void *arg)
 {
     struct job *j = arg;
-    for (int y = j->thread; y < j->o->height; y += j->threads)
+    bool stopped = false;
+    for (int y = j->thread; y < j->o->height; y += j->threads) {
+        /* Under a budget the gather stops at the deadline, row by row: a
+         * pixel whose row it did not reach leaves this pass out of its
+         * estimate (passes_missed), as if its photons had not been traced. */
+        if (!stopped && j->gather_until > 0.0 && !j->gather_counts_only && log_now() >= j->gather_until) {
+            stopped = true;
+            atomic_store(&j->budget->cut, 1);
+        }
         for (int x = 0; x < j->o->width; x++) {
             struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+            if (stopped) {
+                px->passes_missed += j->pass_fraction;
+                continue;
+            }
             if (!px->vp.valid || !(px->radius > 0.0))
                 continue;
             dvec3 flux;
+            struct ref_photon_rings rings;
+            bool test = !j->gather_counts_only && !j->independent && px->radius_floor > 0.0;
             long m = ref_photon_map_gather(j->photon_map, px->vp.position, px->vp.normal, px->radius, j->light_scale,
-                                           &flux);
+                                           &flux, test ? &rings : NULL);
             px->m += m;
             if (m > 0 && !j->gather_counts_only)
                 px->phi = dv_add(px->phi, dv_mul(px->vp.weight, flux));
+            if (m > 0 && test) {
+                /* the structure test's sums, in flux densities (ref: structure_shows) */
+                double quarter = 0.25 * MATH_PI * px->radius * px->radius;
+                double inner = rings.inner / quarter, ring = rings.ring / (3.0 * quarter);
+                px->structure_diff += inner - ring;
+                px->structure_var += rings.inner_sq / (quarter * quarter) + rings.ring_sq / (9.0 * quarter * quarter);
+                for (int k = 0; k < 2; k++) {
+                    px->structure_moment[k] += rings.moment[k] / (4.0 * quarter);
+                    px->structure_moment_var[k] += rings.moment_sq[k] / (16.0 * quarter * quarter);
+                }
+                px->phi_inner = dv_add(px->phi_inner, dv_mul(px->vp.weight, dv(rings.inner_flux[0], rings.inner_flux[1],
+                                                                            rings.inner_flux[2])));
+                px->m_inner += rings.inner_count;
+            }
         }
+    }
     return NULL;
 }
 
@@ -917,7 +963,11 @@ static void gather_surface_photons(struct job *job, int threads, const double *l
         for (size_t i = 0; i < npix; i++)
             if (job->pixels[i].vp.valid && job->pixels[i].radius > 0.0)
                 per_level[ref_photon_map_level_of(map, job->pixels[i].radius)]++;
-        if (!ref_photon_map_build(map, job->chunks, PHOTON_CHUNKS, per_level, threads)) {
+        double build_start = log_now();
+        bool built = ref_photon_map_build(map, job->chunks, PHOTON_CHUNKS, per_level, threads);
+        if (counts_only && map->count > 0)
+            job->budget->seconds_per_mapped = (log_now() - build_start) / (double)map->count;
+        if (!built) {
             if (!job->budget->map_warned)
                 log_warn("reference: out of memory for the photon map: an iteration's caustic photons are lost "
                          "(fewer --photons would fit)");
@@ -927,7 +977,15 @@ static void gather_surface_photons(struct job *job, int threads, const double *l
         if (map->count > 0) {
             job->light_scale = light_scale;
             job->gather_counts_only = counts_only;
+            double scan_start = log_now();
             run_threads(job, threads, surface_gather_thread);
+            if (counts_only) {
+                long long taken = 0;
+                for (size_t i = 0; i < npix; i++)
+                    taken += job->pixels[i].m;
+                if (taken > 0)
+                    job->budget->seconds_per_gathered = (log_now() - scan_start) / (double)taken;
+            }
         }
         size_t i = 0;
         for (int c = 0; c < PHOTON_CHUNKS && map->count > 0; c++)
@@ -940,10 +998,180 @@ static void gather_surface_photons(struct job *job, int threads, const double *l
         job->chunks[c].count = 0;
 }
 
-#define PILOT_RADIUS 2.0   /* the pilot counts photons within this many first radii */
-#define GATHER_PHOTONS 40.0 /* photons a first radius is chosen to hold, about, per iteration */
-#define RADIUS_MIN 0.0625   /* the first radius stays within these multiples of two pixel footprints */
-#define RADIUS_MAX 4.0
+/* The first radius (docs/REFERENCE.md, "Against POV-Ray, per pixel at
+ * 512^2": chosen there on the ball lens at its focus and beyond it, flat
+ * water and the TIR cube, at 2 s and 4 s, two seeds each). 200 photons a
+ * gather: 40 left flat water's per-pixel noise at 6.7% in 2 s, 800 blurred
+ * the ball's focus; a radius up to 32 pixel footprints lets an even,
+ * sparsely lit floor gather as widely as POV-Ray's photon counts do (up to
+ * 8 left flat water at 3.3%, 64 let a dim pixel beside a bright band
+ * reach across it before the tests below could stop it). */
+#define PILOT_RADIUS 2.0     /* the pilot counts photons within this many first radii */
+#define GATHER_PHOTONS 200.0 /* photons a first radius is chosen to hold, about, per iteration */
+#define RADIUS_MIN 0.0625    /* the first radius stays within these multiples of two pixel footprints */
+#define RADIUS_MAX 16.0
+
+/* ---- the structure test ------------------------------------------------- */
+
+/* A wide radius is cheap noise reduction where the light is even and a
+ * blur where it is not: a focus, a fold, the edge of a shadow or of a
+ * caustic band. After Kaplanyan & Dachsbacher ("Adaptive progressive
+ * photon mapping", TOG 2013: the radius that balances a kernel's bias
+ * against its noise), but tested instead of estimated: the pilot's last
+ * round, aimed as the estimate will be, is gathered at each pixel's first
+ * radius in two parts, the disc of half the radius and the ring around it.
+ * On even light their flux densities agree; where they differ by more than
+ * STRUCTURE_Z standard deviations of the difference (the flux's own noise,
+ * from the sum of the squared fluxes) the disc's bias is above its noise,
+ * and the radius is halved and tested again, down to its floor. A dim
+ * region with few photons cannot show a difference and keeps its wide
+ * radius, which is right: its noise is the larger error there. */
+#define STRUCTURE_Z 3.0
+#define RESTART_Z 5.0 /* stricter: the test is repeated every iteration */
+#define STRUCTURE_HALVINGS 6
+#define KNN_PASSES 4
+
+/* Whether sums show structure: a difference (a sum whose mean is 0 on
+ * even light) above STRUCTURE_Z of its standard deviation. */
+static bool structure_significant(double sum, double var, double z)
+{
+    return var > 0.0 && sum * sum > z * z * var;
+}
+
+static bool structure_shows(const struct ref_photon_rings *g)
+{
+    /* Two kinds: curvature (a focus, a ridge), where the inner disc's flux
+     * density (over pi r^2 / 4) differs from the ring's (over 3 pi r^2 / 4),
+     * inner vs ring / 3; and an edge or a slope, where the flux leans to
+     * one side (a step through the centre: the disc and the ring are cut
+     * alike, and only the moments see it). */
+    return structure_significant(g->inner - g->ring / 3.0, g->inner_sq + g->ring_sq / 9.0, STRUCTURE_Z) ||
+           structure_significant(g->moment[0], g->moment_sq[0], STRUCTURE_Z) ||
+           structure_significant(g->moment[1], g->moment_sq[1], STRUCTURE_Z);
+}
+
+/* The same test iteration by iteration, on the sums of every iteration's
+ * gather since the radius was last halved (the estimate's own photons:
+ * the differences average over iterations, so ever smaller biases show as
+ * the noise they would hide in falls). Where it shows, the pixel's photon
+ * estimate starts again at half the radius: what it gathered so far holds
+ * the bias, and SPPM's own shrinking would keep it (Kaplanyan & Dachsbacher
+ * 2013 adapt the radius in the same spirit from an estimated Laplacian).
+ * Sequential passes only: independent passes share no state. */
+static bool structure_restart(struct pixel *px, double passes_now)
+{
+    if (!(px->radius_floor > 0.0) || 0.5 * px->radius < px->radius_floor)
+        return false;
+    if (!structure_significant(px->structure_diff, px->structure_var, RESTART_Z) &&
+        !structure_significant(px->structure_moment[0], px->structure_moment_var[0], RESTART_Z) &&
+        !structure_significant(px->structure_moment[1], px->structure_moment_var[1], RESTART_Z))
+        return false;
+    px->radius *= 0.5;
+    px->tau = dv(0, 0, 0);
+    px->n = 0.0;
+    px->passes_before = passes_now;
+    px->passes_missed = 0.0;
+    px->structure_diff = px->structure_var = 0.0;
+    for (int k = 0; k < 2; k++)
+        px->structure_moment[k] = px->structure_moment_var[k] = 0.0;
+    return true;
+}
+
+/* The pilot's radius passes: each pass, every pixel still searching
+ * (search[i].floor > 0) reads the map (the pilot's last round, aimed as
+ * the estimate will be) at its radius and moves it. */
+struct radius_search {
+    double floor, ceiling; /* the radius stays within these; floor 0: settled */
+};
+
+/* A k-nearest-neighbour radius (after the pilot's first guess from the
+ * count within R_c): the radius that holds the GATHER_PHOTONS an
+ * iteration would put there (a quarter of them in the pilot's round),
+ * found by counting at the radius and moving it, within a factor 2 of the
+ * count. A count at R_c only sees the density around the pixel: a dim
+ * pixel beside a bright caustic would reach far into it. */
+static void knn_step(const struct job *j, struct pixel *px, struct radius_search *s)
+{
+    double want = GATHER_PHOTONS / 4.0;
+    long c = ref_photon_map_count(j->photon_map, px->vp.position, px->vp.normal, px->radius, (long)(8.0 * want));
+    double r = px->radius;
+    if ((double)c > 2.0 * want)
+        r *= fmax(sqrt(want / (double)c), 0.25);
+    else if ((double)c < 0.5 * want)
+        r *= c > 0 ? fmin(sqrt(want / (double)c), 2.0) : 2.0;
+    r = fmin(fmax(r, s->floor), s->ceiling);
+    if (r == px->radius)
+        s->floor = 0.0; /* settled */
+    px->radius = r;
+}
+
+static void structure_step(const struct job *j, struct pixel *px, struct radius_search *s)
+{
+    struct ref_photon_rings g;
+    ref_photon_map_rings(j->photon_map, px->vp.position, px->vp.normal, px->radius, &g);
+    if (structure_shows(&g) && 0.5 * px->radius >= s->floor)
+        px->radius *= 0.5;
+    else
+        s->floor = 0.0; /* settled */
+}
+
+static void *radius_search_thread(void *arg)
+{
+    struct job *j = arg;
+    for (int y = j->thread; y < j->o->height; y += j->threads) {
+        if (j->radius_search_until > 0.0 && log_now() >= j->radius_search_until)
+            return NULL; /* the rows left keep the radii they have */
+        for (int x = 0; x < j->o->width; x++) {
+            size_t i = (size_t)y * (size_t)j->o->width + (size_t)x;
+            struct pixel *px = &j->pixels[i];
+            struct radius_search *s = &j->radius_search[i];
+            if (!(s->floor > 0.0) || !px->vp.valid)
+                continue;
+            if (j->radius_search_knn)
+                knn_step(j, px, s);
+            else
+                structure_step(j, px, s);
+        }
+    }
+    return NULL;
+}
+
+/* Up to `passes` passes of k-nearest-neighbour steps (knn) or structure
+ * steps over the pixels `search` marks, each with the map's levels built
+ * for the radii of that pass; stops at `until` (0: no deadline). The
+ * search marks are spent (every pixel settled) when it returns. */
+static void radius_search(struct job *job, int threads, struct radius_search *search, bool knn, int passes,
+                          double until)
+{
+    struct ref_photon_map *map = job->photon_map;
+    size_t npix = (size_t)job->o->width * (size_t)job->o->height;
+    job->radius_search = search;
+    job->radius_search_knn = knn;
+    job->radius_search_until = until;
+    for (int pass = 0; pass < passes && map->count > 0; pass++) {
+        if (until > 0.0 && log_now() >= until)
+            break;
+        double rmax = 0.0;
+        size_t searching = 0;
+        for (size_t i = 0; i < npix; i++)
+            if (search[i].floor > 0.0 && job->pixels[i].vp.valid) {
+                rmax = fmax(rmax, job->pixels[i].radius);
+                searching++;
+            }
+        if (searching == 0)
+            break;
+        ref_photon_map_prepare(map, rmax);
+        size_t per_level[REF_PHOTON_MAP_LEVELS] = {0};
+        for (size_t i = 0; i < npix; i++)
+            if (search[i].floor > 0.0 && job->pixels[i].vp.valid)
+                per_level[ref_photon_map_level_of(map, job->pixels[i].radius)]++;
+        if (!ref_photon_map_build_levels(map, per_level, threads))
+            break; /* out of memory: the radii stand */
+        run_threads(job, threads, radius_search_thread);
+    }
+    job->radius_search = NULL;
+}
+
 
 /* The pilot: before the first photon pass, rounds of a quarter of its
  * photons each are traced only to learn where photons are useful and how
@@ -955,6 +1183,7 @@ static void gather_surface_photons(struct job *job, int threads, const double *l
 #define PILOT_ROUNDS 4
 #define PILOT_USEFUL 0.2
 static long share_photons(struct job *job, const struct ref_scene *rs, const struct ref_emitter *emitters, long photons);
+static long photons_traced(const struct job *j, const struct budget *b, int l);
 
 static void pilot_photons(struct job *job, int threads, struct budget *budget, struct volume_photons *volume_chunks,
                           long photons, struct pixel *pixels, size_t npix)
@@ -989,6 +1218,11 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
         double gather_start = log_now();
         gather_surface_photons(job, threads, NULL, true);
         gather_share_measured(budget, gather_start - trace_start, log_now() - gather_start);
+        long long traced = 0;
+        for (int l = 0; l < job->rs->light_count; l++)
+            traced += photons_traced(job, budget, l);
+        if (traced > 0)
+            budget->seconds_per_traced = (gather_start - trace_start) / (double)traced;
         for (int c = 0; c < PHOTON_CHUNKS; c++)
             volume_chunks[c].count = 0;
         bool pilot_spent = atomic_load(&budget->photons_cut) != 0;
@@ -1001,13 +1235,18 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
      * adapts", a k-nearest-neighbour choice): where the last round's m
      * photons fell within R_c = PILOT_RADIUS x R0, an iteration's photons
      * (4 times as many) put about GATHER_PHOTONS within
-     * R_c sqrt(GATHER_PHOTONS / 4m). Kept within [R0 / 16, 4 R0] (R0: two
-     * pixel footprints): a bright caustic is gathered tightly (little
-     * blur), a dim region widely (little noise). SPPM accepts any starting
-     * radius and shrinks it from there. The constants were chosen on the
-     * four closed-form scenes of examples/reference_vs_povray (docs/REFERENCE.md). */
+     * R_c sqrt(GATHER_PHOTONS / 4m). Kept within [RADIUS_MIN R0,
+     * RADIUS_MAX R0] (R0: two pixel footprints): a bright caustic is
+     * gathered tightly, a dim or even region widely (little noise). Then
+     * counting passes correct the guess (knn_step) and the structure test
+     * halves it where it would blur (structure_step). SPPM accepts any
+     * starting radius and shrinks it from there. Each radius's bounds go to
+     * those passes (no passes if out of memory: the first guesses stand). */
+    struct radius_search *search = job->o->initial_radius > 0.0 ? NULL : malloc(npix * sizeof *search);
     for (size_t i = 0; i < npix; i++) {
         struct pixel *px = &pixels[i];
+        if (search)
+            search[i] = (struct radius_search){0.0, 0.0};
         if (job->o->initial_radius > 0.0) {
             px->radius /= PILOT_RADIUS; /* the user's radius (--radius) stands */
             px->m = 0;
@@ -1019,8 +1258,19 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
         if (px->m > 0)
             r = PILOT_RADIUS * r0 * sqrt(GATHER_PHOTONS / (4.0 * (double)px->m));
         px->radius = fmin(fmax(r, RADIUS_MIN * r0), RADIUS_MAX * r0);
+        if (search)
+            search[i] = (struct radius_search){RADIUS_MIN * r0, RADIUS_MAX * r0};
+        px->radius_floor = RADIUS_MIN * r0;
         px->m = 0;
     }
+    if (search) {
+        /* the searches take at most what is left of the pilot's share */
+        radius_search(job, threads, search, true, KNN_PASSES, pilot_deadline);
+        for (size_t i = 0; i < npix; i++)
+            search[i].floor = pixels[i].radius_floor;
+        radius_search(job, threads, search, false, STRUCTURE_HALVINGS, pilot_deadline);
+    }
+    free(search);
     share_photons(job, job->rs, job->emitters, photons);
     job->iteration = 0;
     memset(job->caustic_photons, 0, sizeof job->caustic_photons);
@@ -1066,7 +1316,7 @@ static long photons_traced(const struct job *j, const struct budget *b, int l)
 
 /* Half the RMS difference of the even and odd iterations' means over the
  * RMS of the image, in grey (struct ref_stats.noise). */
-static double noise_estimate(const struct pixel *pixels, size_t npix, int iterations)
+static double noise_estimate(const struct pixel *pixels, size_t npix, int iterations, const double fraction[2])
 {
     int n_even = (iterations + 1) / 2, n_odd = iterations / 2;
     if (n_odd == 0)
@@ -1076,6 +1326,10 @@ static double noise_estimate(const struct pixel *pixels, size_t npix, int iterat
         const struct pixel *px = &pixels[i];
         double a = (px->half[0].x + px->half[0].y + px->half[0].z) / (3.0 * n_even);
         double b = (px->half[1].x + px->half[1].y + px->half[1].z) / (3.0 * n_odd);
+        if (fraction[0] > 0.0 && fraction[1] > 0.0) {
+            a += (px->half_photons[0].x + px->half_photons[0].y + px->half_photons[0].z) / (3.0 * fraction[0]);
+            b += (px->half_photons[1].x + px->half_photons[1].y + px->half_photons[1].z) / (3.0 * fraction[1]);
+        }
         diff += (a - b) * (a - b);
         level += 0.25 * (a + b) * (a + b);
     }
@@ -1087,6 +1341,7 @@ struct sppm_totals {
     long long emitted, caustic_total;
     double caustic_power[3];
     double photon_passes;                  /* iterations whose photons were traced, a cut-short one counting as its fraction */
+    double half_fraction[2];               /* the same, of the even and of the odd iterations (the noise estimate) */
     double gather_seconds, gather_photons; /* the last volume gather's cost */
     double volume_radius;
     double volume_radius_first; /* independent passes: pass 0's, the others' shrink from it */
@@ -1160,6 +1415,22 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
                                                : 0.5 * left;
         budget->photon_deadline = fmin(budget->photon_deadline, now + fmax(left - reserve, 0.1 * left));
     }
+    if (!budget->gather_seen && budget->seconds_per_traced > 0.0 && budget->seconds_per_gathered > 0.0) {
+        /* The first iteration's gather, from the pilot's rates: every
+         * photon goes into the map, and each visible point takes about
+         * GATHER_PHOTONS at twice the cost of the pilot's counting gather
+         * (the flux and the structure sums). The pilot's own gathers, at
+         * its small counting radius, cost far less than this one, and
+         * photons traced by their share overran a 1 s budget by a third at
+         * 512^2. */
+        size_t points = 0;
+        for (size_t i = 0; i < npix; i++)
+            points += pixels[i].vp.valid && pixels[i].radius > 0.0;
+        double gather = budget->seconds_per_mapped * (double)job->photons_total +
+                        2.0 * budget->seconds_per_gathered * GATHER_PHOTONS * (double)points;
+        double trace = budget->seconds_per_traced * (double)job->photons_total;
+        budget->gather_share = fmin(gather / (gather + trace), 0.9);
+    }
     budget->photon_deadline = photon_deadline_before_gather(budget, budget->photon_deadline);
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         long begin, end;
@@ -1188,8 +1459,11 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         scale[l] = traced_of[l] > 0 ? pass_fraction * (double)job->photons_of[l] / (double)traced_of[l] : 0.0;
     /* Each pixel sums its photons in the map's order: the same sums
      * whatever the thread count. */
+    job->pass_fraction = pass_fraction;
+    job->gather_until = budget->deadline > 0 ? budget->deadline - 0.03 * job->o->time_budget : 0.0;
     gather_surface_photons(job, threads, scale, false);
     gather_share_measured(budget, gather_start - stage_start, log_now() - gather_start);
+    budget->gather_seen = true;
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         t->caustic_total += job->caustic_photons[c];
         /* (the power statistic is scaled for the whole pass, exact unless
@@ -1202,6 +1476,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     t->stage_photon_gather += log_now() - gather_start;
     t->emitted += traced;
     t->photon_passes += pass_fraction;
+    t->half_fraction[it % 2] += pass_fraction;
     job->pass_fraction = pass_fraction;
     if (job->medium->present) {
         for (int c = 0; c < PHOTON_CHUNKS; c++)
@@ -1272,9 +1547,18 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         struct pixel *px = &pixels[i];
         if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
             dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
-            px->half[it % 2] = dv_add(px->half[it % 2], e);
+            px->half_photons[it % 2] = dv_add(px->half_photons[it % 2], dv_scale(e, pass_fraction));
             if (job->independent)
                 px->pppm = dv_add(px->pppm, e);
+        }
+        /* (never on an iteration the budget cut short: the estimate would
+         * start again from a fraction of an iteration's photons) */
+        if (px->m > 0 && !job->independent && pass_fraction >= 1.0 &&
+            structure_restart(px, t->photon_passes - pass_fraction)) {
+            /* the estimate starts again with this iteration's photons
+             * within the new radius */
+            px->phi = px->phi_inner;
+            px->m = px->m_inner;
         }
         if (px->m > 0 && !job->independent) {
             double n_new = px->n + SPPM_ALPHA * (double)px->m;
@@ -1284,10 +1568,11 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
             px->n = n_new;
             px->radius = r_new;
         }
-        px->phi = dv(0, 0, 0);
-        px->m = 0;
+        px->phi = px->phi_inner = dv(0, 0, 0);
+        px->m = px->m_inner = 0;
     }
     t->stage_update += log_now() - stage_start;
+
 }
 
 /* After iteration `it`: the eye-path and volume estimates into the noise
@@ -1305,7 +1590,7 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
     }
     bool tty = job->budget->tty;
     if (o->report) {
-        double noise = noise_estimate(pixels, npix, it + 1);
+        double noise = noise_estimate(pixels, npix, it + 1, t->half_fraction);
         if (tty) {
             fputc('\n', stderr);
             job->budget->line_length = 0;
@@ -1363,8 +1648,9 @@ static void write_estimates(const struct pixel *pixels, size_t npix, const struc
         dvec3 lc = dv(0, 0, 0);
         if (t->independent_passes > 0)
             lc = dv_scale(px->pppm, 1.0 / t->independent_passes); /* the passes' mean */
-        else if (t->emitted > 0 && px->radius > 0 && px->n > 0)
-            lc = dv_scale(px->tau, 1.0 / ((double)passes * MATH_PI * px->radius * px->radius));
+        else if (t->emitted > 0 && px->radius > 0 && px->n > 0 && passes - px->passes_before - px->passes_missed > 0)
+            lc = dv_scale(px->tau, 1.0 / ((passes - px->passes_before - px->passes_missed) * MATH_PI * px->radius *
+                                          px->radius));
         l = dv_add(l, lc);
         if (caustic_out) {
             /* the caustic part: surface caustics and volume caustics */
@@ -1580,8 +1866,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     write_estimates(buf.pixels, npix, &totals, out, caustic_out);
     if (stats) {
         double passes = totals.photon_passes > 0 ? totals.photon_passes : 1;
-        stats->noise = noise_estimate(buf.pixels, npix,
-                                      totals.photon_passes > 0 ? (int)ceil(totals.photon_passes) : (it > 0 ? it : 1));
+        stats->noise = noise_estimate(buf.pixels, npix, it > 0 ? it : 1, totals.half_fraction);
         stats->iterations = it > 0 ? it : 1;
         stats->photons = totals.emitted;
         stats->caustic_photons = totals.caustic_total;
