@@ -282,6 +282,11 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
     double ul = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
     u = ul > 0.0 ? dv(u.x / ul, u.y / ul, u.z / ul) : dv(1, 0, 0);
     dvec3 v = dv(n.y * u.z - n.z * u.y, n.z * u.x - n.x * u.z, n.x * u.y - n.y * u.x);
+    float ux = (float)u.x, uy = (float)u.y, uz = (float)u.z, vx = (float)v.x, vy = (float)v.y, vz = (float)v.z;
+    double inv_r = 1.0 / r;
+    /* the structure sums in locals (through the pointer, every photon
+     * stored them back) */
+    struct ref_photon_rings st = {0};
     /* two cells may hash to one slot: each slot is read once, or its
      * photons would count twice */
     size_t seen[27];
@@ -327,23 +332,23 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
                             return count;
                         double f = light_scale ? light_scale[ph->light] : 1.0;
                         if (rings) {
-                            double g = f * (ph->flux[0] + ph->flux[1] + ph->flux[2]) / 3.0;
+                            double g = f * (ph->flux[0] + ph->flux[1] + ph->flux[2]) * (1.0 / 3.0);
                             if (inside_d2[h] <= inner2) {
-                                rings->inner += g;
-                                rings->inner_sq += g * g;
+                                st.inner += g;
+                                st.inner_sq += g * g;
                                 for (int c = 0; c < 3; c++)
-                                    rings->inner_flux[c] += f * ph->flux[c];
-                                rings->inner_count++;
+                                    st.inner_flux[c] += f * ph->flux[c];
+                                st.inner_count++;
                             } else {
-                                rings->ring += g;
-                                rings->ring_sq += g * g;
+                                st.ring += g;
+                                st.ring_sq += g * g;
                             }
                             float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
-                            double a = (dx * u.x + dy * u.y + dz * u.z) / r, b = (dx * v.x + dy * v.y + dz * v.z) / r;
-                            rings->moment[0] += g * a;
-                            rings->moment_sq[0] += g * g * a * a;
-                            rings->moment[1] += g * b;
-                            rings->moment_sq[1] += g * g * b * b;
+                            double a = (dx * ux + dy * uy + dz * uz) * inv_r, b = (dx * vx + dy * vy + dz * vz) * inv_r;
+                            st.moment[0] += g * a;
+                            st.moment_sq[0] += g * g * a * a;
+                            st.moment[1] += g * b;
+                            st.moment_sq[1] += g * g * b * b;
                         }
                         if (!flux)
                             continue;
@@ -357,6 +362,8 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
             }
     if (flux)
         *flux = dv(sx, sy, sz);
+    if (rings)
+        *rings = st;
     return count;
 }
 
