@@ -287,8 +287,6 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
     /* the structure sums in locals (through the pointer, every photon
      * stored them back) */
     struct ref_photon_rings st = {0};
-    /* two cells may hash to one slot: each slot is read once, or its
-     * photons would count twice */
     size_t seen[27];
     int nseen = 0;
     long count = 0;
@@ -297,12 +295,8 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
         for (long y = y0; y <= y1; y++)
             for (long x = x0; x <= x1; x++) {
                 size_t s = slot_of(map, x, y, z);
-                bool again = false;
-                for (int i = 0; i < nseen && !again; i++)
-                    again = seen[i] == s;
-                if (again)
+                if (!ref_slot_first(seen, &nseen, s))
                     continue;
-                seen[nseen++] = s;
                 /* a slot in blocks: first the distance test alone, without
                  * branches (every entry written, the count moved on by the
                  * test), then the photons inside */

@@ -51,6 +51,18 @@ struct ref_surface_photons {
 bool ref_surface_photons_push(struct ref_surface_photons *list, const struct ref_surface_photon *photon);
 void ref_surface_photons_release(struct ref_surface_photons *list);
 
+/* Hash grids read up to 27 cells around a point, and two cells may hash
+ * to one slot: a slot is read once, or its photons would count twice.
+ * True the first time `slot` is offered (and then remembered in seen). */
+static inline bool ref_slot_first(size_t seen[27], int *count, size_t slot)
+{
+    for (int i = 0; i < *count; i++)
+        if (seen[i] == slot)
+            return false;
+    seen[(*count)++] = slot;
+    return true;
+}
+
 #define REF_PHOTON_MAP_LEVELS 24
 
 struct ref_photon_map_entry {

@@ -594,12 +594,8 @@ static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 
         for (long y = cy - 1; y <= cy + 1; y++)
             for (long xx = cx - 1; xx <= cx + 1; xx++) {
                 size_t h = volume_hash(g, xx, y, z);
-                bool again = false;
-                for (int i = 0; i < nseen && !again; i++)
-                    again = seen[i] == h;
-                if (again)
+                if (!ref_slot_first(seen, &nseen, h))
                     continue;
-                seen[nseen++] = h;
                 for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
                     const struct volume_photon *p = &g->items[k];
                     dvec3 d = dv(p->position[0] - x.x, p->position[1] - x.y, p->position[2] - x.z);
