@@ -36,6 +36,7 @@
 #define SPPM_ALPHA (2.0 / 3.0)
 #define PHOTON_CHUNKS 64
 #define RADIUS_PIXELS 2.0  /* initial gather radius, in pixel footprints */
+#define STRUCTURE_SUMS 3  /* the structure test's sums (structure_sums) */
 #define MAX_SEGMENTS 4     /* camera path segments through the medium kept for the volume gather */
 #define VOLUME_SAMPLES 8   /* stratified points per segment where volume photons are gathered */   /* fixed, so the result does not depend on the thread count */
 
@@ -180,12 +181,11 @@ struct pixel {
     dvec3 tau;              /* SPPM flux */
     double radius, n;
     /* the structure test, iteration by iteration (structure_restart): the
-     * least radius (0: not tested), the sums of the inner disc's density
-     * less the ring's and of its variance since the radius was last
-     * halved, and the photon passes before that (tau counts those after) */
-    double radius_floor, structure_diff, structure_var, passes_before;
+     * least radius (0: not tested), its sums (structure_sums) and their
+     * variances since the radius was last halved, and the photon passes
+     * before that (tau counts those after) */
+    double radius_floor, structure[STRUCTURE_SUMS], structure_var[STRUCTURE_SUMS], passes_before;
     double passes_missed;   /* passes since then whose gather the budget stopped before this pixel's row */
-    double structure_moment[2], structure_moment_var[2];
     dvec3 phi_inner;        /* this iteration's photons within half the radius, and their count */
     long m_inner;
     double r1;              /* independent passes: the first pass's radius (the pilot's), 0: none found */
@@ -710,7 +710,7 @@ static void trace_photon(struct job *j, int light, long index, struct ref_surfac
                             &flux, &target_object, &target_primitive, &entry))
         return;
     size_t volume_before = volume->count;
-    /* a surface photon is marked useful by the gather (ref_sppm_mark_useful),
+    /* a surface photon is marked useful by the gather (gather_surface_photons),
      * a volume photon now: it is gathered wherever it lies */
     trace_photon_path(j, light, &rng, origin, dir, flux, target_object, target_primitive, hits, caustic, power, volume,
                       (uint32_t)aims->count);
@@ -889,6 +889,9 @@ static double adapt_emission(struct aim_log *aims, struct ref_emitter *emitters,
     return logged > 0.0 ? useful / logged : 0.0;
 }
 
+static void structure_sums(const struct ref_photon_rings *g, double area, double sum[STRUCTURE_SUMS],
+                           double var[STRUCTURE_SUMS]);
+
 /* ---- the surface gather --------------------------------------------------- */
 
 /* Rows interleaved over the threads; each pixel sums the photons within
@@ -922,14 +925,12 @@ static void *surface_gather_thread(void *arg)
             if (m > 0 && !j->gather_counts_only)
                 px->phi = dv_add(px->phi, dv_mul(px->vp.weight, flux));
             if (m > 0 && test) {
-                /* the structure test's sums, in flux densities (ref: structure_shows) */
-                double quarter = 0.25 * MATH_PI * px->radius * px->radius;
-                double inner = rings.inner / quarter, ring = rings.ring / (3.0 * quarter);
-                px->structure_diff += inner - ring;
-                px->structure_var += rings.inner_sq / (quarter * quarter) + rings.ring_sq / (9.0 * quarter * quarter);
-                for (int k = 0; k < 2; k++) {
-                    px->structure_moment[k] += rings.moment[k] / (4.0 * quarter);
-                    px->structure_moment_var[k] += rings.moment_sq[k] / (16.0 * quarter * quarter);
+                /* the structure test's sums, in flux densities */
+                double sum[STRUCTURE_SUMS], var[STRUCTURE_SUMS];
+                structure_sums(&rings, 0.25 * MATH_PI * px->radius * px->radius, sum, var);
+                for (int k = 0; k < STRUCTURE_SUMS; k++) {
+                    px->structure[k] += sum[k];
+                    px->structure_var[k] += var[k];
                 }
                 px->phi_inner = dv_add(px->phi_inner, dv_mul(px->vp.weight, dv(rings.inner_flux[0], rings.inner_flux[1],
                                                                             rings.inner_flux[2])));
@@ -938,6 +939,41 @@ static void *surface_gather_thread(void *arg)
         }
     }
     return NULL;
+}
+
+/* The pilot's radius passes: each pass, every pixel still searching
+ * (search[i].floor > 0) reads the map (the pilot's last round, aimed as
+ * the estimate will be) at its radius and moves it. */
+struct radius_search {
+    double floor, ceiling; /* the radius stays within these; floor 0: settled */
+};
+
+/* The pixels a gather serves: those with a visible point and a radius
+ * (with `search`, only those still searching). */
+static bool gathers(const struct pixel *px, const struct radius_search *search, size_t i)
+{
+    return px->vp.valid && px->radius > 0.0 && (!search || search[i].floor > 0.0);
+}
+
+/* Sets the map's levels for the radii of the pixels that gather, and
+ * counts how many read each level (for ref_photon_map_build); false when
+ * none gathers. */
+static bool map_levels_for(struct job *job, const struct radius_search *search,
+                           size_t per_level[REF_PHOTON_MAP_LEVELS])
+{
+    size_t npix = (size_t)job->o->width * (size_t)job->o->height;
+    double rmax = 0.0;
+    for (size_t i = 0; i < npix; i++)
+        if (gathers(&job->pixels[i], search, i))
+            rmax = fmax(rmax, job->pixels[i].radius);
+    if (!(rmax > 0.0))
+        return false;
+    ref_photon_map_prepare(job->photon_map, rmax);
+    memset(per_level, 0, REF_PHOTON_MAP_LEVELS * sizeof *per_level);
+    for (size_t i = 0; i < npix; i++)
+        if (gathers(&job->pixels[i], search, i))
+            per_level[ref_photon_map_level_of(job->photon_map, job->pixels[i].radius)]++;
+    return true;
 }
 
 /* Gathers the traced surface photons into the visible points (their flux
@@ -949,16 +985,8 @@ static void gather_surface_photons(struct job *job, int threads, const double *l
 {
     struct ref_photon_map *map = job->photon_map;
     size_t npix = (size_t)job->o->width * (size_t)job->o->height;
-    double rmax = 0.0;
-    for (size_t i = 0; i < npix; i++)
-        if (job->pixels[i].vp.valid && job->pixels[i].radius > 0.0)
-            rmax = fmax(rmax, job->pixels[i].radius);
-    if (rmax > 0.0) {
-        ref_photon_map_prepare(map, rmax);
-        size_t per_level[REF_PHOTON_MAP_LEVELS] = {0};
-        for (size_t i = 0; i < npix; i++)
-            if (job->pixels[i].vp.valid && job->pixels[i].radius > 0.0)
-                per_level[ref_photon_map_level_of(map, job->pixels[i].radius)]++;
+    size_t per_level[REF_PHOTON_MAP_LEVELS];
+    if (map_levels_for(job, NULL, per_level)) {
         double build_start = log_now();
         bool built = ref_photon_map_build(map, job->chunks, PHOTON_CHUNKS, per_level, threads);
         if (counts_only && map->count > 0)
@@ -1034,16 +1062,36 @@ static bool structure_significant(double sum, double var, double z)
     return var > 0.0 && sum * sum > z * z * var;
 }
 
+/* Two kinds of structure: curvature (a focus, a ridge), where the inner
+ * disc's flux density (over pi r^2 / 4) differs from the ring's (over
+ * 3 pi r^2 / 4), inner vs ring / 3; and an edge or a slope, where the flux
+ * leans to one side (a step through the centre: the disc and the ring are
+ * cut alike, and only the moments see it). Each as a sum whose mean is 0
+ * on even light, with its variance, per `area` (pi r^2 / 4 for densities). */
+static void structure_sums(const struct ref_photon_rings *g, double area, double sum[STRUCTURE_SUMS],
+                           double var[STRUCTURE_SUMS])
+{
+    sum[0] = (g->inner - g->ring / 3.0) / area;
+    var[0] = (g->inner_sq + g->ring_sq / 9.0) / (area * area);
+    for (int k = 0; k < 2; k++) {
+        sum[1 + k] = g->moment[k] / (4.0 * area);
+        var[1 + k] = g->moment_sq[k] / (16.0 * area * area);
+    }
+}
+
+static bool structure_any(const double sum[STRUCTURE_SUMS], const double var[STRUCTURE_SUMS], double z)
+{
+    for (int k = 0; k < STRUCTURE_SUMS; k++)
+        if (structure_significant(sum[k], var[k], z))
+            return true;
+    return false;
+}
+
 static bool structure_shows(const struct ref_photon_rings *g)
 {
-    /* Two kinds: curvature (a focus, a ridge), where the inner disc's flux
-     * density (over pi r^2 / 4) differs from the ring's (over 3 pi r^2 / 4),
-     * inner vs ring / 3; and an edge or a slope, where the flux leans to
-     * one side (a step through the centre: the disc and the ring are cut
-     * alike, and only the moments see it). */
-    return structure_significant(g->inner - g->ring / 3.0, g->inner_sq + g->ring_sq / 9.0, STRUCTURE_Z) ||
-           structure_significant(g->moment[0], g->moment_sq[0], STRUCTURE_Z) ||
-           structure_significant(g->moment[1], g->moment_sq[1], STRUCTURE_Z);
+    double sum[STRUCTURE_SUMS], var[STRUCTURE_SUMS];
+    structure_sums(g, 1.0, sum, var);
+    return structure_any(sum, var, STRUCTURE_Z);
 }
 
 /* The same test iteration by iteration, on the sums of every iteration's
@@ -1058,27 +1106,18 @@ static bool structure_restart(struct pixel *px, double passes_now)
 {
     if (!(px->radius_floor > 0.0) || 0.5 * px->radius < px->radius_floor)
         return false;
-    if (!structure_significant(px->structure_diff, px->structure_var, RESTART_Z) &&
-        !structure_significant(px->structure_moment[0], px->structure_moment_var[0], RESTART_Z) &&
-        !structure_significant(px->structure_moment[1], px->structure_moment_var[1], RESTART_Z))
+    if (!structure_any(px->structure, px->structure_var, RESTART_Z))
         return false;
     px->radius *= 0.5;
     px->tau = dv(0, 0, 0);
     px->n = 0.0;
     px->passes_before = passes_now;
     px->passes_missed = 0.0;
-    px->structure_diff = px->structure_var = 0.0;
-    for (int k = 0; k < 2; k++)
-        px->structure_moment[k] = px->structure_moment_var[k] = 0.0;
+    memset(px->structure, 0, sizeof px->structure);
+    memset(px->structure_var, 0, sizeof px->structure_var);
     return true;
 }
 
-/* The pilot's radius passes: each pass, every pixel still searching
- * (search[i].floor > 0) reads the map (the pilot's last round, aimed as
- * the estimate will be) at its radius and moves it. */
-struct radius_search {
-    double floor, ceiling; /* the radius stays within these; floor 0: settled */
-};
 
 /* A k-nearest-neighbour radius (after the pilot's first guess from the
  * count within R_c): the radius that holds the GATHER_PHOTONS an
@@ -1140,27 +1179,15 @@ static void radius_search(struct job *job, int threads, struct radius_search *se
                           double until)
 {
     struct ref_photon_map *map = job->photon_map;
-    size_t npix = (size_t)job->o->width * (size_t)job->o->height;
     job->radius_search = search;
     job->radius_search_knn = knn;
     job->radius_search_until = until;
     for (int pass = 0; pass < passes && map->count > 0; pass++) {
         if (until > 0.0 && log_now() >= until)
             break;
-        double rmax = 0.0;
-        size_t searching = 0;
-        for (size_t i = 0; i < npix; i++)
-            if (search[i].floor > 0.0 && job->pixels[i].vp.valid) {
-                rmax = fmax(rmax, job->pixels[i].radius);
-                searching++;
-            }
-        if (searching == 0)
-            break;
-        ref_photon_map_prepare(map, rmax);
-        size_t per_level[REF_PHOTON_MAP_LEVELS] = {0};
-        for (size_t i = 0; i < npix; i++)
-            if (search[i].floor > 0.0 && job->pixels[i].vp.valid)
-                per_level[ref_photon_map_level_of(map, job->pixels[i].radius)]++;
+        size_t per_level[REF_PHOTON_MAP_LEVELS];
+        if (!map_levels_for(job, search, per_level))
+            break; /* every pixel settled */
         if (!ref_photon_map_build_levels(map, per_level, threads))
             break; /* out of memory: the radii stand */
         run_threads(job, threads, radius_search_thread);
