@@ -3,41 +3,81 @@
 // layered_caustics (splat.comp, in screen pixels). The includer defines,
 // before the include:
 //   bool neighbour(ivec2 q, vec2 from, out vec2 offset): the offset from
-//     `from` to where photon q landed, if it landed where this one did
-//     (clamped to the pass's limit: a footprint torn by a silhouette or a
-//     fold smears no farther);
+//     `from` to where photon q landed, if it landed where this one did;
+//   float footprint_limit(): the longest offset a neighbour may stand for
+//     when nothing says the light is smoothly stretched there (one
+//     neighbour only, or two that disagree: a footprint torn by a
+//     silhouette or a fold smears no farther);
+//   float footprint_stretch_limit(): the longest when both neighbours
+//     agree (light spread thin and evenly: the rim of a ball lens before
+//     its focus, where photons land farther apart than footprint_limit);
+//   bool off_object(ivec2 q): texel q of the light's view holds no photon
+//     because its ray missed every refractor (the object's silhouette lies
+//     between q and this photon), not because its photon was lost;
 //   void deposit(vec2 at, vec3 flux): the flux bilinearly into the four
 //     cells around `at` (centres at +0.5).
 
-// Half the difference of the two neighbours along `step`, or the one that
-// landed (a ray differential: the footprint's side along that axis).
-vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at)
+vec2 footprint_clamped(vec2 offset, float limit)
+{
+    float len = length(offset);
+    return len > limit ? offset * (limit / len) : offset;
+}
+
+// The footprint's side along `step` and its bend: the parabola through the
+// neighbours' landing points, at + t side + t^2 bend with t = -1, 0, 1 at
+// the minus neighbour, this photon and the plus one (a second-order ray
+// differential). Where the light folds (a caustic line between the
+// neighbours: both land on the same side) the side goes to zero and the
+// bend keeps the footprint's true extent, its flux piled at the fold as the
+// rays are; a photon with one neighbour has a straight side, one with none
+// a point. Each neighbour's offset is clamped to footprint_limit(), or to
+// up to three times the shorter one (at most footprint_stretch_limit())
+// when both landed: a smooth stretch lands them about equally far, a tear
+// does not. A photon on the refractor's silhouette (its other neighbour's
+// ray missed the object) has its cell stretched as much outwards as
+// inwards: its one neighbour's offset is allowed up to the stretch limit
+// (the light of a ball lens' rim, spread thin before the focus, came out
+// as black bands between the rim photons' clamped footprints).
+vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 {
     vec2 a, b;
+    bend = vec2(0.0);
     bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
-    if (plus && minus)
+    float limit = footprint_limit();
+    if (plus && minus) {
+        float stretch = max(limit, min(footprint_stretch_limit(), 3.0 * min(length(a), length(b))));
+        a = footprint_clamped(a, stretch);
+        b = footprint_clamped(b, stretch);
+        bend = 0.5 * (a + b);
         return 0.5 * (a - b);
+    }
     if (plus)
-        return a;
+        return footprint_clamped(a, off_object(p - step) ? max(limit, footprint_stretch_limit()) : limit);
     if (minus)
-        return -b;
+        return -footprint_clamped(b, off_object(p + step) ? max(limit, footprint_stretch_limit()) : limit);
     return vec2(0.0);
 }
 
-// The flux over the parallelogram at +- ex / 2 +- ey / 2, as n x n sample
-// points each deposited bilinearly, so a diverging photon spreads, a
-// converging one stays sharp and the flux is kept exactly. Two points a
+// The flux over the footprint at + s ex + s^2 bx + t ey + t^2 by for s, t
+// in [-1/2, 1/2] (the photon's own cell of the light's grid), as n x n
+// sample points each deposited bilinearly, so a diverging photon spreads,
+// a converging one stays sharp and the flux is kept exactly. Two points a
 // cell along sides up to `fine_up_to` cells (one a cell beats against the
 // grid where photons land 1-2 cells apart: a +-12% ripple on flat water),
 // one a cell beyond, at most `max_side` a side (a wide footprint overlaps
 // its neighbours' anyway).
-void footprint_splat(vec2 at, vec2 ex, vec2 ey, vec3 flux, float fine_up_to, int max_side)
+void footprint_splat(vec2 at, vec2 ex, vec2 bx, vec2 ey, vec2 by, vec3 flux, float fine_up_to, int max_side)
 {
-    float lx = length(ex), ly = length(ey);
+    // the longest chord of the side's parabola over the cell
+    float lx = length(ex) + 0.25 * length(bx), ly = length(ey) + 0.25 * length(by);
     int nx = clamp(int(ceil(lx <= fine_up_to ? 2.0 * lx : lx)), 1, max_side);
     int ny = clamp(int(ceil(ly <= fine_up_to ? 2.0 * ly : ly)), 1, max_side);
     vec3 share = flux / float(nx * ny);
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            deposit(at + ((float(i) + 0.5) / float(nx) - 0.5) * ex + ((float(j) + 0.5) / float(ny) - 0.5) * ey, share);
+    for (int j = 0; j < ny; j++) {
+        float t = (float(j) + 0.5) / float(ny) - 0.5;
+        for (int i = 0; i < nx; i++) {
+            float s = (float(i) + 0.5) / float(nx) - 0.5;
+            deposit(at + s * ex + s * s * bx + t * ey + t * t * by, share);
+        }
+    }
 }

@@ -36,8 +36,11 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, u_layer_size)))
         return;
-    imageStore(u_hits, ivec3(p, 0), vec4(0.0));
-    imageStore(u_hits, ivec3(p, 1), vec4(0.0));
+    // w: 1 landed, 0 lost on the way, -1 the ray missed the refractors
+    // (splat.comp's off_object: the silhouette lies beside it)
+    float missed = layer_count(p) == 0 ? -1.0 : 0.0;
+    imageStore(u_hits, ivec3(p, 0), vec4(0.0, 0.0, 0.0, missed));
+    imageStore(u_hits, ivec3(p, 1), vec4(0.0, 0.0, 0.0, missed));
     if (layer_count(p) == 0)
         return;
     vec3 P0 = layer_point(vec2(p) + 0.5, layer_depth(p, 0));

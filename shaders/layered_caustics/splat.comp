@@ -20,6 +20,7 @@ layout(rgba32f) uniform readonly image2DArray u_hits;
 layout(rgba32f) uniform readonly image2DArray u_photons;
 uniform ivec2 u_buffer_size;
 uniform float u_max_radius; // pixels
+uniform float u_stretch_limit; // pixels: layered_caustics.c
 
 vec2 to_pixels(vec3 p)
 {
@@ -39,10 +40,18 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
     if (h.w < 0.5)
         return false;
     offset = to_pixels(h.xyz) - from;
-    float len = length(offset), limit = 2.0 * u_max_radius;
-    if (len > limit)
-        offset *= limit / len;
     return true;
+}
+
+float footprint_limit() { return 2.0 * u_max_radius; }
+float footprint_stretch_limit() { return u_stretch_limit; }
+
+// photons.comp marks a texel whose ray missed the refractors w = -1
+bool off_object(ivec2 q)
+{
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_buffer_size)))
+        return true;
+    return imageLoad(u_hits, ivec3(q, branch)).w < -0.5;
 }
 
 void deposit(vec2 at, vec3 flux)
@@ -76,9 +85,10 @@ void main()
         return;
     vec3 flux = imageLoad(u_photons, ivec3(p, branch)).rgb;
     vec2 at = to_pixels(h.xyz);
-    vec2 ex = footprint_axis(p, ivec2(1, 0), at), ey = footprint_axis(p, ivec2(0, 1), at);
+    vec2 bx, by;
+    vec2 ex = footprint_axis(p, ivec2(1, 0), at, bx), ey = footprint_axis(p, ivec2(0, 1), at, by);
     // two points a pixel on footprints up to 3 pixels across, one beyond
     // (their neighbours' overlap smooths the ripple; the ball's splat cost
     // 3.5x with two everywhere), at most 32 a side
-    footprint_splat(at, ex, ey, flux, 3.0, 32);
+    footprint_splat(at, ex, bx, ey, by, flux, 3.0, 32);
 }

@@ -50,11 +50,12 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
     if (n.w < 0.5 || int(n.z + 0.5) != receiver)
         return false;
     offset = photon_window_uv(receiver, n.xy) * float(u_texture) - from;
-    float len = length(offset);
-    if (len > u_footprint)
-        offset *= u_footprint / len;
     return true;
 }
+
+float footprint_limit() { return u_footprint; }
+float footprint_stretch_limit() { return u_footprint; }
+bool off_object(ivec2 q) { return false; }
 
 #include "common/footprint.glsl"
 
@@ -76,8 +77,9 @@ void main()
             imageAtomicAdd(u_counts, ivec3(t, 3 * receiver + c), fixed_point_count(flux[c]));
         return;
     }
-    vec2 ex = footprint_axis(p, ivec2(1, 0), at), ey = footprint_axis(p, ivec2(0, 1), at);
+    vec2 bx, by;
+    vec2 ex = footprint_axis(p, ivec2(1, 0), at, bx), ey = footprint_axis(p, ivec2(0, 1), at, by);
     // two sample points per texel at any size; at most 12 a side (32 a side
     // cost the ball's caustics 70% more time)
-    footprint_splat(at, ex, ey, flux, 1e30, 12);
+    footprint_splat(at, ex, bx, ey, by, flux, 1e30, 12);
 }

@@ -47,7 +47,7 @@ static const struct pass_param_desc params[] = {
     [LC_SEARCH] = LAYERS_PARAM_SEARCH("bisection steps per interface"),
     [LC_STEPS] = LAYERS_PARAM_STEPS("linear steps along a photon before the bisection"),
     [LC_RADIUS] = {.name = "radius", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0.5, .max = 32,
-     .help = "each photon is spread over its footprint from its neighbours' landing points (a ray differential), at most 2 x radius pixels along each side"},
+     .help = "each photon is spread over its footprint from its neighbours' landing points (a second-order ray differential), at most 2 x radius pixels along a side unless its neighbours on both sides say the light is spread smoothly (then up to a quarter of the image)"},
     [LC_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
      .help = "the camera's receivers (a receivers pass's normal), where the photons land: by default the graph adds "
              "one, shared with the other caustics passes"},
@@ -183,11 +183,21 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
-    /* A photon may start far outside the camera's view and land inside it,
-     * or just past its edge and still spread into it: the receivers go on
-     * past the edge as far as a footprint reaches (scene_trace.glsl). */
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"), 2.0f * (float)pass_real(p, LC_RADIUS) + 1.0f);
     float max_radius = (float)pass_real(p, LC_RADIUS);
+    /* The longest a footprint's side may stretch where its neighbours say
+     * the light is spread smoothly (footprint.glsl): photons land up to a
+     * quarter of the image apart where the light's view spans much more
+     * than the camera's (a pool seen close up). */
+    int longest_side = f->width > f->height ? f->width : f->height;
+    float stretch_limit = fmaxf(32.0f, 0.25f * (float)longest_side);
+    /* A photon may start far outside the camera's view and land inside it,
+     * or past its edge and still spread into it: the receivers go on past
+     * the edge as far as a footprint reaches (scene_trace.glsl), so the
+     * photons just inside have both neighbours (with one, a footprint is
+     * clamped to 2 x radius: black bands along the image's edges where
+     * photons landed 30 pixels apart). */
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"),
+                        fmaxf(2.0f * max_radius, stretch_limit) + 1.0f);
     gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(photons, "u_photons", s->photons.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
@@ -208,6 +218,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl_program_bind_texture(splat, "u_receiver_normal", receiver_normal);
     gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
