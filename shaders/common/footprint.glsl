@@ -43,18 +43,18 @@ vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
     vec2 a, b;
     bend = vec2(0.0);
     bool plus = neighbour(p + step, at, a), minus = neighbour(p - step, at, b);
-    float limit = footprint_limit();
+    float limit = footprint_limit(), widest = max(limit, footprint_stretch_limit());
     if (plus && minus) {
-        float stretch = max(limit, min(footprint_stretch_limit(), 3.0 * min(length(a), length(b))));
+        float stretch = clamp(3.0 * min(length(a), length(b)), limit, widest);
         a = footprint_clamped(a, stretch);
         b = footprint_clamped(b, stretch);
         bend = 0.5 * (a + b);
         return 0.5 * (a - b);
     }
     if (plus)
-        return footprint_clamped(a, off_object(p - step) ? max(limit, footprint_stretch_limit()) : limit);
+        return footprint_clamped(a, off_object(p - step) ? widest : limit);
     if (minus)
-        return -footprint_clamped(b, off_object(p + step) ? max(limit, footprint_stretch_limit()) : limit);
+        return -footprint_clamped(b, off_object(p + step) ? widest : limit);
     return vec2(0.0);
 }
 

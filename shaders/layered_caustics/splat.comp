@@ -1,15 +1,16 @@
 #version 450 core
-// Each photon over its own footprint (a ray differential): its neighbours
-// one texel away in the light's view land at xp, xm, yp, ym; the
-// parallelogram spanned by the central differences ex, ey is the area its
-// light covers on the receiver. The flux is spread over that parallelogram
-// as the camera sees it (n x n sample points, each bilinearly into four
-// pixels), so a diverging photon spreads, a converging one stays sharp,
-// and the flux is kept exactly. A neighbour's offset is clamped to
-// 2 x u_max_radius pixels: light that diverges fast (a reflection off a
-// faceted surface) spreads that far and no farther, and a footprint torn by
-// a silhouette or a fold between neighbours smears no farther either. A
-// photon with no neighbour on an axis is one pixel wide along it.
+// Each photon over its own footprint (common/footprint.glsl, a
+// second-order ray differential): its neighbours one texel away in the
+// light's view give the curved parallelogram its light covers on the
+// receiver, spread as the camera sees it (n x n sample points, each
+// bilinearly into four pixels), so a diverging photon spreads, a
+// converging one stays sharp, and the flux is kept exactly. A side is
+// clamped to 2 x u_max_radius pixels (light that diverges fast, a
+// reflection off a faceted surface, or a footprint torn by a silhouette
+// spreads that far and no farther) unless both neighbours agree that the
+// light is stretched smoothly, or the photon sits on the refractor's
+// silhouette: then up to u_stretch_limit. A photon with no neighbour on an
+// axis is a point along it.
 #include "common/frame.glsl"
 uniform sampler2D u_receiver_normal;
 layout(r32ui) uniform uimage2DArray u_flux;
@@ -30,11 +31,13 @@ vec2 to_pixels(vec3 p)
 
 int branch; // 0: through the object, 1: reflected off its first interface (gl_GlobalInvocationID.z)
 
+bool in_buffer(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, u_buffer_size)); }
+
 // The screen offset to neighbour q's landing point, if it landed near.
 bool neighbour(ivec2 q, vec2 from, out vec2 offset)
 {
     offset = vec2(0.0);
-    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_buffer_size)))
+    if (!in_buffer(q))
         return false;
     vec4 h = imageLoad(u_hits, ivec3(q, branch));
     if (h.w < 0.5)
@@ -49,9 +52,7 @@ float footprint_stretch_limit() { return u_stretch_limit; }
 // photons.comp marks a texel whose ray missed the refractors w = -1
 bool off_object(ivec2 q)
 {
-    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_buffer_size)))
-        return true;
-    return imageLoad(u_hits, ivec3(q, branch)).w < -0.5;
+    return !in_buffer(q) || imageLoad(u_hits, ivec3(q, branch)).w < -0.5;
 }
 
 void deposit(vec2 at, vec3 flux)
