@@ -105,8 +105,8 @@ static const struct pass_param_desc params[] = {
     [BC_PIXELS] = {.name = "pixels", .type = PASS_PARAM_NUMBER, .default_number = 24, .min = 1, .max = 1e6,
      .help = "split a beam wider than this many pixels where its central ray passes nearest the camera (§4.2)"},
     [BC_CUTOFF] = {.name = "cutoff", .type = PASS_PARAM_NUMBER, .default_number = 0.01, .min = 0, .max = 1,
-     .help = "a diverging beam ends where its flux density falls below this fraction of its base's (§4.3; 0: "
-             "at the receivers)"},
+     .help = "a beam ends where, diverging, its flux density falls below this fraction of its base's or of "
+             "the light's own, whichever is less (§4.3; a beam past a focus too; 0: at the receivers)"},
     [BC_MAX_FOCUS] = {.name = "max_focus", .type = PASS_PARAM_NUMBER, .default_number = 1000, .min = 1, .max = 1e9,
      .help = "the bound on a focus: a beam's flux density is at most this many times its density at its "
              "wider end (A(y) -> 0 stays finite)"},
@@ -365,6 +365,10 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_volumes"), pass_choice(p, BC_VOLUMES));
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_cutoff"), (float)pass_real(p, BC_CUTOFF));
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_max_focus"), (float)pass_real(p, BC_MAX_FOCUS));
+    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_range"), range);
+    const struct frame_light *fl = &f->snapshot->lights[slot];
+    gl.ProgramUniform4f(build->id, gl_program_uniform(build, "u_light_origin"), fl->position.x, fl->position.y,
+                        fl->position.z, ortho ? 1.0f : 0.0f);
     gl.DispatchComputeIndirect((GLintptr)(COUNT_BUILD * sizeof(GLuint)));
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
