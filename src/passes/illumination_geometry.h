@@ -36,9 +36,13 @@ struct illum_volume_list {
  * `model`) lit by one light sample, appended to `out`: per vertex the
  * light's direction in the object's frame looked up in the table, per
  * triangle facing the light the flux L cos(theta) S F_t (eq. 1). A
- * zero-area triangle or a failed lookup makes no volume. */
-bool illum_volumes_collect(const struct mesh *m, const struct transport_table *table, mat4 model,
-                           const struct frame_light *light, struct illum_volume_list *out, struct error *err);
+ * zero-area triangle makes no volume. A triangle whose vertices' paths
+ * part (leave by different faces, or not at all) is split where they
+ * part, its new corners traced exactly by `tracer` (the table's own paths
+ * at any point); without one (NULL) it makes no volume. */
+bool illum_volumes_collect(const struct mesh *m, const struct transport_table *table,
+                           const struct transport_tracer *tracer, mat4 model, const struct frame_light *light,
+                           struct illum_volume_list *out, struct error *err);
 
 /* The volumes' flux-weighted mean direction (straight down when there is
  * no flux). */

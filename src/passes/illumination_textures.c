@@ -50,6 +50,10 @@
 
 struct illum_state {
     struct transport_table tables[ILLUM_MAX_REFRACTORS];
+    /* each table's paths traced exactly where a triangle's vertices' paths
+     * part (illumination_geometry.c), made with the table */
+    struct transport_tracer *tracers[ILLUM_MAX_REFRACTORS];
+    uint64_t tracer_key[ILLUM_MAX_REFRACTORS];
     /* the mesh each table samples: the object's, or `fine`, its subdivision */
     const struct mesh *table_mesh[ILLUM_MAX_REFRACTORS];
     struct mesh *fine[ILLUM_MAX_REFRACTORS];
@@ -81,8 +85,9 @@ static const struct pass_param_desc params[] = {
      .help = "illumination texture size (the paper uses 512; 256 is the bench's best here: finer texels leave more sub-texel triangles as points)"},
     [IT_TABLE] = {.name = "table", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 2, .max = 64,
      .help = "light transport table: incident directions per side of its octahedral map (table^2 directions per vertex)"},
-    [IT_INTERNAL] = {.name = "internal", .type = PASS_PARAM_ENUM, .default_string = "none", .choices = "none|first",
-     .help = "paths with total internal reflection: none (the paper's) or the first one followed"},
+    [IT_INTERNAL] = {.name = "internal", .type = PASS_PARAM_ENUM, .default_string = "first", .choices = "none|first",
+     .help = "paths with total internal reflection: the first one followed (a cube at IOR 2.42 lights its floor "
+             "where none left a black band; a ball never reflects inside), or none (the paper's)"},
     [IT_TARGETS] = {.name = "targets", .type = PASS_PARAM_OBJECT_LIST,
      .help = "the diffuse objects that receive the caustics (default: every visible diffuse object)"},
 };
@@ -126,6 +131,7 @@ static void illum_destroy(struct pass *p)
         return;
     for (int i = 0; i < ILLUM_MAX_REFRACTORS; i++) {
         transport_table_release(&s->tables[i]);
+        transport_tracer_destroy(s->tracers[i]);
         if (s->fine[i])
             mesh_destroy(s->fine[i]);
     }
@@ -242,9 +248,10 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
         if (!is_refractor(o))
             continue;
         const struct mesh *m = s->table_mesh[t];
-        const struct transport_table *table = &s->tables[t++];
+        const struct transport_table *table = &s->tables[t];
+        const struct transport_tracer *tracer = s->tracers[t++];
         const struct frame_object *fo = frame_object_of(fr, o);
-        if (!illum_volumes_collect(m, table, fo ? fo->model : object_model_matrix(o), light, out, err))
+        if (!illum_volumes_collect(m, table, tracer, fo ? fo->model : object_model_matrix(o), light, out, err))
             return false;
     }
     return true;
@@ -276,6 +283,14 @@ static const struct mesh *table_mesh(struct illum_state *s, int k, const struct 
     return s->fine[k];
 }
 
+/* What a tracer traces: the mesh and the material's optics. */
+static uint64_t tracer_key(const struct mesh *m, const struct material *mat, enum transport_internal internal)
+{
+    float optics[6] = {mat->ior, mat->ideal ? 1.0f : 0.0f, mat->absorption.x, mat->absorption.y, mat->absorption.z,
+                       (float)internal};
+    return hash_fnv1a(hash_fnv1a(HASH_FNV1A_BASIS, &m->serial, sizeof m->serial), optics, sizeof optics);
+}
+
 static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struct error *err)
 {
     struct illum_state *s = p->state;
@@ -299,6 +314,14 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         /* a fine mesh gets fewer directions, so its table fits (said in info and --timings) */
         if (!transport_table_ensure(t, m, &o->material, resolution, internal, i + 1, p->report, sizeof p->report, err))
             return false;
+        uint64_t key = tracer_key(m, &o->material, internal);
+        if (!s->tracers[k] || s->tracer_key[k] != key) {
+            transport_tracer_destroy(s->tracers[k]);
+            s->tracers[k] = NULL;
+            if (!transport_tracer_create(&s->tracers[k], m, &o->material, internal, err))
+                return false;
+            s->tracer_key[k] = key;
+        }
     }
     pass_stage_end(p, "tables");
     struct illum_volume_list vols = {0};

@@ -120,17 +120,15 @@ static bool hit(const struct tracer *tr, vec3 o, vec3 d, float *t_hit, vec3 *p, 
     return true;
 }
 
-/* The path of light along d entering at vertex v: entry, inside, exit. */
-static void trace_vertex(const struct tracer *tr, const struct material *mat, enum transport_internal internal,
-                         size_t vi, vec3 d, float *out)
+/* The path of light along d entering at point p of normal n: entry,
+ * inside, exit; out[3..5] stay 0 where no light leaves. */
+static void trace_path(const struct tracer *tr, const struct material *mat, enum transport_internal internal, vec3 p,
+                       vec3 n, vec3 d, float *out)
 {
     memset(out, 0, TRANSPORT_FLOATS * sizeof(float));
-    const struct mesh *m = tr->m;
-    vec3 p = vec3_make(m->positions[vi * 3], m->positions[vi * 3 + 1], m->positions[vi * 3 + 2]);
-    vec3 n = vec3_make(m->normals[vi * 3], m->normals[vi * 3 + 1], m->normals[vi * 3 + 2]);
     double ior = mat->ior;
     if (vec3_dot(d, n) >= 0.0f)
-        return; /* light from behind the vertex: it does not enter here */
+        return; /* light from behind the point: it does not enter here */
     vec3 t;
     if (!refract3(d, n, 1.0 / ior, &t))
         return; /* IOR < 1: totally reflected on the outside */
@@ -165,6 +163,62 @@ static void trace_vertex(const struct tracer *tr, const struct material *mat, en
     }
 }
 
+static void trace_vertex(const struct tracer *tr, const struct material *mat, enum transport_internal internal,
+                         size_t vi, vec3 d, float *out)
+{
+    const struct mesh *m = tr->m;
+    vec3 p = vec3_make(m->positions[vi * 3], m->positions[vi * 3 + 1], m->positions[vi * 3 + 2]);
+    vec3 n = vec3_make(m->normals[vi * 3], m->normals[vi * 3 + 1], m->normals[vi * 3 + 2]);
+    trace_path(tr, mat, internal, p, n, d, out);
+}
+
+struct transport_tracer {
+    RTCDevice device;
+    struct tracer tr;
+    struct material material;
+    enum transport_internal internal;
+};
+
+bool transport_tracer_create(struct transport_tracer **out, const struct mesh *m, const struct material *mat,
+                             enum transport_internal internal, struct error *err)
+{
+    *out = NULL;
+    struct transport_tracer *t = calloc(1, sizeof *t);
+    if (!t)
+        return error_set(err, "%s: out of memory for its tracer", m->name);
+    RTCScene scene;
+    if (!mesh_embree_create(m, &t->device, &scene, err)) {
+        free(t);
+        return false;
+    }
+    t->tr = (struct tracer){scene, m, 1e-5f * fmaxf(vec3_length(vec3_sub(m->bounds_max, m->bounds_min)), 1e-6f)};
+    t->material = *mat;
+    t->internal = internal;
+    *out = t;
+    return true;
+}
+
+void transport_tracer_destroy(struct transport_tracer *t)
+{
+    if (!t)
+        return;
+    mesh_embree_release(t->device, t->tr.scene);
+    free(t);
+}
+
+bool transport_trace(const struct transport_tracer *t, vec3 p, vec3 n, vec3 dir, vec3 *position, vec3 *direction,
+                     vec3 *transmittance)
+{
+    float e[TRANSPORT_FLOATS];
+    trace_path(&t->tr, &t->material, t->internal, p, vec3_normalize_or(n, vec3_scale(dir, -1.0f)),
+               vec3_normalize_or(dir, vec3_make(0, -1, 0)), e);
+    if (e[3] == 0.0f && e[4] == 0.0f && e[5] == 0.0f)
+        return false;
+    *position = vec3_make(e[0], e[1], e[2]);
+    *direction = vec3_make(e[3], e[4], e[5]);
+    *transmittance = vec3_make(e[6], e[7], e[8]);
+    return true;
+}
 
 /* The tracer's version: bumped whenever the tables it makes change, so that
  * a table cached by an older build is traced again (2: refraction from
@@ -338,6 +392,17 @@ done:
 bool transport_lookup(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position, vec3 *direction,
                       vec3 *transmittance)
 {
+    return transport_lookup_smooth(t, vertex, dir, position, direction, transmittance, NULL);
+}
+
+bool transport_lookup_smooth(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position,
+                             vec3 *direction, vec3 *transmittance, bool *smooth)
+{
+    if (smooth)
+        *smooth = true;
+    float least_cos = 1.0f;
+    bool missing = false;
+    vec3 first_dir = {0, 0, 0};
     if (!t->entries || vertex >= t->vertex_count)
         return false;
     int r = t->resolution;
@@ -357,13 +422,24 @@ bool transport_lookup(const struct transport_table *t, size_t vertex, vec3 dir, 
             j = j < 0 ? 0 : j >= r ? r - 1 : j;
             double w = (di ? ai : 1.0 - ai) * (dj ? aj : 1.0 - aj);
             const float *e = base + ((size_t)j * (size_t)r + (size_t)i) * TRANSPORT_FLOATS;
-            if (w <= 0.0 || (e[3] == 0.0f && e[4] == 0.0f && e[5] == 0.0f))
+            if (w <= 0.0)
                 continue;
+            if (e[3] == 0.0f && e[4] == 0.0f && e[5] == 0.0f) {
+                missing = true;
+                continue;
+            }
+            vec3 ed = vec3_make(e[3], e[4], e[5]);
+            if (wsum > 0.0)
+                least_cos = fminf(least_cos, vec3_dot(ed, first_dir));
+            else
+                first_dir = ed;
             p = vec3_add(p, vec3_scale(vec3_make(e[0], e[1], e[2]), (float)w));
             d = vec3_add(d, vec3_scale(vec3_make(e[3], e[4], e[5]), (float)w));
             tr = vec3_add(tr, vec3_scale(vec3_make(e[6], e[7], e[8]), (float)w));
             wsum += w;
         }
+    if (smooth)
+        *smooth = !missing && least_cos >= TRANSPORT_SMOOTH_COS;
     if (wsum < 1e-6)
         return false;
     float inv = (float)(1.0 / wsum);

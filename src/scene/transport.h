@@ -72,5 +72,26 @@ void transport_cell(int resolution, vec3 d, double *i, double *j);
  * neighbour has a path. */
 bool transport_lookup(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position, vec3 *direction,
                       vec3 *transmittance);
+/* The same, and whether the directions it interpolates agree: all have a
+ * path, leaving within TRANSPORT_SMOOTH_COS of each other. Where they do
+ * not (the light leaves by another face, or is totally reflected, a cell
+ * away) the interpolated ray is a blend of different paths, no path at all. */
+#define TRANSPORT_SMOOTH_COS 0.9f
+bool transport_lookup_smooth(const struct transport_table *t, size_t vertex, vec3 dir, vec3 *position,
+                             vec3 *direction, vec3 *transmittance, bool *smooth);
+
+/* The same paths traced exactly at any point of the mesh, for the light of
+ * one triangle whose vertices' paths part (they leave by different faces,
+ * or some are totally reflected): the table cannot say where between its
+ * vertices they part. Holds an Embree scene of the mesh (its base shape);
+ * the mesh must outlive it. */
+struct transport_tracer;
+bool transport_tracer_create(struct transport_tracer **out, const struct mesh *m, const struct material *mat,
+                             enum transport_internal internal, struct error *err);
+void transport_tracer_destroy(struct transport_tracer *t);
+/* The outgoing ray for light arriving along `dir` at point p of (shading)
+ * normal n, all in the mesh's frame; false where no light leaves. */
+bool transport_trace(const struct transport_tracer *t, vec3 p, vec3 n, vec3 dir, vec3 *position, vec3 *direction,
+                     vec3 *transmittance);
 
 #endif
