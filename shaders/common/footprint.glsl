@@ -11,9 +11,11 @@
 //   float footprint_stretch_limit(): the longest when both neighbours
 //     agree (light spread thin and evenly: the rim of a ball lens before
 //     its focus, where photons land farther apart than footprint_limit);
-//   bool off_object(ivec2 q): texel q of the light's view holds no photon
-//     because its ray missed every refractor (the object's silhouette lies
-//     between q and this photon), not because its photon was lost;
+//   bool open_beyond(ivec2 q): texel q of the light's view has no photon
+//     to bound this one's cell on that side: its ray missed every
+//     refractor (the object's silhouette lies between q and this photon),
+//     or its photon landed nowhere the includer keeps (flew past the view:
+//     a ball's rim rays leave sideways); false where that is unknown;
 //   void deposit(vec2 at, vec3 flux): the flux bilinearly into the four
 //     cells around `at` (centres at +0.5).
 
@@ -33,11 +35,13 @@ vec2 footprint_clamped(vec2 offset, float limit)
 // a point. Each neighbour's offset is clamped to footprint_limit(), or to
 // up to three times the shorter one (at most footprint_stretch_limit())
 // when both landed: a smooth stretch lands them about equally far, a tear
-// does not. A photon on the refractor's silhouette (its other neighbour's
-// ray missed the object) has its cell stretched as much outwards as
-// inwards: its one neighbour's offset is allowed up to the stretch limit
-// (the light of a ball lens' rim, spread thin before the focus, came out
-// as black bands between the rim photons' clamped footprints).
+// does not. A photon whose other neighbour is open_beyond (a silhouette,
+// or a photon that flew past the view) has its cell stretched as much
+// outwards as inwards: its one neighbour's offset is allowed up to the
+// stretch limit (the light of a ball lens' rim, spread thin before the
+// focus, came out as black bands between the rim photons' clamped
+// footprints, and as black spokes where the next photons out flew past
+// the image).
 vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 {
     vec2 a, b;
@@ -52,9 +56,9 @@ vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
         return 0.5 * (a - b);
     }
     if (plus)
-        return footprint_clamped(a, off_object(p - step) ? widest : limit);
+        return footprint_clamped(a, open_beyond(p - step) ? widest : limit);
     if (minus)
-        return -footprint_clamped(b, off_object(p + step) ? widest : limit);
+        return -footprint_clamped(b, open_beyond(p + step) ? widest : limit);
     return vec2(0.0);
 }
 

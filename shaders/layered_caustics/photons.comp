@@ -37,7 +37,7 @@ void main()
     if (any(greaterThanEqual(p, u_layer_size)))
         return;
     // w: 1 landed, 0 lost on the way, -1 the ray missed the refractors
-    // (splat.comp's off_object: the silhouette lies beside it)
+    // (splat.comp's open_beyond: the silhouette lies beside it)
     float missed = layer_count(p) == 0 ? -1.0 : 0.0;
     imageStore(u_hits, ivec3(p, 0), vec4(0.0, 0.0, 0.0, missed));
     imageStore(u_hits, ivec3(p, 1), vec4(0.0, 0.0, 0.0, missed));

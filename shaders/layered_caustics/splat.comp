@@ -9,7 +9,8 @@
 // reflection off a faceted surface, or a footprint torn by a silhouette
 // spreads that far and no farther) unless both neighbours agree that the
 // light is stretched smoothly, or the photon sits on the refractor's
-// silhouette: then up to u_stretch_limit. A photon with no neighbour on an
+// silhouette or beside one that flew past the image: then up to
+// u_stretch_limit. A photon with no neighbour on an
 // axis is a point along it.
 #include "common/frame.glsl"
 uniform sampler2D u_receiver_normal;
@@ -49,10 +50,14 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
 float footprint_limit() { return 2.0 * u_max_radius; }
 float footprint_stretch_limit() { return u_stretch_limit; }
 
-// photons.comp marks a texel whose ray missed the refractors w = -1
-bool off_object(ivec2 q)
+// photons.comp marks a texel whose ray missed the refractors w = -1, one
+// whose photon landed nowhere on screen or in the guard band w = 0: either
+// way nothing bounds this photon's cell on that side (a ball's rim photons
+// before its focus land far outside the image: their inner neighbours'
+// footprints, clamped, left black spokes at the image's edges)
+bool open_beyond(ivec2 q)
 {
-    return !in_buffer(q) || imageLoad(u_hits, ivec3(q, branch)).w < -0.5;
+    return !in_buffer(q) || imageLoad(u_hits, ivec3(q, branch)).w < 0.5;
 }
 
 void deposit(vec2 at, vec3 flux)

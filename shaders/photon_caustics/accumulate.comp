@@ -55,7 +55,7 @@ bool neighbour(ivec2 q, vec2 from, out vec2 offset)
 
 float footprint_limit() { return u_footprint; }
 float footprint_stretch_limit() { return u_footprint; }
-bool off_object(ivec2 q) { return false; }
+bool open_beyond(ivec2 q) { return false; }
 
 #include "common/footprint.glsl"
 
