@@ -59,6 +59,8 @@ const int COUNT_DRAW = 8;       // count, instances, first, base instance
 const int COUNT_BUILD = 12;     // x, y, z: the beam builder's dispatch
 const int COUNT_OVERFLOW = 15;  // cells or beams past capacity (dropped)
 const int COUNT_PRISMS = 16;    // beams that fell back to the prism
+const int COUNT_WHOLE = 17;     // light-plane area (lattice units x 2) of transmitted triangles made beams
+const int COUNT_PARTED = 18;    // ... of triangles lit at every corner whose paths part (no beam)
 const int COUNT_SIZE = 20;
 layout(std430) buffer BeamCounters { uint counters[]; };
 

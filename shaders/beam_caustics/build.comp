@@ -252,6 +252,11 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
     return true;
 }
 
+bool transmits(ivec2 q)
+{
+    return (uint(beam_vertices[vertex_index(q.x, q.y)].exit_pos.w + 0.5) & VERTEX_TRANSMITTED) != 0u;
+}
+
 bool whole(ivec2 a, ivec2 b, ivec2 c, bool reflected)
 {
     Ray ra = vertex_ray(a.x, a.y, reflected), rb = vertex_ray(b.x, b.y, reflected), rc = vertex_ray(c.x, c.y, reflected);
@@ -282,6 +287,7 @@ void main()
     // up to four beams a cell: two triangles, transmitted and reflected
     Beam made[4];
     int count = 0, prisms = 0;
+    uint whole_area = 0u, parted_area = 0u;
     if (k < counters[COUNT_KEPT]) {
         int level, x, y;
         cell_unpack(cells[u_kept_offset + int(k)], level, x, y);
@@ -304,6 +310,21 @@ void main()
                 if (t2) { tri[0] = q[0]; tri[1] = q[1]; tri[2] = q[3]; ntri = 1; }
                 if (t3) { tri[3 * ntri] = q[1]; tri[3 * ntri + 1] = q[2]; tri[3 * ntri + 2] = q[3]; ntri++; }
             }
+            if (!reflected) {
+                // the light this cell drops: triangles of the diagonal used
+                // whose corners all pass light through but not the same way
+                // (leave by different faces, or one totally reflected)
+                ivec3 pair[2] = int(t0) + int(t1) >= int(t2) + int(t3) ? ivec3[2](ivec3(0, 1, 2), ivec3(0, 2, 3))
+                                                                       : ivec3[2](ivec3(0, 1, 3), ivec3(1, 2, 3));
+                bool made_whole[2] = int(t0) + int(t1) >= int(t2) + int(t3) ? bool[2](t0, t1) : bool[2](t2, t3);
+                for (int i = 0; i < 2; i++) {
+                    if (made_whole[i]) {
+                        whole_area += uint(step * step);
+                    } else if (transmits(q[pair[i].x]) && transmits(q[pair[i].y]) && transmits(q[pair[i].z])) {
+                        parted_area += uint(step * step);
+                    }
+                }
+            }
             for (int i = 0; i < ntri; i++) {
                 bool prism;
                 if (make_beam(tri[3 * i], tri[3 * i + 1], tri[3 * i + 2], reflected, made[count], prism)) {
@@ -316,6 +337,8 @@ void main()
     // the appends in uniform control flow: every invocation adds (perhaps 0)
     uint at = atomicAdd(counters[COUNT_BEAMS], uint(count));
     atomicAdd(counters[COUNT_PRISMS], uint(prisms));
+    atomicAdd(counters[COUNT_WHOLE], whole_area);
+    atomicAdd(counters[COUNT_PARTED], parted_area);
     for (int i = 0; i < count; i++) {
         if (at + uint(i) >= uint(u_beam_capacity)) {
             atomicAdd(counters[COUNT_OVERFLOW], 1u);

@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/log.h"
 #include "gl/gl_api.h"
 #include "gl/gl_buffer.h"
 #include "graph/frame.h"
@@ -43,7 +44,8 @@
 /* Counter offsets of beams.glsl (uint index). */
 enum {
     COUNT_DISPATCH = 0, COUNT_IN = 3, COUNT_NEXT = 4, COUNT_KEPT = 5, COUNT_BEAMS = 6,
-    COUNT_DRAW = 8, COUNT_BUILD = 12, COUNT_OVERFLOW = 15, COUNT_PRISMS = 16, COUNT_SIZE = 20
+    COUNT_DRAW = 8, COUNT_BUILD = 12, COUNT_OVERFLOW = 15, COUNT_PRISMS = 16, COUNT_WHOLE = 17, COUNT_PARTED = 18,
+    COUNT_SIZE = 20
 };
 
 struct beam_caustics_state {
@@ -500,9 +502,27 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         return false;
     GLuint64 fragments = 0;
     gl.GetQueryObjectui64v(s->fragments_query, GL_QUERY_RESULT, &fragments);
-    snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s", counters[COUNT_BEAMS],
+    /* The light of triangles lit at every corner whose paths part (leave
+     * by different faces, or one totally reflected inside) makes no beam
+     * (§4.2 refines them `edges` levels): said, not dropped in silence. A
+     * tilted cube at IOR 2.42 lost 16% of its light this way at the
+     * defaults; each level of `edges` about halves it. */
+    double lit = (double)counters[COUNT_WHOLE] + (double)counters[COUNT_PARTED];
+    double parted = lit > 0.0 ? (double)counters[COUNT_PARTED] / lit : 0.0;
+    char dropped[160] = "";
+    if (parted > 0.05) {
+        snprintf(dropped, sizeof dropped, "; %.0f%% of the light through the glass dropped where paths part", 100.0 * parted);
+        static bool warned; /* one line a run: a renderer and its passes are made more than once a run */
+        if (!warned)
+            log_warn("beam_caustics: %.0f%% of the light through the glass falls in cells whose corners' light leaves "
+                     "by different faces or is totally reflected, and makes no beam; raise `edges` (now %d: each level "
+                     "about halves it)",
+                     100.0 * parted, pass_int(p, BC_EDGES));
+        warned = true;
+    }
+    snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s%s", counters[COUNT_BEAMS],
              counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
-             counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "");
+             counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "", dropped);
     return gl_check("beam_caustics", err);
 }
 

@@ -406,7 +406,8 @@ local ILLUM_TIR = "the light totally reflected inside leaves by the side faces n
 local ILLUM_PLANES = "the floor lies across the virtual planes and a receiver point reads the two around it along their "
                      .. "normal, not along the light (§4.3): the caustic's edges land a few pixels off"
 local BEAMS_CUBE = "0.83 of the trace's light (IOR 2.42) reaches the floor: a cell whose corners' light takes different "
-                   .. "paths (leaves by different faces) makes no beam, and 16 x 16 cells are coarse against the faces"
+                   .. "paths (leaves by different faces) makes no beam, and 16 x 16 cells are coarse against the faces; "
+                   .. "the pass says how much in one line (19% at 2.42, 6% at 0.8; `edges` about halves it a level)"
 
 t.case("glass cube, IOR 2.42 (total internal reflection inside), its shadow caustic", cube_case(
   "cube, IOR 2.42", 2.42, {
