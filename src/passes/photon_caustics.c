@@ -80,7 +80,8 @@ static const struct pass_param_desc params[] = {
      .help = "follow the light refracted through glass, or reflected off it (Fig. 19, 26); mirrors always reflect"},
     [PHOTON_FOOTPRINT] = {.name = "footprint", .type = PASS_PARAM_NUMBER, .default_number = 16, .min = 0, .max = 64,
      .help = "spread each photon over the area its neighbours span on the receiver (a ray differential), at most this "
-             "many texels from its landing point; 0 = a point per photon, the paper's (docs/techniques/hu_qin.md)"},
+             "many texels from its landing point (4x where both neighbours agree the light is stretched smoothly); "
+             "0 = a point per photon, the paper's (docs/techniques/hu_qin.md)"},
     [PHOTON_FIT] = {.name = "fit", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "each receiver's caustic texture covers the box its photons landed in, not the whole receiver "
              "(more texels where the caustic is; docs/techniques/hu_qin.md)"},
