@@ -120,8 +120,9 @@ static const struct pass_param_desc params[] = {
     [BC_SMOOTH] = {.name = "smooth", .type = PASS_PARAM_BOOLEAN, .default_number = 1,
      .help = "surface caustics from a flux density per edge ray, averaged over the beams that share it (Ernst et "
              "al. 2005; the lattice keeps the adjacency), continuous across beams; false: one per beam (§7)"},
-    [BC_BLUR] = {.name = "blur", .type = PASS_PARAM_NUMBER, .default_number = 1.5, .min = 0, .max = 32,
-     .help = "the surface caustics' low-pass filter: a Gaussian of this many pixels (0: none)"},
+    [BC_BLUR] = {.name = "blur", .type = PASS_PARAM_NUMBER, .default_number = 1.0, .min = 0, .max = 32,
+     .help = "the surface caustics' low-pass filter: a Gaussian of this many pixels (0: none; it hides the cracks "
+             "where beams of different levels meet, and blurs a sharp caustic: docs/techniques/liktor_dachsbacher.md)"},
     [BC_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
      .help = "the camera's receivers (a receivers pass's normal): by default the graph adds one, shared with the other "
              "caustics passes"},
