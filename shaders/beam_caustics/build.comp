@@ -301,28 +301,24 @@ void main()
             // the diagonal that keeps more triangles whole
             bool t0 = whole(q[0], q[1], q[2], reflected), t1 = whole(q[0], q[2], q[3], reflected);
             bool t2 = whole(q[0], q[1], q[3], reflected), t3 = whole(q[1], q[2], q[3], reflected);
+            bool first = int(t0) + int(t1) >= int(t2) + int(t3);
+            ivec3 pair[2] = first ? ivec3[2](ivec3(0, 1, 2), ivec3(0, 2, 3)) : ivec3[2](ivec3(0, 1, 3), ivec3(1, 2, 3));
+            bool kept[2] = first ? bool[2](t0, t1) : bool[2](t2, t3);
             ivec2 tri[6];
             int ntri = 0;
-            if (int(t0) + int(t1) >= int(t2) + int(t3)) {
-                if (t0) { tri[0] = q[0]; tri[1] = q[1]; tri[2] = q[2]; ntri = 1; }
-                if (t1) { tri[3 * ntri] = q[0]; tri[3 * ntri + 1] = q[2]; tri[3 * ntri + 2] = q[3]; ntri++; }
-            } else {
-                if (t2) { tri[0] = q[0]; tri[1] = q[1]; tri[2] = q[3]; ntri = 1; }
-                if (t3) { tri[3 * ntri] = q[1]; tri[3 * ntri + 1] = q[2]; tri[3 * ntri + 2] = q[3]; ntri++; }
-            }
-            if (!reflected) {
-                // the light this cell drops: triangles of the diagonal used
-                // whose corners all pass light through but not the same way
-                // (leave by different faces, or one totally reflected)
-                ivec3 pair[2] = int(t0) + int(t1) >= int(t2) + int(t3) ? ivec3[2](ivec3(0, 1, 2), ivec3(0, 2, 3))
-                                                                       : ivec3[2](ivec3(0, 1, 3), ivec3(1, 2, 3));
-                bool made_whole[2] = int(t0) + int(t1) >= int(t2) + int(t3) ? bool[2](t0, t1) : bool[2](t2, t3);
-                for (int i = 0; i < 2; i++) {
-                    if (made_whole[i]) {
-                        whole_area += uint(step * step);
-                    } else if (transmits(q[pair[i].x]) && transmits(q[pair[i].y]) && transmits(q[pair[i].z])) {
-                        parted_area += uint(step * step);
-                    }
+            for (int i = 0; i < 2; i++) {
+                ivec3 c = pair[i];
+                if (kept[i]) {
+                    tri[3 * ntri] = q[c.x];
+                    tri[3 * ntri + 1] = q[c.y];
+                    tri[3 * ntri + 2] = q[c.z];
+                    ntri++;
+                    whole_area += reflected ? 0u : uint(step * step);
+                } else if (!reflected && transmits(q[c.x]) && transmits(q[c.y]) && transmits(q[c.z])) {
+                    // light this cell drops: its corners all pass light through
+                    // but not the same way (leave by different faces, or one
+                    // totally reflected)
+                    parted_area += uint(step * step);
                 }
             }
             for (int i = 0; i < ntri; i++) {

@@ -22,6 +22,45 @@ static vec3 light_direction(const struct frame_light *light, vec3 p)
                                             : vec3_normalize_or(vec3_sub(p, light->position), vec3_make(0, -1, 0));
 }
 
+/* Vertex v of a mesh array of three floats a vertex (positions, normals). */
+static vec3 vertex_vec3(const float *a, size_t v) { return vec3_make(a[v * 3], a[v * 3 + 1], a[v * 3 + 2]); }
+
+/* A path found in the object's frame (`ok`, leaving at lp along ld) taken
+ * into the world at `model`; dw, the light's direction there, stands in
+ * for a direction that does not normalise. */
+static void path_to_world(struct vertex_path *vp, bool ok, mat4 model, vec3 lp, vec3 ld, vec3 dw)
+{
+    vp->ok = ok;
+    if (ok) {
+        vp->exit_position = mat4_transform_point(model, lp);
+        vp->exit_direction = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
+    }
+}
+
+bool *illum_flat_vertices(const struct mesh *m, struct error *err)
+{
+    size_t nv = m->vertex_count;
+    bool *flat = malloc(nv > 0 ? nv : 1);
+    if (!flat) {
+        error_set(err, "illumination_textures: out of memory");
+        return NULL;
+    }
+    for (size_t v = 0; v < nv; v++)
+        flat[v] = true;
+    for (size_t k = 0; k + 2 < m->index_count; k += 3) {
+        const uint32_t *t = m->indices + k;
+        vec3 p0 = vertex_vec3(m->positions, t[0]);
+        vec3 g = vec3_cross(vec3_sub(vertex_vec3(m->positions, t[1]), p0), vec3_sub(vertex_vec3(m->positions, t[2]), p0));
+        float len = vec3_length(g);
+        if (!(len > 1e-20f))
+            continue;
+        for (int c = 0; c < 3; c++)
+            if (vec3_dot(vertex_vec3(m->normals, t[c]), g) < 0.9999f * len)
+                flat[t[c]] = false;
+    }
+    return flat;
+}
+
 /* The light's intensity arriving at `centre` (per unit area across it). */
 static vec3 light_arriving(const struct frame_light *light, vec3 centre, vec3 dw)
 {
@@ -99,24 +138,19 @@ struct part_context {
  * along a cube's edges lost their light). */
 static struct vertex_path path_at(const struct part_context *pc, vec3 w)
 {
-    const float *P = pc->m->positions, *N = pc->m->normals;
     w = vec3_add(vec3_scale(w, 1.0f - 1e-3f), vec3_make(1e-3f / 3.0f, 1e-3f / 3.0f, 1e-3f / 3.0f));
     vec3 p = {0, 0, 0}, n = {0, 0, 0};
     for (int k = 0; k < 3; k++) {
         float wk = k == 0 ? w.x : k == 1 ? w.y : w.z;
-        uint32_t v = pc->tri[k];
-        p = vec3_add(p, vec3_scale(vec3_make(P[v * 3], P[v * 3 + 1], P[v * 3 + 2]), wk));
-        n = vec3_add(n, vec3_scale(vec3_make(N[v * 3], N[v * 3 + 1], N[v * 3 + 2]), wk));
+        p = vec3_add(p, vec3_scale(vertex_vec3(pc->m->positions, pc->tri[k]), wk));
+        n = vec3_add(n, vec3_scale(vertex_vec3(pc->m->normals, pc->tri[k]), wk));
     }
     struct vertex_path vp = {.world = mat4_transform_point(pc->model, p)};
     vec3 dw = light_direction(pc->light, vp.world);
     vec3 dl = vec3_normalize_or(mat4_transform_dir(pc->inverse, dw), dw);
     vec3 lp, ld;
-    vp.ok = transport_trace(pc->tracer, p, n, dl, &lp, &ld, &vp.transmittance);
-    if (vp.ok) {
-        vp.exit_position = mat4_transform_point(pc->model, lp);
-        vp.exit_direction = vec3_normalize_or(mat4_transform_dir(pc->model, ld), dw);
-    }
+    bool ok = transport_trace(pc->tracer, p, n, dl, &lp, &ld, &vp.transmittance);
+    path_to_world(&vp, ok, pc->model, lp, ld, dw);
     return vp;
 }
 
@@ -176,71 +210,37 @@ static bool part(const struct part_context *pc, const vec3 w[3], const struct ve
 }
 
 bool illum_volumes_collect(const struct mesh *m, const struct transport_table *table,
-                           const struct transport_tracer *tracer, mat4 model, const struct frame_light *light,
-                           struct illum_volume_list *out, struct error *err)
+                           const struct transport_tracer *tracer, const bool *flat, mat4 model,
+                           const struct frame_light *light, struct illum_volume_list *out, struct error *err)
 {
     mat4 inverse;
     if (!mat4_inverse(model, &inverse))
         return true; /* a collapsed object lets nothing through */
+    if (!flat)
+        tracer = NULL; /* exact tracing is for flat faces only (illum_flat_vertices) */
     size_t nv = m->vertex_count;
     struct vertex_path *vp = malloc((nv > 0 ? nv : 1) * sizeof *vp);
-    bool *flat = malloc(nv > 0 ? nv : 1);
-    if (!vp || !flat) {
-        free(vp);
-        free(flat);
+    if (!vp)
         return error_set(err, "illumination_textures: out of memory");
-    }
-    /* A vertex on a flat face (its normal is every one of its triangles'),
-     * flat[v]:
-     * where the table's directions around the light's take different paths
-     * there, they leave by different flat faces, and their blend is a ray
-     * from nowhere (a tilted cube's caustic smeared over its shadow: 0.72
-     * in the optics matrix). On a curved surface the paths turn with the
-     * direction and the blend is the paper's approximation, kept: traced
-     * exactly there, the glass bunny's spray of light came out sharper and
-     * further from the reference (0.405 -> 0.462 in the room). */
-    for (size_t v = 0; v < nv; v++)
-        flat[v] = true;
-    for (size_t k = 0; k + 2 < m->index_count; k += 3) {
-        const uint32_t *t = m->indices + k;
-        vec3 p0 = vec3_make(m->positions[t[0] * 3], m->positions[t[0] * 3 + 1], m->positions[t[0] * 3 + 2]);
-        vec3 p1 = vec3_make(m->positions[t[1] * 3], m->positions[t[1] * 3 + 1], m->positions[t[1] * 3 + 2]);
-        vec3 p2 = vec3_make(m->positions[t[2] * 3], m->positions[t[2] * 3 + 1], m->positions[t[2] * 3 + 2]);
-        vec3 g = vec3_cross(vec3_sub(p1, p0), vec3_sub(p2, p0));
-        float len = vec3_length(g);
-        if (!(len > 1e-20f))
-            continue;
-        g = vec3_scale(g, 1.0f / len);
-        for (int c = 0; c < 3; c++) {
-            const float *n = m->normals + t[c] * 3;
-            if (n[0] * g.x + n[1] * g.y + n[2] * g.z < 0.9999f)
-                flat[t[c]] = false;
-        }
-    }
     for (size_t v = 0; v < nv; v++) {
-        vec3 pw = mat4_transform_point(model, vec3_make(m->positions[v * 3], m->positions[v * 3 + 1],
-                                                        m->positions[v * 3 + 2]));
+        vec3 p = vertex_vec3(m->positions, v), n = vertex_vec3(m->normals, v);
+        vec3 pw = mat4_transform_point(model, p);
         vec3 dw = light_direction(light, pw);
         /* the light's direction in the object's frame: a rotation or
          * translation of the object needs no new table */
         vec3 dl = vec3_normalize_or(mat4_transform_dir(inverse, dw), dw);
         vec3 lp, ld;
         vp[v].world = pw;
-        vp[v].facing = vec3_dot(vec3_make(m->normals[v * 3], m->normals[v * 3 + 1], m->normals[v * 3 + 2]), dl) < 0.0f;
+        vp[v].facing = vec3_dot(n, dl) < 0.0f;
         bool smooth;
-        vp[v].ok = transport_lookup_smooth(table, v, dl, &lp, &ld, &vp[v].transmittance, &smooth);
+        bool ok = transport_lookup_smooth(table, v, dl, &lp, &ld, &vp[v].transmittance, &smooth);
         if (!smooth && tracer && flat[v]) {
-            /* the table's directions around this one take different paths:
-             * their blend is none of them, so this vertex is traced exactly */
-            vec3 n = vec3_make(m->normals[v * 3], m->normals[v * 3 + 1], m->normals[v * 3 + 2]);
-            vp[v].ok = transport_trace(tracer, vec3_make(m->positions[v * 3], m->positions[v * 3 + 1],
-                                                         m->positions[v * 3 + 2]),
-                                       n, dl, &lp, &ld, &vp[v].transmittance);
+            /* on a flat face the table's directions around this one take
+             * different paths: their blend is none of them, so this vertex
+             * is traced exactly */
+            ok = transport_trace(tracer, p, n, dl, &lp, &ld, &vp[v].transmittance);
         }
-        if (vp[v].ok) {
-            vp[v].exit_position = mat4_transform_point(model, lp);
-            vp[v].exit_direction = vec3_normalize_or(mat4_transform_dir(model, ld), dw);
-        }
+        path_to_world(&vp[v], ok, model, lp, ld, dw);
     }
     struct part_context pc = {m, tracer, model, inverse, light, NULL, out, err};
     for (size_t k = 0; k + 2 < m->index_count; k += 3) {
@@ -274,12 +274,10 @@ bool illum_volumes_collect(const struct mesh *m, const struct transport_table *t
         }
         if (!ok) {
             free(vp);
-            free(flat);
             return false;
         }
     }
     free(vp);
-    free(flat);
     return true;
 }
 

@@ -53,6 +53,7 @@ struct illum_state {
     /* each table's paths traced exactly where a triangle's vertices' paths
      * part (illumination_geometry.c), made with the table */
     struct transport_tracer *tracers[ILLUM_MAX_REFRACTORS];
+    bool *flat[ILLUM_MAX_REFRACTORS]; /* illum_flat_vertices of each table's mesh, made with its tracer */
     uint64_t tracer_key[ILLUM_MAX_REFRACTORS];
     /* the mesh each table samples: the object's, or `fine`, its subdivision */
     const struct mesh *table_mesh[ILLUM_MAX_REFRACTORS];
@@ -132,6 +133,7 @@ static void illum_destroy(struct pass *p)
     for (int i = 0; i < ILLUM_MAX_REFRACTORS; i++) {
         transport_table_release(&s->tables[i]);
         transport_tracer_destroy(s->tracers[i]);
+        free(s->flat[i]);
         if (s->fine[i])
             mesh_destroy(s->fine[i]);
     }
@@ -247,12 +249,11 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
-        const struct mesh *m = s->table_mesh[t];
-        const struct transport_table *table = &s->tables[t];
-        const struct transport_tracer *tracer = s->tracers[t++];
         const struct frame_object *fo = frame_object_of(fr, o);
-        if (!illum_volumes_collect(m, table, tracer, fo ? fo->model : object_model_matrix(o), light, out, err))
+        if (!illum_volumes_collect(s->table_mesh[t], &s->tables[t], s->tracers[t], s->flat[t],
+                                   fo ? fo->model : object_model_matrix(o), light, out, err))
             return false;
+        t++;
     }
     return true;
 }
@@ -317,8 +318,11 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         uint64_t key = tracer_key(m, &o->material, internal);
         if (!s->tracers[k] || s->tracer_key[k] != key) {
             transport_tracer_destroy(s->tracers[k]);
+            free(s->flat[k]);
             s->tracers[k] = NULL;
-            if (!transport_tracer_create(&s->tracers[k], m, &o->material, internal, err))
+            s->flat[k] = NULL;
+            if (!transport_tracer_create(&s->tracers[k], m, &o->material, internal, err) ||
+                !(s->flat[k] = illum_flat_vertices(m, err)))
                 return false;
             s->tracer_key[k] = key;
         }

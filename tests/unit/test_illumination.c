@@ -91,7 +91,7 @@ int main(void)
     CHECK(transport_table_build(&table, box, &glass, 8, TRANSPORT_INTERNAL_NONE, &err));
     struct frame_light sun = {.kind = LIGHT_DIRECTIONAL, .direction = {0, -1, 0}, .intensity = {1, 1, 1}};
     struct illum_volume_list cube = {0};
-    CHECK(illum_volumes_collect(box, &table, NULL, mat4_identity(), &sun, &cube, &err));
+    CHECK(illum_volumes_collect(box, &table, NULL, NULL, mat4_identity(), &sun, &cube, &err));
     CHECK(cube.count == 2);
     double total = 0.0;
     for (int i = 0; i < cube.count; i++) {
@@ -144,8 +144,12 @@ int main(void)
     vec3 slant = vec3_normalize_or(vec3_make(0.35f, -1.0f, 0.2f), vec3_make(0, -1, 0));
     struct frame_light slant_sun = {.kind = LIGHT_DIRECTIONAL, .direction = slant, .intensity = {1, 1, 1}};
     struct illum_volume_list alone = {0}, traced = {0};
-    CHECK(illum_volumes_collect(fine_box, &slant_table, NULL, mat4_identity(), &slant_sun, &alone, &err));
-    CHECK(illum_volumes_collect(fine_box, &slant_table, slant_tracer, mat4_identity(), &slant_sun, &traced, &err));
+    bool *flat_faces = illum_flat_vertices(fine_box, &err);
+    CHECK(flat_faces != NULL);
+    CHECK(illum_volumes_collect(fine_box, &slant_table, NULL, NULL, mat4_identity(), &slant_sun, &alone, &err));
+    CHECK(illum_volumes_collect(fine_box, &slant_table, slant_tracer, flat_faces, mat4_identity(), &slant_sun, &traced,
+                                &err));
+    free(flat_faces);
     double entering = fabs(slant.x) + fabs(slant.y) + fabs(slant.z), alone_flux = 0.0, traced_flux = 0.0;
     for (int i = 0; i < alone.count; i++)
         alone_flux += alone.items[i].flux.x;
@@ -170,7 +174,7 @@ int main(void)
     struct illum_volume_list none = {0};
     mat4 flat = mat4_identity();
     flat.m[5] = 0.0f;
-    CHECK(illum_volumes_collect(box, &table, NULL, flat, &sun, &none, &err));
+    CHECK(illum_volumes_collect(box, &table, NULL, NULL, flat, &sun, &none, &err));
     CHECK(none.count == 0);
     free(cube.items);
     free(none.items);
