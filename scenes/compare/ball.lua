@@ -2,9 +2,12 @@
 -- --set technique=plain|photons|illumination|layered|beams: every
 -- technique that applies, each at its defaults (sweep its own parameters
 -- as caustics.<param>, e.g. --sweep caustics.buffer=128,256,512). The
--- light turns slowly, so nothing is reused between frames.
+-- light turns slowly, so nothing is reused between frames; --set turn=R
+-- turns it R radians a second instead of 0.3 (0: a still light, 3: a fast
+-- one; issue 32's flicker and accumulation are measured on all three).
 local c = require "caustica"
 local technique = c.param("technique", "layered")
+local turn = tonumber(c.param("turn", "0.3"))
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.6, 2.6}, target = {0, -0.2, 0}, fov = 40 },
   environment = c.cubemap "../assets/env/room",
@@ -39,7 +42,8 @@ return { scene = scene, graph = g, size = {256, 256}, frames = 60,
            { "plain" },
            { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
                                    { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 },
-                                   { ["caustics.buffer"] = 1024, ["caustics.texture"] = 1024, ["caustics.k"] = 1 } } },
+                                   { ["caustics.buffer"] = 1024, ["caustics.texture"] = 1024, ["caustics.k"] = 1 },
+                                   { ["caustics.accumulate"] = 16 } } },
            { "illumination", points = { { ["caustics.planes"] = 8 }, { ["caustics.size"] = 512 },
                                         { ["caustics.table"] = 8 } } },
            { "layered", sweep = { ["caustics.buffer"] = {128, 512} } },
@@ -47,7 +51,7 @@ return { scene = scene, graph = g, size = {256, 256}, frames = 60,
                                  { ["caustics.grid"] = 32, ["caustics.refine"] = 2 } } },
          },
          update = function(t)
-           local a = 0.3 * t
+           local a = turn * t
            sun.direction = { 0.35 * math.cos(e) * math.cos(a) - 0.9 * math.cos(e) * math.sin(a), -math.sin(e),
                              0.35 * math.cos(e) * math.sin(a) - 0.9 * math.cos(e) * math.cos(a) }
          end }

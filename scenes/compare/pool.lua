@@ -46,7 +46,8 @@ return {
     { "plain" },
     { "volumes", sweep = { ["cv.resolution"] = {32, 128, 256} } },
     { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
-                            { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 } } },
+                            { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 },
+                            { ["caustics.accumulate"] = 16 } } },
     { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 } } },
   },
 }

@@ -30,7 +30,7 @@ bool bench_cache_read(const char *path, struct bench_row *rows, int *count, stru
         return false;
     char line[8192];
     char *fields[128];
-    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, n = 0;
+    int col_technique = -1, col_settings = -1, col_ms = -1, col_error = -1, col_renderer = -1, col_flicker = -1, n = 0;
     bool header = true;
     int line_number = 0;
     while (fgets(line, sizeof line, f)) {
@@ -49,6 +49,8 @@ bool bench_cache_read(const char *path, struct bench_row *rows, int *count, stru
                     col_error = i;
                 else if (strcmp(fields[i], "renderer") == 0)
                     col_renderer = i;
+                else if (strcmp(fields[i], "flicker") == 0)
+                    col_flicker = i;
             }
             header = false;
             if (col_technique < 0 || col_settings < 0 || col_ms < 0 || col_error < 0) {
@@ -82,6 +84,17 @@ bool bench_cache_read(const char *path, struct bench_row *rows, int *count, stru
                              fields[col_ms], fields[col_error]);
         }
         snprintf(r->renderer, sizeof r->renderer, "%s", col_renderer >= 0 && nf > col_renderer ? fields[col_renderer] : "");
+        r->flicker = -1.0;
+        if (col_flicker >= 0 && nf > col_flicker && fields[col_flicker][0]) {
+            char *end;
+            r->flicker = strtod(fields[col_flicker], &end);
+            if (*end || !isfinite(r->flicker) || r->flicker < 0) {
+                fclose(f);
+                return error_set(err, "%s:%d: flicker '%s' must be a finite number >= 0 or empty (a damaged cache "
+                                      "entry: remove it, and bench measures again)", path, line_number,
+                                 fields[col_flicker]);
+            }
+        }
     }
     fclose(f);
     *count = n;

@@ -14,6 +14,7 @@ struct bench_row {
     char technique[64], settings[256];
     char renderer[256]; /* the GL renderer that measured it ("" in a cache from before it was recorded) */
     double ms, error;
+    double flicker; /* < 0: not measured (a cache from before issue 32, or an empty cell) */
     bool excluded; /* the technique leaves out part of the scene */
 };
 

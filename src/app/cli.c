@@ -39,9 +39,10 @@ static const struct cli_verb {
     {"info", VB_INFO, "SCENE.lua [options]", "prints the scene, the render graph (with the blocks it adds) and lint"},
     {"reference", VB_REFERENCE, "SCENE.lua -o OUT.pfm|OUT.hdr|OUT.exr [options]",
      "renders the exact ground truth on the CPU (progressive photon mapping)"},
-    {"compare", VB_COMPARE, "A B [options]",
+    {"compare", VB_COMPARE, "A B [A_NEXT B_NEXT] [options]",
      "prints the error of image A against image B: rmse, rel_rmse (over B's RMS), psnr, ssim, max, nan, and "
-     "log_rmse (of log(1 + value): robust to a few hot pixels)"},
+     "log_rmse (of log(1 + value): robust to a few hot pixels); with the next frames of both, flicker (the error "
+     "of A's change to A_NEXT against B's to B_NEXT, docs/TEMPORAL.md)"},
     {"merge", VB_MERGE, "PART... -o OUT.pfm|OUT.hdr|OUT.exr",
      "averages the parts of a reference rendered with --shard (each PART beside its PART.part) into the estimate "
      "one run of all their passes makes"},
@@ -49,7 +50,7 @@ static const struct cli_verb {
      "converts an image: reads .png, .pfm, .hdr, .exr (IN.exr:layer for one layer); writes .png, .pfm, .hdr, .exr"},
     {"bench", VB_BENCH, "SCENE.lua [--sweep key=v1,v2,...]... [options]",
      "times variants of a scene and measures their error against the reference"},
-    {"choose", VB_CHOOSE, "SCENE.lua --error E | --time MS [options]",
+    {"choose", VB_CHOOSE, "SCENE.lua --error E | --time MS [--flicker F] [options]",
      "picks the fastest technique under an error, or the most accurate under a frame time"},
 };
 
@@ -143,6 +144,9 @@ static const struct cli_option {
      "sweep)"},
     {"--error", NULL, "E", VB_CHOOSE, "the largest relative error accepted (> 0, e.g. 0.1)"},
     {"--time", NULL, "MS", VB_CHOOSE, "the milliseconds a frame may take (> 0)"},
+    {"--flicker", NULL, "F", VB_CHOOSE,
+     "the largest flicker accepted (> 0): the error of the frame-to-frame change, as bench measures it "
+     "(docs/TEMPORAL.md)"},
     {"--cached", NULL, NULL, VB_CHOOSE, "read the bench cache only, never run the sweep"},
     {"--threads", NULL, "N", VB_REFERENCE | VB_BENCH | VB_CHOOSE | VB_TEST,
      "worker threads of the CPU reference, 1..1024 (default: the CPUs this process may use: its affinity "
@@ -345,7 +349,7 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
     const struct cli_verb *known = verb_find(verb);
     unsigned verb_bit = known ? known->bit : VB_ALL;
     cli->frames_from = cli->frames_to = -1;
-    cli->max_error = cli->max_time_ms = -1.0;
+    cli->max_error = cli->max_time_ms = cli->max_flicker = -1.0;
     cli->crf = 18;
     bool options_end = false;
     for (int i = 0; i < argc; i++) {
@@ -490,14 +494,17 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--error-frames") == 0) {
             if (!parse_int(next, &cli->error_frames) || cli->error_frames < 1 || cli->error_frames > 16)
                 return usage_error("--error-frames needs a count in 1..16, got '%s'", next);
-        } else if (strcmp(a, "--error") == 0 || strcmp(a, "--time") == 0) {
+        } else if (strcmp(a, "--error") == 0 || strcmp(a, "--time") == 0 || strcmp(a, "--flicker") == 0) {
             char *end;
             double value = strtod(next, &end);
             if (end == next || *end || !(value > 0) || value > 1e12)
                 return usage_error(strcmp(a, "--error") == 0 ? "--error needs a relative error > 0 (e.g. 0.1), got '%s'"
-                                                             : "--time needs milliseconds a frame > 0, got '%s'", next);
+                                   : strcmp(a, "--flicker") == 0 ? "--flicker needs a relative flicker > 0 (e.g. 0.05), got '%s'"
+                                                                 : "--time needs milliseconds a frame > 0, got '%s'", next);
             if (strcmp(a, "--error") == 0)
                 cli->max_error = value;
+            else if (strcmp(a, "--flicker") == 0)
+                cli->max_flicker = value;
             else
                 cli->max_time_ms = value;
         } else if (strcmp(a, "--timings") == 0) {

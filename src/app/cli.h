@@ -53,6 +53,7 @@ struct cli {
     int error_frames;        /* --error-frames K (bench, choose): errors averaged over K frames spread over the
                                 animation (0: 1 frame, or 3 with --sweep technique=...) */
     double max_error;        /* --error E (choose): the largest error accepted (< 0: not given) */
+    double max_flicker;      /* --flicker F (choose): the largest flicker accepted (< 0: not given) */
     double max_time_ms;      /* --time T (choose): milliseconds a frame may take (< 0: not given) */
     double exposure;         /* --exposure (convert) */
     const char *tonemap;     /* --tonemap clamp|reinhard|aces (convert to .png): render's tone mapping */

@@ -63,6 +63,10 @@ struct result {
     double pass_ms[MAX_PASSES];
     struct image_metrics all, caustic; /* means over the error frames */
     bool has_caustic;
+    /* issue 32: the error of the change from each error frame to the next
+     * (image_flicker_compute), means over the error frames, whole and in the
+     * caustic region; < 0: not measured (a reference row) */
+    double flicker_all, flicker_caustic;
     char report[300]; /* the passes' lines about the last frame (beam counts, fill rate) */
     int truth;        /* the ground truth set (scene parameters) it was measured against */
     int technique;
@@ -391,6 +395,12 @@ static double ranked_error(const struct result *r, bool caustic)
     return caustic && r->has_caustic ? r->caustic.rel_rmse : r->all.rel_rmse;
 }
 
+/* Its flicker in the same region (< 0: not measured). */
+static double ranked_flicker(const struct result *r, bool caustic)
+{
+    return caustic && r->has_caustic ? r->flicker_caustic : r->flicker_all;
+}
+
 /* Marks the Pareto points of each series: faster than every point with a
  * lower error. */
 static void mark_frontier(const struct result *results, int n, bool caustic, bool *on_front)
@@ -612,9 +622,27 @@ static double bench_frame_times(struct bench *b, const struct graph *g, int vari
     return total;
 }
 
+/* The most frames any pass of the session accumulates over (a pass's
+ * `accumulate` parameter, issue 32; 1: none keeps a history). */
+static int session_history_frames(const struct session *s)
+{
+    int most = 1;
+    for (int i = 0; i < s->graph->count; i++) {
+        const struct pass *p = s->graph->entries[i].pass;
+        int k = pass_param_index(p->desc, "accumulate");
+        if (k >= 0 && p->desc->params[k].type == PASS_PARAM_INTEGER && pass_int(p, k) > most)
+            most = pass_int(p, k);
+    }
+    return most;
+}
+
 /* Times variant `c` (median of the frames after a warm-up) and reads its
- * images on the error frames. */
-static bool bench_time_variant(struct bench *b, int c, struct image images[MAX_ERROR_FRAMES], struct error *err)
+ * images on the error frames and the frames after them (the flicker's). A
+ * variant that accumulates over N frames is measured on an error frame
+ * after the N frames before it (all from frame 0, where fewer): what a
+ * viewer of the animation sees there. */
+static bool bench_time_variant(struct bench *b, int c, struct image images[MAX_ERROR_FRAMES],
+                               struct image next[MAX_ERROR_FRAMES], struct error *err)
 {
     const struct variant *v = &b->variants[c];
     struct result *r = &b->results[c];
@@ -628,12 +656,21 @@ static bool bench_time_variant(struct bench *b, int c, struct image images[MAX_E
               session_render(s, b->frame, err) /* warm-up: shader compilation, uploads */ &&
               session_reload(s, err) && apply_overrides(s, v, err);
     static double totals[1024], per_pass[MAX_PASSES][1024];
-    bool have[MAX_ERROR_FRAMES] = {false};
+    bool have[MAX_ERROR_FRAMES] = {false}, have_next[MAX_ERROR_FRAMES] = {false};
+    int last = -1; /* the last frame rendered since the session (re)started */
+    int history = ok ? session_history_frames(s) : 1;
     for (int f = 0; ok && f < b->frames; f++) {
         ok = session_render(s, b->frame + f, err);
-        for (int e = 0; ok && e < b->nerror; e++)
-            if (b->error_frames[e] == b->frame + f && !have[e])
+        last = b->frame + f;
+        /* an accumulating variant's frame counts once its history is full
+         * (or holds every frame from the animation's start) */
+        bool warm = history <= 1 || f >= history || b->frame == 0;
+        for (int e = 0; ok && e < b->nerror; e++) {
+            if (b->error_frames[e] == last && !have[e] && warm)
                 have[e] = ok = session_read_linear(s, &images[e], err);
+            else if (b->error_frames[e] + 1 == last && have[e] && !have_next[e])
+                have_next[e] = ok = session_read_linear(s, &next[e], err);
+        }
         if (ok)
             totals[f] = bench_frame_times(b, s->graph, c, f, per_pass);
     }
@@ -651,15 +688,31 @@ static bool bench_time_variant(struct bench *b, int c, struct image images[MAX_E
         b->width = s->width;
         b->height = s->height;
     }
-    /* the error frames the timing run did not pass through (in order:
-     * going back reloads the script, and its pass settings with it) */
+    /* the error frames (and the frames after them) the timing run did not
+     * pass through, in order: going back reloads the script, and its pass
+     * settings with it */
     for (int e = 0; ok && e < b->nerror; e++) {
-        if (have[e])
-            continue;
-        if (b->error_frames[e] < s->advanced)
-            ok = session_reload(s, err) && apply_overrides(s, v, err);
-        ok = ok && session_render(s, b->error_frames[e], err);
-        have[e] = ok = ok && session_read_linear(s, &images[e], err);
+        int target = b->error_frames[e];
+        if (!have[e] || last != target) {
+            if (have[e] && have_next[e])
+                continue;
+            image_destroy(&images[e]);
+            have[e] = false;
+            /* from the N frames before it (each frame's history is the frames before) */
+            int start = history > 1 ? (target - history > 0 ? target - history : 0) : target;
+            if (start <= last || start < s->advanced) {
+                ok = session_reload(s, err) && apply_overrides(s, v, err);
+                last = -1;
+            }
+            for (int f = start; ok && f <= target; f++) {
+                ok = session_render(s, f, err);
+                last = f;
+            }
+            have[e] = ok = ok && session_read_linear(s, &images[e], err);
+        }
+        ok = ok && session_render(s, target + 1, err);
+        last = target + 1;
+        have_next[e] = ok = ok && session_read_linear(s, &next[e], err);
     }
     if (s)
         session_close(s);
@@ -784,22 +837,38 @@ static bool bench_add_error(const struct truth *t, const struct image *image, st
 static bool bench_variant(struct bench *b, int c, struct error *err)
 {
     struct result *r = &b->results[c];
-    struct image images[MAX_ERROR_FRAMES];
+    struct image images[MAX_ERROR_FRAMES], next[MAX_ERROR_FRAMES];
     memset(images, 0, sizeof images);
-    bool ok = bench_time_variant(b, c, images, err) && bench_truth_set(b, &b->variants[c], &r->truth, err);
-    int with_mask = 0;
+    memset(next, 0, sizeof next);
+    bool ok = bench_time_variant(b, c, images, next, err) && bench_truth_set(b, &b->variants[c], &r->truth, err);
+    int with_mask = 0, with_flicker = 0;
+    r->flicker_all = r->flicker_caustic = 0.0;
     for (int e = 0; ok && e < b->nerror; e++) {
-        int t = -1;
+        int t = -1, t1 = -1;
         ok = bench_truth(b, &b->variants[c], r->truth, b->error_frames[e], &t, err) &&
-             bench_add_error(&b->truths[t], &images[e], r, e, &with_mask, err);
+             bench_add_error(&b->truths[t], &images[e], r, e, &with_mask, err) &&
+             bench_truth(b, &b->variants[c], r->truth, b->error_frames[e] + 1, &t1, err);
+        double fa = 0.0, fc = 0.0;
+        const struct truth *t0 = ok ? &b->truths[t] : NULL;
+        ok = ok && image_flicker_compute(&images[e], &next[e], &t0->image, &b->truths[t1].image, NULL, &fa, err) &&
+             (!t0->has_mask || image_flicker_compute(&images[e], &next[e], &t0->image, &b->truths[t1].image,
+                                                     &t0->mask, &fc, err));
+        if (ok) {
+            r->flicker_all += (fa - r->flicker_all) / (e + 1);
+            if (t0->has_mask)
+                r->flicker_caustic += (fc - r->flicker_caustic) / ++with_flicker;
+        }
     }
     r->has_caustic = with_mask > 0;
-    for (int e = 0; e < b->nerror; e++)
+    for (int e = 0; e < b->nerror; e++) {
         image_destroy(&images[e]);
+        image_destroy(&next[e]);
+    }
     if (ok) {
-        printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f\n", r->label, r->frame_ms,
-               b->results[0].frame_ms > 0 ? r->frame_ms / b->results[0].frame_ms : 0.0, r->all.rel_rmse,
-               r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0);
+        printf("%-40s %9.3f ms (x%.2f of the first)  rel_rmse %.4f  caustic rel_rmse %s%.4f  flicker %.4f\n", r->label,
+               r->frame_ms, b->results[0].frame_ms > 0 ? r->frame_ms / b->results[0].frame_ms : 0.0, r->all.rel_rmse,
+               r->has_caustic ? "" : "(none) ", r->has_caustic ? r->caustic.rel_rmse : 0.0,
+               r->has_caustic ? r->flicker_caustic : r->flicker_all);
         if (r->report[0])
             printf("    %s\n", r->report);
         fflush(stdout);
@@ -822,6 +891,7 @@ static bool bench_reference_curve(struct bench *b, struct error *err)
             r->truth = t;
             r->technique = -1;
             r->iterations = level;
+            r->flicker_all = r->flicker_caustic = -1.0; /* not measured */
             snprintf(r->label, sizeof r->label, "reference %d it%s%s", level, ts->label[0] ? " " : "", ts->label);
             for (int k = 0; k < b->ncolumns; k++)
                 snprintf(r->values[k], sizeof r->values[k], "%s", b->technique_sweep ? "" : ts->values[k]);
@@ -932,13 +1002,13 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         fprintf(csv, ",%s_ms", b->pass_names[p]);
         fprintf(md, " %s ms |", b->pass_names[p]);
     }
-    fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error,renderer,cpus\n");
+    fprintf(csv, ",rmse,rel_rmse,psnr,ssim,caustic_rel_rmse,error,flicker,renderer,cpus\n");
     /* which machine measured it: the GL renderer (its commas made ';': the
      * CSV has none) and the CPUs the process could use */
     char renderer[256];
     bench_renderer_name(b, renderer, sizeof renderer);
-    fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | passes' reports |\n|---|");
-    for (int p = 0; p < b->npasses + 6; p++)
+    fprintf(md, " rel_rmse | psnr | ssim | caustic rel_rmse | flicker | passes' reports |\n|---|");
+    for (int p = 0; p < b->npasses + 7; p++)
         fprintf(md, "---:|");
     fprintf(md, "---|\n");
     for (int c = 0; c < b->nvariants + b->ncurve; c++) {
@@ -962,11 +1032,15 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         char caustic_text[32] = "";
         if (r->has_caustic)
             snprintf(caustic_text, sizeof caustic_text, "%.6g", r->caustic.rel_rmse);
-        fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g,%s,%d\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                caustic_text, ranked_error(r, b->caustic), c < b->nvariants ? renderer : "CPU reference",
+        char flicker_text[32] = "";
+        if (ranked_flicker(r, b->caustic) >= 0)
+            snprintf(flicker_text, sizeof flicker_text, "%.6g", ranked_flicker(r, b->caustic));
+        fprintf(csv, ",%.6g,%.6g,%.4g,%.6g,%s,%.6g,%s,%s,%d\n", r->all.rmse, r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                caustic_text, ranked_error(r, b->caustic), flicker_text, c < b->nvariants ? renderer : "CPU reference",
                 cpus_available());
-        fprintf(md, " %.4f | %.2f | %.4f | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
-                r->has_caustic ? caustic_text : "-", c < b->nvariants ? r->report : "");
+        fprintf(md, " %.4f | %.2f | %.4f | %s | %s | %s |\n", r->all.rel_rmse, r->all.psnr, r->all.ssim,
+                r->has_caustic ? caustic_text : "-", flicker_text[0] ? flicker_text : "-",
+                c < b->nvariants ? r->report : "");
     }
     for (int t = 0; t < b->nsets && t < MAX_CURVES; t++)
         if (b->truth_error[t] > 0)
@@ -980,6 +1054,9 @@ static bool bench_write_tables(struct bench *b, FILE **md_out, struct error *err
         fprintf(md, " (of %d); times are medians of %d frames from frame %d.\n", b->scene_frames, b->frames,
                 b->frame);
     }
+    fprintf(md, "\nFlicker: the error of each error frame's change to the next frame against the truth's change, "
+                "relative to the truth (on a still scene the per-pixel standard deviation over frames; "
+                "docs/TEMPORAL.md).\n");
     fclose(csv);
     *md_out = md;
     return true;
@@ -1007,8 +1084,11 @@ static bool bench_write_frontier(struct bench *b, FILE *md, struct error *err)
     return bench_sweep_cache_path(b->cli, b->dir, cached, sizeof cached, err) && copy_file(from, cached, err);
 }
 
-/* plot.svg: every variant and each reference curve, error against time. */
-static bool bench_write_plot(struct bench *b, struct error *err)
+/* plot.svg: every variant and each reference curve, error against time;
+ * with `flicker`, flicker.svg: every variant's flicker against time (the
+ * reference's curve has none; the lines join each technique's points on its
+ * error frontier, so the two plots read together). */
+static bool bench_write_plot(struct bench *b, bool flicker, struct error *err)
 {
     static struct plot_point points[MAX_COMBOS + CURVE_LEVELS * MAX_CURVES];
     int np = 0;
@@ -1016,28 +1096,33 @@ static bool bench_write_plot(struct bench *b, struct error *err)
     for (int c = 0; c < b->nvariants + b->ncurve; c++) {
         const struct result *r = bench_row(b, c);
         points[np].x = r->frame_ms;
-        points[np].y = ranked_error(r, b->caustic);
+        points[np].y = flicker ? ranked_flicker(r, b->caustic) : ranked_error(r, b->caustic);
         /* series 0 (or one per technique): the GPU variants; then one reference curve per scene */
         points[np].series = c < b->nvariants ? (b->technique_sweep ? r->technique : 0) : techniques + r->truth;
         points[np].joined = c < b->nvariants ? b->on_front[c] : true;
         /* the bar: down to the error with the truth's own taken out (in quadrature) */
         double n = c < b->nvariants && r->truth >= 0 && r->truth < MAX_CURVES ? b->truth_error[r->truth] : -1.0;
+        if (flicker)
+            n = -1.0;
         points[np].y_low = n > 0 ? sqrt(fmax(points[np].y * points[np].y - n * n, 0.0025 * points[np].y * points[np].y))
                                  : 0.0;
         snprintf(points[np].label, sizeof points[np].label, "%.120s", r->label);
         np++;
     }
     char title[600];
+    const char *what = flicker ? "flicker" : "error";
     if (b->nerror > 1)
-        snprintf(title, sizeof title, "%s: error against time (mean of %d frames, %dx%d)", b->script, b->nerror,
+        snprintf(title, sizeof title, "%s: %s against time (mean of %d frames, %dx%d)", b->script, what, b->nerror,
                  b->width, b->height);
     else
-        snprintf(title, sizeof title, "%s: error against time (frame %d, %dx%d)", b->script, b->frame, b->width,
+        snprintf(title, sizeof title, "%s: %s against time (frame %d, %dx%d)", b->script, what, b->frame, b->width,
                  b->height);
     struct plot plot = {
         .title = title,
         .x_label = "time per frame (ms), log",
-        .y_label = b->caustic ? "rel_rmse in the caustic region, log" : "rel_rmse, log",
+        .y_label = flicker ? (b->caustic ? "flicker (error of the frame-to-frame change) in the caustic region, log"
+                                         : "flicker (error of the frame-to-frame change), log")
+                           : b->caustic ? "rel_rmse in the caustic region, log" : "rel_rmse, log",
         .series_names = {"GPU variants"},
         .series_lines = {false},
         .series_count = 1,
@@ -1052,14 +1137,14 @@ static bool bench_write_plot(struct bench *b, struct error *err)
         plot.series_count = b->list->count;
     }
     char names[MAX_CURVES][260];
-    for (int t = 0; t < b->nsets && t < MAX_CURVES && techniques + t < PLOT_MAX_SERIES; t++) {
+    for (int t = 0; !flicker && t < b->nsets && t < MAX_CURVES && techniques + t < PLOT_MAX_SERIES; t++) {
         snprintf(names[t], sizeof names[t], "reference%s%s", b->sets[t].label[0] ? ": " : "", b->sets[t].label);
         plot.series_names[techniques + t] = names[t];
         plot.series_lines[techniques + t] = true;
         plot.series_count = techniques + t + 1;
     }
     char path[4400];
-    snprintf(path, sizeof path, "%s/plot.svg", b->dir);
+    snprintf(path, sizeof path, "%s/%s.svg", b->dir, flicker ? "flicker" : "plot");
     return bench_plot_write_svg(path, &plot, err);
 }
 
@@ -1105,10 +1190,10 @@ int cmd_bench(struct app *app, struct cli *cli)
         ok = bench_write_frontier(&b, md, &err);
     if (md)
         fclose(md);
-    ok = ok && bench_write_plot(&b, &err);
+    ok = ok && bench_write_plot(&b, false, &err) && bench_write_plot(&b, true, &err);
     if (ok)
-        printf("wrote %s/results.csv, %s/results.md%s and %s/plot.svg\n", b.dir, b.dir,
-               b.technique_sweep ? ", frontier.md" : "", b.dir);
+        printf("wrote %s/results.csv, %s/results.md%s, %s/plot.svg and %s/flicker.svg\n", b.dir, b.dir,
+               b.technique_sweep ? ", frontier.md" : "", b.dir, b.dir);
     bench_release(&b);
     if (!ok) {
         cli_print_error(&err);

@@ -1,6 +1,8 @@
-/* `caustica choose SCENE --error E [--time T]`: the cheapest technique and
- * settings of a comparison scene whose error is at most E (or the most
- * accurate within T milliseconds a frame), from the scene's technique sweep
+/* `caustica choose SCENE --error E [--time T] [--flicker F]`: the cheapest
+ * technique and settings of a comparison scene whose error is at most E (or
+ * the most accurate within T milliseconds a frame), whose flicker (the error
+ * of its frame-to-frame change, issue 32) is at most F where given, from the
+ * scene's technique sweep
  * — read from `bench`'s cache when it was measured with the same options,
  * run otherwise — with the graph lines to paste into the script. */
 #define _POSIX_C_SOURCE 200809L
@@ -129,9 +131,10 @@ static bool technique_leaves_out(struct app *app, const struct cli *cli, const c
 
 int cmd_choose(struct app *app, struct cli *cli)
 {
-    if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0)) {
-        fprintf(stderr, "caustica: choose needs one scene script and --error E (the largest error accepted) or --time "
-                        "MS (the milliseconds a frame may take), or both\n");
+    if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0 && cli->max_flicker < 0)) {
+        fprintf(stderr, "caustica: choose needs one scene script and --error E (the largest error accepted), --time "
+                        "MS (the milliseconds a frame may take) or --flicker F (the largest flicker accepted), or "
+                        "several\n");
         cli_usage_hint("choose");
         return EXIT_USAGE;
     }
@@ -238,8 +241,10 @@ int cmd_choose(struct app *app, struct cli *cli)
     for (int i = 0; i < n; i++) {
         if (rows[i].excluded)
             continue;
+        /* a row without a flicker (a cache from before it was measured) fits no flicker bound */
         bool fits = (cli->max_error < 0 || rows[i].error <= cli->max_error) &&
-                    (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms);
+                    (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms) &&
+                    (cli->max_flicker < 0 || (rows[i].flicker >= 0 && rows[i].flicker <= cli->max_flicker));
         if (!fits)
             continue;
         bool better = best < 0 || (cli->max_error >= 0 ? rows[i].ms < rows[best].ms : rows[i].error < rows[best].error);
@@ -266,10 +271,25 @@ int cmd_choose(struct app *app, struct cli *cli)
             fprintf(stderr, " error %g", cli->max_error);
         if (cli->max_time_ms >= 0)
             fprintf(stderr, "%s %g ms a frame", cli->max_error >= 0 ? " within" : "", cli->max_time_ms);
+        if (cli->max_flicker >= 0)
+            fprintf(stderr, "%s flicker %g", cli->max_error >= 0 || cli->max_time_ms >= 0 ? " with" : "",
+                    cli->max_flicker);
         fprintf(stderr, " on this machine; the most accurate is %s (%s): %.4g in %.1f ms, the fastest %s (%s): "
-                        "%.4g in %.1f ms\n", rows[accurate].technique, rows[accurate].settings, rows[accurate].error,
+                        "%.4g in %.1f ms", rows[accurate].technique, rows[accurate].settings, rows[accurate].error,
                 rows[accurate].ms, rows[fastest].technique, rows[fastest].settings, rows[fastest].error,
                 rows[fastest].ms);
+        if (cli->max_flicker >= 0) {
+            int steady = -1;
+            for (int i = 0; i < n; i++)
+                if (!rows[i].excluded && rows[i].flicker >= 0 && (steady < 0 || rows[i].flicker < rows[steady].flicker))
+                    steady = i;
+            if (steady >= 0)
+                fprintf(stderr, ", the steadiest %s (%s): flicker %.4g", rows[steady].technique,
+                        rows[steady].settings, rows[steady].flicker);
+            else
+                fprintf(stderr, "; the sweep has no flicker (measured before bench measured it: run bench again)");
+        }
+        fprintf(stderr, "\n");
         free(rows);
         return EXIT_SCENE_ERROR;
     }
@@ -313,8 +333,11 @@ int cmd_choose(struct app *app, struct cli *cli)
         if (technique_key_is_pass(point.keys[k]))
             ok = session_set_pass_param(s, point.keys[k], point.values[k], &err);
     if (ok) {
-        printf("%s: %s (%s): %.1f ms a frame, %s %.4g\n", script, chosen.technique, chosen.settings, chosen.ms, metric,
+        printf("%s: %s (%s): %.1f ms a frame, %s %.4g", script, chosen.technique, chosen.settings, chosen.ms, metric,
                chosen.error);
+        if (chosen.flicker >= 0)
+            printf(", flicker %.4g", chosen.flicker);
+        printf("\n");
         printf("measured by the sweep in %s\n", cached);
         printf("the graph (paste into the script; LIGHTn is the scene's n-th light, OBJECTn its n-th object):\n");
         for (int i = 0; i < s->graph->count; i++)

@@ -20,6 +20,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "graph/temporal.h"
 #include "scene/light_view.h"
 #include "passes/impostors.h"
 #include "scene/scene.h"
@@ -40,6 +41,7 @@ struct photon_state {
     GLuint windows;    /* SSBO: per receiver, the box its photons landed in (window.glsl) */
     GLuint cover;      /* SSBO: the light-view texels the specular objects cover (cover.comp) */
     float coverage;    /* the narrowed light view's share of the first one (0: not narrowed; the report) */
+    struct temporal_history temporal; /* accumulate > 1: the irradiance of the last frames (issue 32) */
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -60,6 +62,7 @@ enum photon_caustics_param {
     PHOTON_FOOTPRINT,
     PHOTON_FIT,
     PHOTON_PIXEL_SAMPLES,
+    PHOTON_ACCUMULATE,
 };
 
 static const struct pass_param_desc params[] = {
@@ -88,6 +91,10 @@ static const struct pass_param_desc params[] = {
     [PHOTON_PIXEL_SAMPLES] = {.name = "pixel_samples", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 16,
      .help = "caustic lookups per pixel along each screen axis where its footprint spans more caustic texels "
              "(the pixel's mean light; 1: its centre; docs/techniques/hu_qin.md)"},
+    [PHOTON_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
+     .help = "temporal accumulation: the photon grid moves by a sub-texel jitter every frame and the irradiance "
+             "averages the last this many frames while the light and the geometry stay, the last 4 (the history "
+             "clipped to each pixel's neighbourhood) while they move; 1: none (docs/TEMPORAL.md)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -126,6 +133,7 @@ static void photon_destroy(struct pass *p)
     if (!s)
         return;
     release_textures(s);
+    temporal_release(&s->temporal);
     impostors_release(&s->impostors);
     for (int i = 0; i < 2; i++)
         gl_framebuffer_destroy(&s->light_fb[i]);
@@ -234,9 +242,11 @@ static bool draw_light_surfaces(struct photon_state *s, struct renderer *r, cons
  * drawn again. The bounding sphere is the one around the objects' box: a
  * lone glass ball covered a third of the view, a ball with a mirror teapot
  * beside it or a long dragon less. The photons' flux comes from the narrowed view's own texel
- * footprints (trace.frag), so the energy is unchanged. */
+ * footprints (trace.frag), so the energy is unchanged. `jitter` (accumulating,
+ * issue 32) then moves the grid by a sub-texel offset of the final view, and
+ * the surfaces are drawn with it. */
 static bool fit_light_view(struct photon_state *s, struct renderer *r, const struct scene *scene, int buffer, mat4 view,
-                           mat4 *proj, struct error *err)
+                           mat4 jitter, mat4 *proj, struct error *err)
 {
     if (!s->cover) {
         gl.CreateBuffers(1, &s->cover);
@@ -255,6 +265,7 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
     gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl.GetNamedBufferSubData(s->cover, 0, sizeof box, box);
     s->coverage = 0.0f;
+    bool jittered = jitter.m[12] != 0.0f || jitter.m[13] != 0.0f;
     if (box[0] > box[2] || box[1] > box[3])
         return true; /* nothing specular in view of the light */
     float lo[2], hi[2];
@@ -266,8 +277,15 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
         hi[a] = 2.0f * t1 / (float)buffer - 1.0f;
         narrow = narrow || (t1 - t0) < 0.9f * (float)buffer;
     }
-    if (!narrow)
+    if (!narrow && !jittered)
         return true;
+    if (!narrow) {
+        /* the grid moved by its sub-texel offset only */
+        *proj = mat4_mul(jitter, *proj);
+        s->light_view_proj = mat4_mul(*proj, view);
+        mat4_inverse(s->light_view_proj, &s->light_inverse);
+        return draw_light_surfaces(s, r, scene, buffer, err);
+    }
     s->coverage = ((hi[0] - lo[0]) * (hi[1] - lo[1])) / 4.0f;
     /* x' = (2 x - (hi + lo) w) / (hi - lo) on clip coordinates: the box to
      * [-1, 1], for a perspective view as for an orthographic one */
@@ -277,7 +295,7 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
     m.m[5] = 2.0f / (hi[1] - lo[1]);
     m.m[13] = -(hi[1] + lo[1]) / (hi[1] - lo[1]);
     /* m acts on clip space: its last column adds w times the offset */
-    *proj = mat4_mul(m, *proj);
+    *proj = mat4_mul(jitter, mat4_mul(m, *proj));
     s->light_view_proj = mat4_mul(*proj, view);
     mat4_inverse(s->light_view_proj, &s->light_inverse);
     return draw_light_surfaces(s, r, scene, buffer, err);
@@ -299,7 +317,12 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     /* the light side depends on the light, the geometry and the parameters,
      * not on the camera (§4) */
     uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
-    bool reuse = pass_frame_reusable(f, s->valid, s->key, key);
+    /* accumulating, every frame traces a jittered grid: nothing is reused */
+    int accumulate = pass_int(p, PHOTON_ACCUMULATE);
+    bool unchanged = pass_frame_reusable(f, s->valid, s->key, key);
+    bool reuse = accumulate <= 1 && unchanged;
+    if (accumulate <= 1)
+        temporal_reset(&s->temporal);
     snprintf(p->report, sizeof p->report, "%s",
              reuse ? "the photon buffer and caustic textures reused (the light and the geometry did not change since "
                      "the last frame); the caustic mapping from the camera runs every frame"
@@ -321,12 +344,24 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         struct light_view lv;
         light_view_fit(light->kind == LIGHT_DIRECTIONAL, light_center(light), light->direction, oc, orad, &margins, &lv);
         mat4 view = lv.view, proj = lv.proj;
+        /* accumulating: the grid moved by this frame's sub-texel offset, in
+         * clip space (as TAA jitters a camera's projection), after the
+         * narrowing (fit_light_view), so that the narrowed view is the same
+         * every frame and 16 frames' grids interleave into one 4 x 4 as dense */
+        mat4 jitter = mat4_identity();
+        if (accumulate > 1) {
+            float dx, dy;
+            temporal_jitter(&s->temporal, &dx, &dy);
+            jitter.m[12] = 2.0f * dx / (float)buffer;
+            jitter.m[13] = 2.0f * dy / (float)buffer;
+        }
         s->light_view_proj = mat4_mul(proj, view);
         mat4_inverse(s->light_view_proj, &s->light_inverse);
 
         /* Front and back surfaces of the refractors from the light (§2.1, in
          * its view), the view then narrowed to the texels they cover. */
-        if (!draw_light_surfaces(s, r, f->scene, buffer, err) || !fit_light_view(s, r, f->scene, buffer, view, &proj, err))
+        if (!draw_light_surfaces(s, r, f->scene, buffer, err) ||
+            !fit_light_view(s, r, f->scene, buffer, view, jitter, &proj, err))
             return false;
 
         /* §3.1: the photon buffer. One fullscreen draw traces every photon. */
@@ -457,6 +492,17 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
      * caustics too (drawing the refractors' depth hid them: no caustics at
      * all under water seen from above) */
     renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
+    if (accumulate <= 1)
+        return true;
+    int held = 0;
+    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &irr->texture, &depth->texture, unchanged, accumulate,
+                             &held, err))
+        return false;
+    used = strlen(p->report);
+    if (used + 8 < sizeof p->report)
+        snprintf(p->report + used, sizeof p->report - used, "; accumulated: %s", held == 0 ? "the history starts"
+                 : s->temporal.still > 1 ? "the light and geometry still, frames averaged"
+                                         : "the light or geometry moved, the history clipped");
     return true;
 }
 

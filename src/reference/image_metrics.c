@@ -96,3 +96,42 @@ bool image_metrics_compute(const struct image *a, const struct image *b, const s
     out->ssim = ssim_luminance(a, b, mask);
     return true;
 }
+
+/* Issue 32's flicker: the error of a frame-to-frame change (the temporal
+ * metrics of video restoration and denoising, e.g. TecoGAN's tOF and tLP,
+ * Chu et al. 2020: the distance between the output's and the ground
+ * truth's change from one frame to the next, here per pixel since the
+ * truth is exact). Halved in square so that on a still scene, where the
+ * truth does not change, it is the per-pixel standard deviation over frames
+ * of independent noise; relative to the RMS of the truth's mean frame, as
+ * rel_rmse is to the truth's. */
+bool image_flicker_compute(const struct image *a0, const struct image *a1, const struct image *b0,
+                           const struct image *b1, const struct image *mask, double *flicker, struct error *err)
+{
+    *flicker = 0.0;
+    const struct image *all[4] = {a0, a1, b0, b1};
+    for (int k = 1; k < 4; k++)
+        if (all[k]->width != a0->width || all[k]->height != a0->height)
+            return error_set(err, "frames differ in size: %dx%d and %dx%d", a0->width, a0->height, all[k]->width,
+                             all[k]->height);
+    if (mask && (mask->width != a0->width || mask->height != a0->height))
+        return error_set(err, "the mask is %dx%d, the frames %dx%d", mask->width, mask->height, a0->width,
+                         a0->height);
+    size_t n = (size_t)a0->width * (size_t)a0->height;
+    double change_sq = 0.0, ref_sq = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        if (!in_mask(mask, i))
+            continue;
+        for (size_t c = 0; c < 3; c++) {
+            size_t j = i * 4 + c;
+            double v[4] = {a0->rgba[j], a1->rgba[j], b0->rgba[j], b1->rgba[j]};
+            if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]) || !isfinite(v[3]))
+                continue; /* counted by image_metrics_compute */
+            double d = (v[1] - v[0]) - (v[3] - v[2]), mean = 0.5 * (v[2] + v[3]);
+            change_sq += 0.5 * d * d;
+            ref_sq += mean * mean;
+        }
+    }
+    *flicker = sqrt(math_safe_div_d(change_sq, ref_sq, change_sq > 0 ? INFINITY : 0.0));
+    return true;
+}

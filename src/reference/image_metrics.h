@@ -24,4 +24,12 @@ struct image_metrics {
 bool image_metrics_compute(const struct image *a, const struct image *b, const struct image *mask,
                            struct image_metrics *out, struct error *err);
 
+/* The flicker of two consecutive frames a0, a1 of a technique against the
+ * truth's b0, b1 (issue 32; docs/TEMPORAL.md): sqrt(sum |(a1 - a0) - (b1 -
+ * b0)|^2 / 2) / sqrt(sum |(b0 + b1) / 2|^2) over RGB in the mask (NULL: all).
+ * On a still scene it is the per-pixel standard deviation over frames,
+ * relative to the truth's RMS. */
+bool image_flicker_compute(const struct image *a0, const struct image *a1, const struct image *b0,
+                           const struct image *b1, const struct image *mask, double *flicker, struct error *err);
+
 #endif

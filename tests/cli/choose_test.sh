@@ -10,7 +10,7 @@ OPTS=(--size 32x32 --frames 1 --error-frames 2 --ref-photons 3000 --ref-spp 8 -o
 "$CAUSTICA" choose scenes/compare/fog.lua --error 10 "${OPTS[@]}" >"$WORK/out.txt" 2>"$WORK/err.txt" \
   && grep -q "running \`caustica bench" "$WORK/err.txt" && pass "choose runs the sweep when the cache has none" \
   || fail "choose without a cache" "$(tail -5 "$WORK/err.txt")"
-for f in results.csv results.md frontier.md plot.svg; do
+for f in results.csv results.md frontier.md plot.svg flicker.svg; do
   [ -s "$B/$f" ] && pass "wrote $f" || fail "wrote $f" "missing"
 done
 rows=$(grep -c '^gpu,' "$B/results.csv")
@@ -20,11 +20,22 @@ rows=$(grep -c '^gpu,' "$B/results.csv")
 "$CAUSTICA" bench scenes/compare/ball.lua --sweep technique=plain,photons --size 32x32 --frames 1 --error-frames 3 \
   --ref-photons 3000 --ref-spp 8 -o "$WORK/ball" >"$WORK/ball.txt" 2>&1
 grep -q "^errors: the mean over frames 0, 30, 59 of 60" "$WORK/ball.txt" && grep -q "means over frames 0, 30, 59" "$WORK/ball/results.md" \
-  && [ "$(grep -c 'rendering the ground truth of frame' "$WORK/ball.txt")" = 3 ] \
-  && pass "errors over 3 frames spread across the animation, one truth each (not one per technique)" \
+  && [ "$(grep -c 'rendering the ground truth of frame' "$WORK/ball.txt")" = 6 ] \
+  && pass "errors over 3 frames spread across the animation, one truth each and one of the frame after it (the flicker's), not one per technique" \
   || fail "error frames" "$(head -5 "$WORK/ball.txt")"
 [ "$(grep -c '^gpu,' "$WORK/ball/results.csv")" = 5 ] && ! grep -q '^gpu,illumination' "$WORK/ball/results.csv" \
   && pass "--sweep technique=plain,photons: those two only" || fail "technique subset" "$(cut -d, -f1-3 "$WORK/ball/results.csv")"
+# issue 32: the flicker of every GPU row (the change from each error frame to
+# the next against the truth's), a truth for each of those frames too, none
+# for the reference's rows, and its plot
+fcol=$(head -1 "$WORK/ball/results.csv" | tr ',' '\n' | grep -nx flicker | cut -d: -f1)
+[ -n "$fcol" ] && [ "$(awk -F, -v c="$fcol" '$1 == "gpu" && $c + 0 > 0' "$WORK/ball/results.csv" | wc -l)" = 5 ] \
+  && [ "$(awk -F, -v c="$fcol" '$1 == "reference" && $c != ""' "$WORK/ball/results.csv" | wc -l)" = 0 ] \
+  && grep -q "rendering the ground truth of frame 31 " "$WORK/ball.txt" \
+  && grep -q "^Flicker: the error of each error frame's change" "$WORK/ball/results.md" \
+  && grep -q "flicker (error of the frame-to-frame change)" "$WORK/ball/flicker.svg" \
+  && pass "flicker measured for every GPU row of the turning ball, and plotted" \
+  || fail "flicker column" "$(cut -d, -f1-3,"${fcol:-1}" "$WORK/ball/results.csv"; grep -c 'rendering the ground truth' "$WORK/ball.txt")"
 grep -q "^| plain |" "$B/frontier.md" && grep -q "^| beams |" "$B/frontier.md" && grep -q "^| reference (CPU) |" "$B/frontier.md" \
   && grep -q "≤ 33 ms | ≤ 100 ms | ≤ 1 s" "$B/frontier.md" && pass "the frontier table: each technique and the reference" \
   || fail "frontier table" "$(cat "$B/frontier.md")"
@@ -38,20 +49,21 @@ cache=$(ls "$B"/cache/sweep_*.csv 2>/dev/null | head -1)
 head -1 "$cache" >"$WORK/header"
 cols=$(head -1 "$cache" | tr ',' '\n' | wc -l)
 err_col=$(head -1 "$cache" | tr ',' '\n' | grep -nx error | cut -d: -f1)
-row() { # kind technique settings ms error (in the error column; renderer and cpus left empty)
+fl_col=$(head -1 "$cache" | tr ',' '\n' | grep -nx flicker | cut -d: -f1)
+row() { # kind technique settings ms error [flicker] (in their columns; renderer and cpus left empty)
   local line="$1,$2,$3,$4,1"
   for ((i = 6; i <= cols; i++)); do
-    if [ "$i" = "$err_col" ]; then line="$line,$5"; else line="$line,"; fi
+    if [ "$i" = "$err_col" ]; then line="$line,$5"; elif [ "$i" = "$fl_col" ]; then line="$line,${6:-}"; else line="$line,"; fi
   done
   echo "$line"
 }
 {
   cat "$WORK/header"
-  row gpu plain defaults 5 0.9
+  row gpu plain defaults 5 0.9 0.01
   row gpu plain fog.steps=16 3 0.95
-  row gpu beams defaults 40 0.20
-  row gpu beams caustics.refine=0 20 0.30
-  row gpu beams caustics.refine=2 80 0.12
+  row gpu beams defaults 40 0.20 0.10
+  row gpu beams caustics.refine=0 20 0.30 0.2
+  row gpu beams caustics.refine=2 80 0.12 0.04
   row reference "" "8 it" 1 0.01
 } >"$cache"
 cp "$cache" "$WORK/good.csv"
@@ -69,6 +81,20 @@ grep -q 'g:add("caustics", c.pass.beam_caustics { light = LIGHT1 })' "$WORK/c1.t
   && grep -q 'g:add("fog", c.pass.volume_light {.*add = { "caustics.inscatter" }' "$WORK/c1.txt" \
   && grep -q -- "--set technique=beams" "$WORK/c1.txt" && pass "the graph lines to paste, and the --set" \
   || fail "graph lines" "$(cat "$WORK/c1.txt")"
+# --flicker bounds the flicker as --error the error: the cheapest within both
+"$CAUSTICA" choose scenes/compare/fog.lua --error 0.25 --flicker 0.05 "${OPTS[@]}" >"$WORK/cf.txt" 2>"$WORK/cfe.txt"
+grep -q "^scenes/compare/fog.lua: beams (caustics.refine=2): 80.0 ms a frame, .* 0.12, flicker 0.04$" "$WORK/cf.txt" \
+  && pass "--error 0.25 --flicker 0.05: the cheapest within both (refine=2, not the defaults' flicker 0.1)" \
+  || fail "--flicker" "$(cat "$WORK/cf.txt" "$WORK/cfe.txt")"
+"$CAUSTICA" choose scenes/compare/fog.lua --flicker 0.05 "${OPTS[@]}" >"$WORK/cf2.txt" 2>&1
+grep -q "beams (caustics.refine=2)" "$WORK/cf2.txt" && pass "--flicker alone: the most accurate within it" \
+  || fail "--flicker alone" "$(cat "$WORK/cf2.txt")"
+"$CAUSTICA" choose scenes/compare/fog.lua --flicker 0.005 "${OPTS[@]}" >/dev/null 2>"$WORK/cf3.txt"
+[ $? = 1 ] && grep -q "reaches flicker 0.005 on this machine; .* the steadiest plain (defaults): flicker 0.01" "$WORK/cf3.txt" \
+  && pass "no row within the flicker (fog.steps=16 has none measured): says so, with the steadiest" \
+  || fail "flicker nothing fits" "$(cat "$WORK/cf3.txt")"
+expect_error "--flicker needs a number" 2 "--flicker needs a relative flicker > 0" - -- \
+  "$CAUSTICA" choose scenes/compare/fog.lua --flicker zero
 "$CAUSTICA" choose scenes/compare/fog.lua --error 0.2 --time 30 "${OPTS[@]}" >"$WORK/c2.txt" 2>"$WORK/c2e.txt"
 [ $? = 1 ] && grep -q "no technique of scenes/compare/fog.lua reaches error 0.2 within 30 ms" "$WORK/c2e.txt" \
   && pass "nothing fits: says so, with the nearest choices" || fail "nothing fits" "$(cat "$WORK/c2e.txt")"

@@ -1,4 +1,6 @@
 #define _DEFAULT_SOURCE
+#include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -174,6 +176,58 @@ int main(void)
     CHECK(m.pixels == 2);
     CHECK_NEAR(m.rmse, sqrt(0.09 / 6.0), 1e-6);
     image_destroy(&mask);
+
+    /* flicker (issue 32): a still truth of 1 everywhere and two frames with
+     * independent noise of standard deviation 0.1 read about 0.1 (the
+     * per-pixel standard deviation); frames that follow the truth's change
+     * exactly read 0 however large the change; a technique that stands still
+     * while the truth brightens by 0.2 reads 0.2 / sqrt(2) / 1.1 */
+    {
+        const int w = 128, h = 128;
+        struct image t0, t1, f0, f1;
+        CHECK(image_create(&t0, w, h, &err) && image_create(&t1, w, h, &err) && image_create(&f0, w, h, &err) &&
+              image_create(&f1, w, h, &err));
+        uint32_t state = 12345u;
+        for (int i = 0; i < w * h * 4; i++) {
+            t0.rgba[i] = t1.rgba[i] = 1.0f;
+            double g[2];
+            for (int k = 0; k < 2; k++) { /* a normal deviate from 12 uniforms */
+                double sum = 0.0;
+                for (int j = 0; j < 12; j++) {
+                    state = state * 1664525u + 1013904223u;
+                    sum += (state >> 8) / 16777216.0;
+                }
+                g[k] = sum - 6.0;
+            }
+            f0.rgba[i] = (float)(1.0 + 0.1 * g[0]);
+            f1.rgba[i] = (float)(1.0 + 0.1 * g[1]);
+        }
+        double fl = -1.0;
+        CHECK(image_flicker_compute(&f0, &f1, &t0, &t1, NULL, &fl, &err));
+        CHECK_NEAR(fl, 0.1, 0.005);
+        for (int i = 0; i < w * h * 4; i++) {
+            t1.rgba[i] = 1.0f + 0.2f;
+            f0.rgba[i] = 0.5f;
+            f1.rgba[i] = 0.5f + 0.2f;
+        }
+        CHECK(image_flicker_compute(&f0, &f1, &t0, &t1, NULL, &fl, &err));
+        CHECK_NEAR(fl, 0.0, 1e-6);
+        for (int i = 0; i < w * h * 4; i++)
+            f1.rgba[i] = f0.rgba[i];
+        CHECK(image_flicker_compute(&f0, &f1, &t0, &t1, NULL, &fl, &err));
+        CHECK_NEAR(fl, 0.2 / sqrt(2.0) / 1.1, 1e-5);
+        f1.rgba[0] = NAN; /* left out, never a NaN result */
+        CHECK(image_flicker_compute(&f0, &f1, &t0, &t1, NULL, &fl, &err) && isfinite(fl));
+        struct image small;
+        CHECK(image_create(&small, 4, 4, &err));
+        CHECK(!image_flicker_compute(&f0, &small, &t0, &t1, NULL, &fl, &err));
+        CHECK_CONTAINS(err.message, "differ in size");
+        image_destroy(&small);
+        image_destroy(&t0);
+        image_destroy(&t1);
+        image_destroy(&f0);
+        image_destroy(&f1);
+    }
 
     /* size mismatch and unwritable folders are errors, not crashes */
     struct image c;
