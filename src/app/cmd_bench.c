@@ -786,7 +786,8 @@ static bool truth_from_file(const char *path, int frame, int w, int h, struct tr
                  path);
         t->has_mask = false;
     }
-    log_info("ground truth from %s", path);
+    log_info("ground truth from %s (one frame: no flicker measured, which needs the truth of the frame after it)",
+             path);
     return true;
 }
 
@@ -846,8 +847,14 @@ static bool bench_variant(struct bench *b, int c, struct error *err)
     for (int e = 0; ok && e < b->nerror; e++) {
         int t = -1, t1 = -1;
         ok = bench_truth(b, &b->variants[c], r->truth, b->error_frames[e], &t, err) &&
-             bench_add_error(&b->truths[t], &images[e], r, e, &with_mask, err) &&
-             bench_truth(b, &b->variants[c], r->truth, b->error_frames[e] + 1, &t1, err);
+             bench_add_error(&b->truths[t], &images[e], r, e, &with_mask, err);
+        if (ok && b->cli->truth) {
+            /* one frame's truth from elsewhere: the truth's change to the next
+             * frame is unknown, so no flicker (truth_from_file says so) */
+            r->flicker_all = r->flicker_caustic = -1.0;
+            continue;
+        }
+        ok = ok && bench_truth(b, &b->variants[c], r->truth, b->error_frames[e] + 1, &t1, err);
         double fa = 0.0, fc = 0.0;
         const struct truth *t0 = ok ? &b->truths[t] : NULL;
         ok = ok && image_flicker_compute(&images[e], &next[e], &t0->image, &b->truths[t1].image, NULL, &fa, err) &&

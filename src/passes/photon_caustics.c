@@ -93,8 +93,8 @@ static const struct pass_param_desc params[] = {
              "(the pixel's mean light; 1: its centre; docs/techniques/hu_qin.md)"},
     [PHOTON_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
      .help = "temporal accumulation: the photon grid moves by a sub-texel jitter every frame and the irradiance "
-             "averages the last this many frames while the light and the geometry stay, the last 4 (the history "
-             "clipped to each pixel's neighbourhood) while they move; 1: none (docs/TEMPORAL.md)"},
+             "averages the last this many frames while the light and the geometry stay, half as many (at least 2; the "
+             "history clipped to each pixel's neighbourhood) while they move; 1: none (docs/TEMPORAL.md)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
