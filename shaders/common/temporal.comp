@@ -23,12 +23,62 @@ uniform int u_moved;
 uniform float u_frames;
 
 uniform float u_moved_frames; // the most frames averaged while the light or geometry moves
+// where the pass knows how its light moved on screen (photon_caustics/
+// motion.comp: x, y in 1/64 pixels and the photons that said so, summed
+// per pixel), the history is taken from where the light was
+uniform isampler2DArray u_motion;
+uniform int u_has_motion;
+const float MOTION_SCALE = 64.0;
+
+// the mean motion of the light over the 5 x 5 pixels around p (a photon
+// lands in one pixel; its light covers its footprint), false where no
+// photon said
+bool light_motion(ivec2 p, ivec2 size, out vec2 motion)
+{
+    ivec3 sum = ivec3(0);
+    for (int j = -2; j <= 2; j++)
+        for (int i = -2; i <= 2; i++) {
+            ivec2 q = p + ivec2(i, j);
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
+                continue;
+            sum += ivec3(texelFetch(u_motion, ivec3(q, 0), 0).r, texelFetch(u_motion, ivec3(q, 1), 0).r,
+                         texelFetch(u_motion, ivec3(q, 2), 0).r);
+        }
+    motion = sum.z > 0 ? vec2(sum.xy) / (float(sum.z) * MOTION_SCALE) : vec2(0.0);
+    return sum.z > 0;
+}
 const float GAMMA = 1.5;      // the clipping box's half width in standard deviations
 
 vec3 unproject(mat4 inverse, vec2 uv, float d)
 {
     vec4 w = inverse * vec4(vec3(uv, d) * 2.0 - 1.0, 1.0);
     return w.xyz / w.w;
+}
+
+// Catmull-Rom over the 4 x 4 texels around `at` (texel units, centres at
+// integers): a bilinear fetch blurs the history a little every frame it is
+// moved, and a sharp caustic that moves for 8 frames lost its peak (the
+// resampling TAA does with a bicubic, Karis 2014); clamped at zero
+// (the kernel's negative lobes)
+vec4 history_resampled(vec2 at, ivec2 size)
+{
+    ivec2 base = ivec2(floor(at));
+    vec2 f = at - vec2(base);
+    vec4 wx, wy;
+    for (int a = 0; a < 2; a++) {
+        float t = f[a], t2 = t * t, t3 = t2 * t;
+        vec4 w = vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t,
+                      0.5 * t3 - 0.5 * t2);
+        if (a == 0)
+            wx = w;
+        else
+            wy = w;
+    }
+    vec4 sum = vec4(0.0);
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            sum += wx[i] * wy[j] * texelFetch(u_history, clamp(base + ivec2(i - 1, j - 1), ivec2(0), size - 1), 0);
+    return max(sum, vec4(0.0));
 }
 
 void main()
@@ -42,8 +92,22 @@ void main()
     vec3 result = current.rgb;
     float held = 1.0;
     if (u_valid != 0 && d < 1.0) {
-        vec2 uv = (vec2(p) + 0.5) / vec2(size);
-        vec3 world = unproject(u_inv_view_proj, uv, d);
+        vec2 from = vec2(p) + 0.5;
+        float dfrom = d;
+        vec2 motion;
+        bool tracked = false;
+        if (u_moved != 0 && u_has_motion != 0 && light_motion(p, size, motion)) {
+            // the light here was at from - motion on this frame's screen:
+            // the surface point there is where the history saw it
+            ivec2 q = ivec2(floor(from - motion));
+            float dq = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) ? texelFetch(u_depth, q, 0).r : 1.0;
+            if (dq < 1.0) {
+                from -= motion;
+                dfrom = dq;
+                tracked = true;
+            }
+        }
+        vec3 world = unproject(u_inv_view_proj, from / vec2(size), dfrom);
         vec4 c = u_prev_view_proj * vec4(world, 1.0);
         vec3 q = c.xyz / c.w * 0.5 + 0.5;
         bool inside = c.w > 0.0 && all(greaterThanEqual(q.xy, vec2(0.0))) && all(lessThanEqual(q.xy, vec2(1.0)));
@@ -57,7 +121,9 @@ void main()
             // pixel's footprint at a grazing angle, not a disocclusion)
             bool same = hd < 1.0 && distance(seen, world) <= 0.01 * distance(world, u_eye) + 1e-5;
             if (same) {
-                vec4 history = texelFetch(u_history, hp, 0);
+                // following the light, interpolated: a caustic that moves
+                // less than a pixel a frame would otherwise never leave its texel
+                vec4 history = tracked ? history_resampled(q.xy * vec2(size) - 0.5, size) : texelFetch(u_history, hp, 0);
                 float limit = u_frames;
                 if (u_moved != 0) {
                     vec3 m1 = vec3(0.0), m2 = vec3(0.0);

@@ -46,7 +46,7 @@ bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int
         gl.TextureStorage3D(tex->id, 1, format, width, height, layers > 0 ? layers : 1);
     else
         gl.TextureStorage2D(tex->id, 1, format, width, height);
-    bool is_int = format == GL_R32UI || format == GL_RG32UI || format == GL_RGBA32UI;
+    bool is_int = format == GL_R32UI || format == GL_RG32UI || format == GL_RGBA32UI || format == GL_R32I;
     GLint filter = is_int ? GL_NEAREST : GL_LINEAR;
     gl.TextureParameteri(tex->id, GL_TEXTURE_MIN_FILTER, filter);
     gl.TextureParameteri(tex->id, GL_TEXTURE_MAG_FILTER, filter);

@@ -48,8 +48,8 @@ static bool ensure_size(struct temporal_history *h, int width, int height, struc
 }
 
 bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const struct frame *frame,
-                         const struct gl_texture *irradiance, const struct gl_texture *depth, bool still,
-                         int frames, int *held, struct error *err)
+                         const struct gl_texture *irradiance, const struct gl_texture *depth,
+                         const struct gl_texture *motion, bool still, int frames, int *held, struct error *err)
 {
     long sequence = h->sequence;
     if (!ensure_size(h, irradiance->width, irradiance->height, err))
@@ -70,6 +70,8 @@ bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const s
     gl_program_bind_texture(prog, "u_depth", depth->id);
     gl_program_bind_texture(prog, "u_history", h->color[from].id);
     gl_program_bind_texture(prog, "u_history_depth", h->depth[from].id);
+    gl_program_bind_texture(prog, "u_motion", motion ? motion->id : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_motion"), motion != NULL);
     gl_program_bind_image(prog, "u_out", irradiance->id, GL_FALSE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(prog, "u_out_history", h->color[to].id, GL_FALSE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(prog, "u_out_depth", h->depth[to].id, GL_FALSE, GL_WRITE_ONLY, GL_R32F);

@@ -17,8 +17,14 @@
  *   deviations of this frame's 3 x 3 neighbourhood (variance clipping,
  *   Salvi 2016) before the blend, so a caustic that moved far leaves no
  *   ghost, and a pixel averages at most its last frames / 2 (at least 2):
- *   the crawl of a moving light is averaged over fewer frames, and a sharp
- *   caustic that moves lags (docs/TEMPORAL.md has the measurements).
+ *   the crawl of a moving light is averaged over fewer frames;
+ * - where the pass says how its light moved on screen (photon_caustics:
+ *   the same light-view texel's photon last frame and now, motion.comp),
+ *   the history is read from where the light was, by a Catmull-Rom
+ *   resampling (a caustic that moves a third of a pixel a frame otherwise
+ *   lags, or blurs under a bilinear fetch); where it does not (the thin
+ *   spread light), the caustic lags a little (docs/TEMPORAL.md has the
+ *   measurements).
  *
  * One owner per history (the pass's state); temporal_release frees it. */
 #ifndef CAUSTICA_TEMPORAL_H
@@ -56,12 +62,16 @@ void temporal_jitter(const struct temporal_history *h, float *dx, float *dy);
  * and writes the result back into it. `depth` holds the window depth of the
  * surfaces the irradiance lies on (1 where none); `still` says the light
  * and the geometry are as they were the last frame (the camera may have
- * moved); `frames` the most frames averaged (>= 1; 1 keeps no history).
+ * moved); `motion` (may be NULL) where the light moved on screen since the
+ * last frame, an R32I array of 3 layers (x and y in 1/64 pixels and the
+ * samples that said so, summed per pixel: photon_caustics/motion.comp):
+ * while things move the history is taken from where the light was;
+ * `frames` the most frames averaged (>= 1; 1 keeps no history).
  * Fills `*held` (may be NULL) with how many frames the history held before
  * this one (0 after a reset). */
 bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const struct frame *frame,
-                         const struct gl_texture *irradiance, const struct gl_texture *depth, bool still,
-                         int frames, int *held, struct error *err);
+                         const struct gl_texture *irradiance, const struct gl_texture *depth,
+                         const struct gl_texture *motion, bool still, int frames, int *held, struct error *err);
 
 /* Forgets the history (the next frame starts afresh). */
 void temporal_reset(struct temporal_history *h);

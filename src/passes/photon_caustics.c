@@ -42,6 +42,11 @@ struct photon_state {
     GLuint cover;      /* SSBO: the light-view texels the specular objects cover (cover.comp) */
     float coverage;    /* the narrowed light view's share of the first one (0: not narrowed; the report) */
     struct temporal_history temporal; /* accumulate > 1: the irradiance of the last frames (issue 32) */
+    /* accumulate > 1: the last frame's photon buffer and its grid's jitter,
+     * and where the light moved on screen since (motion.comp) */
+    struct gl_texture photons_previous, motion;
+    float jitter[2], jitter_previous[2];
+    bool previous_valid;
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -123,6 +128,9 @@ static void release_textures(struct photon_state *s)
     }
     gl_texture_destroy(&s->photons);
     gl_texture_destroy(&s->photon_flux);
+    gl_texture_destroy(&s->photons_previous);
+    gl_texture_destroy(&s->motion);
+    s->previous_valid = false;
     gl_texture_destroy(&s->counts);
     gl_texture_destroy(&s->caustics);
 }
@@ -188,7 +196,8 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
             return false;
     }
     if (!gl_texture_create(&s->photons, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
-        !gl_texture_create(&s->photon_flux, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err))
+        !gl_texture_create(&s->photon_flux, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err) ||
+        !gl_texture_create(&s->photons_previous, GL_TEXTURE_2D, GL_RGBA32F, buffer, buffer, 1, err))
         return false;
     const struct gl_texture *pc[2] = {&s->photons, &s->photon_flux};
     if (!gl_framebuffer_attach(&s->photon_fb, pc, NULL, 2, NULL, -1, err))
@@ -301,6 +310,38 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
     return draw_light_surfaces(s, r, scene, buffer, err);
 }
 
+/* Issue 32: where the light moved on screen since the last frame, from the
+ * photons of the same light-view texels then and now (motion.comp), for
+ * temporal_accumulate to take the history from where the caustic was. */
+static bool light_motion(struct photon_state *s, struct renderer *r, const struct pass_frame *f, int buffer,
+                         const struct gl_texture *depth, struct error *err)
+{
+    if (s->motion.width != f->width || s->motion.height != f->height || !s->motion.id) {
+        gl_texture_destroy(&s->motion);
+        if (!gl_texture_create(&s->motion, GL_TEXTURE_2D_ARRAY, GL_R32I, f->width, f->height, 3, err))
+            return false;
+    }
+    const GLint zero = 0;
+    gl.ClearTexImage(s->motion.id, 0, GL_RED_INTEGER, GL_INT, &zero);
+    struct gl_program *prog;
+    if (!gl_program_get_compute(&r->programs, "photon_caustics/motion.comp", NULL, NULL, &prog, err))
+        return false;
+    gl.UseProgram(prog->id);
+    bind_impostors(s, prog);
+    gl_program_bind_texture(prog, "u_photons", s->photons.id);
+    gl_program_bind_texture(prog, "u_previous", s->photons_previous.id);
+    gl_program_bind_texture(prog, "u_depth", depth->id);
+    gl_program_bind_image(prog, "u_motion", s->motion.id, GL_TRUE, GL_READ_WRITE, GL_R32I);
+    /* texel p sampled the unjittered grid at p - j (the jitter moves the
+     * image by +j): last frame the same ray was at p + j_prev - j_now */
+    gl.ProgramUniform2f(prog->id, gl_program_uniform(prog, "u_shift"), s->jitter_previous[0] - s->jitter[0],
+                        s->jitter_previous[1] - s->jitter[1]);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_buffer"), buffer);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return true;
+}
+
 static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct photon_state *s = p->state;
@@ -321,8 +362,10 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     int accumulate = pass_int(p, PHOTON_ACCUMULATE);
     bool unchanged = pass_frame_reusable(f, s->valid, s->key, key);
     bool reuse = accumulate <= 1 && unchanged;
-    if (accumulate <= 1)
+    if (accumulate <= 1) {
         temporal_reset(&s->temporal);
+        s->previous_valid = false;
+    }
     snprintf(p->report, sizeof p->report, "%s",
              reuse ? "the photon buffer and caustic textures reused (the light and the geometry did not change since "
                      "the last frame); the caustic mapping from the camera runs every frame"
@@ -350,10 +393,9 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
          * every frame and 16 frames' grids interleave into one 4 x 4 as dense */
         mat4 jitter = mat4_identity();
         if (accumulate > 1) {
-            float dx, dy;
-            temporal_jitter(&s->temporal, &dx, &dy);
-            jitter.m[12] = 2.0f * dx / (float)buffer;
-            jitter.m[13] = 2.0f * dy / (float)buffer;
+            temporal_jitter(&s->temporal, &s->jitter[0], &s->jitter[1]);
+            jitter.m[12] = 2.0f * s->jitter[0] / (float)buffer;
+            jitter.m[13] = 2.0f * s->jitter[1] / (float)buffer;
         }
         s->light_view_proj = mat4_mul(proj, view);
         mat4_inverse(s->light_view_proj, &s->light_inverse);
@@ -494,10 +536,19 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
     if (accumulate <= 1)
         return true;
-    int held = 0;
-    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &irr->texture, &depth->texture, unchanged, accumulate,
-                             &held, err))
+    bool moving = !unchanged && s->previous_valid;
+    if (moving && !light_motion(s, r, f, buffer, &depth->texture, err))
         return false;
+    int held = 0;
+    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &irr->texture, &depth->texture, moving ? &s->motion : NULL,
+                             unchanged, accumulate, &held, err))
+        return false;
+    /* this frame's photons are the next one's previous */
+    gl.CopyImageSubData(s->photons.id, GL_TEXTURE_2D, 0, 0, 0, 0, s->photons_previous.id, GL_TEXTURE_2D, 0, 0, 0, 0,
+                        buffer, buffer, 1);
+    s->jitter_previous[0] = s->jitter[0];
+    s->jitter_previous[1] = s->jitter[1];
+    s->previous_valid = true;
     used = strlen(p->report);
     if (used + 8 < sizeof p->report)
         snprintf(p->report + used, sizeof p->report - used, "; accumulated: %s", held == 0 ? "the history starts"

@@ -23,13 +23,13 @@ grep -q "^errors: the mean over frames 0, 30, 59 of 60" "$WORK/ball.txt" && grep
   && [ "$(grep -c 'rendering the ground truth of frame' "$WORK/ball.txt")" = 6 ] \
   && pass "errors over 3 frames spread across the animation, one truth each and one of the frame after it (the flicker's), not one per technique" \
   || fail "error frames" "$(head -5 "$WORK/ball.txt")"
-[ "$(grep -c '^gpu,' "$WORK/ball/results.csv")" = 6 ] && ! grep -q '^gpu,illumination' "$WORK/ball/results.csv" \
-  && pass "--sweep technique=plain,photons: those two only (the photons at 5 settings)" || fail "technique subset" "$(cut -d, -f1-3 "$WORK/ball/results.csv")"
+[ "$(grep -c '^gpu,' "$WORK/ball/results.csv")" = 8 ] && ! grep -q '^gpu,illumination' "$WORK/ball/results.csv" \
+  && pass "--sweep technique=plain,photons: those two only (the photons at 7 settings)" || fail "technique subset" "$(cut -d, -f1-3 "$WORK/ball/results.csv")"
 # issue 32: the flicker of every GPU row (the change from each error frame to
 # the next against the truth's), a truth for each of those frames too, none
 # for the reference's rows, and its plot
 fcol=$(head -1 "$WORK/ball/results.csv" | tr ',' '\n' | grep -nx flicker | cut -d: -f1)
-[ -n "$fcol" ] && [ "$(awk -F, -v c="$fcol" '$1 == "gpu" && $c + 0 > 0' "$WORK/ball/results.csv" | wc -l)" = 6 ] \
+[ -n "$fcol" ] && [ "$(awk -F, -v c="$fcol" '$1 == "gpu" && $c + 0 > 0' "$WORK/ball/results.csv" | wc -l)" = 8 ] \
   && [ "$(awk -F, -v c="$fcol" '$1 == "reference" && $c != ""' "$WORK/ball/results.csv" | wc -l)" = 0 ] \
   && grep -q "rendering the ground truth of frame 31 " "$WORK/ball.txt" \
   && grep -q "^Flicker: the error of each error frame's change" "$WORK/ball/results.md" \
