@@ -60,20 +60,18 @@ vec3 unproject(mat4 inverse, vec2 uv, float d)
 // moved, and a sharp caustic that moves for 8 frames lost its peak (the
 // resampling TAA does with a bicubic, Karis 2014); clamped at zero
 // (the kernel's negative lobes)
+vec4 catmull_rom_weights(float t)
+{
+    float t2 = t * t, t3 = t2 * t;
+    return vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t,
+                0.5 * t3 - 0.5 * t2);
+}
+
 vec4 history_resampled(vec2 at, ivec2 size)
 {
     ivec2 base = ivec2(floor(at));
     vec2 f = at - vec2(base);
-    vec4 wx, wy;
-    for (int a = 0; a < 2; a++) {
-        float t = f[a], t2 = t * t, t3 = t2 * t;
-        vec4 w = vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t,
-                      0.5 * t3 - 0.5 * t2);
-        if (a == 0)
-            wx = w;
-        else
-            wy = w;
-    }
+    vec4 wx = catmull_rom_weights(f.x), wy = catmull_rom_weights(f.y);
     vec4 sum = vec4(0.0);
     for (int j = 0; j < 4; j++)
         for (int i = 0; i < 4; i++)
