@@ -6,6 +6,39 @@
 #include "graph/graph.h"
 #include "graph/graph_lint.h"
 
+/* The base name of a path, for short lines. */
+static const char *base_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* Every object whose material came from a file (a glTF primitive's): which
+ * material, what it is drawn as, and what of it is not drawn. */
+static void print_file_materials(const struct scene *scene)
+{
+    bool header = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        const struct material *m = &o->material;
+        if (!o->mesh->material_name[0])
+            continue;
+        if (!header)
+            printf("materials from files (object: mesh, the file's material, drawn as):\n");
+        header = true;
+        char drawn[96];
+        if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
+            snprintf(drawn, sizeof drawn, "%s, ior %g", material_kind_name(m->kind), m->ior);
+        else
+            snprintf(drawn, sizeof drawn, "%s", material_kind_name(m->kind));
+        const char *name = o->mesh->material_name;
+        bool replaced = strcmp(m->source, name) != 0; /* the script set another material */
+        printf("  %3d  %s '%s': %s%s%s%s\n", o->id, base_name(o->group ? o->group->mesh->name : o->mesh->name), name,
+               drawn, replaced ? " (the script's)" : "", !replaced && m->ignored[0] ? "; ignored: " : "",
+               !replaced ? m->ignored : "");
+    }
+}
+
 int cmd_info(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
@@ -32,6 +65,7 @@ int cmd_info(struct app *app, struct cli *cli)
         printf("%s: %d objects, %d lights, %dx%d, %d frame%s at %g fps, output '%s'\n", s->script,
                s->scene->object_count, s->scene->light_count, s->width, s->height, s->frames, s->frames == 1 ? "" : "s",
                s->fps, s->graph->output);
+        print_file_materials(s->scene);
         for (int i = 0; i < s->graph->count; i++) {
             const struct graph_entry *e = &s->graph->entries[i];
             const struct pass *p = e->pass;

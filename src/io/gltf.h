@@ -1,7 +1,9 @@
 /* glTF 2.0 loading: every triangle primitive of the default scene,
  * flattened into one mesh in the scene's space (node transforms applied),
- * with morph targets and the glass parameters of KHR_materials_ior,
- * _transmission and _volume. The loader is a thin C++ shim over tinygltf
+ * with morph targets, and each primitive's index range with the material
+ * it names (pbrMetallicRoughness, alphaMode, KHR_materials_ior,
+ * _transmission, _volume and _emissive_strength; what else a material asks
+ * for is listed in its `unread`). The loader is a thin C++ shim over tinygltf
  * (gltf_shim.cpp, the project's only C++). */
 #ifndef CAUSTICA_GLTF_H
 #define CAUSTICA_GLTF_H
@@ -30,9 +32,16 @@ struct gltf_texture {
     bool mipmaps;   /* minFilter one of the *_MIPMAP_* (or unset) */
 };
 
+enum gltf_alpha_mode { GLTF_ALPHA_OPAQUE, GLTF_ALPHA_MASK, GLTF_ALPHA_BLEND };
+
 struct gltf_material {
     bool present;
+    char name[64];              /* the material's name, or "material N" */
     float base_color[3];
+    float alpha;                /* baseColorFactor's fourth component */
+    float metallic, roughness;  /* pbrMetallicRoughness factors (1 and 1 when absent, as glTF says) */
+    enum gltf_alpha_mode alpha_mode;
+    float alpha_cutoff;         /* MASK: 0.5 by default */
     bool glass;                 /* transmission > 0 */
     float ior;                  /* KHR_materials_ior, 1.5 by default */
     float transmission;         /* KHR_materials_transmission */
@@ -40,6 +49,17 @@ struct gltf_material {
     float attenuation_distance; /* 0 = infinite (no absorption) */
     float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
     struct gltf_texture base_color_texture, normal_texture, emissive_texture;
+    /* What the material asks for that the loader does not read at all
+     * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
+    char unread[256];
+};
+
+/* A run of triangles (indices [first_index, first_index + index_count))
+ * that share one material: an index into gltf_mesh.materials, or -1 for a
+ * primitive without one. */
+struct gltf_range {
+    size_t first_index, index_count;
+    int material;
 };
 
 struct gltf_mesh {
@@ -54,7 +74,10 @@ struct gltf_mesh {
     float *target_normals;   /* same layout; zero where the file has none */
     float *weights;          /* target_count default weights */
     char **target_names;     /* target_count names ("" when unnamed) */
-    struct gltf_material material; /* of the first primitive that has one */
+    int material_count;
+    struct gltf_material *materials; /* the materials the primitives name, in first-use order */
+    size_t range_count;
+    struct gltf_range *ranges;       /* in index order, covering every index */
 };
 
 bool gltf_load(const char *path, struct gltf_mesh *out, struct error *err);

@@ -1,6 +1,7 @@
 // The project's only C++: a thin shim with a C interface over tinygltf
 // (Debian's libtinygltf). It flattens the default scene into one triangle
-// mesh and validates what it reads: out-of-range indices, non-finite
+// mesh, its primitives' index ranges each with its material, and validates
+// what it reads: out-of-range indices, non-finite
 // positions and truncated buffers are errors naming the file.
 #include "io/gltf.h"
 
@@ -248,12 +249,16 @@ struct Builder {
     std::vector<std::vector<float>> tpos, tnrm; // per target, grows with positions
     std::vector<float> weights;
     std::vector<std::string> target_names;
-    gltf_material material{};
+    std::vector<gltf_material> materials; // owns their image bytes until copied out
+    std::vector<int> slot_of;             // per glTF material: its index in `materials`, or -1 unread yet
+    std::vector<gltf_range> ranges;
     ~Builder()
     {
-        std::free(material.base_color_texture.bytes);
-        std::free(material.normal_texture.bytes);
-        std::free(material.emissive_texture.bytes);
+        for (gltf_material &m : materials) {
+            std::free(m.base_color_texture.bytes);
+            std::free(m.normal_texture.bytes);
+            std::free(m.emissive_texture.bytes);
+        }
     }
 };
 
@@ -335,21 +340,52 @@ void read_texture(const tinygltf::Model &model, int index, int texcoord, const t
         throw Fail{material + ": texCoord " + std::to_string(t.texcoord) + " (caustica reads TEXCOORD_0 and _1)"};
 }
 
+// Appends `what` to the material's list of things it asks for and nobody reads.
+void note_unread(gltf_material &m, const std::string &what)
+{
+    size_t used = std::strlen(m.unread);
+    std::snprintf(m.unread + used, sizeof m.unread - used, "%s%s", used ? ", " : "", what.c_str());
+}
+
+// The extensions read here (KHR_texture_transform is read per texture).
+bool extension_read(const std::string &name)
+{
+    return name == "KHR_materials_transmission" || name == "KHR_materials_ior" || name == "KHR_materials_volume" ||
+           name == "KHR_materials_emissive_strength";
+}
+
 void read_material(const tinygltf::Model &model, int index, gltf_material &m)
 {
-    if (index < 0 || index >= (int)model.materials.size() || m.present)
-        return;
     const tinygltf::Material &mat = model.materials[(size_t)index];
     m.present = true;
+    if (mat.name.empty())
+        std::snprintf(m.name, sizeof m.name, "material %d", index);
+    else
+        std::snprintf(m.name, sizeof m.name, "%s", mat.name.c_str());
     m.ior = 1.5f;
+    const std::vector<double> &factor = mat.pbrMetallicRoughness.baseColorFactor;
     for (int c = 0; c < 3; c++) {
-        m.base_color[c] = mat.pbrMetallicRoughness.baseColorFactor.size() == 4
-                              ? (float)mat.pbrMetallicRoughness.baseColorFactor[(size_t)c] : 1.0f;
+        m.base_color[c] = factor.size() == 4 ? (float)factor[(size_t)c] : 1.0f;
         m.attenuation_color[c] = 1.0f;
     }
+    m.alpha = factor.size() == 4 ? (float)factor[3] : 1.0f;
+    m.metallic = (float)mat.pbrMetallicRoughness.metallicFactor;
+    m.roughness = (float)mat.pbrMetallicRoughness.roughnessFactor;
+    m.alpha_mode = mat.alphaMode == "MASK" ? GLTF_ALPHA_MASK : mat.alphaMode == "BLEND" ? GLTF_ALPHA_BLEND
+                                                                                         : GLTF_ALPHA_OPAQUE;
+    m.alpha_cutoff = (float)mat.alphaCutoff;
+    if (mat.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+        note_unread(m, "metallicRoughnessTexture");
+    if (mat.occlusionTexture.index >= 0)
+        note_unread(m, "occlusionTexture");
+    for (const auto &e : mat.extensions)
+        if (!extension_read(e.first))
+            note_unread(m, e.first);
     auto ext = mat.extensions.find("KHR_materials_transmission");
     if (ext != mat.extensions.end() && ext->second.Has("transmissionFactor"))
         m.transmission = (float)ext->second.Get("transmissionFactor").GetNumberAsDouble();
+    if (ext != mat.extensions.end() && ext->second.Has("transmissionTexture"))
+        note_unread(m, "transmissionTexture");
     ext = mat.extensions.find("KHR_materials_ior");
     if (ext != mat.extensions.end() && ext->second.Has("ior"))
         m.ior = (float)ext->second.Get("ior").GetNumberAsDouble();
@@ -357,6 +393,8 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     if (ext != mat.extensions.end()) {
         if (ext->second.Has("attenuationDistance"))
             m.attenuation_distance = (float)ext->second.Get("attenuationDistance").GetNumberAsDouble();
+        if (ext->second.Has("thicknessTexture"))
+            note_unread(m, "thicknessTexture");
         if (ext->second.Has("attenuationColor")) {
             const tinygltf::Value &c = ext->second.Get("attenuationColor");
             for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
@@ -397,12 +435,35 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         throw Fail{name + ": KHR_materials_ior ior must be a positive finite number, got " + std::to_string(m.ior)};
     if (!std::isfinite(m.transmission) || m.transmission < 0.0f || m.transmission > 1.0f)
         throw Fail{name + ": KHR_materials_transmission transmissionFactor must be in [0, 1]"};
+    if (!std::isfinite(m.alpha) || m.alpha < 0.0f || m.alpha > 1.0f)
+        throw Fail{name + ": baseColorFactor's alpha must be in [0, 1]"};
+    if (!std::isfinite(m.metallic) || m.metallic < 0.0f || m.metallic > 1.0f || !std::isfinite(m.roughness) ||
+        m.roughness < 0.0f || m.roughness > 1.0f)
+        throw Fail{name + ": metallicFactor and roughnessFactor must be in [0, 1]"};
+    if (!std::isfinite(m.alpha_cutoff) || m.alpha_cutoff < 0.0f)
+        throw Fail{name + ": alphaCutoff must be a finite number >= 0"};
     // 0 stands for "infinite" (no absorption); anything else must be a
     // distance at which -ln(c)/d stays finite (c >= 1e-6 in mesh.c: d >= 1e-30
     // keeps 13.8/d below FLT_MAX).
     if (!std::isfinite(m.attenuation_distance) || m.attenuation_distance < 0.0f ||
         (m.attenuation_distance > 0.0f && m.attenuation_distance < 1e-30f))
         throw Fail{name + ": KHR_materials_volume attenuationDistance must be a positive finite distance"};
+}
+
+// The index in b.materials of glTF material `index` (read on first use), or
+// -1 for none.
+int material_slot(const tinygltf::Model &model, int index, Builder &b)
+{
+    if (index < 0 || index >= (int)model.materials.size())
+        return -1; // a dangling index draws as no material, as before materials were per primitive
+    if (b.slot_of.size() != model.materials.size())
+        b.slot_of.assign(model.materials.size(), -1);
+    if (b.slot_of[(size_t)index] < 0) {
+        b.materials.push_back(gltf_material{});
+        read_material(model, index, b.materials.back());
+        b.slot_of[(size_t)index] = (int)b.materials.size() - 1;
+    }
+    return b.slot_of[(size_t)index];
 }
 
 void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
@@ -504,6 +565,13 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             }
         }
     }
+    // This primitive's triangles and its material (a run of primitives with
+    // one material stays one range).
+    int slot = material_slot(model, prim.material, b);
+    if (!b.ranges.empty() && b.ranges.back().material == slot)
+        b.ranges.back().index_count += idx.size();
+    else
+        b.ranges.push_back(gltf_range{b.indices.size(), idx.size(), slot});
     for (uint32_t i : idx)
         b.indices.push_back((uint32_t)base + i);
     for (int set = 0; set < 2; set++) {
@@ -579,7 +647,6 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
                 }
         }
     }
-    read_material(model, prim.material, b.material);
 }
 
 // Instancing (a node listed by several parents) is legal glTF, so a node may
@@ -850,8 +917,12 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
                 b.texcoords[set].resize(b.positions.size() / 3 * 2, 0.0f);
                 out->texcoords[set] = copy_out(b.texcoords[set]);
             }
-        out->material = b.material;
-        b.material = gltf_material{}; // out owns the image bytes now
+        out->material_count = (int)b.materials.size();
+        out->materials = copy_out(b.materials);
+        for (gltf_material &m : b.materials) // out owns the image bytes now
+            m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes = nullptr;
+        out->range_count = b.ranges.size();
+        out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
         if (b.target_count > 0) {
             std::vector<float> tp, tn;
@@ -885,9 +956,13 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
     std::free(mesh->indices);
     std::free(mesh->texcoords[0]);
     std::free(mesh->texcoords[1]);
-    std::free(mesh->material.base_color_texture.bytes);
-    std::free(mesh->material.normal_texture.bytes);
-    std::free(mesh->material.emissive_texture.bytes);
+    for (int i = 0; mesh->materials && i < mesh->material_count; i++) {
+        std::free(mesh->materials[i].base_color_texture.bytes);
+        std::free(mesh->materials[i].normal_texture.bytes);
+        std::free(mesh->materials[i].emissive_texture.bytes);
+    }
+    std::free(mesh->materials);
+    std::free(mesh->ranges);
     std::free(mesh->target_positions);
     std::free(mesh->target_normals);
     std::free(mesh->weights);

@@ -195,15 +195,21 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
     case PASS_PARAM_OBJECT_LIST: {
         if (t != LUA_TTABLE)
             lutil_field_error(L, fn, d->name, "list of objects", idx);
-        int n = (int)lua_rawlen(L, idx);
-        if (n > 256)
-            lutil_error(L, "bad argument '%s' to '%s' (at most 256 objects, got %d)", d->name, fn, n);
+        int listed = (int)lua_rawlen(L, idx), n = 0;
         struct object *objects[256];
-        for (int k = 0; k < n; k++) {
+        for (int k = 0; k < listed; k++) {
             lua_rawgeti(L, idx, k + 1);
-            objects[k] = lobject_test(L, -1);
-            if (!objects[k])
+            struct object *o = lobject_test(L, -1);
+            if (!o)
                 lutil_field_error(L, fn, d->name, "list of objects", -1);
+            /* a group (a file of several materials) stands for its parts,
+             * which are what the scene holds */
+            int parts = o->part_count > 0 ? o->part_count : 1;
+            if (n + parts > 256)
+                lutil_error(L, "bad argument '%s' to '%s' (at most 256 objects, a file's parts counted one each)",
+                            d->name, fn);
+            for (int part = 0; part < parts; part++)
+                objects[n++] = o->part_count > 0 ? o->parts[part] : o;
             lua_pop(L, 1);
         }
         if (!pass_set_objects(p, i, objects, n))

@@ -236,6 +236,13 @@ static int mesh_get_name(lua_State *L)
     return 1;
 }
 
+static int mesh_get_materials(lua_State *L)
+{
+    lmesh_check(L, 1);
+    lmaterials_push(L, 1, false);
+    return 1;
+}
+
 static int mesh_tostring(lua_State *L)
 {
     struct mesh *m = lmesh_check(L, 1);
@@ -311,6 +318,13 @@ struct object *lobject_test(lua_State *L, int idx)
     return u ? u->obj : NULL;
 }
 
+/* After a change to a group, its parts follow (scene/scene.c). */
+static void parts_follow(lua_State *L, struct object *o)
+{
+    if (!object_sync_parts(o))
+        lutil_error(L, "out of memory");
+}
+
 static int set_position(lua_State *L)
 {
     struct object *o = lobject_check(L, 1);
@@ -318,6 +332,7 @@ static int set_position(lua_State *L)
     if (memcmp(&p, &o->position, sizeof p) != 0)
         o->version++;
     o->position = p;
+    parts_follow(L, o);
     return 0;
 }
 
@@ -328,6 +343,7 @@ static int set_rotation(lua_State *L)
     if (memcmp(&q, &o->rotation, sizeof q) != 0)
         o->version++;
     o->rotation = q;
+    parts_follow(L, o);
     return 0;
 }
 
@@ -338,6 +354,7 @@ static int set_scale(lua_State *L)
     if (memcmp(&s, &o->scale, sizeof s) != 0)
         o->version++;
     o->scale = s;
+    parts_follow(L, o);
     return 0;
 }
 
@@ -348,6 +365,7 @@ static void set_flag(lua_State *L, struct object *o, bool *field, const char *na
     if (*field != (bool)lua_toboolean(L, 3))
         o->version++;
     *field = lua_toboolean(L, 3);
+    parts_follow(L, o);
 }
 
 static int set_visible(lua_State *L)
@@ -370,8 +388,7 @@ static int set_material(lua_State *L)
     struct material *m = luaL_testudata(L, 3, MATERIAL_MT);
     if (!m)
         lutil_field_error(L, "object", "material", "material (c.material.*)", 3);
-    material_assign(&o->material, m);
-    o->version++;
+    object_set_material(o, m);
     return 0;
 }
 
@@ -396,6 +413,7 @@ static int set_morph_weights(lua_State *L)
         o->morph_weights[i] = w;
         lua_pop(L, 1);
     }
+    parts_follow(L, o);
     return 0;
 }
 
@@ -420,6 +438,7 @@ static int set_deform(lua_State *L)
         o->deform.glsl = NULL;
     }
     o->version++;
+    parts_follow(L, o);
     return 0;
 }
 
@@ -466,6 +485,13 @@ static int get_material(lua_State *L)
     return 1;
 }
 
+static int get_materials(lua_State *L)
+{
+    lobject_check(L, 1);
+    lmaterials_push(L, 1, true);
+    return 1;
+}
+
 static int get_morph_weights(lua_State *L)
 {
     struct object *o = lobject_check(L, 1);
@@ -507,6 +533,7 @@ static int object_new(lua_State *L)
     lua_pushvalue(L, mesh_idx);
     lua_setiuservalue(L, obj_idx, 1); /* the object keeps its mesh's userdata alive */
     lutil_assign_fields(L, obj_idx, 1, object_fields);
+    parts_follow(L, u->obj);
     lua_settop(L, obj_idx);
     return 1;
 }
@@ -522,7 +549,10 @@ static int object_gc(lua_State *L)
 static int object_tostring(lua_State *L)
 {
     struct object *o = lobject_check(L, 1);
-    lua_pushfstring(L, "Object(%s, %s)", o->mesh->name, material_kind_name(o->material.kind));
+    if (o->part_count > 0)
+        lua_pushfstring(L, "Object(%s, %d parts)", o->mesh->name, o->part_count);
+    else
+        lua_pushfstring(L, "Object(%s, %s)", o->mesh->name, material_kind_name(o->material.kind));
     return 1;
 }
 
@@ -702,7 +732,8 @@ void lobject_open(lua_State *L)
     static const luaL_Reg mesh_getters[] = {{"vertex_count", mesh_get_vertex_count},
                                             {"triangle_count", mesh_get_triangle_count},
                                             {"morph_targets", mesh_get_morph_targets}, {"bounds", mesh_get_bounds},
-                                            {"name", mesh_get_name}, {NULL, NULL}};
+                                            {"name", mesh_get_name}, {"materials", mesh_get_materials},
+                                            {NULL, NULL}};
     lutil_class(L, MESH_MT, "mesh", mesh_meta, NULL, mesh_getters, NULL);
     static const luaL_Reg deformer_meta[] = {{"__gc", deform_gc}, {NULL, NULL}};
     lutil_class(L, DEFORMER_MT, "deformer", deformer_meta, NULL, NULL, NULL);
@@ -712,7 +743,8 @@ void lobject_open(lua_State *L)
     static const luaL_Reg object_getters[] = {{"position", get_position}, {"rotation", get_rotation},
                                               {"scale", get_scale}, {"visible", get_visible},
                                               {"cast_shadows", get_cast_shadows}, {"mesh", get_mesh},
-                                              {"material", get_material}, {"morph_weights", get_morph_weights},
+                                              {"material", get_material}, {"materials", get_materials},
+                                              {"morph_weights", get_morph_weights},
                                               {"id", get_id}, {"energy", get_energy},
                                               {"stable_step", get_stable_step}, {"substeps", get_substeps},
                                               {"max_height", get_max_height}, {"depth", get_depth},

@@ -461,6 +461,7 @@ int luaopen_caustica_scene(lua_State *L)
     lobject_open(L);
     llight_open(L);
     lmaterial_open(L);
+    lmaterials_open(L);
     lmedium_open(L);
     ltexture_open(L);
     static const luaL_Reg quats[] = {{"axis_angle", quat_axis_angle_l}, {"mul", quat_mul_l}, {NULL, NULL}};

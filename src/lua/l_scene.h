@@ -4,6 +4,8 @@
 #ifndef CAUSTICA_L_SCENE_H
 #define CAUSTICA_L_SCENE_H
 
+#include <stdbool.h>
+
 #include <lauxlib.h>
 #include <lua.h>
 
@@ -41,6 +43,10 @@ struct light *llight_test(lua_State *L, int idx);
 /* A copy of `m` as a new material userdata. */
 void lmaterial_push(lua_State *L, const struct material *m);
 
+/* Pushes the `materials` list of the mesh (object = false) or object at
+ * `owner` (l_materials.c). */
+void lmaterials_push(lua_State *L, int owner, bool object);
+void lmaterials_open(lua_State *L);
 /* Each file's classes and constructors, into the module table at the top. */
 void lobject_open(lua_State *L);
 void llight_open(lua_State *L);

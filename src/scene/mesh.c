@@ -1,10 +1,10 @@
-/* Meshes: procedural shapes, glTF files, and their GPU buffers. */
+/* Meshes: procedural shapes and what every mesh shares (glTF files:
+ * mesh_gltf.c, parts: mesh_parts.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/gltf.h"
 #include "scene/scene.h"
 
 static uint64_t mesh_next_serial(void)
@@ -267,116 +267,17 @@ struct mesh *mesh_create_box(vec3 size, struct error *err)
 
 size_t mesh_texture_bytes(const struct mesh *m)
 {
-    if (!m || !m->has_material)
+    if (!m)
         return 0;
-    return texture_bytes(m->material.base_color.texture) + texture_bytes(m->material.normal.texture) +
-           texture_bytes(m->material.emissive.texture);
-}
-
-struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err)
-{
-    struct gltf_mesh g;
-    if (!gltf_load(path, &g, err))
-        return NULL;
-    if (g.target_count > SCENE_MAX_MORPH_TARGETS) {
-        error_set(err, "%s: %d morph targets, at most %d are supported", path, g.target_count,
-                  SCENE_MAX_MORPH_TARGETS);
-        gltf_mesh_free(&g);
-        return NULL;
-    }
-    struct mesh *m = calloc(1, sizeof *m);
-    if (m) {
-        m->references = 1;
-        m->serial = mesh_next_serial();
-    }
-    if (!m) {
-        gltf_mesh_free(&g);
-        error_set(err, "%s: out of memory", path);
-        return NULL;
-    }
-    snprintf(m->name, sizeof m->name, "%s", path);
-    material_init(&m->material, MATERIAL_DIFFUSE);
-    m->vertex_count = g.vertex_count;
-    m->index_count = g.index_count;
-    m->positions = g.positions;
-    m->normals = g.normals;
-    m->indices = g.indices;
-    m->texcoords[0] = g.texcoords[0];
-    m->texcoords[1] = g.texcoords[1];
-    m->target_count = g.target_count;
-    m->target_positions = g.target_positions;
-    m->target_normals = g.target_normals;
-    /* The mesh owns these now: gltf_mesh_free(&g) frees only the rest. */
-    g.positions = g.normals = g.target_positions = g.target_normals = NULL;
-    g.indices = NULL;
-    g.texcoords[0] = g.texcoords[1] = NULL;
-    for (int t = 0; t < g.target_count; t++)
-        m->default_weights[t] = g.weights[t];
-    if (g.material.present) {
-        /* KHR_materials_transmission/_ior/_volume onto the glass material:
-         * attenuation colour c at distance d is Beer-Lambert sigma = -ln(c) / d. */
-        m->has_material = true;
-        m->material.color = vec3_make(g.material.base_color[0], g.material.base_color[1], g.material.base_color[2]);
-        m->material.ior = g.material.ior; /* validated by the loader */
-        m->material.kind = g.material.glass ? MATERIAL_GLASS : MATERIAL_DIFFUSE;
-        if (!g.material.glass)
-            m->material.emission = vec3_make(g.material.emission[0], g.material.emission[1], g.material.emission[2]);
-        if (g.material.glass && g.material.attenuation_distance > 0.0f) {
-            float *c = g.material.attenuation_color;
-            float d = g.material.attenuation_distance;
-            m->material.absorption = vec3_make(-logf(fmaxf(c[0], 1e-6f)) / d, -logf(fmaxf(c[1], 1e-6f)) / d,
-                                               -logf(fmaxf(c[2], 1e-6f)) / d);
-        }
-    }
-    if (g.material.present && !g.material.glass) {
-        /* Textures of diffuse materials (glass ignores them, as both renderers do). */
-        struct {
-            struct gltf_texture *from;
-            struct texture_ref *to;
-        } slots[3] = {{&g.material.base_color_texture, &m->material.base_color},
-                      {&g.material.normal_texture, &m->material.normal},
-                      {&g.material.emissive_texture, &m->material.emissive}};
-        for (int s = 0; s < 3; s++) {
-            struct gltf_texture *gt = slots[s].from;
-            if (!gt->bytes)
-                continue;
-            char name[700];
-            snprintf(name, sizeof name, "%s %s", path, gt->name);
-            unsigned long long used = mesh_texture_bytes(m);
-            if (texture_budget && used >= texture_budget) {
-                error_set(err, "%s: no memory left for its texture %s (its textures may take %.1f MB)", path,
-                          gt->name, (double)texture_budget / 1048576.0);
-                gltf_mesh_free(&g);
-                mesh_destroy(m);
-                return NULL;
-            }
-            struct texture *t =
-                texture_decode(name, gt->bytes, gt->size, texture_budget ? texture_budget - used : 0, err);
-            if (!t) {
-                gltf_mesh_free(&g);
-                mesh_destroy(m);
-                return NULL;
-            }
-            t->wrap_s = (enum texture_wrap)gt->wrap_s;
-            t->wrap_t = (enum texture_wrap)gt->wrap_t;
-            t->nearest = gt->nearest;
-            t->mipmaps = gt->mipmaps;
-            struct texture_ref *ref = slots[s].to;
-            ref->texture = t;
-            ref->texcoord = gt->texcoord;
-            memcpy(ref->transform, gt->transform, sizeof ref->transform);
-            ref->scale = gt->scale;
-            if (!m->texcoords[gt->texcoord]) {
-                error_set(err, "%s: a material texture reads TEXCOORD_%d, which no primitive has", path, gt->texcoord);
-                gltf_mesh_free(&g);
-                mesh_destroy(m);
-                return NULL;
-            }
-        }
-    }
-    gltf_mesh_free(&g);
-    mesh_compute_bounds(m);
-    return m;
+    /* a part's textures are its material's own; the mesh's material holds
+     * its first part's again (a reference, not a copy) */
+    size_t bytes = 0;
+    for (int p = 0; p < m->part_count; p++)
+        bytes += mesh_texture_bytes(m->parts[p]);
+    if (m->has_material && m->part_count == 0)
+        bytes += texture_bytes(m->material.base_color.texture) + texture_bytes(m->material.normal.texture) +
+                 texture_bytes(m->material.emissive.texture);
+    return bytes;
 }
 
 void mesh_retain(struct mesh *m)
@@ -398,5 +299,8 @@ void mesh_destroy(struct mesh *m)
     free(m->texcoords[0]);
     free(m->texcoords[1]);
     material_release(&m->material);
+    for (int p = 0; p < m->part_count; p++)
+        mesh_destroy(m->parts[p]);
+    free(m->parts);
     free(m);
 }

@@ -1,4 +1,5 @@
 /* Objects, lights and the scene that borrows them (materials: material.c). */
+#define _POSIX_C_SOURCE 200809L
 #include "scene/scene.h"
 #include "scene/water.h"
 
@@ -33,7 +34,52 @@ struct object *object_create(struct mesh *mesh)
     for (int t = 0; t < SCENE_MAX_MORPH_TARGETS && mesh; t++)
         obj->morph_weights[t] = mesh->default_weights[t];
     obj->version = 1;
+    if (mesh && mesh->part_count > 0) {
+        obj->parts = calloc((size_t)mesh->part_count, sizeof *obj->parts);
+        for (int p = 0; obj->parts && p < mesh->part_count; p++) {
+            struct object *part = object_create(mesh->parts[p]);
+            if (!part)
+                break;
+            part->group = obj;
+            obj->parts[obj->part_count++] = part;
+        }
+        if (obj->part_count < mesh->part_count) {
+            object_destroy(obj);
+            return NULL;
+        }
+    }
     return obj;
+}
+
+bool object_sync_parts(struct object *g)
+{
+    for (int p = 0; p < g->part_count; p++) {
+        struct object *part = g->parts[p];
+        part->position = g->position;
+        part->rotation = g->rotation;
+        part->scale = g->scale;
+        part->visible = g->visible;
+        part->cast_shadows = g->cast_shadows;
+        memcpy(part->morph_weights, g->morph_weights, sizeof part->morph_weights);
+        char *glsl = NULL;
+        if (g->deform.glsl && !(glsl = strdup(g->deform.glsl)))
+            return false;
+        free(part->deform.glsl);
+        part->deform = g->deform;
+        part->deform.glsl = glsl;
+        part->version = g->version;
+    }
+    return true;
+}
+
+void object_set_material(struct object *obj, const struct material *m)
+{
+    material_assign(&obj->material, m);
+    for (int p = 0; p < obj->part_count; p++) {
+        material_assign(&obj->parts[p]->material, m);
+        obj->parts[p]->version++;
+    }
+    obj->version++;
 }
 
 void object_retain(struct object *obj)
@@ -48,6 +94,11 @@ void object_destroy(struct object *obj)
         return;
     free(obj->deform.glsl);
     material_release(&obj->material);
+    for (int p = 0; p < obj->part_count; p++) {
+        obj->parts[p]->group = NULL;
+        object_destroy(obj->parts[p]);
+    }
+    free(obj->parts);
     if (obj->water) {
         water_release(obj->water);
         free(obj->water);
@@ -192,6 +243,13 @@ void scene_release(struct scene *scene)
 
 bool scene_object_add(struct scene *scene, struct object *obj, struct error *err)
 {
+    if (obj->part_count > 0) {
+        /* the scene holds a group's parts, each an object of one material */
+        for (int p = 0; p < obj->part_count; p++)
+            if (!scene_object_add(scene, obj->parts[p], err))
+                return false;
+        return true;
+    }
     for (int i = 0; i < scene->object_count; i++)
         if (scene->objects[i] == obj)
             return true;
@@ -219,6 +277,8 @@ bool scene_light_add(struct scene *scene, struct light *light, struct error *err
 
 void scene_object_remove(struct scene *scene, struct object *obj)
 {
+    for (int p = 0; p < obj->part_count; p++)
+        scene_object_remove(scene, obj->parts[p]);
     for (int i = 0; i < scene->object_count; i++)
         if (scene->objects[i] == obj) {
             memmove(scene->objects + i, scene->objects + i + 1,

@@ -63,6 +63,12 @@ struct material {
      * material holds a reference to each: copy materials with
      * material_assign and drop them with material_release. */
     struct texture_ref base_color, normal, emissive;
+    /* A material read from a file (scene/mesh_gltf.c): its name there, and
+     * what the file asks for that caustica does not render, for `info`
+     * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a
+     * script's materials, which are rendered as they are. */
+    char source[64];
+    char ignored[320];
 };
 
 struct texture *texture_create(const char *name, int width, int height, struct error *err);
@@ -98,6 +104,14 @@ struct mesh {
     char name[512]; /* the file it came from, or the procedural kind */
     bool has_material;      /* the file gave one: objects use it unless the script picks another */
     struct material material;
+    /* A file whose primitives use several materials: one part per material
+     * (its triangles, their vertices, its material), owned. The mesh's own
+     * arrays keep the whole; an object made from it is a group of one part
+     * object each (struct object), which is what passes and the reference
+     * see. 0 and NULL when one material (or none) serves the whole mesh. */
+    int part_count;
+    struct mesh **parts;
+    char material_name[64]; /* the file's name of the material it was made with ("" for none) */
     size_t vertex_count, index_count;
     float *positions, *normals; /* vertex_count * 3 each */
     float *texcoords[2];        /* vertex_count * 2 each, or NULL: glTF TEXCOORD_0/1, generated for procedural shapes */
@@ -132,6 +146,11 @@ struct mesh *mesh_create_cone(float radius, float height, int segments, struct e
 struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err);
 /* The bytes of the textures a mesh's material holds. */
 size_t mesh_texture_bytes(const struct mesh *m);
+/* The triangles `first_index/3 ...` of `count` ranges (index ranges into
+ * whole->indices) as a mesh of their own: the vertices they use (texture
+ * coordinates and morph targets included), renumbered (scene/mesh_parts.c). */
+struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const size_t *first_index,
+                              const size_t *index_count, int count, struct error *err);
 /* Takes ownership of the arrays (malloc'd). */
 struct mesh *mesh_create_from_arrays(const char *name, float *positions, float *normals, size_t vertex_count,
                                      uint32_t *indices, size_t index_count, struct error *err);
@@ -198,12 +217,27 @@ struct object {
     float morph_weights[SCENE_MAX_MORPH_TARGETS];
     struct deformer deform;
     uint64_t version;
+    /* An object of a mesh with parts is a group: it holds one part object
+     * per part (owned references), and the scene holds the parts, never
+     * the group. Whatever a script sets on the group is copied onto its
+     * parts at once (object_sync_parts); a part's `group` points back
+     * (not a reference). */
+    struct object **parts;
+    int part_count;
+    struct object *group;
     /* This frame's matrices are in the frame snapshot (graph/frame.h), its
      * animated vertices in the renderer's mesh cache. */
 };
 
-/* One reference to the new object; it takes one to `mesh`. */
+/* One reference to the new object; it takes one to `mesh`. A mesh with
+ * parts makes a group of part objects, each with its part's material. */
 struct object *object_create(struct mesh *mesh);
+/* Copies a group's transform, flags, morph weights, deformer and version
+ * onto its parts (nothing for an object without parts); false when out of
+ * memory for a deformer's source. */
+bool object_sync_parts(struct object *group);
+/* Sets the material of a group's parts (or of the object itself). */
+void object_set_material(struct object *obj, const struct material *m);
 void object_retain(struct object *obj);
 /* Drops one reference; the last one frees it (and its mesh reference). */
 void object_destroy(struct object *obj);
@@ -317,6 +351,7 @@ struct scene {
 void scene_init(struct scene *scene);
 /* Drops the scene's references and leaves it empty (safe to call twice). */
 void scene_release(struct scene *scene);
+/* Adds the object, or a group's parts. */
 bool scene_object_add(struct scene *scene, struct object *obj, struct error *err);
 bool scene_light_add(struct scene *scene, struct light *light, struct error *err);
 void scene_object_remove(struct scene *scene, struct object *obj);

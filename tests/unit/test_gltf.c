@@ -1,4 +1,5 @@
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "io/gltf.h"
@@ -75,10 +76,11 @@ int main(void)
 
     /* KHR_materials_transmission / _ior / _volume become glass */
     CHECK(gltf_load(asset("tests/data/glass_material.gltf"), &m, &err));
-    CHECK(m.material.glass);
-    CHECK_NEAR(m.material.ior, 1.33, 1e-6);
-    CHECK_NEAR(m.material.attenuation_distance, 2.0, 1e-6);
-    CHECK_NEAR(m.material.attenuation_color[0], 0.5, 1e-6);
+    CHECK(m.material_count == 1 && m.range_count == 1 && m.ranges[0].material == 0);
+    CHECK(m.materials[0].glass);
+    CHECK_NEAR(m.materials[0].ior, 1.33, 1e-6);
+    CHECK_NEAR(m.materials[0].attenuation_distance, 2.0, 1e-6);
+    CHECK_NEAR(m.materials[0].attenuation_color[0], 0.5, 1e-6);
     gltf_mesh_free(&m);
     /* ... and a mesh loaded from it gives objects that glass, with sigma = -ln(c) / d */
     struct mesh *mesh = mesh_load_gltf(asset("tests/data/glass_material.gltf"), 0, &err);
@@ -90,6 +92,55 @@ int main(void)
     CHECK_NEAR(obj->material.absorption.z, 0.0, 1e-6);
     object_destroy(obj);
     mesh_destroy(mesh);
+
+    /* A material per primitive: one mesh of two primitives that share
+     * vertices, glass and a red diffuse; the loader keeps both, the mesh
+     * splits into two parts (each with the vertices it uses), an object of
+     * it is a group of two parts, the scene holds the parts, and what the
+     * file asks for and is not drawn is listed per material. */
+    CHECK(gltf_load(asset("tests/data/two_materials.gltf"), &m, &err));
+    CHECK(m.material_count == 2 && m.range_count == 2);
+    if (m.range_count == 2) {
+        CHECK(m.ranges[0].first_index == 0 && m.ranges[0].index_count == 3 && m.ranges[0].material == 0);
+        CHECK(m.ranges[1].first_index == 3 && m.ranges[1].index_count == 3 && m.ranges[1].material == 1);
+        CHECK(m.materials[1].alpha_mode == GLTF_ALPHA_MASK);
+        CHECK(strstr(m.materials[1].unread, "KHR_materials_clearcoat") != NULL);
+    }
+    gltf_mesh_free(&m);
+    struct mesh *two = mesh_load_gltf(asset("tests/data/two_materials.gltf"), 0, &err);
+    CHECK(two && two->part_count == 2);
+    if (two && two->part_count == 2) {
+        struct mesh *glass = two->parts[0], *label = two->parts[1];
+        CHECK(glass->material.kind == MATERIAL_GLASS && label->material.kind == MATERIAL_DIFFUSE);
+        CHECK_NEAR(glass->material.ior, 1.33, 1e-6);
+        CHECK_NEAR(label->material.color.x, 0.9, 1e-6);
+        CHECK(strcmp(glass->material_name, "Glass") == 0 && strcmp(label->material_name, "Label") == 0);
+        CHECK(glass->vertex_count == 3 && glass->index_count == 3 && label->vertex_count == 3);
+        /* the label's triangle 0, 2, 3 renumbered: its third vertex is (0, 1, 0) */
+        CHECK_NEAR(label->positions[label->indices[2] * 3 + 1], 1.0, 1e-6);
+        CHECK_NEAR(label->positions[label->indices[2] * 3 + 0], 0.0, 1e-6);
+        CHECK(strstr(glass->material.ignored, "roughness 0.5") != NULL);
+        CHECK(strstr(label->material.ignored, "alphaMode MASK") != NULL);
+        CHECK(strstr(label->material.ignored, "KHR_materials_clearcoat") != NULL);
+        struct object *group = object_create(two);
+        CHECK(group && group->part_count == 2);
+        struct scene scene;
+        scene_init(&scene);
+        CHECK(scene_object_add(&scene, group, &err));
+        CHECK(scene.object_count == 2);
+        CHECK(scene.object_count == 2 && scene.objects[0]->material.kind == MATERIAL_GLASS &&
+              scene.objects[1]->material.kind == MATERIAL_DIFFUSE);
+        group->position = vec3_make(1, 2, 3);
+        group->version++;
+        CHECK(object_sync_parts(group));
+        CHECK_NEAR(scene.objects[1]->position.y, 2.0, 1e-6);
+        CHECK(scene.objects[1]->version == group->version);
+        scene_object_remove(&scene, group);
+        CHECK(scene.object_count == 0);
+        object_destroy(group);
+        scene_release(&scene);
+    }
+    mesh_destroy(two);
 
     /* textures: BoxTextured's PNG in the BIN chunk with its sampler, and an
      * external image with KHR_texture_transform */

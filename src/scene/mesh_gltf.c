@@ -1,0 +1,257 @@
+/* glTF files as meshes: the loader's arrays (io/gltf_shim.cpp), each
+ * material the primitives name mapped onto caustica's (glass, mirror,
+ * diffuse, emissive), and a file with several materials split into one
+ * part per material (scene/mesh_parts.c). What a material asks for that
+ * neither renderer draws is listed in its `ignored`, which `info` prints:
+ * nothing is dropped in silence. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/gltf.h"
+#include "scene/scene.h"
+
+/* A glTF metal this smooth or smoother is drawn as a perfect mirror;
+ * rougher, as a diffuse surface of its base colour (both said in
+ * `ignored`). glTF's roughness is perceptual (alpha = roughness^2): at
+ * 0.3 the lobe's alpha is 0.09, a few degrees, which a mirror stands for. */
+#define GLTF_MIRROR_ROUGHNESS 0.3f
+/* Below this the roughness is not worth a line. */
+#define GLTF_SMOOTH_ROUGHNESS 0.05f
+
+static void ignored_add(struct material *m, const char *fmt, ...)
+{
+    size_t used = strlen(m->ignored);
+    if (used + 3 >= sizeof m->ignored)
+        return;
+    if (used) {
+        memcpy(m->ignored + used, ", ", 3);
+        used += 2;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(m->ignored + used, sizeof m->ignored - used, fmt, ap);
+    va_end(ap);
+}
+
+/* glTF's metal-roughness material onto caustica's kinds:
+ * - transmission > 0 (and not a metal): glass with the file's IOR and
+ *   KHR_materials_volume's attenuation as Beer-Lambert absorption,
+ *   sigma = -ln(c) / d;
+ * - metallic >= 0.5: a mirror tinted by the base colour while its
+ *   roughness is at most GLTF_MIRROR_ROUGHNESS, else diffuse;
+ * - otherwise diffuse, with the base colour, normal and emissive textures. */
+static void material_map(const struct gltf_material *g, struct material *m)
+{
+    snprintf(m->source, sizeof m->source, "%s", g->name);
+    vec3 base = vec3_make(g->base_color[0], g->base_color[1], g->base_color[2]);
+    bool metal = g->metallic >= 0.5f;
+    m->color = base;
+    m->ior = g->ior; /* validated by the loader */
+    if (g->transmission > 0.0f && !metal) {
+        m->kind = MATERIAL_GLASS;
+        if (g->attenuation_distance > 0.0f) {
+            const float *c = g->attenuation_color;
+            float d = g->attenuation_distance;
+            m->absorption = vec3_make(-logf(fmaxf(c[0], 1e-6f)) / d, -logf(fmaxf(c[1], 1e-6f)) / d,
+                                      -logf(fmaxf(c[2], 1e-6f)) / d);
+        }
+        if (g->transmission < 1.0f)
+            ignored_add(m, "transmission %.2g (drawn as glass that passes all light)", g->transmission);
+        if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
+            ignored_add(m, "roughness %.2g (drawn smooth)", g->roughness);
+        if (base.x < 1.0f || base.y < 1.0f || base.z < 1.0f)
+            ignored_add(m, "baseColorFactor as a tint of the glass (clear; KHR_materials_volume absorbs)");
+        if (g->metallic > 0.0f)
+            ignored_add(m, "metallic %.2g", g->metallic);
+    } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS) {
+        m->kind = MATERIAL_MIRROR;
+        if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
+            ignored_add(m, "roughness %.2g (drawn as a perfect mirror)", g->roughness);
+        if (g->transmission > 0.0f)
+            ignored_add(m, "transmission %.2g (a metal does not transmit)", g->transmission);
+    } else {
+        m->kind = MATERIAL_DIFFUSE;
+        m->emission = vec3_make(g->emission[0], g->emission[1], g->emission[2]);
+        if (metal)
+            ignored_add(m, "metallic %.2g at roughness %.2g (drawn diffuse)", g->metallic, g->roughness);
+        if (metal && g->transmission > 0.0f)
+            ignored_add(m, "transmission %.2g (a metal does not transmit; metallicFactor is 1 unless the file "
+                           "says 0)", g->transmission);
+    }
+    if (m->kind != MATERIAL_DIFFUSE) {
+        if (g->emission[0] > 0.0f || g->emission[1] > 0.0f || g->emission[2] > 0.0f)
+            ignored_add(m, "emission (drawn on diffuse surfaces only)");
+        if (g->base_color_texture.bytes)
+            ignored_add(m, "baseColorTexture (drawn on diffuse surfaces only)");
+        if (g->normal_texture.bytes)
+            ignored_add(m, "normalTexture (drawn on diffuse surfaces only)");
+        if (g->emissive_texture.bytes)
+            ignored_add(m, "emissiveTexture (drawn on diffuse surfaces only)");
+    }
+    if (g->alpha_mode == GLTF_ALPHA_MASK)
+        ignored_add(m, "alphaMode MASK (drawn opaque)");
+    else if (g->alpha_mode == GLTF_ALPHA_BLEND)
+        ignored_add(m, "alphaMode BLEND (drawn opaque)");
+    if (g->unread[0])
+        ignored_add(m, "%s", g->unread);
+}
+
+/* The textures of a diffuse material, decoded within what is left of the
+ * budget (`used` counts what the file's textures took so far). */
+static bool material_textures(const char *path, struct gltf_material *g, const struct mesh *whole,
+                              unsigned long long budget, unsigned long long *used, struct material *m,
+                              struct error *err)
+{
+    if (m->kind != MATERIAL_DIFFUSE)
+        return true;
+    struct {
+        struct gltf_texture *from;
+        struct texture_ref *to;
+    } slots[3] = {{&g->base_color_texture, &m->base_color},
+                  {&g->normal_texture, &m->normal},
+                  {&g->emissive_texture, &m->emissive}};
+    for (int s = 0; s < 3; s++) {
+        struct gltf_texture *gt = slots[s].from;
+        if (!gt->bytes)
+            continue;
+        if (!whole->texcoords[gt->texcoord])
+            return error_set(err, "%s: material '%s': a texture reads TEXCOORD_%d, which no primitive has", path,
+                             g->name, gt->texcoord);
+        char name[700];
+        snprintf(name, sizeof name, "%s %s", path, gt->name);
+        if (budget && *used >= budget)
+            return error_set(err, "%s: no memory left for its texture %s (its textures may take %.1f MB)", path,
+                             gt->name, (double)budget / 1048576.0);
+        struct texture *t = texture_decode(name, gt->bytes, gt->size, budget ? budget - *used : 0, err);
+        if (!t)
+            return false;
+        *used += texture_bytes(t);
+        t->wrap_s = (enum texture_wrap)gt->wrap_s;
+        t->wrap_t = (enum texture_wrap)gt->wrap_t;
+        t->nearest = gt->nearest;
+        t->mipmaps = gt->mipmaps;
+        struct texture_ref *ref = slots[s].to;
+        ref->texture = t;
+        ref->texcoord = gt->texcoord;
+        memcpy(ref->transform, gt->transform, sizeof ref->transform);
+        ref->scale = gt->scale;
+    }
+    return true;
+}
+
+/* The whole mesh from the loader's arrays (it takes them). */
+static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct error *err)
+{
+    struct mesh *m = mesh_create_from_arrays(path, g->positions, g->normals, g->vertex_count, g->indices,
+                                             g->index_count, err);
+    g->positions = g->normals = NULL;
+    g->indices = NULL;
+    if (!m)
+        return NULL;
+    m->texcoords[0] = g->texcoords[0];
+    m->texcoords[1] = g->texcoords[1];
+    g->texcoords[0] = g->texcoords[1] = NULL;
+    m->target_count = g->target_count;
+    m->target_positions = g->target_positions;
+    m->target_normals = g->target_normals;
+    g->target_positions = g->target_normals = NULL;
+    for (int t = 0; t < g->target_count; t++)
+        m->default_weights[t] = g->weights[t];
+    mesh_compute_bounds(m);
+    return m;
+}
+
+/* One part per material, in the order the file first uses them. */
+static bool mesh_split(const char *path, struct mesh *m, const struct gltf_mesh *g, const struct material *materials,
+                       const int *slots, int slot_count, struct error *err)
+{
+    size_t *first = malloc(g->range_count * sizeof *first), *count = malloc(g->range_count * sizeof *count);
+    m->parts = calloc((size_t)slot_count, sizeof *m->parts);
+    if (!first || !count || !m->parts) {
+        free(first);
+        free(count);
+        return error_set(err, "%s: out of memory", path);
+    }
+    bool ok = true;
+    for (int p = 0; p < slot_count && ok; p++) {
+        int n = 0;
+        for (size_t r = 0; r < g->range_count; r++)
+            if (g->ranges[r].material == slots[p]) {
+                first[n] = g->ranges[r].first_index;
+                count[n++] = g->ranges[r].index_count;
+            }
+        char name[600];
+        snprintf(name, sizeof name, "%s [%s]", path,
+                 slots[p] >= 0 ? g->materials[slots[p]].name : "no material");
+        struct mesh *part = mesh_create_part(m, name, first, count, n, err);
+        ok = part != NULL;
+        if (ok) {
+            m->parts[m->part_count++] = part;
+            part->has_material = slots[p] >= 0;
+            if (part->has_material) {
+                material_assign(&part->material, &materials[slots[p]]);
+                snprintf(part->material_name, sizeof part->material_name, "%s", g->materials[slots[p]].name);
+            }
+        }
+    }
+    free(first);
+    free(count);
+    return ok;
+}
+
+struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err)
+{
+    struct gltf_mesh g;
+    if (!gltf_load(path, &g, err))
+        return NULL;
+    if (g.target_count > SCENE_MAX_MORPH_TARGETS) {
+        error_set(err, "%s: %d morph targets, at most %d are supported", path, g.target_count,
+                  SCENE_MAX_MORPH_TARGETS);
+        gltf_mesh_free(&g);
+        return NULL;
+    }
+    struct mesh *m = mesh_from_gltf(path, &g, err);
+    struct material *materials = calloc((size_t)g.material_count + 1, sizeof *materials);
+    /* the distinct material slots the ranges use, in first-use order (-1: none) */
+    int *slots = malloc((g.range_count + 1) * sizeof *slots);
+    int slot_count = 0;
+    bool ok = m && materials && slots;
+    if (m && !ok)
+        error_set(err, "%s: out of memory", path);
+    unsigned long long used = 0;
+    for (int i = 0; ok && i < g.material_count; i++) {
+        material_init(&materials[i], MATERIAL_DIFFUSE);
+        material_map(&g.materials[i], &materials[i]);
+        ok = material_textures(path, &g.materials[i], m, texture_budget, &used, &materials[i], err);
+    }
+    for (size_t r = 0; ok && r < g.range_count; r++) {
+        bool seen = false;
+        for (int k = 0; k < slot_count; k++)
+            seen = seen || slots[k] == g.ranges[r].material;
+        if (!seen)
+            slots[slot_count++] = g.ranges[r].material;
+    }
+    if (ok && slot_count > 1)
+        ok = mesh_split(path, m, &g, materials, slots, slot_count, err);
+    if (ok && slot_count >= 1 && slots[0] >= 0) {
+        /* the mesh's own material: its only one, or its first part's (what
+         * `object.material` reads on a group) */
+        m->has_material = true;
+        material_assign(&m->material, &materials[slots[0]]);
+        if (m->part_count == 0)
+            snprintf(m->material_name, sizeof m->material_name, "%s", g.materials[slots[0]].name);
+    }
+    for (int i = 0; materials && i < g.material_count; i++)
+        material_release(&materials[i]);
+    free(materials);
+    free(slots);
+    gltf_mesh_free(&g);
+    if (!ok) {
+        mesh_destroy(m);
+        return NULL;
+    }
+    return m;
+}
