@@ -49,6 +49,7 @@ struct gltf_material {
     float attenuation_distance; /* 0 = infinite (no absorption) */
     float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
     struct gltf_texture base_color_texture, normal_texture, emissive_texture;
+    struct gltf_texture metallic_roughness_texture; /* G: roughness, B: metallic */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
     char unread[256];

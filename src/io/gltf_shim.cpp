@@ -258,6 +258,7 @@ struct Builder {
             std::free(m.base_color_texture.bytes);
             std::free(m.normal_texture.bytes);
             std::free(m.emissive_texture.bytes);
+            std::free(m.metallic_roughness_texture.bytes);
         }
     }
 };
@@ -374,8 +375,6 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     m.alpha_mode = mat.alphaMode == "MASK" ? GLTF_ALPHA_MASK : mat.alphaMode == "BLEND" ? GLTF_ALPHA_BLEND
                                                                                          : GLTF_ALPHA_OPAQUE;
     m.alpha_cutoff = (float)mat.alphaCutoff;
-    if (mat.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
-        note_unread(m, "metallicRoughnessTexture");
     if (mat.occlusionTexture.index >= 0)
         note_unread(m, "occlusionTexture");
     for (const auto &e : mat.extensions)
@@ -419,6 +418,8 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             throw Fail{where + ": normalTexture.scale must be finite"};
         read_texture(model, mat.emissiveTexture.index, mat.emissiveTexture.texCoord, mat.emissiveTexture.extensions,
                      m.emissive_texture, where);
+        const tinygltf::TextureInfo &mr = mat.pbrMetallicRoughness.metallicRoughnessTexture;
+        read_texture(model, mr.index, mr.texCoord, mr.extensions, m.metallic_roughness_texture, where);
     }
     // The rules c.material.glass applies (finite, IOR > 0, colours in
     // [0, 1]): a file must not slip past them into NaN or negative absorption.
@@ -920,7 +921,8 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->material_count = (int)b.materials.size();
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
-            m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes = nullptr;
+            m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
+                m.metallic_roughness_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -960,6 +962,7 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].base_color_texture.bytes);
         std::free(mesh->materials[i].normal_texture.bytes);
         std::free(mesh->materials[i].emissive_texture.bytes);
+        std::free(mesh->materials[i].metallic_roughness_texture.bytes);
     }
     std::free(mesh->materials);
     std::free(mesh->ranges);

@@ -142,6 +142,41 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
     return true;
 }
 
+/* glTF's metallicRoughnessTexture scales the factors per texel (G:
+ * roughness, B: metallic). Neither renderer varies metalness or roughness
+ * over a surface, so the material takes the texture's means (over its
+ * texels, linear): a tile that is smooth on one side and rough on the
+ * other is drawn at its mean roughness, which `ignored` says. *means
+ * holds (metallic, roughness) means, or (-1, -1) without a texture. */
+static bool metallic_roughness_means(const char *path, struct gltf_material *g, unsigned long long budget,
+                                     unsigned long long used, float means[2], struct error *err)
+{
+    means[0] = means[1] = -1.0f;
+    struct gltf_texture *gt = &g->metallic_roughness_texture;
+    if (!gt->bytes)
+        return true;
+    char name[700];
+    snprintf(name, sizeof name, "%s %s", path, gt->name);
+    if (budget && used >= budget)
+        return error_set(err, "%s: no memory left for its texture %s (its textures may take %.1f MB)", path,
+                         gt->name, (double)budget / 1048576.0);
+    struct texture *t = texture_decode(name, gt->bytes, gt->size, budget ? budget - used : 0, err);
+    if (!t)
+        return false;
+    double sum_g = 0.0, sum_b = 0.0;
+    size_t n = (size_t)t->width * (size_t)t->height;
+    for (size_t i = 0; i < n; i++) {
+        sum_g += t->texels[i * 4 + 1];
+        sum_b += t->texels[i * 4 + 2];
+    }
+    texture_destroy(t);
+    means[0] = n ? (float)(sum_b / (255.0 * (double)n)) : 1.0f;
+    means[1] = n ? (float)(sum_g / (255.0 * (double)n)) : 1.0f;
+    g->metallic *= means[0];
+    g->roughness *= means[1];
+    return true;
+}
+
 /* The whole mesh from the loader's arrays (it takes them). */
 static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct error *err)
 {
@@ -223,8 +258,15 @@ struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget,
         error_set(err, "%s: out of memory", path);
     unsigned long long used = 0;
     for (int i = 0; ok && i < g.material_count; i++) {
+        float means[2];
+        ok = metallic_roughness_means(path, &g.materials[i], texture_budget, used, means, err);
+        if (!ok)
+            break;
         material_init(&materials[i], MATERIAL_DIFFUSE);
         material_map(&g.materials[i], &materials[i]);
+        if (means[0] >= 0.0f)
+            ignored_add(&materials[i], "metallicRoughnessTexture (its means taken: metallic x %.2g, roughness x %.2g)",
+                        means[0], means[1]);
         ok = material_textures(path, &g.materials[i], m, texture_budget, &used, &materials[i], err);
     }
     for (size_t r = 0; ok && r < g.range_count; r++) {
