@@ -9,6 +9,8 @@ uniform sampler2D u_emissive_texture;
 uniform int u_texture_set[3];         // per slot (base, normal, emissive): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
 uniform vec3 u_texture_transform[6];  // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 uniform float u_normal_scale;
+uniform float u_alpha;         // the base colour's alpha factor
+uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
 
@@ -21,6 +23,17 @@ vec2 material_uv(int slot)
 vec3 material_albedo(vec3 color)
 {
     return u_texture_set[0] > 0 ? color * texture(u_base_color_texture, material_uv(0)).rgb : color;
+}
+
+// A cut-out (glTF alphaMode MASK): the surface is not there where the
+// base colour's alpha (factor x texture) is below the cutoff. The
+// reference cuts out the same texels (ref_scene.c's filter).
+bool material_cut_out()
+{
+    if (u_alpha_cutoff <= 0.0)
+        return false;
+    float a = u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0;
+    return u_alpha * a < u_alpha_cutoff;
 }
 
 vec3 material_emission(vec3 emission)

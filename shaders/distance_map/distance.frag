@@ -31,6 +31,8 @@ void main()
     if (dot(n, v_world - u_center) > 0.0)
         n = -n; // the side the centre sees
     n = material_normal(n, v_world);
+    if (material_cut_out()) // (after the derivatives)
+        discard;
     vec3 e = vec3(0.0);
     for (int i = 0; i < u_counts.x; i++) {
         vec3 to_light;

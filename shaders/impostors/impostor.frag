@@ -25,6 +25,8 @@ void main()
     if (dot(n, u_impostor_axis) > 0.0)
         n = -n; // the side the refractor sees
     vec3 mapped = material_normal(n, v_world);
+    if (material_cut_out()) // (after the derivatives)
+        discard;
     if (u_material_kind == 0)
         n = mapped;
     vec3 e = vec3(0.0);

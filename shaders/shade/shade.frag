@@ -30,6 +30,8 @@ void main()
     if (dot(n, view) > 0.0 && u_material_kind == 0)
         n = -n; // two-sided diffuse surfaces
     vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
+    if (material_cut_out())
+        discard;
     vec3 radiance;
     if (u_material_kind == 0) {
         n = mapped;

@@ -1,11 +1,17 @@
 #version 450 core
 layout(location = 0) in vec3 a_position;
+layout(location = 2) in vec2 a_texcoord0;
+layout(location = 3) in vec2 a_texcoord1;
 uniform mat4 u_model;
 uniform mat4 u_light_view_proj;
 out vec3 v_world;
+out vec2 v_texcoord0; // for the cut-outs of common/material.glsl
+out vec2 v_texcoord1;
 void main()
 {
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;
+    v_texcoord0 = a_texcoord0;
+    v_texcoord1 = a_texcoord1;
     gl_Position = u_light_view_proj * w;
 }

@@ -600,7 +600,8 @@ static bool program_assign_slots(struct gl_program_cache *cache, struct gl_progr
         if (v[3] != -1 || v[2] < 0)
             continue; /* a member of a uniform block, or a built-in */
         size_t len = strlen(name);
-        if (len >= 3 && strcmp(name + len - 3, "[0]") == 0)
+        bool array = len >= 3 && strcmp(name + len - 3, "[0]") == 0;
+        if (array)
             name[len - 3] = '\0';
         if (strlen(name) >= GL_PROGRAM_NAME_MAX) {
             ok = error_set(err, "%s: uniform name '%s' is longer than %d characters", p->stages[1][0] ? p->stages[1] : p->stages[2],
@@ -610,7 +611,9 @@ static bool program_assign_slots(struct gl_program_cache *cache, struct gl_progr
         int size = v[1] > 0 ? v[1] : 1;
         ok = location_push(&locs, &nlocs, &loc_cap, name, v[2], err);
         char element[GL_PROGRAM_NAME_MAX + 16];
-        for (int e = 0; e < size && ok && size > 1; e++) {
+        /* each element by name too, an array whose only active element
+         * is [0] (size 1: the rest optimized away) included */
+        for (int e = 0; e < size && ok && array; e++) {
             snprintf(element, sizeof element, "%s[%d]", name, e);
             if (strlen(element) < GL_PROGRAM_NAME_MAX)
                 ok = location_push(&locs, &nlocs, &loc_cap, element, gl.GetUniformLocation(prog, element), err);

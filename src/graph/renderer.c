@@ -196,7 +196,7 @@ void renderer_reset_state(struct renderer *r)
 /* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
 struct material_locations {
-    GLint set[3], transform[6], normal_scale;
+    GLint set[3], transform[6], normal_scale, alpha, alpha_cutoff;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -212,6 +212,8 @@ static void material_locations_find(const struct gl_program *program, struct mat
         loc->transform[row] = gl_program_uniform(program, name);
     }
     loc->normal_scale = gl_program_uniform(program, "u_normal_scale");
+    loc->alpha = gl_program_uniform(program, "u_alpha");
+    loc->alpha_cutoff = gl_program_uniform(program, "u_alpha_cutoff");
 }
 
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
@@ -234,6 +236,10 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         gl.ProgramUniform3f(program->id, loc->transform[s * 2 + 1], m[1], m[3], m[5]);
     }
     gl.ProgramUniform1f(program->id, loc->normal_scale, o->material.normal.scale);
+    /* cut-outs, like textures, on diffuse surfaces only */
+    bool diffuse = material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+    gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
+    gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
 }
 
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,

@@ -31,6 +31,22 @@ static bool frame_vertices(struct renderer *r, const struct object *o, float *po
     return true;
 }
 
+/* Embree's filter for a surface with cut-outs: a hit in a cut-out is no
+ * hit, for rays and shadow rays alike (common/material.glsl's
+ * material_cut_out on the GPU). */
+static void cut_out_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const struct ref_object *o = args->geometryUserPtr;
+    /* RTCHitN's layout, as rtcore_ray.h's C++ accessors read it (structure
+     * of arrays: Ng x, y, z, u, v, primID, each N wide) */
+    const float *hit = (const float *)args->hit;
+    const unsigned *hit_ids = (const unsigned *)args->hit;
+    unsigned n = args->N;
+    for (unsigned i = 0; i < n; i++)
+        if (args->valid[i] && ref_object_cut_out(o, hit_ids[5 * n + i], hit[3 * n + i], hit[4 * n + i]))
+            args->valid[i] = 0;
+}
+
 bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err)
 {
     memset(rs, 0, sizeof *rs);
@@ -99,6 +115,11 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
                                    3 * sizeof(float), n);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0,
                                    3 * sizeof(uint32_t), ro->triangle_count);
+        if (material_role(&ro->material) == OBJECT_ROLE_RECEIVER && ro->material.alpha_cutoff > 0.0f) {
+            rtcSetGeometryUserData(geom, ro);
+            rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
+            rtcSetGeometryOccludedFilterFunction(geom, cut_out_filter);
+        }
         rtcCommitGeometry(geom);
         unsigned id = rtcAttachGeometry(rs->rtc, geom);
         rtcReleaseGeometry(geom);

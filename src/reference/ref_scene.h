@@ -59,6 +59,11 @@ struct ref_object {
     struct material material;
 };
 
+/* Is (u, v) of the triangle cut out (alphaMode MASK: the base colour's
+ * alpha below the material's cutoff)? Embree's filter asks, so that rays
+ * and shadow rays pass through cut-outs as on the GPU (ref_material.c). */
+bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v);
+
 struct ref_light {
     int kind;        /* 0 point, 1 directional, 2 spot (as in the frame uniforms) */
     dvec3 position, direction, intensity;

@@ -63,6 +63,11 @@ struct material {
      * material holds a reference to each: copy materials with
      * material_assign and drop them with material_release. */
     struct texture_ref base_color, normal, emissive;
+    /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
+     * base colour texture's alpha is below alpha_cutoff the surface is not
+     * there, for the camera, the shadow map and the reference alike.
+     * alpha_cutoff 0: opaque. */
+    float alpha, alpha_cutoff;
     /* A material read from a file (scene/mesh_gltf.c): its name there, and
      * what the file asks for that caustica does not render, for `info`
      * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a
@@ -90,6 +95,8 @@ void texture_ref_init(struct texture_ref *ref);
 /* The filtered value at uv, as the GPU samples level 0: bilinear (or
  * nearest) with the wrap modes, colour texels linearized first when `srgb`. */
 vec3 texture_sample(const struct texture_ref *ref, const float uv[2], bool srgb);
+/* The texture's alpha at uv with the same filter (1 without a texture). */
+float texture_sample_alpha(const struct texture_ref *ref, const float uv[2]);
 void texture_ref_apply(const struct texture_ref *ref, const float uv[2], float out[2]);
 
 void material_init(struct material *m, enum material_kind kind);

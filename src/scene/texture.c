@@ -169,11 +169,13 @@ static vec3 texel(const struct texture *t, int x, int y, bool srgb)
     return vec3_make(p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f);
 }
 
-vec3 texture_sample(const struct texture_ref *ref, const float uv_in[2], bool srgb)
+/* The texels GL's filter reads at uv (after the reference's transform):
+ * x[0..1] by y[0..1] with weights ax, ay along them (nearest: one texel,
+ * both weights 0). */
+static void texture_footprint(const struct texture_ref *ref, const float uv_in[2], int x[2], int y[2], float *ax,
+                              float *ay)
 {
     const struct texture *t = ref->texture;
-    if (!t)
-        return vec3_make(1, 1, 1);
     float uv[2];
     texture_ref_apply(ref, uv_in, uv);
     /* A coordinate that is not finite (a degenerate mapping) samples texel 0. */
@@ -182,17 +184,46 @@ vec3 texture_sample(const struct texture_ref *ref, const float uv_in[2], bool sr
     u = fmod(u, 65536.0);
     v = fmod(v, 65536.0);
     if (t->nearest) {
-        int x = wrap_index((long)floor(u * t->width), t->width, t->wrap_s);
-        int y = wrap_index((long)floor(v * t->height), t->height, t->wrap_t);
-        return texel(t, x, y, srgb);
+        x[0] = x[1] = wrap_index((long)floor(u * t->width), t->width, t->wrap_s);
+        y[0] = y[1] = wrap_index((long)floor(v * t->height), t->height, t->wrap_t);
+        *ax = *ay = 0.0f;
+        return;
     }
     /* GL's bilinear filter: texel centres at (i + 0.5) / n. */
-    double x = u * t->width - 0.5, y = v * t->height - 0.5;
-    double fx = floor(x), fy = floor(y);
-    float ax = (float)(x - fx), ay = (float)(y - fy);
-    int x0 = wrap_index((long)fx, t->width, t->wrap_s), x1 = wrap_index((long)fx + 1, t->width, t->wrap_s);
-    int y0 = wrap_index((long)fy, t->height, t->wrap_t), y1 = wrap_index((long)fy + 1, t->height, t->wrap_t);
-    vec3 a = vec3_lerp(texel(t, x0, y0, srgb), texel(t, x1, y0, srgb), ax);
-    vec3 b = vec3_lerp(texel(t, x0, y1, srgb), texel(t, x1, y1, srgb), ax);
+    double fx = floor(u * t->width - 0.5), fy = floor(v * t->height - 0.5);
+    *ax = (float)(u * t->width - 0.5 - fx);
+    *ay = (float)(v * t->height - 0.5 - fy);
+    x[0] = wrap_index((long)fx, t->width, t->wrap_s);
+    x[1] = wrap_index((long)fx + 1, t->width, t->wrap_s);
+    y[0] = wrap_index((long)fy, t->height, t->wrap_t);
+    y[1] = wrap_index((long)fy + 1, t->height, t->wrap_t);
+}
+
+vec3 texture_sample(const struct texture_ref *ref, const float uv_in[2], bool srgb)
+{
+    const struct texture *t = ref->texture;
+    if (!t)
+        return vec3_make(1, 1, 1);
+    int x[2], y[2];
+    float ax, ay;
+    texture_footprint(ref, uv_in, x, y, &ax, &ay);
+    vec3 a = vec3_lerp(texel(t, x[0], y[0], srgb), texel(t, x[1], y[0], srgb), ax);
+    vec3 b = vec3_lerp(texel(t, x[0], y[1], srgb), texel(t, x[1], y[1], srgb), ax);
     return vec3_lerp(a, b, ay);
+}
+
+float texture_sample_alpha(const struct texture_ref *ref, const float uv_in[2])
+{
+    const struct texture *t = ref->texture;
+    if (!t)
+        return 1.0f;
+    int x[2], y[2];
+    float ax, ay;
+    texture_footprint(ref, uv_in, x, y, &ax, &ay);
+    float at[2][2];
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++)
+            at[j][i] = t->texels[((size_t)y[j] * (size_t)t->width + (size_t)x[i]) * 4 + 3] / 255.0f;
+    float a = at[0][0] + (at[0][1] - at[0][0]) * ax, b = at[1][0] + (at[1][1] - at[1][0]) * ax;
+    return a + (b - a) * ay;
 }
