@@ -11,6 +11,8 @@
 #include "layers/scene_trace.glsl"
 uniform sampler2D u_scene;
 uniform sampler2D u_behind;
+uniform sampler2D u_scene_mips;  // u_scene and u_behind with mipmaps, for rough glass (refraction.c)
+uniform sampler2D u_behind_mips;
 uniform sampler2D u_input_depth;
 #endif
 #else
@@ -30,6 +32,7 @@ uniform sampler2D u_back_normal;
 uniform sampler2D u_front_depth;
 uniform sampler2D u_back_depth;
 uniform float u_ior;
+uniform float u_roughness; // GGX roughness of rough glass (glTF's: alpha = roughness^2); 0: smooth
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror
@@ -48,6 +51,58 @@ uniform int u_internal = 4;   // interfaces a path meets from the first exit on 
 // (a Fresnel reflection, the part reflected inside) is looked up in the
 // distance map alone with a third of the steps (on llvmpipe the searches
 // are most of the pass's time).
+#ifdef SCREEN_LOOKUP
+// What the camera sees at pixel px: the input image, unless the input
+// shows the glass itself (shade { specular = true } drew it: its depth
+// there is the refractors' front depth), then the pass's own drawing.
+vec3 seen_at(ivec2 px)
+{
+    px = clamp(px, ivec2(0), ivec2(u_viewport.xy) - 1);
+    float glass = texelFetch(u_front_depth, px, 0).r, seen = texelFetch(u_input_depth, px, 0).r;
+    if (u_camera_inside == 1 && glass >= 1.0) // the camera inside: the glass it sees is its back faces
+        glass = texelFetch(u_back_depth, px, 0).r;
+    bool input_shows_glass = glass < 1.0 && abs(view_depth(seen) - view_depth(glass)) <= 1e-3 * view_depth(glass) + 1e-4;
+    return input_shows_glass ? texelFetch(u_behind, px, 0).rgb : texelFetch(u_scene, px, 0).rgb;
+}
+
+// Rough glass seen through (a cone lookup): the refracted ray's direction
+// spreads by the microfacet normals' tilt at the two interfaces. A facet
+// tilted by theta turns a ray entering glass of index n by about
+// theta (1 - 1/n) and one leaving by theta (n - 1), so the ray that leaves
+// spreads by about alpha (n - 1/n), alpha = roughness^2 being GGX's median
+// tan theta (Walter et al. 2007, eq. 33). Over the distance to what the
+// ray meets that is a disc of radius t tan(spread): read from the input's
+// mipmaps at the level whose texels are that disc's radius, as a centre
+// and a ring of six taps (Gaussian-like weights). The input or the pass's
+// own drawing behind the glass is chosen by the centre pixel, as
+// seen_at does. The reference samples the facets themselves
+// (ref_microfacet.c); this is the GPU's stand-in (docs/GLTF.md).
+vec3 seen_rough(ivec2 px, vec3 hit)
+{
+    float alpha = u_roughness * u_roughness;
+    float spread = alpha * abs(u_ior - 1.0 / u_ior);
+    float z = u_proj[3][3] == 0.0 ? max(-(u_view * vec4(hit, 1.0)).z, 1e-6) : 1.0;
+    float pixel = 2.0 * z / (u_proj[1][1] * u_viewport.y); // a pixel's size at the hit
+    float radius = length(hit - v_world) * tan(min(spread, 1.2)) / max(pixel, 1e-9);
+    if (radius < 0.5)
+        return seen_at(px);
+    px = clamp(px, ivec2(0), ivec2(u_viewport.xy) - 1);
+    float glass = texelFetch(u_front_depth, px, 0).r, seen = texelFetch(u_input_depth, px, 0).r;
+    bool behind = glass < 1.0 && abs(view_depth(seen) - view_depth(glass)) <= 1e-3 * view_depth(glass) + 1e-4;
+    vec2 uv = (vec2(px) + 0.5) * u_viewport.zw;
+    float lod = log2(radius);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    for (int k = 0; k < 7; k++) {
+        float a = float(k) * 1.0471976, w = k == 0 ? 2.0 : 1.0;
+        vec2 at = uv + (k == 0 ? vec2(0.0) : vec2(cos(a), sin(a)) * radius * u_viewport.zw);
+        sum += w * (behind ? textureLod(u_behind_mips, at, lod).rgb : textureLod(u_scene_mips, at, lod).rgb);
+        weights += w;
+    }
+    return sum / weights;
+}
+#endif
+
 bool trace_nearby(vec3 o, vec3 d, float weight, out vec3 c)
 {
     c = vec3(0.0);
@@ -59,12 +114,9 @@ bool trace_nearby(vec3 o, vec3 d, float weight, out vec3 c)
     // there is the refractors' front depth), then the pass's own drawing.
 #ifdef SCREEN_LOOKUP
     ivec2 px;
-    if (weight >= 0.1 && scene_trace(o, d, px)) {
-        float glass = texelFetch(u_front_depth, px, 0).r, seen = texelFetch(u_input_depth, px, 0).r;
-        if (u_camera_inside == 1 && glass >= 1.0) // the camera inside: the glass it sees is its back faces
-            glass = texelFetch(u_back_depth, px, 0).r;
-        bool input_shows_glass = glass < 1.0 && abs(view_depth(seen) - view_depth(glass)) <= 1e-3 * view_depth(glass) + 1e-4;
-        c = input_shows_glass ? texelFetch(u_behind, px, 0).rgb : texelFetch(u_scene, px, 0).rgb;
+    float t_hit;
+    if (weight >= 0.1 && scene_trace_at(o, d, px, t_hit)) {
+        c = u_roughness > 0.0 ? seen_rough(px, o + d * t_hit) : seen_at(px);
         return true;
     }
 #endif

@@ -24,16 +24,19 @@ static void print_file_materials(const struct scene *scene)
         if (!o->mesh->material_name[0])
             continue;
         if (!header)
-            printf("materials from files (object: mesh, the file's material, drawn as):\n");
+            printf("materials from files (object number as in the warnings: mesh, the file's material, drawn as):\n");
         header = true;
         char drawn[96];
-        if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
+        if ((m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->roughness > 0.0f)
+            snprintf(drawn, sizeof drawn, "%s, ior %g, roughness %.2g", material_kind_name(m->kind), m->ior,
+                     m->roughness);
+        else if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
             snprintf(drawn, sizeof drawn, "%s, ior %g", material_kind_name(m->kind), m->ior);
         else
             snprintf(drawn, sizeof drawn, "%s", material_kind_name(m->kind));
         const char *name = o->mesh->material_name;
         bool replaced = strcmp(m->source, name) != 0; /* the script set another material */
-        printf("  %3d  %s '%s': %s%s%s%s\n", o->id, base_name(o->group ? o->group->mesh->name : o->mesh->name), name,
+        printf("  %3d  %s '%s': %s%s%s%s\n", i + 1, base_name(o->group ? o->group->mesh->name : o->mesh->name), name,
                drawn, replaced ? " (the script's)" : "", !replaced && m->ignored[0] ? "; ignored: " : "",
                !replaced ? m->ignored : "");
     }

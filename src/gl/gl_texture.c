@@ -38,17 +38,28 @@ bool gl_format_is_depth(GLenum format)
 bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
                        int layers, struct error *err)
 {
+    return gl_texture_create_levels(tex, target, format, width, height, layers, 1, err);
+}
+
+bool gl_texture_create_levels(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
+                              int layers, int levels, struct error *err)
+{
     memset(tex, 0, sizeof *tex);
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return error_set(err, "texture size %dx%d is out of range (1..16384)", width, height);
+    int full = 1;
+    for (int side = width > height ? width : height; side > 1; side /= 2)
+        full++;
+    if (levels <= 0 || levels > full)
+        levels = full;
     gl.CreateTextures(target, 1, &tex->id);
     if (target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_3D)
-        gl.TextureStorage3D(tex->id, 1, format, width, height, layers > 0 ? layers : 1);
+        gl.TextureStorage3D(tex->id, levels, format, width, height, layers > 0 ? layers : 1);
     else
-        gl.TextureStorage2D(tex->id, 1, format, width, height);
+        gl.TextureStorage2D(tex->id, levels, format, width, height);
     bool is_int = format == GL_R32UI || format == GL_RG32UI || format == GL_RGBA32UI || format == GL_R32I;
     GLint filter = is_int ? GL_NEAREST : GL_LINEAR;
-    gl.TextureParameteri(tex->id, GL_TEXTURE_MIN_FILTER, filter);
+    gl.TextureParameteri(tex->id, GL_TEXTURE_MIN_FILTER, levels > 1 && !is_int ? GL_LINEAR_MIPMAP_LINEAR : filter);
     gl.TextureParameteri(tex->id, GL_TEXTURE_MAG_FILTER, filter);
     gl.TextureParameteri(tex->id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TextureParameteri(tex->id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);

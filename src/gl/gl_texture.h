@@ -22,6 +22,10 @@ bool gl_format_is_depth(GLenum format);
 
 bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
                        int layers, struct error *err);
+/* The same with `levels` mipmap levels (0: the full chain, filtered
+ * trilinearly; fill them with glGenerateTextureMipmap). */
+bool gl_texture_create_levels(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
+                              int layers, int levels, struct error *err);
 void gl_texture_destroy(struct gl_texture *tex);
 /* Reads level 0 (layer `layer` of a cube map / array) as float RGBA. */
 /* A 2D depth texture's window depths [0, 1], rows bottom to top. */

@@ -252,6 +252,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_kind = gl_program_uniform(program, "u_material_kind");
     GLint loc_color = gl_program_uniform(program, "u_color");
     GLint loc_ior = gl_program_uniform(program, "u_ior");
+    GLint loc_roughness = gl_program_uniform(program, "u_roughness");
     GLint loc_ideal = gl_program_uniform(program, "u_ideal");
     GLint loc_emission = gl_program_uniform(program, "u_emission");
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
@@ -276,6 +277,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform1i(program->id, loc_kind, (GLint)o->material.kind);
         gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
+        gl.ProgramUniform1f(program->id, loc_roughness, o->material.roughness);
         gl.ProgramUniform1f(program->id, loc_ideal, o->material.ideal ? 1.0f : 0.0f);
         gl.ProgramUniform3f(program->id, loc_emission, o->material.emission.x, o->material.emission.y,
                             o->material.emission.z);

@@ -230,7 +230,19 @@ static unsigned layered_refraction_draws(const struct pass *p)
     return OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER;
 }
 
+/* Every interface is traced at its interpolated normal: rough as smooth. */
+static const char *layered_refraction_leaves_out(const struct pass *p, const struct scene *scene,
+                                                 const struct object *o)
+{
+    (void)p;
+    (void)scene;
+    return object_is_rough_refractor(o) ? "its roughness: the view through it is drawn as through smooth glass "
+                                          "(refraction { lookup = \"scene\" } blurs it)"
+                                        : NULL;
+}
+
 const struct pass_desc layered_refraction_pass = {
+    .leaves_out = layered_refraction_leaves_out,
     .draws = layered_refraction_draws,
     .color_behind_refractors = true,
     .configure_block = layered_refraction_configure_block,

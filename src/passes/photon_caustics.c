@@ -557,7 +557,18 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     return true;
 }
 
+/* Photons refract at the interpolated normal: rough glass as smooth. */
+static const char *photon_caustics_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
+{
+    (void)p;
+    (void)scene;
+    return object_is_rough_refractor(o) ? "its roughness: photons refract as through smooth glass, so the caustic "
+                                          "it focuses is sharp (the reference spreads it)"
+                                        : NULL;
+}
+
 const struct pass_desc photon_caustics_pass = {
+    .leaves_out = photon_caustics_leaves_out,
     .name = "photon_caustics",
     .summary = "Hu & Qin §3: photon buffer from the light, caustic textures per receiver, caustic mapping",
     .params = params,

@@ -38,6 +38,9 @@ struct refraction_state {
     /* lookup = "scene": the diffuse objects as the camera sees them without
      * the glass, where the input image shows the glass itself */
     struct gl_texture behind_color, behind_distance, behind_depth;
+    /* rough glass: the input image and behind_color with mipmaps, for the
+     * cone lookup of refract.frag's seen_rough (made when a refractor is rough) */
+    struct gl_texture rough_scene, rough_behind;
     int width, height;
 };
 
@@ -139,6 +142,8 @@ static void release_targets(struct refraction_state *s)
     gl_texture_destroy(&s->behind_color);
     gl_texture_destroy(&s->behind_distance);
     gl_texture_destroy(&s->behind_depth);
+    gl_texture_destroy(&s->rough_scene);
+    gl_texture_destroy(&s->rough_behind);
 }
 
 static void refraction_destroy(struct pass *p)
@@ -202,6 +207,29 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
         renderer_draw_object(r, scene, prog, o);
     }
+    return true;
+}
+
+/* Is a visible refractor rough (material.roughness > 0)? */
+static bool scene_has_rough_glass(const struct scene *scene)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (object_is(scene->objects[i], OBJECT_ROLE_REFRACTOR) && scene->objects[i]->material.roughness > 0.0f)
+            return true;
+    return false;
+}
+
+/* `to` as a mipmapped copy of `from` (made or remade at its size and format). */
+static bool mipmapped_copy(struct gl_texture *to, const struct gl_texture *from, struct error *err)
+{
+    if (!to->id || to->width != from->width || to->height != from->height || to->format != from->format) {
+        gl_texture_destroy(to);
+        if (!gl_texture_create_levels(to, GL_TEXTURE_2D, from->format, from->width, from->height, 1, 0, err))
+            return false;
+    }
+    gl.CopyImageSubData(from->id, GL_TEXTURE_2D, 0, 0, 0, 0, to->id, GL_TEXTURE_2D, 0, 0, 0, 0, from->width,
+                        from->height, 1);
+    gl.GenerateTextureMipmap(to->id);
     return true;
 }
 
@@ -360,6 +388,12 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
         gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
         gl_program_bind_texture(prog, "u_input_depth", in_depth->texture.id);
+        bool rough = scene_has_rough_glass(f->scene);
+        if (rough && (!mipmapped_copy(&s->rough_scene, &in_color->texture, err) ||
+                      !mipmapped_copy(&s->rough_behind, &s->behind_color, err)))
+            return false;
+        gl_program_bind_texture(prog, "u_scene_mips", rough ? s->rough_scene.id : in_color->texture.id);
+        gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : s->behind_color.id);
         layers_bind_scene_trace(prog, f->scene);
         /* a surface the camera sees at more than about 63 degrees (its depth
          * changing by two pixel widths a pixel) is asked of the distance map
@@ -415,7 +449,20 @@ static unsigned refraction_draws(const struct pass *p)
     return OBJECT_ROLE_SPECULAR;
 }
 
+/* Rough glass is blurred where the ray that leaves finds the input image
+ * (the scene lookup's cone, refract.frag's seen_rough); the distance map,
+ * the impostors and the environment are read as through smooth glass. */
+static const char *refraction_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
+{
+    (void)scene;
+    if (object_is_rough_refractor(o) && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_SCENE)
+        return "its roughness: only lookup = \"scene\" blurs the view through rough glass; this lookup draws it "
+               "smooth";
+    return NULL;
+}
+
 const struct pass_desc refraction_pass = {
+    .leaves_out = refraction_leaves_out,
     .draws = refraction_draws,
     .name = "refraction",
     .summary = "Hu & Qin two-sided image-space refraction of the environment (or Wyman 2005's baseline)",

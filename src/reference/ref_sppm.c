@@ -28,6 +28,7 @@
 #include "reference/ref_media.h"
 #include "reference/ref_photon_map.h"
 #include "reference/ref_rng.h"
+#include "reference/ref_microfacet.h"
 #include "reference/ref_scene.h"
 #include "reference/reference.h"
 
@@ -147,15 +148,40 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
         return;
     }
     double eta = entering ? 1.0 / m->ior : m->ior;
-    double cos_i = -dv_dot(*dir, nn);
+    /* Rough glass: reflect or refract about a microfacet normal drawn from
+     * GGX's D(m)|m.n| (Walter et al. 2007 §5.3), the path weighted by
+     * |i.m| G(i, o, m) / (|i.n| |m.n|) (their eq. 41; Fresnel's weight
+     * cancels against the choice by it). A direction that leaves on the
+     * wrong side of the surface ends the path, as the single-scattering
+     * model loses that light. */
+    double alpha = (double)m->roughness * (double)m->roughness;
+    dvec3 mn = nn;
+    if (alpha > 0.0) {
+        double u1 = ref_rng_uniform(rng), u2 = ref_rng_uniform(rng);
+        mn = ref_ggx_sample_normal(nn, alpha, u1, u2);
+        if (dv_dot(*dir, mn) >= 0.0) { /* the ray meets the microfacet's back */
+            *beta = dv(0, 0, 0);
+            return;
+        }
+    }
+    double cos_i = -dv_dot(*dir, mn);
     double f = fresnel_of(m, cos_i, eta);
     dvec3 t;
-    bool can_refract = ref_refract(*dir, nn, eta, &t);
-    if (!can_refract || ref_rng_uniform(rng) < f) {
-        *dir = dv_normalize_or(ref_reflect(*dir, nn), ref_reflect(*dir, ngo));
+    bool can_refract = ref_refract(*dir, mn, eta, &t);
+    bool reflected = !can_refract || ref_rng_uniform(rng) < f;
+    dvec3 out = reflected ? dv_normalize_or(ref_reflect(*dir, mn), ref_reflect(*dir, ngo)) : t;
+    if (alpha > 0.0) {
+        dvec3 in = dv_scale(*dir, -1.0);
+        bool wrong_side = reflected ? dv_dot(out, ngo) <= 0.0 : dv_dot(out, ngo) >= 0.0;
+        double g = ref_ggx_g1(in, mn, nn, alpha) * ref_ggx_g1(out, mn, nn, alpha); /* eq. 23, chi+ both ways */
+        double w = wrong_side ? 0.0 : cos_i * g / fmax(-dv_dot(*dir, nn) * dv_dot(mn, nn), 1e-12);
+        *beta = dv_scale(*beta, w);
+    }
+    if (reflected) {
+        *dir = out;
         *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
     } else {
-        *dir = t;
+        *dir = out;
         *origin = dv_sub(h->position, dv_scale(ngo, rs->epsilon));
         media_toggle(media, h->object, entering);
     }

@@ -61,8 +61,9 @@ static void material_map(const struct gltf_material *g, struct material *m)
         }
         if (g->transmission < 1.0f)
             ignored_add(m, "transmission %.2g (drawn as glass that passes all light)", g->transmission);
-        if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
-            ignored_add(m, "roughness %.2g (drawn smooth)", g->roughness);
+        /* rough transmission: the reference samples GGX microfacets, the
+         * passes that can blur (refraction) do, the others say so */
+        m->roughness = g->roughness > GLTF_SMOOTH_ROUGHNESS ? g->roughness : 0.0f;
         if (base.x < 1.0f || base.y < 1.0f || base.z < 1.0f)
             ignored_add(m, "baseColorFactor as a tint of the glass (clear; KHR_materials_volume absorbs)");
         if (g->metallic > 0.0f)

@@ -13,6 +13,11 @@ unsigned object_role(const struct object *obj) { return obj->visible ? material_
 
 bool object_is(const struct object *obj, unsigned roles) { return (object_role(obj) & roles) != 0; }
 
+bool object_is_rough_refractor(const struct object *obj)
+{
+    return object_is(obj, OBJECT_ROLE_REFRACTOR) && obj->material.roughness > 0.0f;
+}
+
 struct object *object_create(struct mesh *mesh)
 {
     struct object *obj = calloc(1, sizeof *obj);

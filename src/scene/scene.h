@@ -58,6 +58,7 @@ struct material {
     vec3 absorption; /* Beer-Lambert coefficient per RGB, 1/scene units */
     vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
+    float roughness; /* glass, water: GGX roughness as glTF has it (alpha = roughness^2); 0: smooth */
     /* Textures (diffuse surfaces only): colour x base_color, the shading
      * normal from a tangent-space normal map, emission x emissive. A
      * material holds a reference to each: copy materials with
@@ -257,6 +258,10 @@ void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
 unsigned object_role(const struct object *obj);
 /* True when the object has one of `roles` (a mask of OBJECT_ROLE_*). */
 bool object_is(const struct object *obj, unsigned roles);
+/* Visible glass or water with material.roughness > 0 (rough transmission:
+ * the reference samples it, refraction's scene lookup blurs it, and the
+ * other passes say through leaves_out that they draw it smooth). */
+bool object_is_rough_refractor(const struct object *obj);
 
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
 
