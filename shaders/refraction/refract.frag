@@ -4,6 +4,7 @@
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
 #include "common/surface_normal.glsl"
+#include "common/lighting.glsl"
 #ifdef NEARBY
 #ifdef DISTANCE_MAP
 #include "distance_map/lookup.glsl"
@@ -33,6 +34,7 @@ uniform sampler2D u_front_depth;
 uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform float u_roughness; // GGX roughness of rough glass (glTF's: alpha = roughness^2); 0: smooth
+uniform float u_transmission = 1.0; // the glass's share of the surface; the rest is diffuse of u_color
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror
@@ -427,5 +429,19 @@ void main()
     if (exit_env_taken)
         pixel_radiance += exit_env_weight * environment_radiance_grad(exit_env_dir, ex, ey);
     o_exit = vec4(exit_dir, 1.0);
+    // Partial transmission (glTF's transmissionFactor t < 1): the surface is
+    // t glass and 1 - t diffuse of u_color, the weights the reference picks
+    // a path's by. The diffuse share is lit by the lights without their
+    // shadows (this pass reads no shadow map) and by the ambient sky.
+    if (u_transmission < 1.0 && u_material_kind != 2) {
+        vec3 e = vec3(0.0);
+        for (int i = 0; i < u_counts.x; i++) {
+            vec3 to_light;
+            float dist;
+            e += light_irradiance(i, v_world, n1, to_light, dist);
+        }
+        vec3 diffuse = u_color / PI * e + u_color * u_ambient.rgb;
+        pixel_radiance = u_transmission * pixel_radiance + (1.0 - u_transmission) * diffuse;
+    }
     o_color = vec4(pixel_radiance, 1.0);
 }

@@ -586,3 +586,31 @@ bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_ke
 {
     return made && made_key == key && !f->snapshot->geometry_animated;
 }
+
+const char *pass_refractor_left_out(const struct object *o, bool caustics)
+{
+    bool rough = object_is_rough_refractor(o), partial = object_is_partly_diffuse_refractor(o);
+    if (caustics) {
+        if (rough && partial)
+            return "its roughness and its transmission below 1: all the light that meets it is refracted as by "
+                   "smooth glass, so its caustic is sharp and too bright (the reference spreads it and passes only "
+                   "that share)";
+        if (rough)
+            return "its roughness: light is refracted as by smooth glass, so the caustic it focuses is sharp (the "
+                   "reference spreads it)";
+        if (partial)
+            return "its transmission below 1: all the light that meets it is refracted, so its caustic is too "
+                   "bright by 1/transmission (the reference passes that share)";
+        return NULL;
+    }
+    if (rough && partial)
+        return "its roughness and its transmission below 1: the view through it is drawn as through smooth, clear "
+               "glass (refraction blurs it and blends in the diffuse share)";
+    if (rough)
+        return "its roughness: the view through it is drawn as through smooth glass (refraction { lookup = "
+               "\"scene\" } blurs it)";
+    if (partial)
+        return "its transmission below 1: drawn as glass that passes all the light (refraction blends in the "
+               "diffuse share)";
+    return NULL;
+}

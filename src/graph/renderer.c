@@ -253,6 +253,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_color = gl_program_uniform(program, "u_color");
     GLint loc_ior = gl_program_uniform(program, "u_ior");
     GLint loc_roughness = gl_program_uniform(program, "u_roughness");
+    GLint loc_transmission = gl_program_uniform(program, "u_transmission");
     GLint loc_ideal = gl_program_uniform(program, "u_ideal");
     GLint loc_emission = gl_program_uniform(program, "u_emission");
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
@@ -278,6 +279,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
         gl.ProgramUniform1f(program->id, loc_roughness, o->material.roughness);
+        gl.ProgramUniform1f(program->id, loc_transmission, o->material.transmission);
         gl.ProgramUniform1f(program->id, loc_ideal, o->material.ideal ? 1.0f : 0.0f);
         gl.ProgramUniform3f(program->id, loc_emission, o->material.emission.x, o->material.emission.y,
                             o->material.emission.z);

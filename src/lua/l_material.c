@@ -37,7 +37,8 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
         static const char *const diffuse_fields[] = {"color", "emission", "normal", "normal_scale", NULL};
         static const char *const mirror_fields[] = {"color", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
-        static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", NULL};
+        static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
+                                                   "color", NULL};
         lutil_check_fields(L, 1, fn, emissive ? emissive_fields : kind == MATERIAL_DIFFUSE ? diffuse_fields
                                      : kind == MATERIAL_MIRROR ? mirror_fields : glass_fields);
         if (emissive) {
@@ -82,6 +83,10 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
             if (!(m.roughness >= 0.0f && m.roughness <= 1.0f))
                 return lutil_error(L, "bad argument 'roughness' to '%s' (a number in [0, 1] expected, got %g)", fn,
                                    (double)m.roughness);
+            lutil_opt_number(L, 1, fn, "transmission", &m.transmission);
+            if (!(m.transmission >= 0.0f && m.transmission <= 1.0f))
+                return lutil_error(L, "bad argument 'transmission' to '%s' (a number in [0, 1] expected, got %g)",
+                                   fn, (double)m.transmission);
         }
     }
     if (!(m.ior > 0.0f) || !isfinite(m.ior))
@@ -142,6 +147,12 @@ static int get_emission(lua_State *L)
     return 1;
 }
 
+static int get_transmission(lua_State *L)
+{
+    lua_pushnumber(L, check_material(L)->transmission);
+    return 1;
+}
+
 static int get_roughness(lua_State *L)
 {
     lua_pushnumber(L, check_material(L)->roughness);
@@ -193,7 +204,7 @@ void lmaterial_open(lua_State *L)
     static const luaL_Reg meta[] = {{"__tostring", material_tostring}, {"__gc", material_gc}, {NULL, NULL}};
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
                                        {"absorption", get_absorption}, {"fresnel", get_fresnel},
-                                       {"roughness", get_roughness},
+                                       {"roughness", get_roughness}, {"transmission", get_transmission},
                                        {"emission", get_emission}, {"texture", get_texture},
                                        {"normal", get_normal}, {"emission_texture", get_emission_texture},
                                        {NULL, NULL}};

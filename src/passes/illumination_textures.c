@@ -540,10 +540,7 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
     if (object_is(o, OBJECT_ROLE_MIRROR))
         return "only glass refracts light into the illumination textures: no caustics off a mirror "
                "(photon_caustics makes them)";
-    if (object_is_rough_refractor(o))
-        return "its roughness: the transport tables trace smooth glass, so the caustic it focuses is sharp (the "
-               "reference spreads it)";
-    return NULL;
+    return pass_refractor_left_out(o, true);
 }
 
 const struct pass_desc illumination_textures_pass = {

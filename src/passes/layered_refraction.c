@@ -230,15 +230,14 @@ static unsigned layered_refraction_draws(const struct pass *p)
     return OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER;
 }
 
-/* Every interface is traced at its interpolated normal: rough as smooth. */
+/* Every interface is traced at its interpolated normal, all the light
+ * refracted: rough or partly diffuse glass as smooth, clear glass. */
 static const char *layered_refraction_leaves_out(const struct pass *p, const struct scene *scene,
                                                  const struct object *o)
 {
     (void)p;
     (void)scene;
-    return object_is_rough_refractor(o) ? "its roughness: the view through it is drawn as through smooth glass "
-                                          "(refraction { lookup = \"scene\" } blurs it)"
-                                        : NULL;
+    return pass_refractor_left_out(o, false);
 }
 
 const struct pass_desc layered_refraction_pass = {

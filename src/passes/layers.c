@@ -61,10 +61,7 @@ const char *layers_leaves_out(const struct pass *p, const struct scene *scene, c
     if (object_is(o, OBJECT_ROLE_MIRROR))
         return "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
                "makes them)";
-    if (object_is_rough_refractor(o))
-        return "its roughness: light is refracted as by smooth glass, so the caustic it focuses is sharp (the "
-               "reference spreads it)";
-    return NULL;
+    return pass_refractor_left_out(o, true);
 }
 
 static bool ensure_targets(struct layer_set *ls, int w, int h, int voxels, int layers, struct error *err)

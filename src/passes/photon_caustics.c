@@ -557,14 +557,13 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     return true;
 }
 
-/* Photons refract at the interpolated normal: rough glass as smooth. */
+/* Photons refract at the interpolated normal, all of them: rough or
+ * partly diffuse glass as smooth, clear glass. */
 static const char *photon_caustics_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
     (void)p;
     (void)scene;
-    return object_is_rough_refractor(o) ? "its roughness: photons refract as through smooth glass, so the caustic "
-                                          "it focuses is sharp (the reference spreads it)"
-                                        : NULL;
+    return pass_refractor_left_out(o, true);
 }
 
 const struct pass_desc photon_caustics_pass = {

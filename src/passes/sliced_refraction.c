@@ -286,10 +286,7 @@ static const char *sliced_refraction_leaves_out(const struct pass *p, const stru
     if (is_refractor(o) && object_contains_point(o, scene->camera.eye))
         return "the camera is inside it: the sliced object images are seen through its front faces, none of which "
                "the camera sees, so the view through it is not refracted (refraction or layered_refraction trace it)";
-    if (object_is_rough_refractor(o))
-        return "its roughness: the view through it is drawn as through smooth glass (refraction { lookup = "
-               "\"scene\" } blurs it)";
-    return NULL;
+    return pass_refractor_left_out(o, false);
 }
 
 static unsigned sliced_refraction_draws(const struct pass *p)

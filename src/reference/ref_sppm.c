@@ -130,6 +130,18 @@ static void media_at(const struct ref_scene *rs, dvec3 p, struct media *m)
     }
 }
 
+/* Is this hit diffuse for this path? A diffuse material always; glass or
+ * water of transmission t < 1 with probability 1 - t: the surface is t
+ * glass and 1 - t diffuse of its colour (glTF's transmissionFactor), and
+ * picking one per path by those odds estimates the mix without a weight. */
+static bool hit_is_diffuse(const struct material *m, struct ref_rng *rng)
+{
+    if (m->kind == MATERIAL_DIFFUSE)
+        return true;
+    return (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->transmission < 1.0f &&
+           ref_rng_uniform(rng) >= (double)m->transmission;
+}
+
 /* One step through a specular surface: picks reflection or refraction by
  * Fresnel (the weight cancels), updates the media, returns the new
  * direction and origin. */
@@ -470,7 +482,7 @@ static void trace_eye(struct job *j, int x, int y)
         }
         beta = attenuate(beta, medium_sigma(rs, &media), h.t);
         const struct material *m = &rs->objects[h.object].material;
-        if (m->kind == MATERIAL_DIFFUSE) {
+        if (hit_is_diffuse(m, &rng)) {
             dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
             struct ref_surface surface;
             ref_surface_diffuse(rs, &h, n, &surface);
@@ -779,7 +791,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
             return;
         flux = attenuate(flux, medium_sigma(rs, &media), h.t);
         const struct material *m = &rs->objects[h.object].material;
-        if (m->kind == MATERIAL_DIFFUSE) {
+        if (hit_is_diffuse(m, &rng)) {
             if (specular > 0) {
                 (*caustic)++;
                 power[0] += flux.x;

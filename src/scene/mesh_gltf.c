@@ -59,13 +59,16 @@ static void material_map(const struct gltf_material *g, struct material *m)
             m->absorption = vec3_make(-logf(fmaxf(c[0], 1e-6f)) / d, -logf(fmaxf(c[1], 1e-6f)) / d,
                                       -logf(fmaxf(c[2], 1e-6f)) / d);
         }
-        if (g->transmission < 1.0f)
-            ignored_add(m, "transmission %.2g (drawn as glass that passes all light)", g->transmission);
+        /* partial transmission: the rest of the surface is diffuse of the
+         * base colour (the reference picks one per path, refraction blends) */
+        m->transmission = g->transmission;
         /* rough transmission: the reference samples GGX microfacets, the
          * passes that can blur (refraction) do, the others say so */
         m->roughness = g->roughness > GLTF_SMOOTH_ROUGHNESS ? g->roughness : 0.0f;
-        if (base.x < 1.0f || base.y < 1.0f || base.z < 1.0f)
+        if ((base.x < 1.0f || base.y < 1.0f || base.z < 1.0f) && g->transmission >= 1.0f)
             ignored_add(m, "baseColorFactor as a tint of the glass (clear; KHR_materials_volume absorbs)");
+        else if (base.x < 1.0f || base.y < 1.0f || base.z < 1.0f)
+            ignored_add(m, "baseColorFactor as a tint of the transmitted light (it colours the diffuse share only)");
         if (g->metallic > 0.0f)
             ignored_add(m, "metallic %.2g", g->metallic);
     } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS) {

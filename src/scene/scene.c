@@ -18,6 +18,11 @@ bool object_is_rough_refractor(const struct object *obj)
     return object_is(obj, OBJECT_ROLE_REFRACTOR) && obj->material.roughness > 0.0f;
 }
 
+bool object_is_partly_diffuse_refractor(const struct object *obj)
+{
+    return object_is(obj, OBJECT_ROLE_REFRACTOR) && obj->material.transmission < 1.0f;
+}
+
 struct object *object_create(struct mesh *mesh)
 {
     struct object *obj = calloc(1, sizeof *obj);

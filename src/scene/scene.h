@@ -59,6 +59,8 @@ struct material {
     vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
     float roughness; /* glass, water: GGX roughness as glTF has it (alpha = roughness^2); 0: smooth */
+    float transmission; /* glass, water: the share of the surface that is the interface (glTF's
+                         * transmissionFactor); the rest is diffuse of `color`. 1: all glass */
     /* Textures (diffuse surfaces only): colour x base_color, the shading
      * normal from a tangent-space normal map, emission x emissive. A
      * material holds a reference to each: copy materials with
@@ -262,6 +264,8 @@ bool object_is(const struct object *obj, unsigned roles);
  * the reference samples it, refraction's scene lookup blurs it, and the
  * other passes say through leaves_out that they draw it smooth). */
 bool object_is_rough_refractor(const struct object *obj);
+/* Visible glass or water with material.transmission < 1. */
+bool object_is_partly_diffuse_refractor(const struct object *obj);
 
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
 
