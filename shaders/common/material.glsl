@@ -11,6 +11,7 @@ uniform vec3 u_texture_transform[6];  // two rows per slot: uv' = (dot(row0, (uv
 uniform float u_normal_scale;
 uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
+uniform int u_alpha_blend;     // glTF alphaMode BLEND: kept with probability alpha (an ordered dither)
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
 
@@ -28,12 +29,30 @@ vec3 material_albedo(vec3 color)
 // A cut-out (glTF alphaMode MASK): the surface is not there where the
 // base colour's alpha (factor x texture) is below the cutoff. The
 // reference cuts out the same texels (ref_scene.c's filter).
+// BLEND, where a pass cannot blend (the shadow map, the distance map,
+// impostors: shade blends, back to front), is a stochastic cut-out: a
+// region keeps alpha of its texels by a 4 x 4 Bayer threshold over blocks
+// of 4 x 4 texels (whole blocks: the shadow lookup filters depths
+// bilinearly, which would smear a per-texel pattern into a whole shadow),
+// which its 3 x 3 filter turns into a partial shadow; the reference keeps
+// the surface per ray with probability alpha.
+// The base colour's alpha: factor x texture.
+float material_alpha()
+{
+    return u_alpha * (u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0);
+}
+
 bool material_cut_out()
 {
-    if (u_alpha_cutoff <= 0.0)
+    if (u_alpha_cutoff <= 0.0 && u_alpha_blend == 0)
         return false;
-    float a = u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0;
-    return u_alpha * a < u_alpha_cutoff;
+    float a = material_alpha();
+    if (u_alpha_blend == 0)
+        return a < u_alpha_cutoff;
+    ivec2 q = (ivec2(gl_FragCoord.xy) >> 2) & 3; // blocks of 4 x 4 texels: depths filtered bilinearly stay whole
+    int s = q.x ^ q.y; // the 4 x 4 Bayer index: bits of (x ^ y) and y interleaved, reversed
+    int bayer = ((s & 1) << 3) | ((q.y & 1) << 2) | (((s >> 1) & 1) << 1) | ((q.y >> 1) & 1);
+    return a <= (float(bayer) + 0.5) / 16.0;
 }
 
 vec3 material_emission(vec3 emission)

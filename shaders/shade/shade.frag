@@ -19,6 +19,7 @@ uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_object_id;
+uniform int u_blending; // 1: the second draw, of alphaMode BLEND surfaces over the rest (shade.c)
 
 uniform sampler2D u_caustics[4];
 uniform int u_has_caustics; // how many caustic irradiance images to add
@@ -30,7 +31,7 @@ void main()
     if (dot(n, view) > 0.0 && u_material_kind == 0)
         n = -n; // two-sided diffuse surfaces
     vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
-    if (material_cut_out())
+    if (u_blending == 0 && material_cut_out())
         discard;
     vec3 radiance;
     if (u_material_kind == 0) {
@@ -58,7 +59,7 @@ void main()
         vec3 t = refract_or_reflect(view, nn, eta);
         radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * environment_radiance(t);
     }
-    o_color = vec4(radiance, 1.0);
+    o_color = vec4(radiance, u_blending == 1 ? material_alpha() : 1.0); // (blended by alpha in the second draw)
     o_normal = vec4(n, float(u_object_id + 1));
     o_position = vec4(v_world, 1.0);
 }

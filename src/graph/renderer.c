@@ -196,7 +196,7 @@ void renderer_reset_state(struct renderer *r)
 /* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
 struct material_locations {
-    GLint set[3], transform[6], normal_scale, alpha, alpha_cutoff;
+    GLint set[3], transform[6], normal_scale, alpha, alpha_cutoff, alpha_blend;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -214,6 +214,7 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->normal_scale = gl_program_uniform(program, "u_normal_scale");
     loc->alpha = gl_program_uniform(program, "u_alpha");
     loc->alpha_cutoff = gl_program_uniform(program, "u_alpha_cutoff");
+    loc->alpha_blend = gl_program_uniform(program, "u_alpha_blend");
 }
 
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
@@ -240,6 +241,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     bool diffuse = material_role(&o->material) == OBJECT_ROLE_RECEIVER;
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
     gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
+    gl.ProgramUniform1i(program->id, loc->alpha_blend, diffuse && o->material.alpha_blend);
 }
 
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
@@ -259,11 +261,37 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
     GLint loc_id = gl_program_uniform(program, "u_object_id");
     gl.UseProgram(program->id);
-    for (int i = 0; i < scene->object_count; i++) {
-        struct object *o = scene->objects[i];
+    /* DRAW_BLENDED: back to front by the distance from the eye to each
+     * object's box centre (sorted per object, not per triangle) */
+    int order_stack[64], *order = order_stack;
+    if ((filter & DRAW_BLENDED) && scene->object_count > 64 && !(order = malloc((size_t)scene->object_count * sizeof *order)))
+        order = order_stack; /* out of memory: the first 64 in scene order */
+    int count = (filter & DRAW_BLENDED) && order == order_stack && scene->object_count > 64 ? 64 : scene->object_count;
+    for (int i = 0; i < count; i++)
+        order[i] = i;
+    if (filter & DRAW_BLENDED) {
+        for (int i = 1; i < count; i++) /* insertion sort: a few blended objects */
+            for (int k = i; k > 0; k--) {
+                vec3 lo, hi, lo2, hi2;
+                object_world_bounds(scene->objects[order[k]], &lo, &hi);
+                object_world_bounds(scene->objects[order[k - 1]], &lo2, &hi2);
+                float d = vec3_length(vec3_sub(vec3_scale(vec3_add(lo, hi), 0.5f), r->frame.eye));
+                float d2 = vec3_length(vec3_sub(vec3_scale(vec3_add(lo2, hi2), 0.5f), r->frame.eye));
+                if (d <= d2)
+                    break;
+                int t = order[k];
+                order[k] = order[k - 1];
+                order[k - 1] = t;
+            }
+    }
+    for (int n = 0; n < count; n++) {
+        struct object *o = scene->objects[order[n]];
         if (!o->visible)
             continue;
         if ((filter & DRAW_CASTERS) && !o->cast_shadows)
+            continue;
+        bool blended = o->material.alpha_blend && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+        if (((filter & DRAW_OPAQUE) && blended) || ((filter & DRAW_BLENDED) && !blended))
             continue;
         bool specular = object_is(o, OBJECT_ROLE_SPECULAR);
         if ((filter & DRAW_DIFFUSE) && specular)
@@ -294,6 +322,8 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         r->draw_calls++;
         r->draw_triangles += (long)(o->mesh->index_count / 3);
     }
+    if (order != order_stack)
+        free(order);
     gl.BindVertexArray(0);
 }
 

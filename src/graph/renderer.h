@@ -74,6 +74,8 @@ enum renderer_draw_filter {
     DRAW_CASTERS = 1,   /* objects that cast shadows */
     DRAW_DIFFUSE = 2,   /* diffuse materials only */
     DRAW_SPECULAR = 4,  /* glass, water, mirror only */
+    DRAW_OPAQUE = 8,    /* not the alpha-blended surfaces (material.alpha_blend) */
+    DRAW_BLENDED = 16,  /* the alpha-blended surfaces only, the farthest from the eye first */
 };
 /* Draws the visible objects with `program`, setting u_model,
  * u_normal_matrix, u_material_kind, u_color, u_ior, u_absorption,

@@ -123,7 +123,27 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), ncaustics);
     gl.Enable(GL_DEPTH_TEST);
-    renderer_draw_objects(r, f->scene, prog, pass_flag(p, SHADE_SPECULAR) ? DRAW_ALL : DRAW_DIFFUSE);
+    unsigned which = pass_flag(p, SHADE_SPECULAR) ? DRAW_ALL : DRAW_DIFFUSE;
+    GLint loc_blending = gl_program_uniform(prog, "u_blending");
+    gl.ProgramUniform1i(prog->id, loc_blending, 0);
+    renderer_draw_objects(r, f->scene, prog, which | DRAW_OPAQUE);
+    /* glTF's alphaMode BLEND: over the opaque surfaces, back to front, the
+     * colour blended by alpha and the depth, normal and position left to
+     * what lies behind (the passes that read them see through it; the
+     * shadow map and the reference treat it as a stochastic cut-out,
+     * common/material.glsl) */
+    gl.Enablei(GL_BLEND, 0);
+    gl.BlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl.ColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl.ColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl.DepthMask(GL_FALSE);
+    gl.ProgramUniform1i(prog->id, loc_blending, 1);
+    renderer_draw_objects(r, f->scene, prog, which | DRAW_BLENDED);
+    gl.ProgramUniform1i(prog->id, loc_blending, 0);
+    gl.DepthMask(GL_TRUE);
+    gl.ColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.ColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.Disablei(GL_BLEND, 0);
     return true;
 }
 

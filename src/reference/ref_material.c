@@ -29,10 +29,10 @@ static bool slot_active(const struct ref_object *o, const struct texture_ref *re
     return ref->texture && o->texcoords[ref->texcoord];
 }
 
-bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v)
+bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
 {
     const struct material *m = &o->material;
-    if (!(m->alpha_cutoff > 0.0f) || material_role(m) != OBJECT_ROLE_RECEIVER)
+    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || material_role(m) != OBJECT_ROLE_RECEIVER)
         return false;
     float a = m->alpha;
     if (slot_active(o, &m->base_color)) {
@@ -40,7 +40,7 @@ bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u
         triangle_uv(o, primitive, u, v, m->base_color.texcoord, uv);
         a *= texture_sample_alpha(&m->base_color, uv);
     }
-    return a < m->alpha_cutoff;
+    return m->alpha_blend ? xi >= a : a < m->alpha_cutoff;
 }
 
 static dvec3 to_dvec3(vec3 v) { return dv(v.x, v.y, v.z); }

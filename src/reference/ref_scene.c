@@ -41,10 +41,30 @@ static void cut_out_filter(const struct RTCFilterFunctionNArguments *args)
      * of arrays: Ng x, y, z, u, v, primID, each N wide) */
     const float *hit = (const float *)args->hit;
     const unsigned *hit_ids = (const unsigned *)args->hit;
+    const float *ray = (const float *)args->ray; /* RTCRayN: org x, y, z, tnear, dir x, y, z, ... */
     unsigned n = args->N;
-    for (unsigned i = 0; i < n; i++)
-        if (args->valid[i] && ref_object_cut_out(o, hit_ids[5 * n + i], hit[3 * n + i], hit[4 * n + i]))
+    for (unsigned i = 0; i < n; i++) {
+        if (!args->valid[i])
+            continue;
+        /* BLEND's coin: a hash of the ray and the triangle, uniform over
+         * rays (the filter has no generator of its own; the ray's origin and
+         * direction are as random as the path that made them) */
+        uint32_t words[7] = {hit_ids[5 * n + i]};
+        for (int k = 0; k < 3; k++) {
+            memcpy(&words[1 + k], &ray[(unsigned)k * n + i], 4);
+            memcpy(&words[4 + k], &ray[(unsigned)(4 + k) * n + i], 4);
+        }
+        uint64_t h = 1469598103934665603ull;
+        for (int k = 0; k < 7; k++) {
+            h = (h ^ words[k]) * 1099511628211ull;
+            h ^= h >> 29;
+        }
+        h *= 0xbf58476d1ce4e5b9ull;
+        h ^= h >> 32;
+        double xi = (double)(h >> 11) * (1.0 / 9007199254740992.0);
+        if (ref_object_cut_out(o, hit_ids[5 * n + i], hit[3 * n + i], hit[4 * n + i], xi))
             args->valid[i] = 0;
+    }
 }
 
 bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err)
@@ -115,7 +135,8 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
                                    3 * sizeof(float), n);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0,
                                    3 * sizeof(uint32_t), ro->triangle_count);
-        if (material_role(&ro->material) == OBJECT_ROLE_RECEIVER && ro->material.alpha_cutoff > 0.0f) {
+        if (material_role(&ro->material) == OBJECT_ROLE_RECEIVER &&
+            (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend)) {
             rtcSetGeometryUserData(geom, ro);
             rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
             rtcSetGeometryOccludedFilterFunction(geom, cut_out_filter);

@@ -60,9 +60,10 @@ struct ref_object {
 };
 
 /* Is (u, v) of the triangle cut out (alphaMode MASK: the base colour's
- * alpha below the material's cutoff)? Embree's filter asks, so that rays
- * and shadow rays pass through cut-outs as on the GPU (ref_material.c). */
-bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v);
+ * alpha below the material's cutoff; BLEND: xi, uniform in [0, 1) per ray,
+ * at or above that alpha)? Embree's filter asks, so that rays and shadow
+ * rays pass through cut-outs as on the GPU (ref_material.c). */
+bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi);
 
 struct ref_light {
     int kind;        /* 0 point, 1 directional, 2 spot (as in the frame uniforms) */

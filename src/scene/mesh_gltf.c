@@ -43,7 +43,8 @@ static void ignored_add(struct material *m, const char *fmt, ...)
  * - metallic >= 0.5: a mirror tinted by the base colour while its
  *   roughness is at most GLTF_MIRROR_ROUGHNESS, else diffuse;
  * - otherwise diffuse, with the base colour, normal and emissive textures,
- *   and alphaMode MASK's cut-outs (material.alpha_cutoff). */
+ *   alphaMode MASK's cut-outs (material.alpha_cutoff) and BLEND's
+ *   stochastic ones (material.alpha_blend). */
 static void material_map(const struct gltf_material *g, struct material *m)
 {
     snprintf(m->source, sizeof m->source, "%s", g->name);
@@ -99,8 +100,12 @@ static void material_map(const struct gltf_material *g, struct material *m)
     if (g->alpha_mode == GLTF_ALPHA_MASK && m->kind == MATERIAL_DIFFUSE) {
         m->alpha = g->alpha;
         m->alpha_cutoff = g->alpha_cutoff;
-    } else if (g->alpha_mode == GLTF_ALPHA_MASK) {
-        ignored_add(m, "alphaMode MASK (cut-outs on diffuse surfaces only: drawn whole)");
+    } else if (g->alpha_mode == GLTF_ALPHA_BLEND && m->kind == MATERIAL_DIFFUSE) {
+        m->alpha = g->alpha;
+        m->alpha_blend = true;
+    } else if (g->alpha_mode != GLTF_ALPHA_OPAQUE) {
+        ignored_add(m, "alphaMode %s (cut-outs and blending on diffuse surfaces only: drawn whole)",
+                    g->alpha_mode == GLTF_ALPHA_MASK ? "MASK" : "BLEND");
     }
     else if (g->alpha_mode == GLTF_ALPHA_BLEND)
         ignored_add(m, "alphaMode BLEND (drawn opaque)");

@@ -69,8 +69,12 @@ struct material {
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
      * base colour texture's alpha is below alpha_cutoff the surface is not
      * there, for the camera, the shadow map and the reference alike.
-     * alpha_cutoff 0: opaque. */
+     * alpha_cutoff 0: opaque. alpha_blend (glTF's BLEND): the surface is
+     * there with probability alpha x texture alpha, a stochastic cut-out
+     * (the GPU by an ordered dither per pixel, the reference per ray),
+     * which is alpha blending in expectation. */
     float alpha, alpha_cutoff;
+    bool alpha_blend;
     /* A material read from a file (scene/mesh_gltf.c): its name there, and
      * what the file asks for that caustica does not render, for `info`
      * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a

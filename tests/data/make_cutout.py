@@ -3,7 +3,9 @@
 1 x 1 quad in the xz plane (y = 0, facing +y, x and z in -0.5..0.5) whose
 material is alphaMode MASK (cutoff 0.5) with a 4 x 4 RGBA base colour
 texture, sampled nearest: an orange checker whose dark squares have alpha 0,
-so half the quad is cut out, in squares of 0.25."""
+so half the quad is cut out, in squares of 0.25. And blend_quad.gltf: the
+same quad, alphaMode BLEND, orange of alpha 0.5 (baseColorFactor, no
+texture)."""
 import base64, json, struct, zlib
 
 def png_rgba(w, h, rows):
@@ -40,3 +42,10 @@ gltf = {
         {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
 }
 open("cutout_quad.gltf", "w").write(json.dumps(gltf, indent=1) + "\n")
+
+blend = json.loads(json.dumps(gltf))
+blend["asset"]["generator"] = "tests/data/make_cutout.py (blend)"
+blend["materials"] = [{"name": "Half see-through", "alphaMode": "BLEND", "doubleSided": True,
+                       "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.19, 0.02, 0.5], "metallicFactor": 0}}]
+del blend["textures"], blend["samplers"], blend["images"]
+open("blend_quad.gltf", "w").write(json.dumps(blend, indent=1) + "\n")
