@@ -35,6 +35,11 @@ uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform float u_roughness; // GGX roughness of rough glass (glTF's: alpha = roughness^2); 0: smooth
 uniform float u_transmission = 1.0; // the glass's share of the surface; the rest is diffuse of u_color
+uniform sampler2D u_transmission_texture; // x its red channel per texel (glTF's transmissionTexture)
+uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD_1
+uniform vec3 u_transmission_transform[2]; // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+in vec2 v_texcoord0;
+in vec2 v_texcoord1;
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror
@@ -433,7 +438,13 @@ void main()
     // t glass and 1 - t diffuse of u_color, the weights the reference picks
     // a path's by. The diffuse share is lit by the lights without their
     // shadows (this pass reads no shadow map) and by the ambient sky.
-    if (u_transmission < 1.0 && u_material_kind != 2) {
+    float transmission = u_transmission;
+    if (u_transmission_set > 0) {
+        vec3 q = vec3(u_transmission_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
+        transmission *= texture(u_transmission_texture,
+                                vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
+    }
+    if (transmission < 1.0 && u_material_kind != 2) {
         vec3 e = vec3(0.0);
         for (int i = 0; i < u_counts.x; i++) {
             vec3 to_light;
@@ -441,7 +452,7 @@ void main()
             e += light_irradiance(i, v_world, n1, to_light, dist);
         }
         vec3 diffuse = u_color / PI * e + u_color * u_ambient.rgb;
-        pixel_radiance = u_transmission * pixel_radiance + (1.0 - u_transmission) * diffuse;
+        pixel_radiance = transmission * pixel_radiance + (1.0 - transmission) * diffuse;
     }
     o_color = vec4(pixel_radiance, 1.0);
 }

@@ -4,11 +4,15 @@
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_texcoord0;
+layout(location = 3) in vec2 a_texcoord1;
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 out vec3 v_normal;
 out vec3 v_world;
 out float v_thickness;
+out vec2 v_texcoord0; // for glass's transmission texture (refract.frag)
+out vec2 v_texcoord1;
 #ifdef WYMAN
 layout(std430) readonly buffer Thickness { float thickness[]; };
 #endif
@@ -17,6 +21,8 @@ void main()
     vec4 w = u_model * vec4(a_position, 1.0);
     v_normal = mat3(u_normal_matrix) * a_normal;
     v_world = w.xyz;
+    v_texcoord0 = a_texcoord0;
+    v_texcoord1 = a_texcoord1;
 #ifdef WYMAN
     // d_N scales with the object (uniform scale assumed)
     v_thickness = thickness[gl_VertexID] * length(mat3(u_model)[0]);

@@ -197,6 +197,7 @@ void renderer_reset_state(struct renderer *r)
  * common/material.glsl (a program without them ignores the locations -1). */
 struct material_locations {
     GLint set[3], transform[6], normal_scale, alpha, alpha_cutoff, alpha_blend;
+    GLint transmission_set, transmission_transform[2];
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -215,6 +216,9 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->alpha = gl_program_uniform(program, "u_alpha");
     loc->alpha_cutoff = gl_program_uniform(program, "u_alpha_cutoff");
     loc->alpha_blend = gl_program_uniform(program, "u_alpha_blend");
+    loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
+    loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
+    loc->transmission_transform[1] = gl_program_uniform(program, "u_transmission_transform[1]");
 }
 
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
@@ -242,6 +246,16 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
     gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
     gl.ProgramUniform1i(program->id, loc->alpha_blend, diffuse && o->material.alpha_blend);
+    /* glass's transmission texture (its red channel, linear), which refraction reads */
+    const struct texture_ref *tm = &o->material.transmission_map;
+    GLuint tid = 0;
+    struct error err;
+    bool tm_on = tm->texture && (material_role(&o->material) & OBJECT_ROLE_REFRACTOR) &&
+                 o->mesh->texcoords[tm->texcoord] && texture_cache_get(&r->textures, tm->texture, false, &tid, &err);
+    gl_program_bind_texture(program, "u_transmission_texture", tm_on ? tid : r->dummy_2d.id);
+    gl.ProgramUniform1i(program->id, loc->transmission_set, tm_on ? tm->texcoord + 1 : 0);
+    gl.ProgramUniform3f(program->id, loc->transmission_transform[0], tm->transform[0], tm->transform[2], tm->transform[4]);
+    gl.ProgramUniform3f(program->id, loc->transmission_transform[1], tm->transform[1], tm->transform[3], tm->transform[5]);
 }
 
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,

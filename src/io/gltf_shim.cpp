@@ -259,6 +259,7 @@ struct Builder {
             std::free(m.normal_texture.bytes);
             std::free(m.emissive_texture.bytes);
             std::free(m.metallic_roughness_texture.bytes);
+            std::free(m.transmission_texture.bytes);
         }
     }
 };
@@ -383,8 +384,13 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     auto ext = mat.extensions.find("KHR_materials_transmission");
     if (ext != mat.extensions.end() && ext->second.Has("transmissionFactor"))
         m.transmission = (float)ext->second.Get("transmissionFactor").GetNumberAsDouble();
-    if (ext != mat.extensions.end() && ext->second.Has("transmissionTexture"))
-        note_unread(m, "transmissionTexture");
+    if (ext != mat.extensions.end() && ext->second.Has("transmissionTexture")) {
+        const tinygltf::Value &info = ext->second.Get("transmissionTexture");
+        int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
+        int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+        read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, m.transmission_texture,
+                     "material '" + mat.name + "'");
+    }
     ext = mat.extensions.find("KHR_materials_ior");
     if (ext != mat.extensions.end() && ext->second.Has("ior"))
         m.ior = (float)ext->second.Get("ior").GetNumberAsDouble();
@@ -922,7 +928,7 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
             m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
-                m.metallic_roughness_texture.bytes = nullptr;
+                m.metallic_roughness_texture.bytes = m.transmission_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -963,6 +969,7 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].normal_texture.bytes);
         std::free(mesh->materials[i].emissive_texture.bytes);
         std::free(mesh->materials[i].metallic_roughness_texture.bytes);
+        std::free(mesh->materials[i].transmission_texture.bytes);
     }
     std::free(mesh->materials);
     std::free(mesh->ranges);

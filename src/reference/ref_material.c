@@ -29,6 +29,18 @@ static bool slot_active(const struct ref_object *o, const struct texture_ref *re
     return ref->texture && o->texcoords[ref->texcoord];
 }
 
+double ref_object_transmission(const struct ref_object *o, const struct ref_hit *h)
+{
+    const struct material *m = &o->material;
+    double t = m->transmission;
+    if (slot_active(o, &m->transmission_map)) {
+        float uv[2];
+        hit_uv(o, h, m->transmission_map.texcoord, uv);
+        t *= texture_sample(&m->transmission_map, uv, false).x;
+    }
+    return t;
+}
+
 bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
 {
     const struct material *m = &o->material;

@@ -103,6 +103,11 @@ struct ref_hit {
     double bary_u, bary_v;  /* Embree's barycentrics: the hit is (1-u-v) p0 + u p1 + v p2 */
 };
 
+/* The share of a glass or water surface that is the interface at the hit
+ * (material.transmission x its transmission texture's red channel); the
+ * rest is diffuse of its colour. */
+double ref_object_transmission(const struct ref_object *o, const struct ref_hit *h);
+
 /* What a diffuse surface shows at a hit: albedo and emission (times their
  * textures) and the shading normal (a normal map applied to `n`, the
  * face-forward shading normal), as common/material.glsl computes them on

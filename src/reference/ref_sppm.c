@@ -134,12 +134,16 @@ static void media_at(const struct ref_scene *rs, dvec3 p, struct media *m)
  * water of transmission t < 1 with probability 1 - t: the surface is t
  * glass and 1 - t diffuse of its colour (glTF's transmissionFactor), and
  * picking one per path by those odds estimates the mix without a weight. */
-static bool hit_is_diffuse(const struct material *m, struct ref_rng *rng)
+static bool hit_is_diffuse(const struct ref_scene *rs, const struct ref_hit *h, struct ref_rng *rng)
 {
+    const struct ref_object *o = &rs->objects[h->object];
+    const struct material *m = &o->material;
     if (m->kind == MATERIAL_DIFFUSE)
         return true;
-    return (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->transmission < 1.0f &&
-           ref_rng_uniform(rng) >= (double)m->transmission;
+    if ((m->kind != MATERIAL_GLASS && m->kind != MATERIAL_WATER) ||
+        (m->transmission >= 1.0f && !m->transmission_map.texture))
+        return false;
+    return ref_rng_uniform(rng) >= ref_object_transmission(o, h);
 }
 
 /* One step through a specular surface: picks reflection or refraction by
@@ -481,8 +485,7 @@ static void trace_eye(struct job *j, int x, int y)
             return;
         }
         beta = attenuate(beta, medium_sigma(rs, &media), h.t);
-        const struct material *m = &rs->objects[h.object].material;
-        if (hit_is_diffuse(m, &rng)) {
+        if (hit_is_diffuse(rs, &h, &rng)) {
             dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
             struct ref_surface surface;
             ref_surface_diffuse(rs, &h, n, &surface);
@@ -790,8 +793,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         if (!hit)
             return;
         flux = attenuate(flux, medium_sigma(rs, &media), h.t);
-        const struct material *m = &rs->objects[h.object].material;
-        if (hit_is_diffuse(m, &rng)) {
+        if (hit_is_diffuse(rs, &h, &rng)) {
             if (specular > 0) {
                 (*caustic)++;
                 power[0] += flux.x;

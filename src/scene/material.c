@@ -49,6 +49,7 @@ void material_init(struct material *m, enum material_kind kind)
     texture_ref_init(&m->base_color);
     texture_ref_init(&m->normal);
     texture_ref_init(&m->emissive);
+    texture_ref_init(&m->transmission_map);
 }
 
 void material_assign(struct material *dst, const struct material *src)
@@ -58,6 +59,7 @@ void material_assign(struct material *dst, const struct material *src)
     texture_retain(src->base_color.texture);
     texture_retain(src->normal.texture);
     texture_retain(src->emissive.texture);
+    texture_retain(src->transmission_map.texture);
     material_release(dst);
     *dst = *src;
 }
@@ -67,10 +69,11 @@ void material_release(struct material *m)
     texture_destroy(m->base_color.texture);
     texture_destroy(m->normal.texture);
     texture_destroy(m->emissive.texture);
-    m->base_color.texture = m->normal.texture = m->emissive.texture = NULL;
+    texture_destroy(m->transmission_map.texture);
+    m->base_color.texture = m->normal.texture = m->emissive.texture = m->transmission_map.texture = NULL;
 }
 
 bool material_has_textures(const struct material *m)
 {
-    return m->base_color.texture || m->normal.texture || m->emissive.texture;
+    return m->base_color.texture || m->normal.texture || m->emissive.texture || m->transmission_map.texture;
 }

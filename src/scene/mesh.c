@@ -276,7 +276,7 @@ size_t mesh_texture_bytes(const struct mesh *m)
         bytes += mesh_texture_bytes(m->parts[p]);
     if (m->has_material && m->part_count == 0)
         bytes += texture_bytes(m->material.base_color.texture) + texture_bytes(m->material.normal.texture) +
-                 texture_bytes(m->material.emissive.texture);
+                 texture_bytes(m->material.emissive.texture) + texture_bytes(m->material.transmission_map.texture);
     return bytes;
 }
 

@@ -72,12 +72,15 @@ static void material_map(const struct gltf_material *g, struct material *m)
             ignored_add(m, "baseColorFactor as a tint of the transmitted light (it colours the diffuse share only)");
         if (g->metallic > 0.0f)
             ignored_add(m, "metallic %.2g", g->metallic);
+        /* transmissionTexture: per texel, material.transmission_map */
     } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS) {
         m->kind = MATERIAL_MIRROR;
         if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
             ignored_add(m, "roughness %.2g (drawn as a perfect mirror)", g->roughness);
         if (g->transmission > 0.0f)
             ignored_add(m, "transmission %.2g (a metal does not transmit)", g->transmission);
+        if (g->transmission_texture.bytes)
+            ignored_add(m, "transmissionTexture (a metal does not transmit)");
     } else {
         m->kind = MATERIAL_DIFFUSE;
         m->emission = vec3_make(g->emission[0], g->emission[1], g->emission[2]);
@@ -113,21 +116,25 @@ static void material_map(const struct gltf_material *g, struct material *m)
         ignored_add(m, "%s", g->unread);
 }
 
-/* The textures of a diffuse material, decoded within what is left of the
- * budget (`used` counts what the file's textures took so far). */
+/* The textures of a diffuse material (or glass's transmissionTexture),
+ * decoded within what is left of the budget (`used` counts what the file's
+ * textures took so far). */
 static bool material_textures(const char *path, struct gltf_material *g, const struct mesh *whole,
                               unsigned long long budget, unsigned long long *used, struct material *m,
                               struct error *err)
 {
-    if (m->kind != MATERIAL_DIFFUSE)
-        return true;
     struct {
         struct gltf_texture *from;
         struct texture_ref *to;
-    } slots[3] = {{&g->base_color_texture, &m->base_color},
+    } slots[4] = {{&g->base_color_texture, &m->base_color},
                   {&g->normal_texture, &m->normal},
-                  {&g->emissive_texture, &m->emissive}};
-    for (int s = 0; s < 3; s++) {
+                  {&g->emissive_texture, &m->emissive},
+                  {&g->transmission_texture, &m->transmission_map}};
+    /* diffuse surfaces read the first three, glass its transmission */
+    bool glass = m->kind == MATERIAL_GLASS;
+    if (!glass && m->kind != MATERIAL_DIFFUSE)
+        return true;
+    for (int s = glass ? 3 : 0; s < (glass ? 4 : 3); s++) {
         struct gltf_texture *gt = slots[s].from;
         if (!gt->bytes)
             continue;

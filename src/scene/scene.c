@@ -20,7 +20,8 @@ bool object_is_rough_refractor(const struct object *obj)
 
 bool object_is_partly_diffuse_refractor(const struct object *obj)
 {
-    return object_is(obj, OBJECT_ROLE_REFRACTOR) && obj->material.transmission < 1.0f;
+    return object_is(obj, OBJECT_ROLE_REFRACTOR) &&
+           (obj->material.transmission < 1.0f || obj->material.transmission_map.texture);
 }
 
 struct object *object_create(struct mesh *mesh)

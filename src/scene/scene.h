@@ -66,6 +66,9 @@ struct material {
      * material holds a reference to each: copy materials with
      * material_assign and drop them with material_release. */
     struct texture_ref base_color, normal, emissive;
+    /* Glass and water: `transmission` x this texture's red channel (linear)
+     * per texel (glTF's transmissionTexture); no texture: uniform. */
+    struct texture_ref transmission_map;
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
      * base colour texture's alpha is below alpha_cutoff the surface is not
      * there, for the camera, the shadow map and the reference alike.
@@ -268,7 +271,7 @@ bool object_is(const struct object *obj, unsigned roles);
  * the reference samples it, refraction's scene lookup blurs it, and the
  * other passes say through leaves_out that they draw it smooth). */
 bool object_is_rough_refractor(const struct object *obj);
-/* Visible glass or water with material.transmission < 1. */
+/* Visible glass or water with material.transmission < 1 or a transmission texture. */
 bool object_is_partly_diffuse_refractor(const struct object *obj);
 
 enum light_kind { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_LINEAR };
