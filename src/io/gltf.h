@@ -47,6 +47,8 @@ struct gltf_material {
     float transmission;         /* KHR_materials_transmission */
     float attenuation_color[3]; /* KHR_materials_volume */
     float attenuation_distance; /* 0 = infinite (no absorption) */
+    bool volume;                /* KHR_materials_volume present (else glTF calls the material thin-walled) */
+    float thickness;            /* its thicknessFactor */
     float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
     struct gltf_texture base_color_texture, normal_texture, emissive_texture;
     struct gltf_texture metallic_roughness_texture; /* G: roughness, B: metallic */

@@ -396,6 +396,9 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         m.ior = (float)ext->second.Get("ior").GetNumberAsDouble();
     ext = mat.extensions.find("KHR_materials_volume");
     if (ext != mat.extensions.end()) {
+        m.volume = true;
+        if (ext->second.Has("thicknessFactor"))
+            m.thickness = (float)ext->second.Get("thicknessFactor").GetNumberAsDouble();
         if (ext->second.Has("attenuationDistance"))
             m.attenuation_distance = (float)ext->second.Get("attenuationDistance").GetNumberAsDouble();
         if (ext->second.Has("thicknessTexture"))

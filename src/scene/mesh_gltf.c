@@ -73,6 +73,12 @@ static void material_map(const struct gltf_material *g, struct material *m)
         if (g->metallic > 0.0f)
             ignored_add(m, "metallic %.2g", g->metallic);
         /* transmissionTexture: per texel, material.transmission_map */
+        /* glTF calls glass without a volume (or of thicknessFactor 0)
+         * thin-walled: no bending. Both renderers trace the mesh as a
+         * solid; a thicknessFactor > 0 only hints at what they trace. */
+        if (!g->volume || !(g->thickness > 0.0f))
+            ignored_add(m, "thin walls (%s: drawn as a solid of the mesh's shape)",
+                        g->volume ? "thicknessFactor 0" : "no KHR_materials_volume");
     } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS) {
         m->kind = MATERIAL_MIRROR;
         if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
