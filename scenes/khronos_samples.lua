@@ -37,7 +37,14 @@ local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 g:add("photons", c.pass.photon_caustics { light = sun })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
-g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
-g:output("glass.color")
+if c.param("refraction", true) then
+  g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+  g:output("glass.color")
+else
+  -- --set refraction=false: shade's one interface alone, the glass absorbing
+  -- over KHR_materials_volume's thicknessFactor (what a pass that cannot
+  -- trace the thickness stands in for it with)
+  g:output("shade.color")
+end
 
 return { scene = scene, graph = g, size = {256, 256}, model = model }

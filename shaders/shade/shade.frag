@@ -18,6 +18,7 @@ uniform vec3 u_emission; // a diffuse surface's own radiance (seen; it lights no
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;
+uniform float u_thickness; // glTF's thicknessFactor (world units): the path inside glass seen through one interface
 uniform int u_object_id;
 uniform int u_blending; // 1: the second draw, of alphaMode BLEND surfaces over the rest (shade.c)
 
@@ -51,13 +52,17 @@ void main()
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {
-        // One interface only: the refraction passes trace the second.
+        // One interface only: the refraction passes trace the second. What
+        // the light crosses inside is the material's thicknessFactor (glTF's
+        // KHR_materials_volume: the thickness a rasterizer that sees one
+        // surface stands in for the volume with), absorbed by Beer-Lambert.
         bool entering = dot(n, view) < 0.0;
         vec3 nn = entering ? n : -n;
         float eta = entering ? 1.0 / u_ior : u_ior;
         float f = fresnel_of(dot(-view, nn), eta, u_ideal);
         vec3 t = refract_or_reflect(view, nn, eta);
-        radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * environment_radiance(t);
+        vec3 inside = exp(-u_absorption * u_thickness);
+        radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * inside * environment_radiance(t);
     }
     o_color = vec4(radiance, u_blending == 1 ? material_alpha() : 1.0); // (blended by alpha in the second draw)
     o_normal = vec4(n, float(u_object_id + 1));

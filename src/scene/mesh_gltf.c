@@ -54,6 +54,7 @@ static void material_map(const struct gltf_material *g, struct material *m)
     m->ior = g->ior; /* validated by the loader */
     if (g->transmission > 0.0f && !metal) {
         m->kind = MATERIAL_GLASS;
+        m->thickness = g->volume ? g->thickness : 0.0f;
         if (g->attenuation_distance > 0.0f) {
             const float *c = g->attenuation_color;
             float d = g->attenuation_distance;

@@ -59,6 +59,8 @@ struct material {
     vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
     float roughness; /* glass, water: GGX roughness as glTF has it (alpha = roughness^2); 0: smooth */
+    float thickness; /* glass: KHR_materials_volume's thicknessFactor (mesh units), the path length
+                      * a pass that sees one interface only absorbs over (shade); 0: none given */
     float transmission; /* glass, water: the share of the surface that is the interface (glTF's
                          * transmissionFactor); the rest is diffuse of `color`. 1: all glass */
     /* Textures (diffuse surfaces only): colour x base_color, the shading
