@@ -87,6 +87,18 @@ else
   fail "partial transmission" "exit $rc, partial $partial, clear $clear"
 fi
 
+# The extremes: roughness 1 (GGX's widest lobe, grazing facets) and transmission 0 (all diffuse), in
+# both renderers: finite everywhere.
+bad=""
+for set in "rough_glass.lua --set roughness=0.5" "partial_glass.lua --set transmission=0"; do
+  # shellcheck disable=SC2086
+  "$CAUSTICA" render tests/scenes/$set --size 64x64 -o "$WORK/x.pfm" -q 2>/dev/null &&
+    "$CAUSTICA" reference tests/scenes/$set --size 64x64 --photons 5000 --spp 16 -o "$WORK/x_ref.pfm" -q >/dev/null 2>&1 ||
+    bad="$bad $set (exit)"
+  [ "$(nans "$WORK/x.pfm" "$WORK/x.pfm")" = 0 ] && [ "$(nans "$WORK/x_ref.pfm" "$WORK/x_ref.pfm")" = 0 ] || bad="$bad $set"
+done
+[ -z "$bad" ] && pass "roughness 1 and transmission 0: no NaN or Inf in either renderer" || fail "extremes" "$bad"
+
 # ... and the passes that draw rough glass smooth say so, once per object
 "$CAUSTICA" info scenes/khronos_samples.lua --no-render >"$WORK/rough_info.txt" 2>&1
 n=$(grep -c "pass 'photons' (photon_caustics) leaves out object .*its roughness" "$WORK/rough_info.txt")
