@@ -244,7 +244,10 @@ int cmd_run(struct app *app, struct cli *cli)
             cli_print_error(&err);
         else if (reloaded)
             fprintf(stderr, "caustica: reloaded shaders\n");
-        int want = limit > 0 && !paused && clock == 0.0 ? frame : (int)floor(clock * s->fps + 1e-6) % s->frames;
+        /* --frames N steps frame by frame, looping as playback does (a still
+         * shows its one frame N times) */
+        int want = limit > 0 && !paused && clock == 0.0 ? frame % s->frames
+                                                        : (int)floor(clock * s->fps + 1e-6) % s->frames;
         if (session_goto_frame(s, want, &err)) {
             apply_orbit(s->scene);
             if (session_render(s, want, &err))

@@ -24,6 +24,12 @@ if command -v xvfb-run >/dev/null; then
     && awk "BEGIN { exit !($rmse <= $max) }" && pass "right, right, s: frame 2 saved next to the script" \
     || fail "window keys" "$(cat "$WORK/keys.err") $line"
   expect_error "an unknown key" 2 "--keys: unknown key 'q'" - -- "$CAUSTICA" run "$WORK/keys.lua" --keys right,q
+  # --frames N on a still loops over its one frame (it said "frame 1 is past the last frame" before)
+  xvfb-run -a "$CAUSTICA" run tests/scenes/cutout.lua --frames 3 --screenshot "$WORK/still.png" 2>"$WORK/still.err" &&
+    "$CAUSTICA" render tests/scenes/cutout.lua -o "$WORK/still_offscreen.png" -q 2>/dev/null &&
+    rmse=$(metric rmse "$("$CAUSTICA" compare "$WORK/still.png" "$WORK/still_offscreen.png")") &&
+    awk "BEGIN { exit !($rmse <= $max) }" && pass "run --frames 3 on a still shows its frame" \
+    || fail "run a still" "$(cat "$WORK/still.err")"
 else
   fail "window" "xvfb-run is not installed (make deps installs it)"
 fi
