@@ -35,6 +35,7 @@ uniform sampler2D u_back_depth;
 uniform float u_ior;
 uniform float u_roughness; // GGX roughness of rough glass (glTF's: alpha = roughness^2); 0: smooth
 uniform float u_transmission = 1.0; // the glass's share of the surface; the rest is diffuse of u_color
+uniform vec3 u_tint = vec3(1.0);    // the light through it, once (glTF's base colour as its transmission tint)
 uniform sampler2D u_transmission_texture; // x its red channel per texel (glTF's transmissionTexture)
 uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD_1
 uniform vec3 u_transmission_transform[2]; // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
@@ -321,7 +322,7 @@ void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout
         n2 = back ? surface_normal(u_back_normal, uv1) : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
     exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
-    leave_glass(p2, t1, n2, transmitted_share * exp(-u_absorption * dT), transmitted_share, exit_dir, exit_key);
+    leave_glass(p2, t1, n2, transmitted_share * u_tint * exp(-u_absorption * dT), transmitted_share, exit_dir, exit_key);
 }
 
 // From inside the glass at its surface `pos` (outward normal n2), going

@@ -18,6 +18,7 @@ uniform vec3 u_emission; // a diffuse surface's own radiance (seen; it lights no
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;
+uniform vec3 u_tint; // glTF's transmission tint (struct material)
 uniform float u_thickness; // glTF's thicknessFactor (world units): the path inside glass seen through one interface
 uniform int u_object_id;
 uniform int u_blending; // 1: the second draw, of alphaMode BLEND surfaces over the rest (shade.c)
@@ -61,7 +62,7 @@ void main()
         float eta = entering ? 1.0 / u_ior : u_ior;
         float f = fresnel_of(dot(-view, nn), eta, u_ideal);
         vec3 t = refract_or_reflect(view, nn, eta);
-        vec3 inside = exp(-u_absorption * u_thickness);
+        vec3 inside = u_tint * exp(-u_absorption * u_thickness);
         radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * inside * environment_radiance(t);
     }
     o_color = vec4(radiance, u_blending == 1 ? material_alpha() : 1.0); // (blended by alpha in the second draw)

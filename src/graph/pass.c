@@ -589,28 +589,26 @@ bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_ke
 
 const char *pass_refractor_left_out(const struct object *o, bool caustics)
 {
-    bool rough = object_is_rough_refractor(o), partial = object_is_partly_diffuse_refractor(o);
-    if (caustics) {
-        if (rough && partial)
-            return "its roughness and its transmission below 1: all the light that meets it is refracted as by "
-                   "smooth glass, so its caustic is sharp and too bright (the reference spreads it and passes only "
-                   "that share)";
-        if (rough)
-            return "its roughness: light is refracted as by smooth glass, so the caustic it focuses is sharp (the "
-                   "reference spreads it)";
-        if (partial)
-            return "its transmission below 1: all the light that meets it is refracted, so its caustic is too "
-                   "bright by 1/transmission (the reference passes that share)";
+    /* one sentence for what of roughness, partial transmission and tint
+     * the object has (graph_lint copies it before the next call) */
+    static char sentence[400];
+    const char *parts[3];
+    int n = 0;
+    if (object_is_rough_refractor(o))
+        parts[n++] = "its roughness";
+    if (object_is_partly_diffuse_refractor(o))
+        parts[n++] = "its transmission below 1";
+    if (object_is_tinted_refractor(o))
+        parts[n++] = "its tint";
+    if (n == 0)
         return NULL;
-    }
-    if (rough && partial)
-        return "its roughness and its transmission below 1: the view through it is drawn as through smooth, clear "
-               "glass (refraction blurs it and blends in the diffuse share)";
-    if (rough)
-        return "its roughness: the view through it is drawn as through smooth glass (refraction { lookup = "
-               "\"scene\" } blurs it)";
-    if (partial)
-        return "its transmission below 1: drawn as glass that passes all the light (refraction blends in the "
-               "diffuse share)";
-    return NULL;
+    char list[120];
+    snprintf(list, sizeof list, "%s%s%s%s%s", parts[0], n == 3 ? ", " : n == 2 ? " and " : "", n > 1 ? parts[1] : "",
+             n == 3 ? " and " : "", n == 3 ? parts[2] : "");
+    snprintf(sentence, sizeof sentence, "%s: %s", list,
+             caustics ? "all the light that meets it is refracted as by smooth, clear glass, so the caustic it "
+                        "focuses is sharp, too bright or uncoloured (the reference spreads, shares and tints it)"
+                      : "the view through it is drawn as through smooth, clear glass (refraction blurs it, blends "
+                        "in the diffuse share and tints it)");
+    return sentence;
 }

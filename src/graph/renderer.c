@@ -271,6 +271,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_roughness = gl_program_uniform(program, "u_roughness");
     GLint loc_transmission = gl_program_uniform(program, "u_transmission");
     GLint loc_thickness = gl_program_uniform(program, "u_thickness");
+    GLint loc_tint = gl_program_uniform(program, "u_tint");
     GLint loc_ideal = gl_program_uniform(program, "u_ideal");
     GLint loc_emission = gl_program_uniform(program, "u_emission");
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
@@ -323,6 +324,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
         gl.ProgramUniform1f(program->id, loc_roughness, o->material.roughness);
         gl.ProgramUniform1f(program->id, loc_transmission, o->material.transmission);
+        gl.ProgramUniform3f(program->id, loc_tint, o->material.tint.x, o->material.tint.y, o->material.tint.z);
         /* thicknessFactor is in the mesh's units: scaled by the object (its mean scale) */
         gl.ProgramUniform1f(program->id, loc_thickness,
                             o->material.thickness * (fabsf(o->scale.x) + fabsf(o->scale.y) + fabsf(o->scale.z)) / 3.0f);

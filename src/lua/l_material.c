@@ -38,7 +38,7 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
         static const char *const mirror_fields[] = {"color", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
-                                                   "color", NULL};
+                                                   "color", "tint", NULL};
         lutil_check_fields(L, 1, fn, emissive ? emissive_fields : kind == MATERIAL_DIFFUSE ? diffuse_fields
                                      : kind == MATERIAL_MIRROR ? mirror_fields : glass_fields);
         if (emissive) {
@@ -83,6 +83,7 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
             if (!(m.roughness >= 0.0f && m.roughness <= 1.0f))
                 return lutil_error(L, "bad argument 'roughness' to '%s' (a number in [0, 1] expected, got %g)", fn,
                                    (double)m.roughness);
+            lutil_opt_color(L, 1, fn, "tint", &m.tint);
             lutil_opt_number(L, 1, fn, "transmission", &m.transmission);
             if (!(m.transmission >= 0.0f && m.transmission <= 1.0f))
                 return lutil_error(L, "bad argument 'transmission' to '%s' (a number in [0, 1] expected, got %g)",
@@ -147,6 +148,12 @@ static int get_emission(lua_State *L)
     return 1;
 }
 
+static int get_tint(lua_State *L)
+{
+    lutil_push_vec3(L, check_material(L)->tint);
+    return 1;
+}
+
 static int get_transmission(lua_State *L)
 {
     lua_pushnumber(L, check_material(L)->transmission);
@@ -205,6 +212,7 @@ void lmaterial_open(lua_State *L)
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
                                        {"absorption", get_absorption}, {"fresnel", get_fresnel},
                                        {"roughness", get_roughness}, {"transmission", get_transmission},
+                                       {"tint", get_tint},
                                        {"emission", get_emission}, {"texture", get_texture},
                                        {"normal", get_normal}, {"emission_texture", get_emission_texture},
                                        {NULL, NULL}};

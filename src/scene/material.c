@@ -46,6 +46,7 @@ void material_init(struct material *m, enum material_kind kind)
     m->ior = kind == MATERIAL_WATER ? 1.33f : 1.5f;
     m->alpha = 1.0f;
     m->transmission = 1.0f;
+    m->tint = vec3_make(1, 1, 1);
     texture_ref_init(&m->base_color);
     texture_ref_init(&m->normal);
     texture_ref_init(&m->emissive);

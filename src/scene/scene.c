@@ -18,6 +18,12 @@ bool object_is_rough_refractor(const struct object *obj)
     return object_is(obj, OBJECT_ROLE_REFRACTOR) && obj->material.roughness > 0.0f;
 }
 
+bool object_is_tinted_refractor(const struct object *obj)
+{
+    vec3 t = obj->material.tint;
+    return object_is(obj, OBJECT_ROLE_REFRACTOR) && (t.x != 1.0f || t.y != 1.0f || t.z != 1.0f);
+}
+
 bool object_is_partly_diffuse_refractor(const struct object *obj)
 {
     return object_is(obj, OBJECT_ROLE_REFRACTOR) &&

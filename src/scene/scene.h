@@ -59,6 +59,8 @@ struct material {
     vec3 emission;   /* diffuse: radiance it emits (seen, directly or through glass; it lights nothing) */
     bool ideal;      /* fresnel = false: an ideal interface, all light refracts (reflects only under TIR) */
     float roughness; /* glass, water: GGX roughness as glTF has it (alpha = roughness^2); 0: smooth */
+    vec3 tint;       /* glass, water: what light passing through is multiplied by, once (entering):
+                      * glTF's base colour as KHR_materials_transmission's tint; 1 1 1: clear */
     float thickness; /* glass: KHR_materials_volume's thicknessFactor (mesh units), the path length
                       * a pass that sees one interface only absorbs over (shade); 0: none given */
     float transmission; /* glass, water: the share of the surface that is the interface (glTF's
@@ -273,6 +275,8 @@ bool object_is(const struct object *obj, unsigned roles);
  * the reference samples it, refraction's scene lookup blurs it, and the
  * other passes say through leaves_out that they draw it smooth). */
 bool object_is_rough_refractor(const struct object *obj);
+/* Visible glass or water whose material.tint is not white. */
+bool object_is_tinted_refractor(const struct object *obj);
 /* Visible glass or water with material.transmission < 1 or a transmission texture. */
 bool object_is_partly_diffuse_refractor(const struct object *obj);
 
