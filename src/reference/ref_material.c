@@ -8,20 +8,9 @@
 
 #include "reference/ref_scene.h"
 
-/* Texture coordinates `set` at barycentrics (u, v) of triangle `primitive`. */
-static void triangle_uv(const struct ref_object *o, unsigned primitive, double u, double v, int set, float uv[2])
-{
-    const uint32_t *tri = o->indices + (size_t)primitive * 3;
-    const float *t = o->texcoords[set];
-    double w = 1.0 - u - v;
-    for (int k = 0; k < 2; k++)
-        uv[k] = (float)(w * t[tri[0] * 2 + (uint32_t)k] + u * t[tri[1] * 2 + (uint32_t)k] +
-                        v * t[tri[2] * 2 + (uint32_t)k]);
-}
-
 static void hit_uv(const struct ref_object *o, const struct ref_hit *h, int set, float uv[2])
 {
-    triangle_uv(o, h->primitive, h->bary_u, h->bary_v, set, uv);
+    ref_object_uv(o, h->primitive, h->bary_u, h->bary_v, set, uv);
 }
 
 static bool slot_active(const struct ref_object *o, const struct texture_ref *ref)
@@ -41,19 +30,6 @@ double ref_object_transmission(const struct ref_object *o, const struct ref_hit 
     return t;
 }
 
-bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
-{
-    const struct material *m = &o->material;
-    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || material_role(m) != OBJECT_ROLE_RECEIVER)
-        return false;
-    float a = m->alpha;
-    if (slot_active(o, &m->base_color)) {
-        float uv[2];
-        triangle_uv(o, primitive, u, v, m->base_color.texcoord, uv);
-        a *= texture_sample_alpha(&m->base_color, uv);
-    }
-    return m->alpha_blend ? xi >= a : a < m->alpha_cutoff;
-}
 
 static dvec3 to_dvec3(vec3 v) { return dv(v.x, v.y, v.z); }
 

@@ -31,6 +31,30 @@ static bool frame_vertices(struct renderer *r, const struct object *o, float *po
     return true;
 }
 
+void ref_object_uv(const struct ref_object *o, unsigned primitive, double u, double v, int set, float uv[2])
+{
+    const uint32_t *tri = o->indices + (size_t)primitive * 3;
+    const float *t = o->texcoords[set];
+    double w = 1.0 - u - v;
+    for (int k = 0; k < 2; k++)
+        uv[k] = (float)(w * t[tri[0] * 2 + (uint32_t)k] + u * t[tri[1] * 2 + (uint32_t)k] +
+                        v * t[tri[2] * 2 + (uint32_t)k]);
+}
+
+bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
+{
+    const struct material *m = &o->material;
+    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || material_role(m) != OBJECT_ROLE_RECEIVER)
+        return false;
+    float a = m->alpha;
+    if (m->base_color.texture && o->texcoords[m->base_color.texcoord]) {
+        float uv[2];
+        ref_object_uv(o, primitive, u, v, m->base_color.texcoord, uv);
+        a *= texture_sample_alpha(&m->base_color, uv);
+    }
+    return m->alpha_blend ? xi >= a : a < m->alpha_cutoff;
+}
+
 /* Embree's filter for a surface with cut-outs: a hit in a cut-out is no
  * hit, for rays and shadow rays alike (common/material.glsl's
  * material_cut_out on the GPU). */

@@ -59,10 +59,12 @@ struct ref_object {
     struct material material;
 };
 
+/* Texture coordinates `set` at barycentrics (u, v) of triangle `primitive`. */
+void ref_object_uv(const struct ref_object *o, unsigned primitive, double u, double v, int set, float uv[2]);
 /* Is (u, v) of the triangle cut out (alphaMode MASK: the base colour's
  * alpha below the material's cutoff; BLEND: xi, uniform in [0, 1) per ray,
  * at or above that alpha)? Embree's filter asks, so that rays and shadow
- * rays pass through cut-outs as on the GPU (ref_material.c). */
+ * rays pass through cut-outs as on the GPU (ref_scene.c). */
 bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi);
 
 struct ref_light {
