@@ -15,16 +15,24 @@
 
 /* ---- meshes ---------------------------------------------------------- */
 
+/* The bytes of a mesh's arrays: positions, normals, two texture coordinate
+ * sets, indices and morph targets, its parts' too (their own copies). */
+static size_t mesh_array_bytes(const struct mesh *m)
+{
+    size_t bytes = m->vertex_count * 10 * sizeof(float) + m->index_count * sizeof(uint32_t) +
+                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float);
+    for (int p = 0; p < m->part_count; p++)
+        bytes += mesh_array_bytes(m->parts[p]);
+    return bytes;
+}
+
 static int push_mesh(lua_State *L, struct mesh *m, struct error *err)
 {
     if (!m)
         return lutil_error(L, "%s", err->message);
-    /* its arrays count against --script-memory: positions, normals, two
-     * texture coordinate sets, indices and morph targets, and its
-     * material's textures (checked against what was left before each was
-     * decoded) */
-    size_t bytes = m->vertex_count * 10 * sizeof(float) + m->index_count * sizeof(uint32_t) +
-                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float) + mesh_texture_bytes(m);
+    /* its arrays count against --script-memory, and its materials'
+     * textures (checked against what was left before each was decoded) */
+    size_t bytes = mesh_array_bytes(m) + mesh_texture_bytes(m);
     char what[160];
     snprintf(what, sizeof what, "mesh '%.100s' (%zu vertices)", m->name, m->vertex_count);
     if (!lua_host_charge(L, bytes, what, err)) {
