@@ -5,6 +5,7 @@
 #include "common/fresnel.glsl"
 #include "common/surface_normal.glsl"
 #include "common/lighting.glsl"
+#include "common/shadows.glsl"
 #ifdef NEARBY
 #ifdef DISTANCE_MAP
 #include "distance_map/lookup.glsl"
@@ -437,8 +438,9 @@ void main()
     o_exit = vec4(exit_dir, 1.0);
     // Partial transmission (glTF's transmissionFactor t < 1): the surface is
     // t glass and 1 - t diffuse of u_color, the weights the reference picks
-    // a path's by. The diffuse share is lit by the lights without their
-    // shadows (this pass reads no shadow map) and by the ambient sky.
+    // a path's by. The diffuse share is lit by the lights, through the
+    // shadow maps given as `shadow` (unshadowed without them), and by the
+    // ambient sky.
     float transmission = u_transmission;
     if (u_transmission_set > 0) {
         vec3 q = vec3(u_transmission_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
@@ -450,7 +452,8 @@ void main()
         for (int i = 0; i < u_counts.x; i++) {
             vec3 to_light;
             float dist;
-            e += light_irradiance(i, v_world, n1, to_light, dist);
+            vec3 irr = light_irradiance(i, v_world, n1, to_light, dist);
+            e += irr * visibility(i, v_world, n1, to_light);
         }
         vec3 diffuse = u_color / PI * e + u_color * u_ambient.rgb;
         pixel_radiance = transmission * pixel_radiance + (1.0 - transmission) * diffuse;

@@ -100,8 +100,8 @@ static const struct pass_param_desc params[] = {
              "paper's one rectangle per object "
              "(§2.2), which large receivers break (docs/techniques/hu_qin.md)"},
     [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
-     .help = "shadow maps for lighting the distance map's surfaces as shade does (e.g. \"shadow.depth\"); "
-             "without them they are unshadowed"},
+     .help = "shadow maps for lighting the distance map's surfaces and the diffuse share of partly "
+             "transmissive glass as shade does (e.g. \"shadow.depth\"); without them they are unshadowed"},
     [REFRACTION_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 8,
      .help = "interfaces a path meets from its first way out on: 1 = the paper's two interfaces (a total internal "
              "reflection leaves along its reflection); more follow total internal reflections and the Fresnel-"
@@ -369,6 +369,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;
+    shadow_inputs_bind(p, f, prog); /* the diffuse share of partly transmissive glass */
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, all_outputs);
     gl_program_bind_texture(prog, "u_front_normal", s->front_normal.id);
     gl_program_bind_texture(prog, "u_back_normal", s->back_normal.id);

@@ -23,6 +23,6 @@ end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun })
 g:add("shade", c.pass.shade { shadow = "shadow.depth" })
-g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth", shadow = "shadow.depth" })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {192, 128} }
