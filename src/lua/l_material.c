@@ -84,6 +84,10 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
                 return lutil_error(L, "bad argument 'roughness' to '%s' (a number in [0, 1] expected, got %g)", fn,
                                    (double)m.roughness);
             lutil_opt_color(L, 1, fn, "tint", &m.tint);
+            if (m.tint.x > 1.0f || m.tint.y > 1.0f || m.tint.z > 1.0f)
+                return lutil_error(L, "bad argument 'tint' to '%s' (each channel in [0, 1]: a tint passes a share of "
+                                   "the light, got {%g, %g, %g})", fn, (double)m.tint.x, (double)m.tint.y,
+                                   (double)m.tint.z);
             lutil_opt_number(L, 1, fn, "transmission", &m.transmission);
             if (!(m.transmission >= 0.0f && m.transmission <= 1.0f))
                 return lutil_error(L, "bad argument 'transmission' to '%s' (a number in [0, 1] expected, got %g)",
