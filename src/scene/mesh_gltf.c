@@ -72,7 +72,7 @@ static void material_map(const struct gltf_material *g, struct material *m)
          * samples' answer keys have it (AttenuationTest's Sample Color row:
          * base colour c = what attenuationColor c at thickness 1 lets
          * through once) */
-        m->tint = base;
+        m->tint = vec3_min(base, vec3_make(1, 1, 1)); /* a tint passes a share, never more */
         if (g->base_color_texture.bytes)
             ignored_add(m, "baseColorTexture as a tint of the glass (its factor tints)");
         if (g->metallic > 0.0f)
