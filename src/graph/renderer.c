@@ -258,6 +258,17 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform3f(program->id, loc->transmission_transform[1], tm->transform[1], tm->transform[3], tm->transform[5]);
 }
 
+struct blended_object {
+    int index;
+    float distance;
+};
+
+static int farther_first(const void *a, const void *b)
+{
+    float da = ((const struct blended_object *)a)->distance, db = ((const struct blended_object *)b)->distance;
+    return (da < db) - (da > db);
+}
+
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter)
 {
@@ -277,31 +288,26 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
     GLint loc_id = gl_program_uniform(program, "u_object_id");
     gl.UseProgram(program->id);
-    /* DRAW_BLENDED: back to front by the distance from the eye to each
-     * object's box centre (sorted per object, not per triangle) */
-    int order_stack[64], *order = order_stack;
-    if ((filter & DRAW_BLENDED) && scene->object_count > 64 && !(order = malloc((size_t)scene->object_count * sizeof *order)))
-        order = order_stack; /* out of memory: the first 64 in scene order */
-    int count = (filter & DRAW_BLENDED) && order == order_stack && scene->object_count > 64 ? 64 : scene->object_count;
-    for (int i = 0; i < count; i++)
-        order[i] = i;
-    if (filter & DRAW_BLENDED) {
-        for (int i = 1; i < count; i++) /* insertion sort: a few blended objects */
-            for (int k = i; k > 0; k--) {
-                vec3 lo, hi, lo2, hi2;
-                object_world_bounds(scene->objects[order[k]], &lo, &hi);
-                object_world_bounds(scene->objects[order[k - 1]], &lo2, &hi2);
-                float d = vec3_length(vec3_sub(vec3_scale(vec3_add(lo, hi), 0.5f), r->frame.eye));
-                float d2 = vec3_length(vec3_sub(vec3_scale(vec3_add(lo2, hi2), 0.5f), r->frame.eye));
-                if (d <= d2)
-                    break;
-                int t = order[k];
-                order[k] = order[k - 1];
-                order[k - 1] = t;
-            }
+    /* DRAW_BLENDED: the blended surfaces back to front, by the distance
+     * from the eye to each object's box centre (per object, not per
+     * triangle), sorted once; out of memory, in scene order */
+    int count = scene->object_count;
+    struct blended_object *order = NULL;
+    if ((filter & DRAW_BLENDED) && (order = malloc((size_t)(count + 1) * sizeof *order))) {
+        count = 0;
+        for (int i = 0; i < scene->object_count; i++) {
+            const struct object *o = scene->objects[i];
+            if (!o->visible || !o->material.alpha_blend)
+                continue;
+            vec3 lo, hi;
+            object_world_bounds(o, &lo, &hi);
+            order[count++] = (struct blended_object){
+                i, vec3_length(vec3_sub(vec3_scale(vec3_add(lo, hi), 0.5f), r->frame.eye))};
+        }
+        qsort(order, (size_t)count, sizeof *order, farther_first);
     }
     for (int n = 0; n < count; n++) {
-        struct object *o = scene->objects[order[n]];
+        struct object *o = scene->objects[order ? order[n].index : n];
         if (!o->visible)
             continue;
         if ((filter & DRAW_CASTERS) && !o->cast_shadows)
@@ -342,8 +348,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         r->draw_calls++;
         r->draw_triangles += (long)(o->mesh->index_count / 3);
     }
-    if (order != order_stack)
-        free(order);
+    free(order);
     gl.BindVertexArray(0);
 }
 

@@ -35,7 +35,6 @@ struct gltf_texture {
 enum gltf_alpha_mode { GLTF_ALPHA_OPAQUE, GLTF_ALPHA_MASK, GLTF_ALPHA_BLEND };
 
 struct gltf_material {
-    bool present;
     char name[64];              /* the material's name, or "material N" */
     float base_color[3];
     float alpha;                /* baseColorFactor's fourth component */

@@ -359,7 +359,6 @@ bool extension_read(const std::string &name)
 void read_material(const tinygltf::Model &model, int index, gltf_material &m)
 {
     const tinygltf::Material &mat = model.materials[(size_t)index];
-    m.present = true;
     if (mat.name.empty())
         std::snprintf(m.name, sizeof m.name, "material %d", index);
     else

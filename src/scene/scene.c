@@ -78,10 +78,17 @@ bool object_sync_parts(struct object *g)
         part->visible = g->visible;
         part->cast_shadows = g->cast_shadows;
         memcpy(part->morph_weights, g->morph_weights, sizeof part->morph_weights);
-        char *glsl = NULL;
-        if (g->deform.glsl && !(glsl = strdup(g->deform.glsl)))
-            return false;
-        free(part->deform.glsl);
+        /* the deformer's source is copied only when it changed (a script
+         * moving the group every frame copies no strings) */
+        char *glsl = part->deform.glsl;
+        bool same = glsl && g->deform.glsl ? strcmp(glsl, g->deform.glsl) == 0 : glsl == g->deform.glsl;
+        if (!same) {
+            char *copy = g->deform.glsl ? strdup(g->deform.glsl) : NULL;
+            if (g->deform.glsl && !copy)
+                return false;
+            free(part->deform.glsl);
+            glsl = copy;
+        }
         part->deform = g->deform;
         part->deform.glsl = glsl;
         part->version = g->version;

@@ -10,94 +10,76 @@ source "$(dirname "$0")/lib.sh"
 rel() { "$CAUSTICA" compare "$1" "$2" | sed -n 's/.*rel_rmse=\([0-9.e+-]*\).*/\1/p'; }
 nans() { "$CAUSTICA" compare "$1" "$2" | sed -n 's/.*nan=\([0-9]*\).*/\1/p'; }
 
-# GPU (photon caustics + refraction) against the reference's pixel means
-# (--antialias: the GPU filters textures through mipmaps) at 256 px, the
-# reference 64 iterations of 20,000 photons (within 0.015-0.024 of a 20 s
-# one). Measured 2026-12-05: 0.14 / 0.15 / 0.11 against 0.49 / 0.85 / 0.46
-# with one material; the bound sits between them.
-for sample in transmission roughness attenuation; do
-  scene="scenes/khronos_samples.lua --set sample=$sample"
+# against_reference SCENE CONTRAST REFERENCE BOUND FLOOR: the GPU's image of SCENE (a script and its
+# --set options) is finite and within BOUND (rel_rmse) of the reference's pixel means (--antialias: the
+# GPU filters textures through mipmaps; REFERENCE: its photons and iterations), while the GPU's image of
+# CONTRAST (the same without the feature) is at least FLOOR from it. Sets gpu_rel and contrast_rel.
+against_reference() {
+  local scene=$1 contrast=$2 reference=$3 bound=$4 floor=$5 rc nan
   # shellcheck disable=SC2086
   "$CAUSTICA" render $scene -o "$WORK/gpu.pfm" -q >/dev/null 2>"$WORK/err.txt" &&
-    "$CAUSTICA" render $scene --set one_material=true -o "$WORK/one.pfm" -q >/dev/null 2>&1 &&
-    "$CAUSTICA" reference $scene --photons 20000 --spp 64 --antialias -o "$WORK/ref.pfm" -q >/dev/null 2>&1
+    "$CAUSTICA" render $contrast -o "$WORK/contrast.pfm" -q >/dev/null 2>&1 &&
+    "$CAUSTICA" reference $scene $reference --antialias -o "$WORK/ref.pfm" -q >/dev/null 2>&1
   rc=$?
-  gpu_rel=$(rel "$WORK/gpu.pfm" "$WORK/ref.pfm") gpu_nan=$(nans "$WORK/gpu.pfm" "$WORK/ref.pfm")
-  one=$(rel "$WORK/one.pfm" "$WORK/ref.pfm")
-  if [ $rc = 0 ] && [ "$gpu_nan" = 0 ] && awk "BEGIN { exit !($gpu_rel <= 0.22 && $one >= 0.4) }"; then
-    pass "$sample at 256 px: GPU against the reference rel_rmse $gpu_rel (bound 0.22); one material per mesh $one (>= 0.4)"
+  gpu_rel=$(rel "$WORK/gpu.pfm" "$WORK/ref.pfm") contrast_rel=$(rel "$WORK/contrast.pfm" "$WORK/ref.pfm")
+  nan=$(nans "$WORK/gpu.pfm" "$WORK/ref.pfm")
+  [ $rc = 0 ] && [ "$nan" = 0 ] && awk "BEGIN { exit !($gpu_rel <= $bound && $contrast_rel >= $floor) }"
+}
+
+# The Khronos samples at 256 px, the reference 64 iterations of 20,000 photons (within 0.015-0.024 of
+# a 20 s one). Measured 2026-12-05: 0.14 / 0.15 / 0.11 against 0.49 / 0.85 / 0.46 with one material
+# per mesh; the bound sits between them.
+for sample in transmission roughness attenuation; do
+  scene="scenes/khronos_samples.lua --set sample=$sample"
+  if against_reference "$scene" "$scene --set one_material=true" "--photons 20000 --spp 64" 0.22 0.4; then
+    pass "$sample at 256 px: GPU against the reference rel_rmse $gpu_rel (bound 0.22); one material per mesh $contrast_rel (>= 0.4)"
   else
-    fail "$sample" "exit $rc, GPU $gpu_rel (nan $gpu_nan), one material $one: $(cat "$WORK/err.txt")"
+    fail "$sample" "GPU $gpu_rel, one material $contrast_rel: $(cat "$WORK/err.txt")"
   fi
 done
 
 # Cut-outs (alphaMode MASK) on a diffuse quad over a floor: seen through and casting a checkered shadow
 # on the GPU as in the reference (0.072 measured), unlike the same quad opaque (0.33).
-"$CAUSTICA" render tests/scenes/cutout.lua -o "$WORK/cut.pfm" -q &&
-  "$CAUSTICA" render tests/scenes/cutout.lua --set mask=false -o "$WORK/opaque.pfm" -q &&
-  "$CAUSTICA" reference tests/scenes/cutout.lua --photons 10000 --spp 4 --antialias -o "$WORK/cut_ref.pfm" -q \
-    >/dev/null 2>&1
-rc=$?
-cut=$(rel "$WORK/cut.pfm" "$WORK/cut_ref.pfm") opaque=$(rel "$WORK/opaque.pfm" "$WORK/cut_ref.pfm")
-if [ $rc = 0 ] && awk "BEGIN { exit !($cut <= 0.12 && $opaque >= 0.25) }"; then
-  pass "alphaMode MASK: the GPU's cut-outs and their shadow within $cut of the reference (bound 0.12; opaque $opaque)"
+if against_reference tests/scenes/cutout.lua "tests/scenes/cutout.lua --set mask=false" "--photons 10000 --spp 4" 0.12 0.25; then
+  pass "alphaMode MASK: the GPU's cut-outs and their shadow within $gpu_rel of the reference (bound 0.12; opaque $contrast_rel)"
 else
-  fail "cut-outs" "exit $rc, cut-out $cut, opaque $opaque"
+  fail "cut-outs" "cut-out $gpu_rel, opaque $contrast_rel: $(cat "$WORK/err.txt")"
 fi
 
 # alphaMode BLEND (alpha 0.5): shade blends it over the floor, the shadow map dithers it into a half
 # shadow; within 0.18 of the reference's coin per ray (0.13 measured), the quad opaque 0.22 from it.
-"$CAUSTICA" render tests/scenes/cutout.lua --set blend=true -o "$WORK/blend.pfm" -q &&
-  "$CAUSTICA" render tests/scenes/cutout.lua --set blend=true --set mask=false -o "$WORK/blend_opaque.pfm" -q &&
-  "$CAUSTICA" reference tests/scenes/cutout.lua --set blend=true --photons 10000 --spp 64 --antialias \
-    -o "$WORK/blend_ref.pfm" -q >/dev/null 2>&1
-rc=$?
-blend=$(rel "$WORK/blend.pfm" "$WORK/blend_ref.pfm") opaque=$(rel "$WORK/blend_opaque.pfm" "$WORK/blend_ref.pfm")
-if [ $rc = 0 ] && awk "BEGIN { exit !($blend <= 0.18 && $opaque >= 0.2) }"; then
-  pass "alphaMode BLEND: blended and half-shadowed within $blend of the reference (bound 0.18; opaque $opaque)"
+if against_reference "tests/scenes/cutout.lua --set blend=true" "tests/scenes/cutout.lua --set blend=true --set mask=false" \
+   "--photons 10000 --spp 64" 0.18 0.2; then
+  pass "alphaMode BLEND: blended and half-shadowed within $gpu_rel of the reference (bound 0.18; opaque $contrast_rel)"
 else
-  fail "blend" "exit $rc, blend $blend, opaque $opaque"
+  fail "blend" "blend $gpu_rel, opaque $contrast_rel: $(cat "$WORK/err.txt")"
 fi
 
 # Rough glass (GGX, roughness 0, 0.3, 0.6 before an emissive checker): refraction's cone lookup within
 # 0.15 of the reference's sampled microfacets (0.118 measured), the balls drawn smooth 0.23 from it.
-"$CAUSTICA" render tests/scenes/rough_glass.lua -o "$WORK/rough.pfm" -q &&
-  "$CAUSTICA" render tests/scenes/rough_glass.lua --set roughness=0 -o "$WORK/smooth.pfm" -q &&
-  "$CAUSTICA" reference tests/scenes/rough_glass.lua --photons 1000 --spp 64 --antialias -o "$WORK/rough_ref.pfm" -q \
-    >/dev/null 2>&1
-rc=$?
-rough_rel=$(rel "$WORK/rough.pfm" "$WORK/rough_ref.pfm") rough_nan=$(nans "$WORK/rough.pfm" "$WORK/rough_ref.pfm")
-smooth=$(rel "$WORK/smooth.pfm" "$WORK/rough_ref.pfm")
-if [ $rc = 0 ] && [ "$rough_nan" = 0 ] && awk "BEGIN { exit !($rough_rel <= 0.15 && $smooth >= 0.2) }"; then
-  pass "rough glass: the GPU's blur within $rough_rel of the reference's microfacets (bound 0.15; smooth $smooth)"
+if against_reference tests/scenes/rough_glass.lua "tests/scenes/rough_glass.lua --set roughness=0" \
+   "--photons 1000 --spp 64" 0.15 0.2; then
+  pass "rough glass: the GPU's blur within $gpu_rel of the reference's microfacets (bound 0.15; smooth $contrast_rel)"
 else
-  fail "rough glass" "exit $rc, rough $rough_rel (nan $rough_nan), smooth $smooth"
+  fail "rough glass" "rough $gpu_rel, smooth $contrast_rel: $(cat "$WORK/err.txt")"
 fi
+
 # Partial transmission (0.6 and 0.3, the rest diffuse orange): refraction's blend within 0.16 of the
 # reference's choice per path (0.127 measured), the balls drawn clear 0.21 from it.
-"$CAUSTICA" render tests/scenes/partial_glass.lua -o "$WORK/partial.pfm" -q &&
-  "$CAUSTICA" render tests/scenes/partial_glass.lua --set transmission=1 -o "$WORK/clear.pfm" -q &&
-  "$CAUSTICA" reference tests/scenes/partial_glass.lua --photons 20000 --spp 64 --antialias -o "$WORK/partial_ref.pfm" \
-    -q >/dev/null 2>&1
-rc=$?
-partial=$(rel "$WORK/partial.pfm" "$WORK/partial_ref.pfm") clear=$(rel "$WORK/clear.pfm" "$WORK/partial_ref.pfm")
-if [ $rc = 0 ] && awk "BEGIN { exit !($partial <= 0.16 && $clear >= 0.19) }"; then
-  pass "partial transmission: the GPU's blend within $partial of the reference (bound 0.16; all clear $clear)"
+if against_reference tests/scenes/partial_glass.lua "tests/scenes/partial_glass.lua --set transmission=1" \
+   "--photons 20000 --spp 64" 0.16 0.19; then
+  pass "partial transmission: the GPU's blend within $gpu_rel of the reference (bound 0.16; all clear $contrast_rel)"
 else
-  fail "partial transmission" "exit $rc, partial $partial, clear $clear"
+  fail "partial transmission" "partial $gpu_rel, clear $contrast_rel: $(cat "$WORK/err.txt")"
 fi
 
 # The transmission tint (glTF's base colour on glass, once per way through): orange balls within 0.15 of
 # the reference (0.097 measured), the same balls untinted at least 0.2 from it (0.235).
-"$CAUSTICA" render tests/scenes/rough_glass.lua --set tint=true -o "$WORK/tint.pfm" -q &&
-  "$CAUSTICA" reference tests/scenes/rough_glass.lua --set tint=true --photons 1000 --spp 64 --antialias \
-    -o "$WORK/tint_ref.pfm" -q >/dev/null 2>&1
-rc=$?
-tinted=$(rel "$WORK/tint.pfm" "$WORK/tint_ref.pfm") untinted=$(rel "$WORK/rough.pfm" "$WORK/tint_ref.pfm")
-if [ $rc = 0 ] && awk "BEGIN { exit !($tinted <= 0.15 && $untinted >= 0.2) }"; then
-  pass "transmission tint: within $tinted of the reference (bound 0.15; untinted $untinted)"
+if against_reference "tests/scenes/rough_glass.lua --set tint=true" tests/scenes/rough_glass.lua \
+   "--photons 1000 --spp 64" 0.15 0.2; then
+  pass "transmission tint: within $gpu_rel of the reference (bound 0.15; untinted $contrast_rel)"
 else
-  fail "tint" "exit $rc, tinted $tinted, untinted $untinted"
+  fail "tint" "tinted $gpu_rel, untinted $contrast_rel: $(cat "$WORK/err.txt")"
 fi
 
 # The extremes: roughness 1 (GGX's widest lobe, grazing facets) and transmission 0 (all diffuse), in
