@@ -68,24 +68,27 @@ vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 }
 
 // The flux over the footprint at + s ex + s^2 bx + t ey + t^2 by for s, t
-// in [-1/2, 1/2] (the photon's own cell of the light's grid), as n x n
-// sample points each deposited bilinearly, so a diverging photon spreads,
-// a converging one stays sharp and the flux is kept exactly. Two points a
-// cell along sides up to `fine_up_to` cells (one a cell beats against the
-// grid where photons land 1-2 cells apart: a +-12% ripple on flat water),
-// one a cell beyond, at most `max_side` a side (a wide footprint overlaps
-// its neighbours' anyway).
-void footprint_splat(vec2 at, vec2 ex, vec2 bx, vec2 ey, vec2 by, vec3 flux, float fine_up_to, int max_side)
+// in [-cell/2, cell/2]: the photon's own cell of the light's grid (cell 1),
+// or the part of it around the photon (cell < 1: a pass that jitters its
+// photons over a cell x cell finer pattern, frame after frame, and
+// accumulates them, so that the frames' footprints tile the finer grid),
+// as n x n sample points each deposited bilinearly, so a diverging photon
+// spreads, a converging one stays sharp and the flux is kept exactly. Two
+// points a pixel along sides up to `fine_up_to` cells (one a cell beats
+// against the grid where photons land 1-2 cells apart: a +-12% ripple on
+// flat water), one a cell beyond, at most `max_side` a side (a wide
+// footprint overlaps its neighbours' anyway).
+void footprint_splat(vec2 at, vec2 ex, vec2 bx, vec2 ey, vec2 by, vec3 flux, float fine_up_to, int max_side, float cell)
 {
     // the longest chord of the side's parabola over the cell
-    float lx = length(ex) + 0.25 * length(bx), ly = length(ey) + 0.25 * length(by);
+    float lx = cell * (length(ex) + 0.25 * cell * length(bx)), ly = cell * (length(ey) + 0.25 * cell * length(by));
     int nx = clamp(int(ceil(lx <= fine_up_to ? 2.0 * lx : lx)), 1, max_side);
     int ny = clamp(int(ceil(ly <= fine_up_to ? 2.0 * ly : ly)), 1, max_side);
     vec3 share = flux / float(nx * ny);
     for (int j = 0; j < ny; j++) {
-        float t = (float(j) + 0.5) / float(ny) - 0.5;
+        float t = cell * ((float(j) + 0.5) / float(ny) - 0.5);
         for (int i = 0; i < nx; i++) {
-            float s = (float(i) + 0.5) / float(nx) - 0.5;
+            float s = cell * ((float(i) + 0.5) / float(nx) - 0.5);
             deposit(at + s * ex + s * s * bx + t * ey + t * t * by, share);
         }
     }

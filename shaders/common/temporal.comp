@@ -23,6 +23,7 @@ uniform int u_moved;
 uniform float u_frames;
 
 uniform float u_moved_frames; // the most frames averaged while the light or geometry moves
+uniform int u_settled; // the camera, the light and the geometry all as they were the last frame
 // where the pass knows how its light moved on screen (photon_caustics/
 // motion.comp: x, y in 1/64 pixels and the photons that said so, summed
 // per pixel), the history is taken from where the light was
@@ -136,8 +137,21 @@ void main()
                     history.rgb = clamp(history.rgb, m1 - GAMMA * sigma, m1 + GAMMA * sigma);
                     limit = min(limit, u_moved_frames);
                 }
-                held = min(history.a + 1.0, limit);
-                result = history.rgb + (current.rgb - history.rgb) / held;
+                if (u_settled != 0 && history.a >= u_frames) {
+                    // Nothing moved and the history holds u_frames frames
+                    // already: it is the mean over the jitter's offsets, each
+                    // once (u_frames a multiple of 16, temporal_jitter), and
+                    // kept as it is. Blending on (a running mean over the last
+                    // u_frames) would weigh the newest offsets up to 2.6 times
+                    // the oldest: a pass whose photons cover only their part
+                    // of the finer grid (layered_caustics' `cell`) would show
+                    // that grid crawl, frame after frame.
+                    held = history.a;
+                    result = history.rgb;
+                } else {
+                    held = min(history.a + 1.0, limit);
+                    result = history.rgb + (current.rgb - history.rgb) / held;
+                }
             }
         }
     }

@@ -18,6 +18,7 @@ uniform int u_light;          // the light's entry in the frame's list
 uniform int u_light_ortho;    // a directional light: parallel photons
 uniform float u_texel_area;   // directional: the area a texel spans across the beam
 uniform float u_texel_tan;    // point/spot: a texel's side on the plane at distance 1
+uniform vec2 u_jitter;        // where in its texel the photon starts (texels, within +-0.5; issue 32)
 
 // Where the photon (world o, d) lands on a receiver the camera sees.
 bool land(vec3 o, vec3 d, out vec3 at, out ivec2 px)
@@ -43,7 +44,11 @@ void main()
     imageStore(u_hits, ivec3(p, 1), vec4(0.0, 0.0, 0.0, missed));
     if (layer_count(p) == 0)
         return;
-    vec3 P0 = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
+    // the photon's start in the light's image: its texel's centre, moved by
+    // this frame's jitter when the pass accumulates over frames
+    vec2 at_px = vec2(p) + 0.5 + u_jitter;
+    bool exists;
+    vec3 P0 = layer_point(at_px, layer_depth_at(at_px, 0, exists));
     vec3 d0 = u_light_ortho == 1 ? vec3(0.0, 0.0, -1.0) : normalize(P0);
     // the flux through this texel, before the surface
     GpuLight light = u_lights[u_light];
@@ -60,7 +65,7 @@ void main()
                                dot(world_d, normalize(light.direction.xyz)));
         }
     }
-    LayerPath path = layer_trace(p, d0);
+    LayerPath path = layer_trace_at(at_px, d0);
     mat3 to_world = mat3(u_layer_inv_view);
     vec3 entry = (u_layer_inv_view * vec4(path.entry, 1.0)).xyz;
     vec3 reflected = normalize(to_world * reflect(d0, path.normal0));

@@ -333,19 +333,28 @@ void layer_march(inout LayerPath path, vec3 P, vec3 d, int medium, int gap, bool
     path.medium = medium;
 }
 
-// The path of the ray `d0` (eye space) that meets pixel p's first layer.
-LayerPath layer_trace(ivec2 p, vec3 d0)
+// The path of the ray `d0` (eye space) that meets the first layer at the
+// continuous pixel position `px` (in pixels; inside a texel that has a
+// layer): its depth and normal interpolated over the texels of the same
+// surface (layer_depth_at). At a texel's centre that is the texel's own
+// depth and normal, exactly; a caustics pass that jitters its photons or
+// beams within their texels (issue 32's temporal accumulation) starts them
+// off the centre.
+LayerPath layer_trace_at(vec2 px, vec3 d0)
 {
     LayerPath path = layer_path_start();
-    if (layer_count(p) == 0)
+    ivec2 p = ivec2(floor(px));
+    bool exists;
+    float depth = layer_depth_at(px, 0, exists);
+    if (!exists)
         return path;
     path.entered = true;
-    vec3 P = layer_point(vec2(p) + 0.5, layer_depth(p, 0));
+    vec3 P = layer_point(px, depth);
     vec3 d = normalize(d0);
     int medium = -1;
     float f;
     vec3 facing;
-    bool through = layer_interface(d, layer_normal(p, 0), layer_slot(p, 0), medium, f, facing);
+    bool through = layer_interface(d, layer_normal_at(px, 0), layer_slot(p, 0), medium, f, facing);
     path.fresnel0 = f;
     path.normal0 = facing;
     path.entry = P;
@@ -359,6 +368,9 @@ LayerPath layer_trace(ivec2 p, vec3 d0)
     }
     return path;
 }
+
+// The path of the ray `d0` (eye space) that meets pixel p's first layer.
+LayerPath layer_trace(ivec2 p, vec3 d0) { return layer_trace_at(vec2(p) + 0.5, d0); }
 
 #ifdef LAYER_TRACE_SPLIT
 // The next march: the part `path` reflected back inside where it first

@@ -84,5 +84,5 @@ void main()
     vec2 ex = footprint_axis(p, ivec2(1, 0), at, bx), ey = footprint_axis(p, ivec2(0, 1), at, by);
     // two sample points per texel at any size; at most 12 a side (32 a side
     // cost the ball's caustics 70% more time)
-    footprint_splat(at, ex, bx, ey, by, flux, 1e30, 12);
+    footprint_splat(at, ex, bx, ey, by, flux, 1e30, 12, 1.0);
 }

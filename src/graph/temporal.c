@@ -1,6 +1,7 @@
 /* Temporal accumulation of a screen-space irradiance (temporal.h). */
 #include "graph/temporal.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include "graph/frame.h"
@@ -31,6 +32,18 @@ void temporal_release(struct temporal_history *h)
     }
     gl_texture_destroy(&h->current);
     memset(h, 0, sizeof *h);
+}
+
+bool temporal_motion_clear(struct gl_texture *motion, int width, int height, struct error *err)
+{
+    if (!motion->id || motion->width != width || motion->height != height) {
+        gl_texture_destroy(motion);
+        if (!gl_texture_create(motion, GL_TEXTURE_2D_ARRAY, GL_R32I, width, height, 3, err))
+            return false;
+    }
+    const GLint zero = 0;
+    gl.ClearTexImage(motion->id, 0, GL_RED_INTEGER, GL_INT, &zero);
+    return true;
 }
 
 static bool ensure_size(struct temporal_history *h, int width, int height, struct error *err)
@@ -83,6 +96,8 @@ bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const s
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_eye"), frame->eye.x, frame->eye.y, frame->eye.z);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_valid"), h->valid && frames > 1);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_moved"), !still);
+    bool camera_still = h->valid && memcmp(&h->view_proj, &frame->view_proj, sizeof h->view_proj) == 0;
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_settled"), still && camera_still);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_frames"), (float)(frames < 1 ? 1 : frames));
     /* moving, half as many frames (at least 2): measured on the turning
      * ball (docs/TEMPORAL.md), a quarter lagged less but halved no flicker */
