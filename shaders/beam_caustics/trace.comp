@@ -17,6 +17,18 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 uniform int u_light;
 uniform int u_light_ortho;
+uniform vec2 u_jitter; // the lattice's offset this frame, in lattice cells (within +-0.5; issue 32)
+
+// Where lattice vertex ij samples the light's view, in texels: the texel
+// round(i (B - 1) / M) (the lattice spans the light's image), its centre
+// moved by this frame's jitter when the pass accumulates over frames, kept
+// inside the view.
+vec2 vertex_position(ivec2 ij)
+{
+    float cell = float(u_layer_size.x - 1) / float(u_lattice);
+    vec2 texel = floor(vec2(ij) * cell + 0.5);
+    return clamp(texel + 0.5 + u_jitter * cell, vec2(0.5), vec2(u_layer_size) - 0.5);
+}
 
 void main()
 {
@@ -33,8 +45,8 @@ void main()
     bv.refl_weight = vec4(0.0);
     bv.normal = vec4(0.0);
     bv.exit_sigma = vec4(0.0);
-    // the lattice spans the light's image, vertex i on texel round(i (B - 1) / M)
-    ivec2 p = ivec2(floor(vec2(ij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
+    vec2 at = vertex_position(ij);
+    ivec2 p = ivec2(floor(at));
     uint flags = 0u;
     // A vertex just off the refractors' silhouette, with a neighbour on
     // them, is moved to the nearest texel on them towards that neighbour:
@@ -48,7 +60,7 @@ void main()
             ivec2 nij = ij + ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1))[n];
             if (any(lessThan(nij, ivec2(0))) || any(greaterThan(nij, ivec2(u_lattice))))
                 continue;
-            ivec2 pn = ivec2(floor(vec2(nij) * float(u_layer_size.x - 1) / float(u_lattice) + 0.5));
+            ivec2 pn = ivec2(floor(vertex_position(nij)));
             if (layer_count(pn) == 0)
                 continue;
             int span = max(abs(pn.x - p.x), abs(pn.y - p.y));
@@ -66,10 +78,13 @@ void main()
         }
         if (best < 1e30) {
             p = found;
+            at = vec2(found) + 0.5;
             flags |= VERTEX_SNAPPED;
         }
     }
-    vec3 P0 = layer_point(vec2(p) + 0.5, layer_count(p) > 0 ? layer_depth(p, 0) : 1.0);
+    bool exists;
+    float depth0 = layer_count(p) > 0 ? layer_depth_at(at, 0, exists) : 1.0;
+    vec3 P0 = layer_point(at, depth0);
     vec3 d0 = u_light_ortho == 1 ? vec3(0.0, 0.0, -1.0) : normalize(P0);
     bv.light_plane = u_light_ortho == 1 ? vec4(P0.xy, 0.0, 0.0) : vec4(d0.xy / max(-d0.z, 1e-6), 0.0, 0.0);
     if (layer_count(p) > 0) {
@@ -97,11 +112,11 @@ void main()
             w *= c * c * c;
         }
         w *= medium_transmittance_ray(entry_world, to_light, dist);
-        LayerPath path = layer_trace(p, d0);
+        LayerPath path = layer_trace_at(at, d0);
         vec3 n0 = normalize(to_world * path.normal0);
         bv.normal = vec4(n0, 0.0);
         vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
-        bv.refl_pos = vec4(entry_world, layer_depth(p, 0));
+        bv.refl_pos = vec4(entry_world, depth0);
         if (path.fresnel0 > 0.0) {
             flags |= VERTEX_REFLECTED;
             float len = extrusion_length(entry_world + reflected * (1e-4 * u_layer_extent), reflected);

@@ -1,7 +1,6 @@
 /* Temporal accumulation of a screen-space irradiance (temporal.h). */
 #include "graph/temporal.h"
 
-#include <stdio.h>
 #include <string.h>
 
 #include "graph/frame.h"
@@ -32,18 +31,6 @@ void temporal_release(struct temporal_history *h)
     }
     gl_texture_destroy(&h->current);
     memset(h, 0, sizeof *h);
-}
-
-bool temporal_motion_clear(struct gl_texture *motion, int width, int height, struct error *err)
-{
-    if (!motion->id || motion->width != width || motion->height != height) {
-        gl_texture_destroy(motion);
-        if (!gl_texture_create(motion, GL_TEXTURE_2D_ARRAY, GL_R32I, width, height, 3, err))
-            return false;
-    }
-    const GLint zero = 0;
-    gl.ClearTexImage(motion->id, 0, GL_RED_INTEGER, GL_INT, &zero);
-    return true;
 }
 
 static bool ensure_size(struct temporal_history *h, int width, int height, struct error *err)

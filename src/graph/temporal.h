@@ -73,11 +73,6 @@ bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const s
                          const struct gl_texture *irradiance, const struct gl_texture *depth,
                          const struct gl_texture *motion, bool still, int frames, int *held, struct error *err);
 
-/* Makes `motion` the R32I array of 3 layers temporal_accumulate reads,
- * width x height, and clears it: a pass's motion shader (including
- * common/light_motion.glsl) then adds each sample's motion into it. */
-bool temporal_motion_clear(struct gl_texture *motion, int width, int height, struct error *err);
-
 /* Forgets the history (the next frame starts afresh). */
 void temporal_reset(struct temporal_history *h);
 void temporal_release(struct temporal_history *h);

@@ -32,6 +32,7 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "graph/temporal.h"
 #include "passes/distance_map.h"
 #include "passes/layers.h"
 
@@ -59,6 +60,13 @@ struct beam_caustics_state {
     struct gl_framebuffer volumes_fb, blur_fb;
     GLuint fragments_query; /* GL_SAMPLES_PASSED around the volumes' draw: the fill rate */
     int width, height;
+    /* accumulate > 1 (issue 32): the last frames' surface caustics and
+     * inscattered light, the lattice's jitter this frame, and the light
+     * and geometry the last frame was built from */
+    struct temporal_history irradiance_history, inscatter_history;
+    float jitter[2];
+    uint64_t key;
+    bool valid;
 };
 
 enum beam_caustics_param {
@@ -82,6 +90,7 @@ enum beam_caustics_param {
     BC_RECEIVERS,
     BC_RECEIVER_DEPTH,
     BC_LIGHT_LAYERS,
+    BC_ACCUMULATE,
 };
 
 static const struct pass_param_desc params[] = {
@@ -132,6 +141,11 @@ static const struct pass_param_desc params[] = {
      .default_output = "layers",
      .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
              "`buffer`, `layers` and `voxels`, shared with layered_caustics for the same light"},
+    [BC_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
+     .help = "temporal accumulation while the light and the geometry stand still: the projected grid moves by a "
+             "sub-cell jitter every frame and the surface caustics and inscattered light (where a receiver lies behind "
+             "it) average the last this many frames; while they move, every frame stands alone; 1: none "
+             "(docs/TEMPORAL.md)"},
 };
 
 static bool beam_caustics_declare(struct pass *p, struct error *err)
@@ -182,6 +196,8 @@ static void beam_caustics_destroy(struct pass *p)
     release_buffers(s);
     release_targets(s);
     distance_map_release(&s->distance);
+    temporal_release(&s->irradiance_history);
+    temporal_release(&s->inscatter_history);
     gl_framebuffer_destroy(&s->volumes_fb);
     gl_framebuffer_destroy(&s->blur_fb);
     if (s->fragments_query && gl_api_ready())
@@ -304,6 +320,9 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     set_lattice(trace, s);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
+    /* accumulating a still scene: the lattice moved by this frame's
+     * sub-cell offset (beam_caustics_execute; the refinement follows it) */
+    gl.ProgramUniform2f(trace->id, gl_program_uniform(trace, "u_jitter"), s->jitter[0], s->jitter[1]);
     gl_program_bind_texture(trace, "u_distance", s->distance.distance[0].id);
     gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
     gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
@@ -453,6 +472,31 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
     return true;
 }
 
+/* Issue 32: this frame's surface caustics and inscattered light blended
+ * with the last frames' while the light and the geometry stand still
+ * (temporal.h). The inscattered light is kept where a receiver lies behind
+ * it (the history is reprojected by the receivers' depth): against the sky
+ * a beam is this frame's alone. */
+static bool accumulate_outputs(struct pass *p, struct pass_frame *f, int accumulate, bool still,
+                               const struct gl_texture *depth, struct error *err)
+{
+    struct beam_caustics_state *s = p->state;
+    int held = 0;
+    if (!temporal_accumulate(&s->irradiance_history, f->renderer, f->snapshot,
+                             &pass_frame_output(p, f, "irradiance")->texture, depth, NULL, still, accumulate, &held,
+                             err) ||
+        !temporal_accumulate(&s->inscatter_history, f->renderer, f->snapshot,
+                             &pass_frame_output(p, f, "inscatter")->texture, depth, NULL, still, accumulate, NULL, err))
+        return false;
+    pass_stage_end(p, "accumulate");
+    size_t used = strlen(p->report);
+    if (used + 8 < sizeof p->report)
+        snprintf(p->report + used, sizeof p->report - used, "; accumulated: %s",
+                 held == 0 ? "the history starts (the light or the geometry moved)"
+                           : "the light and geometry still, frames averaged");
+    return true;
+}
+
 static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct beam_caustics_state *s = p->state;
@@ -489,6 +533,24 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     /* the distance impostor reaches past the whole scene from the refractors' centre */
     float range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) + vec3_length(vec3_sub(center, vec3_scale(vec3_add(slo, shi), 0.5f)))), 1e-3f);
 
+    /* Accumulating (issue 32), while the light and the geometry stand still:
+     * the whole lattice moves by this frame's sub-cell offset, so 16
+     * frames' beams interleave into a grid 4 x 4 as fine. While anything
+     * moves, each frame stands alone on the unmoved lattice: its beams are
+     * not noise to average, and a history clipped after the light lost
+     * light at the focus (measured, docs/TEMPORAL.md). */
+    int accumulate = pass_int(p, BC_ACCUMULATE);
+    uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
+    bool still = pass_frame_reusable(f, s->valid, s->key, key);
+    s->key = key;
+    s->valid = true;
+    s->jitter[0] = s->jitter[1] = 0.0f;
+    if (accumulate <= 1 || !still) {
+        temporal_reset(&s->irradiance_history);
+        temporal_reset(&s->inscatter_history);
+    } else {
+        temporal_jitter(&s->irradiance_history, &s->jitter[0], &s->jitter[1]);
+    }
     pass_stage_begin(p);
     /* the receivers' distance impostor changes only with the geometry */
     if (!distance_map_update_distances(&s->distance, r, p, f, center, BEAMS_DISTANCE_SIZE, range, err))
@@ -524,7 +586,9 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s%s", counters[COUNT_BEAMS],
              counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
              counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "", dropped);
-    return gl_check("beam_caustics", err);
+    if (!gl_check("beam_caustics", err))
+        return false;
+    return accumulate <= 1 || accumulate_outputs(p, f, accumulate, still, &depth->texture, err);
 }
 
 /* The blocks it reads (issue 26): the light's layers at this pass's size

@@ -24,13 +24,10 @@ struct layered_caustics_state {
     struct gl_texture hits, photons; /* per photon: where it lands, its flux */
     int buffer;
     int width, height;
-    /* accumulate > 1 (issue 32): the irradiance of the last frames; the
-     * last frame's landing points and jitter, and where the light moved on
-     * screen since (motion.comp); the light and geometry it was traced with */
+    /* accumulate > 1 (issue 32): the irradiance of the last frames while
+     * the light and the geometry stand still, and what they were the last
+     * frame (pass_frame_key) */
     struct temporal_history temporal;
-    struct gl_texture hits_previous, motion;
-    float jitter[2], jitter_previous[2];
-    bool previous_valid;
     uint64_t key;
     bool valid;
 };
@@ -69,10 +66,10 @@ static const struct pass_param_desc params[] = {
      .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
              "`buffer`, `layers` and `voxels`, shared with beam_caustics for the same light"},
     [LC_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
-     .help = "temporal accumulation: each photon starts at a sub-texel jitter within its light texel, a new one every "
-             "frame, and the irradiance averages the last this many frames while the light and the geometry stay, "
-             "half as many (at least 2; the history clipped to each pixel's neighbourhood) while they move; 1: none "
-             "(docs/TEMPORAL.md)"},
+     .help = "temporal accumulation while the light and the geometry stand still: each photon starts at a sub-texel "
+             "jitter within its light texel, a new one every frame, and the irradiance averages the last this many "
+             "frames (the focused photons cover a quarter of their cell from 16 on); while they move, every frame "
+             "stands alone; 1: none (docs/TEMPORAL.md)"},
 };
 
 static bool layered_caustics_declare(struct pass *p, struct error *err)
@@ -95,9 +92,6 @@ static void release_targets(struct layered_caustics_state *s)
     gl_texture_destroy(&s->flux);
     gl_texture_destroy(&s->hits);
     gl_texture_destroy(&s->photons);
-    gl_texture_destroy(&s->hits_previous);
-    gl_texture_destroy(&s->motion);
-    s->previous_valid = false;
 }
 
 static void layered_caustics_destroy(struct pass *p)
@@ -132,36 +126,9 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
     s->buffer = buffer;
     /* layer 0: photons through the object; 1: reflected off its first interface */
     if (!gl_texture_create(&s->hits, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err) ||
-        !gl_texture_create(&s->hits_previous, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err) ||
         !gl_texture_create(&s->photons, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err))
         return false;
     return gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err);
-}
-
-/* Issue 32: where the light moved on screen since the last frame, from the
- * landing points of the same light texels' rays then and now (motion.comp),
- * for temporal_accumulate to take the history from where the caustic was. */
-static bool light_motion(struct layered_caustics_state *s, struct renderer *r, const struct pass_frame *f, int buffer,
-                         const struct gl_texture *depth, struct error *err)
-{
-    if (!temporal_motion_clear(&s->motion, f->width, f->height, err))
-        return false;
-    struct gl_program *prog;
-    if (!gl_program_get_compute(&r->programs, "layered_caustics/motion.comp", NULL, NULL, &prog, err))
-        return false;
-    gl.UseProgram(prog->id);
-    gl_program_bind_texture(prog, "u_hits", s->hits.id);
-    gl_program_bind_texture(prog, "u_previous", s->hits_previous.id);
-    gl_program_bind_texture(prog, "u_depth", depth->id);
-    gl_program_bind_image(prog, "u_motion", s->motion.id, GL_TRUE, GL_READ_WRITE, GL_R32I);
-    /* texel p's photon started at p + j_now, which the last frame's grid
-     * (started at q + j_prev) had at q = p + j_now - j_prev */
-    gl.ProgramUniform2f(prog->id, gl_program_uniform(prog, "u_shift"), s->jitter[0] - s->jitter_previous[0],
-                        s->jitter[1] - s->jitter_previous[1]);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_buffer"), buffer);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    return true;
 }
 
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -172,10 +139,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&out->texture, zero);
     int accumulate = pass_int(p, LC_ACCUMULATE);
-    if (accumulate <= 1) {
+    if (accumulate <= 1)
         temporal_reset(&s->temporal);
-        s->previous_valid = false;
-    }
     struct light *light = pass_light_at(p, LC_LIGHT);
     int slot = renderer_light_slot(r, f->scene, light);
     vec3 lo, hi;
@@ -235,20 +200,25 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
-    /* Accumulating (issue 32): every photon starts at this frame's
-     * sub-texel offset within its light texel, so 16 frames' photons
-     * interleave into a grid 4 x 4 as dense. The layers stay as they are
-     * (other passes read them); the photon's first interface is
-     * interpolated there (layer_trace_at). */
-    /* the light side depends on the light and the geometry, not the camera */
+    /* Accumulating (issue 32), while the light and the geometry stand still:
+     * every photon starts at this frame's sub-texel offset within its light
+     * texel, so 16 frames' photons interleave into a grid 4 x 4 as dense.
+     * The layers stay as they are (other passes read them); the photon's
+     * first interface is interpolated there (layer_trace_at). While
+     * anything moves, the photons start at the texels' centres and each
+     * frame stands alone: one frame's photons, spread over their
+     * footprints, are not noise to average, and a history dragged after
+     * the light lagged and dimmed the focus (measured, docs/TEMPORAL.md). */
     uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
     bool still = pass_frame_reusable(f, s->valid, s->key, key);
     s->key = key;
     s->valid = true;
-    s->jitter[0] = s->jitter[1] = 0.0f;
-    if (accumulate > 1)
-        temporal_jitter(&s->temporal, &s->jitter[0], &s->jitter[1]);
-    gl.ProgramUniform2f(photons->id, gl_program_uniform(photons, "u_jitter"), s->jitter[0], s->jitter[1]);
+    if (!still)
+        temporal_reset(&s->temporal);
+    float jitter[2] = {0.0f, 0.0f};
+    if (accumulate > 1 && still)
+        temporal_jitter(&s->temporal, &jitter[0], &jitter[1]);
+    gl.ProgramUniform2f(photons->id, gl_program_uniform(photons, "u_jitter"), jitter[0], jitter[1]);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     /* The longest a footprint's side may stretch where its neighbours say
      * the light is spread smoothly (footprint.glsl): photons land up to a
@@ -324,23 +294,13 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         return false;
     if (accumulate <= 1)
         return true;
-    bool moving = !still && s->previous_valid;
-    if (moving && !light_motion(s, r, f, buffer, &depth->texture, err))
-        return false;
     int held = 0;
-    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &out->texture, &depth->texture, moving ? &s->motion : NULL,
-                             still, accumulate, &held, err))
+    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &out->texture, &depth->texture, NULL, still, accumulate,
+                             &held, err))
         return false;
-    /* this frame's landing points are the next one's previous */
-    gl.CopyImageSubData(s->hits.id, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, s->hits_previous.id, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0,
-                        buffer, buffer, 2);
-    s->jitter_previous[0] = s->jitter[0];
-    s->jitter_previous[1] = s->jitter[1];
-    s->previous_valid = true;
     pass_stage_end(p, "accumulate");
-    snprintf(p->report, sizeof p->report, "accumulated: %s", held == 0 ? "the history starts"
-             : s->temporal.still > 1 ? "the light and geometry still, frames averaged"
-                                     : "the light or geometry moved, the history clipped");
+    snprintf(p->report, sizeof p->report, "accumulated: %s",
+             held == 0 ? "the history starts (the light or the geometry moved)" : "the light and geometry still, frames averaged");
     return true;
 }
 

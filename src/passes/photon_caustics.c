@@ -316,8 +316,13 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
 static bool light_motion(struct photon_state *s, struct renderer *r, const struct pass_frame *f, int buffer,
                          const struct gl_texture *depth, struct error *err)
 {
-    if (!temporal_motion_clear(&s->motion, f->width, f->height, err))
-        return false;
+    if (s->motion.width != f->width || s->motion.height != f->height || !s->motion.id) {
+        gl_texture_destroy(&s->motion);
+        if (!gl_texture_create(&s->motion, GL_TEXTURE_2D_ARRAY, GL_R32I, f->width, f->height, 3, err))
+            return false;
+    }
+    const GLint zero = 0;
+    gl.ClearTexImage(s->motion.id, 0, GL_RED_INTEGER, GL_INT, &zero);
     struct gl_program *prog;
     if (!gl_program_get_compute(&r->programs, "photon_caustics/motion.comp", NULL, NULL, &prog, err))
         return false;
