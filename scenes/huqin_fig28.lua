@@ -1,9 +1,9 @@
 -- Hu & Qin Fig. 28: caustics under a rippling water surface, seen from
 -- under water: one interface (the light refracts into the water and stays
 -- there), caustics on the floor, a wall and the dolphins. The photon pass
--- at its own defaults (since issue 8; the paper's k = 3 filter at 192^2,
--- --set k=3 --set texture=192, blurs the floor's caustic lines into
--- blotches). --set technique=volumes: Sandberg & Falemo's caustic volumes
+-- at its own defaults (since issue 8; the paper's k = 3 filter at 192^2
+-- over the whole receiver, --set k=3 --set texture=192 --set fit=false,
+-- blurs the floor's caustic lines into blotches). --set technique=volumes: Sandberg & Falemo's caustic volumes
 -- on the same water; --set view=floor: straight down at a patch of the
 -- floor from under water (the caustic lines without the surface or the
 -- dolphins in front; tests/lua/photon_test.lua).
@@ -31,7 +31,7 @@ if technique == "volumes" then
   g:add("caustics", c.pass.caustic_volumes { light = sun, water = water })
 elseif technique == "photons" then
   g:add("caustics", c.pass.photon_caustics { light = sun, buffer = 512, texture = c.param("texture", 512), k = c.param("k", 0),
-                                             bias = 0.08 })
+                                             fit = c.param("fit", true), bias = 0.08 })
 else
   error("technique: photons or volumes expected, got " .. tostring(technique))
 end

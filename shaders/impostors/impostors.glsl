@@ -25,6 +25,14 @@ float impostor_depth(int k, vec2 uv)
     return texture(u_impostor_depth, vec3(uv, float(k))).r;
 }
 
+// The surface point impostor k stores at uv (the inverse of impostor_uv).
+vec3 impostor_point(int k, vec2 uv)
+{
+    Impostor im = impostors[k];
+    vec2 s = (uv - 0.5) * 2.0 * im.center.w;
+    return im.center.xyz + im.right.xyz * s.x + im.up.xyz * s.y + im.axis.xyz * impostor_depth(k, uv);
+}
+
 // The depth stored at uv, 1e30 (no surface) outside the impostor.
 float impostor_depth_inside(int k, vec2 uv)
 {

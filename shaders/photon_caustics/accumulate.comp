@@ -22,7 +22,6 @@ uniform sampler2D u_flux;
 layout(r32ui) uniform uimage2DArray u_counts;
 #include "common/bilinear.glsl"
 #include "common/fixed_point.glsl"
-uniform int u_texture;
 uniform float u_footprint; // texels (0: a point)
 #include "photon_caustics/window.glsl"
 

@@ -10,7 +10,6 @@ layout(rgba32f) writeonly uniform image2DArray u_caustics;
 uniform float u_fixed_point;
 uniform int u_k;
 uniform float u_s;
-uniform int u_texture;
 void main()
 {
     ivec3 g = ivec3(gl_GlobalInvocationID);

@@ -27,13 +27,6 @@ const float MOTION_SCALE = 64.0;
 const float MOTION_LIMIT = 128.0; // pixels: a jump farther is no motion to follow
 const float STRETCHED = 1.5;      // pixels between neighbouring photons' landing points (previous_uv)
 
-vec3 receiver_point(int k, vec2 uv)
-{
-    Impostor im = impostors[k];
-    vec2 s = (uv - 0.5) * 2.0 * im.center.w;
-    return im.center.xyz + im.right.xyz * s.x + im.up.xyz * s.y + im.axis.xyz * impostor_depth(k, uv);
-}
-
 vec3 to_window(vec3 p)
 {
     vec4 c = u_view_proj * vec4(p, 1.0);
@@ -54,7 +47,7 @@ bool previous_uv(ivec2 p, int k, out vec2 uv)
     uv = here.xy;
     if (here.w < 0.5 || int(here.z + 0.5) != k)
         return false;
-    vec2 at = to_window(receiver_point(k, here.xy)).xy;
+    vec2 at = to_window(impostor_point(k, here.xy)).xy;
     for (int axis = 0; axis < 2; axis++) {
         float s = u_shift[axis];
         ivec2 q = p;
@@ -71,7 +64,7 @@ bool previous_uv(ivec2 p, int k, out vec2 uv)
         // 2.6 pixels a frame 15-30 pixels out, which drew the history from
         // the dark outside and dimmed the caustic 20% in 15 frames), and
         // the light there is spread thin and smooth, so it needs no motion.
-        if (distance(to_window(receiver_point(k, next.xy)).xy, at) > STRETCHED)
+        if (distance(to_window(impostor_point(k, next.xy)).xy, at) > STRETCHED)
             return false;
         uv += abs(s) * (next.xy - here.xy);
     }
@@ -90,7 +83,7 @@ void main()
     vec2 before;
     if (!previous_uv(p, k, before))
         return;
-    vec3 here = receiver_point(k, now.xy);
+    vec3 here = impostor_point(k, now.xy);
     vec3 w = to_window(here);
     ivec2 pixel = ivec2(floor(w.xy));
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(u_viewport.xy))))
@@ -102,7 +95,7 @@ void main()
     vec3 seen = to_world(vec2(pixel) + 0.5, d);
     if (distance(seen, here) > 0.01 * distance(here, u_camera_pos.xyz) + 2.0 * distance(seen, to_world(vec2(pixel) + 1.5, d)))
         return;
-    vec2 moved = w.xy - to_window(receiver_point(k, before)).xy;
+    vec2 moved = w.xy - to_window(impostor_point(k, before)).xy;
     if (any(isnan(moved)) || any(greaterThan(abs(moved), vec2(MOTION_LIMIT))))
         return;
     imageAtomicAdd(u_motion, ivec3(pixel, 0), int(round(moved.x * MOTION_SCALE)));

@@ -110,9 +110,26 @@ void main()
         } else {
         t1 = normalize(t1);
         flux *= 1.0 - f1;
-        // d_T (Fig. 9): start small, move to the back surface along the light's view
+        // d_T (Fig. 9): move to the back surface along the light's view.
+        // As the refraction pass does (refraction/refract.frag,
+        // exit_distance): start from the thickness along the light's ray at
+        // p1 (Wyman's d_V) rather than Fig. 9's small start, after the first
+        // step take the secant through the last two gaps, and iterate until
+        // the gap closes (at most D_T_STEPS), not for `iterations`. Fig. 9's
+        // plain step assumes a back surface square to the light; a tilted
+        // one, or a crease between two back faces, needs more steps than
+        // the paper's few: a tilted IOR 2.42 cube put 0.905 of an exact
+        // trace's light on the floor with 3 (its two lit faces' caustics
+        // parted by a dim band), 0.947 with 4, 0.956 with 5 to 16.
+        vec3 view1 = kind == 1 ? ldir : normalize(p1 - light.position.xyz);
+        float rate = max(abs(dot(t1, view1)), 0.05);
         float dT = 1e-3;
-        for (int i = 0; i < max(u_iterations, 1); i++) {
+        float db1 = texelFetch(u_back_depth, px, 0).r;
+        if (db1 < 1.0)
+            dT = max(dT, dot(unproject(uv, db1) - p1, view1) / rate);
+        float prev_dT = dT, prev_step = 0.0;
+        const int D_T_STEPS = 8;
+        for (int i = 0; i < D_T_STEPS; i++) {
             vec3 q = project(p1 + dT * t1);
             if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))))
                 break;
@@ -122,8 +139,16 @@ void main()
             vec3 pb = unproject(q.xy, db);
             vec3 view = kind == 1 ? ldir : normalize(pb - light.position.xyz);
             float step = dot(pb - (p1 + dT * t1), view) / max(abs(dot(t1, view)), 0.05);
-            dT = max(dT + step, 0.0);
-            if (abs(step) < 1e-5)
+            float next = dT + step;
+            if (i > 0 && abs(step - prev_step) > 1e-6 * abs(step) + 1e-12) {
+                float secant = dT + step * (dT - prev_dT) / (prev_step - step);
+                if (secant > 0.0 && abs(secant - dT) < 4.0 * abs(step) + 1e-6)
+                    next = secant;
+            }
+            prev_dT = dT;
+            prev_step = step;
+            dT = max(next, 0.0);
+            if (abs(step) < 1e-4 * dT + 1e-6)
                 break;
         }
         vec3 p2 = p1 + dT * t1;

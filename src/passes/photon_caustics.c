@@ -11,7 +11,8 @@
  * seen by the camera, with a shadow-map-like test against the impostor's
  * depth, into a screen-space irradiance `shade` adds. A static scene (light
  * and objects unchanged) reuses the photon buffer and caustic textures (§4);
- * only the mapping is redone. */
+ * only the mapping is redone, and the textures rebuilt from the buffer when
+ * the camera moved (their box is where it may see the photons land). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +26,11 @@
 #include "passes/impostors.h"
 #include "scene/scene.h"
 
+/* per receiver in the PhotonWindows buffer: the box (lo.x, lo.y, hi.x, hi.y)
+ * and the count of the photons the camera may see, and the box of all of
+ * them (shaders/photon_caustics/window.glsl) */
+#define PHOTON_WINDOW_STRIDE 9
+
 struct photon_state {
     struct impostor_set impostors;
     struct gl_framebuffer light_fb[2], photon_fb, map_fb;
@@ -35,7 +41,8 @@ struct photon_state {
     struct gl_texture caustics;                       /* rgba32f array, one layer per receiver */
     int buffer, texture, receivers;
     bool valid;
-    uint64_t key; /* what the photon buffer and caustic textures were made from (pass_frame_key) */
+    uint64_t key;      /* what the photon buffer was made from (pass_frame_key) */
+    uint64_t view_key; /* and the caustic textures: that and the camera (their box is what it may see) */
     mat4 light_view_proj, light_inverse;
     float fixed_point; /* flux -> integer count scale */
     GLuint windows;    /* SSBO: per receiver, the box its photons landed in (window.glsl) */
@@ -81,7 +88,8 @@ static const struct pass_param_desc params[] = {
     [PHOTON_TEXTURE] = {.name = "texture", .type = PASS_PARAM_INTEGER, .default_number = 512, .min = 16, .max = 4096,
      .help = "caustic texture size per receiver (over the box its photons landed in, with fit)"},
     [PHOTON_ITERATIONS] = {.name = "iterations", .type = PASS_PARAM_INTEGER, .default_number = 3, .min = 0, .max = 16,
-     .help = "iterations of d_T and of the impostor correction (Fig. 9, 16)"},
+     .help = "iterations of the impostor correction (Fig. 16); d_T (Fig. 9) iterates until the gap to the back "
+             "surface closes, at most 8 steps"},
     [PHOTON_BIAS] = {.name = "bias", .type = PASS_PARAM_NUMBER, .default_number = 0.02, .min = 0, .max = 10,
      .help = "depth tolerance of the caustic mapping test, scene units"},
     [PHOTON_MODE] = {.name = "mode", .type = PASS_PARAM_ENUM, .default_string = "refract", .choices = "refract|reflect",
@@ -342,6 +350,68 @@ static bool light_motion(struct photon_state *s, struct renderer *r, const struc
     return true;
 }
 
+/* §3.2: the photons into each receiver's caustic texture, over the box they
+ * landed in (issue 8) where the camera may see them (issue 27; window.glsl,
+ * bounds.comp): after a new photon buffer, and when the camera's view
+ * changed. */
+static bool build_caustic_textures(struct photon_state *s, struct renderer *r, struct pass *p, int buffer,
+                                   int texture, struct error *err)
+{
+    if (!s->windows) {
+        gl.CreateBuffers(1, &s->windows);
+        gl.NamedBufferStorage(s->windows, IMPOSTOR_MAX * PHOTON_WINDOW_STRIDE * sizeof(GLuint), NULL,
+                              GL_DYNAMIC_STORAGE_BIT);
+    }
+    GLuint empty[IMPOSTOR_MAX * PHOTON_WINDOW_STRIDE];
+    for (int i = 0; i < IMPOSTOR_MAX; i++) {
+        GLuint *w = empty + PHOTON_WINDOW_STRIDE * i;
+        w[0] = w[1] = w[5] = w[6] = 65535u; /* lo */
+        w[2] = w[3] = w[7] = w[8] = 0u;     /* hi */
+        w[4] = 0u;                          /* photons the camera may see */
+    }
+    gl.NamedBufferSubData(s->windows, 0, sizeof empty, empty);
+    struct gl_program *bounds;
+    if (!gl_program_get_compute(&r->programs, "photon_caustics/bounds.comp", NULL, NULL, &bounds, err))
+        return false;
+    gl.UseProgram(bounds->id);
+    gl_program_bind_texture(bounds, "u_photons", s->photons.id);
+    gl_program_bind_storage(bounds, "PhotonWindows", s->windows);
+    bind_impostors(s, bounds);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const GLuint zero_u = 0;
+    gl.ClearTexImage(s->counts.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
+    struct gl_program *acc;
+    if (!gl_program_get_compute(&r->programs, "photon_caustics/accumulate.comp", NULL, NULL, &acc, err))
+        return false;
+    gl.UseProgram(acc->id);
+    gl_program_bind_texture(acc, "u_photons", s->photons.id);
+    gl_program_bind_texture(acc, "u_flux", s->photon_flux.id);
+    gl_program_bind_image(acc, "u_counts", s->counts.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
+    gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
+    gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
+    gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
+    gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_fit"), pass_flag(p, PHOTON_FIT));
+    gl_program_bind_storage(acc, "PhotonWindows", s->windows);
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    struct gl_program *filt;
+    if (!gl_program_get_compute(&r->programs, "photon_caustics/filter.comp", NULL, NULL, &filt, err))
+        return false;
+    gl.UseProgram(filt->id);
+    bind_impostors(s, filt);
+    gl_program_bind_image(filt, "u_counts", s->counts.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
+    gl_program_bind_image(filt, "u_caustics", s->caustics.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
+    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
+    gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
+    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
+    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_fit"), pass_flag(p, PHOTON_FIT));
+    gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return true;
+}
+
 static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct photon_state *s = p->state;
@@ -442,63 +512,22 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         vec3 e = light->intensity;
         double total = light_view_flux_bound(fmaxf(e.x, fmaxf(e.y, e.z)), &proj);
         s->fixed_point = (float)(2.0e9 / fmax(total, 1e-20));
-        if (s->impostors.count > 0) {
-            /* issue 8: where each receiver's photons landed, so that its
-             * caustic texture covers that box (window.glsl) */
-            if (!s->windows) {
-                gl.CreateBuffers(1, &s->windows);
-                gl.NamedBufferStorage(s->windows, IMPOSTOR_MAX * 4 * sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
-            }
-            GLuint empty[IMPOSTOR_MAX * 4];
-            for (int i = 0; i < IMPOSTOR_MAX; i++) {
-                empty[4 * i] = empty[4 * i + 1] = 65535u;
-                empty[4 * i + 2] = empty[4 * i + 3] = 0u;
-            }
-            gl.NamedBufferSubData(s->windows, 0, sizeof empty, empty);
-            struct gl_program *bounds;
-            if (!gl_program_get_compute(&r->programs, "photon_caustics/bounds.comp", NULL, NULL, &bounds, err))
-                return false;
-            gl.UseProgram(bounds->id);
-            gl_program_bind_texture(bounds, "u_photons", s->photons.id);
-            gl_program_bind_storage(bounds, "PhotonWindows", s->windows);
-            gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-            gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-            const GLuint zero_u = 0;
-            gl.ClearTexImage(s->counts.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
-            struct gl_program *acc;
-            if (!gl_program_get_compute(&r->programs, "photon_caustics/accumulate.comp", NULL, NULL, &acc, err))
-                return false;
-            gl.UseProgram(acc->id);
-            gl_program_bind_texture(acc, "u_photons", s->photons.id);
-            gl_program_bind_texture(acc, "u_flux", s->photon_flux.id);
-            gl_program_bind_image(acc, "u_counts", s->counts.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
-            gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
-            gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
-            gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
-            gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_fit"), pass_flag(p, PHOTON_FIT));
-            gl_program_bind_storage(acc, "PhotonWindows", s->windows);
-            gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-            gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-            struct gl_program *filt;
-            if (!gl_program_get_compute(&r->programs, "photon_caustics/filter.comp", NULL, NULL, &filt, err))
-                return false;
-            gl.UseProgram(filt->id);
-            bind_impostors(s, filt);
-            gl_program_bind_image(filt, "u_counts", s->counts.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
-            gl_program_bind_image(filt, "u_caustics", s->caustics.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
-            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
-            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
-            gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
-            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
-            gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_fit"), pass_flag(p, PHOTON_FIT));
-            gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
-            gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        }
         s->valid = true;
         if (s->coverage > 0.0f && used + 8 < sizeof p->report)
             snprintf(p->report + used, sizeof p->report - used, " (the light's view narrowed to the specular objects' "
                      "box, %.0f%% of the area it first had)", 100.0 * s->coverage);
         s->key = key;
+    }
+    /* The caustic textures cover the box the photons landed in where the
+     * camera may see them (bounds.comp), so a moved camera rebuilds them
+     * from the photon buffer, which it does not change (§4). */
+    uint64_t view_key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_CAMERA);
+    if (!reuse || (pass_flag(p, PHOTON_FIT) && view_key != s->view_key)) {
+        if (reuse && used + 8 < sizeof p->report)
+            snprintf(p->report + used, sizeof p->report - used, "; the caustic textures rebuilt for the camera's view");
+        if (s->impostors.count > 0 && !build_caustic_textures(s, r, p, buffer, texture, err))
+            return false;
+        s->view_key = view_key;
     }
 
     /* §3.3: caustic mapping onto the receivers the camera sees. */
@@ -521,6 +550,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl_program_bind_texture(map, "u_caustics", s->caustics.id);
     gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_texture"), texture);
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
     for (int k = 0; k < s->impostors.count; k++) {
         char name[48];

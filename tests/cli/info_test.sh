@@ -63,12 +63,20 @@ g:add("shadow", c.pass.shadow_map { light = sun, size = 64 })
 g:add("photons", c.pass.photon_caustics { light = sun, buffer = 32, texture = 32 })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
 g:output("shade.color")
-return { scene = scene, graph = g, size = {16, 16}, frames = 4 }
+local update = c.param("orbit", false) and function(t) scene.camera.eye = {3 * math.sin(t), 1, 3 * math.cos(t)} end or nil
+return { scene = scene, graph = g, size = {16, 16}, frames = 4, update = update }
 LUA
 "$CAUSTICA" info "$WORK/static_photons.lua" >"$WORK/photons.txt" 2>&1
 grep -A1 "photons          photon_caustics  kept; runs every frame" "$WORK/photons.txt" \
   | grep -q "on frame 1: the photon buffer and caustic textures reused" \
   && pass "static photons: reused, said so" || fail "static photons" "$(cat "$WORK/photons.txt")"
+# Only the camera moves: the photons are kept, the caustic textures made
+# again over the box the camera now sees (window.glsl).
+"$CAUSTICA" info "$WORK/static_photons.lua" --set orbit=true >"$WORK/orbit.txt" 2>&1
+grep -A1 "photons          photon_caustics  kept; runs every frame" "$WORK/orbit.txt" \
+  | grep -q "on frame 1: the photon buffer and caustic textures reused.*; the caustic textures rebuilt for the camera's view" \
+  && pass "photons under an orbiting camera: traced once, textures rebuilt, said so" \
+  || fail "photons under an orbiting camera" "$(cat "$WORK/orbit.txt")"
 # A static light and static casters over several frames: the shadow map is reused on frame 1.
 grep -q "shadow .*on frame 1 reused: the light and the casters did not change" "$WORK/photons.txt" \
   && pass "static shadow map reused" || fail "static shadow reuse" "$(cat "$WORK/photons.txt")"

@@ -236,7 +236,7 @@ end
 local BEAMS_FOCUS = "the beams' focus is bounded (max_focus) and blurred over a pixel (blur): the peak comes out low"
 t.case("ball lens n = 1.5, floor 1.25 radii below its centre (before the paraxial focus)", ball_case(
   "ball lens, floor 1.25 R", { floor = 1.25 }, {
-    photon_caustics = { bound = 0.15 },
+    photon_caustics = { bound = 0.12 },
     layered_caustics = { bound = 0.15 },
     beam_caustics = { bound = 0.32, known = BEAMS_FOCUS },
     illumination_textures = { bound = 0.15 },
@@ -244,7 +244,7 @@ t.case("ball lens n = 1.5, floor 1.25 radii below its centre (before the paraxia
 
 t.case("ball lens n = 1.5, floor at the paraxial focus (1.5 radii)", ball_case(
   "ball lens, floor 1.5 R", { floor = 1.5 }, {
-    photon_caustics = { bound = 0.15 },
+    photon_caustics = { bound = 0.06 },
     layered_caustics = { bound = 0.15 },
     beam_caustics = { bound = 0.31, known = BEAMS_FOCUS },
     illumination_textures = { bound = 0.15 },
@@ -411,7 +411,11 @@ local BEAMS_CUBE = "0.83 of the trace's light (IOR 2.42) reaches the floor: a ce
 
 t.case("glass cube, IOR 2.42 (total internal reflection inside), its shadow caustic", cube_case(
   "cube, IOR 2.42", 2.42, {
-    photon_caustics = { bound = 0.3, known = "0.90 of the trace's light reaches the floor (the light totally reflected inside; cause not isolated yet)" },
+    -- 0.956 of the trace's light reaches the floor (0.905 while d_T stopped
+    -- after `iterations` steps of Fig. 9 and left a dim band between the
+    -- two lit faces' caustics; error 0.24): the rest takes the grazing third
+    -- face and the paths totally reflected twice, which one back layer misses
+    photon_caustics = { bound = 0.1 },
     layered_caustics = { bound = 0.1 },
     beam_caustics = { bound = 0.37, known = BEAMS_CUBE },
     illumination_textures = { bound = 0.25, known = ILLUM_TIR },
