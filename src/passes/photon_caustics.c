@@ -375,7 +375,6 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
         return false;
     gl.UseProgram(bounds->id);
     gl_program_bind_texture(bounds, "u_photons", s->photons.id);
-    gl_program_bind_storage(bounds, "PhotonWindows", s->windows);
     bind_impostors(s, bounds);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
