@@ -47,6 +47,35 @@ vec2 footprint_clamped(vec2 offset, float limit)
 // focus, came out as black bands between the rim photons' clamped
 // footprints, and as black spokes where the next photons out flew past
 // the image).
+// The side of a photon whose neighbour at p - step is open_beyond, from its
+// neighbour `a` at p + step (the side runs towards it): the half towards it
+// ends at their midpoint, and the open half reaches as far as the parabola
+// through this photon and the next two inwards, at p + step and
+// p + 2 step, says its cell's edge lands (between as far as the inner half
+// and three times that, at most `widest`). A ball lens' rim before its
+// focus spreads faster and faster towards the silhouette, so the outer
+// half of the last photon's cell lands farther out than the inner half:
+// a cell stretched as far outwards as inwards left black notches between
+// the photon columns' last footprints at the lit disc's edge (8 pixels at
+// 256 x 256). The bend is that of the footprint through the two ends.
+vec2 footprint_open_side(ivec2 p, ivec2 step, vec2 at, vec2 a, float widest, out vec2 bend)
+{
+    vec2 inner = 0.5 * footprint_clamped(a, widest), outer = -inner;
+    vec2 a2;
+    if (neighbour(p + 2 * step, at, a2)) {
+        // f(t) = t s + t^2 k through f(1) = a, f(2) = a2; the open edge f(-1/2)
+        vec2 k = 0.5 * (a2 - 2.0 * a), s = a - k;
+        vec2 edge = -0.5 * s + 0.25 * k;
+        float len = length(edge), least = length(inner), most = min(3.0 * least, 0.5 * widest);
+        // a fold between them (the edge turned back past this photon) keeps the symmetric cell
+        if (dot(edge, inner) < 0.0 && len > 0.0)
+            outer = edge * (clamp(len, least, most) / len);
+    }
+    // g(s) = s e + s^2 bend with g(1/2) = inner, g(-1/2) = outer
+    bend = 2.0 * (inner + outer);
+    return inner - outer;
+}
+
 vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 {
     vec2 a, b;
@@ -61,9 +90,11 @@ vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
         return 0.5 * (a - b);
     }
     if (plus)
-        return footprint_clamped(a, open_beyond(p - step) ? widest : limit);
+        return open_beyond(p - step) ? footprint_open_side(p, step, at, a, widest, bend)
+                                     : footprint_clamped(a, limit);
     if (minus)
-        return -footprint_clamped(b, open_beyond(p + step) ? widest : limit);
+        return -(open_beyond(p + step) ? footprint_open_side(p, -step, at, b, widest, bend)
+                                       : footprint_clamped(b, limit));
     return vec2(0.0);
 }
 
