@@ -216,6 +216,10 @@ struct visible_point {
 struct pixel {
     dvec3 direct;           /* sum over iterations of what the eye path gathered */
     int samples;            /* eye paths traced (an iteration cut short by the budget leaves some pixels one ahead) */
+    /* an eye path that draws no random number is the same every iteration:
+     * its radiance, traced once (trace_eye) */
+    bool eye_fixed;
+    dvec3 eye_once;
     dvec3 volume;           /* sum of the volume caustic estimates */
     double volume_samples;  /* the gathers' weights: their passes' fractions */
     /* the noise estimate: sums of the even and the odd iterations' own
@@ -427,12 +431,15 @@ struct job {
     double caustic_power[PHOTON_CHUNKS][3]; /* flux the photons brought to diffuse surfaces */
 };
 
-static void trace_eye(struct job *j, int x, int y)
+/* One eye path of pixel (x, y): its visible point, its segments through
+ * the medium and its first radius into the pixel; returns the radiance it
+ * gathered on the way (the lights seen directly, single scattering, the
+ * environment, emission). */
+static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struct ref_rng *rngp)
 {
     const struct ref_scene *rs = j->rs;
-    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
-    struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 1u,
-                                      (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
+    struct ref_rng rng = *rngp;
+    dvec3 seen = dv(0, 0, 0);
     dvec3 origin, dir;
     /* Pixel centres, as the rasterizer samples: a point-sampled reference;
      * with `antialias` a point spread over the pixel each iteration, so that
@@ -453,7 +460,6 @@ static void trace_eye(struct job *j, int x, int y)
     dvec3 beta = attenuate(dv(1, 1, 1), medium_sigma(rs, &media), from_eye);
     px->vp.valid = false;
     px->segment_count = 0;
-    px->samples++;
     const struct ref_medium *rm = j->medium;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
@@ -470,7 +476,7 @@ static void trace_eye(struct job *j, int x, int y)
                 dvec3 tr = ref_medium_transmittance(rm, origin, dir, sdist, &rng);
                 dvec3 ls = inscatter(rs, rm, &rng, at, dir);
                 dvec3 c = dv_mul(dv_mul(beta, tr), dv_mul(dv_scale(rm->sigma_s, rho * (t1 - t0)), ls));
-                px->direct = dv_add(px->direct, c);
+                seen = dv_add(seen, c);
             }
             if (px->segment_count < MAX_SEGMENTS) {
                 int k = px->segment_count++;
@@ -483,8 +489,8 @@ static void trace_eye(struct job *j, int x, int y)
             beta = dv_mul(beta, ref_medium_transmittance(rm, origin, dir, hit ? h.t : INFINITY, &rng));
         }
         if (!hit) {
-            px->direct = dv_add(px->direct, dv_mul(beta, ref_scene_environment(rs, dir)));
-            return;
+            seen = dv_add(seen, dv_mul(beta, ref_scene_environment(rs, dir)));
+            break;
         }
         beta = attenuate(beta, medium_sigma(rs, &media), h.t);
         if (hit_is_diffuse(rs, &h, &rng)) {
@@ -495,9 +501,9 @@ static void trace_eye(struct job *j, int x, int y)
             dvec3 albedo = surface.albedo;
             dvec3 e = direct_light(rs, rm, &rng, h.position, n);
             dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
-            px->direct = dv_add(px->direct, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
+            seen = dv_add(seen, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
             /* its own radiance, seen along the path (emissive surfaces light nothing: no interreflection) */
-            px->direct = dv_add(px->direct, dv_mul(beta, surface.emission));
+            seen = dv_add(seen, dv_mul(beta, surface.emission));
             if (px->radius <= 0.0) {
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */
@@ -509,11 +515,38 @@ static void trace_eye(struct job *j, int x, int y)
             px->vp.position = h.position;
             px->vp.normal = n;
             px->vp.weight = f;
-            return;
+            break;
         }
         specular_step(rs, &h, &media, &dir, &origin, &beta, &rng);
         if (dv_dot(beta, beta) < 1e-30)
-            return;
+            break;
+    }
+    *rngp = rng;
+    return seen;
+}
+
+/* Pixel (x, y)'s eye path of this iteration. A path that drew no random
+ * number (a pixel centre, no choice between Fresnel's branches, no medium,
+ * lights sampled without one: the rng's state as seeded) is the same path
+ * every iteration: its radiance is kept and added again, its visible point
+ * and first radius stand, and it is not traced again (at 512^2 the eye
+ * pass was a tenth of each iteration of the ball lens; issue 28). */
+static void trace_eye(struct job *j, int x, int y)
+{
+    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    px->samples++;
+    if (px->eye_fixed) {
+        px->direct = dv_add(px->direct, px->eye_once);
+        return;
+    }
+    struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 1u,
+                                      (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
+    uint64_t seeded = rng.state;
+    dvec3 seen = trace_eye_path(j, px, x, y, &rng);
+    px->direct = dv_add(px->direct, seen);
+    if (rng.state == seeded) {
+        px->eye_fixed = true;
+        px->eye_once = seen;
     }
 }
 
