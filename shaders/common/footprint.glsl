@@ -25,28 +25,6 @@ vec2 footprint_clamped(vec2 offset, float limit)
     return len > limit ? offset * (limit / len) : offset;
 }
 
-// The footprint's side along `step` and its bend: the parabola
-// at + t side + t^2 bend through the midpoints between this photon's
-// landing point and its neighbours', t = -1/2, 0, 1/2 (a second-order ray
-// differential that ends where the neighbours' footprints begin, so that
-// neighbours tile: the parabola through the neighbours themselves at
-// t = +-1, evaluated at +-1/2, ended short of or past the midpoints where
-// the landing map is more than quadratic, and a ball's rim light before
-// its focus showed black and bright chevrons along the photon columns,
-// 8 black pixels at 128 x 128 and 256 at 256 x 256). Where the light folds
-// (a caustic line between the neighbours: both land on the same side) the
-// side goes to zero and the bend keeps the footprint's extent, its flux
-// piled at the fold as the rays are; a photon with one neighbour has a
-// straight side, one with none a point. Each neighbour's offset is clamped to footprint_limit(), or to
-// up to three times the shorter one (at most footprint_stretch_limit())
-// when both landed: a smooth stretch lands them about equally far, a tear
-// does not. A photon whose other neighbour is open_beyond (a silhouette,
-// or a photon that flew past the view) has its cell stretched as much
-// outwards as inwards: its one neighbour's offset is allowed up to the
-// stretch limit (the light of a ball lens' rim, spread thin before the
-// focus, came out as black bands between the rim photons' clamped
-// footprints, and as black spokes where the next photons out flew past
-// the image).
 // The side of a photon whose neighbour at p - step is open_beyond, from its
 // neighbour `a` at p + step (the side runs towards it): the half towards it
 // ends at their midpoint, and the open half reaches as far as the parabola
@@ -76,6 +54,28 @@ vec2 footprint_open_side(ivec2 p, ivec2 step, vec2 at, vec2 a, float widest, out
     return inner - outer;
 }
 
+// The footprint's side along `step` and its bend: the parabola
+// at + t side + t^2 bend through the midpoints between this photon's
+// landing point and its neighbours', t = -1/2, 0, 1/2 (a second-order ray
+// differential that ends where the neighbours' footprints begin, so that
+// neighbours tile: the parabola through the neighbours themselves at
+// t = +-1, evaluated at +-1/2, ended short of or past the midpoints where
+// the landing map is more than quadratic, and a ball's rim light before
+// its focus showed black and bright chevrons along the photon columns,
+// 8 black pixels at 128 x 128 and 256 at 256 x 256). Where the light folds
+// (a caustic line between the neighbours: both land on the same side) the
+// side goes to zero and the bend keeps the footprint's extent, its flux
+// piled at the fold as the rays are; a photon with one neighbour has a
+// straight side, one with none a point. Each neighbour's offset is clamped to footprint_limit(), or to
+// up to three times the shorter one (at most footprint_stretch_limit())
+// when both landed: a smooth stretch lands them about equally far, a tear
+// does not. A photon whose other neighbour is open_beyond (a silhouette,
+// or a photon that flew past the view) has its one neighbour's offset
+// allowed up to the stretch limit and its open half drawn by
+// footprint_open_side (the light of a ball lens' rim, spread thin before
+// the focus, came out as black bands between the rim photons' clamped
+// footprints, and as black spokes where the next photons out flew past
+// the image).
 vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 {
     vec2 a, b;
