@@ -244,30 +244,46 @@ function t.fresnel(cos_i, eta)
   return 0.5 * (rs * rs + rp * rp)
 end
 
--- Runs the registered cases (called by `caustica test`); each case's
--- result is kept in t._results for `caustica test --report`.
-function t._run(file)
-  local passed, failed = 0, 0
-  for _, case in ipairs(t._cases) do
-    if not options.filter or case.name:find(options.filter, 1, true) then
-      local start = os.clock()
-      current = { file = file, name = case.name }
-      local ok, err = xpcall(case.fn, function(e) return e end)
-      local seconds = os.clock() - start
-      if ok then
-        passed = passed + 1
-        print(string.format("ok   %s: %s (%.2f s)", file, case.name, seconds))
-      else
-        failed = failed + 1
-        print(string.format("FAIL %s: %s: %s", file, case.name, tostring(err)))
-      end
-      t._results[#t._results + 1] = { file = file, name = case.name, ok = ok, message = ok and "" or tostring(err),
-                                      seconds = seconds, images = current.images }
-      current = nil
-      io.stdout:flush()
-    end
+-- The runner's side (`caustica test`, src/app/cmd_test.c): the file's
+-- cases are counted, then each is run by a call of its own, so that
+-- --script-timeout and --script-memory hold each case (a case that runs
+-- past them fails with the limit's message and the next one runs).
+
+--- How many cases the file registered.
+function t._case_count()
+  return #t._cases
+end
+
+--- Case k's name, or nil when --filter leaves it out.
+function t._case_name(k)
+  local case = t._cases[k]
+  if not case or (options.filter and not case.name:find(options.filter, 1, true)) then return nil end
+  return case.name
+end
+
+--- Runs case k; prints its line and keeps its result in t._results (for
+--- --report and --junit). Returns true when it passed.
+function t._run_case(file, k)
+  local case = t._cases[k]
+  local start = os.clock()
+  current = { file = file, name = case.name }
+  local ok, err = xpcall(case.fn, function(e) return e end)
+  if not ok and err == "not enough memory" and (options.script_memory or 0) > 0 then
+    -- the case caught Lua's bare memory error: say which limit it met
+    err = string.format("the case used more than %.0f MB of memory (raise --script-memory MB, 0 = no limit)",
+                        options.script_memory)
   end
-  return passed, failed
+  local seconds = os.clock() - start
+  if ok then
+    print(string.format("ok   %s: %s (%.2f s)", file, case.name, seconds))
+  else
+    print(string.format("FAIL %s: %s: %s", file, case.name, tostring(err)))
+  end
+  t._results[#t._results + 1] = { file = file, name = case.name, ok = ok, message = ok and "" or tostring(err),
+                                  seconds = seconds, images = current.images }
+  current = nil
+  io.stdout:flush()
+  return ok
 end
 
 return t

@@ -6,6 +6,7 @@
  * the parts are checked to belong together (scene, frame, size, seed,
  * photons, pass count, shard count) and to hold disjoint shards. An EXR
  * part's "caustic" layer is merged the same way. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,12 +17,15 @@
 #include "io/image.h"
 #include "reference/reference_part.h"
 
-/* The passes p < total with p % count among the shards marked in `have`. */
-static int passes_of(const bool *have, int count, int total)
+/* The passes p < total with p % count among the shards marked in `have`:
+ * shard s holds total / count of them, and one more when s < total % count
+ * (counted per shard, not per pass: a part may claim 2^31 - 1 passes). */
+static long long passes_of(const bool *have, int count, int total)
 {
-    int n = 0;
-    for (int p = 0; p < total; p++)
-        n += have[p % count];
+    long long n = 0;
+    for (int s = 0; s < count; s++)
+        if (have[s])
+            n += total / count + (s < total % count ? 1 : 0);
     return n;
 }
 
@@ -56,8 +60,7 @@ int cmd_merge(struct app *app, struct cli *cli)
     bool *have = calloc(REFERENCE_PART_MAX_SHARDS, sizeof *have);
     double *sum = NULL, *sum_caustic = NULL;
     size_t n = 0;
-    int passes = 0;
-    long long emitted = 0;
+    long long passes = 0, emitted = 0; /* sums of the parts' counts: past int's range is possible */
     bool ok = first && have, caustic = true;
     if (!ok)
         error_set(&err, "merge: out of memory");
@@ -98,21 +101,23 @@ int cmd_merge(struct app *app, struct cli *cli)
                 sum_caustic[i] += (double)layer.rgba[i] * p->passes;
         }
         passes += ok ? p->passes : 0;
+        if (ok && emitted > LLONG_MAX - p->photons_emitted)
+            ok = error_set(&err, "%s: photons_emitted past what the parts can add up to", path);
         emitted += ok ? p->photons_emitted : 0;
         image_destroy(&img);
         image_destroy(&layer);
     }
-    int expected = ok ? passes_of(have, first->shard_count, first->passes_total) : 0;
+    long long expected = ok ? passes_of(have, first->shard_count, first->passes_total) : 0;
     if (ok && passes != expected)
-        ok = error_set(&err, "merge: the parts hold %d passes, their shards %d (a part cut short or edited?)", passes,
-                       expected);
+        ok = error_set(&err, "merge: the parts hold %lld passes, their shards %lld (a part cut short or edited?)",
+                       passes, expected);
     struct image out = {0}, out_caustic = {0};
     ok = ok && image_create(&out, first->width, first->height, &err) &&
          (!caustic || image_create(&out_caustic, first->width, first->height, &err));
     for (size_t i = 0; ok && i < n; i++) {
-        out.rgba[i] = (float)(sum[i] / passes);
+        out.rgba[i] = (float)(sum[i] / (double)passes);
         if (caustic)
-            out_caustic.rgba[i] = (float)(sum_caustic[i] / passes);
+            out_caustic.rgba[i] = (float)(sum_caustic[i] / (double)passes);
     }
     if (ok && image_path_is_exr(cli->output) && caustic) {
         struct image_layer layer = {.name = "caustic", .image = &out_caustic};
@@ -126,7 +131,7 @@ int cmd_merge(struct app *app, struct cli *cli)
         for (int i = 0; i < first->shard_count; i++)
             if (have[i])
                 merged.shards[merged.shard_parts++] = i;
-        merged.passes = passes;
+        merged.passes = (int)passes; /* equal to passes_of(), at most passes_total (an int) */
         merged.photons_emitted = emitted;
         ok = reference_part_write(cli->output, &merged, &err);
         if (ok && merged.shard_parts < first->shard_count) {
@@ -137,13 +142,13 @@ int cmd_merge(struct app *app, struct cli *cli)
                     shown++;
                 }
             fprintf(stderr,
-                    "caustica: warning: merged %d of %d shards (%d of %d passes): the estimate of those passes; "
+                    "caustica: warning: merged %d of %d shards (%lld of %d passes): the estimate of those passes; "
                     "missing: %s%s\n",
                     merged.shard_parts, first->shard_count, passes, first->passes_total, missing,
                     first->shard_count - merged.shard_parts > 16 ? ", ..." : "");
         }
         if (ok && !log_quiet())
-            printf("merged %d part%s (%d of %d passes, %lld photons) -> %s\n", cli->npositional,
+            printf("merged %d part%s (%lld of %d passes, %lld photons) -> %s\n", cli->npositional,
                    cli->npositional == 1 ? "" : "s", passes, first->passes_total, emitted, cli->output);
     }
     image_destroy(&out);

@@ -283,7 +283,7 @@ int cmd_record(struct app *app, struct cli *cli)
             free(paths[k]);
         free(paths);
         if (ok)
-            printf("wrote %s (%d frames at %g fps)\n", cli->video, n, video_fps);
+            printf("wrote %s (%d frame%s at %g fps)\n", cli->video, n, n == 1 ? "" : "s", video_fps);
     }
     free(frames);
     if (!ok) {

@@ -31,9 +31,17 @@ bool test_report_add(struct test_report *report, const struct test_case_result *
     }
     struct test_case_result *r = &report->cases[report->count++];
     *r = *result;
-    r->file = copy(result->file);
-    r->name = copy(result->name);
-    r->message = copy(result->message);
+    /* the writers compare and print these: never NULL */
+    r->file = copy(result->file ? result->file : "(no file)");
+    r->name = copy(result->name ? result->name : "(no name)");
+    r->message = copy(result->message ? result->message : "");
+    if (!r->file || !r->name || !r->message) {
+        free(r->file);
+        free(r->name);
+        free(r->message);
+        report->count--;
+        return false;
+    }
     for (int k = 0; k < 3; k++)
         r->images[k] = copy(result->images[k]);
     return true;
@@ -53,17 +61,51 @@ void test_report_release(struct test_report *report)
     memset(report, 0, sizeof *report);
 }
 
-/* Text with &, <, > and " escaped. */
-static void put_text(FILE *f, const char *s)
+/* The length of the well-formed UTF-8 sequence at s (RFC 3629: no
+ * overlong forms, no surrogates, nothing past U+10FFFF) whose code point
+ * XML 1.0 allows as a character, or 0. */
+static int xml_char_length(const unsigned char *s)
 {
-    for (; s && *s; s++) {
+    unsigned c = s[0];
+    if (c < 0x80)
+        return c >= 0x20 || c == '\t' || c == '\n' || c == '\r' ? 1 : 0;
+    int n = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
+    if (n == 0 || c > 0xf4)
+        return 0;
+    unsigned cp = c & (0x3fu >> (n - 1));
+    for (int i = 1; i < n; i++) {
+        if ((s[i] & 0xc0) != 0x80) /* the NUL at the end fails here too */
+            return 0;
+        cp = cp << 6 | (s[i] & 0x3fu);
+    }
+    static const unsigned least[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < least[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff) || cp == 0xfffe || cp == 0xffff)
+        return 0;
+    return n;
+}
+
+/* Text with &, <, > and " escaped, valid in XML and HTML whatever the
+ * bytes: a control character or a byte that is not part of well-formed
+ * UTF-8 is written as the text \xNN (a test's message may quote any
+ * bytes; none of them may make the report unreadable). */
+static void put_text(FILE *f, const char *text)
+{
+    const unsigned char *s = (const unsigned char *)text;
+    while (s && *s) {
+        int n = xml_char_length(s);
+        if (n == 0) {
+            fprintf(f, "\\x%02X", *s);
+            s++;
+            continue;
+        }
         switch (*s) {
         case '&': fputs("&amp;", f); break;
         case '<': fputs("&lt;", f); break;
         case '>': fputs("&gt;", f); break;
         case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
+        default: fwrite(s, 1, (size_t)n, f);
         }
+        s += n;
     }
 }
 

@@ -132,8 +132,8 @@ void path_temporary_dir_remove(const char *dir)
         char path[4400];
         struct stat st;
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
-            unlink(path);
+        if (lstat(path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)))
+            unlink(path); /* a link is removed, never followed */
     }
     closedir(d);
     rmdir(dir);

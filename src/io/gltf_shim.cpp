@@ -454,6 +454,12 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     // 0 stands for "infinite" (no absorption); anything else must be a
     // distance at which -ln(c)/d stays finite (c >= 1e-6 in mesh.c: d >= 1e-30
     // keeps 13.8/d below FLT_MAX).
+    // A path length inside the glass in the mesh's units: finite and
+    // >= 0 (1e308 was inf as a float, and a negative one turned absorption
+    // into gain: NaN and Inf pixels). 1e6 units is past any scene's size.
+    if (!std::isfinite(m.thickness) || m.thickness < 0.0f || m.thickness > 1e6f)
+        throw Fail{name + ": KHR_materials_volume thicknessFactor must be a finite distance in [0, 1e6], got " +
+                   std::to_string(m.thickness)};
     if (!std::isfinite(m.attenuation_distance) || m.attenuation_distance < 0.0f ||
         (m.attenuation_distance > 0.0f && m.attenuation_distance < 1e-30f))
         throw Fail{name + ": KHR_materials_volume attenuationDistance must be a positive finite distance"};

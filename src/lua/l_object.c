@@ -17,10 +17,17 @@
 
 /* The bytes of a mesh's arrays: positions, normals, two texture coordinate
  * sets, indices and morph targets, its parts' too (their own copies). */
+/* What a mesh's arrays are charged: ten floats a vertex (position,
+ * normal, two texture coordinates, tangent room), an index, six floats a
+ * vertex a morph target. */
+static size_t mesh_bytes(size_t vertices, size_t indices, size_t targets)
+{
+    return vertices * 10 * sizeof(float) + indices * sizeof(uint32_t) + targets * vertices * 6 * sizeof(float);
+}
+
 static size_t mesh_array_bytes(const struct mesh *m)
 {
-    size_t bytes = m->vertex_count * 10 * sizeof(float) + m->index_count * sizeof(uint32_t) +
-                   (size_t)m->target_count * m->vertex_count * 6 * sizeof(float);
+    size_t bytes = mesh_bytes(m->vertex_count, m->index_count, (size_t)m->target_count);
     for (int p = 0; p < m->part_count; p++)
         bytes += mesh_array_bytes(m->parts[p]);
     return bytes;
@@ -44,6 +51,20 @@ static int push_mesh(lua_State *L, struct mesh *m, struct error *err)
     u->charged = bytes;
     luaL_setmetatable(L, MESH_MT);
     return 1;
+}
+
+/* A procedural mesh whose size follows from its parameters is checked
+ * against --script-memory before it is made: a lathe of 4096 x 4096 is
+ * refused at once, not after its gigabyte was allocated and filled. */
+static void check_planned(lua_State *L, const char *fn, size_t vertices, size_t indices)
+{
+    size_t bytes = mesh_bytes(vertices, indices, 0);
+    char what[160];
+    snprintf(what, sizeof what, "mesh '%s' (%zu vertices)", fn, vertices);
+    struct error err;
+    if (!lua_host_charge(L, bytes, what, &err))
+        lutil_error(L, "%s", err.message);
+    lua_host_uncharge(L, bytes); /* charged for real by push_mesh, once made */
 }
 
 static int mesh_load(lua_State *L)
@@ -80,6 +101,9 @@ static int mesh_sphere(lua_State *L)
         lutil_opt_number(L, 1, "sphere", "radius", &radius);
         lutil_opt_integer(L, 1, "sphere", "segments", &segments);
     }
+    size_t nv, ni;
+    mesh_sphere_counts(segments, &nv, &ni);
+    check_planned(L, "sphere", nv, ni);
     struct error err;
     return push_mesh(L, mesh_create_sphere(radius, segments, &err), &err);
 }
@@ -94,6 +118,9 @@ static int mesh_plane(lua_State *L)
         lutil_opt_extent(L, 1, "plane", "size", &size_x, &size_z);
         lutil_opt_integer(L, 1, "plane", "subdivisions", &subdivisions);
     }
+    size_t nv, ni;
+    mesh_grid_counts(subdivisions, subdivisions, &nv, &ni);
+    check_planned(L, "plane", nv, ni);
     struct error err;
     struct mesh *m = size_x == size_z ? mesh_create_plane(size_x, subdivisions, &err)
                                       : mesh_create_grid_xz(size_x, size_z, subdivisions, subdivisions, &err);
@@ -111,6 +138,9 @@ static int mesh_grid(lua_State *L)
         lutil_opt_number(L, 1, "grid", "size", &size);
         lutil_opt_integer(L, 1, "grid", "resolution", &resolution);
     }
+    size_t nv, ni;
+    mesh_grid_counts(resolution, resolution, &nv, &ni);
+    check_planned(L, "grid", nv, ni);
     struct error err;
     return push_mesh(L, mesh_create_grid(size, resolution, &err), &err);
 }
@@ -136,6 +166,9 @@ static int mesh_torus(lua_State *L)
         lutil_opt_integer(L, 1, "torus", "segments", &segments);
         lutil_opt_integer(L, 1, "torus", "sides", &sides);
     }
+    size_t nv, ni;
+    mesh_torus_counts(segments, sides, &nv, &ni);
+    check_planned(L, "torus", nv, ni);
     struct error err;
     return push_mesh(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
 }
@@ -152,6 +185,9 @@ static int mesh_round(lua_State *L, const char *fn, bool cone)
         lutil_opt_number(L, 1, fn, "height", &height);
         lutil_opt_integer(L, 1, fn, "segments", &segments);
     }
+    size_t nv, ni;
+    mesh_lathe_counts(cone ? 3 : 4, segments, &nv, &ni);
+    check_planned(L, fn, nv, ni);
     struct error err;
     return push_mesh(L, cone ? mesh_create_cone(radius, height, segments, &err)
                              : mesh_create_cylinder(radius, height, segments, &err), &err);
@@ -170,9 +206,14 @@ static int mesh_lathe(lua_State *L)
     lutil_opt_integer(L, 1, "lathe", "segments", &segments);
     if (lua_getfield(L, 1, "profile") != LUA_TTABLE)
         return lutil_field_error(L, "lathe", "profile", "a list of {radius, height} points", -1);
-    int count = (int)lua_rawlen(L, -1);
-    if (count < 2 || count > 4096)
-        return lutil_error(L, "bad argument 'profile' to 'lathe' (2..4096 points expected, got %d)", count);
+    lua_Unsigned length = lua_rawlen(L, -1);
+    if (length < 2 || length > 4096)
+        return lutil_error(L, "bad argument 'profile' to 'lathe' (2..4096 points expected, got %llu)",
+                           (unsigned long long)length);
+    int count = (int)length;
+    size_t nv, ni;
+    mesh_lathe_counts(count, segments, &nv, &ni);
+    check_planned(L, "lathe", nv, ni);
     float *profile = lua_newuserdatauv(L, (size_t)count * 2 * sizeof(float), 0); /* freed by Lua on error */
     for (int i = 0; i < count; i++) {
         lua_rawgeti(L, -2, i + 1);
@@ -593,6 +634,13 @@ static int water_new(lua_State *L)
     bool fixed = lutil_opt_option(L, 1, "water", "boundary", boundaries, 0) == 1;
     if (!(ior > 0))
         return lutil_error(L, "bad argument 'ior' to 'water' (a positive number expected, got %g)", (double)ior);
+    if (resolution >= 2 && resolution <= 2048 && size_x > 0 && size_z > 0 && isfinite(size_x) && isfinite(size_z)) {
+        int nx, nz;
+        water_grid_counts(resolution, size_x, size_z, &nx, &nz);
+        size_t nv, ni;
+        mesh_grid_counts(nx - 1, nz - 1, &nv, &ni);
+        check_planned(L, "water", nv, ni); /* before the simulation's arrays and the grid are made */
+    }
     struct error err;
     /* The simulation checks the values; the grid has its vertex counts. */
     struct water *sim = calloc(1, sizeof *sim);

@@ -96,7 +96,10 @@ int limage_render(lua_State *L)
         return luaL_error(L, "render: %s", err.message);
     struct image *img = limage_push(L);
     struct lua_render_reply reply;
-    if (!host->render(host->render_context, &request, img, &reply, &err))
+    double left = lua_host_suspend_deadline(L);
+    bool rendered = host->render(host->render_context, &request, img, &reply, &err);
+    lua_host_resume_deadline(L, left);
+    if (!rendered)
         return luaL_error(L, "%s", err.message);
     limage_charge(L, img, img->width, img->height);
     /* second result: per-pass milliseconds */
@@ -156,7 +159,10 @@ int limage_reference(lua_State *L)
     request.reference = &ro;
     struct image *img = limage_push(L);
     struct lua_render_reply st;
-    if (!host->render(host->render_context, &request, img, &st, &err))
+    double left = lua_host_suspend_deadline(L);
+    bool rendered = host->render(host->render_context, &request, img, &st, &err);
+    lua_host_resume_deadline(L, left);
+    if (!rendered)
         return luaL_error(L, "%s", err.message);
     limage_charge(L, img, img->width, img->height);
     lua_createtable(L, 0, 4);

@@ -40,6 +40,11 @@ struct host_state {
     /* The time limit: the call in progress must end by `deadline`. */
     double deadline;
     int call_depth;
+    /* The time limit's first error in the call, "file:line: script ran
+     * longer than …": once a pcall (a test harness's xpcall too) has
+     * caught it, it is raised again wherever the script goes on, so the
+     * call's error reports the line where the limit was met. */
+    char limit_message[512];
 };
 
 /* The Lua heap, counted by the allocator so that a table bomb becomes a
@@ -218,6 +223,10 @@ static int host_test_options(lua_State *L)
         lua_pushstring(L, h->options.filter);
         lua_setfield(L, -2, "filter");
     }
+    /* --script-memory in MB (0: none), for the harness's message when a
+     * case runs out of it and catches Lua's bare "not enough memory" */
+    lua_pushnumber(L, h->options.memory_limit / (1024.0 * 1024.0));
+    lua_setfield(L, -2, "script_memory");
     return 1;
 }
 
@@ -441,18 +450,23 @@ static int sandbox_io_read_file(lua_State *L)
     return lua_gettop(L);
 }
 
-/* load/loadfile accept text only: a crafted binary chunk can crash Lua. */
+/* load/loadfile accept text only: a crafted binary chunk can crash Lua.
+ * The mode is forced to "t"; the environment argument is passed on only
+ * when the caller gave one (Lua's load tells "no env" from an explicit
+ * nil by the argument count: padding it would give every chunk a nil
+ * _ENV, so that any global it touched failed). */
 static int sandbox_load(lua_State *L)
 {
     int n = lua_gettop(L);
     if (n < 1)
         return luaL_argerror(L, 1, "value expected");
-    lua_settop(L, 4);
+    int nargs = n >= 4 ? 4 : 3;
+    lua_settop(L, nargs);
     lua_pushstring(L, "t");
     lua_replace(L, 3);
     lua_pushvalue(L, lua_upvalueindex(1));
     lua_insert(L, 1);
-    lua_call(L, 4, LUA_MULTRET);
+    lua_call(L, nargs, LUA_MULTRET);
     return lua_gettop(L);
 }
 
@@ -463,12 +477,13 @@ static int sandbox_loadfile(lua_State *L)
     struct error err;
     if (!lua_host_check_read(L, lua_tostring(L, 1), &err))
         return raise_error(L, &err);
-    lua_settop(L, 3);
+    int nargs = lua_gettop(L) >= 3 ? 3 : 2; /* an environment only when given, as for load */
+    lua_settop(L, nargs);
     lua_pushstring(L, "t");
     lua_replace(L, 2);
     lua_pushvalue(L, lua_upvalueindex(1));
     lua_insert(L, 1);
-    lua_call(L, 3, LUA_MULTRET);
+    lua_call(L, nargs, LUA_MULTRET);
     return lua_gettop(L);
 }
 
@@ -588,7 +603,31 @@ void lua_host_check_deadline(lua_State *L, const char *where)
     char msg[200];
     snprintf(msg, sizeof msg, "script ran longer than %g s (in %s; raise --script-timeout, 0 = no limit)",
              h->options.timeout, where);
-    luaL_error(L, "%s", msg);
+    luaL_where(L, 1);
+    lua_pushstring(L, msg);
+    lua_concat(L, 2);
+    if (!h->limit_message[0])
+        snprintf(h->limit_message, sizeof h->limit_message, "%s", lua_tostring(L, -1));
+    lua_error(L);
+}
+
+double lua_host_suspend_deadline(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    if (!h || h->deadline <= 0)
+        return 0.0;
+    double left = h->deadline - now_seconds();
+    atomic_store(&watched_deadline, 0.0);
+    return left > 0.0 ? left : 1e-9; /* an overdue call stays overdue */
+}
+
+void lua_host_resume_deadline(lua_State *L, double left)
+{
+    struct host_state *h = host_of(L);
+    if (!h || left <= 0.0 || h->deadline <= 0)
+        return;
+    h->deadline = now_seconds() + left;
+    atomic_store(&watched_deadline, h->deadline);
 }
 
 /* The same limit inside the pattern matcher (lua_pattern.c), which asks
@@ -616,6 +655,8 @@ static void timeout_hook(lua_State *L, lua_Debug *ar)
              h->options.timeout);
     lua_pushstring(L, msg);
     lua_concat(L, 2);
+    if (!h->limit_message[0])
+        snprintf(h->limit_message, sizeof h->limit_message, "%s", lua_tostring(L, -1));
     lua_error(L);
 }
 
@@ -720,10 +761,13 @@ void lua_host_destroy(lua_State *L)
     /* finalizers (__gc) run here without hooks: the watchdog holds them to
      * the script's time limit (at most 5 s) */
     struct host_state *h = host_of(L);
+    /* a nested host (c.image.render from a test) is destroyed inside its
+     * caller's call: the caller's deadline is watched again afterwards */
+    double outer = atomic_load(&watched_deadline);
     if (h && h->options.timeout > 0)
         atomic_store(&watched_deadline, now_seconds() + (h->options.timeout < 5.0 ? h->options.timeout : 5.0));
     lua_close(L);
-    atomic_store(&watched_deadline, 0.0);
+    atomic_store(&watched_deadline, outer);
     free(mem);
 }
 
@@ -800,7 +844,13 @@ static void format_error(const char *raw, const char *context, struct error *err
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err)
 {
     struct host_state *h = host_of(L);
-    /* The time limit counts from the outermost call into the script. */
+    /* The time limit counts from the outermost call into the script. A
+     * host made inside another's call (c.image.render of a test) watches
+     * its own deadline while it runs and gives the caller's back when its
+     * call ends: the watchdog is never left disarmed. */
+    double outer = atomic_load(&watched_deadline);
+    if (h && h->call_depth == 0)
+        h->limit_message[0] = '\0';
     if (h && h->call_depth++ == 0 && h->options.timeout > 0) {
         h->deadline = now_seconds() + h->options.timeout;
         atomic_store(&watched_deadline, h->deadline);
@@ -813,7 +863,7 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
     lua_remove(L, base);
     if (h && --h->call_depth == 0) {
         h->deadline = 0;
-        atomic_store(&watched_deadline, 0.0);
+        atomic_store(&watched_deadline, outer);
     }
     if (rc == LUA_ERRMEM) {
         void *ud;
@@ -829,7 +879,11 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
                          context ? " " : "", context ? context : "");
     }
     if (rc != LUA_OK) {
-        format_error(lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)", context, err);
+        /* a time limit met inside a pcall: the line where it was met */
+        const char *raised = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)";
+        if (h && h->call_depth == 0 && h->limit_message[0] && strstr(raised, "script ran longer than"))
+            raised = h->limit_message;
+        format_error(raised, context, err);
         lua_pop(L, 1);
         return false;
     }

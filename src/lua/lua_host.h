@@ -87,6 +87,13 @@ double lua_host_watched_deadline(void);
  * line) once the call's deadline has passed; returns otherwise. Callers
  * hold nothing that the error would leak (results are userdata). */
 void lua_host_check_deadline(lua_State *L, const char *where);
+/* Around work done for the script that is not the script's own (a nested
+ * c.image.render or c.image.reference: its own host holds its calls to
+ * the limits, the rendering itself is not script time): the call's
+ * deadline stops counting and the watchdog leaves it alone. Returns the
+ * seconds that were left (0: no deadline), which resume gives back. */
+double lua_host_suspend_deadline(lua_State *L);
+void lua_host_resume_deadline(lua_State *L, double left);
 lua_State *lua_host_create(const struct lua_host_options *options, struct error *err);
 void lua_host_destroy(lua_State *L);
 /* Runs a file, leaving `nresults` values on the stack. */

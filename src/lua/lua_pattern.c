@@ -71,8 +71,18 @@ static int capture_to_close(struct match_state *ms)
     return luaL_error(ms->L, "invalid pattern capture");
 }
 
-/* The end of the single-character class at p. */
+static const char *class_end_scan(struct match_state *ms, const char *p);
+
+/* The end of the single-character class at p (a set's scan counted as
+ * steps: it is work however often the same set is met). */
 static const char *class_end(struct match_state *ms, const char *p)
+{
+    const char *end = class_end_scan(ms, p);
+    count_steps(ms, (size_t)(end - p));
+    return end;
+}
+
+static const char *class_end_scan(struct match_state *ms, const char *p)
 {
     char c = *p++;
     if (c == PATTERN_ESC) {
@@ -146,7 +156,9 @@ static bool single_match(struct match_state *ms, const char *s, const char *p, c
     switch (*p) {
     case '.': return true;
     case PATTERN_ESC: return match_class(c, (unsigned char)*(p + 1));
-    case '[': return match_set(c, p, ep - 1);
+    case '[':
+        count_steps(ms, (size_t)(ep - p)); /* a set is scanned character by character: a 1 MB set costs 1 MB */
+        return match_set(c, p, ep - 1);
     default: return (unsigned char)*p == c;
     }
 }
@@ -512,6 +524,7 @@ static void add_replacement_string(struct match_state *ms, luaL_Buffer *b, const
     lua_State *L = ms->L;
     size_t l;
     const char *news = lua_tolstring(L, 3, &l);
+    count_steps(ms, l); /* every byte of the replacement is copied for every match */
     const char *p;
     while ((p = memchr(news, PATTERN_ESC, l)) != NULL) {
         luaL_addlstring(b, news, (size_t)(p - news));
@@ -519,14 +532,17 @@ static void add_replacement_string(struct match_state *ms, luaL_Buffer *b, const
         if (*p == PATTERN_ESC) {
             luaL_addchar(b, *p);
         } else if (*p == '0') {
+            count_steps(ms, (size_t)(e - s));
             luaL_addlstring(b, s, (size_t)(e - s));
         } else if (isdigit((unsigned char)*p)) {
             const char *cap;
             ptrdiff_t len = get_capture(ms, *p - '1', s, e, &cap);
-            if (len == CAPTURE_POSITION)
+            if (len == CAPTURE_POSITION) {
                 luaL_addvalue(b);
-            else
+            } else {
+                count_steps(ms, (size_t)len);
                 luaL_addlstring(b, cap, (size_t)len);
+            }
         } else {
             luaL_error(L, "invalid use of '%c' in replacement string", PATTERN_ESC);
         }

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <inttypes.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,34 @@ bool reference_part_write(const char *image_path, const struct reference_part *p
     if (!ok)
         error_set(err, "%s: write failed: %s", path, strerror(errno));
     return image_file_finish(f, tmp, path, ok, err);
+}
+
+/* A whole number in [min, max] as the part's text writes it (decimal, no
+ * sign for a count); false for anything else, so that 4294967298 is not
+ * read as 2 nor -1 as a huge seed. `end` is left after the digits. */
+static bool parse_range(const char *text, long long min, long long max, long long *out, char **end)
+{
+    const char *p = text;
+    if (*p == '+' || (*p == '-' && min >= 0) || !(*p == '-' || (*p >= '0' && *p <= '9')))
+        return false;
+    errno = 0;
+    long long v = strtoll(p, end, 10);
+    if (*end == p || errno == ERANGE || v < min || v > max)
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool parse_seed(const char *text, uint64_t *out, char **end)
+{
+    if (!(*text >= '0' && *text <= '9'))
+        return false; /* strtoull would take "-1" as 2^64 - 1 */
+    errno = 0;
+    unsigned long long v = strtoull(text, end, 10);
+    if (*end == text || errno == ERANGE)
+        return false;
+    *out = (uint64_t)v;
+    return true;
 }
 
 static bool parse_shards(const char *text, struct reference_part *part)
@@ -76,6 +105,7 @@ bool reference_part_read(const char *image_path, struct reference_part *part, st
         }
         value++;
         char *end = NULL;
+        long long number = 0;
         errno = 0;
         if (strncmp(key, "scene ", 6) == 0) {
             size_t n = eol ? (size_t)(eol - value) : strlen(value);
@@ -86,38 +116,45 @@ bool reference_part_read(const char *image_path, struct reference_part *part, st
             }
             seen |= 1u;
         } else if (strncmp(key, "frame ", 6) == 0) {
-            part->frame = (int)strtol(value, &end, 10);
+            ok = parse_range(value, 0, REFERENCE_PART_MAX_FRAME, &number, &end);
+            part->frame = (int)number;
             seen |= 2u;
         } else if (strncmp(key, "size ", 5) == 0) {
-            ok = sscanf(value, "%dx%d", &part->width, &part->height) == 2 && part->width > 0 && part->height > 0;
-            end = eol;
+            long long w = 0, h = 0;
+            ok = parse_range(value, 1, 16384, &w, &end) && *end == 'x' &&
+                 parse_range(end + 1, 1, 16384, &h, &end);
+            part->width = (int)w;
+            part->height = (int)h;
             seen |= 4u;
         } else if (strncmp(key, "seed ", 5) == 0) {
-            part->seed = strtoull(value, &end, 10);
+            ok = parse_seed(value, &part->seed, &end);
             seen |= 8u;
         } else if (strncmp(key, "photons ", 8) == 0) {
-            part->photons = strtol(value, &end, 10);
+            ok = parse_range(value, 0, REFERENCE_PART_MAX_PHOTONS, &number, &end);
+            part->photons = (long)number;
             seen |= 16u;
         } else if (strncmp(key, "passes_total ", 13) == 0) {
-            part->passes_total = (int)strtol(value, &end, 10);
+            ok = parse_range(value, 1, INT_MAX, &number, &end);
+            part->passes_total = (int)number;
             seen |= 32u;
         } else if (strncmp(key, "shard_count ", 12) == 0) {
-            part->shard_count = (int)strtol(value, &end, 10);
+            ok = parse_range(value, 1, REFERENCE_PART_MAX_SHARDS, &number, &end);
+            part->shard_count = (int)number;
             seen |= 64u;
         } else if (strncmp(key, "shards ", 7) == 0) {
             ok = parse_shards(value, part);
             end = eol;
             seen |= 128u;
         } else if (strncmp(key, "passes ", 7) == 0) {
-            part->passes = (int)strtol(value, &end, 10);
+            ok = parse_range(value, 1, INT_MAX, &number, &end);
+            part->passes = (int)number;
             seen |= 256u;
         } else if (strncmp(key, "photons_emitted ", 16) == 0) {
-            part->photons_emitted = strtoll(value, &end, 10);
+            ok = parse_range(value, 0, LLONG_MAX / 2, &number, &end);
+            part->photons_emitted = number;
             seen |= 512u;
         } /* an unknown key is skipped: a later version may add some */
-        if (end && end != eol && !(eol == NULL && *end == '\0'))
-            ok = false;
-        if (errno)
+        if (ok && end && end != eol && !(eol == NULL && *end == '\0'))
             ok = false;
     }
     free(data);

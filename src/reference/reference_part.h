@@ -25,6 +25,9 @@
 #include "core/error.h"
 
 #define REFERENCE_PART_MAX_SHARDS 4096
+/* The ranges a part's fields are read in (what reference accepts). */
+#define REFERENCE_PART_MAX_FRAME 100000000
+#define REFERENCE_PART_MAX_PHOTONS 2000000000LL
 
 struct reference_part {
     char scene[1024];

@@ -76,6 +76,27 @@ void mesh_compute_bounds(struct mesh *m)
     m->morph_extent = extent;
 }
 
+static size_t count_of(int n) { return n > 0 ? (size_t)n : 0; }
+
+void mesh_sphere_counts(int segments, size_t *vertices, size_t *indices)
+{
+    size_t rings = segments / 2 < 2 ? 2 : count_of(segments / 2), around = count_of(segments);
+    *vertices = (rings + 1) * (around + 1);
+    *indices = rings * around * 6;
+}
+
+void mesh_grid_counts(int cells_x, int cells_z, size_t *vertices, size_t *indices)
+{
+    *vertices = (count_of(cells_x) + 1) * (count_of(cells_z) + 1);
+    *indices = count_of(cells_x) * count_of(cells_z) * 6;
+}
+
+void mesh_torus_counts(int segments, int sides, size_t *vertices, size_t *indices)
+{
+    *vertices = (count_of(segments) + 1) * (count_of(sides) + 1);
+    *indices = count_of(segments) * count_of(sides) * 6;
+}
+
 struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
 {
     if (!(radius > 0.0f) || !isfinite(radius) || segments < 3 || segments > 2048) {
@@ -83,8 +104,8 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
         return NULL;
     }
     int rings = segments / 2 < 2 ? 2 : segments / 2;
-    size_t nv = (size_t)(rings + 1) * (size_t)(segments + 1);
-    size_t ni = (size_t)rings * (size_t)segments * 6;
+    size_t nv, ni;
+    mesh_sphere_counts(segments, &nv, &ni);
     float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
     uint32_t *idx = malloc(ni * sizeof(uint32_t));
     size_t v = 0, k = 0;
@@ -138,7 +159,8 @@ struct mesh *mesh_create_grid_xz(float size_x, float size_z, int cells_x, int ce
         return NULL;
     }
     size_t side_x = (size_t)cells_x + 1, side_z = (size_t)cells_z + 1;
-    size_t nv = side_x * side_z, ni = (size_t)cells_x * (size_t)cells_z * 6;
+    size_t nv, ni;
+    mesh_grid_counts(cells_x, cells_z, &nv, &ni);
     float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
     uint32_t *idx = malloc(ni * sizeof(uint32_t));
     for (size_t j = 0; j < side_z && p && n; j++)
@@ -179,7 +201,8 @@ struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides
         error_set(err, "torus: radius > tube > 0 and segments, sides in 3..4096 expected");
         return NULL;
     }
-    size_t nv = (size_t)(segments + 1) * (size_t)(sides + 1), ni = (size_t)segments * (size_t)sides * 6;
+    size_t nv, ni;
+    mesh_torus_counts(segments, sides, &nv, &ni);
     float *p = malloc(nv * 3 * sizeof(float)), *n = malloc(nv * 3 * sizeof(float));
     uint32_t *idx = malloc(ni * sizeof(uint32_t));
     size_t v = 0, k = 0;

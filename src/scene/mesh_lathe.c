@@ -21,6 +21,14 @@ static void segment_normal(const float *a, const float *b, float *nr, float *ny)
     *ny = -dr / len;
 }
 
+/* Each profile segment has its own two rings of segments + 1 vertices. */
+void mesh_lathe_counts(int points, int segments, size_t *vertices, size_t *indices)
+{
+    size_t profile_segments = points > 1 ? (size_t)points - 1 : 0, around = segments > 0 ? (size_t)segments : 0;
+    *vertices = profile_segments * 2 * (around + 1);
+    *indices = profile_segments * around * 6;
+}
+
 struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int count, int segments,
                                struct error *err)
 {
@@ -74,7 +82,8 @@ struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int co
      * crease keeps its two normals; smooth joints share the mean normal. */
     int nseg = n - 1;
     size_t ring = (size_t)segments + 1;
-    size_t nv = (size_t)nseg * 2 * ring, ni = (size_t)nseg * (size_t)segments * 6;
+    size_t nv, ni;
+    mesh_lathe_counts(n, segments, &nv, &ni);
     float *p = malloc(nv * 3 * sizeof(float)), *nn = malloc(nv * 3 * sizeof(float));
     float *uv = malloc(nv * 2 * sizeof(float));
     uint32_t *idx = malloc(ni * sizeof(uint32_t));

@@ -146,6 +146,14 @@ struct mesh {
     /* The GPU copies live in the renderer's mesh cache (graph/mesh_cache.c). */
 };
 
+/* The vertices and indices the procedural mesh of these parameters has
+ * (the lathe's at most: repeated profile points are dropped), so that a
+ * caller can check its memory before the mesh is made. Parameters outside
+ * the creators' ranges give what the creators would refuse anyway. */
+void mesh_sphere_counts(int segments, size_t *vertices, size_t *indices);
+void mesh_grid_counts(int cells_x, int cells_z, size_t *vertices, size_t *indices);
+void mesh_torus_counts(int segments, int sides, size_t *vertices, size_t *indices);
+void mesh_lathe_counts(int points, int segments, size_t *vertices, size_t *indices);
 /* Procedural meshes. Each returns a mesh owned by the caller (mesh_destroy). */
 struct mesh *mesh_create_sphere(float radius, int segments, struct error *err);
 struct mesh *mesh_create_plane(float size, int subdivisions, struct error *err);

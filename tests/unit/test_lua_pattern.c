@@ -135,6 +135,32 @@ int main(void)
     CHECK(deadline_calls == 4);
     lua_pop(L, 1);
 
+    /* Work that matches nothing backtracking still asks the clock, in
+     * proportion to the bytes it scans (issue 55): a 1 MB set tried at 64
+     * positions, and a gsub whose 1 MB replacement is copied 64 times.
+     * Before, each cost one step: the clock was never asked. */
+    lua_newtable(L);
+    lua_pattern_register(L, -1, deadline_counting);
+    lua_setglobal(L, "C");
+    deadline_calls = 0;
+    CHECK(luaL_dostring(L, "return C.find(('b'):rep(64), '[' .. ('a'):rep(1 << 20) .. ']')") == LUA_OK);
+    CHECK(lua_isnil(L, -1));
+    lua_pop(L, 1);
+    printf("a 1 MB set at 64 positions: the clock asked %d times\n", deadline_calls);
+    CHECK(deadline_calls >= 64);
+    deadline_calls = 0;
+    CHECK(luaL_dostring(L, "local r, n = C.gsub(('a'):rep(64), 'a', ('x'):rep(1 << 20)) return #r, n") == LUA_OK);
+    CHECK(lua_tointeger(L, -2) == 64 << 20 && lua_tointeger(L, -1) == 64);
+    lua_pop(L, 2);
+    printf("a 1 MB replacement 64 times: the clock asked %d times\n", deadline_calls);
+    CHECK(deadline_calls >= 64);
+    deadline_calls = 0;
+    CHECK(luaL_dostring(L, "local r = C.gsub(('ab'):rep(32), '(a)b', '%1' .. ('y'):rep(1 << 20) .. '%0') return #r") ==
+          LUA_OK);
+    CHECK(lua_tointeger(L, -1) == 32 * ((1 << 20) + 3));
+    lua_pop(L, 1);
+    CHECK(deadline_calls >= 32);
+
     /* A plain find is linear: half a million a's and a 'b' against a
      * million a's (the naive search's n*m is 2.5e11) */
     CHECK(luaL_dostring(L, "return B.find(('a'):rep(1000000), ('a'):rep(500000) .. 'b', 1, true)") == LUA_OK);
