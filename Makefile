@@ -71,9 +71,9 @@ FUZZ_BUILD ?= build-fuzz
 fuzz: deps
 	@if ! command -v clang >/dev/null 2>&1; then echo "make fuzz: skipped (clang is missing: apt-get install clang)"; exit 0; fi; \
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCAUSTICA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null && \
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_gltf fuzz_script fuzz_png fuzz_jpeg fuzz_exr fuzz_hdr fuzz_pfm fuzz_bench_csv fuzz_reference_part >/dev/null || exit 1; \
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_gltf fuzz_script fuzz_png fuzz_jpeg fuzz_exr fuzz_hdr fuzz_pfm fuzz_bench_csv fuzz_reference_part fuzz_test_report >/dev/null || exit 1; \
 	status=0; \
-	for h in gltf script png jpeg exr hdr pfm bench_csv reference_part; do \
+	for h in gltf script png jpeg exr hdr pfm bench_csv reference_part test_report; do \
 	  rm -rf $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; mkdir -p $(FUZZ_BUILD)/corpus_$$h $(FUZZ_BUILD)/artifacts_$$h; \
 	  if [ $$h = script ]; then tests/fuzz/script_corpus.sh $(FUZZ_BUILD)/corpus_$$h; \
 	  else cp tests/fuzz/corpus_$$h/* $(FUZZ_BUILD)/corpus_$$h/; fi; \

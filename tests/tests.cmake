@@ -25,7 +25,7 @@ endforeach()
 
 # Fuzz inputs replayed in every build: the seed corpus and each crash kept
 # from fuzzing (tests/fuzz/README.md).
-foreach(name gltf script bench_csv reference_part)
+foreach(name gltf script bench_csv reference_part test_report)
   add_executable(replay_${name} tests/fuzz/replay_main.c tests/fuzz/fuzz_${name}.c)
   target_link_libraries(replay_${name} PRIVATE caustica_core)
 endforeach()
@@ -44,6 +44,8 @@ add_test(NAME fuzz_bench_csv_regressions COMMAND replay_bench_csv
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_bench_csv ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_bench_csv)
 add_test(NAME fuzz_reference_part_regressions COMMAND replay_reference_part
          ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_reference_part ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_reference_part)
+add_test(NAME fuzz_test_report_regressions COMMAND replay_test_report
+         ${CMAKE_SOURCE_DIR}/tests/fuzz/corpus_test_report ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_test_report)
 # The script corpus is made from the scene scripts (tests/fuzz/script_corpus.sh).
 add_test(NAME fuzz_script_regressions COMMAND sh -c
          "${CMAKE_SOURCE_DIR}/tests/fuzz/script_corpus.sh ${CMAKE_BINARY_DIR}/corpus_script && \

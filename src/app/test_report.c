@@ -8,6 +8,8 @@
 #include "core/fileio.h"
 #include "io/image.h"
 
+#define REPORT_IMAGE_MAX_BYTES (64u << 20)
+
 static char *copy(const char *s)
 {
     if (!s)
@@ -121,12 +123,16 @@ static void put_data_uri(FILE *f, const char *path)
 {
     static const char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     fputs("data:image/png;base64,", f);
-    FILE *in = fopen(path, "rb");
+    /* a regular file only (a test may name any path: /dev/zero would
+     * never end), and no more than a large PNG's worth */
+    struct error ignored;
+    FILE *in = file_open_read(path, false, &ignored);
     if (!in)
         return;
     unsigned char b[3];
-    size_t n;
-    while ((n = fread(b, 1, 3, in)) > 0) {
+    size_t n, total = 0;
+    while (total < REPORT_IMAGE_MAX_BYTES && (n = fread(b, 1, 3, in)) > 0) {
+        total += n;
         unsigned v = (unsigned)b[0] << 16 | (n > 1 ? (unsigned)b[1] << 8 : 0u) | (n > 2 ? b[2] : 0u);
         fputc(table[v >> 18 & 63], f);
         fputc(table[v >> 12 & 63], f);

@@ -66,18 +66,27 @@ expect_error "no ffmpeg" 1 "ffmpeg is not installed (apt-get install ffmpeg); th
 mkdir -p "$WORK/fakebin"
 cat >"$WORK/fakebin/ffmpeg" <<'SH'
 #!/bin/sh
-for a in "$@"; do case "$a" in *frames.txt) cp "$a" "$FAKE_LOG.list";; esac; done
+# records its arguments and the numbered sequence it was given (each link and where it points)
+for a in "$@"; do case "$a" in *%08d.png) dir=$(dirname "$a");; esac; done
+for f in "$dir"/*.png; do echo "$(basename "$f") $(readlink "$f")"; done >"$FAKE_LOG.list"
 echo "$@" >"$FAKE_LOG"
 for last in "$@"; do :; done
 echo video >"$last"
 SH
-chmod +x "$WORK/fakebin/ffmpeg"
+cat >"$WORK/fakebin/ffprobe" <<'SH'
+#!/bin/sh
+# the frames a real encode of the recorded sequence would hold
+wc -l <"$FAKE_LOG.list"
+SH
+chmod +x "$WORK/fakebin/ffmpeg" "$WORK/fakebin/ffprobe"
 FAKE_LOG="$WORK/ffmpeg.log" PATH="$WORK/fakebin:$PATH" "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 \
   --video "$WORK/v.mp4" >"$WORK/video.txt" 2>&1
 grep -q "wrote $WORK/v.mp4 (3 frames at" "$WORK/video.txt" && [ "$(cat "$WORK/v.mp4")" = video ] \
-  && grep -q -- "-f concat .*pad=ceil(iw/2)\*2:ceil(ih/2)\*2 .*-crf 18 -pix_fmt yuv420p .*-color_trc iec61966-2-1 .* $WORK/\.v\.mp4\.caustica-tmp\.[0-9]*\.[A-Za-z0-9]*/video\.mp4" "$WORK/ffmpeg.log" \
-  && [ "$(grep -c "^file '.*frame_000[0-2].png'" "$WORK/ffmpeg.log.list")" = 3 ] \
-  && pass "--video hands every frame to ffmpeg in order (padded to even sizes, tagged sRGB, through a temporary)" || fail "--video" "$(cat "$WORK/video.txt" "$WORK/ffmpeg.log" 2>&1)"
+  && grep -q -- "-framerate 30 -start_number 0 -f image2 -i $WORK/\.v\.mp4\.caustica-tmp\.[0-9]*\.[A-Za-z0-9]*/%08d\.png .*pad=ceil(iw/2)\*2:ceil(ih/2)\*2 .*-crf 18 -pix_fmt yuv420p .*-color_trc iec61966-2-1 .* $WORK/\.v\.mp4\.caustica-tmp\.[0-9]*\.[A-Za-z0-9]*/video\.mp4" "$WORK/ffmpeg.log" \
+  && [ "$(grep -c "^0000000[0-2].png .*/frame_000[0-2].png$" "$WORK/ffmpeg.log.list")" = 3 ] \
+  && [ "$(sed -n 's/^0*\([0-9]\)\.png .*frame_000\([0-9]\)\.png$/\1\2/p' "$WORK/ffmpeg.log.list" | tr '\n' ' ')" = "00 11 22 " ] \
+  && pass "--video hands every frame to ffmpeg in order as one numbered sequence (padded to even sizes, tagged sRGB, through a temporary)" \
+  || fail "--video" "$(cat "$WORK/video.txt" "$WORK/ffmpeg.log" "$WORK/ffmpeg.log.list" 2>&1)"
 if command -v ffmpeg >/dev/null; then
   "$CAUSTICA" record $SCENE -o "$WORK/vid" --frames 0-2 --size 24x24 --video "$WORK/real.gif" >/dev/null 2>&1 \
     && [ -s "$WORK/real.gif" ] && pass "ffmpeg encodes a GIF" || fail "ffmpeg GIF" "no file"
