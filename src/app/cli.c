@@ -197,7 +197,7 @@ void cli_usage(FILE *out)
     for (size_t i = 0; i < CLI_VERB_COUNT; i++)
         fprintf(out, "  caustica %s %s\n      %s\n", cli_verbs[i].name, cli_verbs[i].synopsis, cli_verbs[i].summary);
     fputs("  caustica help [passes | PASS] [--markdown]\n      the passes and their parameters\n"
-          "  caustica --version\n", out);
+          "  caustica --version   (or -V, or version)\n", out);
 }
 
 /* Prints `text` wrapped at 100 columns, each line indented by `indent`. */

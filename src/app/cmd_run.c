@@ -58,7 +58,7 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 /* The script's camera turned by the mouse: yaw about +Y, pitch about the
  * camera's right axis, distance scaled by zoom. */
 /* The keyboard: space pauses, left/right step one frame (and pause), s
- * writes a screenshot next to the script, r reloads the script. Keys are
+ * writes a screenshot into the current folder, r reloads the script. Keys are
  * queued by the callback (or by --keys, scripted input for tests) and
  * handled once per frame. */
 enum run_key { KEY_PAUSE, KEY_BACK, KEY_FORWARD, KEY_SCREENSHOT, KEY_RELOAD };
@@ -114,12 +114,16 @@ static bool parse_keys(const char *list, char *bad, size_t size)
     return true;
 }
 
-/* The screenshot's path: next to the script, named by it and the frame. */
+/* The screenshot's path: in the folder `run` was started from (not next
+ * to the script: a shipped scene lives in the install prefix), named by
+ * the script and the frame. */
 static void screenshot_path(const char *script, int frame, char *out, size_t size)
 {
-    const char *dot = strrchr(script, '.');
-    int stem = dot && dot > strrchr(script, '/') ? (int)(dot - script) : (int)strlen(script);
-    snprintf(out, size, "%.*s_frame_%04d.png", stem, script, frame);
+    const char *slash = strrchr(script, '/');
+    const char *base = slash ? slash + 1 : script;
+    const char *dot = strrchr(base, '.');
+    int stem = dot ? (int)(dot - base) : (int)strlen(base);
+    snprintf(out, size, "%.*s_frame_%04d.png", stem, base, frame);
 }
 
 static void apply_orbit(struct scene *scene)

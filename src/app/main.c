@@ -14,7 +14,9 @@ int main(int argc, char **argv)
     signal(SIGXFSZ, SIG_IGN);
     if (argc >= 2 && strcmp(argv[1], "help") == 0)
         return cmd_help(argc - 2, argv + 2);
-    if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+    /* the three spellings users try (`-V` as git and gcc take it, `version` as a verb) */
+    if (argc >= 2 && (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0 ||
+                      strcmp(argv[1], "version") == 0)) {
         printf("caustica %s\n", CAUSTICA_VERSION);
         return 0;
     }

@@ -11,6 +11,7 @@
 #include "graph/graph.h"
 #include "graph/graph_lint.h"
 #include "core/log.h"
+#include "core/suggest.h"
 #include "lua/lua_host.h"
 #include "reference/reference.h"
 
@@ -353,6 +354,28 @@ void session_exr_info(const struct session *s, struct image_exr_info *info)
     info->output = s->graph && graph_output(s->graph) ? graph_output(s->graph)->name : NULL;
 }
 
+/* "; the graph's images: a.b, c.d (did you mean a.b?)": what --aov may
+ * name in this graph (texture outputs of the passes it kept). */
+static void aov_choices(const struct session *s, const char *wanted, char *out, size_t outlen)
+{
+    const char *names[256];
+    size_t count = 0, used = (size_t)snprintf(out, outlen, "; the graph's images:");
+    for (int r = 0; r < s->graph->resource_count && count < 256; r++) {
+        const struct graph_resource *res = &s->graph->resources[r];
+        if (res->bundle || (res->producer >= 0 && res->producer < s->graph->count &&
+                            s->graph->entries[res->producer].state != GRAPH_PASS_KEPT))
+            continue;
+        names[count++] = res->name;
+        if (used < outlen)
+            used += (size_t)snprintf(out + used, outlen - used, "%s %s", count > 1 ? "," : "", res->name);
+    }
+    const char *near = count ? suggest_nearest(wanted, names, count) : NULL;
+    if (near && used < outlen)
+        snprintf(out + used, outlen - used, " (did you mean %s?)", near);
+    else if (!count)
+        snprintf(out, outlen, "; the graph keeps no image output");
+}
+
 bool session_write_image(struct session *s, const char *path, struct error *err)
 {
     if (image_path_is_exr(path)) {
@@ -367,7 +390,10 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         for (int i = 0; ok && i < s->aov_count; i++) {
             struct graph_resource *res = graph_find_resource(s->graph, s->aovs[i]);
             if (!res) {
-                ok = error_set(err, "--aov %s: no pass makes it (outputs are named \"pass.output\")", s->aovs[i]);
+                char choices[1024];
+                aov_choices(s, s->aovs[i], choices, sizeof choices);
+                ok = error_set(err, "--aov %s: no pass makes it (outputs are named \"pass.output\")%s", s->aovs[i],
+                               choices);
                 break;
             }
             if (res->producer >= 0 && res->producer < s->graph->count &&

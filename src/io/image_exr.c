@@ -82,6 +82,42 @@ static bool channel_source(const char *name, const struct image *img, const stru
     return false;
 }
 
+/* Whether the first part has channels "layer.X"; false with a message
+ * that names the layers it has (what `file.exr:LAYER` may ask for). */
+static bool exr_has_layer(exr_const_context_t ctxt, const char *path, const char *layer, struct error *err)
+{
+    const exr_attr_chlist_t *channels = NULL;
+    if (exr_get_channels(ctxt, 0, &channels) != EXR_ERR_SUCCESS || !channels)
+        return true; /* the decoder says what is wrong */
+    size_t prefix = strlen(layer);
+    char names[1024] = "";
+    size_t used = 0;
+    int listed = 0;
+    for (int32_t c = 0; c < channels->num_channels; c++) {
+        const char *name = channels->entries[c].name.str;
+        if (!name)
+            continue;
+        if (strncmp(name, layer, prefix) == 0 && name[prefix] == '.')
+            return true;
+        const char *dot = strrchr(name, '.');
+        if (!dot)
+            continue; /* the main image's R, G, B, A */
+        int len = (int)(dot - name);
+        char candidate[256];
+        snprintf(candidate, sizeof candidate, "%.*s", len, name);
+        bool seen = false; /* channels of one layer come together, sorted */
+        for (const char *at = names; (at = strstr(at, candidate)) != NULL; at += strlen(candidate))
+            if ((at == names || at[-1] == ' ') && (at[strlen(candidate)] == ',' || at[strlen(candidate)] == '\0'))
+                seen = true;
+        if (!seen && used < sizeof names) {
+            used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", listed ? ", " : "", candidate);
+            listed++;
+        }
+    }
+    return error_set(err, "%s: no layer '%s' (channels %s.R, %s.G, %s.B) in the EXR; %s%s", path, layer, layer, layer,
+                     layer, listed ? "its layers: " : "it has no layers, only the image itself (R, G, B)", names);
+}
+
 /* The header's attributes besides the required ones (see image_exr_info). */
 static exr_result_t write_attributes(exr_context_t ctxt, int part, const struct image_exr_info *info)
 {
@@ -236,6 +272,10 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
     if (rv != EXR_ERR_SUCCESS) {
         exr_finish(&ctxt);
         return exr_failed(rv, path, "reading the header", err);
+    }
+    if (layer && !exr_has_layer(ctxt, path, layer, err)) {
+        exr_finish(&ctxt);
+        return false;
     }
     int w = box.max.x - box.min.x + 1, h = box.max.y - box.min.y + 1;
     if (storage != EXR_STORAGE_SCANLINE) {

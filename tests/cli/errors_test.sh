@@ -70,7 +70,9 @@ expect_error "bad output extension" 2 "must end in .png, .pfm, .hdr or .exr" - -
 expect_error "record without -o" 2 "record needs" - -- "$CAUSTICA" record scenes/demo.lua
 
 # --version, VERB --help, and a test filter that selects nothing.
-"$CAUSTICA" --version | grep -qE "^caustica [0-9]+\.[0-9]+\.[0-9]+$" && pass "--version" || fail "--version" "$("$CAUSTICA" --version)"
+for spelling in --version -V version; do
+  "$CAUSTICA" $spelling | grep -qE "^caustica [0-9]+\.[0-9]+\.[0-9]+$" && pass "$spelling" || fail "$spelling" "$("$CAUSTICA" $spelling 2>&1)"
+done
 for verb in render record run test info reference compare bench convert; do
   out=$("$CAUSTICA" $verb --help 2>&1)
   rc=$?

@@ -22,7 +22,14 @@ awk "BEGIN { exit !($rel < 1e-5) }" && pass "--aov beams.inscatter is a layer ho
   || fail "EXR pattern" "$(ls "$WORK/seq" 2>&1)"
 "$CAUSTICA" convert "$WORK/a.exr" "$WORK/a.png" >/dev/null 2>&1 && "$CAUSTICA" compare "$WORK/a.png" "$WORK/a.png" >/dev/null \
   && pass "convert reads EXR" || fail "convert EXR" "failed"
-expect_error "a layer the file lacks" 1 "no layer 'nope'" - -- "$CAUSTICA" compare "$WORK/a.exr:nope" "$WORK/a.pfm"
+expect_error "a layer the file lacks, and the layers it has" 1 "no layer 'nope' (channels nope.R, nope.G, nope.B) in the EXR; its layers: beams.inscatter" - -- \
+  "$CAUSTICA" compare "$WORK/a.exr:nope" "$WORK/a.pfm"
+expect_error "a layer asked of an EXR that has none" 1 "no layer 'nope' (channels nope.R, nope.G, nope.B) in the EXR; it has no layers, only the image itself" - -- \
+  "$CAUSTICA" compare "$WORK/seq/f_00.exr:nope" "$WORK/a.pfm"
+expect_error "an --aov no pass makes: the graph's images and the nearest" 1 "did you mean beams.inscatter?" "$WORK/typo.exr" -- \
+  "$CAUSTICA" render $SCENE $SET -o "$WORK/typo.exr" --aov beams.inscater
+grep -q "the graph's images: .*beams.inscatter" "$WORK/stderr" && pass "--aov's error lists the graph's images" \
+  || fail "--aov choices" "$(cat "$WORK/stderr")"
 expect_error "--aov without EXR" 2 "--aov: extra layers need an EXR output" "$WORK/b.png" -- \
   "$CAUSTICA" render $SCENE $SET -o "$WORK/b.png" --aov shade.color
 "$CAUSTICA" render tests/scenes/ball_lens.lua --size 32x32 -o "$WORK/d.exr" --aov shade.depth >/dev/null 2>"$WORK/d.err"
