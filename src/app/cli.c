@@ -45,7 +45,9 @@ static const struct cli_verb {
      "of A's change to A_NEXT against B's to B_NEXT, docs/TEMPORAL.md)"},
     {"merge", VB_MERGE, "PART... -o OUT.pfm|OUT.hdr|OUT.exr",
      "averages the parts of a reference rendered with --shard (each PART beside its PART.part) into the estimate "
-     "one run of all their passes makes"},
+     "one run of all their passes makes: that of `reference --shard 0/1` (independent passes, each pass's radii "
+     "fixed by its index), not of a plain `reference` (SPPM, radii shrunk per pixel): the two converge to the same "
+     "image but differ within their noise at a finite count"},
     {"convert", VB_CONVERT, "IN OUT [options]",
      "converts an image: reads .png, .pfm, .hdr, .exr (IN.exr:layer for one layer); writes .png, .pfm, .hdr, .exr"},
     {"bench", VB_BENCH, "SCENE.lua [--sweep key=v1,v2,...]... [options]",

@@ -79,9 +79,19 @@ int cmd_reference(struct app *app, struct cli *cli)
             snprintf(noise, sizeof noise, "noise ~%.2g%%", 100.0 * st.noise);
         else
             snprintf(noise, sizeof noise, "noise unknown (one iteration)");
-        printf("%s: %d iteration%s, %lld photons (%lld caustic), %.2f s on %d thread%s, %s -> %s\n", s->script,
+        /* which estimator ran: a plain run's SPPM shrinks each pixel's radius
+         * with its own photons; --shard's independent passes (what merge
+         * averages) fix each pass's radius by its index. Both converge to
+         * the same image; at a finite count they differ within the noise. */
+        char estimator[96];
+        if (o.shard_count > 0)
+            snprintf(estimator, sizeof estimator, "by independent passes (shard %d/%d, radii fixed per pass)",
+                     o.shard_index, o.shard_count);
+        else
+            snprintf(estimator, sizeof estimator, "by SPPM (radii shrunk per pixel)");
+        printf("%s: %d iteration%s, %lld photons (%lld caustic), %.2f s on %d thread%s, %s, %s -> %s\n", s->script,
                st.iterations, st.iterations == 1 ? "" : "s", st.photons, st.caustic_photons, st.seconds, st.threads,
-               st.threads == 1 ? "" : "s", noise, cli->output);
+               st.threads == 1 ? "" : "s", noise, estimator, cli->output);
     }
     if (ok && o.shard_count > 0) {
         /* what caustica merge needs to weigh this part and to check that

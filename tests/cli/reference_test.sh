@@ -27,6 +27,14 @@ done
   >"$WORK/out.txt" 2>"$WORK/err.txt"
 ! grep -q "bought less" "$WORK/err.txt" && grep -q "iterations" "$WORK/out.txt" \
   && pass "a budget that buys many iterations warns of nothing" || fail "no warning" "$(cat "$WORK/out.txt" "$WORK/err.txt")"
+grep -q ", by SPPM (radii shrunk per pixel) -> " "$WORK/out.txt" && pass "a plain reference names its estimator (SPPM)" \
+  || fail "estimator named" "$(cat "$WORK/out.txt")"
+"$CAUSTICA" reference tests/scenes/ball_lens.lua -o "$WORK/shard.pfm" --size 16x16 --photons 500 --spp 2 --shard 1/2 \
+  >"$WORK/out.txt" 2>/dev/null
+grep -q ", by independent passes (shard 1/2, radii fixed per pass) -> " "$WORK/out.txt" \
+  && pass "a shard names its estimator (independent passes)" || fail "shard's estimator" "$(cat "$WORK/out.txt")"
+"$CAUSTICA" merge --help | tr '\n' ' ' | grep -q "that of .reference --shard 0/1. .*not of a plain .reference." \
+  && pass "merge --help says up front which run a merge equals" || fail "merge --help" "$("$CAUSTICA" merge --help)"
 "$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm" | grep -q "nan=0" && pass "the cut-short image is finite" \
   || fail "finite" "$("$CAUSTICA" compare "$WORK/budget.pfm" "$WORK/budget.pfm")"
 
