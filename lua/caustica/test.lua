@@ -56,30 +56,68 @@ local function save_thumbnail(img)
   if pcall(function() img:save(path) end) then current.images = { new = path } end
 end
 
+local function fail(message, level)
+  error(message, (level or 1) + 1)
+end
+
+-- The signatures, checked where a test calls them: a wrong argument is an
+-- error at the test's line that names the function, the argument and what
+-- it takes (LUA_API.md and TESTING.md list them), not a failure deep in
+-- this file. `kind` is a Lua type name, "image" (a caustica.Image) or
+-- "image list" (a table of two images).
+local function is_image(v)
+  return type(v) == "userdata" and getmetatable(v) == "caustica.Image"
+end
+
+local function describe(v)
+  if is_image(v) then return "an image" end
+  return type(v) == "nil" and "nothing" or ("a " .. type(v))
+end
+
+local function check(fn, position, name, v, kind, optional)
+  if v == nil and optional then return end
+  local ok
+  if kind == "image" then
+    ok = is_image(v)
+  elseif kind == "image list" then
+    ok = type(v) == "table" and is_image(v[1]) and is_image(v[2])
+  else
+    ok = type(v) == kind
+  end
+  if not ok then
+    local wanted = kind == "image" and "an image (t.render, t.reference, c.image.load)"
+                   or kind == "image list" and "a table of two images ({ref1, ref2})"
+                   or ((kind:match("^[aeiou]") and "an " or "a ") .. kind)
+    error(string.format("bad argument #%d '%s' to 't.%s' (%s%s expected, got %s)", position, name, fn, wanted,
+                        optional and " or nil" or "", describe(v)), 3)
+  end
+end
+
 --- Registers a test case.
 function t.case(name, fn)
-  assert(type(name) == "string", "t.case: a name expected")
-  assert(type(fn) == "function", "t.case: a function expected")
+  check("case", 1, "name", name, "string")
+  check("case", 2, "fn", fn, "function")
   t._cases[#t._cases + 1] = { name = name, fn = fn }
 end
 
 --- Renders a scene script and returns its linear image (and per-pass ms).
 --- opts: set = {k = v}, size = {w, h}, frame = n
 function t.render(script, opts)
+  check("render", 1, "script", script, "string")
+  check("render", 2, "opts", opts, "table", true)
   -- Called through pcall so that a failure names the test's line, not this file's.
   local ok, img, ms = pcall(image.render, script, opts)
   if not ok then error(img, 2) end
   return img, ms
 end
 
-local function fail(message, level)
-  error(message, (level or 1) + 1)
-end
 
 --- Renders the ground truth (the CPU reference) of a scene script.
 --- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius, antialias,
 --- caustics = false (less the caustic part: what refraction without a caustics pass should match)
 function t.reference(script, opts)
+  check("reference", 1, "script", script, "string")
+  check("reference", 2, "opts", opts, "table", true)
   local ok, img, stats = pcall(image.reference, script, opts)
   if not ok then error(img, 2) end
   return img, stats
@@ -87,12 +125,16 @@ end
 
 --- Fails unless `cond` holds.
 function t.expect(cond, message)
+  check("expect", 2, "message", message, "string", true)
   if not cond then fail(message or "expectation failed", 2) end
 end
 
 --- Fails unless a and b are within the given tolerances:
 --- { rmse = , max = , psnr = (minimum), rel_rmse = , ssim = (minimum) }
 function t.expect_close(a, b, tol)
+  check("expect_close", 1, "a", a, "image")
+  check("expect_close", 2, "b", b, "image")
+  check("expect_close", 3, "tol", tol, "table", true)
   tol = tol or { rmse = 1 / 255 }
   local m = image.compare(a, b)
   local problems = {}
@@ -124,10 +166,12 @@ end
 --- opts: z (3), fraction (0.99), floor (1e-8: the variance of a pixel both
 --- renders agree on exactly).
 function t.expect_statistically_close(img, refs, opts)
+  check("expect_statistically_close", 1, "img", img, "image")
+  check("expect_statistically_close", 2, "refs", refs, "image list")
+  check("expect_statistically_close", 3, "opts", opts, "table", true)
   opts = opts or {}
   local z, fraction, floor = opts.z or 3, opts.fraction or 0.99, opts.floor or 1e-8
   local a, b = refs[1], refs[2]
-  assert(a and b, "t.expect_statistically_close: two reference renders expected ({ref1, ref2})")
   local w, h = img.width, img.height
   if a.width ~= w or b.width ~= w or a.height ~= h or b.height ~= h then
     fail(string.format("image sizes differ: %dx%d against %dx%d and %dx%d", w, h, a.width, a.height, b.width, b.height), 2)
@@ -174,6 +218,9 @@ end
 
 --- Fails unless a and b differ by at least `rmse` (a change must show).
 function t.expect_different(a, b, rmse)
+  check("expect_different", 1, "a", a, "image")
+  check("expect_different", 2, "b", b, "image")
+  check("expect_different", 3, "rmse", rmse, "number")
   local m = image.compare(a, b)
   if m.rmse < rmse then
     fail(string.format("images should differ: rmse %.6g < %.6g", m.rmse, rmse), 2)
@@ -187,6 +234,9 @@ end
 --- image is committed only after a person looked at it. A failure writes
 --- the new image, the golden and their difference to out/ beside the test.
 function t.expect_golden(img, name, tol)
+  check("expect_golden", 1, "img", img, "image")
+  check("expect_golden", 2, "name", name, "string")
+  check("expect_golden", 3, "tol", tol, "table", true)
   local beside = host.script_dir() .. "/refs/" .. name
   local clamped = img:clamped()
   if options.update_refs then
@@ -218,6 +268,8 @@ end
 
 --- Fails unless fn raises an error whose message contains `text`.
 function t.expect_error(fn, text)
+  check("expect_error", 1, "fn", fn, "function")
+  check("expect_error", 2, "text", text, "string", true)
   local ok, err = pcall(fn)
   if ok then fail("expected an error" .. (text and (" containing '" .. text .. "'") or ""), 2) end
   if text and not tostring(err):find(text, 1, true) then
@@ -228,6 +280,7 @@ end
 
 --- Fails unless the image has no NaN or Inf anywhere.
 function t.expect_finite(img)
+  check("expect_finite", 1, "img", img, "image")
   local s = img:stats()
   if s.nan > 0 then fail(string.format("%d non-finite values", s.nan), 2) end
   return s
@@ -236,6 +289,8 @@ end
 --- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted
 --- (1 under total internal reflection): for tests that derive closed forms.
 function t.fresnel(cos_i, eta)
+  check("fresnel", 1, "cos_i", cos_i, "number")
+  check("fresnel", 2, "eta", eta, "number")
   local sin2_t = eta * eta * (1 - cos_i * cos_i)
   if sin2_t >= 1 then return 1 end
   local cos_t = math.sqrt(1 - sin2_t)
