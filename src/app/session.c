@@ -39,7 +39,14 @@ static bool field_number(lua_State *L, int t, const char *script, const char *na
 static bool read_result(struct session *s, struct error *err)
 {
     lua_State *L = s->L;
-    const char *script = s->script;
+    /* the errors name the line of the return statement that wrote the table */
+    char where[4200];
+    int line = lua_host_return_line(L);
+    if (line > 0)
+        snprintf(where, sizeof where, "%s:%d", s->script, line);
+    else
+        snprintf(where, sizeof where, "%s", s->script);
+    const char *script = where;
     if (!lua_istable(L, -1))
         return error_set(err, "%s: a scene script must return a table {scene = ..., graph = ...}, it returned %s",
                          script, luaL_typename(L, -1));
@@ -70,8 +77,13 @@ static bool read_result(struct session *s, struct error *err)
     if (!field_number(L, t, script, "frames", &frames, err) || !field_number(L, t, script, "fps", &fps, err) ||
         !field_number(L, t, script, "exposure", &exposure, err))
         return false;
-    if (frames < 1 || frames > 1e7 || !(fps > 0) || fps > 1e4 || !(exposure >= 0) || !isfinite(exposure))
-        return error_set(err, "%s: frames must be >= 1, fps in (0, 10000] and exposure >= 0", script);
+    if (!(frames >= 1) || frames > 1e7)
+        return error_set(err, "%s: the returned table's frames = %g: a count of frames from 1 to 10^7 (a still is "
+                              "frames = 1)", script, frames);
+    if (!(fps > 0) || fps > 1e4)
+        return error_set(err, "%s: the returned table's fps = %g: frames a second in (0, 10000]", script, fps);
+    if (!(exposure >= 0) || !isfinite(exposure))
+        return error_set(err, "%s: the returned table's exposure = %g: a multiplier >= 0", script, exposure);
     s->frames = s->options.frame_count > 0 ? s->options.frame_count : (int)frames; /* --frame-count wins */
     s->fps = fps;
     s->exposure = (float)exposure;

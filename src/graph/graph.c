@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/suggest.h"
 #include "graph/renderer.h"
 
 void graph_init(struct graph *g) { memset(g, 0, sizeof *g); }
@@ -355,9 +356,23 @@ bool graph_check(struct graph *g, struct error *err)
     int which = 0;
     int out_pass = find_output_of(g, g->count, g->output, &which);
     if (out_pass < 0) {
-        char producers[512];
+        char producers[512], nearest[RESOURCE_NAME_MAX + 32] = "";
         list_producers(g, g->output, producers, sizeof producers);
-        return error_set(err, "graph output '%s' is made by no pass%s%s", g->output,
+        /* a typo ("env.colr"): the nearest "pass.output" the graph makes */
+        char names[256][RESOURCE_NAME_MAX];
+        const char *candidates[256];
+        size_t count = 0;
+        for (int i = 0; i < g->count; i++)
+            for (int o = 0; o < g->entries[i].pass->output_count && count < 256; o++) {
+                snprintf(names[count], sizeof names[count], "%s.%s", g->entries[i].pass->name,
+                         g->entries[i].pass->outputs[o].name);
+                candidates[count] = names[count];
+                count++;
+            }
+        const char *near = count ? suggest_nearest(g->output, candidates, count) : NULL;
+        if (near)
+            snprintf(nearest, sizeof nearest, " (did you mean '%s'?)", near);
+        return error_set(err, "%sgraph output '%s' is made by no pass%s%s%s", g->output_where, g->output, nearest,
                          producers[0] ? "; outputs of that name: " : "", producers);
     }
     if (g->entries[out_pass].pass->outputs[which].bundle)

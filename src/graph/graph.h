@@ -35,6 +35,7 @@ struct graph {
     struct graph_entry *entries;
     int count, capacity;
     char output[RESOURCE_NAME_MAX];
+    char output_where[256]; /* "script.lua:12: " where the script named the output ("" when unknown) */
     bool executing;       /* inside graph_execute: frozen */
     /* compiled */
     bool compiled;

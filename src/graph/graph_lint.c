@@ -122,6 +122,19 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      "size): surfaces closer than that are confused, at silhouettes first; raise near or lower far",
                      (double)cam->znear, (double)cam->zfar, step, 100.0 * step / size);
     }
+    /* The camera inside an opaque closed object: the frame shows its inside
+     * faces (culled or black) instead of the scene, and nothing says why.
+     * (Inside glass or water is a view the refraction passes handle.) */
+    for (int i = 0; i < scene->object_count && count < max; i++) {
+        const struct object *o = scene->objects[i];
+        if (!o->visible || object_is(o, OBJECT_ROLE_SPECULAR) || !object_encloses_point(o, cam->eye))
+            continue;
+        snprintf(messages[count++], 400,
+                 "the camera (eye at %g, %g, %g) is inside object %d (%s, '%.60s'), a closed opaque surface: the "
+                 "frame shows its inside, not the scene; move the eye out of it, or hide the object",
+                 (double)cam->eye.x, (double)cam->eye.y, (double)cam->eye.z, i + 1, object_role_name(object_role(o)),
+                 o->mesh ? o->mesh->name : "?");
+    }
     /* Caustics added for a light that the same pass does not shadow (shade's
      * `caustics` and `shadow` inputs). */
     for (int i = 0; i < g->count && count < max; i++) {

@@ -412,6 +412,11 @@ static int graph_output_l(lua_State *L)
     struct error err;
     if (!graph_set_output(g, luaL_checkstring(L, 2), &err))
         return luaL_error(L, "%s", err.message);
+    /* the line that named it, for the error when no pass makes it (known
+     * only once the graph is checked, after the script has returned) */
+    luaL_where(L, 1);
+    snprintf(g->output_where, sizeof g->output_where, "%s", lua_tostring(L, -1));
+    lua_pop(L, 1);
     return 0;
 }
 

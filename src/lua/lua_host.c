@@ -45,6 +45,10 @@ struct host_state {
      * caught it, it is raised again wherever the script goes on, so the
      * call's error reports the line where the limit was met. */
     char limit_message[512];
+    /* lua_host_run_file: the line of the main chunk's return statement
+     * (where the table read_result checks is written), 0 when unknown */
+    bool watch_return;
+    int return_line;
 };
 
 /* The Lua heap, counted by the allocator so that a table bomb becomes a
@@ -660,6 +664,29 @@ static void timeout_hook(lua_State *L, lua_Debug *ar)
     lua_error(L);
 }
 
+/* The hook while a file's main chunk runs: the time limit's count, and the
+ * line the chunk returns from (its returned table's errors name it). Only
+ * the outermost function's return is looked at. */
+static void run_file_hook(lua_State *L, lua_Debug *ar)
+{
+    if (ar->event != LUA_HOOKRET) {
+        timeout_hook(L, ar);
+        return;
+    }
+    lua_Debug caller;
+    if (lua_getstack(L, 1, &caller))
+        return; /* a function the chunk called */
+    struct host_state *h = host_of(L);
+    if (h && lua_getinfo(L, "l", ar) && ar->currentline > 0)
+        h->return_line = ar->currentline;
+}
+
+int lua_host_return_line(lua_State *L)
+{
+    struct host_state *h = host_of(L);
+    return h ? h->return_line : 0;
+}
+
 /* ---- state ----------------------------------------------------------- */
 
 static void add_read_root(struct host_state *h, const char *dir)
@@ -851,11 +878,14 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
     double outer = atomic_load(&watched_deadline);
     if (h && h->call_depth == 0)
         h->limit_message[0] = '\0';
+    bool watch_return = h && h->call_depth == 0 && h->watch_return;
     if (h && h->call_depth++ == 0 && h->options.timeout > 0) {
         h->deadline = now_seconds() + h->options.timeout;
         atomic_store(&watched_deadline, h->deadline);
         lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
     }
+    if (watch_return) /* the count only where there is a time limit (its hook reads the clock) */
+        lua_sethook(L, run_file_hook, LUA_MASKRET | (h->options.timeout > 0 ? LUA_MASKCOUNT : 0), 10000);
     int base = lua_gettop(L) - nargs;
     lua_pushcfunction(L, message_handler);
     lua_insert(L, base);
@@ -864,6 +894,13 @@ bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, s
     if (h && --h->call_depth == 0) {
         h->deadline = 0;
         atomic_store(&watched_deadline, outer);
+        if (watch_return) {
+            h->watch_return = false;
+            if (h->options.timeout > 0)
+                lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 10000);
+            else
+                lua_sethook(L, NULL, 0, 0);
+        }
     }
     if (rc == LUA_ERRMEM) {
         void *ud;
@@ -900,6 +937,11 @@ bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct erro
         format_error(lua_tostring(L, -1), NULL, err);
         lua_pop(L, 1);
         return false;
+    }
+    struct host_state *h = host_of(L);
+    if (h && h->call_depth == 0) {
+        h->watch_return = true;
+        h->return_line = 0;
     }
     return lua_host_call(L, 0, nresults, NULL, err);
 }

@@ -98,6 +98,9 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
 void lua_host_destroy(lua_State *L);
 /* Runs a file, leaving `nresults` values on the stack. */
 bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct error *err);
+/* The line of the return statement the last file run by lua_host_run_file
+ * ended with (where its returned table is written), 0 when unknown. */
+int lua_host_return_line(lua_State *L);
 /* Calls the function at the top of the stack with `nargs` arguments below it. */
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err);
 /* The sandbox's file rules (docs/SECURITY.md). Reading: the script's own

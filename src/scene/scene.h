@@ -194,6 +194,10 @@ float mesh_longest_edge(const struct mesh *mesh);
  * object's base shape under its transform: morphs and deformers are not
  * applied. */
 bool mesh_contains_point(const struct mesh *mesh, vec3 p);
+/* The same, true only where rays in two opposite directions both say
+ * inside (a closed surface around p, never an open sheet beside it) and
+ * the nearest surface faces outwards (a solid, not a room around p). */
+bool mesh_encloses_point(const struct mesh *mesh, vec3 p);
 int mesh_subdivision_levels(const struct mesh *mesh, float max_edge, size_t max_triangles);
 struct mesh *mesh_create_subdivided(const struct mesh *mesh, int levels, struct error *err);
 /* d_N per vertex into mesh->thickness (scene/thickness.c, Embree). */
@@ -274,6 +278,7 @@ void object_destroy(struct object *obj);
 bool object_is_animated_geometry(const struct object *obj);
 mat4 object_model_matrix(const struct object *obj);
 bool object_contains_point(const struct object *obj, vec3 p);
+bool object_encloses_point(const struct object *obj, vec3 p);
 void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi);
 /* The object's role (material_role), 0 while it is invisible. */
 unsigned object_role(const struct object *obj);

@@ -46,6 +46,25 @@ expect_error "missing output folder" 1 "does not exist" - -- \
 expect_error "record into an unwritable folder" 1 "/proc/self/frames" - -- \
   "$CAUSTICA" record scenes/demo.lua -o /proc/self/frames --frames 0:1
 expect_error "missing script" 1 "nosuch.lua: no such file" "$O" -- "$CAUSTICA" render "$WORK/nosuch.lua" -o "$O"
+# Mistakes that rendered without a word (issue 56): the camera inside an opaque solid, a typo in
+# g:output, frames = 0 (each now names its line, or says what is wrong).
+"$CAUSTICA" render tests/scenes/camera_inside.lua --set inside=box -o "$O" 2>"$WORK/err" >/dev/null
+grep -q "the camera (eye at 0, 0, 0.2) is inside object 1 (receiver, 'box'), a closed opaque surface" "$WORK/err" \
+  && pass "the camera inside an opaque box is warned of" || fail "camera inside" "$(cat "$WORK/err")"
+for beside in plane none; do
+  "$CAUSTICA" render tests/scenes/camera_inside.lua --set inside=$beside -o "$O" 2>"$WORK/err" >/dev/null
+  ! grep -q "inside object" "$WORK/err" && pass "no such warning with the camera beside an open plane or nothing ($beside)" \
+    || fail "camera not inside ($beside)" "$(cat "$WORK/err")"
+done
+rm -f "$O"
+printf 'local c = require "caustica"\nlocal g = c.graph()\ng:add("env", c.pass.environment {})\ng:output("env.colr")\nreturn { scene = c.scene {}, graph = g, size = {8, 8} }\n' >"$WORK/typo.lua"
+expect_error "a typo in g:output: its line and the nearest output" 1 \
+  "typo.lua:4: graph output 'env.colr' is made by no pass (did you mean 'env.color'?)" "$O" -- \
+  "$CAUSTICA" render "$WORK/typo.lua" -o "$O"
+printf 'local c = require "caustica"\nlocal g = c.graph()\ng:add("env", c.pass.environment {})\ng:output("env.color")\n\nreturn { scene = c.scene {}, graph = g, frames = 0 }\n' >"$WORK/frames0.lua"
+expect_error "frames = 0: the line of the returned table" 1 \
+  "frames0.lua:6: the returned table's frames = 0: a count of frames from 1 to 10^7" "$O" -- \
+  "$CAUSTICA" render "$WORK/frames0.lua" -o "$O"
 printf 'return 42\n' >"$WORK/returns_number.lua"
 expect_error "script returning the wrong thing" 1 "must return a table" "$O" -- \
   "$CAUSTICA" render "$WORK/returns_number.lua" -o "$O"
