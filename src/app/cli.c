@@ -138,7 +138,11 @@ static const struct cli_option {
      "EXR's `caustic` layer) instead of rendering one: one scene (sweep pass parameters or techniques) and one "
      "error frame; a FILE.part's frame and size are checked"},
     {"--ref-spp", NULL, "N", VB_BENCH | VB_CHOOSE,
-     "the longest reference run of the error-time curve, in iterations (default 8; >= 8)"},
+     "the longest reference run of the error-time curve, in iterations (default 8; >= 8); the ground truth "
+     "runs 16 x N iterations unless --truth-spp says"},
+    {"--truth-spp", NULL, "N", VB_BENCH | VB_CHOOSE,
+     "the ground truth's iterations (default 16 x --ref-spp, 128; >= --ref-spp): fewer is faster and noisier, "
+     "and bench reports the truth's own error beside the table"},
     {"--ref-antialias", NULL, NULL, VB_BENCH | VB_CHOOSE,
      "judge against a truth of pixel means (default: pixel centres)"},
     {"--error-frames", NULL, "K", VB_BENCH | VB_CHOOSE,
@@ -493,6 +497,9 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
         } else if (strcmp(a, "--ref-spp") == 0) {
             if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
                 return usage_error("--ref-spp needs a count >= 8, got '%s'", next);
+        } else if (strcmp(a, "--truth-spp") == 0) {
+            if (!parse_int(next, &cli->truth_spp) || cli->truth_spp < 8 || cli->truth_spp > 1000000)
+                return usage_error("--truth-spp needs a count from 8 to 1000000, got '%s'", next);
         } else if (strcmp(a, "--error-frames") == 0) {
             if (!parse_int(next, &cli->error_frames) || cli->error_frames < 1 || cli->error_frames > 16)
                 return usage_error("--error-frames needs a count in 1..16, got '%s'", next);

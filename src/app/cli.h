@@ -49,6 +49,7 @@ struct cli {
     int nsweeps;
     long ref_photons;        /* --ref-photons (bench) */
     int ref_spp;             /* --ref-spp: the longest reference run of the curve (bench) */
+    int truth_spp;           /* --truth-spp: the ground truth's iterations (0: 16 x ref_spp) */
     const char *truth;       /* --truth: bench's ground truth from a file (a merged reference) */
     int error_frames;        /* --error-frames K (bench, choose): errors averaged over K frames spread over the
                                 animation (0: 1 frame, or 3 with --sweep technique=...) */

@@ -159,6 +159,8 @@ bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, s
         k = hash_fnv1a(k, cli->sweeps[i], strlen(cli->sweeps[i]) + 1);
     if (cli->antialias)
         k = hash_fnv1a(k, "antialias", 9);
+    if (cli->truth_spp > 0) /* hashed only when given: the caches made before it keep their names */
+        k = hash_fnv1a(k, &cli->truth_spp, sizeof cli->truth_spp);
     snprintf(out, size, "%s/cache/sweep_%016llx.csv", dir, (unsigned long long)k);
     return true;
 }
@@ -584,7 +586,10 @@ static bool bench_plan(struct bench *b, int *exit_code, struct error *err)
     b->level_max = cli->ref_spp > 0 ? cli->ref_spp : 8;
     ref_options_default(&b->truth_options);
     b->truth_options.photons = cli->ref_photons > 0 ? cli->ref_photons : 100000;
-    b->truth_options.iterations = 16 * b->level_max;
+    if (cli->truth_spp > 0 && cli->truth_spp < b->level_max)
+        return error_set(err, "--truth-spp %d is below --ref-spp %d: the truth must run at least as long as the "
+                              "curve's longest reference", cli->truth_spp, b->level_max);
+    b->truth_options.iterations = cli->truth_spp > 0 ? cli->truth_spp : 16 * b->level_max;
     b->truth_options.progress = true;
     b->truth_options.antialias = cli->antialias;
     b->npasses = -1;

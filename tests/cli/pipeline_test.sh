@@ -126,6 +126,16 @@ grep -q "hollow: dominated" "$svg" && ! grep -qE "[0-9]e[+-][0-9]+ ms" "$svg" \
 "$CAUSTICA" choose "$WORK/tech.lua" --time 10000 --frames 1 --ref-photons 2000 --ref-spp 8 -o "$WORK/cb" --cached >/dev/null 2>"$WORK/err"
 grep -q "warning: the cached sweep was measured on NVIDIA H200 (a GPU node), this machine renders with $here" "$WORK/err" \
   && pass "choose says when the cache was measured on another renderer" || fail "choose's renderer warning" "$(cat "$WORK/err")"
+# --truth-spp sets the ground truth's iterations (else 16 x --ref-spp, 128 at the least: --ref-spp 8 alone
+# could not shorten it), and refuses one shorter than the curve's longest reference.
+"$CAUSTICA" choose "$WORK/tech.lua" --time 10000 --frames 1 --ref-photons 2000 --ref-spp 8 --truth-spp 16 -o "$WORK/cb16" \
+  >/dev/null 2>"$WORK/err"
+grep -q "rendering the ground truth of frame 0 (16 iterations of 2000 photons)" "$WORK/err" \
+  && pass "--truth-spp 16: the truth runs 16 iterations" || fail "--truth-spp" "$(cat "$WORK/err")"
+expect_error "--truth-spp below --ref-spp" 1 "--truth-spp 8 is below --ref-spp 16" - -- \
+  "$CAUSTICA" bench "$WORK/tech.lua" --sweep technique=all --ref-spp 16 --truth-spp 8 -o "$WORK/cb8"
+expect_error "--truth-spp out of range" 2 "--truth-spp needs a count from 8 to 1000000, got '4'" - -- \
+  "$CAUSTICA" bench "$WORK/tech.lua" --sweep technique=all --truth-spp 4
 # convert --tonemap: the same tone mapping as render -o x.png (the renderer's own present pass).
 cat >"$WORK/aces.lua" <<'EOF'
 local c = require "caustica"
