@@ -6,14 +6,14 @@ local c = require "caustica"
 local morph_period = c.param("morph_period", 4.0)
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.2, 2.6}, target = {0, 0.35, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.04, 0.045},
 }
 local lamp = scene:add(c.light.point { position = {1.5, 2.5, 1.0}, intensity = {7, 6.6, 6} })
 scene:add(c.object { mesh = c.mesh.plane { size = 6 },
                      material = c.material.diffuse { color = c.texture.checker { size = 12, a = {0.78, 0.78, 0.74},
                                                                                   b = {0.5, 0.5, 0.55} } } })
-local dino_mesh = c.mesh.load "assets/dinosaur_morph.glb"
+local dino_mesh = c.mesh.load(c.asset "dinosaur_morph.glb")
 local dino = scene:add(c.object {
   mesh = dino_mesh,
   material = c.material.glass { ior = c.param("ior", 1.4), absorption = {0.3, 0.1, 0.2} },

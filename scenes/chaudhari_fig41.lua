@@ -7,9 +7,9 @@ local c = require "caustica"
 local method = c.param("method", "layered")
 local scene = c.scene {
   camera = c.camera { eye = {0.1, 0.25, 1.6}, target = {0, 0.02, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
 }
-local mesh = c.mesh.load(c.param("model", "40k") == "800k" and "assets/dragon_800k.glb" or "assets/dragon_40k.glb")
+local mesh = c.mesh.load(c.param("model", "40k") == "800k" and(c.asset "dragon_800k.glb") or(c.asset "dragon_40k.glb"))
 scene:add(c.object { mesh = mesh, material = c.material.glass { ior = c.param("ior", 1.25) },
                      rotation = c.quat.axis_angle({0, 1, 0}, 0.5) })
 local g = c.graph()

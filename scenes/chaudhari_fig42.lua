@@ -14,7 +14,7 @@ local method = c.param("method", "layered")
 
 local scene = c.scene {
   camera = c.camera { eye = {0.2, 0.9, 1.9}, target = {0, 0.3, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.05, 0.05, 0.05},
 }
 local sun = scene:add(c.light.spot { position = {1.2, 2.4, 1.6}, direction = {-1.2, -2.2, -1.6}, angle = 30,
@@ -22,7 +22,7 @@ local sun = scene:add(c.light.spot { position = {1.2, 2.4, 1.6}, direction = {-1
 scene:add(c.object { mesh = c.mesh.plane { size = 4 },
                      material = c.material.diffuse { color = c.texture.checker { size = 16, a = {0.75, 0.75, 0.72},
                                                                                   b = {0.45, 0.45, 0.5} } } })
-local dragon_mesh = c.mesh.load(model == "40k" and "assets/dragon_40k.glb" or "assets/dragon_800k.glb")
+local dragon_mesh = c.mesh.load(model == "40k" and(c.asset "dragon_40k.glb") or(c.asset "dragon_800k.glb"))
 local dragon = scene:add(c.object {
   mesh = dragon_mesh,
   material = c.material.glass { ior = c.param("ior", 1.25), absorption = {0.4, 0.2, 0.05} },

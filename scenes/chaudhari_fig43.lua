@@ -7,7 +7,7 @@ local c = require "caustica"
 local method = c.param("method", "layered")
 local scene = c.scene {
   camera = c.camera { eye = {0.3, 0.5, 2.3}, target = {0, 0.1, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.1, 0.1, 0.1},
 }
 local lamp = scene:add(c.light.point { position = {1.5, 2.5, 2.0}, intensity = {6, 6, 6} })
@@ -17,7 +17,7 @@ scene:add(c.object { mesh = c.mesh.plane { size = 8 }, position = {0, -0.45, 0},
 scene:add(c.object { mesh = c.mesh.plane { size = 8 }, position = {0, 0, -1.8},
                      rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
                      material = c.material.diffuse { color = {0.55, 0.5, 0.45} } })
-local bunny = c.mesh.load "assets/bunny_15k.glb"
+local bunny = c.mesh.load(c.asset "bunny_15k.glb")
 local ior = c.param("ior", 1.2)
 scene:add(c.object { mesh = bunny, material = c.material.glass { ior = ior },
                      position = {-0.3, -0.45 - bunny.bounds[1][2], 0.25} })

@@ -5,9 +5,9 @@
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 0.3, 2.6}, target = {0, 0.05, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
 }
-local bunny = c.mesh.load "assets/bunny_15k.glb"
+local bunny = c.mesh.load(c.asset "bunny_15k.glb")
 local a = c.param("absorption", 4.0)
 for i, ior in ipairs { 1.11, 1.15, 1.25 } do
   scene:add(c.object { mesh = bunny, material = c.material.glass { ior = ior, absorption = {a, a, 0} },

@@ -7,7 +7,7 @@ local c = require "caustica"
 local object = c.param("object", "sphere")
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.3, 2.2}, target = {0, 0, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.05, 0.05, 0.05},
 }
 local e = math.rad(c.param("elevation", 65))
@@ -19,11 +19,11 @@ local glass = c.material.glass { ior = c.param("ior", 1.5) }
 if object == "sphere" then
   scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 128 }, material = glass, position = {0, 0.05, 0} })
 elseif object == "dragon" then
-  local m = c.mesh.load(c.param("model", "40k") == "800k" and "assets/dragon_800k.glb" or "assets/dragon_40k.glb")
+  local m = c.mesh.load(c.param("model", "40k") == "800k" and(c.asset "dragon_800k.glb") or(c.asset "dragon_40k.glb"))
   scene:add(c.object { mesh = m, material = glass, position = {0, -0.5 - m.bounds[1][2], 0},
                        rotation = c.quat.axis_angle({0, 1, 0}, 0.4) })
 else
-  local m = c.mesh.load "assets/bunny_15k.glb"
+  local m = c.mesh.load(c.asset "bunny_15k.glb")
   scene:add(c.object { mesh = m, material = glass, position = {-0.3, -0.5 - m.bounds[1][2], 0.1}, scale = {0.8, 0.8, 0.8} })
   scene:add(c.object { mesh = m, material = glass, position = {0.35, -0.5 - m.bounds[1][2] * 0.8, -0.3}, scale = {0.8, 0.8, 0.8},
                        rotation = c.quat.axis_angle({0, 1, 0}, 2.2) })

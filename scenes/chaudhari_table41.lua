@@ -8,15 +8,15 @@
 -- ranges, trace): examples/chaudhari_scaling/measure.sh runs them all.
 local c = require "caustica"
 local files = {
-  bunny15k = "assets/bunny_15k.glb", bunny69k = "assets/bunny_69k.glb", armadillo86k = "assets/armadillo_86k.glb",
-  dragon40k = "assets/dragon_40k.glb", dragon200k = "assets/dragon_200k.glb", dragon800k = "assets/dragon_800k.glb",
+  bunny15k = c.asset "bunny_15k.glb", bunny69k = c.asset "bunny_69k.glb", armadillo86k = c.asset "armadillo_86k.glb",
+  dragon40k = c.asset "dragon_40k.glb", dragon200k = c.asset "dragon_200k.glb", dragon800k = c.asset "dragon_800k.glb",
 }
 local model = c.param("model", "bunny15k")
 local file = files[model]
 if not file then error("model: one of bunny15k, bunny69k, armadillo86k, dragon40k, dragon200k, dragon800k") end
 local scene = c.scene {
   camera = c.camera { eye = {0.0, 0.2, 1.7}, target = {0, 0, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
 }
 -- seen from the side, where the most surfaces overlap along a view ray
 scene:add(c.object { mesh = c.mesh.load(file), material = c.material.glass { ior = 1.25 },

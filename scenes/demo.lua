@@ -8,7 +8,7 @@ local morph_period = c.param("morph_period", 4.0)   -- seconds from dinosaur to 
 
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.6, 3.2}, target = {0, 0.35, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.03, 0.03, 0.035},
 }
 
@@ -20,13 +20,13 @@ scene:add(c.object {
 })
 -- Models are normalised to a unit box centred at the origin: lift each by
 -- the bottom of its bounds so it stands on the floor.
-local teapot_mesh = c.mesh.load "assets/teapot.glb"
+local teapot_mesh = c.mesh.load(c.asset "teapot.glb")
 scene:add(c.object {
   mesh = teapot_mesh,
   material = c.material.diffuse { color = {0.8, 0.45, 0.25} },
   position = {-0.55, -0.8 * teapot_mesh.bounds[1][2], 0}, scale = {0.8, 0.8, 0.8},
 })
-local dino_mesh = c.mesh.load "assets/dinosaur_morph.glb"
+local dino_mesh = c.mesh.load(c.asset "dinosaur_morph.glb")
 local dino = scene:add(c.object {
   mesh = dino_mesh,
   material = c.material.glass { ior = c.param("ior", 1.5), absorption = {0.3, 0.1, 0.2} },

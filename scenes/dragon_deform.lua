@@ -14,7 +14,7 @@ local scene = c.scene {
 local sun = scene:add(c.light.spot { position = {1.2, 2.4, 1.6}, direction = {-1.2, -2.2, -1.6}, angle = 30,
                                      intensity = {14, 13, 12} })
 scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse { color = {0.7, 0.7, 0.7} } })
-local dragon_mesh = c.mesh.load "assets/dragon_800k.glb"
+local dragon_mesh = c.mesh.load(c.asset "dragon_800k.glb")
 local dragon = scene:add(c.object {
   mesh = dragon_mesh,
   material = c.material.diffuse { color = {0.75, 0.55, 0.3} },

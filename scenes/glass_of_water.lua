@@ -20,7 +20,7 @@ scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, 2, -1.2},
                      rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
                      material = c.material.diffuse { color = c.texture.checker { size = 8, a = {0.8, 0.8, 0.8},
                                                                                  b = {0.3, 0.35, 0.45} } } })
-local glass = scene:add(c.object { mesh = c.mesh.load "assets/glass_of_water.gltf",
+local glass = scene:add(c.object { mesh = c.mesh.load(c.asset "glass_of_water.gltf"),
                                    rotation = c.quat.axis_angle({0, 1, 0}, c.param("turn", 0.3)) })
 
 local g = c.graph()

@@ -9,7 +9,7 @@ local radius = c.param("radius", 0.35)
 
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.4, 2.4}, target = {0, 0.2, 0}, fov = 40 },
-  environment = c.param("sky", false) and c.environment "assets/env/sky.hdr" or c.cubemap "assets/env/room",
+  environment = c.param("sky", false) and c.environment(c.asset "env/sky.hdr") or c.cubemap(c.asset "env/room"),
 }
 local lamp = scene:add(c.light.spot { position = {0.6, 2.6, 0.4}, direction = {-0.6, -2.6, -0.4}, angle = 25,
                                       softness = 0.3, intensity = {12, 11.6, 10.8} })

@@ -14,18 +14,18 @@ local stage = c.param("stage", "f")
 
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.3, 2.6}, target = {0, 0.35, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.04, 0.045},
 }
 local lamp = scene:add(c.light.point { position = {0.9, 2.4, 1.0}, intensity = {7, 6.8, 6.4} })
 scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse { color = {0.75, 0.75, 0.72} } })
-local buddha = c.mesh.load "assets/buddha_60k.glb"
+local buddha = c.mesh.load(c.asset "buddha_60k.glb")
 scene:add(c.object { mesh = buddha, position = {-0.1, -0.8 * buddha.bounds[1][2], -0.8}, scale = {0.8, 0.8, 0.8},
                      material = c.material.diffuse { color = {0.85, 0.7, 0.4} } })
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, position = {0.15, 0.5, 0.2},
                      material = c.material.glass { ior = 1.15 } })
 if stage == "g" then
-  local teapot = c.mesh.load "assets/teapot.glb"
+  local teapot = c.mesh.load(c.asset "teapot.glb")
   scene:add(c.object { mesh = teapot, position = {-0.75, -0.6 * teapot.bounds[1][2], 0.3}, scale = {0.6, 0.6, 0.6},
                        rotation = c.quat.axis_angle({0, 1, 0}, 0.8), material = c.material.mirror { color = {0.9, 0.9, 0.95} } })
 end

@@ -4,7 +4,7 @@
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.6, 2.2}, target = {0, 0.2, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.03, 0.03, 0.035},
 }
 local lamp = scene:add(c.light.spot { position = {1.2, 2.2, 0.6}, direction = {-1.2, -2.2, -0.6}, angle = 30,

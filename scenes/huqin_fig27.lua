@@ -3,7 +3,7 @@
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0.3, 1.5, 2.6}, target = {0, 0.3, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.03, 0.03, 0.035},
 }
 local warm = scene:add(c.light.point { position = {-1.0, 2.2, 0.4}, intensity = {6, 4.5, 3} })

@@ -13,14 +13,14 @@ local floor_view = c.param("view", "figure") == "floor"
 local scene = c.scene {
   camera = floor_view and c.camera { eye = {0.8, -0.3, 0.7}, target = {0.8, -1, 0.7}, up = {0, 0, -1}, ortho = { width = 0.8 } }
            or c.camera { eye = {0.2, -0.35, 1.3}, target = {-0.1, -0.7, -0.2}, fov = 55 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.02, 0.04, 0.05},
 }
 local sun = scene:add(c.light.directional { direction = {0.3, -1, -0.2}, intensity = {2.4, 2.3, 2.1} })
 local sand = c.material.diffuse { color = {0.75, 0.7, 0.55} }
 scene:add(c.object { mesh = c.mesh.plane { size = 3 }, position = {0, -1, 0}, material = sand })
 scene:add(c.object { mesh = c.mesh.box { size = {3, 1.1, 0.1} }, position = {0, -0.45, -1.0}, material = sand })
-local dolphins = c.mesh.load "assets/dolphins.glb"
+local dolphins = c.mesh.load(c.asset "dolphins.glb")
 scene:add(c.object { mesh = dolphins, position = {0, -0.6, -0.2}, scale = {0.7, 0.7, 0.7},
                      material = c.material.diffuse { color = {0.55, 0.6, 0.68} } })
 local water = scene:add(c.water { size = 3, resolution = 96, depth = 1.0, attenuation = {0.3, 0.1, 0.06},

@@ -4,7 +4,7 @@
 -- --set correction=0|3, ior=, hide=true
 local c = require "caustica"
 local scene = c.scene { camera = c.camera { eye = {0, 0.45, 2.4}, target = {0, 0.35, 0}, fov = 40 },
-                        environment = c.cubemap "assets/env/room", ambient = {0.05, 0.05, 0.05} }
+                        environment = c.cubemap(c.asset "env/room"), ambient = {0.05, 0.05, 0.05} }
 local convex = c.param("convex", false)   -- convex objects lit from the camera's side: no shadows to disagree on
 if convex then
   scene:add(c.light.directional { direction = {0.8, -0.2, -0.55}, intensity = {2.5, 2.4, 2.2} })
@@ -14,10 +14,10 @@ if convex then
                        material = c.material.diffuse { color = {0.7, 0.3, 0.2} } })
 else
   scene:add(c.light.directional { direction = {-0.3, -1, -0.6}, intensity = {2.5, 2.4, 2.2} })
-  local bunny = c.mesh.load "assets/bunny_15k.glb"
+  local bunny = c.mesh.load(c.asset "bunny_15k.glb")
   scene:add(c.object { mesh = bunny, position = {0.05, -bunny.bounds[1][2], -0.7},
                        material = c.material.diffuse { color = {0.8, 0.75, 0.6} } })
-  local teapot = c.mesh.load "assets/teapot.glb"
+  local teapot = c.mesh.load(c.asset "teapot.glb")
   scene:add(c.object { mesh = teapot, position = {-0.55, -0.7 * teapot.bounds[1][2], -0.9}, scale = {0.7, 0.7, 0.7},
                        material = c.material.diffuse { color = {0.7, 0.3, 0.2} } })
 end

@@ -8,7 +8,7 @@ local iterations = c.param("iterations", 3)
 
 local scene = c.scene {
   camera = c.camera { eye = {0, 0.4, 2.6}, target = {0, 0, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
 }
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.7, segments = 96 }, material = c.material.glass { ior = ior, fresnel = c.param("fresnel", true) } })
 local g = c.graph()

@@ -10,7 +10,7 @@ local c = require "caustica"
 local moving = c.param("moving", "camera")
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.1, 2.4}, target = {0, 0.1, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.04, 0.04},
 }
 local e0 = math.rad(55)
@@ -18,7 +18,7 @@ local sun = scene:add(c.light.directional { direction = {-0.55 * math.cos(e0), -
                                             intensity = {2.4, 2.3, 2.1} })
 local floor = scene:add(c.object { mesh = c.mesh.plane { size = 6 }, position = {0, -0.35, 0},
                                   material = c.material.diffuse { color = {0.7, 0.7, 0.68} } })
-local teapot = c.mesh.load "assets/teapot.glb"
+local teapot = c.mesh.load(c.asset "teapot.glb")
 local pot = scene:add(c.object { mesh = teapot, material = c.material.diffuse { color = {0.85, 0.8, 0.7} },
                      position = {-0.15, -0.35 - 0.8 * teapot.bounds[1][2], -0.35}, scale = {0.8, 0.8, 0.8} })
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.22, segments = 48 }, position = {0.3, 0.35, 0.25},

@@ -6,12 +6,12 @@ local c = require "caustica"
 local scene = c.scene {
   camera = c.param("view", "a") == "b" and c.camera { eye = {-1.2, 0.6, 1.9}, target = {0, 0.25, 0}, fov = 40 }
                                         or c.camera { eye = {0.3, 0.55, 2.3}, target = {0, 0.3, 0}, fov = 40 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.04, 0.04},
 }
 local lamp = scene:add(c.light.point { position = {0.9, 2.2, 2.0}, intensity = {9, 8.6, 8} })
 scene:add(c.object { mesh = c.mesh.plane { size = 6 }, material = c.material.diffuse { color = {0.6, 0.6, 0.6} } })
-local buddha = c.mesh.load "assets/buddha_60k.glb"
+local buddha = c.mesh.load(c.asset "buddha_60k.glb")
 scene:add(c.object { mesh = buddha, material = c.material.diffuse { color = {0.85, 0.75, 0.55} },
                      position = {0, -1.1 * buddha.bounds[1][2], -0.1}, scale = {1.1, 1.1, 1.1} })
 scene:add(c.object { mesh = c.mesh.sphere { radius = 0.2, segments = 48 }, position = {0.15, 0.5, 0.45},

@@ -9,11 +9,11 @@
 local c = require "caustica"
 
 local samples = {
-  transmission = { file = "assets/khronos/TransmissionTest/TransmissionTest.glb",
+  transmission = { file = c.asset "khronos/TransmissionTest/TransmissionTest.glb",
                    eye = {-0.07, 0.12, 2.6}, target = {-0.07, 0.1, 0}, fov = 30 },
-  roughness = { file = "assets/khronos/TransmissionRoughnessTest/TransmissionRoughnessTest.glb",
+  roughness = { file = c.asset "khronos/TransmissionRoughnessTest/TransmissionRoughnessTest.glb",
                 eye = {0, 0, 2.6}, target = {0, 0, 0}, fov = 40 },
-  attenuation = { file = "assets/khronos/AttenuationTest/AttenuationTest.glb",
+  attenuation = { file = c.asset "khronos/AttenuationTest/AttenuationTest.glb",
                   eye = {0, 0, 26}, target = {0, 0, 0}, fov = 40 },
 }
 local name = c.param("sample", "transmission")

@@ -22,7 +22,7 @@ local light = scene:add(c.light.spot { position = {0.25, 3.2, 0.2}, direction = 
 scene:add(c.object { mesh = c.mesh.plane { size = 6 }, material = c.material.diffuse { color = {0.75, 0.72, 0.68} } })
 scene:add(c.object { mesh = c.mesh.plane { size = 6 }, position = {0, 1.5, -1.6}, rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
                      material = c.material.diffuse { color = {0.35, 0.4, 0.5} } })
-local skull = scene:add(c.object { mesh = c.mesh.load "assets/skull.glb", position = {0, 1.45, 0}, scale = {0.9, 0.9, 0.9},
+local skull = scene:add(c.object { mesh = c.mesh.load(c.asset "skull.glb"), position = {0, 1.45, 0}, scale = {0.9, 0.9, 0.9},
                                    material = c.material.glass { ior = 1.5 } })
 scene.medium = c.medium { sigma_s = {fog, fog, fog}, sigma_a = {0.02, 0.02, 0.02}, box = {{-2, 0, -1.6}, {2, 2.6, 2}} }
 

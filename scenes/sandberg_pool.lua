@@ -11,7 +11,7 @@ local underwater = c.param("underwater", false) -- a camera below the surface, l
 local scene = c.scene {
   camera = underwater and c.camera { eye = {-0.8, -0.45, 0.8}, target = {0.8, -0.1, -0.8}, fov = 60 }
                       or c.camera { eye = {0, 2.3, 2.0}, target = {0, -0.45, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.05, 0.06},
 }
 local sun = scene:add(c.light.directional { direction = {0.4, -1, 0.2}, intensity = {2.2, 2.1, 1.9} })

@@ -7,12 +7,12 @@ local grid = c.param("grid", 128)
 
 local scene = c.scene {
   camera = c.camera { eye = {0.3, 1.9, 2.1}, target = {0, -0.5, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.05, 0.06},
 }
 local sun = scene:add(c.light.directional { direction = {-0.3, -1, -0.25}, intensity = {2.2, 2.1, 1.9} })
 local water, g = pool.build(scene, { grid = grid, depth = 0.6, light = sun })
-local pot = c.mesh.load "assets/teapot.glb"
+local pot = c.mesh.load(c.asset "teapot.glb")
 local clay = c.material.diffuse { color = {0.75, 0.45, 0.3} }
 for i, p in ipairs { {-0.45, -0.3}, {0.35, -0.4}, {0.05, 0.35} } do
   scene:add(c.object { mesh = pot, material = clay, scale = {0.5, 0.5, 0.5},

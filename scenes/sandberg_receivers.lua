@@ -10,13 +10,13 @@ local receivers = c.param("receivers", 0)
 
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.7, 2.2}, target = {0, -0.4, 0}, fov = 45 },
-  environment = c.cubemap "assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.05, 0.05, 0.06},
 }
 local sun = scene:add(c.light.directional { direction = {0.25, -1, -0.3}, intensity = {2.2, 2.1, 1.9} })
 local water, g = pool.build(scene, { grid = grid, depth = 0.7, light = sun })
 local marble = c.material.diffuse { color = {0.85, 0.83, 0.78} }
-local bunny = c.mesh.load "assets/bunny_15k.glb"
+local bunny = c.mesh.load(c.asset "bunny_15k.glb")
 if receivers > 0 then
   local side = math.ceil(math.sqrt(receivers))
   local scale = 1.4 / side
@@ -28,7 +28,7 @@ if receivers > 0 then
 else
   scene:add(c.object { mesh = bunny, material = marble, scale = {0.6, 0.6, 0.6},
                        position = {-0.4, -0.7 - 0.6 * bunny.bounds[1][2], 0.1} })
-  local buddha = c.mesh.load "assets/buddha_60k.glb"
+  local buddha = c.mesh.load(c.asset "buddha_60k.glb")
   scene:add(c.object { mesh = buddha, material = marble, scale = {0.65, 0.65, 0.65},
                        position = {0.4, -0.7 - 0.65 * buddha.bounds[1][2], -0.1} })
 end

@@ -10,7 +10,7 @@ local technique = c.param("technique", "layered")
 local turn = tonumber(c.param("turn", "0.3"))
 local scene = c.scene {
   camera = c.camera { eye = {0, 1.6, 2.6}, target = {0, -0.2, 0}, fov = 40 },
-  environment = c.cubemap "../assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.03, 0.03, 0.03},
 }
 local e = math.rad(70)

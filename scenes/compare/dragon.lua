@@ -8,13 +8,13 @@ local technique = c.param("technique", "layered")
 local caustics = c.param("caustics", "layered")
 local scene = c.scene {
   camera = c.camera { eye = {0.2, 0.9, 1.9}, target = {0, 0.3, 0}, fov = 40 },
-  environment = c.cubemap "../assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.03, 0.03, 0.03},
 }
 local sun = scene:add(c.light.spot { position = {1.2, 2.4, 1.6}, direction = {-1.2, -2.2, -1.6}, angle = 30,
                                      intensity = {14, 13, 12} })
 scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse { color = {0.7, 0.7, 0.7} } })
-local mesh = c.mesh.load "../assets/dragon_40k.glb"
+local mesh = c.mesh.load(c.asset "dragon_40k.glb")
 local dragon = scene:add(c.object { mesh = mesh, material = c.material.glass { ior = 1.5 },
                                     position = {0, -mesh.bounds[1][2], 0} })
 dragon.deform = c.deform.glsl [[

@@ -8,7 +8,7 @@ local pool = require "caustica.pool"
 local technique = c.param("technique", "volumes")
 local scene = c.scene {
   camera = c.camera { eye = {0, 2.3, 2.0}, target = {0, -0.45, 0}, fov = 45 },
-  environment = c.cubemap "../assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.05, 0.06},
 }
 local sun = scene:add(c.light.directional { direction = {0.4, -1, 0.2}, intensity = {2.2, 2.1, 1.9} })

@@ -7,7 +7,7 @@ local technique = c.param("technique", "layered")
 local caustics = c.param("caustics", "none")
 local scene = c.scene {
   camera = c.camera { eye = {0.3, 0.9, 2.6}, target = {0, 0.35, 0}, fov = 42 },
-  environment = c.cubemap "../assets/env/room",
+  environment = c.cubemap(c.asset "env/room"),
   ambient = {0.04, 0.04, 0.045},
 }
 local lamp = scene:add(c.light.spot { position = {0.8, 2.6, 1.2}, direction = {-0.8, -2.6, -1.2}, angle = 35,
@@ -19,7 +19,7 @@ for i, box in ipairs { {-0.9, 0.7, 0.6, 0.3}, {0.8, 0.45, 0.4, 0.6}, {-0.4, -0.8
   scene:add(c.object { mesh = c.mesh.box { size = {box[3], box[4], box[3]} }, position = {box[1], box[4] / 2, box[2] - 0.6},
                        material = c.material.diffuse { color = ({ {0.8, 0.3, 0.2}, {0.3, 0.7, 0.3}, {0.8, 0.7, 0.2} })[i] } })
 end
-scene:add(c.object { mesh = c.mesh.load "../assets/bunny_15k.glb", position = {0, 0.36, 0}, scale = {0.7, 0.7, 0.7},
+scene:add(c.object { mesh = c.mesh.load(c.asset "bunny_15k.glb"), position = {0, 0.36, 0}, scale = {0.7, 0.7, 0.7},
                      material = c.material.glass { ior = 1.5 } })
 local caustic_passes = {
   photons = function() return c.pass.photon_caustics { light = lamp } end,
