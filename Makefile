@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES = cmake make gcc g++ pkg-config liblua5.4-dev libglfw3-dev libosmesa6-dev libegl-dev \
-           libegl-mesa0 libgl1-mesa-dri libgl1 libglx-mesa0 libtinygltf-dev libpng-dev libjpeg62-turbo-dev libopenexr-dev libembree-dev xvfb xauth \
+           libegl-mesa0 libgl1-mesa-dri libgl1 libglx-mesa0 libtinygltf-dev libpng-dev libjpeg62-turbo-dev libtiff-dev libopenexr-dev libembree-dev xvfb xauth \
            openexr openimageio-tools libxml2-utils ffmpeg
 
 .PHONY: all deps farm-deps build demo test test-farm fuzz matrix install clean

@@ -101,6 +101,9 @@ static const struct cli_option {
     {"--timings", NULL, NULL, VB_RENDER, "print each pass's GPU and CPU time"},
     {"--aov", NULL, "PASS.OUTPUT", VB_RENDER | VB_RECORD,
      "one more layer of an .exr output, e.g. shade.depth (repeatable, at most 8)"},
+    {"--half", NULL, NULL, VB_RENDER | VB_RECORD,
+     "an .exr output's R, G, B, A as 16-bit half floats, as compositors take a beauty pass (its layers, depth and "
+     "objectId stay 32-bit); default 32-bit float"},
     {"--aov", NULL, "tir|exit", VB_REFERENCE,
      "a debug image instead of radiance: where light is trapped by total internal reflection, or leaves the "
      "glass"},
@@ -539,6 +542,8 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
             app->allow_read[app->allow_read_count++] = next;
         } else if (strcmp(a, "--allow-write") == 0) {
             app->allow_write = next;
+        } else if (strcmp(a, "--half") == 0) {
+            cli->half = true;
         } else if (strcmp(a, "--trusted") == 0) {
             app->trusted = true;
         } else if (strcmp(a, "--verbose") == 0) {

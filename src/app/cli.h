@@ -25,6 +25,7 @@ struct cli {
     bool overwrite;          /* --overwrite (record): render frames whose file exists */
     const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */
     int aov_count;
+    bool half;               /* --half: an EXR's beauty channels as 16-bit half floats */
     const char *video;       /* --video OUT.mp4|OUT.gif (record): the frames encoded by ffmpeg */
     int crf;                 /* --crf (record --video): x264's quality, default 18 */
     int shard_index, shard_count; /* --shard i/n (record): every n-th frame of the set from the i-th */

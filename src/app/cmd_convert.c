@@ -29,7 +29,7 @@ static bool tonemapped_png(struct app *app, const struct image *img, float expos
                              img->rgba + (size_t)y * row);
     uint8_t *bytes = malloc((size_t)img->width * (size_t)img->height * 4);
     bool ok = bytes && renderer_present_bytes(&app->renderer, &tex, exposure, op, bytes, err) &&
-              image_write_png_rgba8(path, bytes, img->width, img->height, err);
+              image_write_display8(path, bytes, img->width, img->height, err);
     if (!bytes)
         error_set(err, "out of memory");
     free(bytes);
@@ -51,8 +51,8 @@ int cmd_convert(struct app *app, struct cli *cli)
         cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
-    if (cli->tonemap && !image_path_is_png(out)) {
-        fprintf(stderr, "caustica: --tonemap: %s keeps linear values; tone mapping is for a .png\n", out);
+    if (cli->tonemap && !image_path_is_display(out)) {
+        fprintf(stderr, "caustica: --tonemap: %s keeps linear values; tone mapping is for a .png, .jpg or .tif\n", out);
         return EXIT_USAGE;
     }
     struct image img = {0};

@@ -24,6 +24,7 @@ static bool open_session(struct app *app, struct cli *cli, const char *write_dir
     for (int i = 0; i < cli->aov_count; i++)
         (*s)->aovs[i] = cli->aovs[i];
     (*s)->aov_count = cli->aov_count;
+    (*s)->exr_half = cli->half;
     return true;
 }
 
@@ -62,8 +63,12 @@ int cmd_render(struct app *app, struct cli *cli)
     }
     const char *out = cli->output ? cli->output : "out.png";
     struct error err;
-    if (!image_path_is_png(out) && !image_path_is_pfm(out) && !image_path_is_hdr(out) && !image_path_is_exr(out)) {
-        fprintf(stderr, "caustica: -o %s: the output must end in .png, .pfm, .hdr or .exr\n", out);
+    if (!image_path_is_display(out) && !image_path_is_pfm(out) && !image_path_is_hdr(out) && !image_path_is_exr(out)) {
+        fprintf(stderr, "caustica: -o %s: the output must end in .png, .jpg, .tif, .pfm, .hdr or .exr\n", out);
+        return EXIT_USAGE;
+    }
+    if (cli->half && !image_path_is_exr(out)) {
+        fprintf(stderr, "caustica: --half: half floats are for an EXR output (-o %s)\n", out);
         return EXIT_USAGE;
     }
     if (cli->aov_count && !image_path_is_exr(out)) {
@@ -133,6 +138,10 @@ int cmd_record(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct error err;
+    if (cli->half && !image_path_is_exr(cli->output)) {
+        fprintf(stderr, "caustica: --half: half floats are for EXR frames (-o %s)\n", cli->output);
+        return EXIT_USAGE;
+    }
     if (cli->aov_count && !image_path_is_exr(cli->output)) {
         fprintf(stderr, "caustica: --aov: extra layers need an EXR pattern (-o 'out/f_####.exr')\n");
         return EXIT_USAGE;
@@ -160,9 +169,10 @@ int cmd_record(struct app *app, struct cli *cli)
     bool pattern = output_pattern_is_pattern(output);
     char dir[4096];
     if (pattern) {
-        if (!image_path_is_png(output) && !image_path_is_pfm(output) && !image_path_is_hdr(output) &&
+        if (!image_path_is_display(output) && !image_path_is_pfm(output) && !image_path_is_hdr(output) &&
             !image_path_is_exr(output)) {
-            fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .pfm, .hdr or .exr\n", cli->output);
+            fprintf(stderr, "caustica: -o %s: a frame pattern must end in .png, .jpg, .tif, .pfm, .hdr or .exr\n",
+                    cli->output);
             return EXIT_USAGE;
         }
         if (strchr(output, '/') && strchr(strchr(output, '#'), '/')) {

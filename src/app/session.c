@@ -444,6 +444,7 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         free(coverage);
         struct image_exr_info info;
         session_exr_info(s, &info);
+        info.half = s->exr_half;
         ok = ok && image_write_exr(path, &img, layers, n, &info, err);
         for (int i = 0; i < n; i++)
             image_destroy(&layers_img[i]);
@@ -458,9 +459,9 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         image_destroy(&img);
         return ok;
     }
-    if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
-    /* An 8-bit PNG cannot hold NaN (the conversion makes it 0), but a pass
+    if (!image_path_is_display(path))
+        return error_set(err, "%s: unknown image format (use .png, .jpg, .tif, .pfm, .hdr or .exr)", path);
+    /* An 8-bit PNG, JPEG or TIFF cannot hold NaN (the conversion makes it 0), but a pass
      * that produced some should not go unnoticed. */
     struct image linear;
     if (!session_read_linear(s, &linear, err))
@@ -478,7 +479,7 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
     if (!session_read_srgb(s, &bytes, err))
         return false;
     struct graph_resource *res = graph_output(s->graph);
-    bool ok = image_write_png_rgba8(path, bytes, res->texture.width, res->texture.height, err);
+    bool ok = image_write_display8(path, bytes, res->texture.width, res->texture.height, err);
     free(bytes);
     return ok;
 }

@@ -43,6 +43,7 @@ struct session {
     bool linted;             /* graph_lint's warnings printed (once per session) */
     const char *aovs[8];     /* --aov pass.output: extra layers of an EXR output (borrowed from argv) */
     int aov_count;
+    bool exr_half;           /* --half: an EXR output's own RGBA as half floats */
 };
 
 bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);

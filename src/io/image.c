@@ -174,11 +174,18 @@ bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int
             error_set(err, "%s: PNG encoding failed: %s", path, failure.message[0] ? failure.message : "out of memory");
         return image_file_finish(f, tmp, path, false, err);
     }
+    /* an alpha channel only where it says something: a render is opaque
+     * (alpha 255 everywhere made every viewer treat it as a cut-out) */
+    bool opaque = true;
+    for (size_t i = 0; opaque && i < (size_t)width * (size_t)height; i++)
+        opaque = rgba[i * 4 + 3] == 255;
     png_init_io(png, f);
-    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA,
+    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
+    if (opaque)
+        png_set_filler(png, 0, PNG_FILLER_AFTER); /* the rows keep their fourth byte: libpng strips it */
     for (int y = 0; y < height; y++)
         rows[y] = (png_bytep)(rgba + (size_t)y * (size_t)width * 4);
     png_write_image(png, rows);
@@ -196,9 +203,13 @@ bool image_read_png_rgba8(const char *path, uint8_t **out, int *width, int *heig
     if (!file_read_all(path, &data, &size, err))
         return false;
     static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
-    bool ok = size >= 8 && memcmp(data, signature, 8) == 0
+    /* a .jpg or .jpeg through the same decoder (it tells them by signature) */
+    bool jpeg = image_path_is_jpeg(path) && size >= 3 && (uint8_t)data[0] == 0xff && (uint8_t)data[1] == 0xd8;
+    bool ok = (size >= 8 && memcmp(data, signature, 8) == 0) || jpeg
                   ? image_decode_rgba8(path, (const uint8_t *)data, size, 0, out, width, height, err)
-                  : error_set(err, "%s: cannot read PNG: not a PNG file (no PNG signature)", path);
+                  : error_set(err, "%s: cannot read %s: not a %s file (no %s signature)", path,
+                              image_path_is_jpeg(path) ? "JPEG" : "PNG", image_path_is_jpeg(path) ? "JPEG" : "PNG",
+                              image_path_is_jpeg(path) ? "JPEG" : "PNG");
     free(data);
     return ok;
 }
@@ -343,13 +354,15 @@ bool image_read(const char *path, struct image *img, struct error *err)
     }
     if (image_path_is_pfm(path))
         return image_read_pfm(path, img, err);
-    if (image_path_is_png(path))
+    if (image_path_is_png(path) || image_path_is_jpeg(path))
         return image_read_png(path, img, err);
+    if (image_path_is_tiff(path))
+        return image_read_tiff(path, img, err);
     if (image_path_is_hdr(path))
         return image_read_hdr(path, img, err);
     if (image_path_is_exr(path))
         return image_read_exr(path, img, err);
-    return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
+    return error_set(err, "%s: unknown image format (use .png, .jpg, .tif, .pfm, .hdr or .exr)", path);
 }
 
 bool image_write(const char *path, const struct image *img, struct error *err)
@@ -360,8 +373,8 @@ bool image_write(const char *path, const struct image *img, struct error *err)
         return image_write_hdr(path, img, err);
     if (image_path_is_exr(path))
         return image_write_exr(path, img, NULL, 0, NULL, err);
-    if (!image_path_is_png(path))
-        return error_set(err, "%s: unknown image format (use .png, .pfm, .hdr or .exr)", path);
+    if (!image_path_is_display(path))
+        return error_set(err, "%s: unknown image format (use .png, .jpg, .tif, .pfm, .hdr or .exr)", path);
     size_t n = (size_t)img->width * (size_t)img->height;
     uint8_t *bytes = calloc(n ? n * 4 : 4, 1);
     if (!bytes)
@@ -375,7 +388,7 @@ bool image_write(const char *path, const struct image *img, struct error *err)
             bytes[i * 4 + (size_t)c] = bad ? 0 : (uint8_t)lrintf(image_srgb_encode(p[c]) * 255.0f);
         bytes[i * 4 + 3] = 255;
     }
-    bool ok = image_write_png_rgba8(path, bytes, img->width, img->height, err);
+    bool ok = image_write_display8(path, bytes, img->width, img->height, err);
     if (ok && nonfinite)
         log_warn("%s: %ld pixel%s had NaN or Inf values, written as 0", path, nonfinite, nonfinite == 1 ? "" : "s");
     free(bytes);

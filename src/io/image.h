@@ -31,8 +31,18 @@ float image_srgb_encode(float linear);
 float image_srgb_decode(float encoded);
 
 /* Writes 8-bit sRGB RGBA (already tone mapped) bytes to PNG, atomically:
- * the file appears complete or not at all. */
+ * the file appears complete or not at all. An RGB file where every pixel
+ * is opaque (a render), RGBA otherwise. */
 bool image_write_png_rgba8(const char *path, const uint8_t *rgba, int width, int height, struct error *err);
+/* Display images (image_display.c): .png, .jpg/.jpeg (quality 95, no
+ * alpha) and .tif/.tiff (8-bit, Deflate; alpha only where not opaque) of
+ * the same tone-mapped 8-bit sRGB bytes, by the path's extension. */
+bool image_path_is_display(const char *path);
+bool image_path_is_jpeg(const char *path);
+bool image_path_is_tiff(const char *path);
+bool image_write_display8(const char *path, const uint8_t *rgba, int width, int height, struct error *err);
+/* A TIFF of any kind libtiff reads, as linear float (sRGB decoded). */
+bool image_read_tiff(const char *path, struct image *img, struct error *err);
 /* Reads a PNG as linear float (sRGB decoded). */
 bool image_read_png(const char *path, struct image *img, struct error *err);
 /* Reads a PNG's 8-bit RGBA bytes, undecoded (owned by the caller). */
@@ -76,6 +86,8 @@ struct image_exr_info {
     int frame;
     double time, fps;
     const char *scene, *renderer, *output; /* NULL: left out */
+    bool half; /* the image's own R, G, B, A as 16-bit half floats (a beauty pass, as compositors take it);
+                * layers, depth and objectId stay 32-bit */
 };
 bool image_path_is_exr(const char *path);
 /* `info` may be NULL (no camera, no caustica attributes; the chromaticities still). */

@@ -182,8 +182,11 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctxt, part, img->width, img->height, EXR_COMPRESSION_ZIP);
     static const char *const names[4] = {"R", "G", "B", "A"};
+    /* the beauty channels as half floats on request: OpenEXR's encoder
+     * converts the float pixels (round to nearest) as it packs them */
+    exr_pixel_type_t beauty = info && info->half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
     for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
-        rv = exr_add_channel(ctxt, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        rv = exr_add_channel(ctxt, part, names[c], beauty, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     for (int i = 0; i < nlayers && rv == EXR_ERR_SUCCESS; i++) {
         int channels = layers[i].depth ? 1 : layers[i].object_id ? 3 : 4;
         for (int c = 0; c < channels && rv == EXR_ERR_SUCCESS; c++) {
