@@ -100,7 +100,8 @@ static const struct cli_option {
      "a scene parameter, read by the script with c.param(NAME, default); repeatable"},
     {"--timings", NULL, NULL, VB_RENDER, "print each pass's GPU and CPU time"},
     {"--aov", NULL, "PASS.OUTPUT", VB_RENDER | VB_RECORD,
-     "one more layer of an .exr output, e.g. shade.depth (repeatable, at most 8)"},
+     "one more layer of an .exr output, e.g. shade.depth (repeatable, at most 8); `holdout`: the image over "
+     "nothing (colour times coverage, the environment left out, alpha the coverage) for a compositor's plate"},
     {"--half", NULL, NULL, VB_RENDER | VB_RECORD,
      "an .exr output's R, G, B, A as 16-bit half floats, as compositors take a beauty pass (its layers, depth and "
      "objectId stay 32-bit); default 32-bit float"},
@@ -469,11 +470,11 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
                 cli->aov = 1;
             else if (strcmp(next, "exit") == 0)
                 cli->aov = 2;
-            else if (strchr(next, '.') && cli->aov_count < 8)
+            else if ((strchr(next, '.') || strcmp(next, "holdout") == 0) && cli->aov_count < 8)
                 cli->aovs[cli->aov_count++] = next;
             else
-                return usage_error("--aov needs tir or exit (reference) or pass.output (render, record to .exr), "
-                                   "at most 8, got '%s'", next);
+                return usage_error("--aov needs tir or exit (reference) or pass.output or holdout (render, record to "
+                                   ".exr), at most 8, got '%s'", next);
         } else if (strcmp(a, "--antialias") == 0 || strcmp(a, "--ref-antialias") == 0) {
             cli->antialias = true;
         } else if (strcmp(a, "--report") == 0) {

@@ -399,7 +399,15 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         if (!session_read_linear(s, &img, err))
             return false;
         bool ok = true;
+        int holdout = -1; /* the layer made from the image and the first surface, below */
         for (int i = 0; ok && i < s->aov_count; i++) {
+            if (strcmp(s->aovs[i], "holdout") == 0) {
+                holdout = n;
+                layers[n] = (struct image_layer){.name = "holdout", .image = &layers_img[n]};
+                memset(&layers_img[n], 0, sizeof layers_img[n]);
+                n++;
+                continue;
+            }
             struct graph_resource *res = graph_find_resource(s->graph, s->aovs[i]);
             if (!res) {
                 char choices[1024];
@@ -434,18 +442,27 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
             }
         }
         /* alpha: coverage, 0 where only the background shows (OpenEXR's
-         * "luminous" pixels: colour with no coverage, left as it is) */
-        float *coverage = ok ? malloc((size_t)img.width * (size_t)img.height * sizeof(float)) : NULL;
-        if (ok && !coverage)
-            ok = error_set(err, "out of memory");
-        ok = ok && renderer_coverage(&s->app->renderer, s->scene, img.width, img.height, coverage, err);
+         * "luminous" pixels: colour with no coverage, left as it is); Z and
+         * objectId: the first surface of every object, glass and water
+         * included (the refraction passes draw those after the G-buffer,
+         * which leaves them out) */
+        struct image surface = {0};
+        ok = ok && renderer_first_surface(&s->app->renderer, s->scene, img.width, img.height, &surface, err);
         for (size_t i = 0; ok && i < (size_t)img.width * (size_t)img.height; i++)
-            img.rgba[i * 4 + 3] = coverage[i];
-        free(coverage);
+            img.rgba[i * 4 + 3] = surface.rgba[i * 4];
+        /* the holdout: the image over nothing (premultiplied by coverage), for
+         * a compositor to put over its own plate: plate * (1 - A) + RGB */
+        if (ok && holdout >= 0 && (ok = image_create(&layers_img[holdout], img.width, img.height, err)))
+            for (size_t i = 0; i < (size_t)img.width * (size_t)img.height; i++)
+                for (int c = 0; c < 4; c++)
+                    layers_img[holdout].rgba[i * 4 + (size_t)c] = c < 3 ? img.rgba[i * 4 + (size_t)c] * img.rgba[i * 4 + 3]
+                                                                         : img.rgba[i * 4 + 3];
         struct image_exr_info info;
         session_exr_info(s, &info);
         info.half = s->exr_half;
+        info.surface = ok ? &surface : NULL;
         ok = ok && image_write_exr(path, &img, layers, n, &info, err);
+        image_destroy(&surface);
         for (int i = 0; i < n; i++)
             image_destroy(&layers_img[i]);
         image_destroy(&img);

@@ -413,24 +413,29 @@ bool renderer_draw_copy(struct renderer *r, GLuint framebuffer, int width, int h
     return true;
 }
 
-bool renderer_coverage(struct renderer *r, const struct scene *scene, int width, int height, float *out,
-                       struct error *err)
+bool renderer_first_surface(struct renderer *r, const struct scene *scene, int width, int height, struct image *out,
+                            struct error *err)
 {
-    struct gl_texture target = {0};
+    struct gl_texture target = {0}, depth = {0};
     struct gl_framebuffer fb = {0};
     struct gl_program *prog;
     const struct gl_texture *colors[1] = {&target};
-    bool ok = gl_program_get(&r->programs, "common/object.vert", "common/coverage.frag", NULL, &prog, err) &&
-              gl_texture_create(&target, GL_TEXTURE_2D, GL_RGBA8, width, height, 1, err) &&
-              gl_framebuffer_create(&fb, err) && gl_framebuffer_attach(&fb, colors, NULL, 1, NULL, -1, err);
+    bool ok = gl_program_get(&r->programs, "common/object.vert", "common/first_surface.frag", NULL, &prog, err) &&
+              gl_texture_create(&target, GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, err) &&
+              gl_texture_create(&depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height, 1, err) &&
+              gl_framebuffer_create(&fb, err) && gl_framebuffer_attach(&fb, colors, NULL, 1, &depth, -1, err) &&
+              image_create(out, width, height, err);
     if (ok) {
         renderer_reset_state(r);
         gl.BindFramebuffer(GL_FRAMEBUFFER, fb.id);
         gl.Viewport(0, 0, width, height);
-        const float zero[4] = {0, 0, 0, 0};
-        gl_texture_clear(&target, zero);
-        gl.Disable(GL_DEPTH_TEST);
-        gl.Disable(GL_CULL_FACE);
+        const float none[4] = {0, INFINITY, 0, 0}; /* no surface: no coverage, Z +inf, objectId 0 */
+        gl_texture_clear(&target, none);
+        gl.ClearDepth(1.0);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.DepthFunc(GL_LESS);
+        gl.Disable(GL_CULL_FACE); /* a surface seen from behind is still the first one */
         renderer_draw_objects(r, scene, prog, DRAW_ALL);
         float *rgba = malloc((size_t)width * (size_t)height * 4 * sizeof(float));
         ok = rgba && gl_texture_read_rgba32f(&target, 0, rgba, err);
@@ -438,12 +443,15 @@ bool renderer_coverage(struct renderer *r, const struct scene *scene, int width,
             error_set(err, "out of memory");
         /* GL rows go bottom to top; `out` top to bottom */
         for (int y = 0; ok && y < height; y++)
-            for (int x = 0; x < width; x++)
-                out[(size_t)y * (size_t)width + (size_t)x] = rgba[((size_t)(height - 1 - y) * (size_t)width + (size_t)x) * 4];
+            memcpy(out->rgba + (size_t)y * (size_t)width * 4, rgba + (size_t)(height - 1 - y) * (size_t)width * 4,
+                   (size_t)width * 4 * sizeof(float));
         free(rgba);
         renderer_reset_state(r);
+        if (!ok)
+            image_destroy(out);
     }
     gl_framebuffer_destroy(&fb);
+    gl_texture_destroy(&depth);
     gl_texture_destroy(&target);
     return ok;
 }

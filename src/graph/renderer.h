@@ -14,6 +14,7 @@
 #include "graph/frame.h"
 #include "graph/mesh_cache.h"
 #include "graph/texture_cache.h"
+#include "io/image.h"
 #include "scene/scene.h"
 
 
@@ -86,11 +87,14 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
 void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                           struct object *object);
 void renderer_draw_fullscreen(struct renderer *r);
-/* Which pixels an object's surface covers (1) and which show only the
- * background or environment (0), at the frame's camera: an EXR's alpha.
- * `out` is width x height floats, rows top to bottom. */
-bool renderer_coverage(struct renderer *r, const struct scene *scene, int width, int height, float *out,
-                       struct error *err);
+/* The first surface of every visible object (glass, water and mirrors
+ * too) at the frame's camera, for an EXR: R 1 where a surface covers the
+ * pixel and 0 where only the background or environment shows (its alpha),
+ * G the distance along the view axis (+inf where none: its Z), B the
+ * object's id + 1 (0 none: its objectId). `out` is made here, rows top to
+ * bottom. */
+bool renderer_first_surface(struct renderer *r, const struct scene *scene, int width, int height, struct image *out,
+                            struct error *err);
 /* `texture` copied over the whole of `framebuffer` (its colour attachments
  * as set), depth test off: a pass that passes its input through. */
 bool renderer_draw_copy(struct renderer *r, GLuint framebuffer, int width, int height, GLuint texture,

@@ -88,6 +88,9 @@ struct image_exr_info {
     const char *scene, *renderer, *output; /* NULL: left out */
     bool half; /* the image's own R, G, B, A as 16-bit half floats (a beauty pass, as compositors take it);
                 * layers, depth and objectId stay 32-bit */
+    /* NULL, or the first surface of every object (renderer_first_surface):
+     * its G written as the channel Z, its B as objectId (0: none) */
+    const struct image *surface;
 };
 bool image_path_is_exr(const char *path);
 /* `info` may be NULL (no camera, no caustica attributes; the chromaticities still). */

@@ -52,11 +52,17 @@ static bool exr_failed(exr_result_t rv, const char *path, const char *what, stru
 
 /* Which image and component a channel named "[layer.]C" reads. */
 static bool channel_source(const char *name, const struct image *img, const struct image_layer *layers, int nlayers,
-                           const float **base, int *component)
+                           const struct image *surface, const float **base, int *component)
 {
     const char *dot = strrchr(name, '.');
     const char *c = dot ? dot + 1 : name;
     static const char comps[] = "RGBA";
+    /* the first surface's distance and object (image_exr_info.surface: G and B) */
+    if (!dot && surface && (strcmp(name, "Z") == 0 || strcmp(name, "objectId") == 0)) {
+        *base = surface->rgba;
+        *component = name[0] == 'Z' ? 1 : 2;
+        return true;
+    }
     if (!dot && strcmp(name, "objectId") == 0) {
         for (int i = 0; i < nlayers; i++)
             if (layers[i].object_id) {
@@ -194,7 +200,17 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
             snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].depth ? "Z" : names[c]);
             rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
         }
-        if (rv == EXR_ERR_SUCCESS && layers[i].object_id)
+        if (rv == EXR_ERR_SUCCESS && layers[i].object_id && !(info && info->surface))
+            rv = exr_add_channel(ctxt, part, "objectId", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+    }
+    /* the first surface of every object, glass and water included: Z (the
+     * distance along the view axis, +inf where none) and objectId */
+    if (info && info->surface) {
+        if (info->surface->width != img->width || info->surface->height != img->height)
+            rv = EXR_ERR_INVALID_ARGUMENT;
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_add_channel(ctxt, part, "Z", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        if (rv == EXR_ERR_SUCCESS)
             rv = exr_add_channel(ctxt, part, "objectId", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     }
     if (rv == EXR_ERR_SUCCESS)
@@ -223,7 +239,8 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
             exr_coding_channel_info_t *ch = &encoder.channels[c];
             const float *base = NULL;
             int component = 0;
-            if (!channel_source(ch->channel_name, img, layers, nlayers, &base, &component)) {
+            if (!channel_source(ch->channel_name, img, layers, nlayers, info ? info->surface : NULL, &base,
+                                &component)) {
                 rv = EXR_ERR_INVALID_ARGUMENT;
                 break;
             }
@@ -321,6 +338,15 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
                      : exr_decoding_initialize(ctxt, 0, &chunk, &decoder);
         if (rv != EXR_ERR_SUCCESS)
             break;
+        bool has_color = false;
+        for (int c = 0; c < decoder.channel_count; c++) {
+            const char *name = decoder.channels[c].channel_name;
+            size_t prefix = layer ? strlen(layer) : 0;
+            if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
+                continue;
+            name += layer ? prefix + 1 : 0;
+            has_color |= (name[0] == 'R' || name[0] == 'G' || name[0] == 'B') && !name[1];
+        }
         for (int c = 0; c < decoder.channel_count; c++) {
             exr_coding_channel_info_t *ch = &decoder.channels[c];
             const char *name = ch->channel_name;
@@ -331,7 +357,10 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
             else if (layer)
                 name += prefix + 1;
             static const char comps[] = "RGBA";
-            const char *k = name[0] && !name[1] ? (name[0] == 'Z' ? comps : strchr(comps, name[0])) : NULL;
+            /* Z is the image only where it has no colour (a depth layer); beside R, G, B (a
+             * render's first-surface distance) it is left out */
+            const char *k = name[0] && !name[1] ? (name[0] == 'Z' ? (has_color ? NULL : comps) : strchr(comps, name[0]))
+                                                : NULL;
             if (k && name[0] == 'Z')
                 depth_only = true; /* a depth layer: Z into R, copied to G and B below */
             if (!k || ch->x_samples != 1 || ch->y_samples != 1) {

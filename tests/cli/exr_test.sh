@@ -90,6 +90,28 @@ if command -v oiiotool >/dev/null; then
   oiiotool --info -v "$WORK/z.exr" 2>&1 | grep -qi "worldtocamera" && pass "oiiotool --info -v reads the camera" \
     || fail "oiiotool --info" "$(oiiotool --info -v "$WORK/z.exr" 2>&1 | head -20)"
 fi
+# Glass is no longer invisible to a compositor (issue 56): every render EXR carries the first surface of
+# every object, glass included (the refraction pass draws it after the G-buffer, which left it out):
+# Z and objectId; --aov holdout is the image over nothing. tests/scenes/glass_ids.lua: a glass ball
+# (object 2, front 2.5 from the eye) before a wall (object 1, 4 away), the environment past it.
+if command -v oiiotool >/dev/null; then
+  "$CAUSTICA" render tests/scenes/glass_ids.lua -o "$WORK/ids.exr" --aov holdout -q >/dev/null 2>"$WORK/ids.err" \
+    || fail "the glass scene" "$(cat "$WORK/ids.err")"
+  at() { oiiotool "$WORK/ids.exr" --ch "$1" --cut "1x1+$2" --printstats 2>&1 | sed -n 's/.*Stats Avg: *\([-0-9.e]*\).*/\1/p' | head -1; }
+  inf_at() { oiiotool "$WORK/ids.exr" --ch "$1" --cut "1x1+$2" --printstats 2>&1 | sed -n 's/.*Stats InfCount: *\([0-9]*\).*/\1/p' | head -1; }
+  [ "$(at objectId 24+24)" = 2.000000 ] && awk "BEGIN { exit !(($(at Z 24+24) - 2.5)^2 < 1e-4) }" \
+    && pass "the glass ball's pixels: objectId 2 and Z 2.5, its front surface ($(at Z 24+24))" \
+    || fail "glass in the EXR" "objectId $(at objectId 24+24), Z $(at Z 24+24)"
+  [ "$(at objectId 8+24)" = 1.000000 ] && [ "$(at Z 8+24)" = 4.000000 ] && [ "$(at A 8+24)" = 1.000000 ] \
+    && pass "the wall beside it: objectId 1, Z 4, alpha 1" || fail "wall in the EXR" "$(at objectId 8+24) $(at Z 8+24)"
+  [ "$(at objectId 24+6)" = 0.000000 ] && [ "$(inf_at Z 24+6)" = 1 ] && [ "$(at A 24+6)" = 0.000000 ] \
+    && pass "past the wall: objectId 0, Z +inf, alpha 0" || fail "background in the EXR" "$(at objectId 24+6) $(at A 24+6)"
+  [ "$(at holdout.R 24+6)" = 0.000000 ] && [ "$(at holdout.A 24+6)" = 0.000000 ] &&
+    [ "$(at holdout.R 24+24)" = "$(at R 24+24)" ] && [ "$(at holdout.A 24+24)" = 1.000000 ] &&
+    awk "BEGIN { exit !($(at R 24+6) > 0) }" \
+    && pass "--aov holdout: the environment left out (0 where alpha is 0), the objects as rendered" \
+    || fail "holdout" "past the wall $(at holdout.R 24+6) (beauty $(at R 24+6)), on the glass $(at holdout.R 24+24)"
+fi
 # The reference writes EXR too: the image and its caustic part as a layer.
 "$CAUSTICA" reference "$WORK/z.lua" -o "$WORK/ref.exr" --spp 1 --photons 1000 >/dev/null 2>"$WORK/r.err" &&
   "$CAUSTICA" convert "$WORK/ref.exr:caustic" "$WORK/caustic.pfm" >/dev/null 2>>"$WORK/r.err" \
