@@ -85,7 +85,7 @@ expect_error "unknown option" 2 "unknown option '--frobnicate'" - -- "$CAUSTICA"
 expect_error "bad --size" 2 "--size needs WxH" - -- "$CAUSTICA" render scenes/demo.lua --size 12
 expect_error "bad --set" 2 "--set needs name=value" - -- "$CAUSTICA" render scenes/demo.lua --set x
 expect_error "bad --backend" 2 "--backend must be osmesa or egl" - -- "$CAUSTICA" render scenes/demo.lua --backend vulkan
-expect_error "bad output extension" 2 "must end in .png, .pfm, .hdr or .exr" - -- "$CAUSTICA" render scenes/demo.lua -o x.jpg
+expect_error "bad output extension" 2 "must end in .png, .jpg, .tif, .pfm, .hdr or .exr" - -- "$CAUSTICA" render scenes/demo.lua -o x.bmp
 expect_error "record without -o" 2 "record needs" - -- "$CAUSTICA" record scenes/demo.lua
 
 # --version, VERB --help, and a test filter that selects nothing.

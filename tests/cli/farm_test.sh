@@ -28,8 +28,8 @@ expect_error "not a frame" 2 "--frames: 'x' is not a frame" - -- \
 expect_error "a bad shard" 2 "--shard needs i/n" - -- "$CAUSTICA" record $SCENE -o "$WORK/bad" --shard 4/4
 expect_error "# in a folder" 2 "the # run must be in the file name" - -- \
   "$CAUSTICA" record $SCENE -o "$WORK/d_##/f.png"
-expect_error "a pattern's type" 2 "must end in .png, .pfm, .hdr or .exr" - -- \
-  "$CAUSTICA" record $SCENE -o "$WORK/f_##.jpg"
+expect_error "a pattern's type" 2 "must end in .png, .jpg, .tif, .pfm, .hdr or .exr" - -- \
+  "$CAUSTICA" record $SCENE -o "$WORK/f_##.bmp"
 
 # Resume: the frames on disk are kept, the missing one rendered; --overwrite renders all.
 "$CAUSTICA" record $SCENE -o "$WORK/resume" --frames 0-5 --size 24x24 >/dev/null
