@@ -52,7 +52,8 @@ int cmd_convert(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     if (cli->tonemap && !image_path_is_display(out)) {
-        fprintf(stderr, "caustica: --tonemap: %s keeps linear values; tone mapping is for a .png, .jpg or .tif\n", out);
+        fprintf(stderr, "caustica: --tonemap: %s keeps linear values; tone mapping is for a .png, .jpg or .tif\n",
+                out);
         return EXIT_USAGE;
     }
     struct image img = {0};

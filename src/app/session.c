@@ -453,10 +453,14 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         /* the holdout: the image over nothing (premultiplied by coverage), for
          * a compositor to put over its own plate: plate * (1 - A) + RGB */
         if (ok && holdout >= 0 && (ok = image_create(&layers_img[holdout], img.width, img.height, err)))
-            for (size_t i = 0; i < (size_t)img.width * (size_t)img.height; i++)
-                for (int c = 0; c < 4; c++)
-                    layers_img[holdout].rgba[i * 4 + (size_t)c] = c < 3 ? img.rgba[i * 4 + (size_t)c] * img.rgba[i * 4 + 3]
-                                                                         : img.rgba[i * 4 + 3];
+            for (size_t i = 0; i < (size_t)img.width * (size_t)img.height; i++) {
+                const float *from = img.rgba + i * 4;
+                float *to = layers_img[holdout].rgba + i * 4;
+                to[0] = from[0] * from[3];
+                to[1] = from[1] * from[3];
+                to[2] = from[2] * from[3];
+                to[3] = from[3];
+            }
         struct image_exr_info info;
         session_exr_info(s, &info);
         info.half = s->exr_half;

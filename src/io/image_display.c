@@ -136,7 +136,8 @@ static bool write_tiff(const char *path, const uint8_t *rgba, int width, int hei
         return error_set(err, "%s: cannot write TIFF: %s", path, tiff_message[0] ? tiff_message : strerror(errno));
     }
     int channels = alpha ? 4 : 3;
-    bool ok = TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, (uint32_t)width) && TIFFSetField(tif, TIFFTAG_IMAGELENGTH, (uint32_t)height) &&
+    bool ok = TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, (uint32_t)width) &&
+              TIFFSetField(tif, TIFFTAG_IMAGELENGTH, (uint32_t)height) &&
               TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, channels) && TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, 8) &&
               TIFFSetField(tif, TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT) &&
               TIFFSetField(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG) &&

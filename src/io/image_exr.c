@@ -359,8 +359,9 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
             static const char comps[] = "RGBA";
             /* Z is the image only where it has no colour (a depth layer); beside R, G, B (a
              * render's first-surface distance) it is left out */
-            const char *k = name[0] && !name[1] ? (name[0] == 'Z' ? (has_color ? NULL : comps) : strchr(comps, name[0]))
-                                                : NULL;
+            const char *k = NULL;
+            if (name[0] && !name[1])
+                k = name[0] == 'Z' ? (has_color ? NULL : comps) : strchr(comps, name[0]);
             if (k && name[0] == 'Z')
                 depth_only = true; /* a depth layer: Z into R, copied to G and B below */
             if (!k || ch->x_samples != 1 || ch->y_samples != 1) {
