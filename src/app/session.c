@@ -395,7 +395,6 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
         struct image img, layers_img[SESSION_MAX_AOVS];
         struct image_layer layers[SESSION_MAX_AOVS];
         int n = 0;
-        bool object_id = false;
         if (!session_read_linear(s, &img, err))
             return false;
         bool ok = true;
@@ -435,9 +434,9 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
                 layers[n].depth = gl_format_is_depth(res->texture.format);
                 if (layers[n].depth)
                     depth_to_distance(&layers_img[n], &s->app->renderer.frame.proj);
-                /* shade's and the receivers' normals keep the object id + 1 in w: its own channel */
-                layers[n].object_id = len > 7 && strcmp(s->aovs[i] + len - 7, ".normal") == 0 && !object_id;
-                object_id |= layers[n].object_id;
+                /* shade's and the receivers' normals keep their object id + 1 in w: left out of the
+                 * layer (the file's objectId is the first surface's, which sees glass too) */
+                layers[n].object_id = len > 7 && strcmp(s->aovs[i] + len - 7, ".normal") == 0;
                 n++;
             }
         }

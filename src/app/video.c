@@ -133,15 +133,15 @@ bool video_encode(const char *const *paths, int count, double fps, const char *o
         pattern[used++] = *c;
     }
     snprintf(pattern + used, sizeof pattern - used, "/%%08d%s", ext);
-    char rate[64], filters[128], quality[16];
+    char rate[64], quality[16];
     bool gif = ends_with(output, ".gif");
     snprintf(rate, sizeof rate, "%.9g", fps);
-    /* 4:2:0 chroma wants even sizes: pad an odd one by a pixel (libx264 refuses it otherwise) */
-    snprintf(filters, sizeof filters, "pad=ceil(iw/2)*2:ceil(ih/2)*2");
     snprintf(quality, sizeof quality, "%d", crf);
     snprintf(temporary, sizeof temporary, "%s%s/video%s", dot, folder, gif ? ".gif" : ".mp4");
     const char *argv_mp4[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-start_number", "0",
-                              "-f", "image2", "-i", pattern, "-vf", filters, "-c:v", "libx264", "-crf", quality,
+                              "-f", "image2", "-i", pattern,
+                              /* 4:2:0 chroma wants even sizes: an odd one padded by a pixel (libx264 refuses it) */
+                              "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-crf", quality,
                               "-pix_fmt", "yuv420p", "-colorspace", "bt709", "-color_primaries", "bt709",
                               "-color_trc", "iec61966-2-1", "-color_range", "tv", "-movflags", "+faststart",
                               temporary, NULL};

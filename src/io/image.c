@@ -206,11 +206,10 @@ bool image_read_png_rgba8(const char *path, uint8_t **out, int *width, int *heig
     static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
     /* a .jpg or .jpeg through the same decoder (it tells them by signature) */
     bool jpeg = image_path_is_jpeg(path) && size >= 3 && (uint8_t)data[0] == 0xff && (uint8_t)data[1] == 0xd8;
+    const char *kind = image_path_is_jpeg(path) ? "JPEG" : "PNG";
     bool ok = (size >= 8 && memcmp(data, signature, 8) == 0) || jpeg
                   ? image_decode_rgba8(path, (const uint8_t *)data, size, 0, out, width, height, err)
-                  : error_set(err, "%s: cannot read %s: not a %s file (no %s signature)", path,
-                              image_path_is_jpeg(path) ? "JPEG" : "PNG", image_path_is_jpeg(path) ? "JPEG" : "PNG",
-                              image_path_is_jpeg(path) ? "JPEG" : "PNG");
+                  : error_set(err, "%s: cannot read %s: not a %s file (no %s signature)", path, kind, kind, kind);
     free(data);
     return ok;
 }

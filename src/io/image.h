@@ -74,7 +74,8 @@ struct image_layer {
     const char *name;
     const struct image *image;
     bool depth;     /* one channel, "name.Z", from the image's R (a depth: the caller makes it a distance) */
-    bool object_id; /* its A is an object id + 1 (0: none): written as the top-level "objectId" channel, not name.A */
+    bool object_id; /* its A is an object id + 1 (a G-buffer normal's w): left out; the file's objectId is the
+                     * first surface's (image_exr_info.surface), glass included */
 };
 /* What a compositor reads from the header besides the pixels: the standard
  * chromaticities (Rec. 709 / sRGB primaries, D65: the renderer's linear

@@ -63,15 +63,6 @@ static bool channel_source(const char *name, const struct image *img, const stru
         *component = name[0] == 'Z' ? 1 : 2;
         return true;
     }
-    if (!dot && strcmp(name, "objectId") == 0) {
-        for (int i = 0; i < nlayers; i++)
-            if (layers[i].object_id) {
-                *base = layers[i].image->rgba;
-                *component = 3;
-                return true;
-            }
-        return false;
-    }
     const char *k = c[0] == 'Z' ? comps : strchr(comps, c[0]); /* a depth layer's Z is its image's R */
     if (!k || !c[0] || c[1])
         return false;
@@ -200,8 +191,6 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
             snprintf(name, sizeof name, "%s.%s", layers[i].name, layers[i].depth ? "Z" : names[c]);
             rv = exr_add_channel(ctxt, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
         }
-        if (rv == EXR_ERR_SUCCESS && layers[i].object_id && !(info && info->surface))
-            rv = exr_add_channel(ctxt, part, "objectId", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     }
     /* the first surface of every object, glass and water included: Z (the
      * distance along the view axis, +inf where none) and objectId */

@@ -86,25 +86,30 @@ bool mesh_encloses_point(const struct mesh *m, vec3 p)
 {
     /* A closed surface is crossed an odd number of times by every ray from
      * a point inside it; an open one (a floor plane seen from below: one
-     * crossing up, none down) is not, so both opposite rays must agree. */
-    if (!within_bounds(m, p) || crossings(m, p, 1.0) % 2 == 0 || crossings(m, p, -1.0) % 2 == 0)
+     * crossing up, none down) is not, so both opposite rays must agree.
+     * Inside a solid, the nearest surface along the ray is also seen from
+     * its back (its front faces out, the way the ray goes); a room's walls
+     * face in, towards the point, and a camera in a room is where it
+     * belongs. One pass along +PROBE gives the count and the nearest face. */
+    if (!within_bounds(m, p))
         return false;
-    /* Inside a solid, the nearest surface along the ray is seen from its
-     * back (its front faces out, the way the ray goes); a room's walls face
-     * in, towards the point, and a camera in a room is where it belongs. */
     const double o[3] = {p.x, p.y, p.z};
     double nearest = INFINITY;
     bool solid = false;
+    size_t count = 0;
     for (size_t k = 0; k + 2 < m->index_count; k += 3) {
         double t;
         bool along;
         if (crosses_at(o, m->positions + (size_t)m->indices[k] * 3, m->positions + (size_t)m->indices[k + 1] * 3,
-                       m->positions + (size_t)m->indices[k + 2] * 3, &t, &along) && t < nearest) {
-            nearest = t;
-            solid = along;
+                       m->positions + (size_t)m->indices[k + 2] * 3, &t, &along)) {
+            count++;
+            if (t < nearest) {
+                nearest = t;
+                solid = along;
+            }
         }
     }
-    return solid;
+    return solid && count % 2 == 1 && crossings(m, p, -1.0) % 2 == 1;
 }
 
 bool object_encloses_point(const struct object *o, vec3 p)

@@ -33,18 +33,20 @@ local t = require "caustica.test"
 t.case("grows", function() local heap = {} while true do heap[#heap + 1] = ("x"):rep(1000) .. #heap end end)
 t.case("still runs", function() t.expect(1 + 1 == 2) end)
 EOF
-timeout 120 "$CAUSTICA" test "$WORK/limits" --script-timeout 1 --script-memory 0 >"$WORK/out" 2>&1
-rc=$?
-[ $rc = 1 ] && grep -q "FAIL .*limits_test.lua: loops: .*limits_test.lua:2: script ran longer than 1 s" "$WORK/out" &&
-   grep -q "^ok   .*still runs" "$WORK/out" && [ "$(tail -1 "$WORK/out")" = "1 passed, 1 failed" ] \
-  && pass "caustica test --script-timeout: a looping case fails at its line, the next case runs" \
-  || fail "caustica test --script-timeout" "exit $rc: $(tail -3 "$WORK/out")"
-timeout 120 "$CAUSTICA" test "$WORK/memory" --script-timeout 0 --script-memory 64 >"$WORK/out" 2>&1
-rc=$?
-[ $rc = 1 ] && grep -q "FAIL .*memory_test.lua: grows: .*used more than 64 MB" "$WORK/out" &&
-   grep -q "^ok   .*still runs" "$WORK/out" && [ "$(tail -1 "$WORK/out")" = "1 passed, 1 failed" ] \
-  && pass "caustica test --script-memory: a growing case fails by the limit, the next case runs" \
-  || fail "caustica test --script-memory" "exit $rc: $(tail -3 "$WORK/out")"
+# limited_case NAME FOLDER FAIL-LINE-PATTERN LIMIT-OPTIONS...: the folder's one failing case fails by
+# the limit with that line, and its "still runs" case passes after it
+limited_case() {
+  local name=$1 folder=$2 pattern=$3
+  shift 3
+  timeout 120 "$CAUSTICA" test "$folder" "$@" >"$WORK/out" 2>&1
+  local rc=$?
+  [ $rc = 1 ] && grep -q "$pattern" "$WORK/out" && grep -q "^ok   .*still runs" "$WORK/out" &&
+    [ "$(tail -1 "$WORK/out")" = "1 passed, 1 failed" ] && pass "$name" || fail "$name" "exit $rc: $(tail -3 "$WORK/out")"
+}
+limited_case "caustica test --script-timeout: a looping case fails at its line, the next case runs" "$WORK/limits" \
+  "FAIL .*limits_test.lua: loops: .*limits_test.lua:2: script ran longer than 1 s" --script-timeout 1 --script-memory 0
+limited_case "caustica test --script-memory: a growing case fails by the limit, the next case runs" "$WORK/memory" \
+  "FAIL .*memory_test.lua: grows: .*used more than 64 MB" --script-timeout 0 --script-memory 64
 
 # ---- 2. a nested render leaves the watchdog armed --------------------------
 cat >"$WORK/limits/nested_test.lua" <<EOF
