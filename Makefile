@@ -63,11 +63,14 @@ test: build
 	 grep -E 'tests passed|No tests were found' ctest.log | tail -n 1; exit $$(cat ctest.rc)
 
 # libFuzzer harnesses (tests/fuzz): a clang build with ASan + UBSan, each
-# harness run FUZZ_SECONDS on a copy of its seed corpus. A crash input is
-# copied into tests/fuzz/crashes_<harness>/, where ctest replays it in every
-# build from then on. Skipped, with a message, where clang is missing.
+# harness run FUZZ_SECONDS on a copy of its seed corpus. A crash (or
+# timeout) input is copied into $(FUZZ_KEEP)/crashes_<harness>/: by default
+# tests/fuzz, where ctest replays it in every build from then on. CI keeps
+# them in the fuzz build instead (.ci/run), so that the tests it runs are the
+# ones committed. Skipped, with a message, where clang is missing.
 FUZZ_SECONDS ?= 60
 FUZZ_BUILD ?= build-fuzz
+FUZZ_KEEP ?= tests/fuzz
 fuzz: deps
 	@if ! command -v clang >/dev/null 2>&1; then echo "make fuzz: skipped (clang is missing: apt-get install clang)"; exit 0; fi; \
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCAUSTICA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null && \
@@ -83,8 +86,9 @@ fuzz: deps
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts_$$h/ $(FUZZ_BUILD)/corpus_$$h >$(FUZZ_BUILD)/fuzz_$$h.log 2>&1; \
 	  grep -E "^stat::number_of_executed_units|^Done" $(FUZZ_BUILD)/fuzz_$$h.log | sed "s/^/  /"; \
 	  for a in $(FUZZ_BUILD)/artifacts_$$h/*; do \
-	    [ -e "$$a" ] || continue; status=1; cp "$$a" tests/fuzz/crashes_$$h/; \
-	    echo "  found $$(basename $$a): kept as tests/fuzz/crashes_$$h/$$(basename $$a) (log: $(FUZZ_BUILD)/fuzz_$$h.log)"; \
+	    [ -e "$$a" ] || continue; status=1; mkdir -p $(FUZZ_KEEP)/crashes_$$h; cp "$$a" $(FUZZ_KEEP)/crashes_$$h/; \
+	    echo "  found $$(basename $$a): kept as $(FUZZ_KEEP)/crashes_$$h/$$(basename $$a) (log: $(FUZZ_BUILD)/fuzz_$$h.log)"; \
+	    grep -m 8 -E "ERROR: |SUMMARY|/src/" $(FUZZ_BUILD)/fuzz_$$h.log | sed "s/^/    /"; \
 	  done; \
 	done; \
 	[ $$status = 0 ] && echo "fuzz: no crashes"; exit $$status

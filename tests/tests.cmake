@@ -52,3 +52,16 @@ add_test(NAME fuzz_script_regressions COMMAND sh -c
           $<TARGET_FILE:replay_script> ${CMAKE_BINARY_DIR}/corpus_script ${CMAKE_SOURCE_DIR}/tests/fuzz/crashes_script")
 set_tests_properties(fuzz_gltf_regressions fuzz_script_regressions PROPERTIES
                      ENVIRONMENT "CAUSTICA_ROOT=${CMAKE_SOURCE_DIR};CAUSTICA_CACHE=${CMAKE_BINARY_DIR}/cache")
+
+# A hang fails its own test instead of holding the run until CI's limit:
+# the longest test takes about 170 s beside two CPU hogs (docs/TESTING.md),
+# a fuzz replay well under a second (each input also has 30 s of its own,
+# tests/fuzz/replay_main.c).
+get_property(CAUSTICA_ALL_TESTS DIRECTORY PROPERTY TESTS)
+foreach(t ${CAUSTICA_ALL_TESTS})
+  if(t MATCHES "^fuzz_")
+    set_tests_properties(${t} PROPERTIES TIMEOUT 300)
+  else()
+    set_tests_properties(${t} PROPERTIES TIMEOUT 900)
+  endif()
+endforeach()

@@ -100,11 +100,14 @@ static bool exr_has_layer(exr_const_context_t ctxt, const char *path, const char
         if (!dot)
             continue; /* the main image's R, G, B, A */
         int len = (int)(dot - name);
+        if (len < 1)
+            continue; /* ".R": no layer name to list (an empty one made the search below never advance) */
         char candidate[256];
         snprintf(candidate, sizeof candidate, "%.*s", len, name);
+        size_t clen = strlen(candidate);
         bool seen = false; /* channels of one layer come together, sorted */
-        for (const char *at = names; (at = strstr(at, candidate)) != NULL; at += strlen(candidate))
-            if ((at == names || at[-1] == ' ') && (at[strlen(candidate)] == ',' || at[strlen(candidate)] == '\0'))
+        for (const char *at = names; !seen && (at = strstr(at, candidate)) != NULL; at += clen)
+            if ((at == names || at[-1] == ' ') && (at[clen] == ',' || at[clen] == '\0'))
                 seen = true;
         if (!seen && used < sizeof names) {
             used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", listed ? ", " : "", candidate);
