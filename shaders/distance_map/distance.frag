@@ -1,13 +1,17 @@
 #version 450 core
-// A texel of the distance map: the diffuse surface's radiance as `shade`
-// computes it (Lambert from the lights with their shadow maps, ambient,
-// emission; two-sided, the side facing the centre), and its distance from
+// A texel of the distance map: the diffuse surface's radiance by the one
+// lighting function shade uses (common/surface_light.glsl: the lights with
+// their shadow maps and the medium, ambient, emission; no caustics, which
+// are the camera's images; two-sided, the side facing the centre), and its
+// distance from
 // the centre (Szirmay-Kalos et al. 2005). Layer 1 keeps the nearest
 // surface facing the centre beyond layer 0's (src/passes/distance_map.h).
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/material.glsl"
 #include "common/shadows.glsl"
+#include "common/medium.glsl"
+#include "common/surface_light.glsl"
 uniform samplerCube u_first; // layer 0's distances
 uniform int u_layer;
 in vec3 v_world;
@@ -33,15 +37,7 @@ void main()
     n = material_normal(n, v_world);
     if (material_cut_out()) // (after the derivatives)
         discard;
-    vec3 e = vec3(0.0);
-    for (int i = 0; i < u_counts.x; i++) {
-        vec3 to_light;
-        float dist;
-        vec3 irr = light_irradiance(i, v_world, n, to_light, dist);
-        if (max(irr.r, max(irr.g, irr.b)) > 0.0)
-            e += irr * visibility(i, v_world, n, to_light);
-    }
-    vec3 albedo = material_albedo(u_color);
-    o_color = vec4(albedo / PI * e + albedo * u_ambient.rgb + material_emission(u_emission), 1.0);
+    o_color = vec4(surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), vec3(0.0)),
+                   1.0);
     o_distance = vec4(dist, 0.0, 0.0, 1.0);
 }

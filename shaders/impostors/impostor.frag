@@ -1,12 +1,16 @@
 #version 450 core
 // The impostor's texel (Hu & Qin Fig. 12): the object's depth along the
 // axis from the rectangle's plane (for Fig. 16's correction), and its
-// radiance seen from the refractor's side: Lambert from the lights (no
-// shadows) plus the ambient, as `shade` lights diffuse surfaces.
+// radiance seen from the refractor's side, by the one lighting function
+// shade uses (common/surface_light.glsl: the lights through the building
+// pass's shadow maps and the medium, the ambient; no caustics).
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
 #include "common/material.glsl"
+#include "common/shadows.glsl"
+#include "common/medium.glsl"
+#include "common/surface_light.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
@@ -29,12 +33,6 @@ void main()
         discard;
     if (u_material_kind == 0)
         n = mapped;
-    vec3 e = vec3(0.0);
-    for (int i = 0; i < u_counts.x; i++) {
-        vec3 to_light;
-        float dist;
-        e += light_irradiance(i, v_world, n, to_light, dist);
-    }
     if (u_material_kind != 0) {
         // a reflector/refractor seen along the axis: level 0 of the recursion
         // reflects and refracts (one interface) the environment only
@@ -45,6 +43,6 @@ void main()
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
         return;
     }
-    vec3 albedo = material_albedo(u_color);
-    o_color = vec4(albedo / PI * e + albedo * u_ambient.rgb + material_emission(u_emission), 1.0);
+    o_color = vec4(surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), vec3(0.0)),
+                   1.0);
 }

@@ -6,6 +6,8 @@
 #include "common/surface_normal.glsl"
 #include "common/lighting.glsl"
 #include "common/shadows.glsl"
+#include "common/medium.glsl"
+#include "common/surface_light.glsl"
 #ifdef NEARBY
 #ifdef DISTANCE_MAP
 #include "distance_map/lookup.glsl"
@@ -448,14 +450,7 @@ void main()
                                 vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
     }
     if (transmission < 1.0 && u_material_kind != 2) {
-        vec3 e = vec3(0.0);
-        for (int i = 0; i < u_counts.x; i++) {
-            vec3 to_light;
-            float dist;
-            vec3 irr = light_irradiance(i, v_world, n1, to_light, dist);
-            e += irr * visibility(i, v_world, n1, to_light);
-        }
-        vec3 diffuse = u_color / PI * e + u_color * u_ambient.rgb;
+        vec3 diffuse = surface_light_diffuse(v_world, n1, u_color, vec3(0.0), vec3(0.0));
         pixel_radiance = transmission * pixel_radiance + (1.0 - transmission) * diffuse;
     }
     o_color = vec4(pixel_radiance, 1.0);

@@ -5,6 +5,7 @@
 #include "common/material.glsl"
 #include "common/shadows.glsl"
 #include "common/medium.glsl"
+#include "common/surface_light.glsl"
 
 in vec3 v_world;
 in vec3 v_normal;
@@ -38,18 +39,10 @@ void main()
     vec3 radiance;
     if (u_material_kind == 0) {
         n = mapped;
-        vec3 e = vec3(0.0);
-        for (int i = 0; i < u_counts.x; i++) {
-            vec3 to_light;
-            float dist;
-            vec3 irr = light_irradiance(i, v_world, n, to_light, dist);
-            if (max(irr.r, max(irr.g, irr.b)) > 0.0)
-                e += irr * visibility(i, v_world, n, to_light) * medium_transmittance_ray(v_world, to_light, dist);
-        }
+        vec3 caustic = vec3(0.0);
         for (int k = 0; k < u_has_caustics; k++)
-            e += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
-        vec3 albedo = material_albedo(u_color);
-        radiance = albedo / PI * e + albedo * u_ambient.rgb + material_emission(u_emission);
+            caustic += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
+        radiance = surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), caustic);
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {

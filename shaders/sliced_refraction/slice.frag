@@ -2,10 +2,14 @@
 // The part of the targets between planes u_slab.x and u_slab.y along the
 // viewing direction, projected onto the slab's first plane. Its colour is
 // what the camera shows there where the camera sees that point (caustics
-// and shadows included), else its Lambert shading by the lights with the
-// ambient (unshadowed, as the impostors are).
+// and shadows included), else the one lighting function shade uses
+// (common/surface_light.glsl; the pass has no shadow maps, so unshadowed,
+// and no caustics).
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
+#include "common/shadows.glsl"
+#include "common/medium.glsl"
+#include "common/surface_light.glsl"
 #include "illumination_textures/virtual_camera.glsl"
 uniform sampler2D u_scene;
 uniform sampler2D u_scene_depth;
@@ -36,11 +40,5 @@ void main()
     vec3 n = normalize(v_normal);
     if (dot(n, u_vc_d) > 0.0)
         n = -n; // the side the viewing rays arrive at
-    vec3 e = vec3(0.0);
-    for (int i = 0; i < u_counts.x; i++) {
-        vec3 to_light;
-        float dist;
-        e += light_irradiance(i, v_world, n, to_light, dist);
-    }
-    o_color = vec4(u_color / PI * e + u_color * u_ambient.rgb + u_emission, 1.0);
+    o_color = vec4(surface_light_diffuse(v_world, n, u_color, u_emission, vec3(0.0)), 1.0);
 }

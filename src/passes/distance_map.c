@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "graph/frame.h"
+#include "graph/medium_gpu.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
@@ -86,6 +87,8 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         shadow_inputs_bind(shadow_pass, f, prog);
     else
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
+    if (!medium_gpu_bind(r, scene, prog, err)) /* lit as shade lights (common/surface_light.glsl) */
+        return false;
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     /* near: a hundredth of the scene's size around the centre (what is
      * nearer than that is inside the refractor); far: the whole scene */

@@ -3,7 +3,10 @@
 #include <math.h>
 #include <string.h>
 
+#include "graph/frame.h"
+#include "graph/medium_gpu.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 
 /* common/object.vert projected by the impostor's parallel view (set_impostor_view) */
 #define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ u_impostor_view_proj\n"
@@ -52,9 +55,11 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
 }
 
-bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
+bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_frame *f, vec3 refractor_center,
                      int size, bool include_specular, uint64_t key, struct error *err)
 {
+    struct renderer *r = f->renderer;
+    const struct scene *scene = f->scene;
     set->built = false; /* until this build completes */
     int count = 0;
     struct impostor items[IMPOSTOR_MAX];
@@ -118,6 +123,9 @@ bool impostors_build(struct impostor_set *set, struct renderer *r, const struct 
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, &prog,
                         err))
+        return false;
+    shadow_inputs_bind(owner, f, prog);
+    if (!medium_gpu_bind(r, scene, prog, err))
         return false;
     gl.Enable(GL_DEPTH_TEST);
     gl.Viewport(0, 0, size, size);

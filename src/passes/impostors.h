@@ -51,8 +51,10 @@ struct impostor_set {
 /* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
  * `refractor_center`, each rendered at size x size; with `include_specular`
  * the reflectors and refractors too, their colour the environment they
- * reflect and refract (the recursion's level 0). */
-bool impostors_build(struct impostor_set *set, struct renderer *r, const struct scene *scene, vec3 refractor_center,
+ * reflect and refract (the recursion's level 0). They are lit as shade
+ * lights (common/surface_light.glsl), through the shadow maps `owner` has
+ * as inputs (none: unshadowed) and the frame's medium. */
+bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_frame *f, vec3 refractor_center,
                      int size, bool include_specular, uint64_t key, struct error *err);
 /* One level of recursive reflection/refraction (Hu & Qin §2.2, Fig. 1b,
  * 24g): the specular objects' impostors are drawn again, reflecting and

@@ -152,7 +152,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     if (nearby) {
         uint64_t key = impostors_key(p, f);
         if (!impostors_current(&s->impostors, f, key) &&
-            !impostors_build(&s->impostors, r, f->scene, vec3_scale(vec3_add(lo, hi), 0.5f), pass_int(p, LR_IMPOSTOR),
+            !impostors_build(&s->impostors, p, f, vec3_scale(vec3_add(lo, hi), 0.5f), pass_int(p, LR_IMPOSTOR),
                              false, key, err))
             return false;
         pass_stage_end(p, "impostors");

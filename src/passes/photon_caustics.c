@@ -441,7 +441,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                    : "photons traced from the light into new caustic textures");
     size_t used = strlen(p->report);
     if (!reuse) {
-        if (!impostors_build(&s->impostors, r, f->scene, oc, texture, false, key, err) ||
+        if (!impostors_build(&s->impostors, p, f, oc, texture, false, key, err) ||
             !ensure_textures(s, buffer, texture, s->impostors.count, err))
             return false;
         /* The light's view of the refractors' bounding sphere (then narrowed

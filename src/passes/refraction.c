@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "graph/frame.h"
+#include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/distance_map.h"
@@ -267,6 +268,8 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
         return false;
     gl.UseProgram(prog->id);
     shadow_inputs_bind(p, f, prog);
+    if (!medium_gpu_bind(r, f->scene, prog, err))
+        return false;
     vec3 eye = f->snapshot->eye;
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
@@ -324,7 +327,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         uint64_t key = impostors_key(p, f);
         if (!impostors_current(&s->impostors, f, key) || pass_int(p, REFRACTION_RECURSION) > 0) {
             int levels = pass_int(p, REFRACTION_RECURSION);
-            if (!impostors_build(&s->impostors, r, f->scene, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key,
+            if (!impostors_build(&s->impostors, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key,
                                  err))
                 return false;
             for (int level = 0; level < levels; level++)
@@ -370,6 +373,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/refract.frag", defines, &prog, err))
         return false;
     shadow_inputs_bind(p, f, prog); /* the diffuse share of partly transmissive glass */
+    if (!medium_gpu_bind(r, f->scene, prog, err))
+        return false;
     gl.NamedFramebufferDrawBuffers(s->out_fb.id, 3, all_outputs);
     gl_program_bind_texture(prog, "u_front_normal", s->front_normal.id);
     gl_program_bind_texture(prog, "u_back_normal", s->back_normal.id);

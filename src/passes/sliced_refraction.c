@@ -20,8 +20,10 @@
 #include <string.h>
 
 #include "graph/frame.h"
+#include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 #include "passes/virtual_camera.h"
 #include "scene/transport.h"
 
@@ -230,6 +232,11 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         return false;
     virtual_camera_set(slice, &vc);
     virtual_camera_set(glass, &vc);
+    /* the slices' own lighting (common/surface_light.glsl): this pass has no
+     * shadow maps (u_shadow_total 0), the medium it has */
+    shadow_inputs_bind(p, f, slice);
+    if (!medium_gpu_bind(r, scene, slice, err))
+        return false;
     gl_program_bind_texture(slice, "u_scene", in_color->texture.id);
     gl_program_bind_texture(slice, "u_scene_depth", in_depth->texture.id);
     const float clear[4] = {0, 0, 0, 0};

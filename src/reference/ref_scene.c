@@ -201,6 +201,12 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         l->intensity = from_vec3(g->intensity);
         l->cos_outer = g->cos_outer;
         l->cos_inner = g->cos_inner;
+        l->shading = (struct shading_light){.kind = l->kind,
+                                            .position = {l->position.x, l->position.y, l->position.z},
+                                            .direction = {l->direction.x, l->direction.y, l->direction.z},
+                                            .intensity = {l->intensity.x, l->intensity.y, l->intensity.z},
+                                            .cos_outer = l->cos_outer,
+                                            .cos_inner = l->cos_inner};
     }
     rs->inv_view_proj = f->inv_view_proj;
     rs->eye = from_vec3(scene->camera.eye);
@@ -312,8 +318,5 @@ double ref_light_spot(const struct ref_light *l, dvec3 out)
 {
     if (l->kind != 2)
         return 1.0;
-    double ca = dv_dot(out, l->direction);
-    double lo = l->cos_outer, hi = fmax(l->cos_inner, l->cos_outer + 1e-4);
-    double x = fmin(fmax((ca - lo) / (hi - lo), 0.0), 1.0);
-    return x * x * (3.0 - 2.0 * x);
+    return shading_spot_falloff(dv_dot(out, l->direction), l->cos_outer, l->cos_inner);
 }

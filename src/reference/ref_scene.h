@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/optics.h"
+#include "core/shading.h"
 #include "graph/renderer.h"
 #include "scene/scene.h"
 
@@ -71,6 +72,7 @@ struct ref_light {
     int kind;        /* 0 point, 1 directional, 2 spot (as in the frame uniforms) */
     dvec3 position, direction, intensity;
     double cos_outer, cos_inner;
+    struct shading_light shading; /* the same, for core/shading.c (the GPU's lighting function's twin) */
 };
 
 struct ref_scene {

@@ -253,21 +253,12 @@ struct pixel {
  * facing it would get, the unit direction towards it and its distance. */
 static bool light_arrival(const struct ref_light *l, dvec3 p, dvec3 *e, dvec3 *wi, double *dist)
 {
-    if (l->kind == 1) {
-        *wi = dv_scale(l->direction, -1.0);
-        *dist = INFINITY;
-        *e = l->intensity;
-        return true;
-    }
-    dvec3 d = dv_sub(l->position, p);
-    double d2 = fmax(dv_dot(d, d), 1e-16);
-    *dist = sqrt(d2);
-    *wi = dv_scale(d, 1.0 / *dist);
-    double spot = ref_light_spot(l, dv_scale(*wi, -1.0));
-    if (spot <= 0.0)
-        return false;
-    *e = dv_scale(l->intensity, spot / d2);
-    return true;
+    /* the GPU's light_arrival (common/lighting.glsl), through its C twin */
+    double at[3] = {p.x, p.y, p.z}, ev[3], to[3];
+    bool lit = shading_light_arrival(&l->shading, at, ev, to, dist);
+    *e = dv(ev[0], ev[1], ev[2]);
+    *wi = dv(to[0], to[1], to[2]);
+    return lit;
 }
 
 /* Radiance the lights scatter at medium point x towards -view (phase
@@ -501,9 +492,14 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
             dvec3 albedo = surface.albedo;
             dvec3 e = direct_light(rs, rm, &rng, h.position, n);
             dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
-            seen = dv_add(seen, dv_add(dv_mul(f, e), dv_mul(dv_mul(beta, albedo), rs->ambient)));
-            /* its own radiance, seen along the path (emissive surfaces light nothing: no interreflection) */
-            seen = dv_add(seen, dv_mul(beta, surface.emission));
+            /* the GPU's surface_diffuse_radiance (common/surface_light.glsl),
+             * through its C twin; its own emission seen along the path
+             * (emissive surfaces light nothing: no interreflection) */
+            double a[3] = {albedo.x, albedo.y, albedo.z}, ev[3] = {e.x, e.y, e.z};
+            double amb[3] = {rs->ambient.x, rs->ambient.y, rs->ambient.z};
+            double em[3] = {surface.emission.x, surface.emission.y, surface.emission.z}, out[3];
+            shading_diffuse_radiance(a, ev, amb, em, out);
+            seen = dv_add(seen, dv_mul(beta, dv(out[0], out[1], out[2])));
             if (px->radius <= 0.0) {
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */

@@ -6,8 +6,9 @@
 -- correction=, impostor=, method=huqin|wyman, wall=false, checker=true (the
 -- sphere 3.25 in front of a checkered wall, the issue's impostor case),
 -- shadow=true (a shadow map for shade and the refraction's lookups: the
--- light as the reference computes it), output=exit (the refraction's exit
--- directions)
+-- light as the reference computes it), fog=true (a homogeneous absorbing
+-- medium over the room: the light reaches each surface attenuated),
+-- output=exit (the refraction's exit directions)
 local c = require "caustica"
 local ior = c.param("ior", 1.0)
 local mask = c.param("mask", false)
@@ -17,6 +18,9 @@ local scene = c.scene {
   background = {0, 0, 0},
   ambient = mask and {0, 0, 0} or {0.08, 0.08, 0.09},
 }
+if c.param("fog", false) then
+  scene.medium = c.medium { sigma_s = {0.02, 0.02, 0.02}, sigma_a = {0.25, 0.2, 0.15}, box = {{-5, 0, -5}, {5, 5, 5}} }
+end
 local lamp = scene:add(c.light.point { position = {1.5, 3.5, 3.0}, intensity = mask and {0, 0, 0} or {14, 13, 12} })
 local function diffuse(color)
   return c.material.diffuse { color = mask and {0, 0, 0} or color }

@@ -1,0 +1,61 @@
+// The glTF 2.0 metallic-roughness BRDF (glTF 2.0 specification, Appendix B
+// "BRDF Implementation"; KHR_materials_specular and KHR_materials_ior for
+// the dielectric's reflectance). Its C twin is src/core/brdf.c, line for
+// line; tests/unit/test_shading.c holds the two to each other on a grid and
+// checks the white furnace. See src/core/brdf.h for the formulas.
+struct BrdfMaterial {
+    vec3 base_color;
+    float metallic;
+    float roughness;      // perceptual: alpha = roughness^2
+    float ior;            // 1.5 without KHR_materials_ior
+    float specular;       // 1 without KHR_materials_specular
+    vec3 specular_color;  // 1 without it
+};
+
+const float BRDF_MIN_ALPHA = 1e-4; // roughness 0: a highlight 1e-4 wide, never 0 / 0 (core/brdf.h)
+const float BRDF_PI = 3.14159265358979;
+
+// GGX's D for NdotH and sin2 = |n x h|^2 (1 - NdotH^2 in float is off by
+// 20x at a roughness-0 highlight's centre; the cross product is exact)
+float brdf_ggx_d(float n_dot_h, float sin2, float alpha)
+{
+    float a2 = alpha * alpha;
+    float k = n_dot_h * n_dot_h * a2 + max(sin2, 0.0);
+    return n_dot_h > 0.0 ? a2 / (BRDF_PI * k * k) : 0.0;
+}
+
+// Smith's height-correlated visibility G2 / (4 NdotL NdotV)
+float brdf_smith_v(float n_dot_l, float n_dot_v, float alpha)
+{
+    float a2 = alpha * alpha;
+    float gv = n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+    float gl = n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+    float s = gv + gl;
+    return s > 0.0 ? 0.5 / s : 0.0;
+}
+
+// f(v, l) at unit n, v towards the viewer, l towards the light; 0 below.
+vec3 brdf_gltf(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
+{
+    float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
+    if (!(n_dot_l > 0.0) || !(n_dot_v > 0.0))
+        return vec3(0.0);
+    vec3 h = v + l;
+    float hl = length(h);
+    if (!(hl > 1e-12))
+        return vec3(0.0);
+    h /= hl;
+    float n_dot_h = min(dot(n, h), 1.0), v_dot_h = min(abs(dot(v, h)), 1.0);
+    float alpha = max(m.roughness * m.roughness, BRDF_MIN_ALPHA);
+    vec3 c = cross(n, h);
+    float spec = brdf_ggx_d(n_dot_h, dot(c, c), alpha) * brdf_smith_v(n_dot_l, n_dot_v, alpha);
+    float w = pow(1.0 - v_dot_h, 5.0);
+    float r0 = (m.ior - 1.0) / (m.ior + 1.0);
+    vec3 fd = r0 * r0 * m.specular_color;
+    fd = min(fd, vec3(1.0));
+    fd = fd + (1.0 - fd) * w;
+    float fd_max = max(fd.r, max(fd.g, fd.b));
+    vec3 dielectric = (1.0 - m.specular * fd_max) * m.base_color / BRDF_PI + m.specular * fd * spec;
+    vec3 metal = (m.base_color + (1.0 - m.base_color) * w) * spec;
+    return dielectric + m.metallic * (metal - dielectric);
+}

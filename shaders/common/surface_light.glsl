@@ -1,0 +1,44 @@
+// The one lighting function of diffuse surfaces (issue 50): every pass that
+// lights a surface calls it (shade, the distance map, the impostors, the
+// slices of sliced_refraction, refraction's diffuse share of partly
+// transmissive glass), so a floor seen directly, through glass by way of
+// the distance map or an impostor, or in a slice is lit alike. Its C twin
+// is src/core/shading.c (shading_diffuse_radiance, shading_light_arrival),
+// which the reference lights with; tests/unit/test_shading.c holds the two
+// to each other on a grid, as values_test holds fresnel.glsl.
+//
+// Needs common/frame.glsl, common/lighting.glsl, common/shadows.glsl and
+// common/medium.glsl: a pass binds its shadow maps (shadow_inputs_bind; none
+// gives u_shadow_total = 0, unshadowed) and the medium (medium_gpu_bind;
+// none gives u_medium = 0, transmittance 1).
+
+// Irradiance at p with normal n from every light: shadowed by the maps
+// bound, attenuated by the medium between p and the light.
+vec3 surface_irradiance(vec3 p, vec3 n)
+{
+    vec3 e = vec3(0.0);
+    for (int i = 0; i < u_counts.x; i++) {
+        vec3 to_light;
+        float dist;
+        vec3 irr = light_irradiance(i, p, n, to_light, dist);
+        if (max(irr.r, max(irr.g, irr.b)) > 0.0)
+            e += irr * visibility(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
+    }
+    return e;
+}
+
+// Lambert's radiance for irradiance e (the lights', plus any caustic
+// irradiance the pass has), the ambient sky and the surface's own emission.
+vec3 surface_diffuse_radiance(vec3 albedo, vec3 e, vec3 emission)
+{
+    return albedo / PI * e + albedo * u_ambient.rgb + emission;
+}
+
+// A diffuse surface at p, normal n: `caustic` is the caustic irradiance
+// where the pass has it (shade reads the caustic passes' images, which are
+// the camera's view; a pass that sees the surface another way passes 0, and
+// docs/ARCHITECTURE.md says which).
+vec3 surface_light_diffuse(vec3 p, vec3 n, vec3 albedo, vec3 emission, vec3 caustic)
+{
+    return surface_diffuse_radiance(albedo, surface_irradiance(p, n) + caustic, emission);
+}

@@ -1,0 +1,50 @@
+/* The glTF 2.0 metallic-roughness BRDF in double precision (glTF 2.0
+ * specification, Appendix B "BRDF Implementation"; KHR_materials_specular
+ * and KHR_materials_ior for the dielectric's reflectance): the C twin of
+ * shaders/common/brdf.glsl, held to it by tests/unit/test_shading.c on a
+ * grid of roughness, metallic and angles, which also checks the white
+ * furnace (a white surface under a uniform white sky returns at most 1).
+ *
+ *   f = mix(dielectric, metal, metallic)
+ *   metal      = F_schlick(base_color, VdotH) * D * V
+ *   dielectric = (1 - specular * max(F)) * base_color / pi + specular * F * D * V,
+ *                F = F_schlick(min(((ior - 1) / (ior + 1))^2 * specular_color, 1), VdotH)
+ *   D = Trowbridge-Reitz (GGX), alpha = roughness^2;
+ *   V = Smith's height-correlated joint masking-shadowing over 4 NdotL NdotV.
+ *
+ * The first brick of issue 50's material model: what draws with it is
+ * listed in docs/GLTF.md. */
+#ifndef CAUSTICA_BRDF_H
+#define CAUSTICA_BRDF_H
+
+struct brdf_material {
+    double base_color[3];     /* linear RGB (texture x factor x COLOR_0) */
+    double metallic;          /* [0, 1] */
+    double roughness;         /* perceptual, [0, 1]; alpha = roughness^2 */
+    double ior;               /* KHR_materials_ior, 1.5 without it */
+    double specular;          /* KHR_materials_specular's specularFactor, 1 without it */
+    double specular_color[3]; /* its specularColorFactor, 1 without it */
+};
+
+/* The glTF material without extensions: ior 1.5, specular 1, white specular colour. */
+struct brdf_material brdf_material_default(double r, double g, double b, double metallic, double roughness);
+
+/* The least alpha evaluated: GGX's D is a Dirac delta at alpha 0; a
+ * roughness of 0 is drawn as alpha 1e-4 (a highlight 1e-4 radians wide),
+ * both here and in GLSL, so it never divides 0 by 0. */
+#define BRDF_MIN_ALPHA 1e-4
+
+/* GGX's normal distribution D(h) for NdotH and sin2 = 1 - NdotH^2, which
+ * the caller takes as |n x h|^2: near the peak that is exact to float's
+ * precision where 1 - NdotH^2 is not (the GPU's D at roughness 0 was off by
+ * 20x at the highlight's centre with 1 - NdotH^2). */
+double brdf_ggx_d(double n_dot_h, double sin2, double alpha);
+/* Smith's height-correlated visibility V = G2 / (4 NdotL NdotV). */
+double brdf_smith_v(double n_dot_l, double n_dot_v, double alpha);
+
+/* f(v, l) at unit normal n, unit v (towards the viewer) and unit l
+ * (towards the light), per colour channel; 0 where l or v is below the
+ * surface. Never a NaN or Inf for unit inputs. */
+void brdf_gltf(const double n[3], const double v[3], const double l[3], const struct brdf_material *m, double f[3]);
+
+#endif
