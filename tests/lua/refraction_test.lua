@@ -227,6 +227,20 @@ t.case("an IOR 1.0 sphere vanishes in a room: the image behind it, whatever shad
   t.expect(old > 0.05, string.format("the impostors still fail the identity (%.3f)", old))
 end)
 
+t.case("in fog, what every lookup shows through an IOR 1.0 sphere is lit as shade lights it", function()
+  -- Issue 50's one lighting function (common/surface_light.glsl): the
+  -- surfaces the distance map, the impostors and the scene lookup draw are
+  -- lit through the medium, as shade lights the floor seen directly. Before,
+  -- they were lit as if there were no fog: 0.685 (scene), 0.694 (map) and
+  -- 0.685 (impostors) inside the silhouette; now 0.0004, 0.090 and 0.077,
+  -- what each lookup's geometry gives without fog (0.0004, 0.086, 0.080).
+  for lookup, tol in pairs { scene = 0.03, map = 0.1, impostors = 0.1 } do
+    local free = t.render(ROOM, { set = { sphere = false, fog = true } })
+    local e = inside_silhouette(t.render(ROOM, { set = { lookup = lookup, fog = true } }), free)
+    t.expect(e < tol, string.format("%s in fog: rel_rmse inside the silhouette %.4f (at most %g)", lookup, e, tol))
+  end
+end)
+
 t.case("an IOR 1.5 sphere in the room against the reference (its caustics left out)", function()
   -- Inside the silhouette, against 200k x 16 reference photons (their own
   -- noise about 0.09): 0.423 with the impostors and the paper's p_e
