@@ -59,3 +59,47 @@ vec3 brdf_gltf(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
     vec3 metal = (m.base_color + (1.0 - m.base_color) * w) * spec;
     return dielectric + m.metallic * (metal - dielectric);
 }
+
+// The uniform sky on a glTF surface: core/brdf.h's three integrals (Wd, S0,
+// S1) of (NdotV, roughness), tabulated once on the CPU (brdf_ambient_table,
+// BRDF_TABLE_SIZE^2, bound by the renderer) and read here bilinearly by the
+// same arithmetic as brdf.c's ambient_terms.
+uniform sampler2D u_brdf_table;
+const int BRDF_TABLE_SIZE = 32;
+
+vec3 brdf_ambient_terms(float n_dot_v, float roughness)
+{
+    float x = clamp(n_dot_v, 0.0, 1.0) * float(BRDF_TABLE_SIZE - 1);
+    float y = clamp(roughness, 0.0, 1.0) * float(BRDF_TABLE_SIZE - 1);
+    int x0 = int(min(floor(x), float(BRDF_TABLE_SIZE - 2))), y0 = int(min(floor(y), float(BRDF_TABLE_SIZE - 2)));
+    float fx = x - float(x0), fy = y - float(y0);
+    vec3 a = texelFetch(u_brdf_table, ivec2(x0, y0), 0).rgb, b = texelFetch(u_brdf_table, ivec2(x0 + 1, y0), 0).rgb;
+    vec3 c = texelFetch(u_brdf_table, ivec2(x0, y0 + 1), 0).rgb, d = texelFetch(u_brdf_table, ivec2(x0 + 1, y0 + 1), 0).rgb;
+    vec3 top = a + (b - a) * fx;
+    return top + ((c + (d - c) * fx) - top) * fy;
+}
+
+// The BRDF's directional albedo at NdotV (what a sky of radiance 1 returns)
+vec3 brdf_ambient_albedo(float n_dot_v, BrdfMaterial m)
+{
+    vec3 t = brdf_ambient_terms(n_dot_v, m.roughness);
+    float r0 = (m.ior - 1.0) / (m.ior + 1.0);
+    vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
+    float f0_max = max(f0.r, max(f0.g, f0.b));
+    vec3 c = m.base_color;
+    float s = m.specular;
+    vec3 dielectric = c * (1.0 - s * f0_max) - c * s * (1.0 - f0_max) * t.x + s * (f0 * t.y + (1.0 - f0) * t.z);
+    vec3 metal = c * t.y + (1.0 - c) * t.z;
+    return dielectric + m.metallic * (metal - dielectric);
+}
+
+// The diffuse lobe's albedo for light from no one direction (caustics)
+vec3 brdf_diffuse_albedo(float n_dot_v, BrdfMaterial m)
+{
+    float r0 = (m.ior - 1.0) / (m.ior + 1.0);
+    vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
+    float f0_max = max(f0.r, max(f0.g, f0.b));
+    float w = pow(1.0 - clamp(n_dot_v, 0.0, 1.0), 5.0);
+    float f = f0_max + (1.0 - f0_max) * w;
+    return (1.0 - m.metallic) * m.base_color * (1.0 - m.specular * f);
+}

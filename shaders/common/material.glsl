@@ -1,13 +1,24 @@
 // Material textures of diffuse surfaces (struct material's base_color,
-// normal and emissive slots), bound by renderer_draw_objects. The vertex
-// shader passes the mesh's texture coordinate sets as v_texcoord0/1.
-// The reference renderer reads the same texels with the same filter and the
-// same tangent frame (src/reference/ref_material.c).
+// normal, emissive, metallic_roughness and occlusion slots), bound by
+// renderer_draw_objects. The vertex shader passes the mesh's texture
+// coordinate sets as v_texcoord0/1. The reference renderer reads the same
+// texels with the same filter and the same tangent frame
+// (src/reference/ref_material.c).
+#include "common/brdf.glsl"
+#define MATERIAL_GLSL // (surface_light.glsl's material functions need this file)
 uniform sampler2D u_base_color_texture;
 uniform sampler2D u_normal_texture;
 uniform sampler2D u_emissive_texture;
-uniform int u_texture_set[3];         // per slot (base, normal, emissive): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
-uniform vec3 u_texture_transform[6];  // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+uniform sampler2D u_metallic_roughness_texture;
+uniform sampler2D u_occlusion_texture;
+uniform int u_texture_set[5];         // per slot (base, normal, emissive, metallic-roughness, occlusion): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
+uniform vec3 u_texture_transform[10]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+// glTF's metallic-roughness model (struct material's pbr): 0: Lambert
+uniform int u_pbr;
+uniform float u_metallic;
+uniform float u_pbr_roughness;
+uniform float u_pbr_ior;
+uniform float u_occlusion_strength;
 uniform float u_normal_scale;
 uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
@@ -58,6 +69,29 @@ bool material_cut_out()
 vec3 material_emission(vec3 emission)
 {
     return u_texture_set[2] > 0 ? emission * texture(u_emissive_texture, material_uv(2)).rgb : emission;
+}
+
+// The glTF BRDF's parameters at this texel: base colour (factor x texture),
+// metallic (B) and roughness (G) of the metallicRoughnessTexture x the
+// factors (linear texels), the IOR; no KHR_materials_specular yet.
+BrdfMaterial material_brdf(vec3 color)
+{
+    BrdfMaterial m;
+    m.base_color = material_albedo(color);
+    vec3 mr = u_texture_set[3] > 0 ? texture(u_metallic_roughness_texture, material_uv(3)).rgb : vec3(1.0);
+    m.metallic = clamp(u_metallic * mr.b, 0.0, 1.0);
+    m.roughness = clamp(u_pbr_roughness * mr.g, 0.0, 1.0);
+    m.ior = u_pbr_ior;
+    m.specular = 1.0;
+    m.specular_color = vec3(1.0);
+    return m;
+}
+
+// glTF's occlusion at this texel: 1 + strength (R - 1); on the ambient sky only
+float material_occlusion()
+{
+    return u_texture_set[4] > 0 ? 1.0 + u_occlusion_strength * (texture(u_occlusion_texture, material_uv(4)).r - 1.0)
+                                : 1.0;
 }
 
 // The shading normal from a tangent-space normal map, for the face-forward

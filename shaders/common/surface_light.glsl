@@ -7,8 +7,9 @@
 // which the reference lights with; tests/unit/test_shading.c holds the two
 // to each other on a grid, as values_test holds fresnel.glsl.
 //
-// Needs common/frame.glsl, common/lighting.glsl, common/shadows.glsl and
-// common/medium.glsl: a pass binds its shadow maps (shadow_inputs_bind; none
+// Needs common/frame.glsl, common/lighting.glsl, common/shadows.glsl,
+// common/medium.glsl and, included before it, common/material.glsl for
+// surface_light_gltf and surface_light_material: a pass binds its shadow maps (shadow_inputs_bind; none
 // gives u_shadow_total = 0, unshadowed) and the medium (medium_gpu_bind;
 // none gives u_medium = 0, transmittance 1).
 
@@ -42,3 +43,42 @@ vec3 surface_light_diffuse(vec3 p, vec3 n, vec3 albedo, vec3 emission, vec3 caus
 {
     return surface_diffuse_radiance(albedo, surface_irradiance(p, n) + caustic, emission);
 }
+
+#ifdef MATERIAL_GLSL
+// (the material functions below read common/material.glsl's uniforms and
+// the mesh's texture coordinates: only where it was included first; the
+// slices and refraction's diffuse share draw Lambert surfaces of u_color)
+
+// A glTF surface (material.pbr) at p, normal n, seen from direction v
+// (unit, towards the viewer): each light's irradiance times the BRDF, the
+// ambient sky times the BRDF's directional albedo and the occlusion, the
+// caustic irradiance times the diffuse lobe's albedo / pi (it comes from no
+// one direction), and the emission. The reference: ref_sppm.c, the same
+// terms by core/brdf.c.
+vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion, vec3 emission, vec3 caustic)
+{
+    vec3 radiance = vec3(0.0);
+    for (int i = 0; i < u_counts.x; i++) {
+        vec3 to_light;
+        float dist;
+        vec3 irr = light_irradiance(i, p, n, to_light, dist);
+        if (max(irr.r, max(irr.g, irr.b)) > 0.0)
+            radiance += brdf_gltf(n, v, to_light, m) * irr * visibility(i, p, n, to_light) *
+                        medium_transmittance_ray(p, to_light, dist);
+    }
+    float n_dot_v = dot(n, v);
+    return radiance + u_ambient.rgb * brdf_ambient_albedo(n_dot_v, m) * occlusion +
+           caustic * brdf_diffuse_albedo(n_dot_v, m) / PI + emission;
+}
+
+// The surface of the object being drawn (common/material.glsl's uniforms
+// and textures): glTF's BRDF for a material with pbr, Lambert otherwise;
+// v (unit, towards the viewer) matters only to the BRDF.
+vec3 surface_light_material(vec3 p, vec3 n, vec3 v, vec3 color, vec3 emission, vec3 caustic)
+{
+    if (u_pbr == 1)
+        return surface_light_gltf(p, n, v, material_brdf(color), material_occlusion(), material_emission(emission),
+                                  caustic);
+    return surface_light_diffuse(p, n, material_albedo(color), material_emission(emission), caustic);
+}
+#endif

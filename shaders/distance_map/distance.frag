@@ -37,7 +37,7 @@ void main()
     n = material_normal(n, v_world);
     if (material_cut_out()) // (after the derivatives)
         discard;
-    o_color = vec4(surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), vec3(0.0)),
-                   1.0);
+    o_color = vec4(surface_light_material(v_world, n, (u_center - v_world) / max(dist, 1e-20), u_color, u_emission,
+                                          vec3(0.0)), 1.0);
     o_distance = vec4(dist, 0.0, 0.0, 1.0);
 }

@@ -43,6 +43,5 @@ void main()
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
         return;
     }
-    o_color = vec4(surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), vec3(0.0)),
-                   1.0);
+    o_color = vec4(surface_light_material(v_world, n, -u_impostor_axis, u_color, u_emission, vec3(0.0)), 1.0);
 }

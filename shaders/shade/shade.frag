@@ -42,7 +42,7 @@ void main()
         vec3 caustic = vec3(0.0);
         for (int k = 0; k < u_has_caustics; k++)
             caustic += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
-        radiance = surface_light_diffuse(v_world, n, material_albedo(u_color), material_emission(u_emission), caustic);
+        radiance = surface_light_material(v_world, n, -view, u_color, u_emission, caustic);
     } else if (u_material_kind == 2) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {

@@ -3,6 +3,7 @@
 #include "core/brdf.h"
 
 #include <math.h>
+#include <pthread.h>
 
 #include "core/vecmath.h"
 
@@ -69,4 +70,110 @@ void brdf_gltf(const double n[3], const double v[3], const double l[3], const st
         double metal = (m->base_color[k] + (1.0 - m->base_color[k]) * w) * spec;
         f[k] = dielectric + m->metallic * (metal - dielectric);
     }
+}
+
+/* The three integrals at (NdotV, alpha): FURNACE-style quadrature, SIDE^2
+ * GGX half vectors and SIDE^2 cosine directions by the balance heuristic. */
+static void ambient_integrals(double n_dot_v, double alpha, double out[3])
+{
+    enum { SIDE = 48 };
+    double v[3] = {sqrt(fmax(1.0 - n_dot_v * n_dot_v, 0.0)), 0.0, n_dot_v};
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < 2 * SIDE * SIDE; k++) {
+        int j = k % (SIDE * SIDE);
+        double u1 = (j / SIDE + 0.5) / SIDE, u2 = (j % SIDE + 0.5) / SIDE, l[3];
+        if (k < SIDE * SIDE) {
+            double t2 = alpha * alpha * u1 / (1.0 - u1), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
+            double phi = 2.0 * MATH_PI * u2, h[3] = {s * cos(phi), s * sin(phi), c};
+            double vh = dot3(v, h);
+            for (int q = 0; q < 3; q++)
+                l[q] = 2.0 * vh * h[q] - v[q];
+        } else {
+            double r = sqrt(u1), phi = 2.0 * MATH_PI * u2;
+            l[0] = r * cos(phi), l[1] = r * sin(phi), l[2] = sqrt(fmax(1.0 - u1, 0.0));
+        }
+        if (!(l[2] > 0.0) || !(n_dot_v > 0.0))
+            continue;
+        double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+        double hl = sqrt(dot3(h, h));
+        if (!(hl > 1e-12))
+            continue;
+        for (int q = 0; q < 3; q++)
+            h[q] /= hl;
+        double sin2 = h[0] * h[0] + h[1] * h[1], vh = fmin(fabs(dot3(v, h)), 1.0);
+        double d = brdf_ggx_d(h[2], sin2, alpha);
+        double pdf = 0.5 * d * h[2] / (4.0 * fmax(vh, 1e-12)) + 0.5 * l[2] / MATH_PI;
+        double w = pow(1.0 - vh, 5.0), dv = d * brdf_smith_v(l[2], n_dot_v, alpha);
+        sum[0] += w * l[2] / MATH_PI / pdf;
+        sum[1] += dv * l[2] / pdf;
+        sum[2] += w * dv * l[2] / pdf;
+    }
+    for (int q = 0; q < 3; q++)
+        out[q] = sum[q] / (2.0 * SIDE * SIDE);
+}
+
+static float ambient_table[BRDF_TABLE_SIZE * BRDF_TABLE_SIZE * 3];
+static pthread_once_t ambient_once = PTHREAD_ONCE_INIT;
+
+static void ambient_table_build(void)
+{
+    for (int r = 0; r < BRDF_TABLE_SIZE; r++)
+        for (int c = 0; c < BRDF_TABLE_SIZE; c++) {
+            double roughness = (double)r / (BRDF_TABLE_SIZE - 1), n_dot_v = (double)c / (BRDF_TABLE_SIZE - 1);
+            double terms[3];
+            /* NdotV 0 (a surface seen edge-on) takes the nearest view that sees it */
+            ambient_integrals(fmax(n_dot_v, 1e-3), fmax(roughness * roughness, BRDF_MIN_ALPHA), terms);
+            for (int q = 0; q < 3; q++)
+                ambient_table[(r * BRDF_TABLE_SIZE + c) * 3 + q] = (float)terms[q];
+        }
+}
+
+const float *brdf_ambient_table(void)
+{
+    pthread_once(&ambient_once, ambient_table_build);
+    return ambient_table;
+}
+
+/* (Wd, S0, S1) at (NdotV, roughness), bilinear between the table's texels
+ * (common/brdf.glsl's brdf_ambient_terms, the same arithmetic in float) */
+static void ambient_terms(double n_dot_v, double roughness, double out[3])
+{
+    const float *t = brdf_ambient_table();
+    double x = fmin(fmax(n_dot_v, 0.0), 1.0) * (BRDF_TABLE_SIZE - 1);
+    double y = fmin(fmax(roughness, 0.0), 1.0) * (BRDF_TABLE_SIZE - 1);
+    int x0 = (int)fmin(floor(x), BRDF_TABLE_SIZE - 2), y0 = (int)fmin(floor(y), BRDF_TABLE_SIZE - 2);
+    double fx = x - x0, fy = y - y0;
+    for (int q = 0; q < 3; q++) {
+        double a = t[(y0 * BRDF_TABLE_SIZE + x0) * 3 + q], b = t[(y0 * BRDF_TABLE_SIZE + x0 + 1) * 3 + q];
+        double c = t[((y0 + 1) * BRDF_TABLE_SIZE + x0) * 3 + q], d = t[((y0 + 1) * BRDF_TABLE_SIZE + x0 + 1) * 3 + q];
+        out[q] = (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
+    }
+}
+
+void brdf_ambient_albedo(double n_dot_v, const struct brdf_material *m, double out[3])
+{
+    double t[3];
+    ambient_terms(n_dot_v, m->roughness, t);
+    double r0 = (m->ior - 1.0) / (m->ior + 1.0), f0[3], f0_max = 0.0;
+    for (int k = 0; k < 3; k++) {
+        f0[k] = fmin(r0 * r0 * m->specular_color[k], 1.0);
+        f0_max = fmax(f0_max, f0[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        double c = m->base_color[k], s = m->specular;
+        double dielectric = c * (1.0 - s * f0_max) - c * s * (1.0 - f0_max) * t[0] + s * (f0[k] * t[1] + (1.0 - f0[k]) * t[2]);
+        double metal = c * t[1] + (1.0 - c) * t[2];
+        out[k] = dielectric + m->metallic * (metal - dielectric);
+    }
+}
+
+void brdf_diffuse_albedo(double n_dot_v, const struct brdf_material *m, double out[3])
+{
+    double r0 = (m->ior - 1.0) / (m->ior + 1.0), f0_max = 0.0;
+    for (int k = 0; k < 3; k++)
+        f0_max = fmax(f0_max, fmin(r0 * r0 * m->specular_color[k], 1.0));
+    double w = pow(1.0 - fmin(fmax(n_dot_v, 0.0), 1.0), 5.0);
+    double f = f0_max + (1.0 - f0_max) * w;
+    for (int k = 0; k < 3; k++)
+        out[k] = (1.0 - m->metallic) * m->base_color[k] * (1.0 - m->specular * f);
 }

@@ -47,4 +47,30 @@ double brdf_smith_v(double n_dot_l, double n_dot_v, double alpha);
  * surface. Never a NaN or Inf for unit inputs. */
 void brdf_gltf(const double n[3], const double v[3], const double l[3], const struct brdf_material *m, double f[3]);
 
+/* The uniform sky's light (the scene's ambient term, radiance A from every
+ * direction above) on a glTF surface: A x the BRDF's directional albedo
+ * integral(f(v, l) cos dl), which is linear in three integrals of (NdotV,
+ * alpha) alone (w = (1 - VdotH)^5):
+ *   Wd = integral(w cos / pi), S0 = integral(D V cos), S1 = integral(w D V cos),
+ *   albedo = mix(c (1 - s f0max) - c s (1 - f0max) Wd + s (f0 S0 + (1 - f0) S1),
+ *                b S0 + (1 - b) S1, metallic).
+ * The three are tabulated once, BRDF_TABLE_SIZE^2 over NdotV and roughness
+ * in [0, 1] (a deterministic quadrature of GGX half vectors and cosine
+ * directions, as tests/unit/test_shading.c's furnace), and read bilinearly:
+ * the GPU reads the same table texel for texel (renderer_brdf_table,
+ * common/brdf.glsl's brdf_ambient), so both renderers give the sky the
+ * same response. */
+#define BRDF_TABLE_SIZE 32
+/* The table: BRDF_TABLE_SIZE^2 x (Wd, S0, S1), row r = roughness
+ * r / (size - 1), column c = NdotV c / (size - 1). Built on first use
+ * (thread-safe), never freed. */
+const float *brdf_ambient_table(void);
+/* The directional albedo per channel at NdotV (the table read bilinearly). */
+void brdf_ambient_albedo(double n_dot_v, const struct brdf_material *m, double out[3]);
+/* The share of light the diffuse lobe sends back, per channel, for
+ * irradiance that arrives from no one direction (caustics, photons): the
+ * Lambert albedo (1 - metallic) c (1 - s F(NdotV)max), F Schlick's at
+ * NdotV. Both renderers weigh caustic irradiance on a glTF surface by it. */
+void brdf_diffuse_albedo(double n_dot_v, const struct brdf_material *m, double out[3]);
+
 #endif

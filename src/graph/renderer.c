@@ -1,5 +1,7 @@
 #include "graph/renderer.h"
 
+#include "core/brdf.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,6 +65,7 @@ void renderer_destroy(struct renderer *r)
     gl_texture_destroy(&r->dummy_2d);
     gl_texture_destroy(&r->dummy_cube);
     gl_texture_destroy(&r->dummy_depth);
+    gl_texture_destroy(&r->brdf_table);
     gl_texture_destroy(&r->present_texture);
     gl_texture_destroy(&r->environment);
     r->environment_serial = 0;
@@ -195,19 +198,22 @@ void renderer_reset_state(struct renderer *r)
 
 /* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
+enum { MATERIAL_SLOTS = 5 }; /* base colour, normal, emissive, metallic-roughness, occlusion */
+
 struct material_locations {
-    GLint set[3], transform[6], normal_scale, alpha, alpha_cutoff, alpha_blend;
+    GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend;
     GLint transmission_set, transmission_transform[2];
+    GLint pbr, metallic, roughness, ior, occlusion_strength;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
 {
-    for (int s = 0; s < 3; s++) {
+    for (int s = 0; s < MATERIAL_SLOTS; s++) {
         char name[64];
         snprintf(name, sizeof name, "u_texture_set[%d]", s);
         loc->set[s] = gl_program_uniform(program, name);
     }
-    for (int row = 0; row < 6; row++) {
+    for (int row = 0; row < MATERIAL_SLOTS * 2; row++) {
         char name[64];
         snprintf(name, sizeof name, "u_texture_transform[%d]", row);
         loc->transform[row] = gl_program_uniform(program, name);
@@ -219,21 +225,49 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
     loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
     loc->transmission_transform[1] = gl_program_uniform(program, "u_transmission_transform[1]");
+    loc->pbr = gl_program_uniform(program, "u_pbr");
+    loc->metallic = gl_program_uniform(program, "u_metallic");
+    loc->roughness = gl_program_uniform(program, "u_pbr_roughness");
+    loc->ior = gl_program_uniform(program, "u_pbr_ior");
+    loc->occlusion_strength = gl_program_uniform(program, "u_occlusion_strength");
+}
+
+/* The glTF BRDF's ambient table (core/brdf.h), read texel by texel by
+ * common/brdf.glsl: uploaded once, when a glTF surface is first drawn. */
+static GLuint brdf_table_texture(struct renderer *r)
+{
+    if (r->brdf_table.id)
+        return r->brdf_table.id;
+    struct error err;
+    if (!gl_texture_create(&r->brdf_table, GL_TEXTURE_2D, GL_RGBA32F, BRDF_TABLE_SIZE, BRDF_TABLE_SIZE, 1, &err))
+        return r->dummy_2d.id;
+    const float *t = brdf_ambient_table();
+    static float rgba[BRDF_TABLE_SIZE * BRDF_TABLE_SIZE * 4];
+    for (int i = 0; i < BRDF_TABLE_SIZE * BRDF_TABLE_SIZE; i++) {
+        rgba[i * 4] = t[i * 3], rgba[i * 4 + 1] = t[i * 3 + 1], rgba[i * 4 + 2] = t[i * 3 + 2];
+        rgba[i * 4 + 3] = 0.0f;
+    }
+    gl.TextureSubImage2D(r->brdf_table.id, 0, 0, 0, BRDF_TABLE_SIZE, BRDF_TABLE_SIZE, GL_RGBA, GL_FLOAT, rgba);
+    return r->brdf_table.id;
 }
 
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
                                    const struct material_locations *loc, const struct object *o)
 {
-    static const char *const samplers[3] = {"u_base_color_texture", "u_normal_texture", "u_emissive_texture"};
-    const struct texture_ref *slots[3] = {&o->material.base_color, &o->material.normal, &o->material.emissive};
-    for (int s = 0; s < 3; s++) {
+    static const char *const samplers[MATERIAL_SLOTS] = {"u_base_color_texture", "u_normal_texture",
+                                                         "u_emissive_texture", "u_metallic_roughness_texture",
+                                                         "u_occlusion_texture"};
+    const struct texture_ref *slots[MATERIAL_SLOTS] = {&o->material.base_color, &o->material.normal,
+                                                       &o->material.emissive, &o->material.metallic_roughness,
+                                                       &o->material.occlusion};
+    for (int s = 0; s < MATERIAL_SLOTS; s++) {
         const struct texture_ref *ref = slots[s];
         GLuint id = 0;
         struct error err;
         /* Textures apply to diffuse surfaces only, in both renderers; a set
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
         bool on = ref->texture && material_role(&o->material) == OBJECT_ROLE_RECEIVER && o->mesh->texcoords[ref->texcoord] &&
-                  texture_cache_get(&r->textures, ref->texture, s != 1, &id, &err);
+                  texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2, &id, &err); /* colours are sRGB */
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
         const float *m = ref->transform;
@@ -241,6 +275,14 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         gl.ProgramUniform3f(program->id, loc->transform[s * 2 + 1], m[1], m[3], m[5]);
     }
     gl.ProgramUniform1f(program->id, loc->normal_scale, o->material.normal.scale);
+    bool pbr = o->material.pbr && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+    gl.ProgramUniform1i(program->id, loc->pbr, pbr ? 1 : 0);
+    gl.ProgramUniform1f(program->id, loc->metallic, o->material.metallic);
+    gl.ProgramUniform1f(program->id, loc->roughness, o->material.roughness);
+    gl.ProgramUniform1f(program->id, loc->ior, o->material.ior);
+    gl.ProgramUniform1f(program->id, loc->occlusion_strength, o->material.occlusion_strength);
+    if (pbr)
+        gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
     /* cut-outs, like textures, on diffuse surfaces only */
     bool diffuse = material_role(&o->material) == OBJECT_ROLE_RECEIVER;
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);

@@ -43,6 +43,7 @@ struct renderer {
     GLuint frame_ubo;
     GLuint empty_vao;
     struct gl_texture dummy_2d, dummy_cube, dummy_depth;
+    struct gl_texture brdf_table; /* core/brdf.c's ambient table, uploaded when a glTF surface is first drawn */
     struct renderer_frame_uniforms uniforms; /* uploaded from `frame` */
     struct frame frame;                      /* this frame's snapshot (graph/frame.h) */
     /* presenting */

@@ -38,6 +38,9 @@ void texture_cache_begin_frame(struct texture_cache *c, const struct scene *scen
         mark(c, m->base_color.texture);
         mark(c, m->normal.texture);
         mark(c, m->emissive.texture);
+        mark(c, m->metallic_roughness.texture);
+        mark(c, m->occlusion.texture);
+        mark(c, m->transmission_map.texture);
     }
     int kept = 0;
     for (int i = 0; i < c->count; i++) {

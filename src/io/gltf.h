@@ -51,6 +51,8 @@ struct gltf_material {
     float emission[3];          /* emissiveFactor x KHR_materials_emissive_strength */
     struct gltf_texture base_color_texture, normal_texture, emissive_texture;
     struct gltf_texture metallic_roughness_texture; /* G: roughness, B: metallic */
+    struct gltf_texture occlusion_texture;          /* R: ambient occlusion, scaled by occlusion_strength */
+    float occlusion_strength;                       /* occlusionTexture.strength, [0, 1] */
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */

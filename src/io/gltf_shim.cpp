@@ -259,6 +259,7 @@ struct Builder {
             std::free(m.normal_texture.bytes);
             std::free(m.emissive_texture.bytes);
             std::free(m.metallic_roughness_texture.bytes);
+            std::free(m.occlusion_texture.bytes);
             std::free(m.transmission_texture.bytes);
         }
     }
@@ -375,8 +376,6 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     m.alpha_mode = mat.alphaMode == "MASK" ? GLTF_ALPHA_MASK : mat.alphaMode == "BLEND" ? GLTF_ALPHA_BLEND
                                                                                          : GLTF_ALPHA_OPAQUE;
     m.alpha_cutoff = (float)mat.alphaCutoff;
-    if (mat.occlusionTexture.index >= 0)
-        note_unread(m, "occlusionTexture");
     for (const auto &e : mat.extensions)
         if (!extension_read(e.first))
             note_unread(m, e.first);
@@ -428,6 +427,11 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
                      m.emissive_texture, where);
         const tinygltf::TextureInfo &mr = mat.pbrMetallicRoughness.metallicRoughnessTexture;
         read_texture(model, mr.index, mr.texCoord, mr.extensions, m.metallic_roughness_texture, where);
+        read_texture(model, mat.occlusionTexture.index, mat.occlusionTexture.texCoord, mat.occlusionTexture.extensions,
+                     m.occlusion_texture, where);
+        m.occlusion_strength = (float)mat.occlusionTexture.strength;
+        if (!std::isfinite(m.occlusion_strength) || m.occlusion_strength < 0.0f || m.occlusion_strength > 1.0f)
+            throw Fail{where + ": occlusionTexture.strength must be in [0, 1]"};
     }
     // The rules c.material.glass applies (finite, IOR > 0, colours in
     // [0, 1]): a file must not slip past them into NaN or negative absorption.
@@ -936,7 +940,7 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
             m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
-                m.metallic_roughness_texture.bytes = m.transmission_texture.bytes = nullptr;
+                m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -977,6 +981,7 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].normal_texture.bytes);
         std::free(mesh->materials[i].emissive_texture.bytes);
         std::free(mesh->materials[i].metallic_roughness_texture.bytes);
+        std::free(mesh->materials[i].occlusion_texture.bytes);
         std::free(mesh->materials[i].transmission_texture.bytes);
     }
     std::free(mesh->materials);

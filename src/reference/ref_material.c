@@ -76,6 +76,8 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->albedo = to_dvec3(m->color);
     out->emission = to_dvec3(m->emission);
     out->normal = n;
+    out->pbr = false;
+    out->occlusion = 1.0;
     if (m->kind != MATERIAL_DIFFUSE)
         return;
     float uv[2];
@@ -89,4 +91,21 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     }
     if (slot_active(o, &m->normal))
         out->normal = mapped_normal(o, h, n);
+    if (!m->pbr)
+        return;
+    /* material_brdf() and material_occlusion() of common/material.glsl */
+    out->pbr = true;
+    vec3 mr = vec3_make(1, 1, 1);
+    if (slot_active(o, &m->metallic_roughness)) {
+        hit_uv(o, h, m->metallic_roughness.texcoord, uv);
+        mr = texture_sample(&m->metallic_roughness, uv, false);
+    }
+    out->brdf = brdf_material_default(out->albedo.x, out->albedo.y, out->albedo.z,
+                                      fmin(fmax(m->metallic * mr.z, 0.0), 1.0),
+                                      fmin(fmax(m->roughness * mr.y, 0.0), 1.0));
+    out->brdf.ior = m->ior;
+    if (slot_active(o, &m->occlusion)) {
+        hit_uv(o, h, m->occlusion.texcoord, uv);
+        out->occlusion = 1.0 + m->occlusion_strength * (texture_sample(&m->occlusion, uv, false).x - 1.0);
+    }
 }

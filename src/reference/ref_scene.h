@@ -12,6 +12,7 @@
 #include <embree3/rtcore.h>
 
 #include "core/error.h"
+#include "core/brdf.h"
 #include "core/optics.h"
 #include "core/shading.h"
 #include "graph/renderer.h"
@@ -118,6 +119,12 @@ double ref_object_transmission(const struct ref_object *o, const struct ref_hit 
  * the GPU (ref_material.c). */
 struct ref_surface {
     dvec3 albedo, emission, normal;
+    /* glTF's metallic-roughness model (material.pbr): the BRDF's
+     * parameters at the hit (textures read) and the occlusion (on the
+     * ambient sky only); brdf.base_color is `albedo` */
+    bool pbr;
+    struct brdf_material brdf;
+    double occlusion;
 };
 void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dvec3 n, struct ref_surface *out);
 

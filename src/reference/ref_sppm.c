@@ -282,8 +282,12 @@ static dvec3 inscatter(const struct ref_scene *rs, const struct ref_medium *rm, 
     return sum;
 }
 
+/* The lights' light at p, normal n, shadowed and attenuated: with brdf
+ * NULL their irradiance (a Lambert surface's caller weighs it by albedo /
+ * pi); with a glTF surface's BRDF, the radiance it sends towards v, sum of
+ * f(v, wi) E_i (common/surface_light.glsl's surface_light_gltf). */
 static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *rm, struct ref_rng *rng, dvec3 p,
-                          dvec3 n)
+                          dvec3 n, const struct brdf_material *brdf, dvec3 v)
 {
     dvec3 e = dv(0, 0, 0);
     dvec3 origin = dv_add(p, dv_scale(n, rs->epsilon));
@@ -299,6 +303,11 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
         /* with a medium, attenuated along the shadow ray */
         if (rm->present)
             el = dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng));
+        if (brdf) {
+            double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, ll[3] = {wi.x, wi.y, wi.z}, f[3];
+            brdf_gltf(nn, vv, ll, brdf, f);
+            el = dv_mul(el, dv(f[0], f[1], f[2]));
+        }
         e = dv_add(e, dv_scale(el, c));
     }
     return e;
@@ -490,16 +499,33 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
             ref_surface_diffuse(rs, &h, n, &surface);
             n = surface.normal;
             dvec3 albedo = surface.albedo;
-            dvec3 e = direct_light(rs, rm, &rng, h.position, n);
-            dvec3 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
-            /* the GPU's surface_diffuse_radiance (common/surface_light.glsl),
-             * through its C twin; its own emission seen along the path
-             * (emissive surfaces light nothing: no interreflection) */
-            double a[3] = {albedo.x, albedo.y, albedo.z}, ev[3] = {e.x, e.y, e.z};
-            double amb[3] = {rs->ambient.x, rs->ambient.y, rs->ambient.z};
-            double em[3] = {surface.emission.x, surface.emission.y, surface.emission.z}, out[3];
-            shading_diffuse_radiance(a, ev, amb, em, out);
-            seen = dv_add(seen, dv_mul(beta, dv(out[0], out[1], out[2])));
+            dvec3 f;
+            if (surface.pbr) {
+                /* surface_light_gltf (common/surface_light.glsl) by its C
+                 * twins: the lights through the BRDF, the ambient sky by the
+                 * BRDF's directional albedo and the occlusion; photons (the
+                 * caustics) by the diffuse lobe's albedo, as the GPU weighs
+                 * caustic irradiance */
+                dvec3 v = dv_scale(dir, -1.0);
+                double n_dot_v = fmin(fmax(dv_dot(n, v), 0.0), 1.0), amb[3], diff[3];
+                dvec3 lit = direct_light(rs, rm, &rng, h.position, n, &surface.brdf, v);
+                brdf_ambient_albedo(n_dot_v, &surface.brdf, amb);
+                brdf_diffuse_albedo(n_dot_v, &surface.brdf, diff);
+                dvec3 sky = dv_scale(dv_mul(rs->ambient, dv(amb[0], amb[1], amb[2])), surface.occlusion);
+                seen = dv_add(seen, dv_mul(beta, dv_add(dv_add(lit, sky), surface.emission)));
+                f = dv_scale(dv_mul(beta, dv(diff[0], diff[1], diff[2])), 1.0 / MATH_PI);
+            } else {
+                dvec3 e = direct_light(rs, rm, &rng, h.position, n, NULL, dv(0, 0, 0));
+                f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);
+                /* the GPU's surface_diffuse_radiance (common/surface_light.glsl),
+                 * through its C twin; its own emission seen along the path
+                 * (emissive surfaces light nothing: no interreflection) */
+                double a[3] = {albedo.x, albedo.y, albedo.z}, ev[3] = {e.x, e.y, e.z};
+                double amb[3] = {rs->ambient.x, rs->ambient.y, rs->ambient.z};
+                double em[3] = {surface.emission.x, surface.emission.y, surface.emission.z}, out[3];
+                shading_diffuse_radiance(a, ev, amb, em, out);
+                seen = dv_add(seen, dv_mul(beta, dv(out[0], out[1], out[2])));
+            }
             if (px->radius <= 0.0) {
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */

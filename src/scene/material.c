@@ -51,6 +51,8 @@ void material_init(struct material *m, enum material_kind kind)
     texture_ref_init(&m->normal);
     texture_ref_init(&m->emissive);
     texture_ref_init(&m->transmission_map);
+    texture_ref_init(&m->metallic_roughness);
+    texture_ref_init(&m->occlusion);
 }
 
 void material_assign(struct material *dst, const struct material *src)
@@ -61,6 +63,8 @@ void material_assign(struct material *dst, const struct material *src)
     texture_retain(src->normal.texture);
     texture_retain(src->emissive.texture);
     texture_retain(src->transmission_map.texture);
+    texture_retain(src->metallic_roughness.texture);
+    texture_retain(src->occlusion.texture);
     material_release(dst);
     *dst = *src;
 }
@@ -71,7 +75,10 @@ void material_release(struct material *m)
     texture_destroy(m->normal.texture);
     texture_destroy(m->emissive.texture);
     texture_destroy(m->transmission_map.texture);
+    texture_destroy(m->metallic_roughness.texture);
+    texture_destroy(m->occlusion.texture);
     m->base_color.texture = m->normal.texture = m->emissive.texture = m->transmission_map.texture = NULL;
+    m->metallic_roughness.texture = m->occlusion.texture = NULL;
 }
 
 bool material_has_textures(const struct material *m)

@@ -40,12 +40,16 @@ static void ignored_add(struct material *m, const char *fmt, ...)
  * - transmission > 0 (and not a metal): glass with the file's IOR and
  *   KHR_materials_volume's attenuation as Beer-Lambert absorption,
  *   sigma = -ln(c) / d;
- * - metallic >= 0.5: a mirror tinted by the base colour while its
- *   roughness is at most GLTF_MIRROR_ROUGHNESS, else diffuse;
- * - otherwise diffuse, with the base colour, normal and emissive textures,
- *   alphaMode MASK's cut-outs (material.alpha_cutoff) and BLEND's
- *   stochastic ones (material.alpha_blend). */
-static void material_map(const struct gltf_material *g, struct material *m)
+ * - metallic >= 0.5 and roughness at most GLTF_MIRROR_ROUGHNESS, by its
+ *   factors or at every texel of its metallicRoughnessTexture: a mirror
+ *   tinted by the base colour (it reflects the scene, which the BRDF's
+ *   passes do not yet);
+ * - otherwise a surface drawn by glTF's BRDF (material.pbr: metallic and
+ *   roughness per texel, core/brdf.c), with the base colour, normal,
+ *   emissive, metallicRoughness and occlusion textures, alphaMode MASK's
+ *   cut-outs (material.alpha_cutoff) and BLEND's stochastic ones
+ *   (material.alpha_blend). */
+static void material_map(const struct gltf_material *g, bool smooth_metal_texture, struct material *m)
 {
     snprintf(m->source, sizeof m->source, "%s", g->name);
     vec3 base = vec3_make(g->base_color[0], g->base_color[1], g->base_color[2]);
@@ -84,7 +88,8 @@ static void material_map(const struct gltf_material *g, struct material *m)
         if (!g->volume || !(g->thickness > 0.0f))
             ignored_add(m, "thin walls (%s: drawn as a solid of the mesh's shape)",
                         g->volume ? "thicknessFactor 0" : "no KHR_materials_volume");
-    } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS) {
+    } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS &&
+               (!g->metallic_roughness_texture.bytes || smooth_metal_texture)) {
         m->kind = MATERIAL_MIRROR;
         if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
             ignored_add(m, "roughness %.2g (drawn as a perfect mirror)", g->roughness);
@@ -94,9 +99,11 @@ static void material_map(const struct gltf_material *g, struct material *m)
             ignored_add(m, "transmissionTexture (a metal does not transmit)");
     } else {
         m->kind = MATERIAL_DIFFUSE;
+        m->pbr = true;
+        m->metallic = g->metallic;
+        m->roughness = g->roughness;
+        m->occlusion_strength = g->occlusion_strength;
         m->emission = vec3_make(g->emission[0], g->emission[1], g->emission[2]);
-        if (metal)
-            ignored_add(m, "metallic %.2g at roughness %.2g (drawn diffuse)", g->metallic, g->roughness);
         if (metal && g->transmission > 0.0f)
             ignored_add(m, "transmission %.2g (a metal does not transmit; metallicFactor is 1 unless the file "
                            "says 0)", g->transmission);
@@ -110,6 +117,8 @@ static void material_map(const struct gltf_material *g, struct material *m)
             ignored_add(m, "normalTexture (drawn on diffuse surfaces only)");
         if (g->emissive_texture.bytes)
             ignored_add(m, "emissiveTexture (drawn on diffuse surfaces only)");
+        if (g->occlusion_texture.bytes)
+            ignored_add(m, "occlusionTexture (drawn on diffuse surfaces only)");
     }
     if (g->alpha_mode == GLTF_ALPHA_MASK && m->kind == MATERIAL_DIFFUSE) {
         m->alpha = g->alpha;
@@ -137,15 +146,17 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
     struct {
         struct gltf_texture *from;
         struct texture_ref *to;
-    } slots[4] = {{&g->base_color_texture, &m->base_color},
+    } slots[6] = {{&g->base_color_texture, &m->base_color},
                   {&g->normal_texture, &m->normal},
                   {&g->emissive_texture, &m->emissive},
+                  {&g->metallic_roughness_texture, &m->metallic_roughness},
+                  {&g->occlusion_texture, &m->occlusion},
                   {&g->transmission_texture, &m->transmission_map}};
-    /* diffuse surfaces read the first three, glass its transmission */
+    /* diffuse surfaces read the first five, glass its transmission */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
-    for (int s = glass ? 3 : 0; s < (glass ? 4 : 3); s++) {
+    for (int s = glass ? 5 : 0; s < (glass ? 6 : 5); s++) {
         struct gltf_texture *gt = slots[s].from;
         if (!gt->bytes)
             continue;
@@ -175,18 +186,24 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
 }
 
 /* glTF's metallicRoughnessTexture scales the factors per texel (G:
- * roughness, B: metallic). Neither renderer varies metalness or roughness
- * over a surface, so the material takes the texture's means (over its
- * texels, linear): a tile that is smooth on one side and rough on the
- * other is drawn at its mean roughness, which `ignored` says. *means
- * holds (metallic, roughness) means, or (-1, -1) without a texture. */
+ * roughness, B: metallic). A surface drawn by the BRDF reads it per texel.
+ * Glass, whose roughness the reference samples per material, takes the
+ * texture's means (over its texels, linear), which `ignored` says: *means
+ * holds (metallic, roughness) means, or (-1, -1) where not taken. Glass is
+ * a transmissive material whose mean metallic (factor x mean B) is below
+ * 0.5: a file that leaves metallicFactor at its default 1 and says 0 in the
+ * texture (TransmissionRoughnessTest's tiles) is glass. A metal whose every
+ * texel is a smooth metal (metallic x least B >= 0.5, roughness x greatest
+ * G <= GLTF_MIRROR_ROUGHNESS) is a mirror, as by its factors alone: *mirror
+ * says so (and the factors become the means). */
 static bool metallic_roughness_means(const char *path, struct gltf_material *g, unsigned long long budget,
-                                     unsigned long long used, float means[2], struct error *err)
+                                     unsigned long long used, float means[2], bool *mirror, struct error *err)
 {
     means[0] = means[1] = -1.0f;
+    *mirror = false;
     struct gltf_texture *gt = &g->metallic_roughness_texture;
-    if (!gt->bytes)
-        return true;
+    if (!gt->bytes || (g->metallic < 0.5f && !(g->transmission > 0.0f)))
+        return true; /* (a dielectric of no transmission: drawn per texel without looking) */
     char name[700];
     snprintf(name, sizeof name, "%s %s", path, gt->name);
     if (budget && used >= budget)
@@ -196,14 +213,29 @@ static bool metallic_roughness_means(const char *path, struct gltf_material *g, 
     if (!t)
         return false;
     double sum_g = 0.0, sum_b = 0.0;
+    int least_b = 255, most_g = 0;
     size_t n = (size_t)t->width * (size_t)t->height;
     for (size_t i = 0; i < n; i++) {
         sum_g += t->texels[i * 4 + 1];
         sum_b += t->texels[i * 4 + 2];
+        least_b = t->texels[i * 4 + 2] < least_b ? t->texels[i * 4 + 2] : least_b;
+        most_g = t->texels[i * 4 + 1] > most_g ? t->texels[i * 4 + 1] : most_g;
     }
     texture_destroy(t);
-    means[0] = n ? (float)(sum_b / (255.0 * (double)n)) : 1.0f;
-    means[1] = n ? (float)(sum_g / (255.0 * (double)n)) : 1.0f;
+    float mean_b = n ? (float)(sum_b / (255.0 * (double)n)) : 1.0f;
+    float mean_g = n ? (float)(sum_g / (255.0 * (double)n)) : 1.0f;
+    bool glass = g->transmission > 0.0f && g->metallic * mean_b < 0.5f;
+    /* a transmissive metal (TransmissionTest's metal row: metal at most of
+     * its texels, glass at a few) cannot be both per texel: its means decide,
+     * as for glass */
+    bool transmissive_metal = g->transmission > 0.0f && !glass;
+    *mirror = !glass && (transmissive_metal ? g->metallic * mean_b >= 0.5f && g->roughness * mean_g <= GLTF_MIRROR_ROUGHNESS
+                                            : g->metallic * (float)least_b / 255.0f >= 0.5f &&
+                                                  g->roughness * (float)most_g / 255.0f <= GLTF_MIRROR_ROUGHNESS);
+    if (!glass && !*mirror)
+        return true; /* drawn per texel */
+    means[0] = mean_b;
+    means[1] = mean_g;
     g->metallic *= means[0];
     g->roughness *= means[1];
     return true;
@@ -291,11 +323,12 @@ struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget,
     unsigned long long used = 0;
     for (int i = 0; ok && i < g.material_count; i++) {
         float means[2];
-        ok = metallic_roughness_means(path, &g.materials[i], texture_budget, used, means, err);
+        bool smooth_metal = false;
+        ok = metallic_roughness_means(path, &g.materials[i], texture_budget, used, means, &smooth_metal, err);
         if (!ok)
             break;
         material_init(&materials[i], MATERIAL_DIFFUSE);
-        material_map(&g.materials[i], &materials[i]);
+        material_map(&g.materials[i], smooth_metal, &materials[i]);
         if (means[0] >= 0.0f)
             ignored_add(&materials[i], "metallicRoughnessTexture (its means taken: metallic x %.2g, roughness x %.2g)",
                         means[0], means[1]);

@@ -73,6 +73,16 @@ struct material {
     /* Glass and water: `transmission` x this texture's red channel (linear)
      * per texel (glTF's transmissionTexture); no texture: uniform. */
     struct texture_ref transmission_map;
+    /* glTF's metallic-roughness model on a diffuse surface (issue 50; the
+     * BRDF is core/brdf.c and common/brdf.glsl): pbr set, the surface is
+     * drawn by glTF's BRDF with `metallic` and `roughness` (perceptual)
+     * scaled per texel by metallic_roughness's B and G, `ior` (its
+     * dielectric reflectance), and occlusion's R on the ambient sky,
+     * strength `occlusion_strength`. Unset (a script's diffuse): Lambert. */
+    bool pbr;
+    float metallic;
+    struct texture_ref metallic_roughness, occlusion;
+    float occlusion_strength;
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
      * base colour texture's alpha is below alpha_cutoff the surface is not
      * there, for the camera, the shadow map and the reference alike.
@@ -87,7 +97,7 @@ struct material {
      * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a
      * script's materials, which are rendered as they are. */
     char source[64];
-    char ignored[320];
+    char ignored[768]; /* (never cut: the longest a file's material can give is about 600) */
 };
 
 struct texture *texture_create(const char *name, int width, int height, struct error *err);

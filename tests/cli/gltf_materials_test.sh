@@ -28,11 +28,17 @@ against_reference() {
 
 # The Khronos samples at 256 px, the reference 64 iterations of 20,000 photons (within 0.015-0.024 of
 # a 20 s one). Measured 2026-12-05: 0.14 / 0.15 / 0.11 against 0.49 / 0.85 / 0.46 with one material
-# per mesh; the bound sits between them.
+# per mesh; the bound sits between them. Since glTF's BRDF draws the roughness sample's opaque row
+# (metal cubes, roughness 0 to 1 by texture): 0.26 (one material 0.90), five pixels of the sun's
+# highlight on its smooth cubes holding 80% of the squared error (the GPU point-samples a highlight
+# narrower than a pixel, the reference averages the pixel; 0.115 without the 20 worst pixels):
+# its bound is 0.3.
 for sample in transmission roughness attenuation; do
   scene="scenes/khronos_samples.lua --set sample=$sample"
-  if against_reference "$scene" "$scene --set one_material=true" "--photons 20000 --spp 64" 0.22 0.4; then
-    pass "$sample at 256 px: GPU against the reference rel_rmse $gpu_rel (bound 0.22); one material per mesh $contrast_rel (>= 0.4)"
+  bound=0.22
+  [ "$sample" = roughness ] && bound=0.3
+  if against_reference "$scene" "$scene --set one_material=true" "--photons 20000 --spp 64" $bound 0.4; then
+    pass "$sample at 256 px: GPU against the reference rel_rmse $gpu_rel (bound $bound); one material per mesh $contrast_rel (>= 0.4)"
   else
     fail "$sample" "GPU $gpu_rel, one material $contrast_rel: $(cat "$WORK/err.txt")"
   fi
@@ -109,7 +115,7 @@ lines=$(grep -c "TransmissionTest.glb '" "$WORK/info.txt")
 if [ "$lines" = 14 ] && grep -q "'YellowTrans': glass, ior 1.5" "$WORK/info.txt" &&
    grep -q "'YellowTransMetal': mirror" "$WORK/info.txt" &&
    grep -q "'GreenMask': glass.*ignored: .*alphaMode MASK (cut-outs and blending on diffuse surfaces only" "$WORK/info.txt" &&
-   grep -q "'LabelMaterial': diffuse" "$WORK/info.txt" &&
+   grep -q "'LabelMaterial': glTF BRDF, metallic 0, roughness 0.9" "$WORK/info.txt" &&
    grep "'RedTransTexture'" "$WORK/info.txt" | grep -qv "transmissionTexture" &&
    grep -q "leaves out object 2 (glass): its transmission below 1" "$WORK/info.txt"; then
   pass "info lists the 14 materials with what each is drawn as and ignores (the transmission texture is drawn)"

@@ -41,10 +41,12 @@ t.case("textured scene: the GPU matches the reference (checker, glTF PNG texture
   local a, b = gpu:pixel(20, 20), gpu:pixel(28, 20)
   t.expect(math.abs(a - b) > 0.1, string.format("checker squares %.3f and %.3f", a, b))
   -- KHR_texture_transform's README example reads the lower left quadrant
-  -- only: the whole quad is the blue texel, in both renderers
+  -- only: the whole quad is the blue texel, in both renderers (the file
+  -- leaves metallicFactor at glTF's default 1: a rough blue metal, 0.061
+  -- in blue under glTF's BRDF where Lambert gave 0.2)
   for _, img in ipairs { gpu, ref } do
     local r, g, bl = img:pixel(95, 92)
-    t.expect(r < 1e-3 and g < 1e-3 and bl > 0.1, string.format("transform quad (%.3f, %.3f, %.3f)", r, g, bl))
+    t.expect(r < 1e-3 and g < 1e-3 and bl > 0.03, string.format("transform quad (%.3f, %.3f, %.3f)", r, g, bl))
   end
   -- the normal-mapped panel: ridges on both, and the same ones
   local panel = box_rel_rmse(gpu, ref, 80, 36, 106, 52)

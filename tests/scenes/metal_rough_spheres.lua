@@ -1,0 +1,25 @@
+-- The Khronos sample MetalRoughSpheresNoTextures (glTF's metallic-roughness
+-- BRDF on spheres of metallic 0..1 by roughness 0..1, issue 50) under a sun
+-- and an ambient sky, both renderers. The file's spheres come in mesh
+-- units (its node tree is not read yet, issue 51), 7 mm across: scaled by
+-- 1000. Its smooth metals (metallic >= 0.5, roughness <= 0.3, no texture)
+-- are mirrors, drawn by `refraction`; the rest by the BRDF in `shade`.
+-- --set graph=shade: shade alone (the mirrors show the background).
+local c = require "caustica"
+local scene = c.scene {
+  camera = c.camera { eye = {2.78, 2.74, 14}, target = {2.78, 2.74, 0}, fov = 40, near = 1, far = 40 },
+  background = {0.3, 0.3, 0.32},
+  ambient = {0.25, 0.25, 0.25},
+}
+scene:add(c.light.directional { direction = {-0.25, -0.5, -1}, intensity = {2.2, 2.2, 2.1} })
+local model = scene:add(c.object { mesh = c.mesh.load(c.asset "khronos/MetalRoughSpheresNoTextures/MetalRoughSpheresNoTextures.glb"),
+                                   scale = {1000, 1000, 1000} })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+if c.param("graph", "full") == "shade" then
+  g:output("shade.color")
+else
+  g:add("mirrors", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+  g:output("mirrors.color")
+end
+return { scene = scene, graph = g, size = {128, 128}, model = model }
