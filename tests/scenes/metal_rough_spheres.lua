@@ -1,8 +1,7 @@
 -- The Khronos sample MetalRoughSpheresNoTextures (glTF's metallic-roughness
 -- BRDF on spheres of metallic 0..1 by roughness 0..1, issue 50) under a sun
--- and an ambient sky, both renderers. The file's spheres come in mesh
--- units (its node tree is not read yet, issue 51), 7 mm across: scaled by
--- 1000. Its smooth metals (metallic >= 0.5, roughness <= 0.3, no texture)
+-- and an ambient sky, both renderers. The file is 7 mm across (its node
+-- transforms applied): scaled by 1000. Its smooth metals (metallic >= 0.5, roughness <= 0.3, no texture)
 -- are mirrors, drawn by `refraction`; the rest by the BRDF in `shade`.
 -- --set graph=shade: shade alone (the mirrors show the background).
 local c = require "caustica"
