@@ -19,6 +19,8 @@ uniform float u_metallic;
 uniform float u_pbr_roughness;
 uniform float u_pbr_ior;
 uniform float u_occlusion_strength;
+uniform float u_specular;      // KHR_materials_specular (1 without)
+uniform vec3 u_specular_color; // (1 1 1 without)
 uniform float u_normal_scale;
 uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
@@ -73,7 +75,7 @@ vec3 material_emission(vec3 emission)
 
 // The glTF BRDF's parameters at this texel: base colour (factor x texture),
 // metallic (B) and roughness (G) of the metallicRoughnessTexture x the
-// factors (linear texels), the IOR; no KHR_materials_specular yet.
+// factors (linear texels), the IOR and KHR_materials_specular's factors.
 BrdfMaterial material_brdf(vec3 color)
 {
     BrdfMaterial m;
@@ -82,8 +84,8 @@ BrdfMaterial material_brdf(vec3 color)
     m.metallic = clamp(u_metallic * mr.b, 0.0, 1.0);
     m.roughness = clamp(u_pbr_roughness * mr.g, 0.0, 1.0);
     m.ior = u_pbr_ior;
-    m.specular = 1.0;
-    m.specular_color = vec3(1.0);
+    m.specular = u_specular;
+    m.specular_color = u_specular_color;
     return m;
 }
 

@@ -26,16 +26,22 @@ static void print_file_materials(const struct scene *scene)
         if (!header)
             printf("materials from files (object number as in the warnings: mesh, the file's material, drawn as):\n");
         header = true;
-        char drawn[160];
+        char drawn[224];
         if ((m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->roughness > 0.0f)
             snprintf(drawn, sizeof drawn, "%s, ior %g, roughness %.2g", material_kind_name(m->kind), m->ior,
                      m->roughness);
         else if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
             snprintf(drawn, sizeof drawn, "%s, ior %g", material_kind_name(m->kind), m->ior);
-        else if (m->pbr)
-            snprintf(drawn, sizeof drawn, "glTF BRDF, metallic %.2g, roughness %.2g%s%s", m->metallic, m->roughness,
-                     m->metallic_roughness.texture ? " (x metallicRoughnessTexture)" : "",
-                     m->occlusion.texture ? ", occlusion" : "");
+        else if (m->pbr) {
+            char specular[64] = "";
+            if (m->specular != 1.0f || m->specular_color.x != 1.0f || m->specular_color.y != 1.0f ||
+                m->specular_color.z != 1.0f)
+                snprintf(specular, sizeof specular, ", specular %.2g x (%.2g %.2g %.2g)", m->specular,
+                         m->specular_color.x, m->specular_color.y, m->specular_color.z);
+            snprintf(drawn, sizeof drawn, "glTF BRDF, metallic %.2g, roughness %.2g%s, ior %g%s%s", m->metallic,
+                     m->roughness, m->metallic_roughness.texture ? " (x metallicRoughnessTexture)" : "", m->ior,
+                     specular, m->occlusion.texture ? ", occlusion" : "");
+        }
         else
             snprintf(drawn, sizeof drawn, "%s", material_kind_name(m->kind));
         const char *name = o->mesh->material_name;

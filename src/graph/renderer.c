@@ -203,7 +203,7 @@ enum { MATERIAL_SLOTS = 5 }; /* base colour, normal, emissive, metallic-roughnes
 struct material_locations {
     GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend;
     GLint transmission_set, transmission_transform[2];
-    GLint pbr, metallic, roughness, ior, occlusion_strength;
+    GLint pbr, metallic, roughness, ior, occlusion_strength, specular, specular_color;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -230,6 +230,8 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->roughness = gl_program_uniform(program, "u_pbr_roughness");
     loc->ior = gl_program_uniform(program, "u_pbr_ior");
     loc->occlusion_strength = gl_program_uniform(program, "u_occlusion_strength");
+    loc->specular = gl_program_uniform(program, "u_specular");
+    loc->specular_color = gl_program_uniform(program, "u_specular_color");
 }
 
 /* The glTF BRDF's ambient table (core/brdf.h), read texel by texel by
@@ -281,6 +283,9 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->roughness, o->material.roughness);
     gl.ProgramUniform1f(program->id, loc->ior, o->material.ior);
     gl.ProgramUniform1f(program->id, loc->occlusion_strength, o->material.occlusion_strength);
+    gl.ProgramUniform1f(program->id, loc->specular, o->material.specular);
+    gl.ProgramUniform3f(program->id, loc->specular_color, o->material.specular_color.x, o->material.specular_color.y,
+                        o->material.specular_color.z);
     if (pbr)
         gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
     /* cut-outs, like textures, on diffuse surfaces only */

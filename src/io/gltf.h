@@ -53,6 +53,8 @@ struct gltf_material {
     struct gltf_texture metallic_roughness_texture; /* G: roughness, B: metallic */
     struct gltf_texture occlusion_texture;          /* R: ambient occlusion, scaled by occlusion_strength */
     float occlusion_strength;                       /* occlusionTexture.strength, [0, 1] */
+    float specular;                                 /* KHR_materials_specular specularFactor, [0, 1]; 1 without */
+    float specular_color[3];                        /* its specularColorFactor, [0, 1e3]; 1 without */
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */

@@ -354,6 +354,7 @@ void note_unread(gltf_material &m, const std::string &what)
 bool extension_read(const std::string &name)
 {
     return name == "KHR_materials_transmission" || name == "KHR_materials_ior" || name == "KHR_materials_volume" ||
+           name == "KHR_materials_specular" ||
            name == "KHR_materials_emissive_strength";
 }
 
@@ -388,6 +389,29 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
         read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, m.transmission_texture,
                      "material '" + mat.name + "'");
+    }
+    m.specular = 1.0f;
+    for (int c = 0; c < 3; c++)
+        m.specular_color[c] = 1.0f;
+    ext = mat.extensions.find("KHR_materials_specular");
+    if (ext != mat.extensions.end()) {
+        if (ext->second.Has("specularFactor"))
+            m.specular = (float)ext->second.Get("specularFactor").GetNumberAsDouble();
+        if (ext->second.Has("specularColorFactor")) {
+            const tinygltf::Value &c = ext->second.Get("specularColorFactor");
+            for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
+                m.specular_color[i] = (float)c.Get(i).GetNumberAsDouble();
+        }
+        if (ext->second.Has("specularTexture"))
+            note_unread(m, "specularTexture");
+        if (ext->second.Has("specularColorTexture"))
+            note_unread(m, "specularColorTexture");
+        std::string where = "material '" + mat.name + "'";
+        if (!std::isfinite(m.specular) || m.specular < 0.0f || m.specular > 1.0f)
+            throw Fail{where + ": KHR_materials_specular specularFactor must be in [0, 1]"};
+        for (int c = 0; c < 3; c++)
+            if (!std::isfinite(m.specular_color[c]) || m.specular_color[c] < 0.0f || m.specular_color[c] > 1e3f)
+                throw Fail{where + ": KHR_materials_specular specularColorFactor must be in [0, 1000]"};
     }
     ext = mat.extensions.find("KHR_materials_ior");
     if (ext != mat.extensions.end() && ext->second.Has("ior"))
@@ -427,11 +451,11 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
                      m.emissive_texture, where);
         const tinygltf::TextureInfo &mr = mat.pbrMetallicRoughness.metallicRoughnessTexture;
         read_texture(model, mr.index, mr.texCoord, mr.extensions, m.metallic_roughness_texture, where);
-        read_texture(model, mat.occlusionTexture.index, mat.occlusionTexture.texCoord, mat.occlusionTexture.extensions,
-                     m.occlusion_texture, where);
         m.occlusion_strength = (float)mat.occlusionTexture.strength;
         if (!std::isfinite(m.occlusion_strength) || m.occlusion_strength < 0.0f || m.occlusion_strength > 1.0f)
             throw Fail{where + ": occlusionTexture.strength must be in [0, 1]"};
+        read_texture(model, mat.occlusionTexture.index, mat.occlusionTexture.texCoord, mat.occlusionTexture.extensions,
+                     m.occlusion_texture, where);
     }
     // The rules c.material.glass applies (finite, IOR > 0, colours in
     // [0, 1]): a file must not slip past them into NaN or negative absorption.

@@ -104,6 +104,10 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
                                       fmin(fmax(m->metallic * mr.z, 0.0), 1.0),
                                       fmin(fmax(m->roughness * mr.y, 0.0), 1.0));
     out->brdf.ior = m->ior;
+    out->brdf.specular = m->specular;
+    out->brdf.specular_color[0] = m->specular_color.x;
+    out->brdf.specular_color[1] = m->specular_color.y;
+    out->brdf.specular_color[2] = m->specular_color.z;
     if (slot_active(o, &m->occlusion)) {
         hit_uv(o, h, m->occlusion.texcoord, uv);
         out->occlusion = 1.0 + m->occlusion_strength * (texture_sample(&m->occlusion, uv, false).x - 1.0);

@@ -47,6 +47,8 @@ void material_init(struct material *m, enum material_kind kind)
     m->alpha = 1.0f;
     m->transmission = 1.0f;
     m->tint = vec3_make(1, 1, 1);
+    m->specular = 1.0f;
+    m->specular_color = vec3_make(1, 1, 1);
     texture_ref_init(&m->base_color);
     texture_ref_init(&m->normal);
     texture_ref_init(&m->emissive);

@@ -103,6 +103,8 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
         m->metallic = g->metallic;
         m->roughness = g->roughness;
         m->occlusion_strength = g->occlusion_strength;
+        m->specular = g->specular;
+        m->specular_color = vec3_make(g->specular_color[0], g->specular_color[1], g->specular_color[2]);
         m->emission = vec3_make(g->emission[0], g->emission[1], g->emission[2]);
         if (metal && g->transmission > 0.0f)
             ignored_add(m, "transmission %.2g (a metal does not transmit; metallicFactor is 1 unless the file "

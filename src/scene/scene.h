@@ -81,6 +81,8 @@ struct material {
      * strength `occlusion_strength`. Unset (a script's diffuse): Lambert. */
     bool pbr;
     float metallic;
+    float specular;      /* KHR_materials_specular: the dielectric's specular weight (1 without) ... */
+    vec3 specular_color; /* ... and colour (F0 x this, at most 1) */
     struct texture_ref metallic_roughness, occlusion;
     float occlusion_strength;
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes brdf_quads.gltf (run from tests/data; standard library only): five
+"""Writes brdf_quads.gltf (run from tests/data; standard library only): six
 1 x 1 quads in the xz plane (y = 0, facing +y), centred at x = 0, 1.5, 3,
-4.5 and 6, z = 0, one primitive and one material each, for glTF's
+4.5, 6 and 7.5, z = 0, one primitive and one material each, for glTF's
 metallic-roughness BRDF (issue 50; tests/lua/brdf_test.lua):
   0: metallic 1, roughness 0.4, base colour (0.9, 0.6, 0.3)
   1: metallic 1, roughness 0.7, the same colour
@@ -11,7 +11,10 @@ metallic-roughness BRDF (issue 50; tests/lua/brdf_test.lua):
      2 x 1 metallicRoughnessTexture sampled nearest: the half at x < 6 has
      G = 77 (roughness 0.302) and B = 255 (metal), the half at x > 6 G = 204
      (0.8) and B = 0 (a dielectric); and a 2 x 1 occlusionTexture (R = 255 on
-     the left, 64 on the right) of strength 0.5."""
+     the left, 64 on the right) of strength 0.5
+  5: metallic 0, roughness 0.4, base colour (0.2, 0.5, 0.8), KHR_materials_ior
+     1.7 and KHR_materials_specular: specularFactor 0.5, specularColorFactor
+     (2, 0.5, 1)."""
 import base64, json, struct, zlib
 
 def png_rgb(w, h, rows):
@@ -23,7 +26,7 @@ def png_rgb(w, h, rows):
 
 mr_png = png_rgb(2, 1, [[0, 77, 255, 0, 204, 0]])
 occ_png = png_rgb(2, 1, [[255, 255, 255, 64, 64, 64]])
-centres = [0.0, 1.5, 3.0, 4.5, 6.0]
+centres = [0.0, 1.5, 3.0, 4.5, 6.0, 7.5]
 pos, nrm, uv, idx = [], [], [], []
 for k, cx in enumerate(centres):
     for (x, z, u, v) in [(-0.5, -0.5, 0, 0), (0.5, -0.5, 1, 0), (0.5, 0.5, 1, 1), (-0.5, 0.5, 0, 1)]:
@@ -74,7 +77,12 @@ gltf = {
     "meshes": [{"primitives": primitives}],
     "materials": [material("metal 0.4", orange, 1.0, 0.4), material("metal 0.7", orange, 1.0, 0.7),
                   material("dielectric 0.3", blue, 0.0, 0.3), material("dielectric 0.8", blue, 0.0, 0.8),
-                  material("textured", orange, 1.0, 1.0, True)],
+                  material("textured", orange, 1.0, 1.0, True),
+                  dict(material("specular", blue, 0.0, 0.4),
+                       extensions={"KHR_materials_ior": {"ior": 1.7},
+                                   "KHR_materials_specular": {"specularFactor": 0.5,
+                                                              "specularColorFactor": [2.0, 0.5, 1.0]}})],
+    "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular"],
     "samplers": [{"magFilter": 9728, "minFilter": 9728}],
     "images": [{"bufferView": len(views) - 2, "mimeType": "image/png"},
                {"bufferView": len(views) - 1, "mimeType": "image/png"}],

@@ -13,8 +13,11 @@ local function norm(a)
 end
 local function dot(a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
 
--- f(v, l) per channel for base colour c, metallic, roughness, IOR 1.5
-local function brdf(n, v, l, c, metallic, roughness)
+-- f(v, l) per channel for base colour c, metallic, roughness, and (for a
+-- dielectric) KHR_materials_ior and KHR_materials_specular's fresnel_mix:
+-- s = {ior, weight, {colour}}, IOR 1.5 and weight 1 by default
+local function brdf(n, v, l, c, metallic, roughness, s)
+  s = s or { 1.5, 1, { 1, 1, 1 } }
   local nl, nv = dot(n, l), dot(n, v)
   if nl <= 0 or nv <= 0 then return { 0, 0, 0 } end
   local h = norm { v[1] + l[1], v[2] + l[2], v[3] + l[3] }
@@ -24,11 +27,16 @@ local function brdf(n, v, l, c, metallic, roughness)
   local d = a2 / (math.pi * (nh * nh * (a2 - 1) + 1) ^ 2)
   local vis = 0.5 / (nl * math.sqrt(nv * nv * (1 - a2) + a2) + nv * math.sqrt(nl * nl * (1 - a2) + a2))
   local w = (1 - vh) ^ 5
-  local f0 = 0.04
-  local fd = f0 + (1 - f0) * w
+  local r0 = ((s[1] - 1) / (s[1] + 1)) ^ 2
+  local fd, fmax = {}, 0
+  for k = 1, 3 do
+    local f0 = math.min(r0 * s[3][k], 1)
+    fd[k] = f0 + (1 - f0) * w
+    fmax = math.max(fmax, fd[k])
+  end
   local out = {}
   for k = 1, 3 do
-    local dielectric = (1 - fd) * c[k] / math.pi + fd * d * vis
+    local dielectric = (1 - s[2] * fmax) * c[k] / math.pi + s[2] * fd[k] * d * vis
     local metal = (c[k] + (1 - c[k]) * w) * d * vis
     out[k] = dielectric + metallic * (metal - dielectric)
   end
@@ -37,7 +45,7 @@ end
 
 -- integral of f cos over the hemisphere (the sky's response), by a midpoint
 -- rule in (cos theta, phi): independent of the renderers' table
-local function albedo(n, v, c, metallic, roughness)
+local function albedo(n, v, c, metallic, roughness, s)
   local sum, m = { 0, 0, 0 }, 200
   for i = 0, m - 1 do
     local ct = (i + 0.5) / m
@@ -45,7 +53,7 @@ local function albedo(n, v, c, metallic, roughness)
     for j = 0, 2 * m - 1 do
       local phi = (j + 0.5) / (2 * m) * 2 * math.pi
       local l = { st * math.cos(phi), ct, st * math.sin(phi) } -- about n = +y
-      local f = brdf(n, v, l, c, metallic, roughness)
+      local f = brdf(n, v, l, c, metallic, roughness, s)
       for k = 1, 3 do sum[k] = sum[k] + f[k] * ct end
     end
   end
@@ -57,14 +65,16 @@ local SCENE = "tests/scenes/brdf_quads.lua"
 local n, v, l = { 0, 1, 0 }, norm { 0, 2, 1 }, norm { 1, 5, -2 }
 local E = 2 -- the sun's irradiance on a surface facing it
 local orange, blue = { 0.9, 0.6, 0.3 }, { 0.2, 0.5, 0.8 }
--- (pixel column at row 40, base colour, metallic, roughness, occlusion)
+-- (pixel column at row 40, base colour, metallic, roughness, occlusion,
+-- what it is, KHR_materials_ior and _specular)
 local quads = {
   { 20, orange, 1, 0.4, 1, "metal, roughness 0.4" },
-  { 50, orange, 1, 0.7, 1, "metal, roughness 0.7" },
-  { 80, blue, 0, 0.3, 1, "dielectric, roughness 0.3" },
-  { 110, blue, 0, 0.8, 1, "dielectric, roughness 0.8" },
-  { 135, orange, 1, 77 / 255, 1, "metallicRoughnessTexture: its metal half" },
-  { 145, orange, 0, 204 / 255, 1 + 0.5 * (64 / 255 - 1), "metallicRoughnessTexture: its dielectric half" },
+  { 44, orange, 1, 0.7, 1, "metal, roughness 0.7" },
+  { 68, blue, 0, 0.3, 1, "dielectric, roughness 0.3" },
+  { 92, blue, 0, 0.8, 1, "dielectric, roughness 0.8" },
+  { 112, orange, 1, 77 / 255, 1, "metallicRoughnessTexture: its metal half" },
+  { 120, orange, 0, 204 / 255, 1 + 0.5 * (64 / 255 - 1), "metallicRoughnessTexture: its dielectric half" },
+  { 140, blue, 0, 0.4, 1, "KHR_materials_specular (0.5, coloured) and ior 1.7", { 1.7, 0.5, { 2, 0.5, 1 } } },
 }
 
 -- pixel(x, y): the image's r, g, b there (or a difference of two images')
@@ -72,10 +82,10 @@ local function check(pixel, who, sky, tol)
   for _, q in ipairs(quads) do
     local want = { 0, 0, 0 }
     if sky == 0 then
-      local f = brdf(n, v, l, q[2], q[3], q[4])
+      local f = brdf(n, v, l, q[2], q[3], q[4], q[7])
       for k = 1, 3 do want[k] = f[k] * E * dot(n, l) end
     else
-      local a = albedo(n, v, q[2], q[3], q[4])
+      local a = albedo(n, v, q[2], q[3], q[4], q[7])
       for k = 1, 3 do want[k] = sky * a[k] * q[5] end
     end
     local got = { pixel(q[1], 40) }

@@ -184,6 +184,22 @@ int main(void)
                             "\"KHR_materials_ior\": {\"ior\": -2}}"),
                    NULL, "ior");
 
+    /* glTF's BRDF's inputs (issue 50): a specular weight outside [0, 1], a
+     * specular colour that is negative or huge, an occlusion strength
+     * outside [0, 1] would reach both renderers as NaN or energy from nowhere. */
+    expect_refused("specular_factor", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_specular\": {\"specularFactor\": 1.5}}"), NULL,
+                   "specularFactor must be in [0, 1]");
+    expect_refused("specular_color", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_specular\": {\"specularColorFactor\": [1, -1, 1]}}"),
+                   NULL, "specularColorFactor must be in [0, 1000]");
+    expect_refused("specular_nan", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_specular\": {\"specularColorFactor\": [1, 1e39, 1]}}"),
+                   NULL, "specularColorFactor");
+    expect_refused("occlusion_strength", NULL, NULL, NULL,
+                   MATERIAL("\"occlusionTexture\": {\"index\": 0, \"strength\": 2}"), NULL,
+                   "occlusionTexture");
+
     /* A node scale of 1e300 makes finite file values Inf after the transform. */
     expect_refused("huge_scale", "[{\"mesh\": 0, \"scale\": [1e300, 1e300, 1e300]}]", NULL, NULL, NULL, NULL,
                    "not finite after its node transform");
