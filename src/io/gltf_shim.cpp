@@ -293,6 +293,11 @@ void read_texture(const tinygltf::Model &model, int index, int texcoord, const t
         data = buf.data() + view.byteOffset;
         size = view.byteLength;
     }
+    if (size == 0 && !img.uri.empty() && img.uri.compare(0, 5, "data:") != 0)
+        // tinygltf went on without a file it could not read: name it
+        throw Fail{material + ": image " + std::to_string(tex.source) + " '" + img.uri +
+                   "': cannot read it (no such file beside the glTF file, or not readable); the file names it "
+                   "relative to its own folder"};
     if (size == 0)
         throw Fail{material + ": image " + std::to_string(tex.source) + " has no data"};
     t.size = size;

@@ -200,6 +200,13 @@ int main(void)
                    MATERIAL("\"occlusionTexture\": {\"index\": 0, \"strength\": 2}"), NULL,
                    "occlusionTexture");
 
+    /* A texture whose image file is missing: the error names the file
+     * (it said "image 0 has no data"). */
+    expect_refused("missing_image", NULL, NULL, NULL,
+                   MATERIAL("\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}], "
+                            "\"textures\": [{\"source\": 0}], \"images\": [{\"uri\": \"gone.png\""),
+                   NULL, "image 0 'gone.png': cannot read it");
+
     /* A node scale of 1e300 makes finite file values Inf after the transform. */
     expect_refused("huge_scale", "[{\"mesh\": 0, \"scale\": [1e300, 1e300, 1e300]}]", NULL, NULL, NULL, NULL,
                    "not finite after its node transform");
