@@ -13,8 +13,8 @@ uniform sampler2D u_metallic_roughness_texture;
 uniform sampler2D u_occlusion_texture;
 uniform int u_texture_set[5];         // per slot (base, normal, emissive, metallic-roughness, occlusion): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
 uniform vec3 u_texture_transform[10]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
-// glTF's metallic-roughness model (struct material's pbr): 0: Lambert
-uniform int u_pbr;
+// glTF's metallic-roughness model (struct material's pbr; the programs'
+// GLTF_BRDF variant draws those materials)
 uniform float u_metallic;
 uniform float u_pbr_roughness;
 uniform float u_pbr_ior;

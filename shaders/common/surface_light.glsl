@@ -72,13 +72,17 @@ vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion,
 }
 
 // The surface of the object being drawn (common/material.glsl's uniforms
-// and textures): glTF's BRDF for a material with pbr, Lambert otherwise;
-// v (unit, towards the viewer) matters only to the BRDF.
+// and textures): glTF's BRDF in the program's GLTF_BRDF variant, which
+// draws the materials with pbr (renderer_draw_lit), Lambert otherwise; v
+// (unit, towards the viewer) matters only to the BRDF. A variant, not a
+// branch on a uniform: llvmpipe runs both sides of a branch.
 vec3 surface_light_material(vec3 p, vec3 n, vec3 v, vec3 color, vec3 emission, vec3 caustic)
 {
-    if (u_pbr == 1)
-        return surface_light_gltf(p, n, v, material_brdf(color), material_occlusion(), material_emission(emission),
-                                  caustic);
+#ifdef GLTF_BRDF
+    return surface_light_gltf(p, n, v, material_brdf(color), material_occlusion(), material_emission(emission),
+                              caustic);
+#else
     return surface_light_diffuse(p, n, material_albedo(color), material_emission(emission), caustic);
+#endif
 }
 #endif

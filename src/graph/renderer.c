@@ -203,7 +203,7 @@ enum { MATERIAL_SLOTS = 5 }; /* base colour, normal, emissive, metallic-roughnes
 struct material_locations {
     GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend;
     GLint transmission_set, transmission_transform[2];
-    GLint pbr, metallic, roughness, ior, occlusion_strength, specular, specular_color;
+    GLint metallic, roughness, ior, occlusion_strength, specular, specular_color;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -225,7 +225,6 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
     loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
     loc->transmission_transform[1] = gl_program_uniform(program, "u_transmission_transform[1]");
-    loc->pbr = gl_program_uniform(program, "u_pbr");
     loc->metallic = gl_program_uniform(program, "u_metallic");
     loc->roughness = gl_program_uniform(program, "u_pbr_roughness");
     loc->ior = gl_program_uniform(program, "u_pbr_ior");
@@ -278,7 +277,6 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     }
     gl.ProgramUniform1f(program->id, loc->normal_scale, o->material.normal.scale);
     bool pbr = o->material.pbr && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
-    gl.ProgramUniform1i(program->id, loc->pbr, pbr ? 1 : 0);
     gl.ProgramUniform1f(program->id, loc->metallic, o->material.metallic);
     gl.ProgramUniform1f(program->id, loc->roughness, o->material.roughness);
     gl.ProgramUniform1f(program->id, loc->ior, o->material.ior);
@@ -362,6 +360,9 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         bool blended = o->material.alpha_blend && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
         if (((filter & DRAW_OPAQUE) && blended) || ((filter & DRAW_BLENDED) && !blended))
             continue;
+        bool pbr = o->material.pbr && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+        if (((filter & DRAW_LAMBERT) && pbr) || ((filter & DRAW_PBR) && !pbr))
+            continue;
         bool specular = object_is(o, OBJECT_ROLE_SPECULAR);
         if ((filter & DRAW_DIFFUSE) && specular)
             continue;
@@ -397,6 +398,24 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     }
     free(order);
     gl.BindVertexArray(0);
+}
+
+bool renderer_scene_has_pbr(const struct scene *scene)
+{
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (o->visible && o->material.pbr && material_role(&o->material) == OBJECT_ROLE_RECEIVER)
+            return true;
+    }
+    return false;
+}
+
+void renderer_draw_lit(struct renderer *r, const struct scene *scene, const struct gl_program *plain,
+                       const struct gl_program *pbr, unsigned filter)
+{
+    renderer_draw_objects(r, scene, plain, filter | (pbr ? DRAW_LAMBERT : 0));
+    if (pbr)
+        renderer_draw_objects(r, scene, pbr, filter | DRAW_PBR);
 }
 
 void renderer_draw_object(struct renderer *r, const struct scene *scene, const struct gl_program *program,

@@ -78,7 +78,21 @@ enum renderer_draw_filter {
     DRAW_SPECULAR = 4,  /* glass, water, mirror only */
     DRAW_OPAQUE = 8,    /* not the alpha-blended surfaces (material.alpha_blend) */
     DRAW_BLENDED = 16,  /* the alpha-blended surfaces only, the farthest from the eye first */
+    DRAW_LAMBERT = 32,  /* not the surfaces drawn by glTF's BRDF (material.pbr) */
+    DRAW_PBR = 64,      /* those surfaces only */
 };
+/* The define a lighting program's glTF-BRDF variant is compiled with
+ * (common/surface_light.glsl). Two programs, not a branch on a uniform:
+ * llvmpipe runs both sides of a branch, which cost the Lambert surfaces
+ * 11% of a frame when the BRDF's was one program with theirs. */
+#define RENDERER_PBR_DEFINE "#define GLTF_BRDF\n"
+/* Whether any visible diffuse surface of the scene is drawn by glTF's BRDF. */
+bool renderer_scene_has_pbr(const struct scene *scene);
+/* renderer_draw_objects for a lighting pass: the surfaces drawn by glTF's
+ * BRDF with `pbr` (its RENDERER_PBR_DEFINE variant; NULL: none in the
+ * scene), the rest with `plain`. */
+void renderer_draw_lit(struct renderer *r, const struct scene *scene, const struct gl_program *plain,
+                       const struct gl_program *pbr, unsigned filter);
 /* Draws the visible objects with `program`, setting u_model,
  * u_normal_matrix, u_material_kind, u_color, u_ior, u_absorption,
  * u_object_id. */

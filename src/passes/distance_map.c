@@ -79,17 +79,25 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
             return false;
         m->size = size;
     }
-    struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag", DISTANCE_MAP_VIEW, &prog, err))
+    /* Lambert's program and, where the scene has glTF-BRDF surfaces, its
+     * variant for them (renderer_draw_lit), set up alike */
+    struct gl_program *progs[2] = {NULL, NULL};
+    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag", DISTANCE_MAP_VIEW, &progs[0],
+                        err) ||
+        (renderer_scene_has_pbr(scene) &&
+         !gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
+                         DISTANCE_MAP_VIEW RENDERER_PBR_DEFINE, &progs[1], err)))
         return false;
-    gl.UseProgram(prog->id);
-    if (shadow_pass)
-        shadow_inputs_bind(shadow_pass, f, prog);
-    else
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
-    if (!medium_gpu_bind(r, scene, prog, err)) /* lit as shade lights (common/surface_light.glsl) */
-        return false;
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    for (int k = 0; k < 2 && progs[k]; k++) {
+        struct gl_program *prog = progs[k];
+        if (shadow_pass)
+            shadow_inputs_bind(shadow_pass, f, prog);
+        else
+            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
+        if (!medium_gpu_bind(r, scene, prog, err)) /* lit as shade lights (common/surface_light.glsl) */
+            return false;
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    }
     /* near: a hundredth of the scene's size around the centre (what is
      * nearer than that is inside the refractor); far: the whole scene */
     vec3 lo, hi;
@@ -104,9 +112,14 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
     gl.Viewport(0, 0, size, size);
     for (int i = 0; i < 12; i++) {
         int layer = i / 6, face = i % 6;
-        /* the second layer reads the first's distances (what to peel) */
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), layer);
-        gl_program_bind_texture(prog, "u_first", layer ? m->distance[0].id : r->dummy_cube.id);
+        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
+        for (int k = 0; k < 2 && progs[k]; k++) {
+            struct gl_program *prog = progs[k];
+            /* the second layer reads the first's distances (what to peel) */
+            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), layer);
+            gl_program_bind_texture(prog, "u_first", layer ? m->distance[0].id : r->dummy_cube.id);
+            gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+        }
         const struct gl_texture *colors[2] = {&m->color[layer], &m->distance[layer]};
         int layers[2] = {face, face};
         if (!gl_framebuffer_attach(&m->fb, colors, layers, 2, &m->depth_buffer, -1, err))
@@ -116,9 +129,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 0, black);
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 1, none);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
-        mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
-        renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
+        renderer_draw_lit(r, scene, progs[0], progs[1], DRAW_DIFFUSE);
     }
     gl.DepthFunc(GL_LESS);
     if (!gl_check("building the distance map", err))

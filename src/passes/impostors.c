@@ -120,13 +120,20 @@ bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_f
     }
     gl.NamedBufferSubData(set->ubo, 0, sizeof gpu, gpu);
 
-    struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, &prog,
-                        err))
+    /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit's
+     * pair), each object drawn by the one for its material */
+    struct gl_program *progs[2] = {NULL, NULL};
+    if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, &progs[0],
+                        err) ||
+        (renderer_scene_has_pbr(scene) &&
+         !gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag",
+                         IMPOSTOR_VIEW RENDERER_PBR_DEFINE, &progs[1], err)))
         return false;
-    shadow_inputs_bind(owner, f, prog);
-    if (!medium_gpu_bind(r, scene, prog, err))
-        return false;
+    for (int k = 0; k < 2 && progs[k]; k++) {
+        shadow_inputs_bind(owner, f, progs[k]);
+        if (!medium_gpu_bind(r, scene, progs[k], err))
+            return false;
+    }
     gl.Enable(GL_DEPTH_TEST);
     gl.Viewport(0, 0, size, size);
     for (int k = 0; k < count; k++) {
@@ -140,6 +147,9 @@ bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_f
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 0, empty);
         gl.ClearNamedFramebufferfv(set->fb.id, GL_COLOR, 1, black);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
+        const struct material *mat = &im->object->material;
+        struct gl_program *prog =
+            progs[1] && mat->pbr && material_role(mat) == OBJECT_ROLE_RECEIVER ? progs[1] : progs[0];
         set_impostor_view(prog, im);
         renderer_draw_object(r, scene, prog, im->object);
     }

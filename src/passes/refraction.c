@@ -262,20 +262,26 @@ static bool ensure_targets(struct refraction_state *s, int w, int h, struct erro
 static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct renderer *r = f->renderer;
-    struct gl_program *prog;
+    /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit) */
+    struct gl_program *progs[2] = {NULL, NULL};
     if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
-                        "#define OBJECT_VIEW_PROJ u_face_view_proj\n", &prog, err))
-        return false;
-    gl.UseProgram(prog->id);
-    shadow_inputs_bind(p, f, prog);
-    if (!medium_gpu_bind(r, f->scene, prog, err))
+                        "#define OBJECT_VIEW_PROJ u_face_view_proj\n", &progs[0], err) ||
+        (renderer_scene_has_pbr(f->scene) &&
+         !gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
+                         "#define OBJECT_VIEW_PROJ u_face_view_proj\n" RENDERER_PBR_DEFINE, &progs[1], err)))
         return false;
     vec3 eye = f->snapshot->eye;
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
-    gl_program_bind_texture(prog, "u_first", r->dummy_cube.id);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE,
-                               f->snapshot->view_proj.m);
+    for (int k = 0; k < 2 && progs[k]; k++) {
+        struct gl_program *prog = progs[k];
+        shadow_inputs_bind(p, f, prog);
+        if (!medium_gpu_bind(r, f->scene, prog, err))
+            return false;
+        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
+        gl_program_bind_texture(prog, "u_first", r->dummy_cube.id);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE,
+                                   f->snapshot->view_proj.m);
+    }
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->behind_fb.id);
     const float black[4] = {0, 0, 0, 0};
     gl.ClearNamedFramebufferfv(s->behind_fb.id, GL_COLOR, 0, black);
@@ -286,7 +292,7 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
     gl.Disable(GL_CULL_FACE);
-    renderer_draw_objects(r, f->scene, prog, DRAW_DIFFUSE);
+    renderer_draw_lit(r, f->scene, progs[0], progs[1], DRAW_DIFFUSE);
     return gl_check("drawing the scene behind the glass", err);
 }
 

@@ -105,28 +105,33 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.DepthMask(GL_TRUE);
     gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
 
-    /* Objects. */
-    struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", NULL, &prog, err))
+    /* Objects: Lambert's program, and its glTF-BRDF variant where the
+     * scene has such surfaces (renderer_draw_lit), set up alike. */
+    struct gl_program *progs[2] = {NULL, NULL};
+    if (!gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", NULL, &progs[0], err) ||
+        (renderer_scene_has_pbr(f->scene) &&
+         !gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", RENDERER_PBR_DEFINE, &progs[1], err)))
         return false;
-    shadow_inputs_bind(p, f, prog);
-    if (!medium_gpu_bind(r, f->scene, prog, err))
-        return false;
-    int ncaustics = 0;
-    for (int i = 0; i < SHADE_MAX_CAUSTICS; i++) {
-        char slot[32];
-        snprintf(slot, sizeof slot, "caustics%d", i);
-        struct graph_resource *c = pass_frame_input(p, f, slot);
-        gl_program_bind_texture_at(prog, "u_caustics", i, c ? c->texture.id : r->dummy_2d.id);
-        if (c)
-            ncaustics = i + 1;
+    for (int k = 0; k < 2 && progs[k]; k++) {
+        struct gl_program *prog = progs[k];
+        shadow_inputs_bind(p, f, prog);
+        if (!medium_gpu_bind(r, f->scene, prog, err))
+            return false;
+        int ncaustics = 0;
+        for (int i = 0; i < SHADE_MAX_CAUSTICS; i++) {
+            char slot[32];
+            snprintf(slot, sizeof slot, "caustics%d", i);
+            struct graph_resource *c = pass_frame_input(p, f, slot);
+            gl_program_bind_texture_at(prog, "u_caustics", i, c ? c->texture.id : r->dummy_2d.id);
+            if (c)
+                ncaustics = i + 1;
+        }
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), ncaustics);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_blending"), 0);
     }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_has_caustics"), ncaustics);
     gl.Enable(GL_DEPTH_TEST);
     unsigned which = pass_flag(p, SHADE_SPECULAR) ? DRAW_ALL : DRAW_DIFFUSE;
-    GLint loc_blending = gl_program_uniform(prog, "u_blending");
-    gl.ProgramUniform1i(prog->id, loc_blending, 0);
-    renderer_draw_objects(r, f->scene, prog, which | DRAW_OPAQUE);
+    renderer_draw_lit(r, f->scene, progs[0], progs[1], which | DRAW_OPAQUE);
     /* glTF's alphaMode BLEND: over the opaque surfaces, back to front, the
      * colour blended by alpha and the depth, normal and position left to
      * what lies behind (the passes that read them see through it; the
@@ -137,9 +142,11 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.ColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.ColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_FALSE);
-    gl.ProgramUniform1i(prog->id, loc_blending, 1);
-    renderer_draw_objects(r, f->scene, prog, which | DRAW_BLENDED);
-    gl.ProgramUniform1i(prog->id, loc_blending, 0);
+    for (int k = 0; k < 2 && progs[k]; k++)
+        gl.ProgramUniform1i(progs[k]->id, gl_program_uniform(progs[k], "u_blending"), 1);
+    renderer_draw_lit(r, f->scene, progs[0], progs[1], which | DRAW_BLENDED);
+    for (int k = 0; k < 2 && progs[k]; k++)
+        gl.ProgramUniform1i(progs[k]->id, gl_program_uniform(progs[k], "u_blending"), 0);
     gl.DepthMask(GL_TRUE);
     gl.ColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.ColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
