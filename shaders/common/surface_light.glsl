@@ -13,18 +13,24 @@
 // gives u_shadow_total = 0, unshadowed) and the medium (medium_gpu_bind;
 // none gives u_medium = 0, transmittance 1).
 
-// Irradiance at p with normal n from every light: shadowed by the maps
-// bound, attenuated by the medium between p and the light.
+// Irradiance at p with normal n from light i: shadowed by the maps bound,
+// attenuated by the medium between p and the light; `to_light` receives
+// the unit direction towards it.
+vec3 surface_irradiance_from(int i, vec3 p, vec3 n, out vec3 to_light)
+{
+    float dist;
+    vec3 irr = light_irradiance(i, p, n, to_light, dist);
+    if (!(max(irr.r, max(irr.g, irr.b)) > 0.0))
+        return vec3(0.0);
+    return irr * visibility(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
+}
+
+// The same from every light.
 vec3 surface_irradiance(vec3 p, vec3 n)
 {
-    vec3 e = vec3(0.0);
-    for (int i = 0; i < u_counts.x; i++) {
-        vec3 to_light;
-        float dist;
-        vec3 irr = light_irradiance(i, p, n, to_light, dist);
-        if (max(irr.r, max(irr.g, irr.b)) > 0.0)
-            e += irr * visibility(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
-    }
+    vec3 e = vec3(0.0), to_light;
+    for (int i = 0; i < u_counts.x; i++)
+        e += surface_irradiance_from(i, p, n, to_light);
     return e;
 }
 
@@ -57,14 +63,10 @@ vec3 surface_light_diffuse(vec3 p, vec3 n, vec3 albedo, vec3 emission, vec3 caus
 // terms by core/brdf.c.
 vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion, vec3 emission, vec3 caustic)
 {
-    vec3 radiance = vec3(0.0);
+    vec3 radiance = vec3(0.0), to_light;
     for (int i = 0; i < u_counts.x; i++) {
-        vec3 to_light;
-        float dist;
-        vec3 irr = light_irradiance(i, p, n, to_light, dist);
-        if (max(irr.r, max(irr.g, irr.b)) > 0.0)
-            radiance += brdf_gltf(n, v, to_light, m) * irr * visibility(i, p, n, to_light) *
-                        medium_transmittance_ray(p, to_light, dist);
+        vec3 e = surface_irradiance_from(i, p, n, to_light);
+        radiance += brdf_gltf(n, v, to_light, m) * e;
     }
     float n_dot_v = dot(n, v);
     return radiance + u_ambient.rgb * brdf_ambient_albedo(n_dot_v, m) * occlusion +
