@@ -58,7 +58,7 @@ struct gltf_material {
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
-    char unread[256];
+    char unread[512];
 };
 
 /* A run of triangles (indices [first_index, first_index + index_count))

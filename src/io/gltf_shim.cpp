@@ -616,6 +616,17 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     // This primitive's triangles and its material (a run of primitives with
     // one material stays one range).
     int slot = material_slot(model, prim.material, b);
+    // Vertex attributes nothing draws yet (issue 50): said in the
+    // material's list of what is ignored, once each, never dropped in silence
+    if (slot >= 0) {
+        gltf_material &m = b.materials[(size_t)slot];
+        static const char *const unread[][2] = {{"COLOR_0", "COLOR_0 (vertex colours)"},
+                                                 {"TANGENT", "TANGENT (normal maps use tangents from the texture coordinates)"},
+                                                 {"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose)"}};
+        for (const auto &u : unread)
+            if (prim.attributes.count(u[0]) && !std::strstr(m.unread, u[0]))
+                note_unread(m, u[1]);
+    }
     if (!b.ranges.empty() && b.ranges.back().material == slot)
         b.ranges.back().index_count += idx.size();
     else

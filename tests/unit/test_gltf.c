@@ -1,3 +1,6 @@
+#define _DEFAULT_SOURCE /* mkstemps */
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,6 +110,42 @@ int main(void)
         CHECK(strstr(m.materials[1].unread, "KHR_materials_clearcoat") != NULL);
     }
     gltf_mesh_free(&m);
+    /* Vertex attributes nothing draws (COLOR_0, TANGENT, a skin's joints)
+     * are listed with the material of the primitive that has them (issue
+     * 50: never dropped in silence): the second primitive given COLOR_0 and
+     * TANGENT (the positions' accessor stands in for both). */
+    {
+        FILE *in = fopen(asset("tests/data/two_materials.gltf"), "rb");
+        static char text[65536];
+        size_t n = in ? fread(text, 1, sizeof text - 1, in) : 0;
+        if (in)
+            fclose(in);
+        text[n] = '\0';
+        char *second = strstr(text, "\"indices\": 2");
+        char *attrs = second ? strstr(second - 64 > text ? second - 64 : text, "\"POSITION\": 0") : NULL;
+        CHECK(attrs != NULL);
+        if (attrs) {
+            char tmp[] = "/tmp/caustica-test-gltf-XXXXXX.gltf";
+            int fd = mkstemps(tmp, 5);
+            FILE *out = fd >= 0 ? fdopen(fd, "wb") : NULL;
+            CHECK(out != NULL);
+            if (out) {
+                fwrite(text, 1, (size_t)(attrs - text), out);
+                fputs("\"COLOR_0\": 0, \"TANGENT\": 0, ", out);
+                fputs(attrs, out);
+                fclose(out);
+            }
+            /* (its buffer is a data URI: the copy loads from anywhere) */
+            CHECK(gltf_load(tmp, &m, &err));
+            if (m.material_count == 2) {
+                CHECK(strstr(m.materials[1].unread, "COLOR_0 (vertex colours)") != NULL);
+                CHECK(strstr(m.materials[1].unread, "TANGENT") != NULL);
+                CHECK(strstr(m.materials[0].unread, "COLOR_0") == NULL);
+            }
+            gltf_mesh_free(&m);
+            remove(tmp);
+        }
+    }
     struct mesh *two = mesh_load_gltf(asset("tests/data/two_materials.gltf"), 0, &err);
     CHECK(two && two->part_count == 2);
     if (two && two->part_count == 2) {
