@@ -132,3 +132,24 @@ t.case("Khronos MetalRoughSpheresNoTextures: shade and refraction within 0.15 of
   local e = c.image.compare(gpu, ref).rel_rmse
   t.expect(e < 0.15, string.format("rel_rmse %.4f", e))
 end)
+
+t.case("Khronos EmissiveStrengthTest: strengths 1 to 16, both renderers alike", function()
+  -- the brightest cube is the 16x one: 16 x 0.9 in blue (plus its lighting,
+  -- below 0.2); without the extension every cube would be 0.9
+  local c = require "caustica"
+  local scene = "tests/scenes/emissive_strength.lua"
+  local gpu = t.render(scene)
+  local ref = t.reference(scene, { photons = 0, spp = 8 })
+  for name, img in pairs { shade = gpu, reference = ref } do
+    local most = 0
+    for y = 0, 95 do
+      for x = 0, 159 do
+        local _, _, b = img:pixel(x, y)
+        most = math.max(most, b)
+      end
+    end
+    t.expect(most > 14.4 and most < 14.6, string.format("%s: the brightest blue %.3f (16 x 0.9 = 14.4)", name, most))
+  end
+  local e = c.image.compare(gpu, ref).rel_rmse
+  t.expect(e < 0.15, string.format("rel_rmse %.4f", e))
+end)
