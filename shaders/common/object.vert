@@ -9,6 +9,8 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_texcoord0;
 layout(location = 3) in vec2 a_texcoord1;
+layout(location = 4) in vec4 a_color; // glTF's COLOR_0
+uniform int u_vertex_colors;          // 0: the mesh has none (white)
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 #ifdef OBJECT_VIEW_PROJ
@@ -18,8 +20,10 @@ out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_texcoord0;
 out vec2 v_texcoord1;
+out vec4 v_color;
 void main()
 {
+    v_color = u_vertex_colors == 1 ? a_color : vec4(1.0);
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;
     v_normal = mat3(u_normal_matrix) * a_normal;

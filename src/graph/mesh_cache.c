@@ -19,6 +19,7 @@ static void release_mesh(struct gpu_mesh *g)
     gl_buffer_destroy(&g->thickness);
     gl_buffer_destroy(&g->texcoords[0]);
     gl_buffer_destroy(&g->texcoords[1]);
+    gl_buffer_destroy(&g->colors);
 }
 
 static void release_object(struct gpu_object *g)
@@ -75,6 +76,8 @@ struct gpu_mesh *mesh_cache_mesh(struct mesh_cache *c, const struct mesh *m, str
     for (int set = 0; set < 2 && ok; set++)
         if (m->texcoords[set])
             ok = gl_buffer_create(&g->texcoords[set], m->texcoords[set], m->vertex_count * 2 * sizeof(float), 0, err);
+    if (ok && m->colors)
+        ok = gl_buffer_create(&g->colors, m->colors, m->vertex_count * 4 * sizeof(float), 0, err);
     if (ok && m->target_count > 0)
         ok = gl_buffer_create(&g->target_positions, m->target_positions, vbytes * (size_t)m->target_count, 0, err) &&
              gl_buffer_create(&g->target_normals, m->target_normals, vbytes * (size_t)m->target_count, 0, err);
@@ -199,6 +202,14 @@ bool mesh_cache_bind(struct mesh_cache *c, const struct object *o, struct error 
             gl.VertexArrayAttribFormat(g->vao, 2 + set, 2, GL_FLOAT, GL_FALSE, 0);
             gl.VertexArrayAttribBinding(g->vao, 2 + set, 2 + set);
             gl.VertexArrayVertexBuffer(g->vao, 2 + set, m->texcoords[set], 0, 2 * sizeof(float));
+        }
+        /* COLOR_0 (location 4): a mesh without it leaves it disabled, and
+         * u_vertex_colors tells the shader to read white */
+        if (m->colors) {
+            gl.EnableVertexArrayAttrib(g->vao, 4);
+            gl.VertexArrayAttribFormat(g->vao, 4, 4, GL_FLOAT, GL_FALSE, 0);
+            gl.VertexArrayAttribBinding(g->vao, 4, 4);
+            gl.VertexArrayVertexBuffer(g->vao, 4, m->colors, 0, 4 * sizeof(float));
         }
     }
     if (g->vao_positions != pos) {

@@ -332,6 +332,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_emission = gl_program_uniform(program, "u_emission");
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
     GLint loc_id = gl_program_uniform(program, "u_object_id");
+    GLint loc_vertex_colors = gl_program_uniform(program, "u_vertex_colors");
     gl.UseProgram(program->id);
     /* DRAW_BLENDED: the blended surfaces back to front, by the distance
      * from the eye to each object's box centre (per object, not per
@@ -388,6 +389,9 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform3f(program->id, loc_abs, o->material.absorption.x, o->material.absorption.y,
                             o->material.absorption.z);
         gl.ProgramUniform1i(program->id, loc_id, o->id);
+        /* COLOR_0 on the surfaces whose base colour it multiplies (diffuse, as textures) */
+        gl.ProgramUniform1i(program->id, loc_vertex_colors,
+                            o->mesh->colors && material_role(&o->material) == OBJECT_ROLE_RECEIVER);
         bind_material_textures(r, program, &material_loc, o);
         struct error err;
         if (!mesh_cache_bind(&r->meshes, o, &err))

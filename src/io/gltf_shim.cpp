@@ -244,6 +244,8 @@ struct Builder {
     std::vector<float> positions, normals;
     std::vector<float> texcoords[2]; // zeros for primitives without the set
     bool has_texcoords[2] = {false, false};
+    std::vector<float> colors; // COLOR_0 as RGBA, white for primitives without it
+    bool has_colors = false;
     std::vector<uint32_t> indices;
     int target_count = 0;
     std::vector<std::vector<float>> tpos, tnrm; // per target, grows with positions
@@ -620,8 +622,7 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     // material's list of what is ignored, once each, never dropped in silence
     if (slot >= 0) {
         gltf_material &m = b.materials[(size_t)slot];
-        static const char *const unread[][2] = {{"COLOR_0", "COLOR_0 (vertex colours)"},
-                                                 {"TANGENT", "TANGENT (normal maps use tangents from the texture coordinates)"},
+        static const char *const unread[][2] = {{"TANGENT", "TANGENT (normal maps use tangents from the texture coordinates)"},
                                                  {"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose)"}};
         for (const auto &u : unread)
             if (prim.attributes.count(u[0]) && !std::strstr(m.unread, u[0]))
@@ -647,6 +648,33 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
         for (double v : uv)
             tc.push_back(std::isfinite(v) && std::fabs(v) < 1e6 ? (float)v : 0.0f);
         b.has_texcoords[set] = true;
+    }
+
+    // COLOR_0 (glTF 2.0 §3.7.2.1): VEC3 or VEC4, float or normalized
+    // unsigned byte/short, linear; it multiplies the base colour (and its
+    // alpha the material's). White for a primitive without it.
+    {
+        b.colors.resize(base * 4, 1.0f);
+        auto it = prim.attributes.find("COLOR_0");
+        if (it == prim.attributes.end()) {
+            b.colors.resize((base + nv) * 4, 1.0f);
+        } else {
+            if (it->second < 0 || it->second >= (int)model.accessors.size())
+                throw Fail{"COLOR_0: accessor index out of range"};
+            int ncomp = type_components(model.accessors[(size_t)it->second].type);
+            if (ncomp != 3 && ncomp != 4)
+                throw Fail{"COLOR_0 of mesh '" + mesh.name + "' must be VEC3 or VEC4"};
+            std::vector<double> c = read_accessor(model, it->second, ncomp, "COLOR_0");
+            if (c.size() != nv * (size_t)ncomp)
+                throw Fail{"COLOR_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
+            for (size_t i = 0; i < nv; i++)
+                for (int k = 0; k < 4; k++) {
+                    double v = k < ncomp ? c[i * (size_t)ncomp + (size_t)k] : 1.0;
+                    // a colour multiplies: in [0, 1] (a float one outside it is clamped)
+                    b.colors.push_back(std::isfinite(v) ? (float)std::fmin(std::fmax(v, 0.0), 1.0) : 1.0f);
+                }
+            b.has_colors = true;
+        }
     }
 
     // Morph targets: per target index across primitives (weights are per mesh).
@@ -976,6 +1004,10 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
                 b.texcoords[set].resize(b.positions.size() / 3 * 2, 0.0f);
                 out->texcoords[set] = copy_out(b.texcoords[set]);
             }
+        if (b.has_colors) {
+            b.colors.resize(b.positions.size() / 3 * 4, 1.0f);
+            out->colors = copy_out(b.colors);
+        }
         out->material_count = (int)b.materials.size();
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
@@ -1016,6 +1048,7 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
     std::free(mesh->indices);
     std::free(mesh->texcoords[0]);
     std::free(mesh->texcoords[1]);
+    std::free(mesh->colors);
     for (int i = 0; mesh->materials && i < mesh->material_count; i++) {
         std::free(mesh->materials[i].base_color_texture.bytes);
         std::free(mesh->materials[i].normal_texture.bytes);

@@ -80,6 +80,9 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->occlusion = 1.0;
     if (m->kind != MATERIAL_DIFFUSE)
         return;
+    double rgba[4];
+    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba);
+    out->albedo = dv_mul(out->albedo, dv(rgba[0], rgba[1], rgba[2]));
     float uv[2];
     if (slot_active(o, &m->base_color)) {
         hit_uv(o, h, m->base_color.texcoord, uv);

@@ -41,12 +41,27 @@ void ref_object_uv(const struct ref_object *o, unsigned primitive, double u, dou
                         v * t[tri[2] * 2 + (uint32_t)k]);
 }
 
+void ref_object_color(const struct ref_object *o, unsigned primitive, double u, double v, double rgba[4])
+{
+    if (!o->colors) {
+        rgba[0] = rgba[1] = rgba[2] = rgba[3] = 1.0;
+        return;
+    }
+    const uint32_t *tri = o->indices + (size_t)primitive * 3;
+    double w = 1.0 - u - v;
+    for (int k = 0; k < 4; k++)
+        rgba[k] = w * o->colors[tri[0] * 4 + (uint32_t)k] + u * o->colors[tri[1] * 4 + (uint32_t)k] +
+                  v * o->colors[tri[2] * 4 + (uint32_t)k];
+}
+
 bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
 {
     const struct material *m = &o->material;
     if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || material_role(m) != OBJECT_ROLE_RECEIVER)
         return false;
-    float a = m->alpha;
+    double rgba[4];
+    ref_object_color(o, primitive, u, v, rgba);
+    float a = m->alpha * (float)rgba[3];
     if (m->base_color.texture && o->texcoords[m->base_color.texcoord]) {
         float uv[2];
         ref_object_uv(o, primitive, u, v, m->base_color.texcoord, uv);
@@ -151,6 +166,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         ro->indices = o->mesh->indices;
         ro->texcoords[0] = o->mesh->texcoords[0];
         ro->texcoords[1] = o->mesh->texcoords[1];
+        ro->colors = o->mesh->colors;
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;

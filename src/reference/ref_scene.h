@@ -57,12 +57,16 @@ struct ref_object {
     float *normals;   /* world space, owned */
     uint32_t *indices; /* borrowed from the mesh */
     const float *texcoords[2]; /* borrowed from the mesh (NULL where it has no such set) */
+    const float *colors;       /* glTF's COLOR_0, borrowed from the mesh (NULL: white) */
     size_t vertex_count, triangle_count;
     struct material material;
 };
 
 /* Texture coordinates `set` at barycentrics (u, v) of triangle `primitive`. */
 void ref_object_uv(const struct ref_object *o, unsigned primitive, double u, double v, int set, float uv[2]);
+/* COLOR_0 there, RGBA (white where the mesh has none), as the GPU
+ * interpolates it (common/object.vert). */
+void ref_object_color(const struct ref_object *o, unsigned primitive, double u, double v, double rgba[4]);
 /* Is (u, v) of the triangle cut out (alphaMode MASK: the base colour's
  * alpha below the material's cutoff; BLEND: xi, uniform in [0, 1) per ray,
  * at or above that alpha)? Embree's filter asks, so that rays and shadow

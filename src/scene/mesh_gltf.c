@@ -255,6 +255,8 @@ static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct
     m->texcoords[0] = g->texcoords[0];
     m->texcoords[1] = g->texcoords[1];
     g->texcoords[0] = g->texcoords[1] = NULL;
+    m->colors = g->colors;
+    g->colors = NULL;
     m->target_count = g->target_count;
     m->target_positions = g->target_positions;
     m->target_normals = g->target_normals;

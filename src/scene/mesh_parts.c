@@ -56,6 +56,13 @@ struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const 
             if (remap[v])
                 memcpy(m->texcoords[set] + (remap[v] - 1) * 2, whole->texcoords[set] + v * 2, 2 * sizeof(float));
     }
+    if (ok && whole->colors) {
+        m->colors = malloc((nv ? nv : 1) * 4 * sizeof(float));
+        ok = m->colors != NULL;
+        for (size_t v = 0; ok && v < whole->vertex_count; v++)
+            if (remap[v])
+                memcpy(m->colors + (remap[v] - 1) * 4, whole->colors + v * 4, 4 * sizeof(float));
+    }
     if (ok && whole->target_count > 0) {
         size_t per = nv * 3, whole_per = whole->vertex_count * 3;
         m->target_positions = malloc(((size_t)whole->target_count * per + 1) * sizeof(float));

@@ -148,6 +148,7 @@ struct mesh {
     size_t vertex_count, index_count;
     float *positions, *normals; /* vertex_count * 3 each */
     float *texcoords[2];        /* vertex_count * 2 each, or NULL: glTF TEXCOORD_0/1, generated for procedural shapes */
+    float *colors;              /* vertex_count * 4: glTF's COLOR_0 (linear RGBA, multiplies the base colour), or NULL */
     uint32_t *indices;
     int target_count;
     float *target_positions, *target_normals; /* target_count * vertex_count * 3 deltas */
