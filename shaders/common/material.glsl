@@ -27,7 +27,8 @@ uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaq
 uniform int u_alpha_blend;     // glTF alphaMode BLEND: kept with probability alpha (an ordered dither)
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
-in vec4 v_color; // glTF's COLOR_0 (white without): it multiplies the base colour and its alpha
+in vec4 v_color; // glTF's COLOR_0: it multiplies the base colour and its alpha ...
+uniform int u_vertex_colors; // ... where the mesh has one (an interpolated constant 1 is not always exactly 1)
 
 vec2 material_uv(int slot)
 {
@@ -37,7 +38,8 @@ vec2 material_uv(int slot)
 
 vec3 material_albedo(vec3 color)
 {
-    color *= v_color.rgb;
+    if (u_vertex_colors == 1)
+        color *= v_color.rgb;
     return u_texture_set[0] > 0 ? color * texture(u_base_color_texture, material_uv(0)).rgb : color;
 }
 
@@ -54,7 +56,8 @@ vec3 material_albedo(vec3 color)
 // The base colour's alpha: factor x texture.
 float material_alpha()
 {
-    return u_alpha * v_color.a * (u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0);
+    float a = u_vertex_colors == 1 ? u_alpha * v_color.a : u_alpha;
+    return a * (u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0);
 }
 
 bool material_cut_out()
