@@ -2,6 +2,8 @@
 """Writes the texture test files (run from tests/data; standard library only):
 normal_ridges.png  a 64x64 tangent-space normal map of ridges along u,
                    n ~ (-0.6 sin(2 pi 4 u), 0, 1) normalized
+normal_flat.png    a 4x4 flat normal map: every texel (128, 128, 255), the
+                   nearest 8 bits come to (0.5, 0.5, 1), a tilt of 0.0055 rad
 quadrants.png      2x2 texels: top-left red, top-right green, bottom-left
                    blue, bottom-right white (row 0 is the top row)
 transform_quad.gltf a unit quad (x, y in 0..1, facing +z, uv (0,0) at its
@@ -29,6 +31,7 @@ for y in range(64):
         r += [round((c / l * 0.5 + 0.5) * 255) for c in n]
     rows.append(r)
 png("normal_ridges.png", 64, 64, rows)
+png("normal_flat.png", 4, 4, [[128, 128, 255] * 4] * 4)
 png("quadrants.png", 2, 2, [[255, 0, 0, 0, 255, 0], [0, 0, 255, 255, 255, 255]])
 
 pos = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]

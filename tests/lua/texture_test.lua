@@ -135,3 +135,20 @@ t.case("a material keeps its textures after the Texture value is gone", function
   t.expect(m.texture ~= nil and m.texture.width == 2, "texture still there")
   t.expect(m.normal == nil and m.emission_texture == nil, "no normal or emission texture")
 end)
+
+t.case("a flat normal map changes nothing but its 8-bit rounding, GPU and reference", function()
+  -- tests/data/normal_flat.png: every texel (128, 128, 255), the nearest 8
+  -- bits come to "no change" (a tilt of 0.0055 rad). Over the panel, each
+  -- renderer with it against itself without a map: measured 0.0006 (GPU)
+  -- and 0.0006 (reference). (A map read as sRGB colour would tilt it by
+  -- 0.5 rad.)
+  local function panel(img_a, img_b)
+    return box_rel_rmse(img_a, img_b, 80, 36, 106, 52)
+  end
+  local flat = { set = { flat_normal_map = true } }
+  local none = { set = { normal_map = false } }
+  local g = panel(t.render("tests/scenes/textured.lua", flat), t.render("tests/scenes/textured.lua", none))
+  local r = panel(t.reference("tests/scenes/textured.lua", { set = flat.set, photons = 0, spp = 4 }),
+                  t.reference("tests/scenes/textured.lua", { set = none.set, photons = 0, spp = 4 }))
+  t.expect(g < 0.005 and r < 0.005, string.format("the panel with a flat map against none: %.4f (GPU), %.4f (reference)", g, r))
+end)

@@ -2,7 +2,8 @@
 -- baseColorTexture / normalTexture / KHR_texture_transform), on the GPU and
 -- in the reference alike. A checkered back wall, a glTF box with its PNG
 -- texture (Khronos BoxTextured), the KHR_texture_transform quad, a panel
--- with a normal map of ridges (--set normal_map=false: without; --set
+-- with a normal map of ridges (--set normal_map=false: without;
+-- flat_normal_map=true: a flat one, tests/data/normal_flat.png; --set
 -- emissive=true: glowing with the quadrants image instead), a point light
 -- with a shadow map; --set ball=true puts a glass
 -- ball in front of the wall (refraction with impostors: the checker seen
@@ -23,7 +24,9 @@ scene:add(c.object { mesh = c.mesh.load "../../scenes/assets/khronos/BoxTextured
 scene:add(c.object { mesh = c.mesh.load "../data/transform_quad.gltf", position = {0.6, -1.2, -0.5},
                      scale = {0.6, 0.6, 0.6} })
 local ridges = c.texture { file = "../data/normal_ridges.png", filter = "linear" }
-local panel = c.material.diffuse { color = {0.8, 0.8, 0.8}, normal = c.param("normal_map", true) and ridges or nil }
+local flat = c.param("flat_normal_map", false) and c.texture { file = "../data/normal_flat.png", filter = "linear" }
+local panel = c.material.diffuse { color = {0.8, 0.8, 0.8},
+                                   normal = flat or (c.param("normal_map", true) and ridges or nil) }
 if c.param("emissive", false) then
   -- the panel glows with the quadrants image instead (emission x texture)
   panel = c.material.diffuse { color = {0, 0, 0},
