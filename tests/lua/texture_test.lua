@@ -141,7 +141,7 @@ t.case("a flat normal map changes nothing but its 8-bit rounding, GPU and refere
   -- bits come to "no change" (a tilt of 0.0055 rad). Over the panel, each
   -- renderer with it against itself without a map: measured 0.0006 (GPU)
   -- and 0.0006 (reference). (A map read as sRGB colour would tilt it by
-  -- 0.5 rad.)
+  -- about 0.7 rad: 128 decodes to 0.216, x and y to -0.57.)
   local function panel(img_a, img_b)
     return box_rel_rmse(img_a, img_b, 80, 36, 106, 52)
   end
