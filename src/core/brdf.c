@@ -72,37 +72,49 @@ void brdf_gltf(const double n[3], const double v[3], const double l[3], const st
     }
 }
 
-/* The three integrals at (NdotV, alpha): FURNACE-style quadrature, SIDE^2
- * GGX half vectors and SIDE^2 cosine directions by the balance heuristic. */
+bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3], double l[3], double h[3],
+                               double *pdf)
+{
+    int j = k % (side * side);
+    double u1 = (j / side + 0.5) / side, u2 = (j % side + 0.5) / side;
+    if (k < side * side) {
+        /* Walter et al. 2007 eqs. 35-36: tan^2 theta_h = alpha^2 u1 / (1 - u1) */
+        double t2 = alpha * alpha * u1 / (1.0 - u1), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
+        double phi = 2.0 * MATH_PI * u2, m[3] = {s * cos(phi), s * sin(phi), c};
+        double vm = dot3(v, m);
+        for (int q = 0; q < 3; q++)
+            l[q] = 2.0 * vm * m[q] - v[q];
+    } else {
+        double r = sqrt(u1), phi = 2.0 * MATH_PI * u2;
+        l[0] = r * cos(phi), l[1] = r * sin(phi), l[2] = sqrt(fmax(1.0 - u1, 0.0));
+    }
+    if (!(l[2] > 0.0) || !(v[2] > 0.0))
+        return false;
+    for (int q = 0; q < 3; q++)
+        h[q] = v[q] + l[q];
+    double hl = sqrt(dot3(h, h));
+    if (!(hl > 1e-12))
+        return false;
+    for (int q = 0; q < 3; q++)
+        h[q] /= hl;
+    double vh = fmin(fabs(dot3(v, h)), 1.0);
+    double d = brdf_ggx_d(h[2], h[0] * h[0] + h[1] * h[1], alpha);
+    *pdf = 0.5 * d * h[2] / (4.0 * fmax(vh, 1e-12)) + 0.5 * l[2] / MATH_PI;
+    return true;
+}
+
+/* The three integrals at (NdotV, alpha), by brdf_quadrature_direction. */
 static void ambient_integrals(double n_dot_v, double alpha, double out[3])
 {
     enum { SIDE = 48 };
     double v[3] = {sqrt(fmax(1.0 - n_dot_v * n_dot_v, 0.0)), 0.0, n_dot_v};
     double sum[3] = {0, 0, 0};
     for (int k = 0; k < 2 * SIDE * SIDE; k++) {
-        int j = k % (SIDE * SIDE);
-        double u1 = (j / SIDE + 0.5) / SIDE, u2 = (j % SIDE + 0.5) / SIDE, l[3];
-        if (k < SIDE * SIDE) {
-            double t2 = alpha * alpha * u1 / (1.0 - u1), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
-            double phi = 2.0 * MATH_PI * u2, h[3] = {s * cos(phi), s * sin(phi), c};
-            double vh = dot3(v, h);
-            for (int q = 0; q < 3; q++)
-                l[q] = 2.0 * vh * h[q] - v[q];
-        } else {
-            double r = sqrt(u1), phi = 2.0 * MATH_PI * u2;
-            l[0] = r * cos(phi), l[1] = r * sin(phi), l[2] = sqrt(fmax(1.0 - u1, 0.0));
-        }
-        if (!(l[2] > 0.0) || !(n_dot_v > 0.0))
+        double l[3], h[3], pdf;
+        if (!brdf_quadrature_direction(k, SIDE, alpha, v, l, h, &pdf))
             continue;
-        double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
-        double hl = sqrt(dot3(h, h));
-        if (!(hl > 1e-12))
-            continue;
-        for (int q = 0; q < 3; q++)
-            h[q] /= hl;
-        double sin2 = h[0] * h[0] + h[1] * h[1], vh = fmin(fabs(dot3(v, h)), 1.0);
-        double d = brdf_ggx_d(h[2], sin2, alpha);
-        double pdf = 0.5 * d * h[2] / (4.0 * fmax(vh, 1e-12)) + 0.5 * l[2] / MATH_PI;
+        double vh = fmin(fabs(dot3(v, h)), 1.0);
+        double d = brdf_ggx_d(h[2], h[0] * h[0] + h[1] * h[1], alpha);
         double w = pow(1.0 - vh, 5.0), dv = d * brdf_smith_v(l[2], n_dot_v, alpha);
         sum[0] += w * l[2] / MATH_PI / pdf;
         sum[1] += dv * l[2] / pdf;

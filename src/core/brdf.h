@@ -17,6 +17,8 @@
 #ifndef CAUSTICA_BRDF_H
 #define CAUSTICA_BRDF_H
 
+#include <stdbool.h>
+
 struct brdf_material {
     double base_color[3];     /* linear RGB (texture x factor x COLOR_0) */
     double metallic;          /* [0, 1] */
@@ -46,6 +48,18 @@ double brdf_smith_v(double n_dot_l, double n_dot_v, double alpha);
  * (towards the light), per colour channel; 0 where l or v is below the
  * surface. Never a NaN or Inf for unit inputs. */
 void brdf_gltf(const double n[3], const double v[3], const double l[3], const struct brdf_material *m, double f[3]);
+
+/* Direction k (0 <= k < 2 side^2) of the deterministic quadrature that
+ * integrates f cos over the hemisphere about n = +z for a view v (unit, v.z
+ * > 0): the first side^2 reflect v about GGX half vectors drawn from D(h)
+ * NdotH on a side x side grid of (u1, u2), the rest are cosine-distributed
+ * on the same grid; combined by the balance heuristic, so each direction's
+ * weight is f cos / *pdf with *pdf = 0.5 p_ggx + 0.5 p_cos, over 2 side^2.
+ * l and the unit half vector h of v and l; false where l is below the
+ * surface (it adds nothing). The ambient table below and
+ * tests/unit/test_shading.c's furnace use it. */
+bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3], double l[3], double h[3],
+                               double *pdf);
 
 /* The uniform sky's light (the scene's ambient term, radiance A from every
  * direction above) on a glTF surface: A x the BRDF's directional albedo

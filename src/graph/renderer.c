@@ -404,7 +404,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     gl.BindVertexArray(0);
 }
 
-bool renderer_scene_has_pbr(const struct scene *scene)
+static bool scene_has_pbr(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
@@ -412,6 +412,19 @@ bool renderer_scene_has_pbr(const struct scene *scene)
             return true;
     }
     return false;
+}
+
+bool renderer_lit_programs(struct renderer *r, const struct scene *scene, const char *vert, const char *frag,
+                           const char *defines, struct gl_program *progs[2], struct error *err)
+{
+    progs[0] = progs[1] = NULL;
+    if (!gl_program_get(&r->programs, vert, frag, defines, &progs[0], err))
+        return false;
+    if (!scene_has_pbr(scene))
+        return true;
+    char variant[512];
+    snprintf(variant, sizeof variant, "%s#define GLTF_BRDF\n", defines ? defines : "");
+    return gl_program_get(&r->programs, vert, frag, variant, &progs[1], err);
 }
 
 void renderer_draw_lit(struct renderer *r, const struct scene *scene, const struct gl_program *plain,

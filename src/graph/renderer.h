@@ -81,15 +81,16 @@ enum renderer_draw_filter {
     DRAW_LAMBERT = 32,  /* not the surfaces drawn by glTF's BRDF (material.pbr) */
     DRAW_PBR = 64,      /* those surfaces only */
 };
-/* The define a lighting program's glTF-BRDF variant is compiled with
- * (common/surface_light.glsl). Two programs, not a branch on a uniform:
- * llvmpipe runs both sides of a branch, which cost the Lambert surfaces
- * 11% of a frame when the BRDF's was one program with theirs. */
-#define RENDERER_PBR_DEFINE "#define GLTF_BRDF\n"
-/* Whether any visible diffuse surface of the scene is drawn by glTF's BRDF. */
-bool renderer_scene_has_pbr(const struct scene *scene);
+/* A lighting program and its glTF-BRDF variant (compiled with GLTF_BRDF
+ * defined, common/surface_light.glsl): progs[0] always, progs[1] only
+ * where a visible diffuse surface of the scene is drawn by glTF's BRDF
+ * (else NULL). Two programs, not a branch on a uniform: llvmpipe runs both
+ * sides of a branch, which cost the Lambert surfaces 11% of a frame when
+ * the BRDF's was one program with theirs. */
+bool renderer_lit_programs(struct renderer *r, const struct scene *scene, const char *vert, const char *frag,
+                           const char *defines, struct gl_program *progs[2], struct error *err);
 /* renderer_draw_objects for a lighting pass: the surfaces drawn by glTF's
- * BRDF with `pbr` (its RENDERER_PBR_DEFINE variant; NULL: none in the
+ * BRDF with `pbr` (renderer_lit_programs' variant; NULL: none in the
  * scene), the rest with `plain`. */
 void renderer_draw_lit(struct renderer *r, const struct scene *scene, const struct gl_program *plain,
                        const struct gl_program *pbr, unsigned filter);

@@ -81,12 +81,9 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
     }
     /* Lambert's program and, where the scene has glTF-BRDF surfaces, its
      * variant for them (renderer_draw_lit), set up alike */
-    struct gl_program *progs[2] = {NULL, NULL};
-    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag", DISTANCE_MAP_VIEW, &progs[0],
-                        err) ||
-        (renderer_scene_has_pbr(scene) &&
-         !gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
-                         DISTANCE_MAP_VIEW RENDERER_PBR_DEFINE, &progs[1], err)))
+    struct gl_program *progs[2];
+    if (!renderer_lit_programs(r, scene, "common/object.vert", "distance_map/distance.frag", DISTANCE_MAP_VIEW, progs,
+                               err))
         return false;
     for (int k = 0; k < 2 && progs[k]; k++) {
         struct gl_program *prog = progs[k];

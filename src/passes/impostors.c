@@ -122,12 +122,8 @@ bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_f
 
     /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit's
      * pair), each object drawn by the one for its material */
-    struct gl_program *progs[2] = {NULL, NULL};
-    if (!gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, &progs[0],
-                        err) ||
-        (renderer_scene_has_pbr(scene) &&
-         !gl_program_get(&r->programs, "common/object.vert", "impostors/impostor.frag",
-                         IMPOSTOR_VIEW RENDERER_PBR_DEFINE, &progs[1], err)))
+    struct gl_program *progs[2];
+    if (!renderer_lit_programs(r, scene, "common/object.vert", "impostors/impostor.frag", IMPOSTOR_VIEW, progs, err))
         return false;
     for (int k = 0; k < 2 && progs[k]; k++) {
         shadow_inputs_bind(owner, f, progs[k]);

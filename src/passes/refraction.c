@@ -263,12 +263,9 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
 {
     struct renderer *r = f->renderer;
     /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit) */
-    struct gl_program *progs[2] = {NULL, NULL};
-    if (!gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
-                        "#define OBJECT_VIEW_PROJ u_face_view_proj\n", &progs[0], err) ||
-        (renderer_scene_has_pbr(f->scene) &&
-         !gl_program_get(&r->programs, "common/object.vert", "distance_map/distance.frag",
-                         "#define OBJECT_VIEW_PROJ u_face_view_proj\n" RENDERER_PBR_DEFINE, &progs[1], err)))
+    struct gl_program *progs[2];
+    if (!renderer_lit_programs(r, f->scene, "common/object.vert", "distance_map/distance.frag",
+                               "#define OBJECT_VIEW_PROJ u_face_view_proj\n", progs, err))
         return false;
     vec3 eye = f->snapshot->eye;
     for (int k = 0; k < 2 && progs[k]; k++) {

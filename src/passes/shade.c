@@ -107,10 +107,8 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
 
     /* Objects: Lambert's program, and its glTF-BRDF variant where the
      * scene has such surfaces (renderer_draw_lit), set up alike. */
-    struct gl_program *progs[2] = {NULL, NULL};
-    if (!gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", NULL, &progs[0], err) ||
-        (renderer_scene_has_pbr(f->scene) &&
-         !gl_program_get(&r->programs, "common/object.vert", "shade/shade.frag", RENDERER_PBR_DEFINE, &progs[1], err)))
+    struct gl_program *progs[2];
+    if (!renderer_lit_programs(r, f->scene, "common/object.vert", "shade/shade.frag", NULL, progs, err))
         return false;
     for (int k = 0; k < 2 && progs[k]; k++) {
         struct gl_program *prog = progs[k];

@@ -109,39 +109,23 @@ static double rnd(unsigned *state)
     return (double)(*state >> 8) / 16777216.0;
 }
 
-/* The C side of the furnace, the same quadrature in double. */
+/* The C side of the furnace: the same quadrature in double
+ * (brdf_quadrature_direction, which the GLSL above mirrors). */
 static void furnace_c(const double v[3], const struct brdf_material *m, double out[3])
 {
     const double n[3] = {0, 0, 1};
     double alpha = fmax(m->roughness * m->roughness, BRDF_MIN_ALPHA);
     double sum[3] = {0, 0, 0};
-    const int side = FURNACE_SIDE;
-    for (int k = 0; k < 2 * side * side; k++) {
-        int j = k % (side * side);
-        double u1 = (j / side + 0.5) / side, u2 = (j % side + 0.5) / side, l[3];
-        if (k < side * side) {
-            double t2 = alpha * alpha * u1 / (1.0 - u1), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
-            double phi = 2.0 * MATH_PI * u2, h[3] = {s * cos(phi), s * sin(phi), c};
-            double vh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
-            for (int q = 0; q < 3; q++)
-                l[q] = 2.0 * vh * h[q] - v[q];
-        } else {
-            double r = sqrt(u1), phi = 2.0 * MATH_PI * u2;
-            l[0] = r * cos(phi), l[1] = r * sin(phi), l[2] = sqrt(fmax(1.0 - u1, 0.0));
-        }
-        if (l[2] <= 0.0)
+    for (int k = 0; k < 2 * FURNACE_SIDE * FURNACE_SIDE; k++) {
+        double l[3], h[3], pdf, f[3];
+        if (!brdf_quadrature_direction(k, FURNACE_SIDE, alpha, v, l, h, &pdf))
             continue;
-        double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
-        normalize3(h);
-        double p_ggx = brdf_ggx_d(h[2], h[0] * h[0] + h[1] * h[1], alpha) * h[2] /
-                       (4.0 * fabs(v[0] * h[0] + v[1] * h[1] + v[2] * h[2]));
-        double p_cos = l[2] / MATH_PI, f[3];
         brdf_gltf(n, v, l, m, f);
         for (int q = 0; q < 3; q++)
-            sum[q] += f[q] * l[2] / (0.5 * p_ggx + 0.5 * p_cos);
+            sum[q] += f[q] * l[2] / pdf;
     }
     for (int q = 0; q < 3; q++)
-        out[q] = sum[q] / (2.0 * side * side);
+        out[q] = sum[q] / (2.0 * FURNACE_SIDE * FURNACE_SIDE);
 }
 
 static bool run(struct gl_program *prog, int task, const float *cases, size_t case_floats, int count, float *results)
