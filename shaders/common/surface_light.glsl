@@ -22,7 +22,7 @@ vec3 surface_irradiance_from(int i, vec3 p, vec3 n, out vec3 to_light)
     vec3 irr = light_irradiance(i, p, n, to_light, dist);
     if (!(max(irr.r, max(irr.g, irr.b)) > 0.0))
         return vec3(0.0);
-    return irr * visibility(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
+    return irr * visibility_color(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
 }
 
 // The same from every light.

@@ -30,6 +30,9 @@ static void print_file_materials(const struct scene *scene)
         if ((m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->roughness > 0.0f)
             snprintf(drawn, sizeof drawn, "%s, ior %g, roughness %.2g", material_kind_name(m->kind), m->ior,
                      m->roughness);
+        else if (m->kind == MATERIAL_GLASS && m->thin)
+            snprintf(drawn, sizeof drawn, "thin-walled glass, ior %g%s", m->ior,
+                     m->base_color.texture ? " (tinted by baseColorTexture)" : "");
         else if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
             snprintf(drawn, sizeof drawn, "%s, ior %g", material_kind_name(m->kind), m->ior);
         else if (m->pbr) {

@@ -40,9 +40,13 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
     for (int i = 0; i < scene->object_count && !custom && count < max; i++) {
         const struct object *o = scene->objects[i];
         unsigned role = object_role(o);
-        if (!(role & OBJECT_ROLE_SPECULAR) || (view_proj && !object_in_view(o, *view_proj)))
+        if (!(role & (OBJECT_ROLE_SPECULAR | OBJECT_ROLE_THIN)) || (view_proj && !object_in_view(o, *view_proj)))
             continue; /* receivers: shade's */
-        if (!(role & drawn_by))
+        if (role == OBJECT_ROLE_THIN && !(role & drawn_by))
+            snprintf(messages[count++], 400,
+                     "object %d (thin glass) is drawn by no pass the output needs (shade draws it), so it shows "
+                     "what is behind it", i + 1);
+        else if (!(role & drawn_by))
             snprintf(messages[count++], 400,
                      "object %d (%s) is drawn by no pass the output needs (shade draws it unless specular = false; "
                      "else refraction, layered_refraction or sliced_refraction%s), so it shows what is behind it",
@@ -91,7 +95,7 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
             continue;
         for (int k = 0; k < scene->object_count && count < max; k++) {
             const struct object *o = scene->objects[k];
-            if (!object_is(o, OBJECT_ROLE_SPECULAR))
+            if (!object_is(o, OBJECT_ROLE_SPECULAR | OBJECT_ROLE_THIN))
                 continue;
             const char *why = p->desc->leaves_out(p, scene, o);
             if (why)

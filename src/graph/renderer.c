@@ -267,7 +267,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         struct error err;
         /* Textures apply to diffuse surfaces only, in both renderers; a set
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
-        bool on = ref->texture && material_role(&o->material) == OBJECT_ROLE_RECEIVER && o->mesh->texcoords[ref->texcoord] &&
+        bool on = ref->texture && material_is_textured_surface(&o->material) && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2, &id, &err); /* colours are sRGB */
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
@@ -286,8 +286,8 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
                         o->material.specular_color.z);
     if (pbr)
         gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
-    /* cut-outs, like textures, on diffuse surfaces only */
-    bool diffuse = material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+    /* cut-outs, like textures, on diffuse surfaces and thin glass only */
+    bool diffuse = material_is_textured_surface(&o->material);
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
     gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
     gl.ProgramUniform1i(program->id, loc->alpha_blend, diffuse && o->material.alpha_blend);
@@ -295,7 +295,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     const struct texture_ref *tm = &o->material.transmission_map;
     GLuint tid = 0;
     struct error err;
-    bool tm_on = tm->texture && (material_role(&o->material) & OBJECT_ROLE_REFRACTOR) &&
+    bool tm_on = tm->texture && (material_role(&o->material) & (OBJECT_ROLE_REFRACTOR | OBJECT_ROLE_THIN)) &&
                  o->mesh->texcoords[tm->texcoord] && texture_cache_get(&r->textures, tm->texture, false, &tid, &err);
     gl_program_bind_texture(program, "u_transmission_texture", tm_on ? tid : r->dummy_2d.id);
     gl.ProgramUniform1i(program->id, loc->transmission_set, tm_on ? tm->texcoord + 1 : 0);
@@ -339,11 +339,11 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
      * triangle), sorted once; out of memory, in scene order */
     int count = scene->object_count;
     struct blended_object *order = NULL;
-    if ((filter & DRAW_BLENDED) && (order = malloc((size_t)(count + 1) * sizeof *order))) {
+    if ((filter & (DRAW_BLENDED | DRAW_THIN)) && (order = malloc((size_t)(count + 1) * sizeof *order))) {
         count = 0;
         for (int i = 0; i < scene->object_count; i++) {
             const struct object *o = scene->objects[i];
-            if (!o->visible || !o->material.alpha_blend)
+            if (!o->visible || !((filter & DRAW_BLENDED) ? o->material.alpha_blend : object_is(o, OBJECT_ROLE_THIN)))
                 continue;
             vec3 lo, hi;
             object_world_bounds(o, &lo, &hi);
@@ -357,6 +357,11 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         if (!o->visible)
             continue;
         if ((filter & DRAW_CASTERS) && !o->cast_shadows)
+            continue;
+        /* thin glass: drawn where asked for by name (shade blends it over
+         * what lies behind; the shadow map's filter), or by DRAW_ALL */
+        bool thin = object_is(o, OBJECT_ROLE_THIN);
+        if (filter != DRAW_ALL && thin != ((filter & DRAW_THIN) != 0))
             continue;
         bool blended = o->material.alpha_blend && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
         if (((filter & DRAW_OPAQUE) && blended) || ((filter & DRAW_BLENDED) && !blended))
@@ -391,7 +396,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform1i(program->id, loc_id, o->id);
         /* COLOR_0 on the surfaces whose base colour it multiplies (diffuse, as textures) */
         gl.ProgramUniform1i(program->id, loc_vertex_colors,
-                            o->mesh->colors && material_role(&o->material) == OBJECT_ROLE_RECEIVER);
+                            o->mesh->colors && material_is_textured_surface(&o->material));
         bind_material_textures(r, program, &material_loc, o);
         struct error err;
         if (!mesh_cache_bind(&r->meshes, o, &err))

@@ -80,6 +80,8 @@ enum renderer_draw_filter {
     DRAW_BLENDED = 16,  /* the alpha-blended surfaces only, the farthest from the eye first */
     DRAW_LAMBERT = 32,  /* not the surfaces drawn by glTF's BRDF (material.pbr) */
     DRAW_PBR = 64,      /* those surfaces only */
+    DRAW_THIN = 128,    /* thin-walled glass only, the farthest from the eye first (every filter but
+                         * DRAW_ALL leaves it out otherwise) */
 };
 /* A lighting program and its glTF-BRDF variant (compiled with GLTF_BRDF
  * defined, common/surface_light.glsl): progs[0] always, progs[1] only

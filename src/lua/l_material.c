@@ -38,9 +38,12 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
         static const char *const mirror_fields[] = {"color", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
+                                                   "color", "tint", "thin", NULL};
+        static const char *const water_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
                                                    "color", "tint", NULL};
         lutil_check_fields(L, 1, fn, emissive ? emissive_fields : kind == MATERIAL_DIFFUSE ? diffuse_fields
-                                     : kind == MATERIAL_MIRROR ? mirror_fields : glass_fields);
+                                     : kind == MATERIAL_MIRROR ? mirror_fields
+                                     : kind == MATERIAL_WATER ? water_fields : glass_fields);
         if (emissive) {
             /* c.material.emissive { color, strength = 1, albedo = 0 }: a
              * diffuse surface that emits color x strength */
@@ -88,6 +91,10 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
                 return lutil_error(L, "bad argument 'tint' to '%s' (each channel in [0, 1]: a tint passes a share of "
                                    "the light, got {%g, %g, %g})", fn, (double)m.tint.x, (double)m.tint.y,
                                    (double)m.tint.z);
+            /* thin = true: thin-walled glass, one surface light crosses
+             * undeviated, (1 - F) x tint of it (glTF's glass without a volume) */
+            if (kind == MATERIAL_GLASS)
+                lutil_opt_boolean(L, 1, fn, "thin", &m.thin);
             lutil_opt_number(L, 1, fn, "transmission", &m.transmission);
             if (!(m.transmission >= 0.0f && m.transmission <= 1.0f))
                 return lutil_error(L, "bad argument 'transmission' to '%s' (a number in [0, 1] expected, got %g)",
@@ -176,6 +183,12 @@ static int get_fresnel(lua_State *L)
     return 1;
 }
 
+static int get_thin(lua_State *L)
+{
+    lua_pushboolean(L, check_material(L)->thin);
+    return 1;
+}
+
 /* The Texture a slot reads, or nil. */
 static void push_texture_slot(lua_State *L, const struct texture_ref *slot)
 {
@@ -216,7 +229,7 @@ void lmaterial_open(lua_State *L)
     static const luaL_Reg getters[] = {{"kind", get_kind}, {"color", get_color}, {"ior", get_ior},
                                        {"absorption", get_absorption}, {"fresnel", get_fresnel},
                                        {"roughness", get_roughness}, {"transmission", get_transmission},
-                                       {"tint", get_tint},
+                                       {"tint", get_tint}, {"thin", get_thin},
                                        {"emission", get_emission}, {"texture", get_texture},
                                        {"normal", get_normal}, {"emission_texture", get_emission_texture},
                                        {NULL, NULL}};

@@ -223,6 +223,8 @@ static const char *caustic_volumes_leaves_out(const struct pass *p, const struct
                    ? NULL
                    : "only the water surface named by `water` makes caustic volumes: no caustics through this one "
                      "(add a caustic_volumes pass for it)";
+    if (object_is(o, OBJECT_ROLE_THIN))
+        return NULL; /* light crosses it undeviated: a coloured shadow, not a caustic */
     return "caustic volumes are built from the water surface named by `water` alone: no caustics through glass "
            "or off a mirror (photon_caustics or layered_caustics make them)";
 }

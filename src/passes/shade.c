@@ -71,6 +71,40 @@ static void shade_destroy(struct pass *p)
     p->state = NULL;
 }
 
+/* Thin-walled glass (material.thin), last, back to front: each pane adds
+ * its reflection and multiplies what lies behind it by what it lets
+ * through (shade/thin_glass.frag's two outputs, dual-source blending), the
+ * depth, normal and position left to what lies behind, as for the blended
+ * surfaces. A pass after shade that draws glass or water over this image
+ * draws over a pane in front of them too (docs/GLTF.md). */
+static bool shade_thin_glass(struct pass *p, struct pass_frame *f, struct shade_state *s, struct error *err)
+{
+    bool any = false;
+    for (int i = 0; i < f->scene->object_count && !any; i++)
+        any = object_is(f->scene->objects[i], OBJECT_ROLE_THIN);
+    if (!any)
+        return true;
+    struct renderer *r = f->renderer;
+    struct gl_program *prog;
+    if (!gl_program_get(&r->programs, "common/object.vert", "shade/thin_glass.frag", NULL, &prog, err))
+        return false;
+    shadow_inputs_bind(p, f, prog);
+    if (!medium_gpu_bind(r, f->scene, prog, err))
+        return false;
+    /* dual-source blending writes one draw buffer */
+    const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, color_only);
+    gl.Enablei(GL_BLEND, 0);
+    gl.BlendFunci(0, GL_ONE, GL_SRC1_COLOR);
+    gl.DepthMask(GL_FALSE);
+    renderer_draw_objects(r, f->scene, prog, DRAW_THIN);
+    gl.DepthMask(GL_TRUE);
+    gl.Disablei(GL_BLEND, 0);
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
+    return true;
+}
+
 static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct shade_state *s = p->state;
@@ -149,12 +183,13 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.ColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.ColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.Disablei(GL_BLEND, 0);
-    return true;
+    return shade_thin_glass(p, f, s, err);
 }
 
 static unsigned shade_draws(const struct pass *p)
 {
-    return pass_flag(p, SHADE_SPECULAR) ? OBJECT_ROLE_SPECULAR : 0u; /* one interface of each */
+    /* one interface of each; thin glass always (no other pass draws it) */
+    return (pass_flag(p, SHADE_SPECULAR) ? OBJECT_ROLE_SPECULAR : 0u) | OBJECT_ROLE_THIN;
 }
 
 const struct pass_desc shade_pass = {

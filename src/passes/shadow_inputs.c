@@ -22,6 +22,7 @@ void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_pr
             sh->record && sh->record_type && strcmp(sh->record_type, SHADOW_RECORD) == 0 ? sh->record : &none;
         gl_program_bind_texture_at(prog, "u_shadow_2d", i, cube ? r->dummy_depth.id : sh->texture.id);
         gl_program_bind_texture_at(prog, "u_shadow_cubes", i, cube ? sh->texture.id : r->dummy_cube.id);
+        gl_program_bind_texture_at(prog, "u_shadow_filter", i, rec->filter ? rec->filter : r->dummy_2d.id);
         int entries = rec->light_index >= 0 ? 1 : 0;
         for (int li = 0; li < f->scene->light_count && li < SCENE_MAX_GPU_LIGHTS; li++)
             if (r->frame.light_first[li] == rec->light_index)
@@ -36,7 +37,7 @@ void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_pr
         gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, name), 1, GL_FALSE, rec->matrix.m);
         snprintf(name, sizeof name, "u_shadow_params[%d]", nshadow);
         gl.ProgramUniform4f(prog->id, gl_program_uniform(prog, name), rec->range, rec->bias,
-                            1.0f / (float)sh->texture.width, 0.0f);
+                            1.0f / (float)sh->texture.width, rec->filter ? 1.0f : 0.0f);
         nshadow++;
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), nshadow);

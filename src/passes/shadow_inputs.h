@@ -23,6 +23,7 @@ struct shadow_record {
     int kind;        /* enum light_kind */
     float range;     /* far plane, or the cube's distance range */
     float bias;
+    GLuint filter;   /* 2D maps: what thin-walled glass lets through (RGB) and its depth (A), or 0 */
 };
 
 /* Binds the shadow maps and sets the uniforms on `program`. */

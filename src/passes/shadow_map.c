@@ -21,6 +21,10 @@ struct shadow_state {
     bool valid;
     uint64_t key;                /* pass_frame_key of what the map was made from */
     struct shadow_record record; /* what the depth texture carries for its readers */
+    /* 2D maps of a scene with thin-walled glass: what the panes let
+     * through (RGB) and the nearest pane's depth (A), made with the map */
+    struct gl_texture filter;
+    struct gl_framebuffer filter_fb;
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -75,6 +79,8 @@ static void shadow_destroy(struct pass *p)
         return;
     gl_framebuffer_destroy(&s->fb);
     gl_texture_destroy(&s->cube_depth);
+    gl_framebuffer_destroy(&s->filter_fb);
+    gl_texture_destroy(&s->filter);
     free(s);
     p->state = NULL;
 }
@@ -93,6 +99,52 @@ static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *
         return PASS_REUSE;
     }
     return PASS_RUN;
+}
+
+static bool scene_has_thin_glass(const struct scene *scene)
+{
+    for (int i = 0; i < scene->object_count; i++)
+        if (object_is(scene->objects[i], OBJECT_ROLE_THIN) && scene->objects[i]->cast_shadows)
+            return true;
+    return false;
+}
+
+/* Thin-walled glass casts a coloured shadow: the panes drawn from the light
+ * into the filter texture, their colours multiplied and the least depth
+ * kept (shadow_map/thin_filter.frag), which common/shadows.glsl applies
+ * to receivers behind the nearest pane. Thin glass is not in the depth map
+ * (renderer_draw_objects leaves it out of DRAW_CASTERS). */
+static bool shadow_thin_filter(struct pass *p, struct pass_frame *f, struct shadow_state *s, int size,
+                               struct error *err)
+{
+    struct renderer *r = f->renderer;
+    if (!s->filter.id && (!gl_texture_create(&s->filter, GL_TEXTURE_2D, GL_RGBA16F, size, size, 1, err) ||
+                          !gl_framebuffer_create(&s->filter_fb, err)))
+        return false;
+    const struct gl_texture *colors[1] = {&s->filter};
+    struct gl_program *prog;
+    if (!gl_framebuffer_attach(&s->filter_fb, colors, NULL, 1, NULL, -1, err) ||
+        !gl_program_get(&r->programs, "common/object.vert", "shadow_map/thin_filter.frag",
+                        "#define OBJECT_VIEW_PROJ u_light_view_proj\n", &prog, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->filter_fb.id);
+    const float clear[4] = {1.0f, 1.0f, 1.0f, 2.0f}; /* all light passes; no pane (depths are at most 1) */
+    gl.ClearNamedFramebufferfv(s->filter_fb.id, GL_COLOR, 0, clear);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+    gl.Enablei(GL_BLEND, 0);
+    gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_MIN);
+    gl.BlendFuncSeparatei(0, GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_light_view_proj"), 1, GL_FALSE,
+                               s->record.matrix.m);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light_index"), s->record.light_index);
+    renderer_draw_objects(r, f->scene, prog, DRAW_THIN | DRAW_CASTERS);
+    gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_FUNC_ADD);
+    gl.BlendFunci(0, GL_ONE, GL_ZERO);
+    gl.Disablei(GL_BLEND, 0);
+    gl.Enable(GL_DEPTH_TEST);
+    (void)p;
+    return true;
 }
 
 static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -157,7 +209,15 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.PolygonOffset(1.5f, 2.0f);
         gl.ProgramUniformMatrix4fv(prog->id, loc_light_vp, 1, GL_FALSE, rec->matrix.m);
         renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
+        gl.Disable(GL_POLYGON_OFFSET_FILL);
+        rec->filter = 0;
+        if (scene_has_thin_glass(f->scene)) {
+            if (!shadow_thin_filter(p, f, s, size, err))
+                return false;
+            rec->filter = s->filter.id;
+        }
     } else {
+        rec->filter = 0; /* (leaves_out says what a cube map leaves of thin glass) */
         vec3 pos = light_center(l);
         float range = vec3_length(vec3_sub(center, pos)) + radius;
         range = fmaxf(range, 1e-2f);
@@ -188,7 +248,17 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     return true;
 }
 
+static const char *shadow_map_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
+{
+    (void)scene;
+    if (object_is(o, OBJECT_ROLE_THIN) && o->cast_shadows && is_cube(pass_light_at(p, SHADOW_LIGHT)))
+        return "a point or linear light's cube map casts no shadow of thin-walled glass: the light passes it whole "
+               "(without its Fresnel loss and tint; a directional or spot light's map filters it)";
+    return NULL;
+}
+
 const struct pass_desc shadow_map_pass = {
+    .leaves_out = shadow_map_leaves_out,
     .name = "shadow_map",
     .summary = "depth from a light: 2D for directional and spot lights, a distance cube map for point and linear lights",
     .params = params,

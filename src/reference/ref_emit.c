@@ -103,7 +103,7 @@ static size_t count_pieces(const struct ref_scene *rs, double piece_area, double
     *total_area = 0.0;
     for (int i = 0; i < rs->object_count; i++) {
         const struct ref_object *o = &rs->objects[i];
-        if (!(material_role(&o->material) & OBJECT_ROLE_SPECULAR))
+        if (!(material_role(&o->material) & REF_SPECULAR_ROLES))
             continue;
         for (size_t t = 0; t < o->triangle_count; t++) {
             const uint32_t *tri = o->indices + t * 3;
@@ -143,7 +143,7 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
     double sum = 0.0;
     for (int i = 0; i < rs->object_count; i++) {
         const struct ref_object *o = &rs->objects[i];
-        if (!(material_role(&o->material) & OBJECT_ROLE_SPECULAR))
+        if (!(material_role(&o->material) & REF_SPECULAR_ROLES))
             continue;
         for (size_t t = 0; t < o->triangle_count; t++) {
             const uint32_t *tri = o->indices + t * 3;

@@ -69,6 +69,20 @@ static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, 
     return dv_normalize_or(mapped, n);
 }
 
+void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint)
+{
+    const struct material *m = &o->material;
+    double rgba[4];
+    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba);
+    *tint = dv_mul(to_dvec3(m->tint), dv(rgba[0], rgba[1], rgba[2]));
+    if (slot_active(o, &m->base_color)) {
+        float uv[2];
+        hit_uv(o, h, m->base_color.texcoord, uv);
+        *tint = dv_mul(*tint, to_dvec3(texture_sample(&m->base_color, uv, true)));
+    }
+    *normal = slot_active(o, &m->normal) ? mapped_normal(o, h, n) : n;
+}
+
 void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dvec3 n, struct ref_surface *out)
 {
     const struct ref_object *o = &rs->objects[h->object];
@@ -78,8 +92,8 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->normal = n;
     out->pbr = false;
     out->occlusion = 1.0;
-    if (m->kind != MATERIAL_DIFFUSE)
-        return;
+    if (!material_is_textured_surface(m))
+        return; /* (thin glass's diffuse share: its base colour, textured, as on the GPU) */
     double rgba[4];
     ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba);
     out->albedo = dv_mul(out->albedo, dv(rgba[0], rgba[1], rgba[2]));

@@ -1,5 +1,7 @@
 #include "reference/ref_scene.h"
 
+#include "core/optics.h"
+
 #include "gl/gl_buffer.h"
 
 #include <math.h>
@@ -57,7 +59,7 @@ void ref_object_color(const struct ref_object *o, unsigned primitive, double u, 
 bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
 {
     const struct material *m = &o->material;
-    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || material_role(m) != OBJECT_ROLE_RECEIVER)
+    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || !material_is_textured_surface(m))
         return false;
     double rgba[4];
     ref_object_color(o, primitive, u, v, rgba);
@@ -158,7 +160,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
             dvec3 dw = from_vec3(w);
             lo = dv(fmin(lo.x, dw.x), fmin(lo.y, dw.y), fmin(lo.z, dw.z));
             hi = dv(fmax(hi.x, dw.x), fmax(hi.y, dw.y), fmax(hi.z, dw.z));
-            if (material_role(&o->material) & OBJECT_ROLE_SPECULAR) {
+            if (material_role(&o->material) & REF_SPECULAR_ROLES) {
                 slo = dv(fmin(slo.x, dw.x), fmin(slo.y, dw.y), fmin(slo.z, dw.z));
                 shi = dv(fmax(shi.x, dw.x), fmax(shi.y, dw.y), fmax(shi.z, dw.z));
             }
@@ -175,7 +177,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
                                    3 * sizeof(float), n);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0,
                                    3 * sizeof(uint32_t), ro->triangle_count);
-        if (material_role(&ro->material) == OBJECT_ROLE_RECEIVER &&
+        if (material_is_textured_surface(&ro->material) &&
             (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend)) {
             rtcSetGeometryUserData(geom, ro);
             rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
@@ -185,6 +187,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         unsigned id = rtcAttachGeometry(rs->rtc, geom);
         rtcReleaseGeometry(geom);
         rs->geometry_object[id] = (unsigned)rs->object_count;
+        rs->has_thin = rs->has_thin || ro->material.thin;
         rs->geometry_count = (int)id + 1;
         rs->object_count++;
     }
@@ -308,6 +311,39 @@ bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, dou
     ray.mask = 0xffffffffu;
     rtcOccluded1(rs->rtc, &ctx, &ray);
     return ray.tfar < 0.0f;
+}
+
+dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax)
+{
+    if (!rs->has_thin)
+        return ref_scene_occluded(rs, origin, dir, tmax) ? dv(0, 0, 0) : dv(1, 1, 1);
+    dvec3 through = dv(1, 1, 1);
+    /* pane after pane (a bounded count: a ray grazing a mesh of panes) */
+    for (int step = 0; step < 64; step++) {
+        struct ref_hit h;
+        if (!ref_scene_intersect(rs, origin, dir, tmax, &h))
+            return through;
+        const struct ref_object *o = &rs->objects[h.object];
+        const struct material *m = &o->material;
+        if (!m->thin)
+            return dv(0, 0, 0);
+        dvec3 ng = dv_dot(dir, h.geometric_normal) < 0.0 ? h.geometric_normal : dv_scale(h.geometric_normal, -1.0);
+        dvec3 n0 = dv_dot(dir, h.shading_normal) < 0.0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
+        dvec3 n, tint;
+        ref_thin_surface(o, &h, n0, &n, &tint);
+        double cos_i = fmin(fmax(-dv_dot(dir, n), 0.0), 1.0);
+        double pass = (1.0 - optics_fresnel_of(cos_i, 1.0 / m->ior, m->ideal)) * ref_object_transmission(o, &h);
+        through = dv_scale(dv_mul(through, tint), pass);
+        if (!(dv_dot(through, through) > 0.0))
+            return dv(0, 0, 0);
+        /* on past the pane: what is left of the way */
+        dvec3 next = dv_sub(h.position, dv_scale(ng, rs->epsilon));
+        tmax -= dv_dot(dv_sub(next, origin), dir);
+        origin = next;
+        if (!(tmax > 0.0))
+            return through;
+    }
+    return dv(0, 0, 0);
 }
 
 dvec3 ref_scene_environment(const struct ref_scene *rs, dvec3 dir)

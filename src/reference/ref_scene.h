@@ -49,8 +49,12 @@ static inline bool ref_refract(dvec3 d, dvec3 n, double eta, dvec3 *t)
 
 static inline bool ref_is_dielectric(const struct material *m)
 {
-    return m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER;
+    return (m->kind == MATERIAL_GLASS && !m->thin) || m->kind == MATERIAL_WATER;
 }
+
+/* The surfaces a path meets without being absorbed: glass, water, mirrors
+ * and thin glass (the photons' targets, specular_step's surfaces). */
+#define REF_SPECULAR_ROLES (OBJECT_ROLE_SPECULAR | OBJECT_ROLE_THIN)
 
 struct ref_object {
     float *positions; /* world space, vertex_count * 3 (+ padding for Embree), owned */
@@ -98,6 +102,7 @@ struct ref_scene {
     dvec3 bounds_lo, bounds_hi;
     double epsilon; /* ray offset, from the scene size */
     bool has_specular_bounds;
+    bool has_thin;  /* thin-walled glass: shadow rays go through it (ref_scene_transmittance) */
     dvec3 specular_center; /* bounding sphere of the specular objects */
     double specular_radius;
 };
@@ -140,6 +145,16 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
 void ref_scene_release(struct ref_scene *rs);
 bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit);
 bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);
+/* What reaches origin from tmax along dir: 0 where an opaque surface (or
+ * glass, whose light the photons carry) is in the way, else the product
+ * of what each thin-walled pane on the way lets through, (1 - F) x tint x
+ * transmission (its expectation: the diffuse share of a partly
+ * transmissive pane blocks). Without thin glass, ref_scene_occluded. */
+dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);
+/* Thin-walled glass at a hit: the shading normal (n, on the ray's side,
+ * through the normal map) and the tint (base colour x baseColorTexture x
+ * COLOR_0), as shade/thin_glass.frag reads them. */
+void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint);
 dvec3 ref_scene_environment(const struct ref_scene *rs, dvec3 dir);
 /* The primary ray through image point (px, py) (pixels, top-left origin). */
 void ref_scene_camera_ray(const struct ref_scene *rs, double px, double py, int width, int height, dvec3 *origin,

@@ -148,11 +148,14 @@ static bool hit_is_diffuse(const struct ref_scene *rs, const struct ref_hit *h, 
 
 /* One step through a specular surface: picks reflection or refraction by
  * Fresnel (the weight cancels), updates the media, returns the new
- * direction and origin. */
-static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, struct media *media, dvec3 *dir,
+ * direction and origin. False when the path went on as it was (through a
+ * thin-walled pane): no bounce, the light's own way (a photon that only
+ * crossed panes is direct light, which the shadow rays see through them). */
+static bool specular_step(const struct ref_scene *rs, const struct ref_hit *h, struct media *media, dvec3 *dir,
                           dvec3 *origin, dvec3 *beta, struct ref_rng *rng)
 {
-    const struct material *m = &rs->objects[h->object].material;
+    const struct ref_object *o = &rs->objects[h->object];
+    const struct material *m = &o->material;
     dvec3 ng = h->geometric_normal, n = h->shading_normal;
     bool entering = dv_dot(*dir, ng) < 0.0;
     dvec3 nn = entering ? n : dv_scale(n, -1.0);
@@ -161,7 +164,25 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
         *dir = dv_normalize_or(ref_reflect(*dir, nn), ref_reflect(*dir, ngo));
         *beta = dv_mul(*beta, dv(m->color.x, m->color.y, m->color.z));
         *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
-        return;
+        return true;
+    }
+    if (m->thin) {
+        /* Thin-walled glass (glTF's glass without a volume): reflect F
+         * about the shading normal, else go on undeviated, x the tint
+         * (shade/thin_glass.frag). No random number where F is 0 (an
+         * ideal pane: the eye path stays fixed). */
+        dvec3 normal, tint;
+        ref_thin_surface(o, h, nn, &normal, &tint);
+        double cos_i = fmin(fmax(-dv_dot(*dir, normal), 0.0), 1.0);
+        double f = fresnel_of(m, cos_i, 1.0 / m->ior);
+        if (f > 0.0 && (f >= 1.0 || ref_rng_uniform(rng) < f)) {
+            *dir = dv_normalize_or(ref_reflect(*dir, normal), ref_reflect(*dir, ngo));
+            *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
+            return true;
+        }
+        *beta = dv_mul(*beta, tint);
+        *origin = dv_sub(h->position, dv_scale(ngo, rs->epsilon));
+        return false;
     }
     double eta = entering ? 1.0 / m->ior : m->ior;
     /* Rough glass: reflect or refract about a microfacet normal drawn from
@@ -177,7 +198,7 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
         mn = ref_ggx_sample_normal(nn, alpha, u1, u2);
         if (dv_dot(*dir, mn) >= 0.0) { /* the ray meets the microfacet's back */
             *beta = dv(0, 0, 0);
-            return;
+            return true;
         }
     }
     double cos_i = -dv_dot(*dir, mn);
@@ -203,6 +224,7 @@ static void specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
         if (entering) /* glTF's transmission tint, once per way through */
             *beta = dv_mul(*beta, dv(m->tint.x, m->tint.y, m->tint.z));
     }
+    return true;
 }
 
 /* ---- per-pixel state ---------------------------------------------------- */
@@ -273,8 +295,10 @@ static dvec3 inscatter(const struct ref_scene *rs, const struct ref_medium *rm, 
         if (!light_arrival(&rs->lights[i], x, &e, &wi, &dist))
             continue;
         double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) : INFINITY;
-        if (ref_scene_occluded(rs, x, wi, tmax))
+        dvec3 through = ref_scene_transmittance(rs, x, wi, tmax);
+        if (!(dv_dot(through, through) > 0.0))
             continue;
+        e = dv_mul(e, through);
         /* cos between the light's travel direction (-wi) and the direction to the eye (-view) */
         double p = ref_phase_hg(rm->g, dv_dot(wi, view));
         sum = dv_add(sum, dv_scale(dv_mul(e, ref_medium_transmittance(rm, x, wi, tmax, rng)), p));
@@ -298,8 +322,12 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
             continue;
         double c = dv_dot(n, wi);
         double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - rs->epsilon : INFINITY;
-        if (c <= 0.0 || ref_scene_occluded(rs, origin, wi, tmax))
+        if (c <= 0.0)
             continue;
+        dvec3 through = ref_scene_transmittance(rs, origin, wi, tmax); /* (through thin-walled panes) */
+        if (!(dv_dot(through, through) > 0.0))
+            continue;
+        el = dv_mul(el, through);
         /* with a medium, attenuated along the shadow ray */
         if (rm->present)
             el = dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng));
@@ -865,8 +893,8 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
             }
             return; /* L D paths are direct light, gathered by shadow rays */
         }
-        specular_step(rs, &h, &media, &dir, &origin, &flux, &rng);
-        specular++;
+        if (specular_step(rs, &h, &media, &dir, &origin, &flux, &rng))
+            specular++;
         if (dv_dot(flux, flux) < 1e-40)
             return;
     }

@@ -19,7 +19,7 @@ const char *material_kind_name(enum material_kind kind)
 unsigned material_role(const struct material *m)
 {
     switch (m->kind) {
-    case MATERIAL_GLASS: return OBJECT_ROLE_GLASS;
+    case MATERIAL_GLASS: return m->thin ? OBJECT_ROLE_THIN : OBJECT_ROLE_GLASS;
     case MATERIAL_WATER: return OBJECT_ROLE_WATER;
     case MATERIAL_MIRROR: return OBJECT_ROLE_MIRROR;
     case MATERIAL_DIFFUSE: break;
@@ -34,8 +34,15 @@ const char *object_role_name(unsigned role)
     case OBJECT_ROLE_WATER: return "water";
     case OBJECT_ROLE_MIRROR: return "mirror";
     case OBJECT_ROLE_RECEIVER: return "receiver";
+    case OBJECT_ROLE_THIN: return "thin glass";
     default: return "object";
     }
+}
+
+bool material_is_textured_surface(const struct material *m)
+{
+    unsigned role = material_role(m);
+    return role == OBJECT_ROLE_RECEIVER || role == OBJECT_ROLE_THIN;
 }
 
 void material_init(struct material *m, enum material_kind kind)

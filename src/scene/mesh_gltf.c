@@ -77,17 +77,20 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
          * base colour c = what attenuationColor c at thickness 1 lets
          * through once) */
         m->tint = vec3_min(base, vec3_make(1, 1, 1)); /* a tint passes a share, never more */
-        if (g->base_color_texture.bytes)
+        /* glTF calls glass without a volume (or of thicknessFactor 0)
+         * thin-walled: one surface that light crosses undeviated, tinted
+         * by the base colour (x its texture, per texel) */
+        m->thin = !g->volume || !(g->thickness > 0.0f);
+        if (m->thin) {
+            m->absorption = vec3_make(0, 0, 0); /* no volume to absorb over */
+            if (m->roughness > 0.0f)
+                ignored_add(m, "roughness %.2g on thin-walled glass (drawn smooth)", m->roughness);
+            m->roughness = 0.0f;
+        } else if (g->base_color_texture.bytes)
             ignored_add(m, "baseColorTexture as a tint of the glass (its factor tints)");
         if (g->metallic > 0.0f)
             ignored_add(m, "metallic %.2g", g->metallic);
         /* transmissionTexture: per texel, material.transmission_map */
-        /* glTF calls glass without a volume (or of thicknessFactor 0)
-         * thin-walled: no bending. Both renderers trace the mesh as a
-         * solid; a thicknessFactor > 0 only hints at what they trace. */
-        if (!g->volume || !(g->thickness > 0.0f))
-            ignored_add(m, "thin walls (%s: drawn as a solid of the mesh's shape)",
-                        g->volume ? "thicknessFactor 0" : "no KHR_materials_volume");
     } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS &&
                (!g->metallic_roughness_texture.bytes || smooth_metal_texture)) {
         m->kind = MATERIAL_MIRROR;
@@ -115,22 +118,23 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
             ignored_add(m, "emission (drawn on diffuse surfaces only)");
         if (g->base_color_texture.bytes && m->kind != MATERIAL_GLASS)
             ignored_add(m, "baseColorTexture (drawn on diffuse surfaces only)");
-        if (g->normal_texture.bytes)
-            ignored_add(m, "normalTexture (drawn on diffuse surfaces only)");
+        if (g->normal_texture.bytes && !m->thin)
+            ignored_add(m, "normalTexture (drawn on diffuse surfaces and thin-walled glass only)");
         if (g->emissive_texture.bytes)
             ignored_add(m, "emissiveTexture (drawn on diffuse surfaces only)");
         if (g->occlusion_texture.bytes)
             ignored_add(m, "occlusionTexture (drawn on diffuse surfaces only)");
     }
-    if (g->alpha_mode == GLTF_ALPHA_MASK && m->kind == MATERIAL_DIFFUSE) {
+    bool cut = m->kind == MATERIAL_DIFFUSE || m->thin; /* a crack cut out of a pane is a hole */
+    if (g->alpha_mode == GLTF_ALPHA_MASK && cut) {
         m->alpha = g->alpha;
         m->alpha_cutoff = g->alpha_cutoff;
-    } else if (g->alpha_mode == GLTF_ALPHA_BLEND && m->kind == MATERIAL_DIFFUSE) {
+    } else if (g->alpha_mode == GLTF_ALPHA_BLEND && cut) {
         m->alpha = g->alpha;
         m->alpha_blend = true;
     } else if (g->alpha_mode != GLTF_ALPHA_OPAQUE) {
-        ignored_add(m, "alphaMode %s (cut-outs and blending on diffuse surfaces only: drawn whole)",
-                    g->alpha_mode == GLTF_ALPHA_MASK ? "MASK" : "BLEND");
+        ignored_add(m, "alphaMode %s (cut-outs and blending on diffuse surfaces and thin-walled glass only: drawn "
+                       "whole)", g->alpha_mode == GLTF_ALPHA_MASK ? "MASK" : "BLEND");
     }
     else if (g->alpha_mode == GLTF_ALPHA_BLEND)
         ignored_add(m, "alphaMode BLEND (drawn opaque)");
@@ -154,13 +158,15 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
                   {&g->metallic_roughness_texture, &m->metallic_roughness},
                   {&g->occlusion_texture, &m->occlusion},
                   {&g->transmission_texture, &m->transmission_map}};
-    /* diffuse surfaces read the first five, glass its transmission */
+    /* diffuse surfaces read the first five, glass its transmission, thin
+     * glass its base colour (the tint per texel) and normal map too */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
-    for (int s = glass ? 5 : 0; s < (glass ? 6 : 5); s++) {
+    for (int s = 0; s < 6; s++) {
         struct gltf_texture *gt = slots[s].from;
-        if (!gt->bytes)
+        bool read = glass ? s == 5 || (m->thin && s <= 1) : s < 5;
+        if (!gt->bytes || !read)
             continue;
         if (!whole->texcoords[gt->texcoord])
             return error_set(err, "%s: material '%s': a texture reads TEXCOORD_%d, which no primitive has", path,

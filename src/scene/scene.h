@@ -65,6 +65,10 @@ struct material {
                       * a pass that sees one interface only absorbs over (shade); 0: none given */
     float transmission; /* glass, water: the share of the surface that is the interface (glTF's
                          * transmissionFactor); the rest is diffuse of `color`. 1: all glass */
+    bool thin;          /* glass: thin-walled (glTF's glass without KHR_materials_volume): one
+                         * surface, seen from both sides, that reflects F and lets (1 - F) x tint
+                         * through undeviated (OBJECT_ROLE_THIN); the base colour texture, the
+                         * normal map and alpha apply to it as to a diffuse surface */
     /* Textures (diffuse surfaces only): colour x base_color, the shading
      * normal from a tangent-space normal map, emission x emissive. A
      * material holds a reference to each: copy materials with
@@ -230,12 +234,16 @@ enum object_role {
     OBJECT_ROLE_GLASS = 2u,    /* a closed refractor */
     OBJECT_ROLE_WATER = 4u,    /* a water surface: refracts, its medium below */
     OBJECT_ROLE_MIRROR = 8u,
+    OBJECT_ROLE_THIN = 16u,    /* thin-walled glass: light crosses it undeviated (material.thin) */
 };
 #define OBJECT_ROLE_REFRACTOR (OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER)
 #define OBJECT_ROLE_SPECULAR (OBJECT_ROLE_REFRACTOR | OBJECT_ROLE_MIRROR)
 /* The material's role (one bit). */
 unsigned material_role(const struct material *m);
-/* "receiver", "glass", "water" or "mirror" for one role bit. */
+/* Surfaces whose textures, normal map and alpha both renderers read: a
+ * diffuse surface's, and thin glass's (its base colour tints). */
+bool material_is_textured_surface(const struct material *m);
+/* "receiver", "glass", "water", "mirror" or "thin glass" for one role bit. */
 const char *object_role_name(unsigned role);
 
 enum deform_kind { DEFORM_NONE, DEFORM_WAVE, DEFORM_GLSL };

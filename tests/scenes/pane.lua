@@ -1,0 +1,35 @@
+-- A pane of thin-walled glass (c.material.glass { thin = true }: glTF's
+-- glass without KHR_materials_volume, issue 50) before a checkered wall
+-- over a floor, a sun behind the camera. Light crosses the pane undeviated:
+-- the wall is seen through it where it is, darkened by (1 - F) and the
+-- tint, and the pane's shadow on the floor is (1 - F) x tint of the sun.
+-- --set pane=false: no pane; fresnel=false: an ideal pane (F = 0), which
+-- must vanish; tint=true: an orange pane; turn=A: the pane turned A
+-- radians about the vertical (0: facing the camera).
+local c = require "caustica"
+local scene = c.scene {
+  camera = c.camera { eye = {0, 0.4, 3.2}, target = {0, 0, 0}, fov = 40 },
+  background = {0.35, 0.4, 0.5},
+  ambient = {0.15, 0.15, 0.15},
+}
+local sun = scene:add(c.light.directional { direction = {-0.3, -0.6, -1}, intensity = {2, 2, 2} })
+local checker = c.texture.checker { size = 8, a = {0.9, 0.85, 0.8}, b = {0.15, 0.2, 0.3} }
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, 0.5, -1.2},
+                     rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2),
+                     material = c.material.diffuse { color = checker } })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.8, 0},
+                     material = c.material.diffuse { color = {0.7, 0.7, 0.7} } })
+if c.param("pane", true) then
+  local turn = c.param("turn", 0.6)
+  scene:add(c.object { mesh = c.mesh.plane { size = 1.2 }, position = {0, 0, 0.4},
+                       rotation = c.quat.mul(c.quat.axis_angle({0, 1, 0}, turn),
+                                             c.quat.axis_angle({1, 0, 0}, math.pi / 2)),
+                       material = c.material.glass { thin = true, ior = 1.5,
+                                                     fresnel = c.param("fresnel", true),
+                                                     tint = c.param("tint", false) and {1, 0.6, 0.2} or nil } })
+end
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
+g:add("shade", c.pass.shade { shadow = "shadow.depth" })
+g:output("shade.color")
+return { scene = scene, graph = g, size = {128, 128} }
