@@ -5,7 +5,10 @@
 -- tint, and the pane's shadow on the floor is (1 - F) x tint of the sun.
 -- --set pane=false: no pane; fresnel=false: an ideal pane (F = 0), which
 -- must vanish; tint=true: an orange pane; turn=A: the pane turned A
--- radians about the vertical (0: facing the camera).
+-- radians about the vertical (0: facing the camera); gltf=true: the pane
+-- is tests/data/pane.gltf (made by make_pane.py: glTF's thin-walled glass,
+-- no KHR_materials_volume, tinted pale blue by its baseColorTexture, a
+-- crack along its diagonal cut out by alphaMode MASK), 1.2 across.
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 0.4, 3.2}, target = {0, 0, 0}, fov = 40 },
@@ -21,12 +24,16 @@ scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -0.8, 0},
                      material = c.material.diffuse { color = {0.7, 0.7, 0.7} } })
 if c.param("pane", true) then
   local turn = c.param("turn", 0.6)
-  scene:add(c.object { mesh = c.mesh.plane { size = 1.2 }, position = {0, 0, 0.4},
-                       rotation = c.quat.mul(c.quat.axis_angle({0, 1, 0}, turn),
-                                             c.quat.axis_angle({1, 0, 0}, math.pi / 2)),
-                       material = c.material.glass { thin = true, ior = 1.5,
-                                                     fresnel = c.param("fresnel", true),
-                                                     tint = c.param("tint", false) and {1, 0.6, 0.2} or nil } })
+  local rotation = c.quat.mul(c.quat.axis_angle({0, 1, 0}, turn), c.quat.axis_angle({1, 0, 0}, math.pi / 2))
+  if c.param("gltf", false) then
+    scene:add(c.object { mesh = c.mesh.load "../data/pane.gltf", position = {0, 0, 0.4}, rotation = rotation,
+                         scale = {1.2, 1.2, 1.2} })
+  else
+    scene:add(c.object { mesh = c.mesh.plane { size = 1.2 }, position = {0, 0, 0.4}, rotation = rotation,
+                         material = c.material.glass { thin = true, ior = 1.5,
+                                                       fresnel = c.param("fresnel", true),
+                                                       tint = c.param("tint", false) and {1, 0.6, 0.2} or nil } })
+  end
 end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
