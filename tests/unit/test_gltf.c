@@ -197,6 +197,20 @@ int main(void)
     }
     mesh_destroy(two);
 
+    /* glTF's thin-walled glass (no KHR_materials_volume): material.thin,
+     * its base colour texture, its MASK and its roughness 0 read, nothing
+     * ignored (tests/data/pane.gltf, make_pane.py) */
+    struct mesh *pane = mesh_load_gltf(asset("tests/data/pane.gltf"), 0, &err);
+    CHECK(pane != NULL);
+    if (pane) {
+        const struct material *m = &pane->material;
+        CHECK(m->kind == MATERIAL_GLASS && m->thin && material_role(m) == OBJECT_ROLE_THIN);
+        CHECK(m->base_color.texture != NULL && m->alpha_cutoff == 0.5f && !m->alpha_blend);
+        CHECK_NEAR(m->tint.x, 1.0, 1e-6);
+        CHECK(m->ignored[0] == 0);
+        mesh_destroy(pane);
+    }
+
     /* textures: BoxTextured's PNG in the BIN chunk with its sampler, and an
      * external image with KHR_texture_transform */
     struct mesh *box = mesh_load_gltf(asset("scenes/assets/khronos/BoxTextured/BoxTextured.glb"), 0, &err);
