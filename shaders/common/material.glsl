@@ -104,9 +104,13 @@ float material_occlusion()
 // The shading normal from a tangent-space normal map, for the face-forward
 // normal n at world point p. The tangent is the direction of increasing u
 // on the triangle (solved from the screen derivatives of p and uv, exact for
-// a flat triangle) made perpendicular to n; the bitangent is n x t, as the
-// glTF sample viewer does without TANGENT data. A degenerate uv mapping
-// (zero area in uv) leaves n as it is. Call in uniform control flow.
+// a flat triangle) made perpendicular to n; the bitangent is n x t, turned
+// to the side of decreasing v (glTF's v runs down the image, and a normal
+// map's green is up it): where the uv mapping is mirrored that is -(n x t),
+// the handedness MikkTSpace stores in TANGENT's w (glTF's bitangent =
+// cross(normal, tangent.xyz) * w; NormalTangentMirrorTest's mirrored
+// bumps). A degenerate uv mapping (zero area in uv) leaves n as
+// it is. Call in uniform control flow.
 vec3 material_normal(vec3 n, vec3 p)
 {
     if (u_texture_set[1] == 0)
@@ -116,6 +120,7 @@ vec3 material_normal(vec3 n, vec3 p)
     vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
     float det = duv1.x * duv2.y - duv1.y * duv2.x;
     vec3 pu = dp1 * duv2.y - dp2 * duv1.y; // (dp/du) * det
+    vec3 pv = dp2 * duv1.x - dp1 * duv2.x; // (dp/dv) * det
     vec3 t = pu - n * dot(n, pu);
     float len = length(t);
     vec3 m = texture(u_normal_texture, uv).rgb * 2.0 - 1.0;
@@ -123,6 +128,8 @@ vec3 material_normal(vec3 n, vec3 p)
         return n;
     t = t * (sign(det) / len);
     vec3 b = cross(n, t);
+    if (dot(b, pv) * det > 0.0)
+        b = -b; // a mirrored mapping: v runs the other way round n
     vec3 mapped = t * (m.x * u_normal_scale) + b * (m.y * u_normal_scale) + n * m.z;
     float ml = length(mapped);
     return ml > 1e-12 ? mapped / ml : n;

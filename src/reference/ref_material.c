@@ -34,7 +34,8 @@ double ref_object_transmission(const struct ref_object *o, const struct ref_hit 
 static dvec3 to_dvec3(vec3 v) { return dv(v.x, v.y, v.z); }
 
 /* The normal map at the hit, in the frame of material_normal(): t along
- * increasing u on the triangle (made perpendicular to n), b = n x t. */
+ * increasing u on the triangle (made perpendicular to n), b = n x t turned
+ * to the side of decreasing v (a mirrored mapping: -(n x t)). */
 static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, dvec3 n)
 {
     const struct texture_ref *ref = &o->material.normal;
@@ -54,12 +55,15 @@ static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, 
     double du2 = uvs[2][0] - uvs[0][0], dv2 = uvs[2][1] - uvs[0][1];
     double det = du1 * dv2 - dv1 * du2;
     dvec3 pu = dv_sub(dv_scale(e1, dv2), dv_scale(e2, dv1));
+    dvec3 pv = dv_sub(dv_scale(e2, du1), dv_scale(e1, du2)); /* (dp/dv) * det */
     dvec3 t = dv_sub(pu, dv_scale(n, dv_dot(n, pu)));
     double len = sqrt(dv_dot(t, t));
     if (!(fabs(det) > 1e-20) || !(len > 1e-20 * fmax(fabs(det), 1e-20)) || !isfinite(len))
         return n; /* a triangle with no area in uv: no tangent frame */
     t = dv_scale(t, (det > 0 ? 1.0 : -1.0) / len);
     dvec3 b = dv_cross(n, t);
+    if (dv_dot(b, pv) * det > 0.0)
+        b = dv_scale(b, -1.0); /* a mirrored mapping: v runs the other way round n */
     float uv[2];
     hit_uv(o, h, ref->texcoord, uv);
     vec3 m = texture_sample(ref, uv, false);

@@ -12,7 +12,7 @@ local samples = {
   normal_tangent = { file = "NormalTangentTest/NormalTangentTest.glb" },
   normal_tangent_mirror = { file = "NormalTangentMirrorTest/NormalTangentMirrorTest.glb" },
   damaged_helmet = { file = "DamagedHelmet/DamagedHelmet.glb" },
-  toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.55, 0.35, 1}, scale = 1.8, target = {0, -0.35, 0} },
+  toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.6, 0.45, 1}, scale = 2.4, target = {0, 0.62, 0} },
 }
 local name = c.param("sample", "texture_transform")
 local sample = samples[name]
