@@ -44,6 +44,21 @@ uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD
 uniform vec3 u_transmission_transform[2]; // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
+// glTF's baseColorTexture on glass: x the tint per texel where the light
+// enters (bound by renderer_draw_objects in common/material.glsl's slot 0)
+uniform sampler2D u_base_color_texture;
+uniform int u_texture_set[5];
+uniform vec3 u_texture_transform[10];
+
+// The tint of the light entering here: the base colour x its texture (the
+// reference's ref_glass_tint)
+vec3 glass_tint()
+{
+    if (u_texture_set[0] == 0)
+        return u_tint;
+    vec3 q = vec3(u_texture_set[0] == 2 ? v_texcoord1 : v_texcoord0, 1.0);
+    return u_tint * texture(u_base_color_texture, vec2(dot(u_texture_transform[0], q), dot(u_texture_transform[1], q))).rgb;
+}
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform int u_material_kind; // 2: a mirror
@@ -325,7 +340,7 @@ void refract_paths(vec3 v, vec3 n1, vec3 reflect_dir, inout vec3 exit_dir, inout
         n2 = back ? surface_normal(u_back_normal, uv1) : -n1; // outside the buffer: the nearest guess
     n2 = normalize(n2);
     exit_dir = reflect(t1, dot(t1, n2) > 0.0 ? -n2 : n2);
-    leave_glass(p2, t1, n2, transmitted_share * u_tint * exp(-u_absorption * dT), transmitted_share, exit_dir, exit_key);
+    leave_glass(p2, t1, n2, transmitted_share * glass_tint() * exp(-u_absorption * dT), transmitted_share, exit_dir, exit_key);
 }
 
 // From inside the glass at its surface `pos` (outward normal n2), going

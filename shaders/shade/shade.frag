@@ -55,7 +55,7 @@ void main()
         float eta = entering ? 1.0 / u_ior : u_ior;
         float f = fresnel_of(dot(-view, nn), eta, u_ideal);
         vec3 t = refract_or_reflect(view, nn, eta);
-        vec3 inside = u_tint * exp(-u_absorption * u_thickness);
+        vec3 inside = material_albedo(u_tint) * exp(-u_absorption * u_thickness); // x baseColorTexture
         radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * inside * environment_radiance(t);
     }
     o_color = vec4(radiance, u_blending == 1 ? material_alpha() : 1.0); // (blended by alpha in the second draw)

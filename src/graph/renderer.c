@@ -267,7 +267,10 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         struct error err;
         /* Textures apply to diffuse surfaces only, in both renderers; a set
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
-        bool on = ref->texture && material_is_textured_surface(&o->material) && o->mesh->texcoords[ref->texcoord] &&
+        /* (glass: its base colour texture, which tints it) */
+        bool slot_used = material_is_textured_surface(&o->material) ||
+                         (s == 0 && material_role(&o->material) == OBJECT_ROLE_GLASS);
+        bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2, &id, &err); /* colours are sRGB */
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);

@@ -73,17 +73,24 @@ static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, 
     return dv_normalize_or(mapped, n);
 }
 
+dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h)
+{
+    const struct material *m = &o->material;
+    dvec3 tint = to_dvec3(m->tint);
+    if (slot_active(o, &m->base_color)) {
+        float uv[2];
+        hit_uv(o, h, m->base_color.texcoord, uv);
+        tint = dv_mul(tint, to_dvec3(texture_sample(&m->base_color, uv, true)));
+    }
+    return tint;
+}
+
 void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint)
 {
     const struct material *m = &o->material;
     double rgba[4];
-    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba);
-    *tint = dv_mul(to_dvec3(m->tint), dv(rgba[0], rgba[1], rgba[2]));
-    if (slot_active(o, &m->base_color)) {
-        float uv[2];
-        hit_uv(o, h, m->base_color.texcoord, uv);
-        *tint = dv_mul(*tint, to_dvec3(texture_sample(&m->base_color, uv, true)));
-    }
+    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba); /* COLOR_0 on thin glass, as on the GPU */
+    *tint = dv_mul(ref_glass_tint(o, h), dv(rgba[0], rgba[1], rgba[2]));
     *normal = slot_active(o, &m->normal) ? mapped_normal(o, h, n) : n;
 }
 

@@ -155,6 +155,9 @@ dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 di
  * through the normal map) and the tint (base colour x baseColorTexture x
  * COLOR_0), as shade/thin_glass.frag reads them. */
 void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint);
+/* Glass's tint at a hit: the base colour x baseColorTexture (glTF's
+ * transmission tint per texel; refract.frag's glass_tint). */
+dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h);
 dvec3 ref_scene_environment(const struct ref_scene *rs, dvec3 dir);
 /* The primary ray through image point (px, py) (pixels, top-left origin). */
 void ref_scene_camera_ray(const struct ref_scene *rs, double px, double py, int width, int height, dvec3 *origin,

@@ -221,8 +221,8 @@ static bool specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
         *dir = out;
         *origin = dv_sub(h->position, dv_scale(ngo, rs->epsilon));
         media_toggle(media, h->object, entering);
-        if (entering) /* glTF's transmission tint, once per way through */
-            *beta = dv_mul(*beta, dv(m->tint.x, m->tint.y, m->tint.z));
+        if (entering) /* glTF's transmission tint (x baseColorTexture), once per way through */
+            *beta = dv_mul(*beta, ref_glass_tint(o, h));
     }
     return true;
 }

@@ -86,8 +86,7 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
             if (m->roughness > 0.0f)
                 ignored_add(m, "roughness %.2g on thin-walled glass (drawn smooth)", m->roughness);
             m->roughness = 0.0f;
-        } else if (g->base_color_texture.bytes)
-            ignored_add(m, "baseColorTexture as a tint of the glass (its factor tints)");
+        }
         if (g->metallic > 0.0f)
             ignored_add(m, "metallic %.2g", g->metallic);
         /* transmissionTexture: per texel, material.transmission_map */
@@ -158,14 +157,14 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
                   {&g->metallic_roughness_texture, &m->metallic_roughness},
                   {&g->occlusion_texture, &m->occlusion},
                   {&g->transmission_texture, &m->transmission_map}};
-    /* diffuse surfaces read the first five, glass its transmission, thin
-     * glass its base colour (the tint per texel) and normal map too */
+    /* diffuse surfaces read the first five, glass its transmission and its
+     * base colour (the tint per texel), thin glass its normal map too */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
     for (int s = 0; s < 6; s++) {
         struct gltf_texture *gt = slots[s].from;
-        bool read = glass ? s == 5 || (m->thin && s <= 1) : s < 5;
+        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) : s < 5;
         if (!gt->bytes || !read)
             continue;
         if (!whole->texcoords[gt->texcoord])

@@ -21,7 +21,8 @@ bool object_is_rough_refractor(const struct object *obj)
 bool object_is_tinted_refractor(const struct object *obj)
 {
     vec3 t = obj->material.tint;
-    return object_is(obj, OBJECT_ROLE_REFRACTOR) && (t.x != 1.0f || t.y != 1.0f || t.z != 1.0f);
+    return object_is(obj, OBJECT_ROLE_REFRACTOR) &&
+           (t.x != 1.0f || t.y != 1.0f || t.z != 1.0f || obj->material.base_color.texture);
 }
 
 bool object_is_partly_diffuse_refractor(const struct object *obj)
