@@ -25,6 +25,7 @@ uniform float u_normal_scale;
 uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
 uniform int u_alpha_blend;     // glTF alphaMode BLEND: kept with probability alpha (an ordered dither)
+uniform int u_single_sided;    // glTF doubleSided false: the camera does not see its back faces (shade discards them)
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
 in vec4 v_color; // glTF's COLOR_0: it multiplies the base colour and its alpha ...

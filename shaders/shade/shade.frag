@@ -34,8 +34,8 @@ void main()
     if (dot(n, view) > 0.0 && u_material_kind == 0)
         n = -n; // two-sided diffuse surfaces
     vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
-    if (u_blending == 0 && material_cut_out())
-        discard;
+    if ((u_blending == 0 && material_cut_out()) || (u_single_sided == 1 && !gl_FrontFacing))
+        discard; // a cut-out, or the back of a single-sided surface (glTF's doubleSided false)
     vec3 radiance;
     if (u_material_kind == 0) {
         n = mapped;

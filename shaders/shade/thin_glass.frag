@@ -36,8 +36,8 @@ void main()
     if (dot(n, view) > 0.0)
         n = -n; // seen from either side
     n = material_normal(n, v_world);
-    if (material_cut_out() && u_alpha_blend == 0)
-        discard; // a crack cut out of a pane (alphaMode MASK) is a hole
+    if ((material_cut_out() && u_alpha_blend == 0) || (u_single_sided == 1 && !gl_FrontFacing))
+        discard; // a crack cut out of a pane (alphaMode MASK) is a hole; a single-sided pane's back is not seen
     float cos_i = clamp(dot(-view, n), 0.0, 1.0);
     float f = fresnel_of(cos_i, 1.0 / u_ior, u_ideal);
     vec3 tint = material_albedo(u_tint); // base colour x baseColorTexture x COLOR_0

@@ -201,7 +201,7 @@ void renderer_reset_state(struct renderer *r)
 enum { MATERIAL_SLOTS = 5 }; /* base colour, normal, emissive, metallic-roughness, occlusion */
 
 struct material_locations {
-    GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend;
+    GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend, single_sided;
     GLint transmission_set, transmission_transform[2];
     GLint metallic, roughness, ior, occlusion_strength, specular, specular_color;
 };
@@ -221,6 +221,7 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->normal_scale = gl_program_uniform(program, "u_normal_scale");
     loc->alpha = gl_program_uniform(program, "u_alpha");
     loc->alpha_cutoff = gl_program_uniform(program, "u_alpha_cutoff");
+    loc->single_sided = gl_program_uniform(program, "u_single_sided");
     loc->alpha_blend = gl_program_uniform(program, "u_alpha_blend");
     loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
     loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
@@ -294,6 +295,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
     gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
     gl.ProgramUniform1i(program->id, loc->alpha_blend, diffuse && o->material.alpha_blend);
+    gl.ProgramUniform1i(program->id, loc->single_sided, diffuse && o->material.single_sided);
     /* glass's transmission texture (its red channel, linear), which refraction reads */
     const struct texture_ref *tm = &o->material.transmission_map;
     GLuint tid = 0;

@@ -41,6 +41,7 @@ struct gltf_material {
     float metallic, roughness;  /* pbrMetallicRoughness factors (1 and 1 when absent, as glTF says) */
     enum gltf_alpha_mode alpha_mode;
     float alpha_cutoff;         /* MASK: 0.5 by default */
+    bool double_sided;          /* doubleSided (false by default: back faces are culled) */
     bool glass;                 /* transmission > 0 */
     float ior;                  /* KHR_materials_ior, 1.5 by default */
     float transmission;         /* KHR_materials_transmission */

@@ -384,6 +384,7 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     m.alpha_mode = mat.alphaMode == "MASK" ? GLTF_ALPHA_MASK : mat.alphaMode == "BLEND" ? GLTF_ALPHA_BLEND
                                                                                          : GLTF_ALPHA_OPAQUE;
     m.alpha_cutoff = (float)mat.alphaCutoff;
+    m.double_sided = mat.doubleSided;
     for (const auto &e : mat.extensions)
         if (!extension_read(e.first))
             note_unread(m, e.first);

@@ -227,6 +227,27 @@ static bool specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
     return true;
 }
 
+/* An eye path's next surface: ref_scene_intersect, through the back faces
+ * of single-sided surfaces (glTF's doubleSided false, which shade discards;
+ * they still cast shadows and meet photons), h->t from `origin`. */
+static bool eye_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, struct ref_hit *h)
+{
+    double skipped = 0.0;
+    for (int k = 0; k < 64; k++) {
+        if (!ref_scene_intersect(rs, origin, dir, INFINITY, h))
+            return false;
+        const struct material *m = &rs->objects[h->object].material;
+        if (!(m->single_sided && material_is_textured_surface(m) && dv_dot(dir, h->geometric_normal) > 0.0)) {
+            h->t += skipped;
+            return true;
+        }
+        dvec3 next = dv_add(h->position, dv_scale(dir, rs->epsilon));
+        skipped += dv_dot(dv_sub(next, origin), dir);
+        origin = next;
+    }
+    return false;
+}
+
 /* ---- per-pixel state ---------------------------------------------------- */
 
 struct visible_point {
@@ -491,7 +512,7 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
     const struct ref_medium *rm = j->medium;
     for (int depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
-        bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
+        bool hit = eye_intersect(rs, origin, dir, &h);
         double t0, t1;
         if (scene_medium_here(rs, &media) && ref_medium_clip(rm, origin, dir, hit ? h.t : INFINITY, &t0, &t1)) {
             /* Single scattering of the lights along the segment: one

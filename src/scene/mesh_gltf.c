@@ -125,6 +125,7 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
             ignored_add(m, "occlusionTexture (drawn on diffuse surfaces only)");
     }
     bool cut = m->kind == MATERIAL_DIFFUSE || m->thin; /* a crack cut out of a pane is a hole */
+    m->single_sided = cut && !g->double_sided;
     if (g->alpha_mode == GLTF_ALPHA_MASK && cut) {
         m->alpha = g->alpha;
         m->alpha_cutoff = g->alpha_cutoff;

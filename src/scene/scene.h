@@ -98,6 +98,11 @@ struct material {
      * which is alpha blending in expectation. */
     float alpha, alpha_cutoff;
     bool alpha_blend;
+    /* glTF's doubleSided false on a diffuse surface or thin glass: its back
+     * faces are not seen by the camera (shade discards them, the
+     * reference's eye paths pass through them); they still cast shadows.
+     * A script's materials are two-sided. */
+    bool single_sided;
     /* A material read from a file (scene/mesh_gltf.c): its name there, and
      * what the file asks for that caustica does not render, for `info`
      * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a

@@ -67,9 +67,24 @@ t.case("TextureTransformTest: KHR_texture_transform's offsets, rotation and scal
   end
 end)
 
-t.case("TextureSettingsTest: wrap modes and filters, GPU within 0.15", function()
+t.case("TextureSettingsTest: wrap modes, filters and a single-sided face, GPU within 0.15", function()
+  -- Its "single-sided" row hides a red cross on the back of a face that
+  -- is not doubleSided: culled by the camera, a green check shows behind
+  -- it. Before doubleSided was read, both renderers showed the cross.
   local gpu, ref = both("texture_settings")
   within(gpu, ref, 0.15, "texture_settings")
+  for name, img in pairs { shade = gpu, reference = ref } do
+    local green, red = 0, 0
+    for y = 39, 53 do
+      for x = 96, 110 do
+        local r, g, b = img:pixel(x, y)
+        if g > 1.5 * r and g > 1.5 * b then green = green + 1 end
+        if r > 1.5 * g and r > 1.5 * b then red = red + 1 end
+      end
+    end
+    t.expect(green > 10 and red < 3, string.format("%s: the single-sided cell holds %d green and %d red pixels",
+                                                   name, green, red))
+  end
 end)
 
 t.case("NormalTangentTest: tangents made at run time, the mapped half as the real one", function()
