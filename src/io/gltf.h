@@ -59,7 +59,8 @@ struct gltf_material {
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
-    char unread[512];
+    char unread[1024];
+    int unread_more; /* what did not fit in `unread` (a file may name any number of extensions) */
 };
 
 /* A run of triangles (indices [first_index, first_index + index_count))

@@ -354,6 +354,10 @@ void read_texture(const tinygltf::Model &model, int index, int texcoord, const t
 void note_unread(gltf_material &m, const std::string &what)
 {
     size_t used = std::strlen(m.unread);
+    if (used + 2 + what.size() + 1 > sizeof m.unread) { // never cut: counted instead
+        m.unread_more++;
+        return;
+    }
     std::snprintf(m.unread + used, sizeof m.unread - used, "%s%s", used ? ", " : "", what.c_str());
 }
 

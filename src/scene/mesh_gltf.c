@@ -140,6 +140,8 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
         ignored_add(m, "alphaMode BLEND (drawn opaque)");
     if (g->unread[0])
         ignored_add(m, "%s", g->unread);
+    if (g->unread_more)
+        ignored_add(m, "and %d more extensions or attributes (too many to name)", g->unread_more);
 }
 
 /* The textures of a diffuse material (or glass's transmissionTexture),

@@ -108,7 +108,7 @@ struct material {
      * ("roughness 0.49 (drawn smooth), transmissionTexture"). Empty for a
      * script's materials, which are rendered as they are. */
     char source[64];
-    char ignored[768]; /* (never cut: the longest a file's material can give is about 600) */
+    char ignored[1600]; /* (never cut: the file's `unread`, at most 1023, and the loader's own phrases) */
 };
 
 struct texture *texture_create(const char *name, int width, int height, struct error *err);
