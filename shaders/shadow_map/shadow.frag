@@ -12,6 +12,10 @@ void main()
 {
     if (material_cut_out())
         discard;
+#ifndef SHADOW_DISTANCE
+    if (u_alpha_blend == 1)
+        discard; // a 2D map's filter carries it (shadow_map.c)
+#endif
 #ifdef SHADOW_DISTANCE
     o_distance = vec4(length(v_world - u_light_position) / u_range, 0.0, 0.0, 1.0);
 #endif

@@ -101,11 +101,16 @@ static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *
     return PASS_RUN;
 }
 
-static bool scene_has_thin_glass(const struct scene *scene)
+/* Casters that let a share of the light through: thin glass, and glTF's
+ * alphaMode BLEND surfaces (what passes them is 1 - alpha) */
+static bool scene_has_filtering_casters(const struct scene *scene)
 {
-    for (int i = 0; i < scene->object_count; i++)
-        if (object_is(scene->objects[i], OBJECT_ROLE_THIN) && scene->objects[i]->cast_shadows)
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (o->cast_shadows && o->visible &&
+            (object_is(o, OBJECT_ROLE_THIN) || (object_is(o, OBJECT_ROLE_RECEIVER) && o->material.alpha_blend)))
             return true;
+    }
     return false;
 }
 
@@ -113,7 +118,10 @@ static bool scene_has_thin_glass(const struct scene *scene)
  * into the filter texture, their colours multiplied and the least depth
  * kept (shadow_map/thin_filter.frag), which common/shadows.glsl applies
  * to receivers behind the nearest pane. Thin glass is not in the depth map
- * (renderer_draw_objects leaves it out of DRAW_CASTERS). */
+ * (renderer_draw_objects leaves it out of DRAW_CASTERS). The blended
+ * surfaces (alphaMode BLEND) are drawn into it the same way, each letting
+ * 1 - alpha through: a smooth partial shadow where the depth map's dither
+ * made a dotted one (shadow.frag leaves them out of a 2D map). */
 static bool shadow_thin_filter(struct pass *p, struct pass_frame *f, struct shadow_state *s, int size,
                                struct error *err)
 {
@@ -139,6 +147,7 @@ static bool shadow_thin_filter(struct pass *p, struct pass_frame *f, struct shad
                                s->record.matrix.m);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light_index"), s->record.light_index);
     renderer_draw_objects(r, f->scene, prog, DRAW_THIN | DRAW_CASTERS);
+    renderer_draw_objects(r, f->scene, prog, DRAW_BLENDED | DRAW_CASTERS);
     gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_FUNC_ADD);
     gl.BlendFunci(0, GL_ONE, GL_ZERO);
     gl.Disablei(GL_BLEND, 0);
@@ -211,7 +220,7 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         renderer_draw_objects(r, f->scene, prog, DRAW_CASTERS);
         gl.Disable(GL_POLYGON_OFFSET_FILL);
         rec->filter = 0;
-        if (scene_has_thin_glass(f->scene)) {
+        if (scene_has_filtering_casters(f->scene)) {
             if (!shadow_thin_filter(p, f, s, size, err))
                 return false;
             rec->filter = s->filter.id;

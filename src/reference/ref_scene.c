@@ -72,6 +72,21 @@ bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u
     return m->alpha_blend ? xi >= a : a < m->alpha_cutoff;
 }
 
+/* BLEND's coin per ray takes this thread's salt (an eye path's iteration
+ * and pixel), so that a pixel-centre ray that is the same every iteration
+ * still draws a new coin each one; and says it drew one (such a path is
+ * not fixed: ref_sppm.c's trace_eye traces it again). */
+static _Thread_local uint64_t blend_salt;
+static _Thread_local bool blend_met;
+
+void ref_scene_blend_begin(uint64_t salt)
+{
+    blend_salt = salt;
+    blend_met = false;
+}
+
+bool ref_scene_blend_met(void) { return blend_met; }
+
 /* Embree's filter for a surface with cut-outs: a hit in a cut-out is no
  * hit, for rays and shadow rays alike (common/material.glsl's
  * material_cut_out on the GPU). */
@@ -90,13 +105,14 @@ static void cut_out_filter(const struct RTCFilterFunctionNArguments *args)
         /* BLEND's coin: a hash of the ray and the triangle, uniform over
          * rays (the filter has no generator of its own; the ray's origin and
          * direction are as random as the path that made them) */
-        uint32_t words[7] = {hit_ids[5 * n + i]};
+        uint32_t words[9] = {hit_ids[5 * n + i], (uint32_t)blend_salt, (uint32_t)(blend_salt >> 32)};
         for (int k = 0; k < 3; k++) {
-            memcpy(&words[1 + k], &ray[(unsigned)k * n + i], 4);
-            memcpy(&words[4 + k], &ray[(unsigned)(4 + k) * n + i], 4);
+            memcpy(&words[3 + k], &ray[(unsigned)k * n + i], 4);
+            memcpy(&words[6 + k], &ray[(unsigned)(4 + k) * n + i], 4);
         }
+        blend_met = blend_met || o->material.alpha_blend;
         uint64_t h = 1469598103934665603ull;
-        for (int k = 0; k < 7; k++) {
+        for (int k = 0; k < 9; k++) {
             h = (h ^ words[k]) * 1099511628211ull;
             h ^= h >> 29;
         }

@@ -151,6 +151,11 @@ bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, dou
  * transmission (its expectation: the diffuse share of a partly
  * transmissive pane blocks). Without thin glass, ref_scene_occluded. */
 dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);
+/* BLEND's coins (alphaMode BLEND: a surface kept per ray with probability
+ * alpha) on this thread take `salt` from here on; ref_scene_blend_met says
+ * whether a ray met such a surface since. */
+void ref_scene_blend_begin(uint64_t salt);
+bool ref_scene_blend_met(void);
 /* Thin-walled glass at a hit: the shading normal (n, on the ray's side,
  * through the normal map) and the tint (base colour x baseColorTexture x
  * COLOR_0), as shade/thin_glass.frag reads them. */

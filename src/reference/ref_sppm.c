@@ -598,7 +598,8 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
 
 /* Pixel (x, y)'s eye path of this iteration. A path that drew no random
  * number (a pixel centre, no choice between Fresnel's branches, no medium,
- * lights sampled without one: the rng's state as seeded) is the same path
+ * lights sampled without one: the rng's state as seeded) and met no
+ * blended surface, with its shadow rays too (their coins: ref_scene.c) is the same path
  * every iteration: its radiance is kept and added again, its visible point
  * and first radius stand, and it is not traced again (at 512^2 the eye
  * pass was a tenth of each iteration of the ball lens; issue 28). */
@@ -613,9 +614,10 @@ static void trace_eye(struct job *j, int x, int y)
     struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 1u,
                                       (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
     uint64_t seeded = rng.state;
+    ref_scene_blend_begin(seeded); /* a new coin each iteration for the blended surfaces it meets */
     dvec3 seen = trace_eye_path(j, px, x, y, &rng);
     px->direct = dv_add(px->direct, seen);
-    if (rng.state == seeded) {
+    if (rng.state == seeded && !ref_scene_blend_met()) {
         px->eye_fixed = true;
         px->eye_once = seen;
     }

@@ -13,6 +13,7 @@ local samples = {
   normal_tangent_mirror = { file = "NormalTangentMirrorTest/NormalTangentMirrorTest.glb" },
   damaged_helmet = { file = "DamagedHelmet/DamagedHelmet.glb" },
   candle_holder = { file = "GlassHurricaneCandleHolder/GlassHurricaneCandleHolder.glb", eye = {0, 0.35, 1} },
+  vase = { file = "GlassVaseFlowers/GlassVaseFlowers.glb", eye = {0, 0.3, 1} },
   toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.6, 0.45, 1}, scale = 2.4, target = {0, 0.62, 0} },
 }
 local name = c.param("sample", "texture_transform")
