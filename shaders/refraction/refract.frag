@@ -106,7 +106,8 @@ vec3 seen_at(ivec2 px)
 vec3 seen_rough(ivec2 px, vec3 hit)
 {
     float alpha = u_roughness * u_roughness;
-    float spread = alpha * abs(u_ior - 1.0 / u_ior);
+    // (a rough mirror: a facet tilted by theta turns the reflected ray by 2 theta)
+    float spread = u_material_kind == 2 ? 2.0 * alpha : alpha * abs(u_ior - 1.0 / u_ior);
     float z = u_proj[3][3] == 0.0 ? max(-(u_view * vec4(hit, 1.0)).z, 1e-6) : 1.0;
     float pixel = 2.0 * z / (u_proj[1][1] * u_viewport.y); // a pixel's size at the hit
     float radius = length(hit - v_world) * tan(min(spread, 1.2)) / max(pixel, 1e-9);

@@ -45,6 +45,8 @@ static void print_file_materials(const struct scene *scene)
                      m->roughness, m->metallic_roughness.texture ? " (x metallicRoughnessTexture)" : "", m->ior,
                      specular, m->occlusion.texture ? ", occlusion" : "");
         }
+        else if (m->kind == MATERIAL_MIRROR && m->roughness > 0.0f)
+            snprintf(drawn, sizeof drawn, "mirror, roughness %.2g", m->roughness);
         else
             snprintf(drawn, sizeof drawn, "%s", material_kind_name(m->kind));
         const char *name = o->mesh->material_name;

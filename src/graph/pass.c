@@ -592,6 +592,10 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
     /* one sentence for what of roughness, partial transmission and tint
      * the object has (graph_lint copies it before the next call) */
     static char sentence[400];
+    if (object_is(o, OBJECT_ROLE_MIRROR) && o->material.roughness > 0.0f)
+        return caustics ? "its roughness: the light it reflects is reflected as by a smooth mirror, so its caustic is "
+                          "sharp (the reference spreads it)"
+                        : "its roughness: drawn as a smooth mirror (refraction's scene lookup blurs it)";
     const char *parts[3];
     int n = 0;
     if (object_is_rough_refractor(o))

@@ -35,7 +35,7 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
         static const char *const diffuse_fields[] = {"color", "emission", "normal", "normal_scale", NULL};
-        static const char *const mirror_fields[] = {"color", NULL};
+        static const char *const mirror_fields[] = {"color", "roughness", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
                                                    "color", "tint", "thin", NULL};
@@ -77,6 +77,12 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
             m.normal.scale = scale;
         }
         lutil_opt_number(L, 1, fn, "ior", &m.ior);
+        if (kind == MATERIAL_MIRROR) { /* mirror { roughness }: GGX, alpha = roughness^2 */
+            lutil_opt_number(L, 1, fn, "roughness", &m.roughness);
+            if (!(m.roughness >= 0.0f && m.roughness <= 1.0f))
+                return lutil_error(L, "bad argument 'roughness' to '%s' (a number in [0, 1] expected, got %g)", fn,
+                                   (double)m.roughness);
+        }
         lutil_opt_color(L, 1, fn, "absorption", &m.absorption);
         if (kind == MATERIAL_GLASS || kind == MATERIAL_WATER) {
             bool fresnel = true;

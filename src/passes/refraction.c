@@ -211,11 +211,11 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
     return true;
 }
 
-/* Is a visible refractor rough (material.roughness > 0)? */
+/* Is a visible refractor or mirror rough (material.roughness > 0)? */
 static bool scene_has_rough_glass(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++)
-        if (object_is(scene->objects[i], OBJECT_ROLE_REFRACTOR) && scene->objects[i]->material.roughness > 0.0f)
+        if (object_is(scene->objects[i], OBJECT_ROLE_SPECULAR) && scene->objects[i]->material.roughness > 0.0f)
             return true;
     return false;
 }
@@ -464,7 +464,8 @@ static unsigned refraction_draws(const struct pass *p)
 static const char *refraction_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
     (void)scene;
-    if (object_is_rough_refractor(o) && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_SCENE)
+    bool rough = object_is_rough_refractor(o) || (object_is(o, OBJECT_ROLE_MIRROR) && o->material.roughness > 0.0f);
+    if (rough && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_SCENE)
         return "its roughness: only lookup = \"scene\" blurs the view through rough glass; this lookup draws it "
                "smooth";
     return NULL;

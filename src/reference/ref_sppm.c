@@ -161,8 +161,26 @@ static bool specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
     dvec3 nn = entering ? n : dv_scale(n, -1.0);
     dvec3 ngo = entering ? ng : dv_scale(ng, -1.0);
     if (m->kind == MATERIAL_MIRROR) {
-        *dir = dv_normalize_or(ref_reflect(*dir, nn), ref_reflect(*dir, ngo));
-        *beta = dv_mul(*beta, dv(m->color.x, m->color.y, m->color.z));
+        double alpha = (double)m->roughness * (double)m->roughness;
+        dvec3 mn = nn;
+        double w = 1.0;
+        if (alpha > 0.0) {
+            /* a rough mirror: reflect about a GGX microfacet normal, weighted
+             * as rough glass's reflection (Walter et al. 2007, eq. 41) */
+            double u1 = ref_rng_uniform(rng), u2 = ref_rng_uniform(rng);
+            mn = ref_ggx_sample_normal(nn, alpha, u1, u2);
+            double cos_i = -dv_dot(*dir, mn);
+            dvec3 out = ref_reflect(*dir, mn);
+            if (!(cos_i > 0.0) || dv_dot(out, ngo) <= 0.0) {
+                *beta = dv(0, 0, 0);
+                return true;
+            }
+            dvec3 in = dv_scale(*dir, -1.0);
+            w = cos_i * ref_ggx_g1(in, mn, nn, alpha) * ref_ggx_g1(out, mn, nn, alpha) /
+                fmax(-dv_dot(*dir, nn) * dv_dot(mn, nn), 1e-12);
+        }
+        *dir = dv_normalize_or(ref_reflect(*dir, mn), ref_reflect(*dir, ngo));
+        *beta = dv_scale(dv_mul(*beta, dv(m->color.x, m->color.y, m->color.z)), w);
         *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
         return true;
     }

@@ -93,8 +93,9 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
     } else if (metal && g->roughness <= GLTF_MIRROR_ROUGHNESS &&
                (!g->metallic_roughness_texture.bytes || smooth_metal_texture)) {
         m->kind = MATERIAL_MIRROR;
-        if (g->roughness > GLTF_SMOOTH_ROUGHNESS)
-            ignored_add(m, "roughness %.2g (drawn as a perfect mirror)", g->roughness);
+        /* a rough mirror: the reference samples GGX microfacets, refraction's
+         * scene lookup blurs its reflection, the other passes say so */
+        m->roughness = g->roughness > GLTF_SMOOTH_ROUGHNESS ? g->roughness : 0.0f;
         if (g->transmission > 0.0f)
             ignored_add(m, "transmission %.2g (a metal does not transmit)", g->transmission);
         if (g->transmission_texture.bytes)

@@ -70,6 +70,17 @@ else
   fail "rough glass" "rough $gpu_rel, smooth $contrast_rel: $(cat "$WORK/err.txt")"
 fi
 
+# Rough mirrors (GGX, roughness 0, 0.15, 0.3 on the ground, reflecting an emissive checker; glTF's smooth
+# metals): refraction's cone lookup of the reflection within 0.15 of the reference's sampled microfacets
+# (pixel means, 256 iterations: 0.139; the checker's edges, which the GPU samples at pixel centres, are
+# most of it: 0.095 against a pixel-centre reference), the strips drawn as smooth mirrors 0.24 from it.
+if against_reference tests/scenes/rough_mirror.lua "tests/scenes/rough_mirror.lua --set roughness=0" \
+   "--photons 1000 --spp 256" 0.15 0.2; then
+  pass "rough mirrors: the GPU's blur within $gpu_rel of the reference's microfacets (bound 0.15; smooth $contrast_rel)"
+else
+  fail "rough mirrors" "rough $gpu_rel, smooth $contrast_rel: $(cat "$WORK/err.txt")"
+fi
+
 # Partial transmission (0.6 and 0.3, the rest diffuse orange): refraction's blend within 0.16 of the
 # reference's choice per path (0.127 measured), the balls drawn clear 0.21 from it.
 if against_reference tests/scenes/partial_glass.lua "tests/scenes/partial_glass.lua --set transmission=1" \
