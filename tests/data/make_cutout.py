@@ -6,17 +6,13 @@ texture, sampled nearest: an orange checker whose dark squares have alpha 0,
 so half the quad is cut out, in squares of 0.25. And blend_quad.gltf: the
 same quad, alphaMode BLEND, orange of alpha 0.5 (baseColorFactor, no
 texture)."""
-import base64, json, struct, zlib
+import json, struct
 
-def png_rgba(w, h, rows):
-    raw = b"".join(b"\x00" + bytes(r) for r in rows)
-    def chunk(t, d):
-        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)) \
-        + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+from gltf_bits import data_uri, png
+
 
 rows = [sum(([230, 120, 40, 255] if (x + y) % 2 == 0 else [20, 20, 20, 0] for x in range(4)), []) for y in range(4)]
-image = png_rgba(4, 4, rows)
+image = png(4, 4, rows, True)
 pos = [-0.5, 0, -0.5, 0.5, 0, -0.5, 0.5, 0, 0.5, -0.5, 0, 0.5]
 nrm = [0, 1, 0] * 4
 uv = [0, 0, 1, 0, 1, 1, 0, 1]
@@ -31,8 +27,8 @@ gltf = {
                    "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}],
     "textures": [{"source": 0, "sampler": 0}],
     "samplers": [{"magFilter": 9728, "minFilter": 9728}],
-    "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
-    "buffers": [{"byteLength": len(buf), "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}],
+    "images": [{"uri": data_uri("image/png", image)}],
+    "buffers": [{"byteLength": len(buf), "uri": data_uri("application/octet-stream", buf)}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
     "accessors": [

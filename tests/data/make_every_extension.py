@@ -7,16 +7,12 @@ the volume's thickness texture), plus a TANGENT attribute: `caustica info`
 must list each of them, on one line that is not cut (issue 50). And 30
 vendor extensions of 50 characters each, more than a line of names holds:
 each named, or counted in "and N more"."""
-import base64, json, struct, zlib
+import json, struct
 
-def png_rgb(w, h, rows):
-    raw = b"".join(b"\x00" + bytes(r) for r in rows)
-    def chunk(t, d):
-        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) \
-        + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+from gltf_bits import data_uri, png
 
-image = png_rgb(1, 1, [[200, 200, 200]])
+
+image = png(1, 1, [[200, 200, 200]], False)
 pos = [0, 0, 0, 1, 0, 0, 0, 1, 0]
 nrm = [0, 0, 1] * 3
 tan = [1, 0, 0, 1] * 3
@@ -46,8 +42,8 @@ gltf = {
     "materials": [{"name": "Every extension", "pbrMetallicRoughness": {"metallicFactor": 0},
                    "extensions": extensions}],
     "textures": [{"source": 0}],
-    "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
-    "buffers": [{"byteLength": len(buf), "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}],
+    "images": [{"uri": data_uri("image/png", image)}],
+    "buffers": [{"byteLength": len(buf), "uri": data_uri("application/octet-stream", buf)}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
                     {"buffer": 0, "byteOffset": 72, "byteLength": 48}, {"buffer": 0, "byteOffset": 120, "byteLength": 24}],
     "accessors": [

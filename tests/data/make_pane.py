@@ -6,17 +6,13 @@ glass as glTF defines it: KHR_materials_transmission 1 and KHR_materials_ior
 sampled nearest: a pale blue tint (sRGB 170 200 255) with a crack along the
 diagonal (texels x == y, alpha 0), cut out by alphaMode MASK (cutoff 0.5):
 a broken window pane in one quad."""
-import base64, json, struct, zlib
+import json, struct
 
-def png_rgba(w, h, rows):
-    raw = b"".join(b"\x00" + bytes(r) for r in rows)
-    def chunk(t, d):
-        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)) \
-        + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+from gltf_bits import data_uri, png
+
 
 rows = [sum(([170, 200, 255, 0] if x == y else [170, 200, 255, 255] for x in range(8)), []) for y in range(8)]
-image = png_rgba(8, 8, rows)
+image = png(8, 8, rows, True)
 pos = [-0.5, 0, -0.5, 0.5, 0, -0.5, 0.5, 0, 0.5, -0.5, 0, 0.5]
 nrm = [0, 1, 0] * 4
 uv = [0, 0, 1, 0, 1, 1, 0, 1]
@@ -35,8 +31,8 @@ gltf = {
                                   "KHR_materials_ior": {"ior": 1.5}}}],
     "textures": [{"source": 0, "sampler": 0}],
     "samplers": [{"magFilter": 9728, "minFilter": 9728}],
-    "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
-    "buffers": [{"byteLength": len(buf), "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}],
+    "images": [{"uri": data_uri("image/png", image)}],
+    "buffers": [{"byteLength": len(buf), "uri": data_uri("application/octet-stream", buf)}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
     "accessors": [

@@ -44,6 +44,42 @@ local function bumps_lit_from_upper_left(img, who, xs, ys)
   end
 end
 
+-- How many pixels of the box [x0, x1] x [y0, y1] satisfy keep(r, g, b).
+local function count(img, x0, y0, x1, y1, keep)
+  local n = 0
+  for y = y0, y1 do
+    for x = x0, x1 do
+      if keep(img:pixel(x, y)) then n = n + 1 end
+    end
+  end
+  return n
+end
+
+-- rel_rmse of a against b over the box [x0, x1] x [y0, y1], of the means
+-- of blocks of block x block pixels (1: of the pixels)
+local function rel_box(a, b, x0, y0, x1, y1, block)
+  local function mean(img, x, y)
+    local s = { 0, 0, 0 }
+    for j = 0, block - 1 do
+      for i = 0, block - 1 do
+        local p = { img:pixel(x + i, y + j) }
+        for k = 1, 3 do s[k] = s[k] + p[k] / (block * block) end
+      end
+    end
+    return s
+  end
+  local d2, n2 = 0, 0
+  for y = y0, y1 - block + 1, block do
+    for x = x0, x1 - block + 1, block do
+      local p, q = mean(a, x, y), mean(b, x, y)
+      for k = 1, 3 do
+        d2, n2 = d2 + (p[k] - q[k]) ^ 2, n2 + q[k] ^ 2
+      end
+    end
+  end
+  return math.sqrt(d2 / n2)
+end
+
 local function within(gpu, ref, bound, what)
   local e = c.image.compare(gpu, ref).rel_rmse
   t.expect(e < bound, string.format("%s: rel_rmse %.4f (bound %g)", what, e, bound))
@@ -56,13 +92,7 @@ t.case("TextureTransformTest: KHR_texture_transform's offsets, rotation and scal
   local gpu, ref = both("texture_transform")
   within(gpu, ref, 0.15, "texture_transform")
   for _, img in ipairs { gpu, ref } do
-    local yellow = 0
-    for y = 40, 90 do
-      for x = 10, 182 do
-        local r, g, b = img:pixel(x, y)
-        if r > 0.4 and g > 0.4 and b < 0.1 then yellow = yellow + 1 end
-      end
-    end
+    local yellow = count(img, 10, 40, 182, 90, function(r, g, b) return r > 0.4 and g > 0.4 and b < 0.1 end)
     t.expect(yellow < 20, string.format("%d yellow pixels in the offset row", yellow))
   end
 end)
@@ -74,37 +104,33 @@ t.case("TextureSettingsTest: wrap modes, filters and a single-sided face, GPU wi
   local gpu, ref = both("texture_settings")
   within(gpu, ref, 0.15, "texture_settings")
   for name, img in pairs { shade = gpu, reference = ref } do
-    local green, red = 0, 0
-    for y = 39, 53 do
-      for x = 96, 110 do
-        local r, g, b = img:pixel(x, y)
-        if g > 1.5 * r and g > 1.5 * b then green = green + 1 end
-        if r > 1.5 * g and r > 1.5 * b then red = red + 1 end
-      end
-    end
+    local green = count(img, 96, 39, 110, 53, function(r, g, b) return g > 1.5 * r and g > 1.5 * b end)
+    local red = count(img, 96, 39, 110, 53, function(r, g, b) return r > 1.5 * g and r > 1.5 * b end)
     t.expect(green > 10 and red < 3, string.format("%s: the single-sided cell holds %d green and %d red pixels",
                                                    name, green, red))
   end
 end)
 
-t.case("NormalTangentTest: tangents made at run time, the mapped half as the real one", function()
-  local gpu, ref = both("normal_tangent")
-  within(gpu, ref, 0.15, "normal_tangent")
-  -- (the pink and blue pairs: real geometry left, a normal-mapped quad right)
-  for name, img in pairs { shade = gpu, reference = ref } do
-    bumps_lit_from_upper_left(img, name, { 25, 48, 84, 108 }, { 27, 57, 87, 116, 146 })
+-- A normal-map sample: the GPU within 0.15, and every bump (tiles centred
+-- at xs x ys) lit from the sun's side in both renderers.
+local function bumps_case(sample, xs, ys)
+  return function()
+    local gpu, ref = both(sample)
+    within(gpu, ref, 0.15, sample)
+    for name, img in pairs { shade = gpu, reference = ref } do
+      bumps_lit_from_upper_left(img, name, xs, ys)
+    end
   end
-end)
+end
 
-t.case("NormalTangentMirrorTest: mirrored texture coordinates, every bump lit from the same side", function()
-  -- Before the bitangent took the mapping's handedness, the mirrored
-  -- tiles' bumps read as dents in both renderers.
-  local gpu, ref = both("normal_tangent_mirror")
-  within(gpu, ref, 0.15, "normal_tangent_mirror")
-  for name, img in pairs { shade = gpu, reference = ref } do
-    bumps_lit_from_upper_left(img, name, { 22, 41, 60, 79 }, { 45, 67, 91, 114, 136 })
-  end
-end)
+-- (the pink and blue pairs: real geometry left, a normal-mapped quad right)
+t.case("NormalTangentTest: tangents made at run time, the mapped half as the real one",
+       bumps_case("normal_tangent", { 25, 48, 84, 108 }, { 27, 57, 87, 116, 146 }))
+
+-- Before the bitangent took the mapping's handedness, the mirrored tiles'
+-- bumps read as dents in both renderers.
+t.case("NormalTangentMirrorTest: mirrored texture coordinates, every bump lit from the same side",
+       bumps_case("normal_tangent_mirror", { 22, 41, 60, 79 }, { 45, 67, 91, 114, 136 }))
 
 t.case("ToyCar: painted (not chrome), its windows seen through, GPU within 0.15", function()
   -- Before, its metallicRoughnessTexture was reduced to its mean (> 0.5):
@@ -127,30 +153,7 @@ t.case("DamagedHelmet: every texture of a real asset, GPU within 0.2, its 4 x 4 
   -- average the footprint both ways: 0.040.
   local gpu, ref = both("damaged_helmet")
   within(gpu, ref, 0.2, "damaged_helmet")
-  -- the mean of block (x, y) of 4 x 4 pixels
-  local function blocks(img)
-    return function(x, y)
-      local s = { 0, 0, 0 }
-      for j = 0, 3 do
-        for i = 0, 3 do
-          local p = { img:pixel(x * 4 + i, y * 4 + j) }
-          for k = 1, 3 do s[k] = s[k] + p[k] / 16 end
-        end
-      end
-      return s
-    end
-  end
-  local g4, r4 = blocks(gpu), blocks(ref)
-  local d2, n2 = 0, 0
-  for y = 0, 47 do
-    for x = 0, 47 do
-      local a, b = g4(x, y), r4(x, y)
-      for k = 1, 3 do
-        d2, n2 = d2 + (a[k] - b[k]) ^ 2, n2 + b[k] ^ 2
-      end
-    end
-  end
-  local e = math.sqrt(d2 / n2)
+  local e = rel_box(gpu, ref, 0, 0, 191, 191, 4)
   t.expect(e < 0.08, string.format("4 x 4 block means: rel_rmse %.4f (bound 0.08)", e))
 end)
 
@@ -166,13 +169,7 @@ t.case("GlassHurricaneCandleHolder: the base colour texture colours the glass (i
   local ref = t.reference(SCENE, { set = set, spp = 16 })
   within(gpu, ref, 0.15, "candle_holder")
   for name, img in pairs { shade = gpu, reference = ref } do
-    local green = 0
-    for y = 60, 105 do
-      for x = 60, 135 do
-        local r, g, b = img:pixel(x, y)
-        if g > 1.3 * b and g > r then green = green + 1 end
-      end
-    end
+    local green = count(img, 60, 60, 135, 105, function(r, g, b) return g > 1.3 * b and g > r end)
     t.expect(green > 500, string.format("%s: %d pixels of the green logo seen through the glass", name, green))
   end
 end)
@@ -190,15 +187,6 @@ t.case("GlassVaseFlowers: the alpha-blended vase alike in both renderers, no fro
   local gpu = t.render(SCENE, { set = set })
   t.expect_finite(gpu)
   local ref = t.reference(SCENE, { set = set, spp = 16 })
-  local d2, n2 = 0, 0
-  for y = 0, 191 do
-    for x = 0, 95 do
-      local a, b = { gpu:pixel(x, y) }, { ref:pixel(x, y) }
-      for k = 1, 3 do
-        d2, n2 = d2 + (a[k] - b[k]) ^ 2, n2 + b[k] ^ 2
-      end
-    end
-  end
-  local e = math.sqrt(d2 / n2)
+  local e = rel_box(gpu, ref, 0, 0, 95, 191, 1)
   t.expect(e < 0.12, string.format("the blended vase's half: rel_rmse %.4f (bound 0.12, measured 0.072)", e))
 end)
