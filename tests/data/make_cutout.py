@@ -6,37 +6,16 @@ texture, sampled nearest: an orange checker whose dark squares have alpha 0,
 so half the quad is cut out, in squares of 0.25. And blend_quad.gltf: the
 same quad, alphaMode BLEND, orange of alpha 0.5 (baseColorFactor, no
 texture)."""
-import json, struct
+import json
 
-from gltf_bits import data_uri, png
+from gltf_bits import png, textured_quad
 
 
 rows = [sum(([230, 120, 40, 255] if (x + y) % 2 == 0 else [20, 20, 20, 0] for x in range(4)), []) for y in range(4)]
 image = png(4, 4, rows, True)
-pos = [-0.5, 0, -0.5, 0.5, 0, -0.5, 0.5, 0, 0.5, -0.5, 0, 0.5]
-nrm = [0, 1, 0] * 4
-uv = [0, 0, 1, 0, 1, 1, 0, 1]
-idx = [0, 2, 1, 0, 3, 2]
-buf = struct.pack("<12f", *pos) + struct.pack("<12f", *nrm) + struct.pack("<8f", *uv) + struct.pack("<6H", *idx)
-gltf = {
-    "asset": {"version": "2.0", "generator": "tests/data/make_cutout.py"},
-    "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
-                                "material": 0}]}],
-    "materials": [{"name": "Checker cut-out", "alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True,
-                   "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}],
-    "textures": [{"source": 0, "sampler": 0}],
-    "samplers": [{"magFilter": 9728, "minFilter": 9728}],
-    "images": [{"uri": data_uri("image/png", image)}],
-    "buffers": [{"byteLength": len(buf), "uri": data_uri("application/octet-stream", buf)}],
-    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
-                    {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
-    "accessors": [
-        {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-0.5, 0, -0.5], "max": [0.5, 0, 0.5]},
-        {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
-        {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
-}
+gltf = textured_quad("tests/data/make_cutout.py", {
+    "name": "Checker cut-out", "alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True,
+    "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}, image)
 open("cutout_quad.gltf", "w").write(json.dumps(gltf, indent=1) + "\n")
 
 blend = json.loads(json.dumps(gltf))
