@@ -1,5 +1,6 @@
 // Material textures of diffuse surfaces (struct material's base_color,
-// normal, emissive, metallic_roughness and occlusion slots), bound by
+// normal, emissive, metallic_roughness, occlusion, specular_map and
+// specular_color_map slots), bound by
 // renderer_draw_objects. The vertex shader passes the mesh's texture
 // coordinate sets as v_texcoord0/1. The reference renderer reads the same
 // texels with the same filter and the same tangent frame
@@ -11,8 +12,11 @@ uniform sampler2D u_normal_texture;
 uniform sampler2D u_emissive_texture;
 uniform sampler2D u_metallic_roughness_texture;
 uniform sampler2D u_occlusion_texture;
-uniform int u_texture_set[5];         // per slot (base, normal, emissive, metallic-roughness, occlusion): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
-uniform vec3 u_texture_transform[10]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+uniform sampler2D u_specular_texture;       // KHR_materials_specular: A x the specular factor
+uniform sampler2D u_specular_color_texture; // RGB (sRGB) x the specular colour
+uniform int u_texture_set[7];         // per slot (base, normal, emissive, metallic-roughness, occlusion, specular,
+                                      // specular colour): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
+uniform vec3 u_texture_transform[14]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 // glTF's metallic-roughness model (struct material's pbr; the programs'
 // GLTF_BRDF variant draws those materials)
 uniform float u_metallic;
@@ -81,7 +85,8 @@ vec3 material_emission(vec3 emission)
 
 // The glTF BRDF's parameters at this texel: base colour (factor x texture),
 // metallic (B) and roughness (G) of the metallicRoughnessTexture x the
-// factors (linear texels), the IOR and KHR_materials_specular's factors.
+// factors (linear texels), the IOR and KHR_materials_specular's factors x
+// its textures (specularTexture's A, specularColorTexture's RGB).
 BrdfMaterial material_brdf(vec3 color)
 {
     BrdfMaterial m;
@@ -90,8 +95,9 @@ BrdfMaterial material_brdf(vec3 color)
     m.metallic = clamp(u_metallic * mr.b, 0.0, 1.0);
     m.roughness = clamp(u_pbr_roughness * mr.g, 0.0, 1.0);
     m.ior = u_pbr_ior;
-    m.specular = u_specular;
-    m.specular_color = u_specular_color;
+    m.specular = u_texture_set[5] > 0 ? u_specular * texture(u_specular_texture, material_uv(5)).a : u_specular;
+    m.specular_color = u_texture_set[6] > 0 ? u_specular_color * texture(u_specular_color_texture, material_uv(6)).rgb
+                                            : u_specular_color;
     return m;
 }
 

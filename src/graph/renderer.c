@@ -198,7 +198,7 @@ void renderer_reset_state(struct renderer *r)
 
 /* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
-enum { MATERIAL_SLOTS = 5 }; /* base colour, normal, emissive, metallic-roughness, occlusion */
+enum { MATERIAL_SLOTS = 7 }; /* base colour, normal, emissive, metallic-roughness, occlusion, specular, specular colour */
 
 struct material_locations {
     GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend, single_sided;
@@ -258,10 +258,12 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
 {
     static const char *const samplers[MATERIAL_SLOTS] = {"u_base_color_texture", "u_normal_texture",
                                                          "u_emissive_texture", "u_metallic_roughness_texture",
-                                                         "u_occlusion_texture"};
+                                                         "u_occlusion_texture", "u_specular_texture",
+                                                         "u_specular_color_texture"};
     const struct texture_ref *slots[MATERIAL_SLOTS] = {&o->material.base_color, &o->material.normal,
                                                        &o->material.emissive, &o->material.metallic_roughness,
-                                                       &o->material.occlusion};
+                                                       &o->material.occlusion, &o->material.specular_map,
+                                                       &o->material.specular_color_map};
     for (int s = 0; s < MATERIAL_SLOTS; s++) {
         const struct texture_ref *ref = slots[s];
         GLuint id = 0;
@@ -272,7 +274,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         bool slot_used = material_is_textured_surface(&o->material) ||
                          (s == 0 && material_role(&o->material) == OBJECT_ROLE_GLASS);
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
-                  texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2, &id, &err); /* colours are sRGB */
+                  texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2 || s == 6, &id, &err); /* colours are sRGB */
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
         const float *m = ref->transform;

@@ -57,6 +57,8 @@ struct gltf_material {
     float specular;                                 /* KHR_materials_specular specularFactor, [0, 1]; 1 without */
     float specular_color[3];                        /* its specularColorFactor, [0, 1e3]; 1 without */
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
+    struct gltf_texture specular_texture;           /* A: KHR_materials_specular's specularFactor per texel */
+    struct gltf_texture specular_color_texture;     /* RGB (sRGB): its specularColorFactor per texel */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
     char unread[1024];

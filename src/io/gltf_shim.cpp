@@ -263,6 +263,8 @@ struct Builder {
             std::free(m.metallic_roughness_texture.bytes);
             std::free(m.occlusion_texture.bytes);
             std::free(m.transmission_texture.bytes);
+            std::free(m.specular_texture.bytes);
+            std::free(m.specular_color_texture.bytes);
         }
     }
 };
@@ -414,11 +416,17 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
                 m.specular_color[i] = (float)c.Get(i).GetNumberAsDouble();
         }
-        if (ext->second.Has("specularTexture"))
-            note_unread(m, "specularTexture");
-        if (ext->second.Has("specularColorTexture"))
-            note_unread(m, "specularColorTexture");
         std::string where = "material '" + mat.name + "'";
+        static const char *const fields[2] = {"specularTexture", "specularColorTexture"};
+        gltf_texture *slots[2] = {&m.specular_texture, &m.specular_color_texture};
+        for (int k = 0; k < 2; k++) {
+            if (!ext->second.Has(fields[k]))
+                continue;
+            const tinygltf::Value &info = ext->second.Get(fields[k]);
+            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
+            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, *slots[k], where);
+        }
         if (!std::isfinite(m.specular) || m.specular < 0.0f || m.specular > 1.0f)
             throw Fail{where + ": KHR_materials_specular specularFactor must be in [0, 1]"};
         for (int c = 0; c < 3; c++)
@@ -1017,7 +1025,8 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
             m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
-                m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes = nullptr;
+                m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes =
+                    m.specular_texture.bytes = m.specular_color_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -1061,6 +1070,8 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].metallic_roughness_texture.bytes);
         std::free(mesh->materials[i].occlusion_texture.bytes);
         std::free(mesh->materials[i].transmission_texture.bytes);
+        std::free(mesh->materials[i].specular_texture.bytes);
+        std::free(mesh->materials[i].specular_color_texture.bytes);
     }
     std::free(mesh->materials);
     std::free(mesh->ranges);

@@ -136,6 +136,18 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->brdf.specular_color[0] = m->specular_color.x;
     out->brdf.specular_color[1] = m->specular_color.y;
     out->brdf.specular_color[2] = m->specular_color.z;
+    /* KHR_materials_specular's textures (material_brdf): A and RGB (sRGB) */
+    if (slot_active(o, &m->specular_map)) {
+        hit_uv(o, h, m->specular_map.texcoord, uv);
+        out->brdf.specular *= texture_sample_alpha(&m->specular_map, uv);
+    }
+    if (slot_active(o, &m->specular_color_map)) {
+        hit_uv(o, h, m->specular_color_map.texcoord, uv);
+        vec3 c = texture_sample(&m->specular_color_map, uv, true);
+        out->brdf.specular_color[0] *= c.x;
+        out->brdf.specular_color[1] *= c.y;
+        out->brdf.specular_color[2] *= c.z;
+    }
     if (slot_active(o, &m->occlusion)) {
         hit_uv(o, h, m->occlusion.texcoord, uv);
         out->occlusion = 1.0 + m->occlusion_strength * (texture_sample(&m->occlusion, uv, false).x - 1.0);

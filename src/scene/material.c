@@ -62,6 +62,8 @@ void material_init(struct material *m, enum material_kind kind)
     texture_ref_init(&m->transmission_map);
     texture_ref_init(&m->metallic_roughness);
     texture_ref_init(&m->occlusion);
+    texture_ref_init(&m->specular_map);
+    texture_ref_init(&m->specular_color_map);
 }
 
 void material_assign(struct material *dst, const struct material *src)
@@ -74,6 +76,8 @@ void material_assign(struct material *dst, const struct material *src)
     texture_retain(src->transmission_map.texture);
     texture_retain(src->metallic_roughness.texture);
     texture_retain(src->occlusion.texture);
+    texture_retain(src->specular_map.texture);
+    texture_retain(src->specular_color_map.texture);
     material_release(dst);
     *dst = *src;
 }
@@ -86,8 +90,11 @@ void material_release(struct material *m)
     texture_destroy(m->transmission_map.texture);
     texture_destroy(m->metallic_roughness.texture);
     texture_destroy(m->occlusion.texture);
+    texture_destroy(m->specular_map.texture);
+    texture_destroy(m->specular_color_map.texture);
     m->base_color.texture = m->normal.texture = m->emissive.texture = m->transmission_map.texture = NULL;
     m->metallic_roughness.texture = m->occlusion.texture = NULL;
+    m->specular_map.texture = m->specular_color_map.texture = NULL;
 }
 
 bool material_has_textures(const struct material *m)

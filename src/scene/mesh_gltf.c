@@ -155,20 +155,23 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
     struct {
         struct gltf_texture *from;
         struct texture_ref *to;
-    } slots[6] = {{&g->base_color_texture, &m->base_color},
+    } slots[8] = {{&g->base_color_texture, &m->base_color},
                   {&g->normal_texture, &m->normal},
                   {&g->emissive_texture, &m->emissive},
                   {&g->metallic_roughness_texture, &m->metallic_roughness},
                   {&g->occlusion_texture, &m->occlusion},
-                  {&g->transmission_texture, &m->transmission_map}};
-    /* diffuse surfaces read the first five, glass its transmission and its
-     * base colour (the tint per texel), thin glass its normal map too */
+                  {&g->transmission_texture, &m->transmission_map},
+                  {&g->specular_texture, &m->specular_map},
+                  {&g->specular_color_texture, &m->specular_color_map}};
+    /* diffuse surfaces read all but the transmission (the specular ones
+     * where glTF's BRDF draws them), glass its transmission and its base
+     * colour (the tint per texel), thin glass its normal map too */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
-    for (int s = 0; s < 6; s++) {
+    for (int s = 0; s < 8; s++) {
         struct gltf_texture *gt = slots[s].from;
-        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) : s < 5;
+        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) : s < 5 || (s >= 6 && m->pbr);
         if (!gt->bytes || !read)
             continue;
         if (!whole->texcoords[gt->texcoord])

@@ -89,6 +89,9 @@ struct material {
     vec3 specular_color; /* ... and colour (F0 x this, at most 1) */
     struct texture_ref metallic_roughness, occlusion;
     float occlusion_strength;
+    /* KHR_materials_specular's textures: specular x specular_map's A and
+     * specular_color x specular_color_map's RGB (sRGB), per texel */
+    struct texture_ref specular_map, specular_color_map;
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
      * base colour texture's alpha is below alpha_cutoff the surface is not
      * there, for the camera, the shadow map and the reference alike.

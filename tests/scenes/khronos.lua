@@ -14,6 +14,7 @@ local samples = {
   damaged_helmet = { file = "DamagedHelmet/DamagedHelmet.glb" },
   candle_holder = { file = "GlassHurricaneCandleHolder/GlassHurricaneCandleHolder.glb", eye = {0, 0.35, 1} },
   vase = { file = "GlassVaseFlowers/GlassVaseFlowers.glb", eye = {0, 0.3, 1} },
+  specular = { file = "SpecularTest/SpecularTest.glb" },
   toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.6, 0.45, 1}, scale = 2.4, target = {0, 0.62, 0} },
 }
 local name = c.param("sample", "texture_transform")
