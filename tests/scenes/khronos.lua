@@ -15,6 +15,7 @@ local samples = {
   candle_holder = { file = "GlassHurricaneCandleHolder/GlassHurricaneCandleHolder.glb", eye = {0, 0.35, 1} },
   vase = { file = "GlassVaseFlowers/GlassVaseFlowers.glb", eye = {0, 0.3, 1} },
   specular = { file = "SpecularTest/SpecularTest.glb" },
+  alpha_blend = { file = "AlphaBlendModeTest/AlphaBlendModeTest.glb", eye = {0, 0.25, 1} },
   toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.6, 0.45, 1}, scale = 2.4, target = {0, 0.62, 0} },
 }
 local name = c.param("sample", "texture_transform")
