@@ -2,9 +2,10 @@
 """Writes every_extension.gltf (run from tests/data; standard library only):
 one triangle whose material asks for every glTF material extension
 caustica does not draw (clearcoat, sheen, iridescence, anisotropy,
-dispersion, diffuse transmission, unlit, the specular extension's textures,
-the volume's thickness texture), plus a TANGENT attribute: `caustica info`
-must list each of them, on one line that is not cut (issue 50). And 30
+dispersion, diffuse transmission, unlit, the volume's thickness texture),
+plus a TANGENT attribute, and for the specular extension's textures, which
+are drawn: `caustica info` must list each of the others, on one line that
+is not cut (issue 50). And 30
 vendor extensions of 50 characters each, more than a line of names holds:
 each named, or counted in "and N more"."""
 import json, struct
