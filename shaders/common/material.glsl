@@ -30,6 +30,11 @@ uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
 uniform int u_alpha_blend;     // glTF alphaMode BLEND: kept with probability alpha (an ordered dither)
 uniform int u_single_sided;    // glTF doubleSided false: the camera does not see its back faces (shade discards them)
+// thin glass: the share of the surface that is glass (glTF's transmissionFactor) x its texture's red channel
+uniform float u_transmission = 1.0;
+uniform sampler2D u_transmission_texture;
+uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD_1
+uniform vec3 u_transmission_transform[2]; // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
 in vec4 v_color; // glTF's COLOR_0: it multiplies the base colour and its alpha ...
@@ -76,6 +81,17 @@ bool material_cut_out()
     int s = q.x ^ q.y; // the 4 x 4 Bayer index: bits of (x ^ y) and y interleaved, reversed
     int bayer = ((s & 1) << 3) | ((q.y & 1) << 2) | (((s >> 1) & 1) << 1) | ((q.y >> 1) & 1);
     return a <= (float(bayer) + 0.5) / 16.0;
+}
+
+// Thin glass's transmission at this texel (refraction/refract.frag reads
+// solid glass's the same way)
+float material_transmission()
+{
+    if (u_transmission_set == 0)
+        return u_transmission;
+    vec3 q = vec3(u_transmission_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
+    return u_transmission * texture(u_transmission_texture,
+                                    vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
 }
 
 vec3 material_emission(vec3 emission)

@@ -24,10 +24,6 @@ uniform vec3 u_color;
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_tint;
-uniform float u_transmission = 1.0;
-uniform sampler2D u_transmission_texture; // x its red channel per texel (glTF's transmissionTexture)
-uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD_1
-uniform vec3 u_transmission_transform[2];
 
 void main()
 {
@@ -41,12 +37,7 @@ void main()
     float cos_i = clamp(dot(-view, n), 0.0, 1.0);
     float f = fresnel_of(cos_i, 1.0 / u_ior, u_ideal);
     vec3 tint = material_albedo(u_tint); // base colour x baseColorTexture x COLOR_0
-    float transmission = u_transmission;
-    if (u_transmission_set > 0) {
-        vec3 q = vec3(u_transmission_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
-        transmission *= texture(u_transmission_texture,
-                                vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
-    }
+    float transmission = material_transmission();
     // transmission t < 1: the rest of the surface is diffuse of the base
     // colour, lit as any diffuse surface (the reference picks one per path)
     vec3 added = transmission * f * environment_radiance(reflect(view, n));

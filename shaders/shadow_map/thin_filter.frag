@@ -18,10 +18,6 @@ uniform int u_material_kind; // 0: a blended diffuse surface (alphaMode BLEND), 
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_tint;
-uniform float u_transmission = 1.0;
-uniform sampler2D u_transmission_texture;
-uniform int u_transmission_set;
-uniform vec3 u_transmission_transform[2];
 void main()
 {
     vec3 to_light;
@@ -39,12 +35,7 @@ void main()
     if (material_cut_out() && u_alpha_blend == 0)
         discard; // a hole in the pane
     float f = fresnel_of(clamp(dot(to_light, n), 0.0, 1.0), 1.0 / u_ior, u_ideal);
-    float transmission = u_transmission;
-    if (u_transmission_set > 0) {
-        vec3 q = vec3(u_transmission_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
-        transmission *= texture(u_transmission_texture,
-                                vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
-    }
+    float transmission = material_transmission();
     float a = u_alpha_blend == 1 ? material_alpha() : 1.0; // BLEND: the pane covers alpha
     vec3 passed = a * transmission * (1.0 - f) * material_albedo(u_tint) + vec3(1.0 - a);
     o_filter = vec4(passed, gl_FragCoord.z);

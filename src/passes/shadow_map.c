@@ -122,8 +122,7 @@ static bool scene_has_filtering_casters(const struct scene *scene)
  * surfaces (alphaMode BLEND) are drawn into it the same way, each letting
  * 1 - alpha through: a smooth partial shadow where the depth map's dither
  * made a dotted one (shadow.frag leaves them out of a 2D map). */
-static bool shadow_thin_filter(struct pass *p, struct pass_frame *f, struct shadow_state *s, int size,
-                               struct error *err)
+static bool shadow_thin_filter(struct pass_frame *f, struct shadow_state *s, int size, struct error *err)
 {
     struct renderer *r = f->renderer;
     if (!s->filter.id && (!gl_texture_create(&s->filter, GL_TEXTURE_2D, GL_RGBA16F, size, size, 1, err) ||
@@ -152,7 +151,6 @@ static bool shadow_thin_filter(struct pass *p, struct pass_frame *f, struct shad
     gl.BlendFunci(0, GL_ONE, GL_ZERO);
     gl.Disablei(GL_BLEND, 0);
     gl.Enable(GL_DEPTH_TEST);
-    (void)p;
     return true;
 }
 
@@ -221,7 +219,7 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.Disable(GL_POLYGON_OFFSET_FILL);
         rec->filter = 0;
         if (scene_has_filtering_casters(f->scene)) {
-            if (!shadow_thin_filter(p, f, s, size, err))
+            if (!shadow_thin_filter(f, s, size, err))
                 return false;
             rec->filter = s->filter.id;
         }

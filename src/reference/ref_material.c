@@ -8,6 +8,8 @@
 
 #include "reference/ref_scene.h"
 
+#include "core/optics.h"
+
 static void hit_uv(const struct ref_object *o, const struct ref_hit *h, int set, float uv[2])
 {
     ref_object_uv(o, h->primitive, h->bary_u, h->bary_v, set, uv);
@@ -85,13 +87,16 @@ dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h)
     return tint;
 }
 
-void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint)
+double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 dir, dvec3 n, dvec3 *normal,
+                        dvec3 *tint)
 {
     const struct material *m = &o->material;
     double rgba[4];
     ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba); /* COLOR_0 on thin glass, as on the GPU */
     *tint = dv_mul(ref_glass_tint(o, h), dv(rgba[0], rgba[1], rgba[2]));
     *normal = slot_active(o, &m->normal) ? mapped_normal(o, h, n) : n;
+    double cos_i = fmin(fmax(-dv_dot(dir, *normal), 0.0), 1.0);
+    return optics_fresnel_of(cos_i, 1.0 / m->ior, m->ideal);
 }
 
 void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dvec3 n, struct ref_surface *out)

@@ -1,7 +1,5 @@
 #include "reference/ref_scene.h"
 
-#include "core/optics.h"
-
 #include "gl/gl_buffer.h"
 
 #include <math.h>
@@ -346,9 +344,7 @@ dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 di
         dvec3 ng = dv_dot(dir, h.geometric_normal) < 0.0 ? h.geometric_normal : dv_scale(h.geometric_normal, -1.0);
         dvec3 n0 = dv_dot(dir, h.shading_normal) < 0.0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
         dvec3 n, tint;
-        ref_thin_surface(o, &h, n0, &n, &tint);
-        double cos_i = fmin(fmax(-dv_dot(dir, n), 0.0), 1.0);
-        double pass = (1.0 - optics_fresnel_of(cos_i, 1.0 / m->ior, m->ideal)) * ref_object_transmission(o, &h);
+        double pass = (1.0 - ref_thin_surface(o, &h, dir, n0, &n, &tint)) * ref_object_transmission(o, &h);
         through = dv_scale(dv_mul(through, tint), pass);
         if (!(dv_dot(through, through) > 0.0))
             return dv(0, 0, 0);

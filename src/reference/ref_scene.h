@@ -156,10 +156,12 @@ dvec3 ref_scene_transmittance(const struct ref_scene *rs, dvec3 origin, dvec3 di
  * whether a ray met such a surface since. */
 void ref_scene_blend_begin(uint64_t salt);
 bool ref_scene_blend_met(void);
-/* Thin-walled glass at a hit: the shading normal (n, on the ray's side,
- * through the normal map) and the tint (base colour x baseColorTexture x
- * COLOR_0), as shade/thin_glass.frag reads them. */
-void ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 n, dvec3 *normal, dvec3 *tint);
+/* Thin-walled glass where a ray along `dir` meets it: the shading normal
+ * (n, on the ray's side, through the normal map), the tint (base colour x
+ * baseColorTexture x COLOR_0), as shade/thin_glass.frag reads them, and
+ * the Fresnel reflectance it returns (from air into the pane's IOR). */
+double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 dir, dvec3 n, dvec3 *normal,
+                        dvec3 *tint);
 /* Glass's tint at a hit: the base colour x baseColorTexture (glTF's
  * transmission tint per texel; refract.frag's glass_tint). */
 dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h);

@@ -190,9 +190,7 @@ static bool specular_step(const struct ref_scene *rs, const struct ref_hit *h, s
          * (shade/thin_glass.frag). No random number where F is 0 (an
          * ideal pane: the eye path stays fixed). */
         dvec3 normal, tint;
-        ref_thin_surface(o, h, nn, &normal, &tint);
-        double cos_i = fmin(fmax(-dv_dot(*dir, normal), 0.0), 1.0);
-        double f = fresnel_of(m, cos_i, 1.0 / m->ior);
+        double f = ref_thin_surface(o, h, *dir, nn, &normal, &tint);
         if (f > 0.0 && (f >= 1.0 || ref_rng_uniform(rng) < f)) {
             *dir = dv_normalize_or(ref_reflect(*dir, normal), ref_reflect(*dir, ngo));
             *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
