@@ -10,6 +10,9 @@ struct BrdfMaterial {
     float ior;            // 1.5 without KHR_materials_ior
     float specular;       // 1 without KHR_materials_specular
     vec3 specular_color;  // 1 without it
+    float clearcoat;      // KHR_materials_clearcoat's weight, 0 without it
+    float clearcoat_roughness;
+    vec3 clearcoat_normal; // unit; read only where clearcoat > 0
 };
 
 const float BRDF_MIN_ALPHA = 1e-4; // roughness 0: a highlight 1e-4 wide, never 0 / 0 (core/brdf.h)
@@ -60,6 +63,44 @@ vec3 brdf_gltf(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
     return dielectric + m.metallic * (metal - dielectric);
 }
 
+// The coat's share of the view, clearcoat x Fc (KHR_materials_clearcoat's
+// fresnel_coat: f0 of IOR 1.5 at |n_c . v|); 0 without a coat
+float brdf_clearcoat_share(vec3 v, BrdfMaterial m)
+{
+    if (!(m.clearcoat > 0.0))
+        return 0.0;
+    float c = min(abs(dot(m.clearcoat_normal, v)), 1.0);
+    return m.clearcoat * (0.04 + 0.96 * pow(1.0 - c, 5.0));
+}
+
+// The coat's lobe D_c V_c (n_c . l), 0 below n_c
+float brdf_clearcoat_lobe_cos(vec3 v, vec3 l, BrdfMaterial m)
+{
+    vec3 n = m.clearcoat_normal;
+    float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
+    if (!(n_dot_l > 0.0) || !(n_dot_v > 0.0))
+        return 0.0;
+    vec3 h = v + l;
+    float hl = length(h);
+    if (!(hl > 1e-12))
+        return 0.0;
+    h /= hl;
+    float alpha = max(m.clearcoat_roughness * m.clearcoat_roughness, BRDF_MIN_ALPHA);
+    vec3 c = cross(n, h);
+    return brdf_ggx_d(min(dot(n, h), 1.0), dot(c, c), alpha) * brdf_smith_v(n_dot_l, n_dot_v, alpha) * n_dot_l;
+}
+
+// f cos with the coat (core/brdf.h): what a light's arrival (irradiance at
+// normal incidence) from l is multiplied by towards v
+vec3 brdf_gltf_cos(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
+{
+    vec3 f = brdf_gltf(n, v, l, m);
+    float c = max(dot(n, l), 0.0);
+    float share = brdf_clearcoat_share(v, m);
+    float coat = share > 0.0 ? share * brdf_clearcoat_lobe_cos(v, l, m) : 0.0;
+    return (1.0 - share) * f * c + coat;
+}
+
 // The uniform sky on a glTF surface: core/brdf.h's three integrals (Wd, S0,
 // S1) of (NdotV, roughness), tabulated once on the CPU (brdf_ambient_table,
 // BRDF_TABLE_SIZE^2, bound by the renderer) and read here bilinearly by the
@@ -79,10 +120,11 @@ vec3 brdf_ambient_terms(float n_dot_v, float roughness)
     return top + ((c + (d - c) * fx) - top) * fy;
 }
 
-// The BRDF's directional albedo at NdotV (what a sky of radiance 1 returns)
-vec3 brdf_ambient_albedo(float n_dot_v, BrdfMaterial m)
+// The BRDF's directional albedo for normal n and view v (what a sky of
+// radiance 1 returns), with the coat's
+vec3 brdf_ambient_albedo(vec3 n, vec3 v, BrdfMaterial m)
 {
-    vec3 t = brdf_ambient_terms(n_dot_v, m.roughness);
+    vec3 t = brdf_ambient_terms(dot(n, v), m.roughness);
     float r0 = (m.ior - 1.0) / (m.ior + 1.0);
     vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
     float f0_max = max(f0.r, max(f0.g, f0.b));
@@ -90,16 +132,22 @@ vec3 brdf_ambient_albedo(float n_dot_v, BrdfMaterial m)
     float s = m.specular;
     vec3 dielectric = c * (1.0 - s * f0_max) - c * s * (1.0 - f0_max) * t.x + s * (f0 * t.y + (1.0 - f0) * t.z);
     vec3 metal = c * t.y + (1.0 - c) * t.z;
-    return dielectric + m.metallic * (metal - dielectric);
+    vec3 albedo = dielectric + m.metallic * (metal - dielectric);
+    float share = brdf_clearcoat_share(v, m);
+    if (share > 0.0)
+        albedo = (1.0 - share) * albedo + share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y;
+    return albedo;
 }
 
-// The diffuse lobe's albedo for light from no one direction (caustics)
-vec3 brdf_diffuse_albedo(float n_dot_v, BrdfMaterial m)
+// The diffuse lobe's albedo for light from no one direction (caustics),
+// less what the coat reflects
+vec3 brdf_diffuse_albedo(vec3 n, vec3 v, BrdfMaterial m)
 {
+    float n_dot_v = dot(n, v);
     float r0 = (m.ior - 1.0) / (m.ior + 1.0);
     vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
     float f0_max = max(f0.r, max(f0.g, f0.b));
     float w = pow(1.0 - clamp(n_dot_v, 0.0, 1.0), 5.0);
     float f = f0_max + (1.0 - f0_max) * w;
-    return (1.0 - m.metallic) * m.base_color * (1.0 - m.specular * f);
+    return (1.0 - brdf_clearcoat_share(v, m)) * (1.0 - m.metallic) * m.base_color * (1.0 - m.specular * f);
 }

@@ -1,6 +1,7 @@
 // Material textures of diffuse surfaces (struct material's base_color,
-// normal, emissive, metallic_roughness, occlusion, specular_map and
-// specular_color_map slots), bound by
+// normal, emissive, metallic_roughness, occlusion, specular_map,
+// specular_color_map, clearcoat_map, clearcoat_roughness_map and
+// clearcoat_normal slots), bound by
 // renderer_draw_objects. The vertex shader passes the mesh's texture
 // coordinate sets as v_texcoord0/1. The reference renderer reads the same
 // texels with the same filter and the same tangent frame
@@ -14,9 +15,13 @@ uniform sampler2D u_metallic_roughness_texture;
 uniform sampler2D u_occlusion_texture;
 uniform sampler2D u_specular_texture;       // KHR_materials_specular: A x the specular factor
 uniform sampler2D u_specular_color_texture; // RGB (sRGB) x the specular colour
-uniform int u_texture_set[7];         // per slot (base, normal, emissive, metallic-roughness, occlusion, specular,
-                                      // specular colour): 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
-uniform vec3 u_texture_transform[14]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
+uniform sampler2D u_clearcoat_texture;           // KHR_materials_clearcoat: R x the coat's weight
+uniform sampler2D u_clearcoat_roughness_texture; // G x its roughness
+uniform sampler2D u_clearcoat_normal_texture;    // its own normal map
+uniform int u_texture_set[10];        // per slot (base, normal, emissive, metallic-roughness, occlusion, specular,
+                                      // specular colour, clearcoat, clearcoat roughness, clearcoat normal):
+                                      // 0 none, 1 TEXCOORD_0, 2 TEXCOORD_1
+uniform vec3 u_texture_transform[20]; // two rows per slot: uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 // glTF's metallic-roughness model (struct material's pbr; the programs'
 // GLTF_BRDF variant draws those materials)
 uniform float u_metallic;
@@ -25,6 +30,9 @@ uniform float u_pbr_ior;
 uniform float u_occlusion_strength;
 uniform float u_specular;      // KHR_materials_specular (1 without)
 uniform vec3 u_specular_color; // (1 1 1 without)
+uniform float u_clearcoat;     // KHR_materials_clearcoat (0 without)
+uniform float u_clearcoat_roughness;
+uniform float u_clearcoat_normal_scale;
 uniform float u_normal_scale;
 uniform float u_alpha;         // the base colour's alpha factor
 uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
@@ -39,6 +47,10 @@ in vec2 v_texcoord0;
 in vec2 v_texcoord1;
 in vec4 v_color; // glTF's COLOR_0: it multiplies the base colour and its alpha ...
 uniform int u_vertex_colors; // ... where the mesh has one (an interpolated constant 1 is not always exactly 1)
+
+// The clearcoat's normal, set by material_normal for material_brdf: its own
+// normal map, else the geometry's normal
+vec3 material_coat_normal = vec3(0.0, 0.0, 1.0);
 
 vec2 material_uv(int slot)
 {
@@ -114,6 +126,14 @@ BrdfMaterial material_brdf(vec3 color)
     m.specular = u_texture_set[5] > 0 ? u_specular * texture(u_specular_texture, material_uv(5)).a : u_specular;
     m.specular_color = u_texture_set[6] > 0 ? u_specular_color * texture(u_specular_color_texture, material_uv(6)).rgb
                                             : u_specular_color;
+    // KHR_materials_clearcoat: R and G of its textures (linear); its normal
+    // was found by material_normal (derivatives: in uniform control flow)
+    m.clearcoat = u_texture_set[7] > 0 ? u_clearcoat * texture(u_clearcoat_texture, material_uv(7)).r : u_clearcoat;
+    m.clearcoat = clamp(m.clearcoat, 0.0, 1.0);
+    m.clearcoat_roughness = clamp(u_texture_set[8] > 0
+                                      ? u_clearcoat_roughness * texture(u_clearcoat_roughness_texture, material_uv(8)).g
+                                      : u_clearcoat_roughness, 0.0, 1.0);
+    m.clearcoat_normal = material_coat_normal;
     return m;
 }
 
@@ -124,8 +144,9 @@ float material_occlusion()
                                 : 1.0;
 }
 
-// The shading normal from a tangent-space normal map, for the face-forward
-// normal n at world point p. The tangent is the direction of increasing u
+// A tangent-space normal map's normal for the face-forward normal n at
+// world point p: the map `m` (texels * 2 - 1) read at uv, scaled by `scale`.
+// The tangent is the direction of increasing u
 // on the triangle (solved from the screen derivatives of p and uv, exact for
 // a flat triangle) made perpendicular to n; the bitangent is n x t, turned
 // to the side of decreasing v (glTF's v runs down the image, and a normal
@@ -134,11 +155,8 @@ float material_occlusion()
 // cross(normal, tangent.xyz) * w; NormalTangentMirrorTest's mirrored
 // bumps). A degenerate uv mapping (zero area in uv) leaves n as
 // it is. Call in uniform control flow.
-vec3 material_normal(vec3 n, vec3 p)
+vec3 material_mapped_normal(vec3 n, vec3 p, vec2 uv, vec3 m, float scale)
 {
-    if (u_texture_set[1] == 0)
-        return n;
-    vec2 uv = material_uv(1);
     vec3 dp1 = dFdx(p), dp2 = dFdy(p);
     vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
     float det = duv1.x * duv2.y - duv1.y * duv2.x;
@@ -146,14 +164,33 @@ vec3 material_normal(vec3 n, vec3 p)
     vec3 pv = dp2 * duv1.x - dp1 * duv2.x; // (dp/dv) * det
     vec3 t = pu - n * dot(n, pu);
     float len = length(t);
-    vec3 m = texture(u_normal_texture, uv).rgb * 2.0 - 1.0;
     if (!(abs(det) > 1e-20) || !(len > 1e-20 * max(abs(det), 1e-20)))
         return n;
     t = t * (sign(det) / len);
     vec3 b = cross(n, t);
     if (dot(b, pv) * det > 0.0)
         b = -b; // a mirrored mapping: v runs the other way round n
-    vec3 mapped = t * (m.x * u_normal_scale) + b * (m.y * u_normal_scale) + n * m.z;
+    vec3 mapped = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
     float ml = length(mapped);
     return ml > 1e-12 ? mapped / ml : n;
+}
+
+// The shading normal (the material's normal map, if it has one) for the
+// face-forward normal n at world point p; in the programs' GLTF_BRDF
+// variant the clearcoat's normal too (material_coat_normal). Call in
+// uniform control flow.
+vec3 material_normal(vec3 n, vec3 p)
+{
+#ifdef GLTF_BRDF
+    material_coat_normal = n;
+    if (u_texture_set[9] > 0) {
+        vec2 uv = material_uv(9);
+        material_coat_normal = material_mapped_normal(n, p, uv, texture(u_clearcoat_normal_texture, uv).rgb * 2.0 - 1.0,
+                                                      u_clearcoat_normal_scale);
+    }
+#endif
+    if (u_texture_set[1] == 0)
+        return n;
+    vec2 uv = material_uv(1);
+    return material_mapped_normal(n, p, uv, texture(u_normal_texture, uv).rgb * 2.0 - 1.0, u_normal_scale);
 }

@@ -25,6 +25,18 @@ vec3 surface_irradiance_from(int i, vec3 p, vec3 n, out vec3 to_light)
     return irr * visibility_color(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
 }
 
+// The same at normal incidence (no cosine), for a surface that weighs it
+// by cosines of its own (a clearcoat's normal); 0 where neither n nor
+// n_other faces the light.
+vec3 surface_arrival_from(int i, vec3 p, vec3 n, vec3 n_other, out vec3 to_light)
+{
+    float dist;
+    vec3 e = light_arrival(i, p, to_light, dist);
+    if (!(max(e.r, max(e.g, e.b)) > 0.0) || !(max(dot(n, to_light), dot(n_other, to_light)) > 0.0))
+        return vec3(0.0);
+    return e * visibility_color(i, p, n, to_light) * medium_transmittance_ray(p, to_light, dist);
+}
+
 // The same from every light.
 vec3 surface_irradiance(vec3 p, vec3 n)
 {
@@ -64,13 +76,13 @@ vec3 surface_light_diffuse(vec3 p, vec3 n, vec3 albedo, vec3 emission, vec3 caus
 vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion, vec3 emission, vec3 caustic)
 {
     vec3 radiance = vec3(0.0), to_light;
+    vec3 coat_n = m.clearcoat > 0.0 ? m.clearcoat_normal : n; // (the coat's own normal may face a light n does not)
     for (int i = 0; i < u_counts.x; i++) {
-        vec3 e = surface_irradiance_from(i, p, n, to_light);
-        radiance += brdf_gltf(n, v, to_light, m) * e;
+        vec3 e = surface_arrival_from(i, p, n, coat_n, to_light);
+        radiance += brdf_gltf_cos(n, v, to_light, m) * e;
     }
-    float n_dot_v = dot(n, v);
-    return radiance + u_ambient.rgb * brdf_ambient_albedo(n_dot_v, m) * occlusion +
-           caustic * brdf_diffuse_albedo(n_dot_v, m) / PI + emission;
+    return radiance + u_ambient.rgb * brdf_ambient_albedo(n, v, m) * occlusion +
+           caustic * brdf_diffuse_albedo(n, v, m) / PI + emission;
 }
 
 // The surface of the object being drawn (common/material.glsl's uniforms

@@ -14,7 +14,10 @@ struct brdf_material brdf_material_default(double r, double g, double b, double 
                                   .roughness = roughness,
                                   .ior = 1.5,
                                   .specular = 1.0,
-                                  .specular_color = {1.0, 1.0, 1.0}};
+                                  .specular_color = {1.0, 1.0, 1.0},
+                                  .clearcoat = 0.0,
+                                  .clearcoat_roughness = 0.0,
+                                  .clearcoat_normal = {0.0, 0.0, 1.0}};
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -70,6 +73,44 @@ void brdf_gltf(const double n[3], const double v[3], const double l[3], const st
         double metal = (m->base_color[k] + (1.0 - m->base_color[k]) * w) * spec;
         f[k] = dielectric + m->metallic * (metal - dielectric);
     }
+}
+
+double brdf_clearcoat_share(const double v[3], const struct brdf_material *m)
+{
+    if (!(m->clearcoat > 0.0))
+        return 0.0;
+    /* KHR_materials_clearcoat's fresnel_coat: f0 of IOR 1.5, |n_c . v| */
+    double c = fmin(fabs(dot3(m->clearcoat_normal, v)), 1.0);
+    return m->clearcoat * (0.04 + 0.96 * pow(1.0 - c, 5.0));
+}
+
+/* The coat's lobe D_c V_c (n_c . l), 0 below n_c */
+static double clearcoat_lobe_cos(const double v[3], const double l[3], const struct brdf_material *m)
+{
+    const double *n = m->clearcoat_normal;
+    double n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
+    if (!(n_dot_l > 0.0) || !(n_dot_v > 0.0))
+        return 0.0;
+    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    double hl = sqrt(dot3(h, h));
+    if (!(hl > 1e-12))
+        return 0.0;
+    for (int k = 0; k < 3; k++)
+        h[k] /= hl;
+    double alpha = fmax(m->clearcoat_roughness * m->clearcoat_roughness, BRDF_MIN_ALPHA);
+    double c[3] = {n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]};
+    return brdf_ggx_d(fmin(dot3(n, h), 1.0), dot3(c, c), alpha) * brdf_smith_v(n_dot_l, n_dot_v, alpha) * n_dot_l;
+}
+
+void brdf_gltf_cos(const double n[3], const double v[3], const double l[3], const struct brdf_material *m,
+                   double out[3])
+{
+    brdf_gltf(n, v, l, m, out);
+    double c = fmax(dot3(n, l), 0.0);
+    double share = brdf_clearcoat_share(v, m);
+    double coat = share > 0.0 ? share * clearcoat_lobe_cos(v, l, m) : 0.0;
+    for (int k = 0; k < 3; k++)
+        out[k] = (1.0 - share) * out[k] * c + coat;
 }
 
 bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3], double l[3], double h[3],
@@ -162,9 +203,9 @@ static void ambient_terms(double n_dot_v, double roughness, double out[3])
     }
 }
 
-void brdf_ambient_albedo(double n_dot_v, const struct brdf_material *m, double out[3])
+void brdf_ambient_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3])
 {
-    double t[3];
+    double n_dot_v = fmin(fmax(dot3(n, v), 0.0), 1.0), t[3];
     ambient_terms(n_dot_v, m->roughness, t);
     double r0 = (m->ior - 1.0) / (m->ior + 1.0), f0[3], f0_max = 0.0;
     for (int k = 0; k < 3; k++) {
@@ -177,15 +218,24 @@ void brdf_ambient_albedo(double n_dot_v, const struct brdf_material *m, double o
         double metal = c * t[1] + (1.0 - c) * t[2];
         out[k] = dielectric + m->metallic * (metal - dielectric);
     }
+    double share = brdf_clearcoat_share(v, m);
+    if (share > 0.0) {
+        double tc[3];
+        ambient_terms(fmin(fmax(dot3(m->clearcoat_normal, v), 0.0), 1.0), m->clearcoat_roughness, tc);
+        for (int k = 0; k < 3; k++)
+            out[k] = (1.0 - share) * out[k] + share * tc[1];
+    }
 }
 
-void brdf_diffuse_albedo(double n_dot_v, const struct brdf_material *m, double out[3])
+void brdf_diffuse_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3])
 {
+    double n_dot_v = dot3(n, v);
     double r0 = (m->ior - 1.0) / (m->ior + 1.0), f0_max = 0.0;
     for (int k = 0; k < 3; k++)
         f0_max = fmax(f0_max, fmin(r0 * r0 * m->specular_color[k], 1.0));
     double w = pow(1.0 - fmin(fmax(n_dot_v, 0.0), 1.0), 5.0);
     double f = f0_max + (1.0 - f0_max) * w;
+    double share = brdf_clearcoat_share(v, m);
     for (int k = 0; k < 3; k++)
-        out[k] = (1.0 - m->metallic) * m->base_color[k] * (1.0 - m->specular * f);
+        out[k] = (1.0 - share) * (1.0 - m->metallic) * m->base_color[k] * (1.0 - m->specular * f);
 }

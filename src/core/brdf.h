@@ -12,6 +12,13 @@
  *   D = Trowbridge-Reitz (GGX), alpha = roughness^2;
  *   V = Smith's height-correlated joint masking-shadowing over 4 NdotL NdotV.
  *
+ * KHR_materials_clearcoat lays a second lobe over that, with its own
+ * normal n_c and roughness (the extension's fresnel_coat):
+ *   f_coated = (1 - clearcoat Fc) f + clearcoat Fc D_c V_c,
+ *   Fc = 0.04 + 0.96 (1 - |n_c . v|)^5 (the coat's IOR 1.5),
+ * D_c and V_c about n_c with alpha_c = clearcoat_roughness^2. Fc depends on
+ * the view alone, so the coat takes from the base what it reflects.
+ *
  * The first brick of issue 50's material model: what draws with it is
  * listed in docs/GLTF.md. */
 #ifndef CAUSTICA_BRDF_H
@@ -26,9 +33,12 @@ struct brdf_material {
     double ior;               /* KHR_materials_ior, 1.5 without it */
     double specular;          /* KHR_materials_specular's specularFactor, 1 without it */
     double specular_color[3]; /* its specularColorFactor, 1 without it */
+    double clearcoat;         /* KHR_materials_clearcoat's weight, 0 without it */
+    double clearcoat_roughness;
+    double clearcoat_normal[3]; /* unit, towards the viewer's side; read only where clearcoat > 0 */
 };
 
-/* The glTF material without extensions: ior 1.5, specular 1, white specular colour. */
+/* The glTF material without extensions: ior 1.5, specular 1, white specular colour, no clearcoat. */
 struct brdf_material brdf_material_default(double r, double g, double b, double metallic, double roughness);
 
 /* The least alpha evaluated: GGX's D is a Dirac delta at alpha 0; a
@@ -48,6 +58,17 @@ double brdf_smith_v(double n_dot_l, double n_dot_v, double alpha);
  * (towards the light), per colour channel; 0 where l or v is below the
  * surface. Never a NaN or Inf for unit inputs. */
 void brdf_gltf(const double n[3], const double v[3], const double l[3], const struct brdf_material *m, double f[3]);
+
+/* The coat's share of the view, clearcoat x Fc (0 without a coat). */
+double brdf_clearcoat_share(const double v[3], const struct brdf_material *m);
+
+/* What a light of radiance-times-solid-angle 1 from l sends towards v:
+ * f (n . l) with the coat, (1 - share) f (n . l) + share D_c V_c (n_c . l),
+ * each cosine 0 below its own normal. A light's arrival (irradiance at
+ * normal incidence) times this is its reflected radiance; lights are drawn
+ * by it in both renderers. */
+void brdf_gltf_cos(const double n[3], const double v[3], const double l[3], const struct brdf_material *m,
+                   double out[3]);
 
 /* Direction k (0 <= k < 2 side^2) of the deterministic quadrature that
  * integrates f cos over the hemisphere about n = +z for a view v (unit, v.z
@@ -79,12 +100,15 @@ bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3],
  * r / (size - 1), column c = NdotV c / (size - 1). Built on first use
  * (thread-safe), never freed. */
 const float *brdf_ambient_table(void);
-/* The directional albedo per channel at NdotV (the table read bilinearly). */
-void brdf_ambient_albedo(double n_dot_v, const struct brdf_material *m, double out[3]);
+/* The directional albedo per channel for unit normal n and view v (the
+ * table read bilinearly), with the coat: (1 - share) albedo +
+ * share S0(n_c . v, clearcoat_roughness). */
+void brdf_ambient_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3]);
 /* The share of light the diffuse lobe sends back, per channel, for
  * irradiance that arrives from no one direction (caustics, photons): the
  * Lambert albedo (1 - metallic) c (1 - s F(NdotV)max), F Schlick's at
- * NdotV. Both renderers weigh caustic irradiance on a glTF surface by it. */
-void brdf_diffuse_albedo(double n_dot_v, const struct brdf_material *m, double out[3]);
+ * NdotV, less what the coat reflects (x (1 - share)). Both renderers weigh
+ * caustic irradiance on a glTF surface by it. */
+void brdf_diffuse_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3]);
 
 #endif

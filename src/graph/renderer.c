@@ -198,12 +198,15 @@ void renderer_reset_state(struct renderer *r)
 
 /* The material's textures and the uniforms of
  * common/material.glsl (a program without them ignores the locations -1). */
-enum { MATERIAL_SLOTS = 7 }; /* base colour, normal, emissive, metallic-roughness, occlusion, specular, specular colour */
+/* base colour, normal, emissive, metallic-roughness, occlusion, specular, specular colour, clearcoat, clearcoat
+ * roughness, clearcoat normal */
+enum { MATERIAL_SLOTS = 10 };
 
 struct material_locations {
     GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend, single_sided;
     GLint transmission_set, transmission_transform[2];
     GLint metallic, roughness, ior, occlusion_strength, specular, specular_color;
+    GLint clearcoat, clearcoat_roughness, clearcoat_normal_scale;
 };
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
@@ -232,6 +235,9 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->occlusion_strength = gl_program_uniform(program, "u_occlusion_strength");
     loc->specular = gl_program_uniform(program, "u_specular");
     loc->specular_color = gl_program_uniform(program, "u_specular_color");
+    loc->clearcoat = gl_program_uniform(program, "u_clearcoat");
+    loc->clearcoat_roughness = gl_program_uniform(program, "u_clearcoat_roughness");
+    loc->clearcoat_normal_scale = gl_program_uniform(program, "u_clearcoat_normal_scale");
 }
 
 /* The glTF BRDF's ambient table (core/brdf.h), read texel by texel by
@@ -259,11 +265,15 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     static const char *const samplers[MATERIAL_SLOTS] = {"u_base_color_texture", "u_normal_texture",
                                                          "u_emissive_texture", "u_metallic_roughness_texture",
                                                          "u_occlusion_texture", "u_specular_texture",
-                                                         "u_specular_color_texture"};
+                                                         "u_specular_color_texture", "u_clearcoat_texture",
+                                                         "u_clearcoat_roughness_texture",
+                                                         "u_clearcoat_normal_texture"};
     const struct texture_ref *slots[MATERIAL_SLOTS] = {&o->material.base_color, &o->material.normal,
                                                        &o->material.emissive, &o->material.metallic_roughness,
                                                        &o->material.occlusion, &o->material.specular_map,
-                                                       &o->material.specular_color_map};
+                                                       &o->material.specular_color_map, &o->material.clearcoat_map,
+                                                       &o->material.clearcoat_roughness_map,
+                                                       &o->material.clearcoat_normal};
     for (int s = 0; s < MATERIAL_SLOTS; s++) {
         const struct texture_ref *ref = slots[s];
         GLuint id = 0;
@@ -290,6 +300,9 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->specular, o->material.specular);
     gl.ProgramUniform3f(program->id, loc->specular_color, o->material.specular_color.x, o->material.specular_color.y,
                         o->material.specular_color.z);
+    gl.ProgramUniform1f(program->id, loc->clearcoat, pbr ? o->material.clearcoat : 0.0f);
+    gl.ProgramUniform1f(program->id, loc->clearcoat_roughness, o->material.clearcoat_roughness);
+    gl.ProgramUniform1f(program->id, loc->clearcoat_normal_scale, o->material.clearcoat_normal.scale);
     if (pbr)
         gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
     /* cut-outs, like textures, on diffuse surfaces and thin glass only */

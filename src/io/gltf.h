@@ -59,6 +59,10 @@ struct gltf_material {
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     struct gltf_texture specular_texture;           /* A: KHR_materials_specular's specularFactor per texel */
     struct gltf_texture specular_color_texture;     /* RGB (sRGB): its specularColorFactor per texel */
+    float clearcoat, clearcoat_roughness;           /* KHR_materials_clearcoat's factors, [0, 1]; 0 without */
+    struct gltf_texture clearcoat_texture;          /* R: x clearcoat */
+    struct gltf_texture clearcoat_roughness_texture; /* G: x clearcoat_roughness */
+    struct gltf_texture clearcoat_normal_texture;   /* the coat's own normal map (its scale); none: the geometry's */
     /* What the material asks for that the loader does not read at all
      * ("metallicRoughnessTexture, KHR_materials_clearcoat"), for `info`. */
     char unread[1024];

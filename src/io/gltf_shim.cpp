@@ -265,6 +265,9 @@ struct Builder {
             std::free(m.transmission_texture.bytes);
             std::free(m.specular_texture.bytes);
             std::free(m.specular_color_texture.bytes);
+            std::free(m.clearcoat_texture.bytes);
+            std::free(m.clearcoat_roughness_texture.bytes);
+            std::free(m.clearcoat_normal_texture.bytes);
         }
     }
 };
@@ -367,7 +370,7 @@ void note_unread(gltf_material &m, const std::string &what)
 bool extension_read(const std::string &name)
 {
     return name == "KHR_materials_transmission" || name == "KHR_materials_ior" || name == "KHR_materials_volume" ||
-           name == "KHR_materials_specular" ||
+           name == "KHR_materials_specular" || name == "KHR_materials_clearcoat" ||
            name == "KHR_materials_emissive_strength";
 }
 
@@ -432,6 +435,33 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         for (int c = 0; c < 3; c++)
             if (!std::isfinite(m.specular_color[c]) || m.specular_color[c] < 0.0f || m.specular_color[c] > 1e3f)
                 throw Fail{where + ": KHR_materials_specular specularColorFactor must be in [0, 1000]"};
+    }
+    // KHR_materials_clearcoat: a second GGX lobe over the material (brdf.h)
+    ext = mat.extensions.find("KHR_materials_clearcoat");
+    if (ext != mat.extensions.end()) {
+        const tinygltf::Value &v = ext->second;
+        std::string where = "material '" + mat.name + "'";
+        if (v.Has("clearcoatFactor"))
+            m.clearcoat = (float)v.Get("clearcoatFactor").GetNumberAsDouble();
+        if (v.Has("clearcoatRoughnessFactor"))
+            m.clearcoat_roughness = (float)v.Get("clearcoatRoughnessFactor").GetNumberAsDouble();
+        static const char *const fields[3] = {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"};
+        gltf_texture *slots[3] = {&m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture};
+        for (int k = 0; k < 3; k++) {
+            if (!v.Has(fields[k]))
+                continue;
+            const tinygltf::Value &info = v.Get(fields[k]);
+            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
+            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, *slots[k], where);
+            if (k == 2 && info.Has("scale"))
+                m.clearcoat_normal_texture.scale = (float)info.Get("scale").GetNumberAsDouble();
+        }
+        if (!std::isfinite(m.clearcoat) || m.clearcoat < 0.0f || m.clearcoat > 1.0f ||
+            !std::isfinite(m.clearcoat_roughness) || m.clearcoat_roughness < 0.0f || m.clearcoat_roughness > 1.0f)
+            throw Fail{where + ": KHR_materials_clearcoat clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]"};
+        if (!std::isfinite(m.clearcoat_normal_texture.scale) || std::fabs(m.clearcoat_normal_texture.scale) > 1e3)
+            throw Fail{where + ": KHR_materials_clearcoat clearcoatNormalTexture.scale must be finite"};
     }
     ext = mat.extensions.find("KHR_materials_ior");
     if (ext != mat.extensions.end() && ext->second.Has("ior"))
@@ -1026,7 +1056,8 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         for (gltf_material &m : b.materials) // out owns the image bytes now
             m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
                 m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes =
-                    m.specular_texture.bytes = m.specular_color_texture.bytes = nullptr;
+                    m.specular_texture.bytes = m.specular_color_texture.bytes = m.clearcoat_texture.bytes =
+                        m.clearcoat_roughness_texture.bytes = m.clearcoat_normal_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -1072,6 +1103,9 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].transmission_texture.bytes);
         std::free(mesh->materials[i].specular_texture.bytes);
         std::free(mesh->materials[i].specular_color_texture.bytes);
+        std::free(mesh->materials[i].clearcoat_texture.bytes);
+        std::free(mesh->materials[i].clearcoat_roughness_texture.bytes);
+        std::free(mesh->materials[i].clearcoat_normal_texture.bytes);
     }
     std::free(mesh->materials);
     std::free(mesh->ranges);

@@ -35,12 +35,12 @@ double ref_object_transmission(const struct ref_object *o, const struct ref_hit 
 
 static dvec3 to_dvec3(vec3 v) { return dv(v.x, v.y, v.z); }
 
-/* The normal map at the hit, in the frame of material_normal(): t along
- * increasing u on the triangle (made perpendicular to n), b = n x t turned
- * to the side of decreasing v (a mirrored mapping: -(n x t)). */
-static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, dvec3 n)
+/* The normal map `ref` (the material's normal, or its clearcoat's) at the
+ * hit, in the frame of material_normal(): t along increasing u on the
+ * triangle (made perpendicular to n), b = n x t turned to the side of
+ * decreasing v (a mirrored mapping: -(n x t)). */
+static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, const struct texture_ref *ref, dvec3 n)
 {
-    const struct texture_ref *ref = &o->material.normal;
     const uint32_t *tri = o->indices + (size_t)h->primitive * 3;
     const float *tc = o->texcoords[ref->texcoord];
     float uvs[3][2];
@@ -94,7 +94,7 @@ double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dve
     double rgba[4];
     ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba); /* COLOR_0 on thin glass, as on the GPU */
     *tint = dv_mul(ref_glass_tint(o, h), dv(rgba[0], rgba[1], rgba[2]));
-    *normal = slot_active(o, &m->normal) ? mapped_normal(o, h, n) : n;
+    *normal = slot_active(o, &m->normal) ? mapped_normal(o, h, &m->normal, n) : n;
     double cos_i = fmin(fmax(-dv_dot(dir, *normal), 0.0), 1.0);
     return optics_fresnel_of(cos_i, 1.0 / m->ior, m->ideal);
 }
@@ -123,7 +123,7 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
         out->emission = dv_mul(out->emission, to_dvec3(texture_sample(&m->emissive, uv, true)));
     }
     if (slot_active(o, &m->normal))
-        out->normal = mapped_normal(o, h, n);
+        out->normal = mapped_normal(o, h, &m->normal, n);
     if (!m->pbr)
         return;
     /* material_brdf() and material_occlusion() of common/material.glsl */
@@ -152,6 +152,26 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
         out->brdf.specular_color[0] *= c.x;
         out->brdf.specular_color[1] *= c.y;
         out->brdf.specular_color[2] *= c.z;
+    }
+    /* KHR_materials_clearcoat (material_brdf): R and G of its textures
+     * (linear), its own normal map, else the geometry's normal n */
+    out->brdf.clearcoat = m->clearcoat;
+    out->brdf.clearcoat_roughness = m->clearcoat_roughness;
+    if (m->clearcoat > 0.0f) {
+        if (slot_active(o, &m->clearcoat_map)) {
+            hit_uv(o, h, m->clearcoat_map.texcoord, uv);
+            out->brdf.clearcoat *= texture_sample(&m->clearcoat_map, uv, false).x;
+        }
+        if (slot_active(o, &m->clearcoat_roughness_map)) {
+            hit_uv(o, h, m->clearcoat_roughness_map.texcoord, uv);
+            out->brdf.clearcoat_roughness *= texture_sample(&m->clearcoat_roughness_map, uv, false).y;
+        }
+        out->brdf.clearcoat = fmin(fmax(out->brdf.clearcoat, 0.0), 1.0);
+        out->brdf.clearcoat_roughness = fmin(fmax(out->brdf.clearcoat_roughness, 0.0), 1.0);
+        dvec3 nc = slot_active(o, &m->clearcoat_normal) ? mapped_normal(o, h, &m->clearcoat_normal, n) : n;
+        out->brdf.clearcoat_normal[0] = nc.x;
+        out->brdf.clearcoat_normal[1] = nc.y;
+        out->brdf.clearcoat_normal[2] = nc.z;
     }
     if (slot_active(o, &m->occlusion)) {
         hit_uv(o, h, m->occlusion.texcoord, uv);

@@ -359,7 +359,10 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
             continue;
         double c = dv_dot(n, wi);
         double tmax = isfinite(dist) ? dist * (1.0 - 1e-6) - rs->epsilon : INFINITY;
-        if (c <= 0.0)
+        /* (a clearcoat's own normal may face a light the base does not) */
+        if (c <= 0.0 && !(brdf && brdf->clearcoat > 0.0 &&
+                          brdf->clearcoat_normal[0] * wi.x + brdf->clearcoat_normal[1] * wi.y +
+                                  brdf->clearcoat_normal[2] * wi.z > 0.0))
             continue;
         dvec3 through = ref_scene_transmittance(rs, origin, wi, tmax); /* (through thin-walled panes) */
         if (!(dv_dot(through, through) > 0.0))
@@ -368,12 +371,13 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
         /* with a medium, attenuated along the shadow ray */
         if (rm->present)
             el = dv_mul(el, ref_medium_transmittance(rm, origin, wi, tmax, rng));
-        if (brdf) {
+        if (brdf) { /* f cos, the coat's by its own normal (core/brdf.h) */
             double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, ll[3] = {wi.x, wi.y, wi.z}, f[3];
-            brdf_gltf(nn, vv, ll, brdf, f);
-            el = dv_mul(el, dv(f[0], f[1], f[2]));
+            brdf_gltf_cos(nn, vv, ll, brdf, f);
+            e = dv_add(e, dv_mul(el, dv(f[0], f[1], f[2])));
+        } else {
+            e = dv_add(e, dv_scale(el, c));
         }
-        e = dv_add(e, dv_scale(el, c));
     }
     return e;
 }
@@ -572,10 +576,10 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                  * caustics) by the diffuse lobe's albedo, as the GPU weighs
                  * caustic irradiance */
                 dvec3 v = dv_scale(dir, -1.0);
-                double n_dot_v = fmin(fmax(dv_dot(n, v), 0.0), 1.0), amb[3], diff[3];
+                double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, amb[3], diff[3];
                 dvec3 lit = direct_light(rs, rm, &rng, h.position, n, &surface.brdf, v);
-                brdf_ambient_albedo(n_dot_v, &surface.brdf, amb);
-                brdf_diffuse_albedo(n_dot_v, &surface.brdf, diff);
+                brdf_ambient_albedo(nn, vv, &surface.brdf, amb);
+                brdf_diffuse_albedo(nn, vv, &surface.brdf, diff);
                 dvec3 sky = dv_scale(dv_mul(rs->ambient, dv(amb[0], amb[1], amb[2])), surface.occlusion);
                 seen = dv_add(seen, dv_mul(beta, dv_add(dv_add(lit, sky), surface.emission)));
                 f = dv_scale(dv_mul(beta, dv(diff[0], diff[1], diff[2])), 1.0 / MATH_PI);

@@ -108,11 +108,16 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
         m->occlusion_strength = g->occlusion_strength;
         m->specular = g->specular;
         m->specular_color = vec3_make(g->specular_color[0], g->specular_color[1], g->specular_color[2]);
+        m->clearcoat = g->clearcoat;
+        m->clearcoat_roughness = g->clearcoat_roughness;
         m->emission = vec3_make(g->emission[0], g->emission[1], g->emission[2]);
         if (metal && g->transmission > 0.0f)
             ignored_add(m, "transmission %.2g (a metal does not transmit; metallicFactor is 1 unless the file "
                            "says 0)", g->transmission);
     }
+    if (!m->pbr && g->clearcoat > 0.0f)
+        ignored_add(m, "KHR_materials_clearcoat (drawn on glTF's BRDF surfaces only, not on %s)",
+                    m->kind == MATERIAL_MIRROR ? "smooth metals, drawn as mirrors" : "glass");
     if (m->kind != MATERIAL_DIFFUSE) {
         if (g->emission[0] > 0.0f || g->emission[1] > 0.0f || g->emission[2] > 0.0f)
             ignored_add(m, "emission (drawn on diffuse surfaces only)");
@@ -155,21 +160,24 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
     struct {
         struct gltf_texture *from;
         struct texture_ref *to;
-    } slots[8] = {{&g->base_color_texture, &m->base_color},
+    } slots[11] = {{&g->base_color_texture, &m->base_color},
                   {&g->normal_texture, &m->normal},
                   {&g->emissive_texture, &m->emissive},
                   {&g->metallic_roughness_texture, &m->metallic_roughness},
                   {&g->occlusion_texture, &m->occlusion},
                   {&g->transmission_texture, &m->transmission_map},
                   {&g->specular_texture, &m->specular_map},
-                  {&g->specular_color_texture, &m->specular_color_map}};
-    /* diffuse surfaces read all but the transmission (the specular ones
-     * where glTF's BRDF draws them), glass its transmission and its base
+                  {&g->specular_color_texture, &m->specular_color_map},
+                  {&g->clearcoat_texture, &m->clearcoat_map},
+                  {&g->clearcoat_roughness_texture, &m->clearcoat_roughness_map},
+                  {&g->clearcoat_normal_texture, &m->clearcoat_normal}};
+    /* diffuse surfaces read all but the transmission (the specular and
+     * clearcoat ones where glTF's BRDF draws them), glass its transmission and its base
      * colour (the tint per texel), thin glass its normal map too */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
-    for (int s = 0; s < 8; s++) {
+    for (int s = 0; s < 11; s++) {
         struct gltf_texture *gt = slots[s].from;
         bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) : s < 5 || (s >= 6 && m->pbr);
         if (!gt->bytes || !read)

@@ -92,6 +92,14 @@ struct material {
     /* KHR_materials_specular's textures: specular x specular_map's A and
      * specular_color x specular_color_map's RGB (sRGB), per texel */
     struct texture_ref specular_map, specular_color_map;
+    /* KHR_materials_clearcoat on a pbr surface: a second, colourless GGX
+     * lobe over the material (core/brdf.h), weight clearcoat x
+     * clearcoat_map's R, roughness clearcoat_roughness x
+     * clearcoat_roughness_map's G (both linear), its own normal map
+     * (clearcoat_normal, with its scale) or else the geometry's normal.
+     * clearcoat 0: none. */
+    float clearcoat, clearcoat_roughness;
+    struct texture_ref clearcoat_map, clearcoat_roughness_map, clearcoat_normal;
     /* Cut-outs (glTF alphaMode MASK, diffuse surfaces): where alpha x the
      * base colour texture's alpha is below alpha_cutoff the surface is not
      * there, for the camera, the shadow map and the reference alike.

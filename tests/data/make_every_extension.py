@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes every_extension.gltf (run from tests/data; standard library only):
 one triangle whose material asks for every glTF material extension
-caustica does not draw (clearcoat, sheen, iridescence, anisotropy,
+caustica does not draw (clearcoat, drawn on the BRDF's surfaces but not on
+this glass, sheen, iridescence, anisotropy,
 dispersion, diffuse transmission, unlit, the volume's thickness texture),
 plus a TANGENT attribute, and for the specular extension's textures, which
 are drawn: `caustica info` must list each of the others, on one line that

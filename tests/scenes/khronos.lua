@@ -16,6 +16,7 @@ local samples = {
   vase = { file = "GlassVaseFlowers/GlassVaseFlowers.glb", eye = {0, 0.3, 1} },
   specular = { file = "SpecularTest/SpecularTest.glb" },
   alpha_blend = { file = "AlphaBlendModeTest/AlphaBlendModeTest.glb", eye = {0, 0.25, 1} },
+  clearcoat = { file = "ClearCoatTest/ClearCoatTest.glb", scale = 1.1, target = {0.3, 0.02, 0} },
   toy_car = { file = "ToyCar/ToyCar.gltf", eye = {0.6, 0.45, 1}, scale = 2.4, target = {0, 0.62, 0} },
 }
 local name = c.param("sample", "texture_transform")

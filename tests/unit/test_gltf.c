@@ -107,7 +107,10 @@ int main(void)
         CHECK(m.ranges[0].first_index == 0 && m.ranges[0].index_count == 3 && m.ranges[0].material == 0);
         CHECK(m.ranges[1].first_index == 3 && m.ranges[1].index_count == 3 && m.ranges[1].material == 1);
         CHECK(m.materials[1].alpha_mode == GLTF_ALPHA_MASK);
-        CHECK(strstr(m.materials[1].unread, "KHR_materials_clearcoat") != NULL);
+        /* KHR_materials_clearcoat is read (issue 50), not listed as unread */
+        CHECK(strstr(m.materials[1].unread, "KHR_materials_clearcoat") == NULL);
+        CHECK_NEAR(m.materials[1].clearcoat, 1.0, 1e-6);
+        CHECK_NEAR(m.materials[1].clearcoat_roughness, 0.0, 1e-6);
     }
     gltf_mesh_free(&m);
     /* Vertex attributes nothing draws (TANGENT, a skin's joints) are
@@ -176,7 +179,8 @@ int main(void)
         CHECK(strstr(glass->material.ignored, "roughness") == NULL);
         CHECK_NEAR(label->material.alpha_cutoff, 0.5, 1e-6); /* a diffuse MASK cuts out: not ignored */
         CHECK(strstr(label->material.ignored, "alphaMode") == NULL);
-        CHECK(strstr(label->material.ignored, "KHR_materials_clearcoat") != NULL);
+        CHECK(strstr(label->material.ignored, "clearcoat") == NULL); /* drawn: the label is glTF's BRDF */
+        CHECK(label->material.pbr && label->material.clearcoat == 1.0f);
         struct object *group = object_create(two);
         CHECK(group && group->part_count == 2);
         struct scene scene;
