@@ -37,7 +37,36 @@ float brdf_smith_v(float n_dot_l, float n_dot_v, float alpha)
     return s > 0.0 ? 0.5 / s : 0.0;
 }
 
+// The uniform sky on a glTF surface: core/brdf.h's three integrals (Wd, S0,
+// S1) of (NdotV, roughness), tabulated once on the CPU (brdf_ambient_table,
+// BRDF_TABLE_SIZE^2, bound by the renderer) and read here bilinearly by the
+// same arithmetic as brdf.c's ambient_terms.
+uniform sampler2D u_brdf_table;
+const int BRDF_TABLE_SIZE = 32;
+
+vec3 brdf_ambient_terms(float n_dot_v, float roughness)
+{
+    float x = sqrt(clamp(n_dot_v, 0.0, 1.0)) * float(BRDF_TABLE_SIZE - 1); // columns by sqrt(NdotV)
+    float y = sqrt(clamp(roughness, 0.0, 1.0)) * float(BRDF_TABLE_SIZE - 1); // rows by sqrt(roughness)
+    int x0 = int(min(floor(x), float(BRDF_TABLE_SIZE - 2))), y0 = int(min(floor(y), float(BRDF_TABLE_SIZE - 2)));
+    float fx = x - float(x0), fy = y - float(y0);
+    vec3 a = texelFetch(u_brdf_table, ivec2(x0, y0), 0).rgb, b = texelFetch(u_brdf_table, ivec2(x0 + 1, y0), 0).rgb;
+    vec3 c = texelFetch(u_brdf_table, ivec2(x0, y0 + 1), 0).rgb, d = texelFetch(u_brdf_table, ivec2(x0 + 1, y0 + 1), 0).rgb;
+    vec3 top = a + (b - a) * fx;
+    return top + ((c + (d - c) * fx) - top) * fy;
+}
+
+// The specular lobe's directional albedo f0 S0 + (1 - f0) S1 (core/brdf.h)
+float brdf_specular_albedo(float n_dot_v, float roughness, float f0)
+{
+    vec3 t = brdf_ambient_terms(n_dot_v, roughness);
+    return f0 * t.y + (1.0 - f0) * t.z;
+}
+
 // f(v, l) at unit n, v towards the viewer, l towards the light; 0 below.
+// The diffuse lobe takes 1 - specular x the specular lobe's albedo from
+// this view, not Appendix B's 1 - max(F(VdotH)) (core/brdf.h: energy
+// conserving in the white furnace).
 vec3 brdf_gltf(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
 {
     float n_dot_l = dot(n, l), n_dot_v = dot(n, v);
@@ -54,11 +83,11 @@ vec3 brdf_gltf(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
     float spec = brdf_ggx_d(n_dot_h, dot(c, c), alpha) * brdf_smith_v(n_dot_l, n_dot_v, alpha);
     float w = pow(1.0 - v_dot_h, 5.0);
     float r0 = (m.ior - 1.0) / (m.ior + 1.0);
-    vec3 fd = r0 * r0 * m.specular_color;
-    fd = min(fd, vec3(1.0));
-    fd = fd + (1.0 - fd) * w;
-    float fd_max = max(fd.r, max(fd.g, fd.b));
-    vec3 dielectric = (1.0 - m.specular * fd_max) * m.base_color / BRDF_PI + m.specular * fd * spec;
+    vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
+    vec3 fd = f0 + (1.0 - f0) * w;
+    float f0_max = max(f0.r, max(f0.g, f0.b));
+    float diffuse_weight = 1.0 - m.specular * brdf_specular_albedo(n_dot_v, m.roughness, f0_max);
+    vec3 dielectric = diffuse_weight * m.base_color / BRDF_PI + m.specular * fd * spec;
     vec3 metal = (m.base_color + (1.0 - m.base_color) * w) * spec;
     return dielectric + m.metallic * (metal - dielectric);
 }
@@ -101,25 +130,6 @@ vec3 brdf_gltf_cos(vec3 n, vec3 v, vec3 l, BrdfMaterial m)
     return (1.0 - share) * f * c + coat;
 }
 
-// The uniform sky on a glTF surface: core/brdf.h's three integrals (Wd, S0,
-// S1) of (NdotV, roughness), tabulated once on the CPU (brdf_ambient_table,
-// BRDF_TABLE_SIZE^2, bound by the renderer) and read here bilinearly by the
-// same arithmetic as brdf.c's ambient_terms.
-uniform sampler2D u_brdf_table;
-const int BRDF_TABLE_SIZE = 32;
-
-vec3 brdf_ambient_terms(float n_dot_v, float roughness)
-{
-    float x = clamp(n_dot_v, 0.0, 1.0) * float(BRDF_TABLE_SIZE - 1);
-    float y = clamp(roughness, 0.0, 1.0) * float(BRDF_TABLE_SIZE - 1);
-    int x0 = int(min(floor(x), float(BRDF_TABLE_SIZE - 2))), y0 = int(min(floor(y), float(BRDF_TABLE_SIZE - 2)));
-    float fx = x - float(x0), fy = y - float(y0);
-    vec3 a = texelFetch(u_brdf_table, ivec2(x0, y0), 0).rgb, b = texelFetch(u_brdf_table, ivec2(x0 + 1, y0), 0).rgb;
-    vec3 c = texelFetch(u_brdf_table, ivec2(x0, y0 + 1), 0).rgb, d = texelFetch(u_brdf_table, ivec2(x0 + 1, y0 + 1), 0).rgb;
-    vec3 top = a + (b - a) * fx;
-    return top + ((c + (d - c) * fx) - top) * fy;
-}
-
 // The BRDF's directional albedo for normal n and view v (what a sky of
 // radiance 1 returns), with the coat's
 vec3 brdf_ambient_albedo(vec3 n, vec3 v, BrdfMaterial m)
@@ -130,7 +140,7 @@ vec3 brdf_ambient_albedo(vec3 n, vec3 v, BrdfMaterial m)
     float f0_max = max(f0.r, max(f0.g, f0.b));
     vec3 c = m.base_color;
     float s = m.specular;
-    vec3 dielectric = c * (1.0 - s * f0_max) - c * s * (1.0 - f0_max) * t.x + s * (f0 * t.y + (1.0 - f0) * t.z);
+    vec3 dielectric = c * (1.0 - s * (f0_max * t.y + (1.0 - f0_max) * t.z)) + s * (f0 * t.y + (1.0 - f0) * t.z);
     vec3 metal = c * t.y + (1.0 - c) * t.z;
     vec3 albedo = dielectric + m.metallic * (metal - dielectric);
     float share = brdf_clearcoat_share(v, m);
@@ -143,11 +153,9 @@ vec3 brdf_ambient_albedo(vec3 n, vec3 v, BrdfMaterial m)
 // less what the coat reflects
 vec3 brdf_diffuse_albedo(vec3 n, vec3 v, BrdfMaterial m)
 {
-    float n_dot_v = dot(n, v);
     float r0 = (m.ior - 1.0) / (m.ior + 1.0);
     vec3 f0 = min(r0 * r0 * m.specular_color, vec3(1.0));
     float f0_max = max(f0.r, max(f0.g, f0.b));
-    float w = pow(1.0 - clamp(n_dot_v, 0.0, 1.0), 5.0);
-    float f = f0_max + (1.0 - f0_max) * w;
-    return (1.0 - brdf_clearcoat_share(v, m)) * (1.0 - m.metallic) * m.base_color * (1.0 - m.specular * f);
+    float weight = 1.0 - m.specular * brdf_specular_albedo(dot(n, v), m.roughness, f0_max);
+    return (1.0 - brdf_clearcoat_share(v, m)) * (1.0 - m.metallic) * m.base_color * weight;
 }

@@ -20,6 +20,8 @@ struct brdf_material brdf_material_default(double r, double g, double b, double 
                                   .clearcoat_normal = {0.0, 0.0, 1.0}};
 }
 
+static void ambient_terms(double n_dot_v, double roughness, double out[3]);
+
 static double dot3(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -62,14 +64,15 @@ void brdf_gltf(const double n[3], const double v[3], const double l[3], const st
     double spec = brdf_ggx_d(n_dot_h, dot3(c, c), alpha) * brdf_smith_v(n_dot_l, n_dot_v, alpha);
     double w = pow(1.0 - v_dot_h, 5.0);
     double r0 = (m->ior - 1.0) / (m->ior + 1.0);
-    double fd[3], fd_max = 0.0;
+    double fd[3], f0_max = 0.0;
     for (int k = 0; k < 3; k++) {
         double f0 = fmin(r0 * r0 * m->specular_color[k], 1.0);
         fd[k] = f0 + (1.0 - f0) * w;
-        fd_max = fmax(fd_max, fd[k]);
+        f0_max = fmax(f0_max, f0);
     }
+    double diffuse_weight = 1.0 - m->specular * brdf_specular_albedo(n_dot_v, m->roughness, f0_max);
     for (int k = 0; k < 3; k++) {
-        double dielectric = (1.0 - m->specular * fd_max) * m->base_color[k] / MATH_PI + m->specular * fd[k] * spec;
+        double dielectric = diffuse_weight * m->base_color[k] / MATH_PI + m->specular * fd[k] * spec;
         double metal = (m->base_color[k] + (1.0 - m->base_color[k]) * w) * spec;
         f[k] = dielectric + m->metallic * (metal - dielectric);
     }
@@ -172,7 +175,7 @@ static void ambient_table_build(void)
 {
     for (int r = 0; r < BRDF_TABLE_SIZE; r++)
         for (int c = 0; c < BRDF_TABLE_SIZE; c++) {
-            double roughness = (double)r / (BRDF_TABLE_SIZE - 1), n_dot_v = (double)c / (BRDF_TABLE_SIZE - 1);
+            double roughness = pow((double)r / (BRDF_TABLE_SIZE - 1), 2.0), n_dot_v = pow((double)c / (BRDF_TABLE_SIZE - 1), 2.0);
             double terms[3];
             /* NdotV 0 (a surface seen edge-on) takes the nearest view that sees it */
             ambient_integrals(fmax(n_dot_v, 1e-3), fmax(roughness * roughness, BRDF_MIN_ALPHA), terms);
@@ -192,8 +195,8 @@ const float *brdf_ambient_table(void)
 static void ambient_terms(double n_dot_v, double roughness, double out[3])
 {
     const float *t = brdf_ambient_table();
-    double x = fmin(fmax(n_dot_v, 0.0), 1.0) * (BRDF_TABLE_SIZE - 1);
-    double y = fmin(fmax(roughness, 0.0), 1.0) * (BRDF_TABLE_SIZE - 1);
+    double x = sqrt(fmin(fmax(n_dot_v, 0.0), 1.0)) * (BRDF_TABLE_SIZE - 1); /* columns by sqrt(NdotV) */
+    double y = sqrt(fmin(fmax(roughness, 0.0), 1.0)) * (BRDF_TABLE_SIZE - 1); /* rows by sqrt(roughness) */
     int x0 = (int)fmin(floor(x), BRDF_TABLE_SIZE - 2), y0 = (int)fmin(floor(y), BRDF_TABLE_SIZE - 2);
     double fx = x - x0, fy = y - y0;
     for (int q = 0; q < 3; q++) {
@@ -201,6 +204,13 @@ static void ambient_terms(double n_dot_v, double roughness, double out[3])
         double c = t[((y0 + 1) * BRDF_TABLE_SIZE + x0) * 3 + q], d = t[((y0 + 1) * BRDF_TABLE_SIZE + x0 + 1) * 3 + q];
         out[q] = (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
     }
+}
+
+double brdf_specular_albedo(double n_dot_v, double roughness, double f0)
+{
+    double t[3];
+    ambient_terms(n_dot_v, roughness, t);
+    return f0 * t[1] + (1.0 - f0) * t[2];
 }
 
 void brdf_ambient_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3])
@@ -214,7 +224,10 @@ void brdf_ambient_albedo(const double n[3], const double v[3], const struct brdf
     }
     for (int k = 0; k < 3; k++) {
         double c = m->base_color[k], s = m->specular;
-        double dielectric = c * (1.0 - s * f0_max) - c * s * (1.0 - f0_max) * t[0] + s * (f0[k] * t[1] + (1.0 - f0[k]) * t[2]);
+        /* the diffuse lobe weighed by 1 - s E(NdotV) (brdf.h), E the
+         * specular lobe's albedo at the largest F0 */
+        double dielectric = c * (1.0 - s * (f0_max * t[1] + (1.0 - f0_max) * t[2])) +
+                            s * (f0[k] * t[1] + (1.0 - f0[k]) * t[2]);
         double metal = c * t[1] + (1.0 - c) * t[2];
         out[k] = dielectric + m->metallic * (metal - dielectric);
     }
@@ -233,9 +246,8 @@ void brdf_diffuse_albedo(const double n[3], const double v[3], const struct brdf
     double r0 = (m->ior - 1.0) / (m->ior + 1.0), f0_max = 0.0;
     for (int k = 0; k < 3; k++)
         f0_max = fmax(f0_max, fmin(r0 * r0 * m->specular_color[k], 1.0));
-    double w = pow(1.0 - fmin(fmax(n_dot_v, 0.0), 1.0), 5.0);
-    double f = f0_max + (1.0 - f0_max) * w;
+    double weight = 1.0 - m->specular * brdf_specular_albedo(n_dot_v, m->roughness, f0_max);
     double share = brdf_clearcoat_share(v, m);
     for (int k = 0; k < 3; k++)
-        out[k] = (1.0 - share) * (1.0 - m->metallic) * m->base_color[k] * (1.0 - m->specular * f);
+        out[k] = (1.0 - share) * (1.0 - m->metallic) * m->base_color[k] * weight;
 }

@@ -7,10 +7,22 @@
  *
  *   f = mix(dielectric, metal, metallic)
  *   metal      = F_schlick(base_color, VdotH) * D * V
- *   dielectric = (1 - specular * max(F)) * base_color / pi + specular * F * D * V,
+ *   dielectric = (1 - specular * E(NdotV)) * base_color / pi + specular * F * D * V,
  *                F = F_schlick(min(((ior - 1) / (ior + 1))^2 * specular_color, 1), VdotH)
  *   D = Trowbridge-Reitz (GGX), alpha = roughness^2;
- *   V = Smith's height-correlated joint masking-shadowing over 4 NdotL NdotV.
+ *   V = Smith's height-correlated joint masking-shadowing over 4 NdotL NdotV;
+ *   E(NdotV) = integral(max(F) D V cos): the specular lobe's directional
+ *   albedo at the largest F0 (brdf_specular_albedo, from the table below).
+ *
+ * The diffuse lobe takes 1 - what the specular lobe reflects from this
+ * view, not Appendix B's 1 - max(F(VdotH)) per light (its fresnel_mix,
+ * which the appendix gives as one informative approximation): that one is
+ * not energy conserving, a white dielectric in a white furnace returned up
+ * to 1.84 at grazing views (cos 0.02) and 1.13 at cos 0.3, roughness 0.25;
+ * with the albedo it returns at most 1 (the albedo scaling of Kulla and
+ * Conty 2017, "Revisiting physically based shading at Imageworks"). The
+ * two agree where F(VdotH) is near F0 across the lobe, at views near the
+ * normal.
  *
  * KHR_materials_clearcoat lays a second lobe over that, with its own
  * normal n_c and roughness (the extension's fresnel_coat):
@@ -59,6 +71,11 @@ double brdf_smith_v(double n_dot_l, double n_dot_v, double alpha);
  * surface. Never a NaN or Inf for unit inputs. */
 void brdf_gltf(const double n[3], const double v[3], const double l[3], const struct brdf_material *m, double f[3]);
 
+/* The specular lobe's directional albedo f0 S0 + (1 - f0) S1 at (NdotV,
+ * roughness) from the ambient table (the diffuse lobe's weight is 1 -
+ * specular x this at the largest F0). */
+double brdf_specular_albedo(double n_dot_v, double roughness, double f0);
+
 /* The coat's share of the view, clearcoat x Fc (0 without a coat). */
 double brdf_clearcoat_share(const double v[3], const struct brdf_material *m);
 
@@ -87,8 +104,9 @@ bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3],
  * integral(f(v, l) cos dl), which is linear in three integrals of (NdotV,
  * alpha) alone (w = (1 - VdotH)^5):
  *   Wd = integral(w cos / pi), S0 = integral(D V cos), S1 = integral(w D V cos),
- *   albedo = mix(c (1 - s f0max) - c s (1 - f0max) Wd + s (f0 S0 + (1 - f0) S1),
- *                b S0 + (1 - b) S1, metallic).
+ *   albedo = mix(c (1 - s E) + s (f0 S0 + (1 - f0) S1), b S0 + (1 - b) S1, metallic),
+ *   E = f0max S0 + (1 - f0max) S1 (Wd, Appendix B's diffuse weight, is no longer used:
+ *   kept in the table's layout).
  * The three are tabulated once, BRDF_TABLE_SIZE^2 over NdotV and roughness
  * in [0, 1] (a deterministic quadrature of GGX half vectors and cosine
  * directions, as tests/unit/test_shading.c's furnace), and read bilinearly:
@@ -106,8 +124,8 @@ const float *brdf_ambient_table(void);
 void brdf_ambient_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3]);
 /* The share of light the diffuse lobe sends back, per channel, for
  * irradiance that arrives from no one direction (caustics, photons): the
- * Lambert albedo (1 - metallic) c (1 - s F(NdotV)max), F Schlick's at
- * NdotV, less what the coat reflects (x (1 - share)). Both renderers weigh
+ * Lambert albedo (1 - metallic) c (1 - s E(NdotV)), as f's diffuse lobe,
+ * less what the coat reflects (x (1 - share)). Both renderers weigh
  * caustic irradiance on a glTF surface by it. */
 void brdf_diffuse_albedo(const double n[3], const double v[3], const struct brdf_material *m, double out[3]);
 

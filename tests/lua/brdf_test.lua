@@ -2,7 +2,8 @@
 -- file's materials (factors, a metallicRoughnessTexture, an
 -- occlusionTexture), the loader, `shade` on the GPU and the reference on
 -- the CPU, each against the closed form of the glTF 2.0 specification's
--- Appendix B written out again here (tests/scenes/brdf_quads.lua: one n, v
+-- Appendix B written out again here, with the diffuse lobe weighed by the
+-- specular lobe's albedo (core/brdf.h) (tests/scenes/brdf_quads.lua: one n, v
 -- and l over each quad). Before, both renderers drew these quads as a
 -- mirror or as Lambert of the base colour and agreed with each other.
 local t = require "caustica.test"
@@ -13,52 +14,82 @@ local function norm(a)
 end
 local function dot(a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
 
--- f(v, l) per channel for base colour c, metallic, roughness, and (for a
--- dielectric) KHR_materials_ior and KHR_materials_specular's fresnel_mix:
--- s = {ior, weight, {colour}}, IOR 1.5 and weight 1 by default
-local function brdf(n, v, l, c, metallic, roughness, s)
-  s = s or { 1.5, 1, { 1, 1, 1 } }
+-- GGX's D and Smith's height-correlated V / (4 NdotL NdotV), and Schlick's
+-- weight w, for n, v, l (0 where l or v is below)
+local function lobe(n, v, l, roughness)
   local nl, nv = dot(n, l), dot(n, v)
-  if nl <= 0 or nv <= 0 then return { 0, 0, 0 } end
+  if nl <= 0 or nv <= 0 then return 0, 0 end
   local h = norm { v[1] + l[1], v[2] + l[2], v[3] + l[3] }
   local nh, vh = dot(n, h), math.abs(dot(v, h))
   local a = math.max(roughness * roughness, 1e-4)
   local a2 = a * a
   local d = a2 / (math.pi * (nh * nh * (a2 - 1) + 1) ^ 2)
   local vis = 0.5 / (nl * math.sqrt(nv * nv * (1 - a2) + a2) + nv * math.sqrt(nl * nl * (1 - a2) + a2))
-  local w = (1 - vh) ^ 5
-  local r0 = ((s[1] - 1) / (s[1] + 1)) ^ 2
-  local fd, fmax = {}, 0
-  for k = 1, 3 do
-    local f0 = math.min(r0 * s[3][k], 1)
-    fd[k] = f0 + (1 - f0) * w
-    fmax = math.max(fmax, fd[k])
-  end
-  local out = {}
-  for k = 1, 3 do
-    local dielectric = (1 - s[2] * fmax) * c[k] / math.pi + s[2] * fd[k] * d * vis
-    local metal = (c[k] + (1 - c[k]) * w) * d * vis
-    out[k] = dielectric + metallic * (metal - dielectric)
-  end
-  return out
+  return d * vis, (1 - vh) ^ 5
 end
 
--- integral of f cos over the hemisphere (the sky's response), by a midpoint
--- rule in (cos theta, phi): independent of the renderers' table
-local function albedo(n, v, c, metallic, roughness, s)
+-- a midpoint rule in (cos theta, phi) about n = +y: sum of g(l) cos dl
+local function integrate(g)
   local sum, m = { 0, 0, 0 }, 200
   for i = 0, m - 1 do
     local ct = (i + 0.5) / m
     local st = math.sqrt(1 - ct * ct)
     for j = 0, 2 * m - 1 do
       local phi = (j + 0.5) / (2 * m) * 2 * math.pi
-      local l = { st * math.cos(phi), ct, st * math.sin(phi) } -- about n = +y
-      local f = brdf(n, v, l, c, metallic, roughness, s)
+      local f = g { st * math.cos(phi), ct, st * math.sin(phi) }
       for k = 1, 3 do sum[k] = sum[k] + f[k] * ct end
     end
   end
   local dw = (1 / m) * (2 * math.pi / (2 * m))
   return { sum[1] * dw, sum[2] * dw, sum[3] * dw }
+end
+
+-- KHR_materials_ior and KHR_materials_specular: s = {ior, weight, {colour}},
+-- IOR 1.5 and weight 1 by default; F0 per channel and the largest
+local function f0s(s)
+  local r0 = ((s[1] - 1) / (s[1] + 1)) ^ 2
+  local f0, most = {}, 0
+  for k = 1, 3 do
+    f0[k] = math.min(r0 * s[3][k], 1)
+    most = math.max(most, f0[k])
+  end
+  return f0, most
+end
+
+-- The specular lobe's directional albedo at the largest F0, E(v): what the
+-- diffuse lobe gives way to (core/brdf.h), integrated here
+local function specular_albedo(n, v, roughness, s)
+  local _, most = f0s(s or { 1.5, 1, { 1, 1, 1 } })
+  return integrate(function(l)
+    local dv, w = lobe(n, v, l, roughness)
+    local f = (most + (1 - most) * w) * dv
+    return { f, f, f }
+  end)[1]
+end
+
+-- f(v, l) per channel for base colour c, metallic, roughness, and (for a
+-- dielectric) KHR_materials_ior and KHR_materials_specular: Appendix B's
+-- GGX and Smith, the dielectric's diffuse lobe weighed by 1 - s E(v) (the
+-- specular lobe's albedo `e` from this view; not Appendix B's 1 - F(VdotH),
+-- which is not energy conserving)
+local function brdf(n, v, l, c, metallic, roughness, s, e)
+  s = s or { 1.5, 1, { 1, 1, 1 } }
+  if dot(n, l) <= 0 or dot(n, v) <= 0 then return { 0, 0, 0 } end
+  local dv, w = lobe(n, v, l, roughness)
+  local f0 = f0s(s)
+  local out = {}
+  for k = 1, 3 do
+    local dielectric = (1 - s[2] * e) * c[k] / math.pi + s[2] * (f0[k] + (1 - f0[k]) * w) * dv
+    local metal = (c[k] + (1 - c[k]) * w) * dv
+    out[k] = dielectric + metallic * (metal - dielectric)
+  end
+  return out
+end
+
+-- integral of f cos over the hemisphere (the sky's response), by the
+-- midpoint rule: independent of the renderers' table
+local function albedo(n, v, c, metallic, roughness, s, e)
+  return integrate(function(l) return brdf(n, v, l, c, metallic, roughness, s, e) end)
 end
 
 local SCENE = "tests/scenes/brdf_quads.lua"
@@ -81,11 +112,12 @@ local quads = {
 local function check(pixel, who, sky, tol)
   for _, q in ipairs(quads) do
     local want = { 0, 0, 0 }
+    q.e = q.e or specular_albedo(n, v, q[4], q[7])
     if sky == 0 then
-      local f = brdf(n, v, l, q[2], q[3], q[4], q[7])
+      local f = brdf(n, v, l, q[2], q[3], q[4], q[7], q.e)
       for k = 1, 3 do want[k] = f[k] * E * dot(n, l) end
     else
-      local a = albedo(n, v, q[2], q[3], q[4], q[7])
+      local a = albedo(n, v, q[2], q[3], q[4], q[7], q.e)
       for k = 1, 3 do want[k] = sky * a[k] * q[5] end
     end
     local got = { pixel(q[1], 40) }
