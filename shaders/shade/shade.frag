@@ -21,6 +21,9 @@ uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform vec3 u_tint; // glTF's transmission tint (struct material)
 uniform float u_thickness; // glTF's thicknessFactor (world units): the path inside glass seen through one interface
+uniform sampler2D u_thickness_texture;  // x its green channel (KHR_materials_volume's thicknessTexture)
+uniform int u_thickness_set;            // 0: none, 1: TEXCOORD_0, 2: TEXCOORD_1
+uniform vec3 u_thickness_transform[2];  // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 uniform int u_object_id;
 uniform int u_blending; // 1: the second draw, of alphaMode BLEND surfaces over the rest (shade.c)
 
@@ -55,7 +58,13 @@ void main()
         float eta = entering ? 1.0 / u_ior : u_ior;
         float f = fresnel_of(dot(-view, nn), eta, u_ideal);
         vec3 t = refract_or_reflect(view, nn, eta);
-        vec3 inside = material_albedo(u_tint) * exp(-u_absorption * u_thickness); // x baseColorTexture
+        float thickness = u_thickness;
+        if (u_thickness_set > 0) {
+            vec3 q = vec3(u_thickness_set == 2 ? v_texcoord1 : v_texcoord0, 1.0);
+            thickness *= texture(u_thickness_texture, vec2(dot(u_thickness_transform[0], q),
+                                                          dot(u_thickness_transform[1], q))).g;
+        }
+        vec3 inside = material_albedo(u_tint) * exp(-u_absorption * thickness); // x baseColorTexture
         radiance = f * environment_radiance(reflect(view, nn)) + (1.0 - f) * inside * environment_radiance(t);
     }
     o_color = vec4(radiance, u_blending == 1 ? material_alpha() : 1.0); // (blended by alpha in the second draw)

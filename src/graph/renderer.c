@@ -205,6 +205,7 @@ enum { MATERIAL_SLOTS = 10 };
 struct material_locations {
     GLint set[MATERIAL_SLOTS], transform[MATERIAL_SLOTS * 2], normal_scale, alpha, alpha_cutoff, alpha_blend, single_sided;
     GLint transmission_set, transmission_transform[2];
+    GLint thickness_set, thickness_transform[2];
     GLint metallic, roughness, ior, occlusion_strength, specular, specular_color;
     GLint clearcoat, clearcoat_roughness, clearcoat_normal_scale;
 };
@@ -229,6 +230,9 @@ static void material_locations_find(const struct gl_program *program, struct mat
     loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
     loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
     loc->transmission_transform[1] = gl_program_uniform(program, "u_transmission_transform[1]");
+    loc->thickness_set = gl_program_uniform(program, "u_thickness_set");
+    loc->thickness_transform[0] = gl_program_uniform(program, "u_thickness_transform[0]");
+    loc->thickness_transform[1] = gl_program_uniform(program, "u_thickness_transform[1]");
     loc->metallic = gl_program_uniform(program, "u_metallic");
     loc->roughness = gl_program_uniform(program, "u_pbr_roughness");
     loc->ior = gl_program_uniform(program, "u_pbr_ior");
@@ -321,6 +325,17 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1i(program->id, loc->transmission_set, tm_on ? tm->texcoord + 1 : 0);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[0], tm->transform[0], tm->transform[2], tm->transform[4]);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[1], tm->transform[1], tm->transform[3], tm->transform[5]);
+    /* solid glass's thickness texture (its green channel, linear), which shade's one interface reads */
+    if (loc->thickness_set < 0)
+        return;
+    const struct texture_ref *th = &o->material.thickness_map;
+    GLuint thid = 0;
+    bool th_on = th->texture && material_role(&o->material) == OBJECT_ROLE_GLASS && o->mesh->texcoords[th->texcoord] &&
+                 texture_cache_get(&r->textures, th->texture, false, &thid, &err);
+    gl_program_bind_texture(program, "u_thickness_texture", th_on ? thid : r->dummy_2d.id);
+    gl.ProgramUniform1i(program->id, loc->thickness_set, th_on ? th->texcoord + 1 : 0);
+    gl.ProgramUniform3f(program->id, loc->thickness_transform[0], th->transform[0], th->transform[2], th->transform[4]);
+    gl.ProgramUniform3f(program->id, loc->thickness_transform[1], th->transform[1], th->transform[3], th->transform[5]);
 }
 
 struct blended_object {

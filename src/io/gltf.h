@@ -59,6 +59,7 @@ struct gltf_material {
     struct gltf_texture transmission_texture;       /* R: KHR_materials_transmission's factor per texel */
     struct gltf_texture specular_texture;           /* A: KHR_materials_specular's specularFactor per texel */
     struct gltf_texture specular_color_texture;     /* RGB (sRGB): its specularColorFactor per texel */
+    struct gltf_texture thickness_texture;          /* G: KHR_materials_volume's thicknessFactor per texel */
     float clearcoat, clearcoat_roughness;           /* KHR_materials_clearcoat's factors, [0, 1]; 0 without */
     struct gltf_texture clearcoat_texture;          /* R: x clearcoat */
     struct gltf_texture clearcoat_roughness_texture; /* G: x clearcoat_roughness */

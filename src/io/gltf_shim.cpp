@@ -265,6 +265,7 @@ struct Builder {
             std::free(m.transmission_texture.bytes);
             std::free(m.specular_texture.bytes);
             std::free(m.specular_color_texture.bytes);
+            std::free(m.thickness_texture.bytes);
             std::free(m.clearcoat_texture.bytes);
             std::free(m.clearcoat_roughness_texture.bytes);
             std::free(m.clearcoat_normal_texture.bytes);
@@ -473,8 +474,13 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             m.thickness = (float)ext->second.Get("thicknessFactor").GetNumberAsDouble();
         if (ext->second.Has("attenuationDistance"))
             m.attenuation_distance = (float)ext->second.Get("attenuationDistance").GetNumberAsDouble();
-        if (ext->second.Has("thicknessTexture"))
-            note_unread(m, "thicknessTexture");
+        if (ext->second.Has("thicknessTexture")) {
+            const tinygltf::Value &info = ext->second.Get("thicknessTexture");
+            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
+            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, m.thickness_texture,
+                         "material '" + mat.name + "'");
+        }
         if (ext->second.Has("attenuationColor")) {
             const tinygltf::Value &c = ext->second.Get("attenuationColor");
             for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
@@ -1057,7 +1063,8 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
             m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
                 m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes =
                     m.specular_texture.bytes = m.specular_color_texture.bytes = m.clearcoat_texture.bytes =
-                        m.clearcoat_roughness_texture.bytes = m.clearcoat_normal_texture.bytes = nullptr;
+                        m.clearcoat_roughness_texture.bytes = m.clearcoat_normal_texture.bytes =
+                            m.thickness_texture.bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -1103,6 +1110,7 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
         std::free(mesh->materials[i].transmission_texture.bytes);
         std::free(mesh->materials[i].specular_texture.bytes);
         std::free(mesh->materials[i].specular_color_texture.bytes);
+        std::free(mesh->materials[i].thickness_texture.bytes);
         std::free(mesh->materials[i].clearcoat_texture.bytes);
         std::free(mesh->materials[i].clearcoat_roughness_texture.bytes);
         std::free(mesh->materials[i].clearcoat_normal_texture.bytes);

@@ -64,6 +64,7 @@ void material_init(struct material *m, enum material_kind kind)
     texture_ref_init(&m->occlusion);
     texture_ref_init(&m->specular_map);
     texture_ref_init(&m->specular_color_map);
+    texture_ref_init(&m->thickness_map);
     texture_ref_init(&m->clearcoat_map);
     texture_ref_init(&m->clearcoat_roughness_map);
     texture_ref_init(&m->clearcoat_normal);
@@ -81,6 +82,7 @@ void material_assign(struct material *dst, const struct material *src)
     texture_retain(src->occlusion.texture);
     texture_retain(src->specular_map.texture);
     texture_retain(src->specular_color_map.texture);
+    texture_retain(src->thickness_map.texture);
     texture_retain(src->clearcoat_map.texture);
     texture_retain(src->clearcoat_roughness_map.texture);
     texture_retain(src->clearcoat_normal.texture);
@@ -100,6 +102,8 @@ void material_release(struct material *m)
     texture_destroy(m->specular_color_map.texture);
     m->base_color.texture = m->normal.texture = m->emissive.texture = m->transmission_map.texture = NULL;
     m->metallic_roughness.texture = m->occlusion.texture = NULL;
+    texture_destroy(m->thickness_map.texture);
+    m->thickness_map.texture = NULL;
     texture_destroy(m->clearcoat_map.texture);
     texture_destroy(m->clearcoat_roughness_map.texture);
     texture_destroy(m->clearcoat_normal.texture);

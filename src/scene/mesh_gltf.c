@@ -115,6 +115,8 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
             ignored_add(m, "transmission %.2g (a metal does not transmit; metallicFactor is 1 unless the file "
                            "says 0)", g->transmission);
     }
+    if (g->thickness_texture.bytes && !(m->kind == MATERIAL_GLASS && !m->thin))
+        ignored_add(m, "thicknessTexture (drawn on glass with a volume only)");
     if (!m->pbr && g->clearcoat > 0.0f)
         ignored_add(m, "KHR_materials_clearcoat (drawn on glTF's BRDF surfaces only, not on %s)",
                     m->kind == MATERIAL_MIRROR ? "smooth metals, drawn as mirrors" : "glass");
@@ -160,7 +162,7 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
     struct {
         struct gltf_texture *from;
         struct texture_ref *to;
-    } slots[11] = {{&g->base_color_texture, &m->base_color},
+    } slots[12] = {{&g->base_color_texture, &m->base_color},
                   {&g->normal_texture, &m->normal},
                   {&g->emissive_texture, &m->emissive},
                   {&g->metallic_roughness_texture, &m->metallic_roughness},
@@ -170,16 +172,19 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
                   {&g->specular_color_texture, &m->specular_color_map},
                   {&g->clearcoat_texture, &m->clearcoat_map},
                   {&g->clearcoat_roughness_texture, &m->clearcoat_roughness_map},
-                  {&g->clearcoat_normal_texture, &m->clearcoat_normal}};
+                  {&g->clearcoat_normal_texture, &m->clearcoat_normal},
+                  {&g->thickness_texture, &m->thickness_map}};
     /* diffuse surfaces read all but the transmission (the specular and
      * clearcoat ones where glTF's BRDF draws them), glass its transmission and its base
-     * colour (the tint per texel), thin glass its normal map too */
+     * colour (the tint per texel), thin glass its normal map too, solid
+     * glass its thickness */
     bool glass = m->kind == MATERIAL_GLASS;
     if (!glass && m->kind != MATERIAL_DIFFUSE)
         return true;
-    for (int s = 0; s < 11; s++) {
+    for (int s = 0; s < 12; s++) {
         struct gltf_texture *gt = slots[s].from;
-        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) : s < 5 || (s >= 6 && m->pbr);
+        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) || (!m->thin && s == 11)
+                          : s < 5 || (s >= 6 && s < 11 && m->pbr);
         if (!gt->bytes || !read)
             continue;
         if (!whole->texcoords[gt->texcoord])

@@ -77,6 +77,10 @@ struct material {
     /* Glass and water: `transmission` x this texture's red channel (linear)
      * per texel (glTF's transmissionTexture); no texture: uniform. */
     struct texture_ref transmission_map;
+    /* Glass: `thickness` x this texture's green channel (linear) per texel
+     * (KHR_materials_volume's thicknessTexture), where a pass stands in for
+     * the volume by it (shade's one interface); no texture: uniform. */
+    struct texture_ref thickness_map;
     /* glTF's metallic-roughness model on a diffuse surface (issue 50; the
      * BRDF is core/brdf.c and common/brdf.glsl): pbr set, the surface is
      * drawn by glTF's BRDF with `metallic` and `roughness` (perceptual)

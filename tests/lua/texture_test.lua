@@ -152,3 +152,23 @@ t.case("a flat normal map changes nothing but its 8-bit rounding, GPU and refere
                   t.reference("tests/scenes/textured.lua", { set = none.set, photons = 0, spp = 4 }))
   t.expect(g < 0.005 and r < 0.005, string.format("the panel with a flat map against none: %.4f (GPU), %.4f (reference)", g, r))
 end)
+
+t.case("glTF's thicknessTexture scales the thickness shade's one interface absorbs over", function()
+  -- tests/data/thickness.gltf: glass with a volume, attenuationColor
+  -- (0.2, 0.5, 0.9) at distance 1, thicknessFactor 1 (x the object's scale
+  -- of 1.4), its thicknessTexture green 0 on the left half and 1 on the
+  -- right, before a uniform environment of 0.5. The left half absorbs
+  -- nothing: F + (1 - F) of 0.5 is 0.5. The right half absorbs c^1.4:
+  -- 0.5 (F + (1 - F) c^1.4), F about 0.04 at this view. Before, the
+  -- texture was listed as ignored and both halves absorbed alike.
+  local img = t.render("tests/scenes/thickness.lua")
+  t.expect_finite(img)
+  local left = { img:pixel(16, 32) }
+  local right = { img:pixel(48, 32) }
+  local c = { 0.2, 0.5, 0.9 }
+  for k = 1, 3 do
+    t.expect(math.abs(left[k] - 0.5) < 0.01, string.format("left half, channel %d: %.4f (0.5)", k, left[k]))
+    local want = 0.5 * (0.04 + 0.96 * c[k] ^ 1.4)
+    t.expect(math.abs(right[k] - want) < 0.02, string.format("right half, channel %d: %.4f (%.4f)", k, right[k], want))
+  end
+end)
