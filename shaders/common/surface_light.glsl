@@ -69,10 +69,42 @@ vec3 surface_light_diffuse(vec3 p, vec3 n, vec3 albedo, vec3 emission, vec3 caus
 
 // A glTF surface (material.pbr) at p, normal n, seen from direction v
 // (unit, towards the viewer): each light's irradiance times the BRDF, the
-// ambient sky times the BRDF's directional albedo and the occlusion, the
-// caustic irradiance times the diffuse lobe's albedo / pi (it comes from no
-// one direction), and the emission. The reference: ref_sppm.c, the same
+// ambient sky times the diffuse lobe's albedo and the specular lobes'
+// reflection of the environment (surface_glossy_environment), both times
+// the occlusion, the caustic irradiance times the diffuse lobe's albedo / pi
+// (it comes from no one direction), and the emission. The reference: ref_sppm.c, the same
 // terms by core/brdf.c.
+// The environment seen about direction r by a glossy lobe of GGX
+// roughness `roughness`: the background colour, or the environment cube's
+// mip level whose texels span the lobe, about 2 alpha radians (the mips
+// are box-filtered: a stand-in for the lobe's own filter, which the
+// reference samples; docs/GLTF.md)
+vec3 environment_glossy(vec3 r, float roughness)
+{
+    if (u_background.w <= 0.5)
+        return u_background.rgb;
+    float size = float(textureSize(u_environment, 0).x);
+    float alpha = roughness * roughness;
+    float lod = log2(max(2.0 * alpha * size / 1.5708, 1.0));
+    return textureLod(u_environment, r, min(lod, float(textureQueryLevels(u_environment) - 1))).rgb;
+}
+
+// What the specular lobes (the base's and a clearcoat's) reflect of the
+// environment towards v: each lobe's albedo times the environment about
+// its mirror direction (the split sum); the reference traces them.
+vec3 surface_glossy_environment(vec3 n, vec3 v, BrdfMaterial m)
+{
+    vec3 specular = brdf_ambient_albedo(n, v, m) - brdf_diffuse_albedo(n, v, m);
+    float share = brdf_clearcoat_share(v, m);
+    vec3 glossy = vec3(0.0);
+    if (share > 0.0) {
+        float coat = share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y;
+        specular -= vec3(coat);
+        glossy = coat * environment_glossy(reflect(-v, m.clearcoat_normal), m.clearcoat_roughness);
+    }
+    return glossy + max(specular, vec3(0.0)) * environment_glossy(reflect(-v, n), m.roughness);
+}
+
 vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion, vec3 emission, vec3 caustic)
 {
     vec3 radiance = vec3(0.0), to_light;
@@ -81,8 +113,9 @@ vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion,
         vec3 e = surface_arrival_from(i, p, n, coat_n, to_light);
         radiance += brdf_gltf_cos(n, v, to_light, m) * e;
     }
-    return radiance + u_ambient.rgb * brdf_ambient_albedo(n, v, m) * occlusion +
-           caustic * brdf_diffuse_albedo(n, v, m) / PI + emission;
+    vec3 diffuse = brdf_diffuse_albedo(n, v, m);
+    return radiance + (u_ambient.rgb * diffuse + surface_glossy_environment(n, v, m)) * occlusion +
+           caustic * diffuse / PI + emission;
 }
 
 // The surface of the object being drawn (common/material.glsl's uniforms

@@ -116,6 +116,74 @@ void brdf_gltf_cos(const double n[3], const double v[3], const double l[3], cons
         out[k] = (1.0 - share) * out[k] * c + coat;
 }
 
+void brdf_gltf_specular_cos(const double n[3], const double v[3], const double l[3], const struct brdf_material *m,
+                            double out[3])
+{
+    brdf_gltf_cos(n, v, l, m, out);
+    double n_dot_l = dot3(n, l), n_dot_v = dot3(n, v);
+    if (!(n_dot_l > 0.0) || !(n_dot_v > 0.0))
+        return; /* (the diffuse lobe is 0 there too) */
+    double diffuse[3];
+    brdf_diffuse_albedo(n, v, m, diffuse); /* (1 - share) (1 - metallic) c (1 - s E) */
+    for (int k = 0; k < 3; k++)
+        out[k] = fmax(out[k] - diffuse[k] / MATH_PI * n_dot_l, 0.0);
+}
+
+/* GGX's density of half vector h about unit n (D (n . h)), as a density of
+ * l = reflect(-v, h): / (4 |v . h|) */
+static double ggx_pdf_l(const double n[3], const double v[3], const double l[3], double alpha)
+{
+    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    double hl = sqrt(dot3(h, h));
+    if (!(hl > 1e-12))
+        return 0.0;
+    for (int k = 0; k < 3; k++)
+        h[k] /= hl;
+    double n_dot_h = fmin(dot3(n, h), 1.0), v_dot_h = fabs(dot3(v, h));
+    double c[3] = {n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]};
+    return brdf_ggx_d(n_dot_h, dot3(c, c), alpha) * fmax(n_dot_h, 0.0) / (4.0 * fmax(v_dot_h, 1e-12));
+}
+
+bool brdf_sample_specular(const double n[3], const double v[3], const struct brdf_material *m, double u1, double u2,
+                          double u3, double l[3], double *pdf)
+{
+    bool coat = m->clearcoat > 0.0;
+    bool pick_coat = coat && u3 < 0.5;
+    const double *axis = pick_coat ? m->clearcoat_normal : n;
+    double rough = pick_coat ? m->clearcoat_roughness : m->roughness;
+    double alpha = fmax(rough * rough, BRDF_MIN_ALPHA);
+    double alpha_base = fmax(m->roughness * m->roughness, BRDF_MIN_ALPHA);
+    /* a frame about the lobe's axis */
+    double t[3], b[3];
+    if (fabs(axis[0]) > 0.9)
+        t[0] = 0.0, t[1] = 1.0, t[2] = 0.0;
+    else
+        t[0] = 1.0, t[1] = 0.0, t[2] = 0.0;
+    double d = dot3(t, axis);
+    for (int k = 0; k < 3; k++)
+        t[k] -= d * axis[k];
+    double tl = sqrt(dot3(t, t));
+    for (int k = 0; k < 3; k++)
+        t[k] /= tl;
+    b[0] = axis[1] * t[2] - axis[2] * t[1], b[1] = axis[2] * t[0] - axis[0] * t[2], b[2] = axis[0] * t[1] - axis[1] * t[0];
+    /* Walter et al. 2007 eqs. 35-36: tan^2 theta_h = alpha^2 u1 / (1 - u1) */
+    double u = fmin(u1, 1.0 - 1e-12);
+    double t2 = alpha * alpha * u / (1.0 - u), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
+    double phi = 2.0 * MATH_PI * u2, h[3];
+    for (int k = 0; k < 3; k++)
+        h[k] = s * cos(phi) * t[k] + s * sin(phi) * b[k] + c * axis[k];
+    double vh = dot3(v, h);
+    for (int k = 0; k < 3; k++)
+        l[k] = 2.0 * vh * h[k] - v[k];
+    if (!(dot3(n, l) > 0.0) && !(coat && dot3(m->clearcoat_normal, l) > 0.0))
+        return false;
+    double p_base = ggx_pdf_l(n, v, l, alpha_base);
+    *pdf = coat ? 0.5 * p_base + 0.5 * ggx_pdf_l(m->clearcoat_normal, v, l,
+                                                 fmax(m->clearcoat_roughness * m->clearcoat_roughness, BRDF_MIN_ALPHA))
+                : p_base;
+    return *pdf > 0.0 && isfinite(*pdf);
+}
+
 bool brdf_quadrature_direction(int k, int side, double alpha, const double v[3], double l[3], double h[3],
                                double *pdf)
 {

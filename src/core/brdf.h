@@ -87,6 +87,19 @@ double brdf_clearcoat_share(const double v[3], const struct brdf_material *m);
 void brdf_gltf_cos(const double n[3], const double v[3], const double l[3], const struct brdf_material *m,
                    double out[3]);
 
+/* The specular lobes' share of brdf_gltf_cos (the base's GGX lobe and
+ * the coat's, without the diffuse lobe): what the environment and the
+ * scene reflect glossily towards v (docs/GLTF.md). */
+void brdf_gltf_specular_cos(const double n[3], const double v[3], const double l[3], const struct brdf_material *m,
+                            double out[3]);
+/* A direction l for brdf_gltf_specular_cos from three uniform numbers:
+ * GGX's half vectors of the base lobe (Walter et al. 2007, eqs. 35-36),
+ * or of the coat's with probability 1/2 where there is one, reflected
+ * about v; *pdf the mixture's density of l (solid angle). False where l
+ * falls below n (it adds nothing). */
+bool brdf_sample_specular(const double n[3], const double v[3], const struct brdf_material *m, double u1, double u2,
+                          double u3, double l[3], double *pdf);
+
 /* Direction k (0 <= k < 2 side^2) of the deterministic quadrature that
  * integrates f cos over the hemisphere about n = +z for a view v (unit, v.z
  * > 0): the first side^2 reflect v about GGX half vectors drawn from D(h)

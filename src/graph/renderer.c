@@ -111,7 +111,8 @@ static bool upload_environment(struct renderer *r, const struct environment *env
         return true;
     gl_texture_destroy(&r->environment);
     r->environment_serial = 0;
-    if (!gl_texture_create(&r->environment, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, err))
+    /* with its mipmaps: glTF's glossy surfaces read them (common/surface_light.glsl's environment_glossy) */
+    if (!gl_texture_create_levels(&r->environment, GL_TEXTURE_CUBE_MAP, GL_RGBA16F, env->size, env->size, 6, 0, err))
         return false;
     float *rgba = malloc((size_t)env->size * (size_t)env->size * 4 * sizeof(float));
     if (!rgba)
@@ -126,6 +127,7 @@ static bool upload_environment(struct renderer *r, const struct environment *env
         gl.TextureSubImage3D(r->environment.id, 0, 0, 0, f, env->size, env->size, 1, GL_RGBA, GL_FLOAT, rgba);
     }
     free(rgba);
+    gl.GenerateTextureMipmap(r->environment.id);
     r->environment_serial = env->serial;
     return gl_check("uploading the environment", err);
 }

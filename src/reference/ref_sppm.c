@@ -38,6 +38,7 @@
 #define PHOTON_CHUNKS 64
 #define RADIUS_PIXELS 2.0  /* initial gather radius, in pixel footprints */
 #define STRUCTURE_SUMS 3  /* the structure test's sums (structure_sums) */
+#define GLOSSY_SAMPLES 4  /* directions drawn from a glTF surface's glossy lobes per eye path */
 #define MAX_SEGMENTS 4     /* camera path segments through the medium kept for the volume gather */
 #define VOLUME_SAMPLES 8   /* stratified points per segment where volume photons are gathered */   /* fixed, so the result does not depend on the thread count */
 
@@ -382,6 +383,54 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
     return e;
 }
 
+/* The radiance arriving at `origin` from direction `dir` for a glTF
+ * surface's glossy lobes (docs/GLTF.md): the environment where the ray
+ * leaves the scene; through glass and mirrors by their specular steps;
+ * at the first diffuse surface, its own light as an eye path draws it
+ * (the lights, the ambient sky, its emission; a glTF surface there reflects
+ * the environment in its mirror direction, unoccluded), without its
+ * caustics and without a second glossy bounce. Absorbed by the media it
+ * crosses (not the scene's participating medium). */
+static dvec3 glossy_radiance(const struct ref_scene *rs, const struct ref_medium *rm, struct ref_rng *rng,
+                             dvec3 origin, dvec3 dir, struct media media)
+{
+    dvec3 beta = dv(1, 1, 1);
+    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+        struct ref_hit h;
+        if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h))
+            return dv_mul(beta, ref_scene_environment(rs, dir));
+        beta = attenuate(beta, medium_sigma(rs, &media), h.t);
+        if (hit_is_diffuse(rs, &h, rng)) {
+            dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
+            struct ref_surface surface;
+            ref_surface_diffuse(rs, &h, n, &surface);
+            n = surface.normal;
+            dvec3 v = dv_scale(dir, -1.0);
+            if (surface.pbr) {
+                double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, amb[3], diff[3];
+                brdf_ambient_albedo(nn, vv, &surface.brdf, amb);
+                brdf_diffuse_albedo(nn, vv, &surface.brdf, diff);
+                dvec3 lit = direct_light(rs, rm, rng, h.position, n, &surface.brdf, v);
+                dvec3 mirror = dv_sub(dv_scale(n, 2.0 * dv_dot(n, v)), v);
+                dvec3 env = ref_scene_environment(rs, mirror);
+                dvec3 sky = dv_add(dv_mul(rs->ambient, dv(diff[0], diff[1], diff[2])),
+                                   dv_mul(env, dv(amb[0] - diff[0], amb[1] - diff[1], amb[2] - diff[2])));
+                return dv_mul(beta, dv_add(dv_add(lit, dv_scale(sky, surface.occlusion)), surface.emission));
+            }
+            dvec3 e = direct_light(rs, rm, rng, h.position, n, NULL, dv(0, 0, 0));
+            double a[3] = {surface.albedo.x, surface.albedo.y, surface.albedo.z}, ev[3] = {e.x, e.y, e.z};
+            double am[3] = {rs->ambient.x, rs->ambient.y, rs->ambient.z};
+            double em[3] = {surface.emission.x, surface.emission.y, surface.emission.z}, out[3];
+            shading_diffuse_radiance(a, ev, am, em, out);
+            return dv_mul(beta, dv(out[0], out[1], out[2]));
+        }
+        specular_step(rs, &h, &media, &dir, &origin, &beta, rng);
+        if (dv_dot(beta, beta) < 1e-30)
+            break;
+    }
+    return dv(0, 0, 0);
+}
+
 /* What the threads of one render share: the clock they all stop by. */
 struct budget {
     double deadline;        /* log_now() time; 0: none */
@@ -576,11 +625,30 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                  * caustics) by the diffuse lobe's albedo, as the GPU weighs
                  * caustic irradiance */
                 dvec3 v = dv_scale(dir, -1.0);
-                double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, amb[3], diff[3];
+                double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, diff[3];
                 dvec3 lit = direct_light(rs, rm, &rng, h.position, n, &surface.brdf, v);
-                brdf_ambient_albedo(nn, vv, &surface.brdf, amb);
                 brdf_diffuse_albedo(nn, vv, &surface.brdf, diff);
-                dvec3 sky = dv_scale(dv_mul(rs->ambient, dv(amb[0], amb[1], amb[2])), surface.occlusion);
+                /* the ambient sky on the diffuse lobe; the specular lobes
+                 * reflect the environment and the scene, GLOSSY_SAMPLES
+                 * directions drawn from them per iteration (docs/GLTF.md) */
+                dvec3 sky = dv_mul(rs->ambient, dv(diff[0], diff[1], diff[2]));
+                for (int s = 0; s < GLOSSY_SAMPLES; s++) {
+                    double l[3], pdf, fs[3];
+                    if (!brdf_sample_specular(nn, vv, &surface.brdf, ref_rng_uniform(&rng), ref_rng_uniform(&rng),
+                                              ref_rng_uniform(&rng), l, &pdf))
+                        continue;
+                    dvec3 ld = dv(l[0], l[1], l[2]);
+                    /* (a mapped normal may send l under the triangle: it meets the surface itself, nothing) */
+                    double side = dv_dot(h.geometric_normal, dir) < 0 ? 1.0 : -1.0;
+                    if (!(side * dv_dot(ld, h.geometric_normal) > 0.0))
+                        continue;
+                    brdf_gltf_specular_cos(nn, vv, l, &surface.brdf, fs);
+                    dvec3 w = dv(fs[0] / (pdf * GLOSSY_SAMPLES), fs[1] / (pdf * GLOSSY_SAMPLES),
+                                 fs[2] / (pdf * GLOSSY_SAMPLES));
+                    dvec3 from = dv_add(h.position, dv_scale(h.geometric_normal, side * rs->epsilon));
+                    sky = dv_add(sky, dv_mul(w, glossy_radiance(rs, rm, &rng, from, ld, media)));
+                }
+                sky = dv_scale(sky, surface.occlusion);
                 seen = dv_add(seen, dv_mul(beta, dv_add(dv_add(lit, sky), surface.emission)));
                 f = dv_scale(dv_mul(beta, dv(diff[0], diff[1], diff[2])), 1.0 / MATH_PI);
             } else {

@@ -4,13 +4,14 @@
 -- and KHR_materials_specular with KHR_materials_ior) in the xz plane, seen by an orthographic camera from
 -- v = (0, 2, 1) / sqrt 5 and lit by a sun from l = (1, 5, -2) / sqrt 30, so
 -- every pixel of a quad has one n, v and l. --set ambient=A: a grey sky
--- (the BRDF's directional albedo and the occlusion); 0 by default.
+-- (on the diffuse lobe, by the occlusion); background=B: a uniform grey
+-- environment (which the specular lobes reflect); both 0 by default.
 local c = require "caustica"
 local v = {0, 2, 1}
 local scene = c.scene {
   camera = c.camera { eye = {3.75 + 4 * v[1], 4 * v[2], 4 * v[3]}, target = {3.75, 0, 0}, ortho = { width = 10 },
                       near = 0.5, far = 20 },
-  background = {0, 0, 0},
+  background = { c.param("background", 0), c.param("background", 0), c.param("background", 0) },
   ambient = { c.param("ambient", 0), c.param("ambient", 0), c.param("ambient", 0) },
 }
 scene:add(c.light.directional { direction = {-1, -5, 2}, intensity = {2, 2, 2} })
