@@ -129,32 +129,34 @@ void brdf_gltf_specular_cos(const double n[3], const double v[3], const double l
         out[k] = fmax(out[k] - diffuse[k] / MATH_PI * n_dot_l, 0.0);
 }
 
-/* GGX's density of half vector h about unit n (D (n . h)), as a density of
- * l = reflect(-v, h): / (4 |v . h|) */
-static double ggx_pdf_l(const double n[3], const double v[3], const double l[3], double alpha)
+/* Smith's G1 for GGX at cosine c (the masking of one direction) */
+static double smith_g1(double c, double alpha)
 {
+    double a2 = alpha * alpha;
+    return 2.0 * c / (c + sqrt(a2 + (1.0 - a2) * c * c));
+}
+
+/* The density of l (solid angle) when h is drawn from GGX's visible
+ * normals about unit n for view v and l = reflect(-v, h): G1(v) D(h) /
+ * (4 n . v) (Heitz 2018, eq. 17 over the reflection's Jacobian); 0 where v
+ * is below n */
+static double vndf_pdf_l(const double n[3], const double v[3], const double l[3], double alpha)
+{
+    double n_dot_v = dot3(n, v);
     double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
     double hl = sqrt(dot3(h, h));
-    if (!(hl > 1e-12))
+    if (!(n_dot_v > 0.0) || !(hl > 1e-12))
         return 0.0;
     for (int k = 0; k < 3; k++)
         h[k] /= hl;
-    double n_dot_h = fmin(dot3(n, h), 1.0), v_dot_h = fabs(dot3(v, h));
+    double n_dot_h = fmin(dot3(n, h), 1.0);
     double c[3] = {n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]};
-    return brdf_ggx_d(n_dot_h, dot3(c, c), alpha) * fmax(n_dot_h, 0.0) / (4.0 * fmax(v_dot_h, 1e-12));
+    return smith_g1(fmin(n_dot_v, 1.0), alpha) * brdf_ggx_d(n_dot_h, dot3(c, c), alpha) / (4.0 * n_dot_v);
 }
 
-bool brdf_sample_specular(const double n[3], const double v[3], const struct brdf_material *m, double u1, double u2,
-                          double u3, double l[3], double *pdf)
+/* A unit frame t, b about unit axis */
+static void frame_about(const double axis[3], double t[3], double b[3])
 {
-    bool coat = m->clearcoat > 0.0;
-    bool pick_coat = coat && u3 < 0.5;
-    const double *axis = pick_coat ? m->clearcoat_normal : n;
-    double rough = pick_coat ? m->clearcoat_roughness : m->roughness;
-    double alpha = fmax(rough * rough, BRDF_MIN_ALPHA);
-    double alpha_base = fmax(m->roughness * m->roughness, BRDF_MIN_ALPHA);
-    /* a frame about the lobe's axis */
-    double t[3], b[3];
     if (fabs(axis[0]) > 0.9)
         t[0] = 0.0, t[1] = 1.0, t[2] = 0.0;
     else
@@ -166,20 +168,55 @@ bool brdf_sample_specular(const double n[3], const double v[3], const struct brd
     for (int k = 0; k < 3; k++)
         t[k] /= tl;
     b[0] = axis[1] * t[2] - axis[2] * t[1], b[1] = axis[2] * t[0] - axis[0] * t[2], b[2] = axis[0] * t[1] - axis[1] * t[0];
-    /* Walter et al. 2007 eqs. 35-36: tan^2 theta_h = alpha^2 u1 / (1 - u1) */
-    double u = fmin(u1, 1.0 - 1e-12);
-    double t2 = alpha * alpha * u / (1.0 - u), c = 1.0 / sqrt(1.0 + t2), s = sqrt(fmax(1.0 - c * c, 0.0));
-    double phi = 2.0 * MATH_PI * u2, h[3];
+}
+
+bool brdf_sample_specular(const double n[3], const double v[3], const struct brdf_material *m, double u1, double u2,
+                          double u3, double l[3], double *pdf)
+{
+    bool coat = m->clearcoat > 0.0;
+    bool pick_coat = coat && u3 < 0.5;
+    const double *axis = pick_coat ? m->clearcoat_normal : n;
+    double rough = pick_coat ? m->clearcoat_roughness : m->roughness;
+    double alpha = fmax(rough * rough, BRDF_MIN_ALPHA);
+    double t[3], b[3];
+    frame_about(axis, t, b);
+    double vl[3] = {dot3(v, t), dot3(v, b), dot3(v, axis)}; /* v in the lobe's frame */
+    if (!(vl[2] > 0.0))
+        return false;
+    /* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1 */
+    double vh[3] = {alpha * vl[0], alpha * vl[1], vl[2]};
+    double vhl = sqrt(dot3(vh, vh));
     for (int k = 0; k < 3; k++)
-        h[k] = s * cos(phi) * t[k] + s * sin(phi) * b[k] + c * axis[k];
-    double vh = dot3(v, h);
+        vh[k] /= vhl;
+    double lensq = vh[0] * vh[0] + vh[1] * vh[1];
+    double t1v[3] = {1.0, 0.0, 0.0};
+    if (lensq > 1e-24) {
+        double inv = 1.0 / sqrt(lensq);
+        t1v[0] = -vh[1] * inv, t1v[1] = vh[0] * inv, t1v[2] = 0.0;
+    }
+    double t2v[3] = {vh[1] * t1v[2] - vh[2] * t1v[1], vh[2] * t1v[0] - vh[0] * t1v[2], vh[0] * t1v[1] - vh[1] * t1v[0]};
+    double r = sqrt(u1), phi = 2.0 * MATH_PI * u2;
+    double p1 = r * cos(phi), p2 = r * sin(phi), sh = 0.5 * (1.0 + vh[2]);
+    p2 = (1.0 - sh) * sqrt(fmax(1.0 - p1 * p1, 0.0)) + sh * p2;
+    double p3 = sqrt(fmax(1.0 - p1 * p1 - p2 * p2, 0.0));
+    double nh[3];
     for (int k = 0; k < 3; k++)
-        l[k] = 2.0 * vh * h[k] - v[k];
+        nh[k] = p1 * t1v[k] + p2 * t2v[k] + p3 * vh[k];
+    double ne[3] = {alpha * nh[0], alpha * nh[1], fmax(nh[2], 0.0)};
+    double nel = sqrt(dot3(ne, ne));
+    if (!(nel > 0.0))
+        return false;
+    double h[3];
+    for (int k = 0; k < 3; k++)
+        h[k] = (ne[0] * t[k] + ne[1] * b[k] + ne[2] * axis[k]) / nel;
+    double v_dot_h = dot3(v, h);
+    for (int k = 0; k < 3; k++)
+        l[k] = 2.0 * v_dot_h * h[k] - v[k];
     if (!(dot3(n, l) > 0.0) && !(coat && dot3(m->clearcoat_normal, l) > 0.0))
         return false;
-    double p_base = ggx_pdf_l(n, v, l, alpha_base);
-    *pdf = coat ? 0.5 * p_base + 0.5 * ggx_pdf_l(m->clearcoat_normal, v, l,
-                                                 fmax(m->clearcoat_roughness * m->clearcoat_roughness, BRDF_MIN_ALPHA))
+    double p_base = vndf_pdf_l(n, v, l, fmax(m->roughness * m->roughness, BRDF_MIN_ALPHA));
+    *pdf = coat ? 0.5 * p_base + 0.5 * vndf_pdf_l(m->clearcoat_normal, v, l,
+                                                  fmax(m->clearcoat_roughness * m->clearcoat_roughness, BRDF_MIN_ALPHA))
                 : p_base;
     return *pdf > 0.0 && isfinite(*pdf);
 }
