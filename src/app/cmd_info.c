@@ -27,23 +27,30 @@ static void print_file_materials(const struct scene *scene)
             printf("materials from files (object number as in the warnings: mesh, the file's material, drawn as):\n");
         header = true;
         char drawn[224];
+        const char *thick = m->thickness_map.texture ? ", thickness x thicknessTexture" : "";
         if ((m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER) && m->roughness > 0.0f)
-            snprintf(drawn, sizeof drawn, "%s, ior %g, roughness %.2g", material_kind_name(m->kind), m->ior,
-                     m->roughness);
+            snprintf(drawn, sizeof drawn, "%s, ior %g, roughness %.2g%s", material_kind_name(m->kind), m->ior,
+                     m->roughness, thick);
         else if (m->kind == MATERIAL_GLASS && m->thin)
             snprintf(drawn, sizeof drawn, "thin-walled glass, ior %g%s", m->ior,
                      m->base_color.texture ? " (tinted by baseColorTexture)" : "");
         else if (m->kind == MATERIAL_GLASS || m->kind == MATERIAL_WATER)
-            snprintf(drawn, sizeof drawn, "%s, ior %g", material_kind_name(m->kind), m->ior);
+            snprintf(drawn, sizeof drawn, "%s, ior %g%s", material_kind_name(m->kind), m->ior, thick);
         else if (m->pbr) {
             char specular[64] = "";
             if (m->specular != 1.0f || m->specular_color.x != 1.0f || m->specular_color.y != 1.0f ||
                 m->specular_color.z != 1.0f)
                 snprintf(specular, sizeof specular, ", specular %.2g x (%.2g %.2g %.2g)", m->specular,
                          m->specular_color.x, m->specular_color.y, m->specular_color.z);
-            snprintf(drawn, sizeof drawn, "glTF BRDF, metallic %.2g, roughness %.2g%s, ior %g%s%s", m->metallic,
+            char coat[96] = "";
+            if (m->clearcoat > 0.0f)
+                snprintf(coat, sizeof coat, ", clearcoat %.2g%s (roughness %.2g%s)%s", m->clearcoat,
+                         m->clearcoat_map.texture ? " x texture" : "", m->clearcoat_roughness,
+                         m->clearcoat_roughness_map.texture ? " x texture" : "",
+                         m->clearcoat_normal.texture ? " with its normal map" : "");
+            snprintf(drawn, sizeof drawn, "glTF BRDF, metallic %.2g, roughness %.2g%s, ior %g%s%s%s", m->metallic,
                      m->roughness, m->metallic_roughness.texture ? " (x metallicRoughnessTexture)" : "", m->ior,
-                     specular, m->occlusion.texture ? ", occlusion" : "");
+                     specular, m->occlusion.texture ? ", occlusion" : "", coat);
         }
         else if (m->kind == MATERIAL_MIRROR && m->roughness > 0.0f)
             snprintf(drawn, sizeof drawn, "mirror, roughness %.2g", m->roughness);

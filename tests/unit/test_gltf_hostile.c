@@ -196,6 +196,17 @@ int main(void)
     expect_refused("specular_nan", NULL, NULL, NULL,
                    MATERIAL("\"extensions\": {\"KHR_materials_specular\": {\"specularColorFactor\": [1, 1e39, 1]}}"),
                    NULL, "specularColorFactor");
+    expect_refused("clearcoat_factor", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 2}}"), NULL,
+                   "clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]");
+    expect_refused("clearcoat_roughness", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1, "
+                            "\"clearcoatRoughnessFactor\": -0.5}}"),
+                   NULL, "clearcoatRoughnessFactor");
+    expect_refused("clearcoat_texture", NULL, NULL, NULL,
+                   MATERIAL("\"extensions\": {\"KHR_materials_clearcoat\": {\"clearcoatFactor\": 1, "
+                            "\"clearcoatNormalTexture\": {\"index\": 7}}}"),
+                   NULL, "texture index 7 is out of range");
     expect_refused("occlusion_strength", NULL, NULL, NULL,
                    MATERIAL("\"occlusionTexture\": {\"index\": 0, \"strength\": 2}"), NULL,
                    "occlusionTexture");
