@@ -10,6 +10,7 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_texcoord0;
 layout(location = 3) in vec2 a_texcoord1;
 layout(location = 4) in vec4 a_color; // glTF's COLOR_0
+layout(location = 5) in vec4 a_tangent; // a normal map's tangent (u_has_tangents; common/material.glsl)
 uniform int u_vertex_colors;          // 0: the mesh has none (white)
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
@@ -21,8 +22,10 @@ out vec3 v_normal;
 out vec2 v_texcoord0;
 out vec2 v_texcoord1;
 out vec4 v_color;
+out vec4 v_tangent; // world xyz (by the model matrix, as the reference's mapped_normal), w
 void main()
 {
+    v_tangent = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
     v_color = u_vertex_colors == 1 ? a_color : vec4(1.0);
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;

@@ -20,6 +20,7 @@ static void release_mesh(struct gpu_mesh *g)
     gl_buffer_destroy(&g->texcoords[0]);
     gl_buffer_destroy(&g->texcoords[1]);
     gl_buffer_destroy(&g->colors);
+    gl_buffer_destroy(&g->tangents);
 }
 
 static void release_object(struct gpu_object *g)
@@ -78,6 +79,8 @@ struct gpu_mesh *mesh_cache_mesh(struct mesh_cache *c, const struct mesh *m, str
             ok = gl_buffer_create(&g->texcoords[set], m->texcoords[set], m->vertex_count * 2 * sizeof(float), 0, err);
     if (ok && m->colors)
         ok = gl_buffer_create(&g->colors, m->colors, m->vertex_count * 4 * sizeof(float), 0, err);
+    if (ok && m->tangents)
+        ok = gl_buffer_create(&g->tangents, m->tangents, m->vertex_count * 4 * sizeof(float), 0, err);
     if (ok && m->target_count > 0)
         ok = gl_buffer_create(&g->target_positions, m->target_positions, vbytes * (size_t)m->target_count, 0, err) &&
              gl_buffer_create(&g->target_normals, m->target_normals, vbytes * (size_t)m->target_count, 0, err);
@@ -210,6 +213,13 @@ bool mesh_cache_bind(struct mesh_cache *c, const struct object *o, struct error 
             gl.VertexArrayAttribFormat(g->vao, 4, 4, GL_FLOAT, GL_FALSE, 0);
             gl.VertexArrayAttribBinding(g->vao, 4, 4);
             gl.VertexArrayVertexBuffer(g->vao, 4, m->colors, 0, 4 * sizeof(float));
+        }
+        /* tangents (location 5): disabled without them (u_has_tangents 0) */
+        if (m->tangents) {
+            gl.EnableVertexArrayAttrib(g->vao, 5);
+            gl.VertexArrayAttribFormat(g->vao, 5, 4, GL_FLOAT, GL_FALSE, 0);
+            gl.VertexArrayAttribBinding(g->vao, 5, 5);
+            gl.VertexArrayVertexBuffer(g->vao, 5, m->tangents, 0, 4 * sizeof(float));
         }
     }
     if (g->vao_positions != pos) {

@@ -21,6 +21,7 @@ struct gpu_mesh {
     GLuint positions, normals, indices, target_positions, target_normals;
     GLuint texcoords[2]; /* 0 where the mesh has no such set (attribute locations 2 and 3) */
     GLuint colors;       /* glTF's COLOR_0 (location 4), 0 where the mesh has none */
+    GLuint tangents;     /* a normal map's tangents (location 5), 0 where the mesh has none */
     GLuint thickness; /* d_N per vertex, uploaded on first use */
     bool used;        /* by the scene of the current frame */
 };

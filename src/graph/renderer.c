@@ -370,6 +370,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     GLint loc_abs = gl_program_uniform(program, "u_absorption");
     GLint loc_id = gl_program_uniform(program, "u_object_id");
     GLint loc_vertex_colors = gl_program_uniform(program, "u_vertex_colors");
+    GLint loc_tangents = gl_program_uniform(program, "u_has_tangents");
     gl.UseProgram(program->id);
     /* DRAW_BLENDED: the blended surfaces back to front, by the distance
      * from the eye to each object's box centre (per object, not per
@@ -434,6 +435,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         /* COLOR_0 on the surfaces whose base colour it multiplies (diffuse, as textures) */
         gl.ProgramUniform1i(program->id, loc_vertex_colors,
                             o->mesh->colors && material_is_textured_surface(&o->material));
+        gl.ProgramUniform1i(program->id, loc_tangents, o->mesh->tangents != NULL);
         bind_material_textures(r, program, &material_loc, o);
         struct error err;
         if (!mesh_cache_bind(&r->meshes, o, &err))

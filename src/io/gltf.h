@@ -85,6 +85,8 @@ struct gltf_mesh {
     float *normals;   /* vertex_count * 3, generated when the file has none */
     float *texcoords[2]; /* vertex_count * 2, TEXCOORD_0 and _1, or NULL when no primitive has that set */
     float *colors;       /* vertex_count * 4, COLOR_0 as linear RGBA (white where a primitive has none), or NULL */
+    float *tangents;     /* vertex_count * 4: TANGENT (world xyz, w), or made per vertex where a normal map
+                          * needs them; (0 0 0 1) where a primitive has none; NULL: no primitive has any */
     uint32_t *indices;
     int target_count;
     float *target_positions; /* target_count * vertex_count * 3 deltas */

@@ -63,6 +63,19 @@ static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, 
     if (!(fabs(det) > 1e-20) || !(len > 1e-20 * fmax(fabs(det), 1e-20)) || !isfinite(len))
         return n; /* a triangle with no area in uv: no tangent frame */
     t = dv_scale(t, (det > 0 ? 1.0 : -1.0) / len);
+    if (o->tangents) {
+        /* the mesh's tangent, interpolated as the GPU does (by the model
+         * matrix, then made perpendicular to n) */
+        double w = 1.0 - h->bary_u - h->bary_v, tv[3];
+        for (int k = 0; k < 3; k++)
+            tv[k] = w * o->tangents[tri[0] * 4 + (uint32_t)k] + h->bary_u * o->tangents[tri[1] * 4 + (uint32_t)k] +
+                    h->bary_v * o->tangents[tri[2] * 4 + (uint32_t)k];
+        vec3 wt = mat4_transform_dir(o->model, vec3_make((float)tv[0], (float)tv[1], (float)tv[2]));
+        dvec3 tw = dv(wt.x, wt.y, wt.z);
+        tw = dv_sub(tw, dv_scale(n, dv_dot(n, tw)));
+        if (dv_dot(tw, tw) > 1e-12)
+            t = dv_normalize_or(tw, t);
+    }
     dvec3 b = dv_cross(n, t);
     if (dv_dot(b, pv) * det > 0.0)
         b = dv_scale(b, -1.0); /* a mirrored mapping: v runs the other way round n */

@@ -183,6 +183,8 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         ro->texcoords[0] = o->mesh->texcoords[0];
         ro->texcoords[1] = o->mesh->texcoords[1];
         ro->colors = o->mesh->colors;
+        ro->tangents = o->mesh->tangents;
+        ro->model = model;
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;

@@ -62,6 +62,8 @@ struct ref_object {
     uint32_t *indices; /* borrowed from the mesh */
     const float *texcoords[2]; /* borrowed from the mesh (NULL where it has no such set) */
     const float *colors;       /* glTF's COLOR_0, borrowed from the mesh (NULL: white) */
+    const float *tangents;     /* a normal map's tangents in the mesh's space, borrowed (NULL: none) */
+    mat4 model;                /* the frame's model matrix: a tangent's world direction (common/object.vert) */
     size_t vertex_count, triangle_count;
     struct material material;
 };

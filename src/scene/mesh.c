@@ -322,6 +322,7 @@ void mesh_destroy(struct mesh *m)
     free(m->texcoords[0]);
     free(m->texcoords[1]);
     free(m->colors);
+    free(m->tangents);
     material_release(&m->material);
     for (int p = 0; p < m->part_count; p++)
         mesh_destroy(m->parts[p]);

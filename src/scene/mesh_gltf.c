@@ -282,6 +282,8 @@ static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct
     g->texcoords[0] = g->texcoords[1] = NULL;
     m->colors = g->colors;
     g->colors = NULL;
+    m->tangents = g->tangents;
+    g->tangents = NULL;
     m->target_count = g->target_count;
     m->target_positions = g->target_positions;
     m->target_normals = g->target_normals;

@@ -63,6 +63,13 @@ struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const 
             if (remap[v])
                 memcpy(m->colors + (remap[v] - 1) * 4, whole->colors + v * 4, 4 * sizeof(float));
     }
+    if (ok && whole->tangents) {
+        m->tangents = malloc((nv ? nv : 1) * 4 * sizeof(float));
+        ok = m->tangents != NULL;
+        for (size_t v = 0; ok && v < whole->vertex_count; v++)
+            if (remap[v])
+                memcpy(m->tangents + (remap[v] - 1) * 4, whole->tangents + v * 4, 4 * sizeof(float));
+    }
     if (ok && whole->target_count > 0) {
         size_t per = nv * 3, whole_per = whole->vertex_count * 3;
         m->target_positions = malloc(((size_t)whole->target_count * per + 1) * sizeof(float));

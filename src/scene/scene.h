@@ -173,6 +173,8 @@ struct mesh {
     float *positions, *normals; /* vertex_count * 3 each */
     float *texcoords[2];        /* vertex_count * 2 each, or NULL: glTF TEXCOORD_0/1, generated for procedural shapes */
     float *colors;              /* vertex_count * 4: glTF's COLOR_0 (linear RGBA, multiplies the base colour), or NULL */
+    float *tangents;            /* vertex_count * 4: a normal map's tangent (xyz along increasing u, w its
+                                 * handedness), glTF's TANGENT or made at load; (0 0 0 1): none there; or NULL */
     uint32_t *indices;
     int target_count;
     float *target_positions, *target_normals; /* target_count * vertex_count * 3 deltas */

@@ -3,9 +3,9 @@
 one triangle whose material asks for every glTF material extension
 caustica does not draw (clearcoat, drawn on the BRDF's surfaces but not on
 this glass, sheen, iridescence, anisotropy,
-dispersion, diffuse transmission, unlit), plus a TANGENT attribute, and
-for the specular extension's textures and the volume's thickness texture,
-which are drawn: `caustica info` must list each of the others, on one line that
+dispersion, diffuse transmission, unlit), and for a TANGENT attribute,
+the specular extension's textures and the volume's thickness texture,
+which are read: `caustica info` must list each of the others, on one line that
 is not cut (issue 50). And 30
 vendor extensions of 50 characters each, more than a line of names holds:
 each named, or counted in "and N more"."""

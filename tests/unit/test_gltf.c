@@ -116,7 +116,8 @@ int main(void)
     /* Vertex attributes nothing draws (TANGENT, a skin's joints) are
      * listed with the material of the primitive that has them (issue 50:
      * never dropped in silence), and COLOR_0 is read: the second primitive
-     * given COLOR_0 and TANGENT (the positions' accessor stands in for both). */
+     * given COLOR_0 and a skin's JOINTS_0 (the positions' accessor stands in
+     * for both). TANGENT is read (issue 50): a VEC3 one is refused. */
     {
         FILE *in = fopen(asset("tests/data/two_materials.gltf"), "rb");
         static char text[65536];
@@ -134,15 +135,15 @@ int main(void)
             CHECK(out != NULL);
             if (out) {
                 fwrite(text, 1, (size_t)(attrs - text), out);
-                fputs("\"COLOR_0\": 0, \"TANGENT\": 0, ", out);
+                fputs("\"COLOR_0\": 0, \"JOINTS_0\": 0, ", out);
                 fputs(attrs, out);
                 fclose(out);
             }
             /* (its buffer is a data URI: the copy loads from anywhere) */
             CHECK(gltf_load(tmp, &m, &err));
             if (m.material_count == 2) {
-                CHECK(strstr(m.materials[1].unread, "TANGENT") != NULL);
-                CHECK(strstr(m.materials[0].unread, "TANGENT") == NULL);
+                CHECK(strstr(m.materials[1].unread, "JOINTS_0") != NULL);
+                CHECK(strstr(m.materials[0].unread, "JOINTS_0") == NULL);
             }
             /* COLOR_0 is read: white for the first primitive's vertices, the
              * positions (as colours, in [0, 1]) for the second's */
@@ -160,6 +161,16 @@ int main(void)
                 CHECK(coloured);
             }
             gltf_mesh_free(&m);
+            /* the same with a TANGENT of three components: refused, named */
+            out = fopen(tmp, "wb");
+            CHECK(out != NULL);
+            if (out) {
+                fwrite(text, 1, (size_t)(attrs - text), out);
+                fputs("\"TANGENT\": 0, ", out);
+                fputs(attrs, out);
+                fclose(out);
+            }
+            CHECK(!gltf_load(tmp, &m, &err) && strstr(err.message, "TANGENT") && strstr(err.message, "VEC4"));
             remove(tmp);
         }
     }
