@@ -9,6 +9,22 @@
 
 #include "scene/scene.h"
 
+/* The part's copy of a per-vertex attribute of `comps` floats (NULL where
+ * the whole has none, or out of memory: *ok false) */
+static float *part_attribute(const float *whole_values, size_t whole_count, const uint32_t *remap, size_t nv,
+                             int comps, bool *ok)
+{
+    if (!*ok || !whole_values)
+        return NULL;
+    float *values = malloc((nv ? nv : 1) * (size_t)comps * sizeof(float));
+    *ok = values != NULL;
+    for (size_t v = 0; values && v < whole_count; v++)
+        if (remap[v])
+            memcpy(values + (remap[v] - 1) * (size_t)comps, whole_values + v * (size_t)comps,
+                   (size_t)comps * sizeof(float));
+    return values;
+}
+
 struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const size_t *first_index,
                               const size_t *index_count, int count, struct error *err)
 {
@@ -47,29 +63,10 @@ struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const 
         return NULL;
     }
     bool ok = true;
-    for (int set = 0; set < 2 && ok; set++) {
-        if (!whole->texcoords[set])
-            continue;
-        m->texcoords[set] = malloc((nv ? nv : 1) * 2 * sizeof(float));
-        ok = m->texcoords[set] != NULL;
-        for (size_t v = 0; ok && v < whole->vertex_count; v++)
-            if (remap[v])
-                memcpy(m->texcoords[set] + (remap[v] - 1) * 2, whole->texcoords[set] + v * 2, 2 * sizeof(float));
-    }
-    if (ok && whole->colors) {
-        m->colors = malloc((nv ? nv : 1) * 4 * sizeof(float));
-        ok = m->colors != NULL;
-        for (size_t v = 0; ok && v < whole->vertex_count; v++)
-            if (remap[v])
-                memcpy(m->colors + (remap[v] - 1) * 4, whole->colors + v * 4, 4 * sizeof(float));
-    }
-    if (ok && whole->tangents) {
-        m->tangents = malloc((nv ? nv : 1) * 4 * sizeof(float));
-        ok = m->tangents != NULL;
-        for (size_t v = 0; ok && v < whole->vertex_count; v++)
-            if (remap[v])
-                memcpy(m->tangents + (remap[v] - 1) * 4, whole->tangents + v * 4, 4 * sizeof(float));
-    }
+    for (int set = 0; set < 2; set++)
+        m->texcoords[set] = part_attribute(whole->texcoords[set], whole->vertex_count, remap, nv, 2, &ok);
+    m->colors = part_attribute(whole->colors, whole->vertex_count, remap, nv, 4, &ok);
+    m->tangents = part_attribute(whole->tangents, whole->vertex_count, remap, nv, 4, &ok);
     if (ok && whole->target_count > 0) {
         size_t per = nv * 3, whole_per = whole->vertex_count * 3;
         m->target_positions = malloc(((size_t)whole->target_count * per + 1) * sizeof(float));
