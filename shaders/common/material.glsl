@@ -53,6 +53,10 @@ uniform int u_vertex_colors; // ... where the mesh has one (an interpolated cons
 // The clearcoat's normal, set by material_normal for material_brdf: its own
 // normal map, else the geometry's normal
 vec3 material_coat_normal = vec3(0.0, 0.0, 1.0);
+// The interpolated normal before any normal map (face-forward), set by
+// material_normal: the horizon the glossy lobes' reflections fade under
+// (common/surface_light.glsl); 0 where material_normal was not called
+vec3 material_geometry_normal = vec3(0.0);
 
 vec2 material_uv(int slot)
 {
@@ -191,6 +195,7 @@ vec3 material_mapped_normal(vec3 n, vec3 p, vec2 uv, vec3 m, float scale)
 vec3 material_normal(vec3 n, vec3 p)
 {
 #ifdef GLTF_BRDF
+    material_geometry_normal = n;
     material_coat_normal = n;
     if (u_texture_set[9] > 0) {
         vec2 uv = material_uv(9);
