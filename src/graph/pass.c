@@ -616,3 +616,71 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
                         "in the diffuse share and tints it)");
     return sentence;
 }
+
+/* Whether some of object q lies inside o's solid: its bounds' centre or
+ * one of up to 32 of its vertices, evenly spread, inside o's closed mesh */
+/* The world box of an object's base shape (its mesh's bounds' corners) */
+static void world_box(const struct object *o, vec3 *lo, vec3 *hi)
+{
+    mat4 model = object_model_matrix(o);
+    const struct mesh *m = o->mesh;
+    *lo = vec3_make(INFINITY, INFINITY, INFINITY), *hi = vec3_make(-INFINITY, -INFINITY, -INFINITY);
+    for (int k = 0; k < 8; k++) {
+        vec3 c = {k & 1 ? m->bounds_max.x : m->bounds_min.x, k & 2 ? m->bounds_max.y : m->bounds_min.y,
+                  k & 4 ? m->bounds_max.z : m->bounds_min.z};
+        vec3 w = mat4_transform_point(model, c);
+        *lo = vec3_make(fminf(lo->x, w.x), fminf(lo->y, w.y), fminf(lo->z, w.z));
+        *hi = vec3_make(fmaxf(hi->x, w.x), fmaxf(hi->y, w.y), fmaxf(hi->z, w.z));
+    }
+}
+
+static bool object_within(const struct object *q, const struct object *o)
+{
+    const struct mesh *m = q->mesh;
+    if (!m || m->vertex_count == 0 || !o->mesh)
+        return false;
+    vec3 qlo, qhi, olo, ohi; /* boxes apart: nothing to test (a refractor of many triangles is slow to ask) */
+    world_box(q, &qlo, &qhi);
+    world_box(o, &olo, &ohi);
+    if (qlo.x > ohi.x || qlo.y > ohi.y || qlo.z > ohi.z || olo.x > qhi.x || olo.y > qhi.y || olo.z > qhi.z)
+        return false;
+    mat4 model = object_model_matrix(q);
+    vec3 centre = mat4_transform_point(model, vec3_scale(vec3_add(m->bounds_min, m->bounds_max), 0.5f));
+    if (object_encloses_point(o, centre))
+        return true;
+    size_t step = m->vertex_count > 32 ? m->vertex_count / 32 : 1;
+    for (size_t v = 0; v < m->vertex_count; v += step) {
+        const float *p = m->positions + v * 3;
+        if (object_encloses_point(o, mat4_transform_point(model, vec3_make(p[0], p[1], p[2]))))
+            return true;
+    }
+    return false;
+}
+
+const char *pass_refractor_holds(const struct scene *scene, const struct object *o, const char *other)
+{
+    static char sentence[400];
+    if (!object_is(o, OBJECT_ROLE_REFRACTOR))
+        return other;
+    int first = -1, more = 0;
+    for (int k = 0; k < scene->object_count; k++) {
+        const struct object *q = scene->objects[k];
+        if (q == o || !q->visible || object_is(q, OBJECT_ROLE_SPECULAR | OBJECT_ROLE_THIN) || !object_within(q, o))
+            continue;
+        if (first < 0)
+            first = k;
+        else
+            more++;
+    }
+    if (first < 0)
+        return other;
+    char extra[64] = "";
+    if (more)
+        snprintf(extra, sizeof extra, " (and %d more)", more);
+    snprintf(sentence, sizeof sentence,
+             "object %d%s inside its %s: the pass finds what lies behind the %s's surfaces, not what lies within them, "
+             "so it is not seen through it (the reference draws it)%s%s", first + 1, extra,
+             o->material.kind == MATERIAL_WATER ? "water" : "glass", o->material.kind == MATERIAL_WATER ? "water" : "glass",
+             other ? "; and " : "", other ? other : "");
+    return sentence;
+}

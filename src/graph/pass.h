@@ -310,4 +310,13 @@ const struct pass_desc *pass_registry_find(const char *name);
  * through it. NULL when `o` is smooth, clear glass or no refractor. */
 const char *pass_refractor_left_out(const struct object *o, bool caustics);
 
+/* What a view technique that finds what lies behind a refractor's surfaces
+ * (the image, a distance map, impostors, slices) leaves out of `o`: the
+ * objects inside its solid glass or water (a pearl in a glass block, a
+ * spoon in a glass of water), which only the reference sees through it;
+ * then `other` (the pass's own reason, or NULL) after it. NULL when none
+ * lies within (what lies in a hollow, as flowers in a vase, is behind its
+ * inner surface and is found). For pass_desc.leaves_out. */
+const char *pass_refractor_holds(const struct scene *scene, const struct object *o, const char *other);
+
 #endif

@@ -236,8 +236,7 @@ static const char *layered_refraction_leaves_out(const struct pass *p, const str
                                                  const struct object *o)
 {
     (void)p;
-    (void)scene;
-    return pass_refractor_left_out(o, false);
+    return pass_refractor_holds(scene, o, pass_refractor_left_out(o, false));
 }
 
 const struct pass_desc layered_refraction_pass = {

@@ -463,12 +463,12 @@ static unsigned refraction_draws(const struct pass *p)
  * the impostors and the environment are read as through smooth glass. */
 static const char *refraction_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
-    (void)scene;
     bool rough = object_is_rough_refractor(o) || (object_is(o, OBJECT_ROLE_MIRROR) && o->material.roughness > 0.0f);
     if (rough && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_SCENE)
-        return "its roughness: only lookup = \"scene\" blurs the view through rough glass; this lookup draws it "
-               "smooth";
-    return NULL;
+        return pass_refractor_holds(scene, o,
+                                    "its roughness: only lookup = \"scene\" blurs the view through rough glass; this "
+                                    "lookup draws it smooth");
+    return pass_refractor_holds(scene, o, NULL);
 }
 
 const struct pass_desc refraction_pass = {

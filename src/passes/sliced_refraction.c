@@ -293,7 +293,7 @@ static const char *sliced_refraction_leaves_out(const struct pass *p, const stru
     if (is_refractor(o) && object_contains_point(o, scene->camera.eye))
         return "the camera is inside it: the sliced object images are seen through its front faces, none of which "
                "the camera sees, so the view through it is not refracted (refraction or layered_refraction trace it)";
-    return pass_refractor_left_out(o, false);
+    return pass_refractor_holds(scene, o, pass_refractor_left_out(o, false));
 }
 
 static unsigned sliced_refraction_draws(const struct pass *p)

@@ -73,4 +73,35 @@ share=$(sed -n "s/.*beam_caustics: \([0-9]*\)% of the light.*/\1/p" "$WORK/cube.
   -o "$WORK/ball.png" >"$WORK/ball.txt" 2>&1
 [ "$(grep -c "of the light through the glass falls in cells" "$WORK/ball.txt")" = 0 ] \
   && pass "beam_caustics through a ball: no line" || fail "beam_caustics through a ball" "$(cat "$WORK/ball.txt")"
+# a red box inside a glass block (issue 50): the view techniques find what lies behind the glass's
+# surfaces, not within them, and say so, once each; a box in a hollow glass cup (a lathe with a
+# wall) is behind its inner surface and is found: nothing said
+cat >"$WORK/embedded.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1.2, 3}, target = {0, 0.3, 0} } }
+local sun = scene:add(c.light.directional { direction = {-0.3, -1, -0.5}, intensity = {2, 2, 2} })
+scene:add(c.object { mesh = c.mesh.plane { size = 6 }, material = c.material.diffuse {} })
+if c.param("cup", false) then
+  scene:add(c.object { mesh = c.mesh.lathe { profile = {{0, 0}, {0.5, 0}, {0.5, 1}, {0.45, 1}, {0.45, 0.05},
+                                                        {0, 0.05}} }, material = c.material.glass { ior = 1.5 } })
+else
+  scene:add(c.object { mesh = c.mesh.box { size = {1, 1, 1} }, position = {0, 0.5, 0},
+                       material = c.material.glass { ior = 1.5 } })
+end
+scene:add(c.object { mesh = c.mesh.box { size = {0.3, 0.3, 0.3} }, position = {0, 0.5, 0},
+                     material = c.material.diffuse { color = {0.9, 0.1, 0.1} } })
+local g = c.graph()
+g:add("shade", c.pass.shade { specular = false })
+g:add("glass", c.pass[c.param("technique", "refraction")] { color = "shade.color" })
+g:output("glass.color")
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+for t in refraction layered_refraction sliced_refraction; do
+  "$CAUSTICA" info "$WORK/embedded.lua" --set technique=$t --no-render --trusted >"$WORK/e.txt" 2>&1
+  "$CAUSTICA" info "$WORK/embedded.lua" --set technique=$t --set cup=true --no-render --trusted >"$WORK/h.txt" 2>&1
+  [ "$(grep -c "pass 'glass' ($t) leaves out object 2 (glass): object 3 inside its glass: the pass finds what lies behind" "$WORK/e.txt")" = 1 ] \
+    && [ "$(grep -c "inside its glass" "$WORK/h.txt")" = 0 ] \
+    && pass "$t: a box inside a glass block said once; one inside a hollow cup not" \
+    || fail "$t, a box inside glass" "$(cat "$WORK/e.txt" "$WORK/h.txt")"
+done
 finish
