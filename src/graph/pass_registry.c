@@ -14,6 +14,7 @@
     X(custom) \
     X(caustic_volumes) \
     X(water_surface) \
+    X(glossy_reflection) \
     X(refraction) \
     X(photon_caustics) \
     X(layered_refraction) \

@@ -2,8 +2,9 @@
 -- for both renderers: --set sample=NAME, one of the names below. Each is
 -- framed by its bounds (centred, scaled to a radius of 1) from the side its
 -- README's screenshot shows, under a sun from the upper left behind the
--- camera and an ambient sky; a sun's shadow map, `shade`, and `refraction`
--- where the sample has glass or mirrors. The assets are copies in
+-- camera and an ambient sky; a sun's shadow map, `shade`, `glossy_reflection`
+-- (--set glossy=false: without it) and `refraction` where the sample has
+-- glass or mirrors. The assets are copies in
 -- scenes/assets/khronos (see its README for their licences).
 local c = require "caustica"
 local samples = {
@@ -47,6 +48,11 @@ local model = scene:add(c.object { mesh = mesh, scale = {s, s, s},
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 g:add("shade", c.pass.shade { shadow = "shadow.depth" })
-g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+local color = "shade.color"
+if c.param("glossy", true) then
+  g:add("glossy", c.pass.glossy_reflection { color = "shade.color" })
+  color = "glossy.color"
+end
+g:add("glass", c.pass.refraction { color = color, depth = "shade.depth" })
 g:output("glass.color")
 return { scene = scene, graph = g, size = {c.param("size", 192), c.param("size", 192)}, model = model }

@@ -2,7 +2,8 @@
 -- BRDF on spheres of metallic 0..1 by roughness 0..1, issue 50) under a sun
 -- and an ambient sky, both renderers. The file is 7 mm across (its node
 -- transforms applied): scaled by 1000. Its smooth metals (metallic >= 0.5, roughness <= 0.3, no texture)
--- are mirrors, drawn by `refraction`; the rest by the BRDF in `shade`.
+-- are mirrors, drawn by `refraction`; the rest by the BRDF in `shade`, the
+-- spheres they reflect put in their glossy lobes by `glossy_reflection`.
 -- --set graph=shade: shade alone (the mirrors show the background);
 -- env=room: the room cube map as the environment (which the mirrors and
 -- the BRDF's glossy lobes reflect) instead of a grey background.
@@ -21,7 +22,8 @@ g:add("shade", c.pass.shade {})
 if c.param("graph", "full") == "shade" then
   g:output("shade.color")
 else
-  g:add("mirrors", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+  g:add("glossy", c.pass.glossy_reflection { color = "shade.color" })
+  g:add("mirrors", c.pass.refraction { color = "glossy.color", depth = "shade.depth" })
   g:output("mirrors.color")
 end
 return { scene = scene, graph = g, size = {128, 128}, model = model }
