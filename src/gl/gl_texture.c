@@ -175,3 +175,18 @@ void gl_texture_clear(const struct gl_texture *texture, const float rgba[4])
 {
     gl.ClearTexImage(texture->id, 0, GL_RGBA, GL_FLOAT, rgba);
 }
+
+bool gl_texture_copy(struct gl_texture *to, const struct gl_texture *from, bool mips, struct error *err)
+{
+    if (!to->id || to->width != from->width || to->height != from->height || to->format != from->format) {
+        gl_texture_destroy(to);
+        if (!gl_texture_create_levels(to, GL_TEXTURE_2D, from->format, from->width, from->height, 1, mips ? 0 : 1,
+                                      err))
+            return false;
+    }
+    gl.CopyImageSubData(from->id, GL_TEXTURE_2D, 0, 0, 0, 0, to->id, GL_TEXTURE_2D, 0, 0, 0, 0, from->width,
+                        from->height, 1);
+    if (mips)
+        gl.GenerateTextureMipmap(to->id);
+    return true;
+}

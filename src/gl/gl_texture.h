@@ -27,6 +27,9 @@ bool gl_texture_create(struct gl_texture *tex, GLenum target, GLenum format, int
 bool gl_texture_create_levels(struct gl_texture *tex, GLenum target, GLenum format, int width, int height,
                               int layers, int levels, struct error *err);
 void gl_texture_destroy(struct gl_texture *tex);
+/* `to` as a copy of 2D texture `from`'s level 0, (re)made at its size and
+ * format when it is not; with its full mipmap chain, filled, where `mips`. */
+bool gl_texture_copy(struct gl_texture *to, const struct gl_texture *from, bool mips, struct error *err);
 /* Reads level 0 (layer `layer` of a cube map / array) as float RGBA. */
 /* A 2D depth texture's window depths [0, 1], rows bottom to top. */
 bool gl_texture_read_depth32f(const struct gl_texture *tex, float *out, struct error *err);

@@ -62,23 +62,6 @@ static void glossy_reflection_destroy(struct pass *p)
     p->state = NULL;
 }
 
-/* `to` as a copy of `from` (made or remade at its size and format), with
- * its mipmaps where `mips` */
-static bool copy_texture(struct gl_texture *to, const struct gl_texture *from, bool mips, struct error *err)
-{
-    if (!to->id || to->width != from->width || to->height != from->height || to->format != from->format) {
-        gl_texture_destroy(to);
-        if (!gl_texture_create_levels(to, GL_TEXTURE_2D, from->format, from->width, from->height, 1, mips ? 0 : 1,
-                                      err))
-            return false;
-    }
-    gl.CopyImageSubData(from->id, GL_TEXTURE_2D, 0, 0, 0, 0, to->id, GL_TEXTURE_2D, 0, 0, 0, 0, from->width,
-                        from->height, 1);
-    if (mips)
-        gl.GenerateTextureMipmap(to->id);
-    return true;
-}
-
 static bool scene_has_brdf(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++) {
@@ -102,8 +85,8 @@ static bool glossy_reflection_execute(struct pass *p, struct pass_frame *f, stru
     if (!brdf)
         return true; /* nothing glossy: the image as it is */
     struct gl_program *progs[2];
-    if (!copy_texture(&s->scene_mips, &in_color->texture, true, err) ||
-        !copy_texture(&s->depth, &in_depth->texture, false, err) ||
+    if (!gl_texture_copy(&s->scene_mips, &in_color->texture, true, err) ||
+        !gl_texture_copy(&s->depth, &in_depth->texture, false, err) ||
         !renderer_lit_programs(r, f->scene, "common/object.vert", "glossy_reflection/glossy.frag", NULL, progs, err))
         return false;
     if (!progs[1])

@@ -220,20 +220,6 @@ static bool scene_has_rough_glass(const struct scene *scene)
     return false;
 }
 
-/* `to` as a mipmapped copy of `from` (made or remade at its size and format). */
-static bool mipmapped_copy(struct gl_texture *to, const struct gl_texture *from, struct error *err)
-{
-    if (!to->id || to->width != from->width || to->height != from->height || to->format != from->format) {
-        gl_texture_destroy(to);
-        if (!gl_texture_create_levels(to, GL_TEXTURE_2D, from->format, from->width, from->height, 1, 0, err))
-            return false;
-    }
-    gl.CopyImageSubData(from->id, GL_TEXTURE_2D, 0, 0, 0, 0, to->id, GL_TEXTURE_2D, 0, 0, 0, 0, from->width,
-                        from->height, 1);
-    gl.GenerateTextureMipmap(to->id);
-    return true;
-}
-
 static bool ensure_targets(struct refraction_state *s, int w, int h, struct error *err)
 {
     if (s->front_normal.id && s->width == w && s->height == h)
@@ -398,8 +384,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
         gl_program_bind_texture(prog, "u_input_depth", in_depth->texture.id);
         bool rough = scene_has_rough_glass(f->scene);
-        if (rough && (!mipmapped_copy(&s->rough_scene, &in_color->texture, err) ||
-                      !mipmapped_copy(&s->rough_behind, &s->behind_color, err)))
+        if (rough && (!gl_texture_copy(&s->rough_scene, &in_color->texture, true, err) ||
+                      !gl_texture_copy(&s->rough_behind, &s->behind_color, true, err)))
             return false;
         gl_program_bind_texture(prog, "u_scene_mips", rough ? s->rough_scene.id : in_color->texture.id);
         gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : s->behind_color.id);
