@@ -359,6 +359,7 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
     const struct cli_verb *known = verb_find(verb);
     unsigned verb_bit = known ? known->bit : VB_ALL;
     cli->frames_from = cli->frames_to = -1;
+    cli->photons = -1; /* (unset: the reference's default; 0 is a count, no photons) */
     cli->max_error = cli->max_time_ms = cli->max_flicker = -1.0;
     cli->crf = 18;
     bool options_end = false;

@@ -41,7 +41,7 @@ struct cli {
     const char *junit;       /* --junit OUT.xml (test): JUnit XML for CI servers */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */
     const char *filter;
-    long photons;            /* --photons (reference) */
+    long photons;            /* --photons (reference); -1 where not given */
     int spp;                 /* --spp: SPPM iterations (reference) */
     double time_budget;      /* --time-budget seconds (reference) */
     long long seed;          /* --seed (reference) */

@@ -27,7 +27,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     }
     struct ref_options o;
     ref_options_default(&o);
-    if (cli->photons > 0)
+    if (cli->photons >= 0) /* (0: no photons, no caustics: the eye paths alone) */
         o.photons = cli->photons;
     if (cli->spp > 0)
         o.iterations = cli->spp;
