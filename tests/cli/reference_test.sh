@@ -86,8 +86,8 @@ last=$(grep "noise ~" "$WORK/err.txt" | tail -1 | sed 's/.*noise ~\([0-9.e+-]*\)
 [ -s "$WORK/r.hdr" ] && head -c 10 "$WORK/r.hdr" | grep -q "#?RADIANCE" && pass "reference writes .hdr" \
   || fail "hdr" "no Radiance file"
 # --photons 0 is a count: no photons at all (the eye paths alone); it was taken for "not given" and
-# traced the default 200,000 an iteration
-"$CAUSTICA" reference tests/scenes/glass.lua -o "$WORK/p0.pfm" --size 16x16 --spp 2 --photons 0 >"$WORK/p0.txt" 2>&1
+# traced the default 200,000 an iteration (ortho.lua: a sun through a glass ball: 400,000 in 2)
+"$CAUSTICA" reference tests/scenes/ortho.lua -o "$WORK/p0.pfm" --size 16x16 --spp 2 --photons 0 >"$WORK/p0.txt" 2>&1
 grep -q "2 iterations, 0 photons (0 caustic)" "$WORK/p0.txt" && pass "--photons 0 traces none" \
   || fail "--photons 0" "$(cat "$WORK/p0.txt")"
 finish
