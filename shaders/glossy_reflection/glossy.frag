@@ -19,6 +19,32 @@ layout(location = 0) out vec4 o_color;
 uniform vec3 u_color;
 uniform sampler2D u_scene_mips; // the input colour with mipmaps
 
+// What a lobe of albedo `albedo` and roughness `roughness` about mirror
+// direction r adds: albedo x (the surface its march meets, blurred over the
+// lobe's width, 2 alpha - the environment shade put there), faded under
+// the geometry's horizon (normal ng); 0 where the march meets nothing
+vec3 glossy_seen(vec3 albedo, vec3 r, float roughness, vec3 ng)
+{
+    float horizon = surface_horizon(r, ng);
+    ivec2 px;
+    float t;
+    // (from a hair above the surface, along its geometric normal: the march
+    // must not meet the surface it leaves)
+    vec3 o = v_world + ng * (1e-4 * u_scene_extent);
+    if (!(horizon > 0.0) || !(max(albedo.r, max(albedo.g, albedo.b)) > 1e-4) || !scene_trace_at(o, r, px, t))
+        return vec3(0.0);
+    // the lobe's width over the distance to what it meets, in pixels there:
+    // the mip level of that radius (as refraction's seen_rough)
+    float alpha = roughness * roughness;
+    vec3 hit = o + r * t;
+    float z = u_proj[3][3] == 0.0 ? max(-(u_view * vec4(hit, 1.0)).z, 1e-6) : 1.0;
+    float pixel = 2.0 * z / (u_proj[1][1] * u_viewport.y);
+    float radius = t * tan(min(2.0 * alpha, 1.2)) / max(pixel, 1e-9);
+    vec2 uv = (vec2(px) + 0.5) * u_viewport.zw;
+    vec3 seen = textureLod(u_scene_mips, uv, log2(max(radius, 1.0))).rgb;
+    return albedo * (seen - environment_glossy(r, roughness)) * horizon;
+}
+
 void main()
 {
     vec3 n = normalize(v_normal);
@@ -33,31 +59,14 @@ void main()
         discard;
     BrdfMaterial m = material_brdf(u_color);
     vec3 v = -view;
-    // the base lobe's share of the specular albedo (a coat's lobe, about its
-    // own normal, keeps the environment)
+    // the base lobe's share of the specular albedo, and a coat's, each
+    // marched about its own mirror direction
     vec3 specular = brdf_ambient_albedo(mapped, v, m) - brdf_diffuse_albedo(mapped, v, m);
     float share = brdf_clearcoat_share(v, m);
-    if (share > 0.0)
-        specular -= vec3(share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y);
-    vec3 r = reflect(view, mapped);
-    float horizon = surface_horizon(r, n);
-    ivec2 px;
-    float t;
-    // (from a hair above the surface, along its geometric normal: the march
-    // must not meet the surface it leaves)
-    vec3 o = v_world + n * (1e-4 * u_scene_extent);
-    if (!(horizon > 0.0) || !(max(specular.r, max(specular.g, specular.b)) > 1e-4) || !scene_trace_at(o, r, px, t))
-        discard;
-    // the lobe's width over the distance to what it meets, in pixels there:
-    // the mip level of that radius (as refraction's seen_rough)
-    float alpha = m.roughness * m.roughness;
-    vec3 hit = o + r * t;
-    float z = u_proj[3][3] == 0.0 ? max(-(u_view * vec4(hit, 1.0)).z, 1e-6) : 1.0;
-    float pixel = 2.0 * z / (u_proj[1][1] * u_viewport.y);
-    float radius = t * tan(min(2.0 * alpha, 1.2)) / max(pixel, 1e-9);
-    vec2 uv = (vec2(px) + 0.5) * u_viewport.zw;
-    vec3 seen = textureLod(u_scene_mips, uv, log2(max(radius, 1.0))).rgb;
-    vec3 env = environment_glossy(r, m.roughness);
-    o_color = vec4(max(specular, vec3(0.0)) * (seen - env) * horizon * material_occlusion(), 0.0);
+    float coat = share > 0.0 ? share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y : 0.0;
+    vec3 added = glossy_seen(max(specular - vec3(coat), vec3(0.0)), reflect(view, mapped), m.roughness, n);
+    if (coat > 1e-4)
+        added += glossy_seen(vec3(coat), reflect(view, m.clearcoat_normal), m.clearcoat_roughness, n);
+    o_color = vec4(added * material_occlusion(), 0.0);
 #endif
 }

@@ -3,8 +3,9 @@
  * about its mirror direction, prefiltered (common/surface_light.glsl's
  * surface_glossy_environment); where that direction meets another object
  * on screen this pass puts the object there instead: each BRDF surface is
- * drawn again over the input image (its depth test EQUAL to what the
- * camera sees), its mirror direction marched through the input's depth
+ * drawn again over the input image (its depth test against what the
+ * camera sees), each lobe's mirror direction (the base's, a clearcoat's)
+ * marched through the input's depth
  * (layers/scene_trace.glsl, as refraction's scene lookup), and the lobe's
  * albedo x (what the march meets, blurred by the lobe's width through the
  * input's mipmaps - the environment shade put there) added. Rays that leave
