@@ -200,6 +200,27 @@ t.case("a uniform environment on glTF's BRDF: the specular lobes' albedo, by the
         "reference", "environment", 0.5, 0.02, true)
 end)
 
+t.case("glossy_reflection: a lobe whose march leaves the image keeps shade's environment", function()
+  -- The quads lie in one plane under a uniform environment: every mirror
+  -- direction leaves the scene upwards, meeting nothing on screen, so the
+  -- pass must add nothing: what it added where its march meets nothing (or
+  -- meets the plane it leaves), or a copy or blend gone wrong, would show
+  -- (a lobe made to add 0.1 where it meets nothing fails it). Every pixel
+  -- within 1e-6 of shade's.
+  local set = { background = 0.5 }
+  local plain = t.render(SCENE, { set = set })
+  local glossy = t.render(SCENE, { set = { background = 0.5, glossy = true } })
+  t.expect_finite(glossy)
+  local worst = 0
+  for y = 0, glossy.height - 1 do
+    for x = 0, glossy.width - 1 do
+      local a, b = { glossy:pixel(x, y) }, { plain:pixel(x, y) }
+      for k = 1, 3 do worst = math.max(worst, math.abs(a[k] - b[k])) end
+    end
+  end
+  t.expect(worst <= 1e-6, string.format("largest change %.3g", worst))
+end)
+
 t.case("Khronos MetalRoughSpheresNoTextures: shade and refraction within 0.15 of the reference", function()
   -- issue 50's bound. Measured at 128^2 against 8 reference iterations
   -- without caustics (the graph draws none): 0.077, 0.062 with its rough

@@ -5,7 +5,8 @@
 -- v = (0, 2, 1) / sqrt 5 and lit by a sun from l = (1, 5, -2) / sqrt 30, so
 -- every pixel of a quad has one n, v and l. --set ambient=A: a grey sky
 -- (on the diffuse lobe, by the occlusion); background=B: a uniform grey
--- environment (which the specular lobes reflect); both 0 by default.
+-- environment (which the specular lobes reflect); both 0 by default;
+-- glossy=true: glossy_reflection after shade.
 local c = require "caustica"
 local v = {0, 2, 1}
 local scene = c.scene {
@@ -18,5 +19,10 @@ scene:add(c.light.directional { direction = {-1, -5, 2}, intensity = {2, 2, 2} }
 scene:add(c.object { mesh = c.mesh.load "../data/brdf_quads.gltf" })
 local g = c.graph()
 g:add("shade", c.pass.shade {})
-g:output("shade.color")
+if c.param("glossy", false) then
+  g:add("glossy", c.pass.glossy_reflection { color = "shade.color" })
+  g:output("glossy.color")
+else
+  g:output("shade.color")
+end
 return { scene = scene, graph = g, size = {160, 80} }
