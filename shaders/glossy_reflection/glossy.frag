@@ -47,14 +47,14 @@ vec3 glossy_seen(vec3 albedo, vec3 r, float roughness, vec3 ng)
 
 void main()
 {
+#ifndef GLTF_BRDF
+    discard; // (a Lambert surface has no glossy lobe)
+#else
     vec3 n = normalize(v_normal);
     vec3 view = view_direction(v_world);
     if (dot(n, view) > 0.0)
         n = -n;
     vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
-#ifndef GLTF_BRDF
-    discard;
-#else
     if (material_cut_out() || (u_single_sided == 1 && !gl_FrontFacing) || u_alpha_blend == 1)
         discard;
     BrdfMaterial m = material_brdf(u_color);
