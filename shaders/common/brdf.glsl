@@ -159,3 +159,12 @@ vec3 brdf_diffuse_albedo(vec3 n, vec3 v, BrdfMaterial m)
     float weight = 1.0 - m.specular * brdf_specular_albedo(dot(n, v), m.roughness, f0_max);
     return (1.0 - brdf_clearcoat_share(v, m)) * (1.0 - m.metallic) * m.base_color * weight;
 }
+
+// The specular lobes' albedos apart (what they reflect of a uniform sky):
+// the base lobe's, and a clearcoat's (0 without one)
+void brdf_specular_albedos(vec3 n, vec3 v, BrdfMaterial m, out vec3 base, out float coat)
+{
+    float share = brdf_clearcoat_share(v, m);
+    coat = share > 0.0 ? share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y : 0.0;
+    base = max(brdf_ambient_albedo(n, v, m) - brdf_diffuse_albedo(n, v, m) - vec3(coat), vec3(0.0));
+}

@@ -111,18 +111,16 @@ float surface_horizon(vec3 r, vec3 ng)
 // horizon; the reference traces them.
 vec3 surface_glossy_environment(vec3 n, vec3 v, BrdfMaterial m)
 {
-    vec3 specular = brdf_ambient_albedo(n, v, m) - brdf_diffuse_albedo(n, v, m);
-    float share = brdf_clearcoat_share(v, m);
+    vec3 base;
+    float coat;
+    brdf_specular_albedos(n, v, m, base, coat);
     vec3 glossy = vec3(0.0);
-    if (share > 0.0) {
-        float coat = share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y;
-        specular -= vec3(coat);
+    if (coat > 0.0) {
         vec3 rc = reflect(-v, m.clearcoat_normal);
         glossy = coat * environment_glossy(rc, m.clearcoat_roughness) * surface_horizon(rc, material_geometry_normal);
     }
     vec3 r = reflect(-v, n);
-    return glossy + max(specular, vec3(0.0)) * environment_glossy(r, m.roughness) *
-                        surface_horizon(r, material_geometry_normal);
+    return glossy + base * environment_glossy(r, m.roughness) * surface_horizon(r, material_geometry_normal);
 }
 
 vec3 surface_light_gltf(vec3 p, vec3 n, vec3 v, BrdfMaterial m, float occlusion, vec3 emission, vec3 caustic)

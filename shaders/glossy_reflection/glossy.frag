@@ -61,10 +61,10 @@ void main()
     vec3 v = -view;
     // the base lobe's share of the specular albedo, and a coat's, each
     // marched about its own mirror direction
-    vec3 specular = brdf_ambient_albedo(mapped, v, m) - brdf_diffuse_albedo(mapped, v, m);
-    float share = brdf_clearcoat_share(v, m);
-    float coat = share > 0.0 ? share * brdf_ambient_terms(dot(m.clearcoat_normal, v), m.clearcoat_roughness).y : 0.0;
-    vec3 added = glossy_seen(max(specular - vec3(coat), vec3(0.0)), reflect(view, mapped), m.roughness, n);
+    vec3 base;
+    float coat;
+    brdf_specular_albedos(mapped, v, m, base, coat);
+    vec3 added = glossy_seen(base, reflect(view, mapped), m.roughness, n);
     if (coat > 1e-4)
         added += glossy_seen(vec3(coat), reflect(view, m.clearcoat_normal), m.clearcoat_roughness, n);
     o_color = vec4(added * material_occlusion(), 0.0);

@@ -240,6 +240,16 @@ std::vector<double> read_accessor(const tinygltf::Model &model, int index, int w
     return out;
 }
 
+// Every texture a material holds (the one list its owners walk: the
+// builder frees them, copying out hands them over, gltf_mesh_free frees them)
+std::array<gltf_texture *, 12> material_textures(gltf_material &m)
+{
+    return {&m.base_color_texture, &m.normal_texture, &m.emissive_texture, &m.metallic_roughness_texture,
+            &m.occlusion_texture, &m.transmission_texture, &m.specular_texture, &m.specular_color_texture,
+            &m.thickness_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture,
+            &m.clearcoat_normal_texture};
+}
+
 struct Builder {
     std::vector<float> positions, normals;
     std::vector<float> texcoords[2]; // zeros for primitives without the set
@@ -258,20 +268,9 @@ struct Builder {
     std::vector<gltf_range> ranges;
     ~Builder()
     {
-        for (gltf_material &m : materials) {
-            std::free(m.base_color_texture.bytes);
-            std::free(m.normal_texture.bytes);
-            std::free(m.emissive_texture.bytes);
-            std::free(m.metallic_roughness_texture.bytes);
-            std::free(m.occlusion_texture.bytes);
-            std::free(m.transmission_texture.bytes);
-            std::free(m.specular_texture.bytes);
-            std::free(m.specular_color_texture.bytes);
-            std::free(m.thickness_texture.bytes);
-            std::free(m.clearcoat_texture.bytes);
-            std::free(m.clearcoat_roughness_texture.bytes);
-            std::free(m.clearcoat_normal_texture.bytes);
-        }
+        for (gltf_material &m : materials)
+            for (gltf_texture *t : material_textures(m))
+                std::free(t->bytes);
     }
 };
 
@@ -358,6 +357,19 @@ void read_texture(const tinygltf::Model &model, int index, int texcoord, const t
         throw Fail{material + ": texCoord " + std::to_string(t.texcoord) + " (caustica reads TEXCOORD_0 and _1)"};
 }
 
+// The texture an extension names in its field `field` (a textureInfo:
+// index, texCoord), if it names one, into t
+void read_extension_texture(const tinygltf::Model &model, const tinygltf::Value &extension, const char *field,
+                            gltf_texture &t, const std::string &material)
+{
+    if (!extension.Has(field))
+        return;
+    const tinygltf::Value &info = extension.Get(field);
+    int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
+    int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+    read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, t, material);
+}
+
 // Appends `what` to the material's list of things it asks for and nobody reads.
 void note_unread(gltf_material &m, const std::string &what)
 {
@@ -403,13 +415,9 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     auto ext = mat.extensions.find("KHR_materials_transmission");
     if (ext != mat.extensions.end() && ext->second.Has("transmissionFactor"))
         m.transmission = (float)ext->second.Get("transmissionFactor").GetNumberAsDouble();
-    if (ext != mat.extensions.end() && ext->second.Has("transmissionTexture")) {
-        const tinygltf::Value &info = ext->second.Get("transmissionTexture");
-        int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
-        int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
-        read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, m.transmission_texture,
-                     "material '" + mat.name + "'");
-    }
+    if (ext != mat.extensions.end())
+        read_extension_texture(model, ext->second, "transmissionTexture", m.transmission_texture,
+                               "material '" + mat.name + "'");
     m.specular = 1.0f;
     for (int c = 0; c < 3; c++)
         m.specular_color[c] = 1.0f;
@@ -423,16 +431,8 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
                 m.specular_color[i] = (float)c.Get(i).GetNumberAsDouble();
         }
         std::string where = "material '" + mat.name + "'";
-        static const char *const fields[2] = {"specularTexture", "specularColorTexture"};
-        gltf_texture *slots[2] = {&m.specular_texture, &m.specular_color_texture};
-        for (int k = 0; k < 2; k++) {
-            if (!ext->second.Has(fields[k]))
-                continue;
-            const tinygltf::Value &info = ext->second.Get(fields[k]);
-            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
-            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
-            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, *slots[k], where);
-        }
+        read_extension_texture(model, ext->second, "specularTexture", m.specular_texture, where);
+        read_extension_texture(model, ext->second, "specularColorTexture", m.specular_color_texture, where);
         if (!std::isfinite(m.specular) || m.specular < 0.0f || m.specular > 1.0f)
             throw Fail{where + ": KHR_materials_specular specularFactor must be in [0, 1]"};
         for (int c = 0; c < 3; c++)
@@ -448,18 +448,11 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             m.clearcoat = (float)v.Get("clearcoatFactor").GetNumberAsDouble();
         if (v.Has("clearcoatRoughnessFactor"))
             m.clearcoat_roughness = (float)v.Get("clearcoatRoughnessFactor").GetNumberAsDouble();
-        static const char *const fields[3] = {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"};
-        gltf_texture *slots[3] = {&m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture};
-        for (int k = 0; k < 3; k++) {
-            if (!v.Has(fields[k]))
-                continue;
-            const tinygltf::Value &info = v.Get(fields[k]);
-            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
-            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
-            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, *slots[k], where);
-            if (k == 2 && info.Has("scale"))
-                m.clearcoat_normal_texture.scale = (float)info.Get("scale").GetNumberAsDouble();
-        }
+        read_extension_texture(model, v, "clearcoatTexture", m.clearcoat_texture, where);
+        read_extension_texture(model, v, "clearcoatRoughnessTexture", m.clearcoat_roughness_texture, where);
+        read_extension_texture(model, v, "clearcoatNormalTexture", m.clearcoat_normal_texture, where);
+        if (v.Has("clearcoatNormalTexture") && v.Get("clearcoatNormalTexture").Has("scale"))
+            m.clearcoat_normal_texture.scale = (float)v.Get("clearcoatNormalTexture").Get("scale").GetNumberAsDouble();
         if (!std::isfinite(m.clearcoat) || m.clearcoat < 0.0f || m.clearcoat > 1.0f ||
             !std::isfinite(m.clearcoat_roughness) || m.clearcoat_roughness < 0.0f || m.clearcoat_roughness > 1.0f)
             throw Fail{where + ": KHR_materials_clearcoat clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]"};
@@ -476,13 +469,8 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
             m.thickness = (float)ext->second.Get("thicknessFactor").GetNumberAsDouble();
         if (ext->second.Has("attenuationDistance"))
             m.attenuation_distance = (float)ext->second.Get("attenuationDistance").GetNumberAsDouble();
-        if (ext->second.Has("thicknessTexture")) {
-            const tinygltf::Value &info = ext->second.Get("thicknessTexture");
-            int index = info.Has("index") ? info.Get("index").GetNumberAsInt() : -1;
-            int texcoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
-            read_texture(model, index, texcoord, tinygltf::ExtensionMap{}, m.thickness_texture,
-                         "material '" + mat.name + "'");
-        }
+        read_extension_texture(model, ext->second, "thicknessTexture", m.thickness_texture,
+                               "material '" + mat.name + "'");
         if (ext->second.Has("attenuationColor")) {
             const tinygltf::Value &c = ext->second.Get("attenuationColor");
             for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
@@ -1151,11 +1139,8 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
         out->material_count = (int)b.materials.size();
         out->materials = copy_out(b.materials);
         for (gltf_material &m : b.materials) // out owns the image bytes now
-            m.base_color_texture.bytes = m.normal_texture.bytes = m.emissive_texture.bytes =
-                m.metallic_roughness_texture.bytes = m.occlusion_texture.bytes = m.transmission_texture.bytes =
-                    m.specular_texture.bytes = m.specular_color_texture.bytes = m.clearcoat_texture.bytes =
-                        m.clearcoat_roughness_texture.bytes = m.clearcoat_normal_texture.bytes =
-                            m.thickness_texture.bytes = nullptr;
+            for (gltf_texture *t : material_textures(m))
+                t->bytes = nullptr;
         out->range_count = b.ranges.size();
         out->ranges = copy_out(b.ranges);
         out->target_count = b.target_count;
@@ -1194,18 +1179,8 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
     std::free(mesh->colors);
     std::free(mesh->tangents);
     for (int i = 0; mesh->materials && i < mesh->material_count; i++) {
-        std::free(mesh->materials[i].base_color_texture.bytes);
-        std::free(mesh->materials[i].normal_texture.bytes);
-        std::free(mesh->materials[i].emissive_texture.bytes);
-        std::free(mesh->materials[i].metallic_roughness_texture.bytes);
-        std::free(mesh->materials[i].occlusion_texture.bytes);
-        std::free(mesh->materials[i].transmission_texture.bytes);
-        std::free(mesh->materials[i].specular_texture.bytes);
-        std::free(mesh->materials[i].specular_color_texture.bytes);
-        std::free(mesh->materials[i].thickness_texture.bytes);
-        std::free(mesh->materials[i].clearcoat_texture.bytes);
-        std::free(mesh->materials[i].clearcoat_roughness_texture.bytes);
-        std::free(mesh->materials[i].clearcoat_normal_texture.bytes);
+        for (gltf_texture *t : material_textures(mesh->materials[i]))
+            std::free(t->bytes);
     }
     std::free(mesh->materials);
     std::free(mesh->ranges);
