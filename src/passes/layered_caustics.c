@@ -169,8 +169,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
     float texel_area = 0.0f, texel_tan = 0.0f;
     if (ortho) {
-        float side = 2.0f * orad / (float)buffer;
-        texel_area = side * side;
+        texel_area = (2.0f * lv.half_width / (float)buffer) * (2.0f * lv.half_height / (float)buffer);
     } else {
         texel_tan = 2.0f * lv.half_extent / (float)buffer;
     }

@@ -331,5 +331,28 @@ bool layers_light_view(const struct frame_light *fl, vec3 lo, vec3 hi, struct li
     if (!light_view_fit(fl->kind == LIGHT_DIRECTIONAL, fl->position, fl->direction, center, radius, &layers_margins, v))
         return error_set(err, "%s: the light is inside the refractors' bounding sphere "
                               "(move it out, or use a directional light)", pass_name);
+    if (!v->ortho)
+        return true;
+    /* Along a directional light, the square around the sphere narrows to
+     * the box's own outline: water 6 wide under a sun 2 degrees up is a
+     * strip 0.2 high in the light's view, and the square gave it 9 of 256
+     * rows (a few photons and one row of beam cells carried all its light:
+     * the floor came out in dotted bands, a third of it black). The strip
+     * gets every row, and its texels are as wide on the water as they are
+     * long. Kept at least a fiftieth of the square, so that a face seen
+     * exactly edge-on still has a view. */
+    float r = v->half_extent, half_w = 0.0f, half_h = 0.0f;
+    for (int k = 0; k < 8; k++) {
+        vec3 corner = vec3_make(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        vec3 q = mat4_transform_point(v->view, corner);
+        half_w = fmaxf(half_w, fabsf(q.x));
+        half_h = fmaxf(half_h, fabsf(q.y));
+    }
+    half_w = fminf(fmaxf(half_w * layers_margins.radius_scale, 0.02f * r), r);
+    half_h = fminf(fmaxf(half_h * layers_margins.radius_scale, 0.02f * r), r);
+    v->half_width = half_w;
+    v->half_height = half_h;
+    v->proj = mat4_ortho(-half_w, half_w, -half_h, half_h, layers_margins.ortho_near_radii * r,
+                         layers_margins.ortho_far_radii * r);
     return true;
 }

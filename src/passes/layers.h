@@ -116,7 +116,8 @@ bool layers_configure_block(struct pass *block, struct light *light, int buffer,
 bool layers_configure_camera_block(struct pass *block, int layers, int voxels, bool exact_depth, struct error *err);
 /* A light's view of the refractors' box (lo, hi), through its bounding
  * sphere widened by 2% (light_view_fit with the layers' margins):
- * orthographic along a directional light, else a perspective frustum from
+ * orthographic along a directional light, narrowed to the box's outline
+ * (half_width x half_height, not square), else a perspective frustum from
  * the light's position just wide enough; an error naming `pass_name` when
  * the light is inside the sphere. Shared by depth_layers, layered_caustics
  * and beam_caustics. */

@@ -16,7 +16,7 @@ bool light_view_fit(bool ortho, vec3 position, vec3 direction, vec3 center, floa
         vec3 eye = vec3_sub(center, vec3_scale(d, m->eye_radii * r));
         out->view = mat4_look_at(eye, center, up);
         out->proj = mat4_ortho(-r, r, -r, r, m->ortho_near_radii * r, m->ortho_far_radii * r);
-        out->half_extent = r;
+        out->half_extent = out->half_width = out->half_height = r;
         return true;
     }
     vec3 to = vec3_sub(center, position);
@@ -34,6 +34,7 @@ bool light_view_fit(bool ortho, vec3 position, vec3 direction, vec3 center, floa
     out->view = mat4_look_at(position, center, up);
     out->proj = mat4_perspective(fov, 1.0f, fmaxf(dist - r, 1e-3f) * m->near_scale, dist + m->far_radii * r);
     out->half_extent = tanf(fov * 0.5f * (float)MATH_PI / 180.0f);
+    out->half_width = out->half_height = out->half_extent;
     out->distance = dist;
     return true;
 }

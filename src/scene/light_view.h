@@ -26,6 +26,7 @@ struct light_view {
     mat4 view, proj;
     bool ortho;
     float half_extent; /* orthographic: the half width; perspective: tan(half fov) */
+    float half_width, half_height; /* orthographic: the projection's half sides (both half_extent unless narrowed) */
     float distance;    /* perspective: from the light to the centre */
 };
 
