@@ -16,8 +16,8 @@
 //     refractor (the object's silhouette lies between q and this photon),
 //     or its photon landed nowhere the includer keeps (flew past the view:
 //     a ball's rim rays leave sideways); false where that is unknown;
-//   void deposit(vec2 at, vec3 flux): the flux bilinearly into the four
-//     cells around `at` (centres at +0.5).
+//   void deposit(vec2 at, vec2 half_size, vec3 flux): the flux of the
+//     patch at +- half_size, by area into the cells it overlaps (common/box_taps.glsl).
 
 vec2 footprint_clamped(vec2 offset, float limit)
 {
@@ -103,7 +103,10 @@ vec2 footprint_axis(ivec2 p, ivec2 step, vec2 at, out vec2 bend)
 // or the part of it around the photon (cell < 1: a pass that jitters its
 // photons over a cell x cell finer pattern, frame after frame, and
 // accumulates them, so that the frames' footprints tile the finer grid),
-// as n x n sample points each deposited bilinearly, so a diverging photon
+// as n x n sample points, each deposited as the box around its own patch
+// of the footprint (the patch's bounding box), so that the
+// patches of neighbouring photons tile the receiver and a uniform light
+// deposits uniformly whatever the photons' spacing; a diverging photon
 // spreads, a converging one stays sharp and the flux is kept exactly. Two
 // points a pixel along sides up to `fine_up_to` cells (one a cell beats
 // against the grid where photons land 1-2 cells apart: a +-12% ripple on
@@ -116,11 +119,13 @@ void footprint_splat(vec2 at, vec2 ex, vec2 bx, vec2 ey, vec2 by, vec3 flux, flo
     int nx = clamp(int(ceil(lx <= fine_up_to ? 2.0 * lx : lx)), 1, max_side);
     int ny = clamp(int(ceil(ly <= fine_up_to ? 2.0 * ly : ly)), 1, max_side);
     vec3 share = flux / float(nx * ny);
+    // each point's patch: a 1/nx x 1/ny piece of the cell, its bounding box
+    vec2 half_size = 0.5 * (abs(ex) * (cell / float(nx)) + abs(ey) * (cell / float(ny)));
     for (int j = 0; j < ny; j++) {
         float t = cell * ((float(j) + 0.5) / float(ny) - 0.5);
         for (int i = 0; i < nx; i++) {
             float s = cell * ((float(i) + 0.5) / float(nx) - 0.5);
-            deposit(at + s * ex + s * s * bx + t * ey + t * t * by, share);
+            deposit(at + s * ex + s * s * bx + t * ey + t * t * by, half_size, share);
         }
     }
 }

@@ -3,7 +3,7 @@
 // second-order ray differential): its neighbours one texel away in the
 // light's view give the curved parallelogram its light covers on the
 // receiver, spread as the camera sees it (n x n sample points, each
-// bilinearly into four pixels), so a diverging photon spreads, a
+// by area into the pixels its patch covers), so a diverging photon spreads, a
 // converging one stays sharp, and the flux is kept exactly. A side is
 // clamped to 2 x u_max_radius pixels (light that diverges fast, a
 // reflection off a faceted surface, or a footprint torn by a silhouette
@@ -15,7 +15,7 @@
 #include "common/frame.glsl"
 uniform sampler2D u_receiver_normal;
 layout(r32ui) uniform uimage2DArray u_flux;
-#include "common/bilinear.glsl"
+#include "common/box_taps.glsl"
 #include "common/fixed_point.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform readonly image2DArray u_hits;
@@ -65,12 +65,12 @@ bool open_beyond(ivec2 q)
     return !in_buffer(q) || imageLoad(u_hits, ivec3(q, branch)).w < 0.5;
 }
 
-void deposit(vec2 at, vec3 flux)
+void deposit(vec2 at, vec2 half_size, vec3 flux)
 {
-    // bilinear into the four pixels around `at` (pixel centres at +0.5)
+    // by area into the pixels the box at +- half_size overlaps
     ivec2 cells[4];
     float w[4];
-    bilinear_taps(at, cells, w);
+    box_taps(at, half_size, cells, w);
     for (int i = 0; i < 4; i++) {
         ivec2 q = cells[i];
         if (w[i] <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(u_viewport.xy))))

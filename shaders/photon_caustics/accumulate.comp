@@ -6,7 +6,7 @@
 // one texel away in the photon buffer that land on the same receiver span,
 // by central differences, the parallelogram its light covers there (a ray
 // differential, as layered_caustics' splat.comp); the flux is spread over
-// it (n x n sample points, each bilinearly into four texels), so a
+// it (n x n sample points, each by area into the texels its patch covers), so a
 // diverging photon spreads, a converging one stays sharp, a uniform field
 // stays uniform (no moire between the photon grid and the texel grid), and
 // the flux is kept exactly. A neighbour's offset is clamped to
@@ -20,18 +20,18 @@ layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2D u_photons;
 uniform sampler2D u_flux;
 layout(r32ui) uniform uimage2DArray u_counts;
-#include "common/bilinear.glsl"
+#include "common/box_taps.glsl"
 #include "common/fixed_point.glsl"
 uniform float u_footprint; // texels (0: a point)
 #include "photon_caustics/window.glsl"
 
 int receiver;
 
-void deposit(vec2 at, vec3 flux) // `at` in texels (centres at +0.5)
+void deposit(vec2 at, vec2 half_size, vec3 flux) // `at` in texels (centres at +0.5)
 {
     ivec2 cells[4];
     float w[4];
-    bilinear_taps(at, cells, w);
+    box_taps(at, half_size, cells, w);
     for (int i = 0; i < 4; i++) {
         // clamped at the texture's edge: the flux stays on the receiver
         ivec2 q = clamp(cells[i], ivec2(0), ivec2(u_texture - 1));
