@@ -1,5 +1,5 @@
 // Fixed-point sums of light by integer atomics (GL 4.5 has no float
-// atomic add): value * u_fixed_point counts. Rounding to nearest is biased
+// atomic add): value * fixed_point_units counts. Rounding to nearest is biased
 // where a photon spreads over many texels and leaves each a few counts: it
 // lost the dim spread light (the halo around a ball's caustic faded as the
 // photon buffer grew, issue 8). Rounding up with the probability of the
@@ -8,10 +8,13 @@
 // 2020); fixed_point_seed starts a stream per invocation.
 uniform float u_fixed_point;
 uint fixed_point_state;
+float fixed_point_units; // counts per unit of flux: u_fixed_point unless the includer knows better
 
-void fixed_point_seed(uvec3 id)
+// Starts the invocation's stream, counting `units` per unit of flux.
+void fixed_point_seed(uvec3 id, float units)
 {
     fixed_point_state = id.x * 9781u + id.y * 6271u * 65536u + id.z * 3571u + 1u;
+    fixed_point_units = units;
 }
 
 float fixed_point_random()
@@ -23,5 +26,5 @@ float fixed_point_random()
 
 uint fixed_point_count(float value)
 {
-    return uint(clamp(value * u_fixed_point, 0.0, 4.0e9) + fixed_point_random());
+    return uint(clamp(value * fixed_point_units, 0.0, 4.0e9) + fixed_point_random());
 }

@@ -19,6 +19,14 @@ uniform int u_light_ortho;    // a directional light: parallel photons
 uniform float u_texel_area;   // directional: the area a texel spans across the beam
 uniform float u_texel_tan;    // point/spot: a texel's side on the plane at distance 1
 uniform vec2 u_jitter;        // where in its texel the photon starts (texels, within +-0.5; issue 32)
+uniform float u_fixed_point;  // counts per unit of flux that fit all the light below 2^30 (landed.glsl)
+#include "layered_caustics/landed.glsl"
+
+// A photon that lands: its brightest channel's counts to the light landed.
+void count_landed(vec3 flux)
+{
+    atomicAdd(landed_units, uint(ceil(max(max(flux.r, flux.g), flux.b) * u_fixed_point)));
+}
 
 // Where the photon (world o, d) lands on a receiver the camera sees.
 bool land(vec3 o, vec3 d, out vec3 at, out ivec2 px)
@@ -74,12 +82,15 @@ void main()
     if (path.fresnel0 > 0.0 && land(entry + reflected * (1e-4 * u_layer_extent), reflected, at, px)) {
         imageStore(u_hits, ivec3(p, 1), vec4(at, 1.0));
         imageStore(u_photons, ivec3(p, 1), vec4(flux * path.fresnel0, 0.0));
+        count_landed(flux * path.fresnel0);
     }
     vec3 exit = (u_layer_inv_view * vec4(path.origin, 1.0)).xyz;
     if (path.fresnel0 < 1.0 && land(exit, normalize(to_world * path.dir), at, px)) {
         imageStore(u_hits, ivec3(p, 0), vec4(at, 1.0));
         // a receiver inside the medium (a floor under water): absorbed on the way there too
         vec3 absorbed = layer_path_absorption(path, length(at - exit));
-        imageStore(u_photons, ivec3(p, 0), vec4(flux * (1.0 - path.fresnel0) * path.throughput * absorbed, 0.0));
+        vec3 carried = flux * (1.0 - path.fresnel0) * path.throughput * absorbed;
+        imageStore(u_photons, ivec3(p, 0), vec4(carried, 0.0));
+        count_landed(carried);
     }
 }

@@ -7,6 +7,7 @@ uniform sampler2D u_receiver_normal;
 uniform sampler2D u_receiver_depth;
 layout(r32ui) uniform readonly uimage2DArray u_flux;
 uniform float u_fixed_point;
+#include "layered_caustics/landed.glsl"
 uniform float u_pixel_tan;   // a pixel's side on the plane at distance 1 (perspective)
 uniform float u_pixel_size;  // a pixel's side (orthographic camera)
 layout(location = 0) out vec4 o_irradiance;
@@ -30,6 +31,6 @@ void main()
     float cos_axis = camera_is_ortho() ? 1.0 : max(dot(v, camera_forward()), 1e-3);
     float area = side * side * cos_axis / max(abs(dot(v, n.xyz)), 0.05);
     vec3 flux = vec3(imageLoad(u_flux, ivec3(p, 0)).r, imageLoad(u_flux, ivec3(p, 1)).r,
-                     imageLoad(u_flux, ivec3(p, 2)).r) / u_fixed_point;
+                     imageLoad(u_flux, ivec3(p, 2)).r) / landed_fixed_point();
     o_irradiance = vec4(flux / max(area, 1e-20), 1.0);
 }

@@ -17,6 +17,7 @@ uniform sampler2D u_receiver_normal;
 layout(r32ui) uniform uimage2DArray u_flux;
 #include "common/box_taps.glsl"
 #include "common/fixed_point.glsl"
+#include "layered_caustics/landed.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform readonly image2DArray u_hits;
 layout(rgba32f) uniform readonly image2DArray u_photons;
@@ -68,17 +69,21 @@ bool open_beyond(ivec2 q)
 void deposit(vec2 at, vec2 half_size, vec3 flux)
 {
     // by area into the pixels the box at +- half_size overlaps
-    ivec2 cells[4];
-    float w[4];
-    box_taps(at, half_size, cells, w);
-    for (int i = 0; i < 4; i++) {
-        ivec2 q = cells[i];
-        if (w[i] <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(u_viewport.xy))))
-            continue;
-        if (texelFetch(u_receiver_normal, q, 0).w < 0.5)
-            continue;
-        for (int k = 0; k < 3; k++)
-            imageAtomicAdd(u_flux, ivec3(q, k), fixed_point_count(flux[k] * w[i]));
+    ivec2 first, last;
+    box_cells(at.x, half_size.x, first.x, last.x);
+    box_cells(at.y, half_size.y, first.y, last.y);
+    first = max(first, ivec2(0));
+    last = min(last, ivec2(u_viewport.xy) - 1);
+    for (int y = first.y; y <= last.y; y++) {
+        float wy = box_share(at.y, half_size.y, y);
+        for (int x = first.x; x <= last.x; x++) {
+            float w = wy * box_share(at.x, half_size.x, x);
+            ivec2 q = ivec2(x, y);
+            if (w <= 0.0 || texelFetch(u_receiver_normal, q, 0).w < 0.5)
+                continue;
+            for (int k = 0; k < 3; k++)
+                imageAtomicAdd(u_flux, ivec3(q, k), fixed_point_count(flux[k] * w));
+        }
     }
 }
 
@@ -88,7 +93,7 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     branch = int(gl_GlobalInvocationID.z);
-    fixed_point_seed(gl_GlobalInvocationID);
+    fixed_point_seed(gl_GlobalInvocationID, landed_fixed_point());
     if (any(greaterThanEqual(p, u_buffer_size)))
         return;
     vec4 h = imageLoad(u_hits, ivec3(p, branch));

@@ -29,16 +29,22 @@ int receiver;
 
 void deposit(vec2 at, vec2 half_size, vec3 flux) // `at` in texels (centres at +0.5)
 {
-    ivec2 cells[4];
-    float w[4];
-    box_taps(at, half_size, cells, w);
-    for (int i = 0; i < 4; i++) {
-        // clamped at the texture's edge: the flux stays on the receiver
-        ivec2 q = clamp(cells[i], ivec2(0), ivec2(u_texture - 1));
-        if (w[i] <= 0.0)
-            continue;
-        for (int k = 0; k < 3; k++)
-            imageAtomicAdd(u_counts, ivec3(q, 3 * receiver + k), fixed_point_count(flux[k] * w[i]));
+    // by area into the texels the box at +- half_size overlaps, what falls
+    // past the texture's edge into its edge texels: the flux stays on the
+    // receiver
+    ivec2 first, last;
+    box_cells(at.x, half_size.x, first.x, last.x);
+    box_cells(at.y, half_size.y, first.y, last.y);
+    for (int y = first.y; y <= last.y; y++) {
+        float wy = box_share(at.y, half_size.y, y);
+        for (int x = first.x; x <= last.x; x++) {
+            float w = wy * box_share(at.x, half_size.x, x);
+            if (w <= 0.0)
+                continue;
+            ivec2 q = clamp(ivec2(x, y), ivec2(0), ivec2(u_texture - 1));
+            for (int k = 0; k < 3; k++)
+                imageAtomicAdd(u_counts, ivec3(q, 3 * receiver + k), fixed_point_count(flux[k] * w));
+        }
     }
 }
 
@@ -66,7 +72,7 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, textureSize(u_photons, 0))))
         return;
-    fixed_point_seed(gl_GlobalInvocationID);
+    fixed_point_seed(gl_GlobalInvocationID, u_fixed_point);
     vec4 photon = texelFetch(u_photons, p, 0);
     if (photon.w < 0.5)
         return;

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_buffer.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -22,6 +23,7 @@ struct layered_caustics_state {
     struct gl_framebuffer out_fb;
     struct gl_texture flux;
     struct gl_texture hits, photons; /* per photon: where it lands, its flux */
+    GLuint landed; /* one count: the light that landed this frame (layered_caustics/landed.glsl) */
     int buffer;
     int width, height;
     /* accumulate > 1 (issue 32): the irradiance of the last frames while
@@ -55,7 +57,7 @@ static const struct pass_param_desc params[] = {
     [LC_SEARCH] = LAYERS_PARAM_SEARCH("bisection steps per interface"),
     [LC_STEPS] = LAYERS_PARAM_STEPS("linear steps along a photon before the bisection"),
     [LC_RADIUS] = {.name = "radius", .type = PASS_PARAM_NUMBER, .default_number = 4, .min = 0.5, .max = 32,
-     .help = "each photon is spread over its footprint from its neighbours' landing points (a second-order ray differential), at most 2 x radius pixels along a side unless its neighbours on both sides say the light is spread smoothly (then up to a quarter of the image)"},
+     .help = "each photon is spread over its footprint from its neighbours' landing points (a second-order ray differential), at most 2 x radius pixels along a side unless its neighbours on both sides say the light is spread smoothly (then up to the image's width)"},
     [LC_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers", .default_output = "normal",
      .help = "the camera's receivers (a receivers pass's normal), where the photons land: by default the graph adds "
              "one, shared with the other caustics passes"},
@@ -92,6 +94,7 @@ static void release_targets(struct layered_caustics_state *s)
     gl_texture_destroy(&s->flux);
     gl_texture_destroy(&s->hits);
     gl_texture_destroy(&s->photons);
+    gl_buffer_destroy(&s->landed);
 }
 
 static void layered_caustics_destroy(struct pass *p)
@@ -128,7 +131,9 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
     if (!gl_texture_create(&s->hits, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err) ||
         !gl_texture_create(&s->photons, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, buffer, buffer, 2, err))
         return false;
-    return gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err);
+    const GLuint none = 0;
+    return gl_texture_create(&s->flux, GL_TEXTURE_2D_ARRAY, GL_R32UI, w, h, 3, err) &&
+           gl_buffer_create(&s->landed, &none, sizeof none, GL_DYNAMIC_STORAGE_BIT, err);
 }
 
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -178,10 +183,14 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     /* Photons: traced through the light's layers, then onto the receivers. */
     double total = light_view_flux_bound(fmaxf(fmaxf(fl->intensity.x, fl->intensity.y), fl->intensity.z), &proj);
     /* No pixel can gather more than all the light through the refractors:
-     * that fits below 2^32 with room to spare. */
+     * that fits below 2^32 with room to spare. The photons add up the light
+     * that lands, and the splat spreads that much over the same counts
+     * (landed.glsl). */
     float fixed_point = (float)(1.0e9 / fmax(total, 1e-20));
     const GLuint zero_u[4] = {0, 0, 0, 0};
     gl.ClearTexImage(s->flux.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, zero_u);
+    if (!gl_buffer_update(s->landed, zero_u, sizeof zero_u[0], err))
+        return false;
     struct gl_program *photons;
     if (!gl_program_get_compute(&r->programs, "layered_caustics/photons.comp", NULL, NULL, &photons, err))
         return false;
@@ -220,11 +229,13 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform2f(photons->id, gl_program_uniform(photons, "u_jitter"), jitter[0], jitter[1]);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     /* The longest a footprint's side may stretch where its neighbours say
-     * the light is spread smoothly (footprint.glsl): photons land up to a
-     * quarter of the image apart where the light's view spans much more
-     * than the camera's (a pool seen close up). */
+     * the light is spread smoothly (footprint.glsl): photons land up to
+     * the image's width apart where the light's view spans much more than
+     * the camera's (a pool seen close up; water 100 wide seen 1 wide at
+     * 256 x 256: photons 100 pixels apart, and a quarter of the image left
+     * the floor a black grid carrying dotted squares of light). */
     int longest_side = f->width > f->height ? f->width : f->height;
-    float stretch_limit = fmaxf(32.0f, 0.25f * (float)longest_side);
+    float stretch_limit = fmaxf(32.0f, (float)longest_side);
     /* A photon may start far outside the camera's view and land inside it,
      * or past its edge and still spread into it: the receivers go on past
      * the edge as far as a footprint reaches (scene_trace.glsl), so the
@@ -233,10 +244,12 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
      * photons landed 30 pixels apart). */
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"),
                         fmaxf(2.0f * max_radius, stretch_limit) + 1.0f);
+    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_fixed_point"), fixed_point);
+    gl_program_bind_storage(photons, "LandedFlux", s->landed);
     gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(photons, "u_photons", s->photons.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "photons");
 
     /* Each photon splatted over its own footprint. */
@@ -255,6 +268,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
+    gl_program_bind_storage(splat, "LandedFlux", s->landed);
     /* Accumulating 16 frames or more while the light and the geometry stand
      * still, a photon whose cell lands within about a pixel (the focused
      * light, where a coarse grid's footprints are least exact) covers only
@@ -268,7 +282,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_cell"), accumulate >= 16 && still ? 0.25f : 1.0f);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_cell_up_to"), 1.0f);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "splat");
 
     /* Flux per pixel -> irradiance. */
@@ -285,6 +299,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl_program_bind_texture(resolve, "u_receiver_normal", receiver_normal);
     gl_program_bind_image(resolve, "u_flux", s->flux.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
+    gl_program_bind_storage(resolve, "LandedFlux", s->landed);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
     renderer_draw_fullscreen(r);
