@@ -103,6 +103,38 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                          p->desc->name, k + 1, object_role_name(object_role(o)), why);
         }
     }
+    /* A medium in the scene and caustics on surfaces only: no pass draws
+     * the light the refractors bend scattered on its way (issue 52: a
+     * glass ball in fog under photon_caustics showed no shaft, and no
+     * line said why). One line a pass, naming its refractors. */
+    bool volume = false;
+    for (int i = 0; i < g->count; i++)
+        volume = volume || (kept(&g->entries[i]) && g->entries[i].pass->desc->volume_caustics);
+    for (int i = 0; i < g->count && scene->medium && !volume && count < max; i++) {
+        const struct pass *p = g->entries[i].pass;
+        if (!kept(&g->entries[i]) || !p->desc->surface_caustics_only)
+            continue;
+        char names[160] = "";
+        int listed = 0, refractors = 0;
+        for (int k = 0; k < scene->object_count; k++) {
+            if (!object_is(scene->objects[k], OBJECT_ROLE_REFRACTOR))
+                continue;
+            refractors++;
+            if (listed < 4) {
+                size_t used = strlen(names);
+                snprintf(names + used, sizeof names - used, "%s%d (%s)", listed ? ", " : "", k + 1,
+                         object_role_name(object_role(scene->objects[k])));
+                listed++;
+            }
+        }
+        if (refractors > 0)
+            snprintf(messages[count++], 400,
+                     "pass '%s' (%s) makes caustics on surfaces only: none of the light that object%s %s%s bend%s is "
+                     "drawn where the scene's medium scatters it (no volume caustic: add beam_caustics, whose "
+                     "inscatter volume_light adds)",
+                     p->name, p->desc->name, refractors > 1 ? "s" : "", names, refractors > listed ? ", ..." : "",
+                     refractors > 1 ? "" : "s");
+    }
     /* A depth range the 24 bits of the depth buffers cannot resolve at the
      * scene: perspective depth steps grow as distance^2 / near, an
      * orthographic camera's are (far - near) / 2^24 everywhere. Surfaces

@@ -164,6 +164,15 @@ struct pass_desc {
      * per pass and object, so nothing renders dark without a line saying
      * why (issue 27). NULL: the pass handles every object. */
     const char *(*leaves_out)(const struct pass *p, const struct scene *scene, const struct object *o);
+    /* A caustics pass that carries light through the refractors onto
+     * surfaces only: in a scene with a participating medium, the light it
+     * bends and the medium scatters (volume caustics, the shafts under a
+     * glass ball in fog) is drawn by no pass unless one that makes them is
+     * in the graph too (`volume_caustics`); graph_lint says so, naming the
+     * refractors. */
+    bool surface_caustics_only;
+    /* Makes the light the refractors bend and a medium scatters (beam_caustics' inscatter). */
+    bool volume_caustics;
     /* Sets the parameters of the building block the graph adds for input
      * parameter `param` (one with `.block`): a depth-layer set for this
      * pass's light at its buffer size. NULL: the block's defaults. */

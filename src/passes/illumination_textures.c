@@ -544,6 +544,7 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
 }
 
 const struct pass_desc illumination_textures_pass = {
+    .surface_caustics_only = true,
     .name = "illumination_textures",
     .leaves_out = illumination_textures_leaves_out,
     .summary = "Iwasaki et al.: caustics through illumination textures on virtual planes and a light transport table",

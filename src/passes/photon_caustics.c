@@ -596,6 +596,7 @@ static const char *photon_caustics_leaves_out(const struct pass *p, const struct
 }
 
 const struct pass_desc photon_caustics_pass = {
+    .surface_caustics_only = true,
     .leaves_out = photon_caustics_leaves_out,
     .name = "photon_caustics",
     .summary = "Hu & Qin §3: photon buffer from the light, caustic textures per receiver, caustic mapping",

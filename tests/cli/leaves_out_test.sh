@@ -104,4 +104,13 @@ for t in refraction layered_refraction sliced_refraction; do
     && pass "$t: a box inside a glass block said once; one inside a hollow cup not" \
     || fail "$t, a box inside glass" "$(cat "$WORK/e.txt" "$WORK/h.txt")"
 done
+# fog with a glass ball: caustics on surfaces only draw no shaft, and say so once (issue 52); beams make it
+"$CAUSTICA" info tests/scenes/fog.lua --set ball=true --set technique=photons --no-render >"$WORK/fog.txt" 2>&1
+[ "$(grep -c "pass 'photons' (photon_caustics) makes caustics on surfaces only: none of the light that object 1 (glass) bends is drawn where the scene's medium scatters it" "$WORK/fog.txt")" = 1 ] \
+  && pass "photon_caustics in fog: one warning, no volume caustic" || fail "photon_caustics in fog" "$(cat "$WORK/fog.txt")"
+"$CAUSTICA" info tests/scenes/fog.lua --set ball=true --set technique=beams --no-render >"$WORK/fogb.txt" 2>&1
+! grep -q "surfaces only" "$WORK/fogb.txt" && pass "beam_caustics in fog: no warning" \
+  || fail "beam_caustics in fog" "$(cat "$WORK/fogb.txt")"
+! grep -q "surfaces only" "$WORK/c.txt" && pass "layered_caustics with no medium: no volume warning" \
+  || fail "layered_caustics with no medium" "$(cat "$WORK/c.txt")"
 finish

@@ -5,8 +5,8 @@
 -- (the ball long along z: a line focus), inside=true (the camera in the fog
 -- under the ball, looking up the beams), ortho=true (an orthographic camera
 -- 2.4 wide: the image's sum is the power scattered towards it),
--- technique=plain|beams (the GPU graph: plain shading, or beam_caustics and
--- volume_light), grid=, refine=, volumes=tight|prism, max_focus=,
+-- technique=plain|beams|photons (the GPU graph: plain shading, beam_caustics
+-- and volume_light, or photon_caustics and volume_light), grid=, refine=, volumes=tight|prism, max_focus=,
 -- reflection=, output=color|inscatter|irradiance.
 local c = require "caustica"
 local mode = c.param("density", "homogeneous")
@@ -47,10 +47,18 @@ if technique == "beams" then
   gr:add("fog", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth", add = "beams.inscatter" })
   local out = c.param("output", "color")
   gr:output(out == "color" and "fog.color" or "beams." .. out)
+elseif technique == "photons" then
+  -- caustics on surfaces only: the fog's shaft under the ball is drawn by
+  -- no pass, and the graph says so (issue 52)
+  gr:add("shadow", c.pass.shadow_map { light = sun, size = 512 })
+  gr:add("photons", c.pass.photon_caustics { light = sun })
+  gr:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+  gr:add("fog", c.pass.volume_light { color = "shade.color", shadow = "shadow.depth" })
+  gr:output("fog.color")
 elseif technique == "plain" then
   gr:add("shade", c.pass.shade {})
   gr:output("shade.color")
 else
-  error("technique: plain or beams expected, got " .. tostring(technique))
+  error("technique: plain, beams or photons expected, got " .. tostring(technique))
 end
 return { scene = scene, graph = gr, size = {size, size} }
