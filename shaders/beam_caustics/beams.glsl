@@ -21,6 +21,9 @@ const uint VERTEX_TRANSMITTED = 1u, VERTEX_REFLECTED = 2u, VERTEX_SURFACE = 4u;
 // the nearest texel towards a neighbour that meets them (the silhouette): a
 // beam needs at least one corner that is not snapped.
 const uint VERTEX_SNAPPED = 8u;
+// Its transmitted ray meets a receiver (or the medium) inside the camera's
+// view: the light the pass counts when it says how much makes no beam.
+const uint VERTEX_SEEN = 16u;
 
 layout(std430) buffer BeamVertices { BeamVertex beam_vertices[]; };
 
@@ -59,7 +62,7 @@ const int COUNT_DRAW = 8;       // count, instances, first, base instance
 const int COUNT_BUILD = 12;     // x, y, z: the beam builder's dispatch
 const int COUNT_OVERFLOW = 15;  // cells or beams past capacity (dropped)
 const int COUNT_PRISMS = 16;    // beams that fell back to the prism
-const int COUNT_WHOLE = 17;     // light-plane area (lattice units x 2) of transmitted triangles made beams
+const int COUNT_WHOLE = 17;     // light-plane area (lattice units) x corners seen of transmitted triangles made beams
 const int COUNT_PARTED = 18;    // ... of triangles lit at every corner whose paths part (no beam)
 const int COUNT_SIZE = 20;
 layout(std430) buffer BeamCounters { uint counters[]; };

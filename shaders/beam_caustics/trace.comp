@@ -128,7 +128,11 @@ void main()
             vec3 o = (u_layer_inv_view * vec4(path.origin, 1.0)).xyz;
             vec3 d = normalize(to_world * path.dir);
             bv.exit_pos = vec4(o, 0.0);
-            bv.exit_dir = vec4(d, extrusion_length(o, d));
+            float len = extrusion_length(o, d);
+            bv.exit_dir = vec4(d, len);
+            vec4 clip = u_view_proj * vec4(o + d * len, 1.0);
+            if (len > 0.0 && clip.w > 0.0 && all(lessThanEqual(abs(clip.xy), vec2(clip.w))))
+                flags |= VERTEX_SEEN;
             // the path's signature: rays through different interfaces do not share a beam
             bv.exit_weight = vec4(w * (1.0 - path.fresnel0) * path.throughput,
                                   float(path.interfaces + 64 * path.tir));
