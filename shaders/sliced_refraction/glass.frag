@@ -52,8 +52,15 @@ void main()
         n = -n;
     float f = fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
     vec3 color = vec3(0.0);
-    if (v_valid > 0.999) {
-        color += (1.0 - f) * v_transmittance * through_slices(v_exit_position, normalize(v_exit_direction));
+    // The vertices without a path write zeros (and w 0): the interpolated
+    // exits divided by the interpolated validity are the mean of the
+    // vertices that have one. A triangle with one corner on the silhouette
+    // (a cube's corners graze the view) still refracts, as its other
+    // corners say; while it needed all three, every face of an IOR-1.0 cube
+    // showed the environment's reflection, one smooth colour each.
+    if (v_valid > 1e-3) {
+        color += (1.0 - f) * (v_transmittance / v_valid) *
+                 through_slices(v_exit_position / v_valid, normalize(v_exit_direction));
     } else {
         // no path through the table here (the silhouette, or total internal
         // reflection): the light comes back out as reflection

@@ -55,11 +55,9 @@ struct illum_state {
     struct transport_tracer *tracers[ILLUM_MAX_REFRACTORS];
     bool *flat[ILLUM_MAX_REFRACTORS]; /* illum_flat_vertices of each table's mesh, made with its tracer */
     uint64_t tracer_key[ILLUM_MAX_REFRACTORS];
-    /* the mesh each table samples: the object's, or `fine`, its subdivision */
+    /* the mesh each table samples: the object's, or `fine`'s subdivision of it */
     const struct mesh *table_mesh[ILLUM_MAX_REFRACTORS];
-    struct mesh *fine[ILLUM_MAX_REFRACTORS];
-    uint64_t fine_of[ILLUM_MAX_REFRACTORS]; /* the serial of the mesh `fine` subdivides */
-    int fine_levels[ILLUM_MAX_REFRACTORS];
+    struct mesh_table_fine fine[ILLUM_MAX_REFRACTORS];
     int table_count;
     struct gl_texture target, target_depth, textures, receiver_depth;
     struct gl_framebuffer target_fb, texture_fb, map_fb;
@@ -134,8 +132,7 @@ static void illum_destroy(struct pass *p)
         transport_table_release(&s->tables[i]);
         transport_tracer_destroy(s->tracers[i]);
         free(s->flat[i]);
-        if (s->fine[i])
-            mesh_destroy(s->fine[i]);
+        mesh_table_fine_release(&s->fine[i]);
     }
     release_targets(s);
     gl_framebuffer_destroy(&s->target_fb);
@@ -198,7 +195,7 @@ static enum pass_need illum_needed(struct pass *p, struct pass_frame *f, char *w
     bool all_cached = s->table_count > 0;
     int subdivided = 0;
     for (int i = 0; i < s->table_count; i++) {
-        subdivided += s->table_mesh[i] == s->fine[i] && s->fine[i];
+        subdivided += s->fine[i].fine && s->table_mesh[i] == s->fine[i].fine;
         bytes += s->tables[i].bytes;
         vertices += s->tables[i].vertex_count;
         seconds += s->tables[i].build_seconds;
@@ -260,30 +257,6 @@ static bool collect_volumes(struct illum_state *s, const struct frame *fr, const
 
 /* Builds the tables (when new), the virtual camera, the planes and the
  * illumination textures. */
-/* The mesh table k samples: the object's own, or its subdivision where its
- * triangles are coarse against it (kept while the object's mesh is the
- * same). NULL on error. */
-static const struct mesh *table_mesh(struct illum_state *s, int k, const struct mesh *m, struct error *err)
-{
-    float diagonal = vec3_length(vec3_sub(m->bounds_max, m->bounds_min));
-    int levels = mesh_subdivision_levels(m, ILLUM_EDGE_FRACTION * diagonal, ILLUM_MAX_TABLE_TRIANGLES);
-    if (levels == 0) {
-        s->table_mesh[k] = m;
-        return m;
-    }
-    if (!s->fine[k] || s->fine_of[k] != m->serial || s->fine_levels[k] != levels) {
-        if (s->fine[k])
-            mesh_destroy(s->fine[k]);
-        s->fine[k] = mesh_create_subdivided(m, levels, err);
-        if (!s->fine[k])
-            return NULL;
-        s->fine_of[k] = m->serial;
-        s->fine_levels[k] = levels;
-    }
-    s->table_mesh[k] = s->fine[k];
-    return s->fine[k];
-}
-
 /* What a tracer traces: the mesh and the material's optics. */
 static uint64_t tracer_key(const struct mesh *m, const struct material *mat, enum transport_internal internal)
 {
@@ -308,7 +281,8 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
         if (!is_refractor(o))
             continue;
         int k = s->table_count++;
-        const struct mesh *m = table_mesh(s, k, o->mesh, err);
+        const struct mesh *m = s->table_mesh[k] =
+            mesh_table_mesh(&s->fine[k], o->mesh, ILLUM_EDGE_FRACTION, ILLUM_MAX_TABLE_TRIANGLES, err);
         if (!m)
             return false;
         struct transport_table *t = &s->tables[k];

@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_buffer.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -29,9 +30,27 @@
 
 #define SLICED_MAX_REFRACTORS 8
 #define SLICED_MAX_SLICES 16
+/* Subdivided for the table as illumination_textures' (a cube's faces into
+ * 16 x 16): each vertex's viewing ray is one path, interpolated across its
+ * triangles, and a cube's 12 triangles cannot hold a face whose rays leave
+ * by the back and by a side (the reference's bands of side light were
+ * missing at IOR 1.5). */
+#define SLICED_EDGE_FRACTION (1.0f / 16.0f)
+#define SLICED_MAX_TABLE_TRIANGLES 8192
+
+/* The table's mesh of one glass object, on the GPU: the glass is drawn
+ * with it, one viewing ray a vertex (glass.vert reads them by index). */
+struct sliced_surface {
+    GLuint vao, positions, normals, indices;
+    GLsizei index_count;
+    uint64_t serial; /* the mesh they hold */
+};
 
 struct sliced_state {
     struct transport_table tables[SLICED_MAX_REFRACTORS];
+    struct mesh_table_fine fine[SLICED_MAX_REFRACTORS];
+    const struct mesh *table_mesh[SLICED_MAX_REFRACTORS];
+    struct sliced_surface surfaces[SLICED_MAX_REFRACTORS];
     GLuint exits[SLICED_MAX_REFRACTORS];
     size_t exit_capacity[SLICED_MAX_REFRACTORS];
     struct gl_texture slices, slice_depth;
@@ -71,6 +90,42 @@ static bool sliced_create(struct pass *p, struct renderer *r, struct error *err)
     return gl_framebuffer_create(&s->slice_fb, err) && gl_framebuffer_create(&s->out_fb, err);
 }
 
+static void surface_release(struct sliced_surface *g)
+{
+    if (g->vao && gl_api_ready())
+        gl.DeleteVertexArrays(1, &g->vao);
+    gl_buffer_destroy(&g->positions);
+    gl_buffer_destroy(&g->normals);
+    gl_buffer_destroy(&g->indices);
+    *g = (struct sliced_surface){0};
+}
+
+/* The mesh's positions, normals and triangles on the GPU (again only when
+ * it is another mesh). */
+static bool surface_upload(struct sliced_surface *g, const struct mesh *m, struct error *err)
+{
+    if (g->vao && g->serial == m->serial)
+        return true;
+    surface_release(g);
+    size_t vec3s = m->vertex_count * 3 * sizeof(float);
+    if (!gl_buffer_create(&g->positions, m->positions, vec3s, 0, err) ||
+        !gl_buffer_create(&g->normals, m->normals, vec3s, 0, err) ||
+        !gl_buffer_create(&g->indices, m->indices, m->index_count * sizeof(uint32_t), 0, err))
+        return false;
+    gl.CreateVertexArrays(1, &g->vao);
+    GLuint buffers[2] = {g->positions, g->normals};
+    for (GLuint a = 0; a < 2; a++) {
+        gl.EnableVertexArrayAttrib(g->vao, a);
+        gl.VertexArrayAttribFormat(g->vao, a, 3, GL_FLOAT, GL_FALSE, 0);
+        gl.VertexArrayAttribBinding(g->vao, a, a);
+        gl.VertexArrayVertexBuffer(g->vao, a, buffers[a], 0, 3 * sizeof(float));
+    }
+    gl.VertexArrayElementBuffer(g->vao, g->indices);
+    g->index_count = (GLsizei)m->index_count;
+    g->serial = m->serial;
+    return true;
+}
+
 static void sliced_destroy(struct pass *p)
 {
     struct sliced_state *s = p->state;
@@ -78,6 +133,8 @@ static void sliced_destroy(struct pass *p)
         return;
     for (int i = 0; i < SLICED_MAX_REFRACTORS; i++) {
         transport_table_release(&s->tables[i]);
+        mesh_table_fine_release(&s->fine[i]);
+        surface_release(&s->surfaces[i]);
         if (s->exits[i] && gl_api_ready())
             gl.DeleteBuffers(1, &s->exits[i]);
     }
@@ -99,7 +156,7 @@ static bool is_refractor(const struct object *o) { return object_is(o, SLICED_RE
 static bool viewing_rays(struct sliced_state *s, int k, const struct object *o, const struct frame *fr,
                          const struct scene *scene, vec3 *dir_sum, vec3 *exit_sum, int *exit_count, struct error *err)
 {
-    const struct mesh *m = o->mesh;
+    const struct mesh *m = s->table_mesh[k];
     const struct frame_object *fo = frame_object_of(fr, o);
     mat4 model = fo ? fo->model : object_model_matrix(o), inverse;
     if (!mat4_inverse(model, &inverse))
@@ -162,9 +219,12 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
+        const struct mesh *m = s->table_mesh[k] =
+            mesh_table_mesh(&s->fine[k], o->mesh, SLICED_EDGE_FRACTION, SLICED_MAX_TABLE_TRIANGLES, err);
         /* a fine mesh gets fewer directions, so its table fits (said in the report) */
-        if (!transport_table_ensure(&s->tables[k], o->mesh, &o->material, resolution, TRANSPORT_INTERNAL_NONE, i + 1,
-                                    p->report, sizeof p->report, err))
+        if (!m || !transport_table_ensure(&s->tables[k], m, &o->material, resolution, TRANSPORT_INTERNAL_NONE, i + 1,
+                                          p->report, sizeof p->report, err) ||
+            !surface_upload(&s->surfaces[k], m, err))
             return false;
         if (!viewing_rays(s, k, o, f->snapshot, scene, &dir_sum, &exit_sum, &exit_count, err))
             return false;
@@ -272,14 +332,26 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, name), planes[i]);
     }
     gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_reflection"), pass_flag(p, SR_REFLECTION));
+    gl.UseProgram(glass->id);
     k = 0;
     for (int i = 0; i < scene->object_count && k < SLICED_MAX_REFRACTORS; i++) {
         struct object *o = scene->objects[i];
         if (!is_refractor(o))
             continue;
+        const struct sliced_surface *g = &s->surfaces[k];
         gl_program_bind_storage(glass, "Exits", s->exits[k++]);
-        renderer_draw_object(r, scene, glass, o);
+        const struct frame_object *fo = frame_object_of(f->snapshot, o);
+        if (!o->visible || !fo)
+            continue;
+        gl.ProgramUniformMatrix4fv(glass->id, gl_program_uniform(glass, "u_model"), 1, GL_FALSE, fo->model.m);
+        gl.ProgramUniformMatrix4fv(glass->id, gl_program_uniform(glass, "u_normal_matrix"), 1, GL_FALSE,
+                                   fo->normal_matrix.m);
+        gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, "u_ior"), o->material.ior);
+        gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, "u_ideal"), o->material.ideal ? 1.0f : 0.0f);
+        gl.BindVertexArray(g->vao);
+        gl.DrawElements(GL_TRIANGLES, g->index_count, GL_UNSIGNED_INT, NULL);
     }
+    gl.BindVertexArray(0);
     pass_stage_end(p, "glass");
     return gl_check("sliced_refraction", err);
 }

@@ -116,3 +116,28 @@ struct mesh *mesh_create_subdivided(const struct mesh *m, int levels, struct err
     }
     return out;
 }
+
+const struct mesh *mesh_table_mesh(struct mesh_table_fine *c, const struct mesh *m, float edge_fraction,
+                                   size_t max_triangles, struct error *err)
+{
+    float diagonal = vec3_length(vec3_sub(m->bounds_max, m->bounds_min));
+    int levels = mesh_subdivision_levels(m, edge_fraction * diagonal, max_triangles);
+    if (levels == 0)
+        return m;
+    if (!c->fine || c->of != m->serial || c->levels != levels) {
+        mesh_table_fine_release(c);
+        c->fine = mesh_create_subdivided(m, levels, err);
+        if (!c->fine)
+            return NULL;
+        c->of = m->serial;
+        c->levels = levels;
+    }
+    return c->fine;
+}
+
+void mesh_table_fine_release(struct mesh_table_fine *c)
+{
+    if (c->fine)
+        mesh_destroy(c->fine);
+    *c = (struct mesh_table_fine){0};
+}

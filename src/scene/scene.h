@@ -239,6 +239,21 @@ bool mesh_contains_point(const struct mesh *mesh, vec3 p);
 bool mesh_encloses_point(const struct mesh *mesh, vec3 p);
 int mesh_subdivision_levels(const struct mesh *mesh, float max_edge, size_t max_triangles);
 struct mesh *mesh_create_subdivided(const struct mesh *mesh, int levels, struct error *err);
+/* The mesh a light transport table samples (Iwasaki et al. §3, a path per
+ * vertex): the object's own, or its subdivision where a triangle's edge is
+ * longer than edge_fraction of the mesh's bounding diagonal (a cube's
+ * corners' paths leave by different faces: its 12 triangles interpolate
+ * one path across a face that sends light out of two), kept in `fine`
+ * while the mesh is the same. Shared by illumination_textures and
+ * sliced_refraction. NULL on error. */
+struct mesh_table_fine {
+    struct mesh *fine;
+    uint64_t of; /* the serial of the mesh `fine` subdivides */
+    int levels;
+};
+const struct mesh *mesh_table_mesh(struct mesh_table_fine *c, const struct mesh *mesh, float edge_fraction,
+                                   size_t max_triangles, struct error *err);
+void mesh_table_fine_release(struct mesh_table_fine *c);
 /* d_N per vertex into mesh->thickness (scene/thickness.c, Embree). */
 bool mesh_compute_thickness(struct mesh *mesh, struct error *err);
 void mesh_retain(struct mesh *mesh);
