@@ -135,6 +135,38 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
                      p->name, p->desc->name, refractors > 1 ? "s" : "", names, refractors > listed ? ", ..." : "",
                      refractors > 1 ? "" : "s");
     }
+    /* The camera inside a refractor that a view technique draws, in a graph
+     * that makes caustics: what it sees through the glass is lit by that
+     * pass's own lookups, without them (issue 52: the camera in a glass
+     * ball over a floor saw no caustic, where the reference's floor shows
+     * the ball's focus in its shadow). */
+    bool caustics = volume;
+    for (int i = 0; i < g->count; i++)
+        caustics = caustics || (kept(&g->entries[i]) && g->entries[i].pass->desc->surface_caustics_only);
+    for (int i = 0; i < g->count && caustics && count < max; i++) {
+        const struct pass *p = g->entries[i].pass;
+        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0;
+        if (!p->desc->behind_glass_without_caustics || !(mine & OBJECT_ROLE_REFRACTOR))
+            continue;
+        /* what its input shows behind the glass: nothing, where the pass
+         * that made it drew the glass itself */
+        unsigned theirs = 0;
+        for (int k = 0; k < p->input_count; k++) {
+            const struct pass *maker = strcmp(p->inputs[k].name, "color") == 0 ? producer(g, p->inputs[k].source) : NULL;
+            theirs |= maker && maker->desc->draws ? maker->desc->draws(maker) : 0;
+        }
+        for (int k = 0; k < scene->object_count && count < max; k++) {
+            const struct object *o = scene->objects[k];
+            unsigned role = object_role(o);
+            if (object_is(o, OBJECT_ROLE_REFRACTOR) && (mine & role) && (theirs & (role | PASS_DRAWS_ANYTHING)) &&
+                object_contains_point(o, scene->camera.eye))
+                snprintf(messages[count++], 400,
+                         "pass '%s' (%s): the camera is inside object %d (%s), which its input shows, so what it sees "
+                         "through it is its own lookups' view, lit without caustics (the caustics passes' images are "
+                         "of the surfaces the camera sees directly): shade { specular = false } leaves them in the input",
+                         p->name, p->desc->name, k + 1, object_role_name(role));
+        }
+    }
     /* A depth range the 24 bits of the depth buffers cannot resolve at the
      * scene: perspective depth steps grow as distance^2 / near, an
      * orthographic camera's are (far - near) / 2^24 everywhere. Surfaces

@@ -51,6 +51,12 @@ struct pass_param_desc {
      * the pass that makes input `default_beside` (refraction's depth is the
      * depth of the pass that made its colour). */
     const char *default_beside, *default_output;
+    /* input list: when the script gives none, the list of the same name of
+     * the pass that makes input `default_like` (refraction's shadow maps are
+     * those of the pass that made its colour: the distance map's surfaces
+     * were lit unshadowed, a floor seen only through the glass showed no
+     * shadow, issue 52). */
+    const char *default_like;
     /* input: the building block (a registered pass, e.g. "receivers") the
      * graph adds and shares when the script names none (issue 26); its
      * parameters come from the reader's `configure_block`. */
@@ -173,6 +179,12 @@ struct pass_desc {
     bool surface_caustics_only;
     /* Makes the light the refractors bend and a medium scatters (beam_caustics' inscatter). */
     bool volume_caustics;
+    /* Shows what lies behind the glass it draws lit by its own lookups (a
+     * distance map, impostors, slices), which carry no caustics: the
+     * caustics passes' images are of the receivers the camera sees
+     * directly. With the camera inside a refractor it draws, nothing it
+     * shows has caustics (graph_lint says so). */
+    bool behind_glass_without_caustics;
     /* Sets the parameters of the building block the graph adds for input
      * parameter `param` (one with `.block`): a depth-layer set for this
      * pass's light at its buffer size. NULL: the block's defaults. */

@@ -119,4 +119,13 @@ done
   || fail "beam_caustics in fog" "$(cat "$WORK/fogb.txt")"
 ! grep -q "surfaces only" "$WORK/c.txt" && pass "layered_caustics with no medium: no volume warning" \
   || fail "layered_caustics with no medium" "$(cat "$WORK/c.txt")"
+# the camera inside a glass ball that the input shows (shade draws it): refraction's view through it
+# carries no caustics, said once; with the floor left in the input, or the camera outside, nothing
+"$CAUSTICA" info tests/scenes/inside_ball.lua --no-render >"$WORK/ib.txt" 2>&1
+"$CAUSTICA" info tests/scenes/inside_ball.lua --set specular=false --no-render >"$WORK/ib2.txt" 2>&1
+"$CAUSTICA" info tests/scenes/inside_ball.lua --set outside=true --no-render >"$WORK/ib3.txt" 2>&1
+[ "$(grep -c "pass 'glass' (refraction): the camera is inside object 2 (glass), which its input shows, so what it sees through it is its own lookups' view, lit without caustics" "$WORK/ib.txt")" = 1 ] \
+  && ! grep -q "lit without caustics" "$WORK/ib2.txt" "$WORK/ib3.txt" \
+  && pass "the camera inside a ball the input shows: one line, none with the floor in the input or outside" \
+  || fail "the camera inside a ball" "$(cat "$WORK/ib.txt" "$WORK/ib2.txt" "$WORK/ib3.txt")"
 finish
