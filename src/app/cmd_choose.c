@@ -116,7 +116,7 @@ static bool technique_leaves_out(struct app *app, const struct cli *cli, const c
         char messages[GRAPH_LINT_MAX][400];
         int n = graph_lint(s->graph, s->scene, NULL, messages, GRAPH_LINT_MAX);
         for (int i = 0; i < n && !*leaves; i++)
-            if (strstr(messages[i], " leaves out object ")) {
+            if (graph_lint_is_omission(messages[i])) {
                 *leaves = true;
                 size_t len = strnlen(messages[i], sizeof messages[i] - 1);
                 len = len < whylen ? len : whylen - 1;

@@ -234,47 +234,6 @@ static bool read_block(struct pass *consumer, int param, const struct pass *bloc
     return true;
 }
 
-/* The pass in `list` named by the first part of `source` ("shade.color"). */
-static const struct pass *source_pass(const struct graph_entry *list, int count, const char *source)
-{
-    size_t len = strcspn(source, ".");
-    for (int i = 0; i < count; i++)
-        if (strlen(list[i].pass->name) == len && strncmp(list[i].pass->name, source, len) == 0)
-            return list[i].pass;
-    return NULL;
-}
-
-/* Input lists the script left empty that take another pass's list
- * (pass_param_desc.default_like): declared after the script's inputs,
- * again at every compile (the counts were reset to the script's). */
-static bool inherit_lists(struct graph_entry *list, int count, struct error *err)
-{
-    for (int i = 0; i < count; i++) {
-        struct pass *p = list[i].pass;
-        for (int k = 0; k < p->desc->param_count; k++) {
-            const struct pass_param_desc *pd = &p->desc->params[k];
-            if (pd->type != PASS_PARAM_INPUT_LIST || !pd->default_like || p->values[k].list_count > 0)
-                continue;
-            const char *source = NULL;
-            for (int n = 0; n < p->input_count && !source; n++)
-                if (strcmp(p->inputs[n].name, pd->default_like) == 0)
-                    source = p->inputs[n].source;
-            const struct pass *maker = source ? source_pass(list, count, source) : NULL;
-            int theirs = maker ? pass_param_index(maker->desc, pd->name) : -1;
-            if (theirs < 0 || maker->desc->params[theirs].type != PASS_PARAM_INPUT_LIST)
-                continue;
-            const struct pass_value *v = &maker->values[theirs];
-            for (int n = 0; n < v->list_count && (pd->max <= 0 || n < (int)pd->max); n++) {
-                char slot[PASS_NAME_MAX];
-                snprintf(slot, sizeof slot, "%.40s%d", pd->name, n);
-                if (!pass_declare_input(p, slot, v->list[n], err))
-                    return false;
-            }
-        }
-    }
-    return true;
-}
-
 static bool add_blocks(struct graph *g, struct error *err)
 {
     struct old_blocks old = {calloc((size_t)(g->count > 0 ? g->count : 1), sizeof *old.entries), 0};
@@ -295,7 +254,7 @@ static bool add_blocks(struct graph *g, struct error *err)
             g->entries[i].pass->input_count = g->entries[i].pass->declared_inputs;
         }
     }
-    bool ok = inherit_lists(list, count, err);
+    bool ok = true;
     for (int i = 0; i < count && ok; i++) {
         struct pass *p = list[i].pass;
         if (p->implicit)

@@ -234,3 +234,15 @@ int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *vie
     }
     return count;
 }
+
+/* The phrases of the sentences above that say something is not drawn. */
+static const char *const omissions[] = {" leaves out object ", " makes caustics on surfaces only: ",
+                                        " lit without caustics "};
+
+bool graph_lint_is_omission(const char *message)
+{
+    for (size_t i = 0; i < sizeof omissions / sizeof omissions[0]; i++)
+        if (strstr(message, omissions[i]))
+            return true;
+    return false;
+}

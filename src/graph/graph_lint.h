@@ -14,5 +14,10 @@
 /* Fills up to GRAPH_LINT_MAX sentences; returns how many. With a camera's
  * `view_proj` (may be NULL), objects outside its view are not reported. */
 int graph_lint(const struct graph *g, const struct scene *scene, const mat4 *view_proj, char messages[][400], int max);
+/* Whether a sentence of graph_lint's says a pass leaves something of the
+ * scene undrawn (an object it cannot handle, caustics in a medium, the
+ * caustics seen from inside a refractor): `choose` never picks a technique
+ * whose graph says one (issues 27, 52). */
+bool graph_lint_is_omission(const char *message);
 
 #endif

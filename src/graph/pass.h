@@ -51,12 +51,6 @@ struct pass_param_desc {
      * the pass that makes input `default_beside` (refraction's depth is the
      * depth of the pass that made its colour). */
     const char *default_beside, *default_output;
-    /* input list: when the script gives none, the list of the same name of
-     * the pass that makes input `default_like` (refraction's shadow maps are
-     * those of the pass that made its colour: the distance map's surfaces
-     * were lit unshadowed, a floor seen only through the glass showed no
-     * shadow, issue 52). */
-    const char *default_like;
     /* input: the building block (a registered pass, e.g. "receivers") the
      * graph adds and shares when the script names none (issue 26); its
      * parameters come from the reader's `configure_block`. */

@@ -101,10 +101,8 @@ static const struct pass_param_desc params[] = {
              "paper's one rectangle per object "
              "(§2.2), which large receivers break (docs/techniques/hu_qin.md)"},
     [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
-     .default_like = "color",
      .help = "shadow maps for lighting the distance map's surfaces and the diffuse share of partly "
-             "transmissive glass as shade does (e.g. \"shadow.depth\"); by default those of the pass that made "
-             "`color`"},
+             "transmissive glass as shade does (e.g. \"shadow.depth\"); without them they are unshadowed"},
     [REFRACTION_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 8,
      .help = "interfaces a path meets from its first way out on: 1 = the paper's two interfaces (a total internal "
              "reflection leaves along its reflection); more follow total internal reflections and the Fresnel-"

@@ -32,9 +32,8 @@ static const struct pass_param_desc params[] = {
      .help = "the scene's surfaces (e.g. \"shade.color\"), attenuated by the medium in front of them"},
     [VL_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
      .help = "its depth buffer; default: the depth output of the pass that made color"},
-    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .default_like = "color",
-     .help = "shadow map(s) of the lights, shadowing the light in the medium (by default those of the pass that "
-             "made `color`; a light without one is unshadowed)"},
+    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
+     .help = "shadow map(s) of the lights, shadowing the light in the medium (a light without one is unshadowed)"},
     [VL_ADD] = {.name = "add", .type = PASS_PARAM_INPUT_LIST, .max = VOLUME_LIGHT_MAX_ADD,
      .help = "radiance images added on top, e.g. \"beams.inscatter\" (volume caustics)"},
     [VL_STEPS] = {.name = "steps", .type = PASS_PARAM_INTEGER, .default_number = 32, .min = 1, .max = 1024,

@@ -184,4 +184,39 @@ if [ -n "$pcache" ]; then
 else
   fail "bench of the pool" "no sweep cache: $(tail -3 "$WORK/pb.txt")"
 fi
+# Nor one whose caustics in fog are on surfaces only (issue 52): photons through a glass ball in a
+# medium draw no shaft, so beams are chosen though photons are cheaper and within the error.
+cat >"$WORK/fog.lua" <<'LUA'
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {-3, 0.5, 0}, target = {0, 0.5, 0}, fov = 30 }, background = {0, 0, 0} }
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
+scene.medium = c.medium { sigma_s = {0.5, 0.4, 0.3}, sigma_a = {0.1, 0.2, 0.3}, box = {{-1, 0, -1}, {1, 1, 1}} }
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse {} })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, position = {0, 1.6, 0}, material = c.material.glass {} })
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun })
+local tech = c.param("technique", "beams")
+g:add("caustics", tech == "photons" and c.pass.photon_caustics { light = sun } or c.pass.beam_caustics { light = sun })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "caustics.irradiance" })
+g:add("fog", c.pass.volume_light { color = "shade.color", add = tech == "beams" and "caustics.inscatter" or nil })
+g:output("fog.color")
+return { scene = scene, graph = g, size = {32, 32}, techniques = { metric = "image", { "beams" }, { "photons" } } }
+LUA
+F="$WORK/fog_bench"
+FOPTS=(--size 16x16 --frames 1 --error-frames 1 --ref-photons 2000 --ref-spp 8 -o "$F" --trusted)
+"$CAUSTICA" bench "$WORK/fog.lua" --sweep technique=all "${FOPTS[@]}" >"$WORK/fb.txt" 2>&1
+fcache=$(ls "$F"/cache/sweep_*.csv 2>/dev/null | head -1)
+if [ -n "$fcache" ]; then
+  head -1 "$fcache" >"$WORK/fheader"
+  cols=$(head -1 "$fcache" | tr ',' '\n' | wc -l)
+  err_col=$(head -1 "$fcache" | tr ',' '\n' | grep -nx error | cut -d: -f1)
+  { cat "$WORK/fheader"; row gpu beams defaults 30 0.2; row gpu photons defaults 5 0.1; } >"$fcache"
+  "$CAUSTICA" choose "$WORK/fog.lua" --error 0.5 "${FOPTS[@]}" >"$WORK/f1.txt" 2>"$WORK/f1e.txt"
+  grep -q "choose: photons is not considered: pass 'caustics' (photon_caustics) makes caustics on surfaces only" "$WORK/f1e.txt" \
+    && grep -q ": beams (defaults): 30.0 ms a frame" "$WORK/f1.txt" \
+    && pass "caustics on surfaces only are not chosen in fog, though cheaper and within the error" \
+    || fail "surface caustics in fog" "$(cat "$WORK/f1.txt" "$WORK/f1e.txt")"
+else
+  fail "bench of the fog" "no sweep cache: $(tail -3 "$WORK/fb.txt")"
+fi
 finish
