@@ -24,11 +24,6 @@ layout(rgba32f) uniform readonly image2DArray u_photons;
 uniform ivec2 u_buffer_size;
 uniform float u_max_radius; // pixels
 uniform float u_stretch_limit; // pixels: layered_caustics.c
-// The share of its cell a photon covers where the whole cell spans at most
-// u_cell_up_to pixels (1; 1/4 accumulating a still scene, whose jittered
-// frames tile the finer grid: layered_caustics.c)
-uniform float u_cell;
-uniform float u_cell_up_to;
 
 vec2 to_pixels(vec3 p)
 {
@@ -106,6 +101,5 @@ void main()
     // two points a pixel on footprints up to 3 pixels across, one beyond
     // (their neighbours' overlap smooths the ripple; the ball's splat cost
     // 3.5x with two everywhere), at most 32 a side
-    float side = max(length(ex) + 0.25 * length(bx), length(ey) + 0.25 * length(by)); // the cell's longer chord
-    footprint_splat(at, ex, bx, ey, by, flux, 3.0, 32, side <= u_cell_up_to ? u_cell : 1.0);
+    footprint_splat(at, ex, bx, ey, by, flux, 3.0, 32, 1.0);
 }

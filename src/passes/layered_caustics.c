@@ -70,8 +70,7 @@ static const struct pass_param_desc params[] = {
     [LC_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
      .help = "temporal accumulation while the light and the geometry stand still: each photon starts at a sub-texel "
              "jitter within its light texel, a new one every frame, and the irradiance averages the last this many "
-             "frames (the focused photons cover a quarter of their cell from 16 on); while they move, every frame "
-             "stands alone; 1: none (docs/TEMPORAL.md)"},
+             "frames; while they move, every frame stands alone; 1: none (docs/TEMPORAL.md)"},
 };
 
 static bool layered_caustics_declare(struct pass *p, struct error *err)
@@ -269,18 +268,13 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
     gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
     gl_program_bind_storage(splat, "LandedFlux", s->landed);
-    /* Accumulating 16 frames or more while the light and the geometry stand
-     * still, a photon whose cell lands within about a pixel (the focused
-     * light, where a coarse grid's footprints are least exact) covers only
-     * its quarter x quarter of that cell: the 16 jitters' footprints tile a
-     * grid 4 x 4 as fine, so the frames average to the finer grid's caustic
-     * (a whole cell each averages 16 shifted copies of the coarse one).
-     * Larger cells stay whole: there the sub-cells' gaps showed as a
-     * swirling pattern in the ball's shadow after 16 frames, and the light
-     * is spread smoothly enough for the coarse grid (docs/TEMPORAL.md).
-     * While things move, whole cells everywhere. */
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_cell"), accumulate >= 16 && still ? 0.25f : 1.0f);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_cell_up_to"), 1.0f);
+    /* Accumulating, each frame's photons still cover their whole cells:
+     * with the splats as boxes that tile (box_taps.glsl), a focused photon
+     * covering a quarter x quarter of its cell (so that 16 jitters tile a
+     * grid 4 x 4 as fine, the rule while splats were bilinear tents) made
+     * the ball's 32 x 32 photons worse over 16 frames, 0.102 -> 0.120
+     * against a 64-iteration truth, where whole cells stay at 0.103
+     * (docs/TEMPORAL.md). */
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "splat");
