@@ -8,7 +8,8 @@
 -- case where a fill rule that depends on the rasterizer drops whole rows.
 -- The output is the caustics pass's irradiance on the floor.
 -- --set technique=NAME, ortho=true|false, fresnel=true|false, amplitude=, wavelength=, elevation=, depth=,
---       extent= (the water's and the floor's width, 6; the view stays 1 wide), scale= (the whole case
+--       extent= (the water's and the floor's width, 6; the view stays 1 wide), fov= (a perspective
+--       camera's, wider than the floor's [-0.5, 0.5]: flat water only), scale= (the whole case
 --       scaled by it, absorption by 1 / scale: the floor's light unchanged)
 local c = require "caustica"
 local caustics_pass = require "caustics_pass"
@@ -22,7 +23,7 @@ local scene = c.scene {
     and c.camera { eye = eye, target = {0, -depth * k, 0}, up = {0, 0, -1}, ortho = { width = k },
                    near = 0.05 * k, far = 100 * k }
     or c.camera { eye = eye, target = {0, -depth * k, 0}, up = {0, 0, -1},
-                  fov = 2 * math.deg(math.atan(0.5 / (1 + depth))), near = 0.05 * k, far = 100 * k },
+                  fov = c.param("fov", 2 * math.deg(math.atan(0.5 / (1 + depth)))), near = 0.05 * k, far = 100 * k },
   background = {0, 0, 0},
 }
 local sun = scene:add(c.light.directional { direction = {math.cos(e), -math.sin(e), 0}, intensity = {1, 1, 1} })
