@@ -405,6 +405,51 @@ t.case("ball lens at IOR 10: light only near the axis, no black holes where it l
     illumination_textures = { bound = 0.05 },
   }))
 
+-- The floor under an IOR-1.0 (and 1.0001) ball lit as a user lights it:
+-- the shadow map, the caustics pass and shade adding both must give the
+-- floor without the ball. Counted at 256 x 256: pixels below half of it
+-- (a dark ring at the shadow's border), and the relative RMS difference.
+local BALL_LIT = "tests/scenes/matrix/ball_lit.lua"
+local BORDER = "the shadow map's 3 x 3 filter darkens a band about a texel wide outside the ball's silhouette where "
+               .. "the caustic's light, which ends at the silhouette, does not reach: a dark ring (issue 52, case 10; "
+               .. "illumination_textures' volumes also leave 14 pixels at 0 there, 60 at IOR 1.0001)"
+t.case("the shadow's border under an IOR-1.0 ball: shadow map and caustics meet", function()
+  local failures = {}
+  local specs = {
+    ["1.0"] = { photon_caustics = { 0.08, 520 }, layered_caustics = { 0.08, 500 }, beam_caustics = { 0.08, 480 },
+              illumination_textures = { 0.11, 950 } },
+    ["1.0001"] = { photon_caustics = { 0.1, 880 }, layered_caustics = { 0.1, 900 }, beam_caustics = { 0.1, 750 },
+                   illumination_textures = { 0.13, 1250 } },
+  }
+  for _, ior in ipairs { 1.0, 1.0001 } do
+    for _, technique in ipairs { "photon_caustics", "layered_caustics", "beam_caustics", "illumination_textures" } do
+      local img, ms = t.render(BALL_LIT, { set = { technique = technique, ior = ior, size = 256 } })
+      local truth = t.render(BALL_LIT, { set = { technique = technique, ball = false, size = 256 } })
+      t.expect_finite(img)
+      local low, black = 0, 0
+      for y = 0, 255 do
+        for x = 0, 255 do
+          local v, w = img:pixel(x, y), truth:pixel(x, y)
+          if v < 0.5 * w then low = low + 1 end
+          if v <= 0 and w > 0 then black = black + 1 end
+        end
+      end
+      local bound, most = table.unpack(specs[tostring(ior)][technique])
+      print(string.format("black256| shadow border, IOR %s (pixels below half) | %s | %d | %d | known: %s |", ior,
+                          technique, low, most, BORDER))
+      if low > most then
+        failures[#failures + 1] = string.format("shadow border, IOR %s, %s: %d pixels below half (at most %d)", ior,
+                                                technique, low, most)
+      end
+      failures[#failures + 1] = cell("shadow border, IOR " .. ior, technique, "orthographic, 256 x 256, with shade",
+                                     c.image.compare(img, truth).rel_rmse, black, pass_ms(ms),
+                                     { bound = bound, known = BORDER, black = technique == "illumination_textures" and
+                                       (ior == 1.0 and 20 or 75) or 0 })
+    end
+  end
+  finish(failures)
+end)
+
 -- The identity: an IOR-1.0 sphere before a checkered wall and a box must
 -- vanish: relative RMS difference from the same graph without the sphere.
 local IDENTITY = "tests/scenes/matrix/identity.lua"
