@@ -154,6 +154,39 @@ t.case("sinusoidal water, A = 0.1 (folds before the floor): rays binned per pixe
     beam_caustics = { bound = 0.7, known = "the default 16 x 16 lattice over the whole surface is coarser than the waves (0.37 a cell, 1.0 a wavelength)" },
   }))
 
+-- The light the folds carry, kept: the mean over the view against the
+-- binned truth's (the column error above is about where it lands). The
+-- issue measured caustic_volumes losing 19% of it under an orthographic
+-- camera at a generator of 257 vertices (14% at its default): pixels in
+-- the three-sheet band alternately missed one volume. Within 3% for every
+-- technique, both cameras, and the generator at 257 too.
+t.case("sinusoidal water, A = 0.1: the light the folds carry is all there", function()
+  local failures = {}
+  local columns = closed.water_columns { elevation = 60, amplitude = 0.1, wavelength = 1, ior = 1.33, depth = 2,
+                                         sigma = SIGMA, columns = 64, x0 = -0.5, x1 = 0.5 }
+  local want = 0
+  for col = 1, 64 do want = want + columns[1][col] end
+  want = want / 64
+  local runs = {}
+  for _, technique in ipairs(WATER_TECHNIQUES) do runs[#runs + 1] = { technique = technique } end
+  runs[#runs + 1] = { technique = "caustic_volumes", cv_resolution = 257 }
+  for _, run in ipairs(runs) do
+    for _, ortho in ipairs { true, false } do
+      local set = { technique = run.technique, ortho = ortho, amplitude = 0.1, cv_resolution = run.cv_resolution }
+      local img, ms = t.render(WATER, { set = set })
+      local sum = 0
+      for y = 8, 55 do
+        for x = 0, 63 do sum = sum + img:pixel(x, y) end
+      end
+      local kept = sum / (48 * 64) / want
+      failures[#failures + 1] = cell("ridges A = 0.1, light kept", run.technique .. (run.cv_resolution and
+                                     " (generator 257)" or ""), ortho and "orthographic" or "perspective",
+                                     math.abs(kept - 1), 0, pass_ms(ms), { bound = 0.03 })
+    end
+  end
+  finish(failures)
+end)
+
 -- A grazing sun: the water, 6 wide, is a strip 0.2 high in the light's
 -- view at 2 degrees. Before the light's view of the layers was narrowed
 -- to the refractors' outline, layered_caustics gave its photons 9 of 256
@@ -377,6 +410,22 @@ t.case("ball lens n = 1.5 before and at its focus, at 256 x 256: black pixels wh
   end
   finish(failures)
 end)
+
+-- A ball lens almost touching its floor (0.01 radii above it): the light
+-- through its lower half lands within a hundredth of a radius of where it
+-- left, the rim's grazing light spreads thin over the shadow's outer part.
+-- The ring means hold (0.01-0.11), but every technique leaves pixels of
+-- that thin light black (issue 52, case 11; measured, not fixed).
+local RIM_TOUCHING = "the rim's grazing light, spread thin over the outer part of the shadow, reaches it as a few "
+                     .. "photons, beams or volumes far apart: black pixels between them (822 photons, 2,734 layered, "
+                     .. "1,820 beams, 3,782 illumination textures of the shadow's 12,868)"
+t.case("ball lens n = 1.5, 0.01 radii above the floor", ball_case(
+  "ball lens, floor 1.01 R", { floor = 1.01, near = 0.0005 }, {
+    photon_caustics = { bound = 0.04, black = 900, known = RIM_TOUCHING },
+    layered_caustics = { bound = 0.03, black = 2900, known = RIM_TOUCHING },
+    beam_caustics = { bound = 0.15, black = 2000, known = RIM_TOUCHING },
+    illumination_textures = { bound = 0.12, black = 4000, known = RIM_TOUCHING },
+  }))
 
 t.case("ball lens n = 1.5, floor 2.5 radii below (beyond the focus), Fresnel on and off", function()
   for _, fresnel in ipairs { false, true } do

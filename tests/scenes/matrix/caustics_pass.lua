@@ -3,7 +3,7 @@
 local c = require "caustica"
 return function(name, light, water)
   if name == "caustic_volumes" then
-    return c.pass.caustic_volumes { light = light, water = water }
+    return c.pass.caustic_volumes { light = light, water = water, resolution = c.param("cv_resolution", 0) }
   end
   return c.pass[name] { light = light }
 end

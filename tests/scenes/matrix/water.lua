@@ -7,7 +7,7 @@
 -- lie on the water grid's lines (the grid's spacing is half a pixel), the
 -- case where a fill rule that depends on the rasterizer drops whole rows.
 -- The output is the caustics pass's irradiance on the floor.
--- --set technique=NAME, ortho=true|false, fresnel=true|false, amplitude=, wavelength=, elevation=, depth=,
+-- --set technique=NAME (cv_resolution= caustic_volumes' generator grid), ortho=true|false, fresnel=true|false, amplitude=, wavelength=, elevation=, depth=,
 --       extent= (the water's and the floor's width, 6; the view stays 1 wide), fov= (a perspective
 --       camera's, wider than the floor's [-0.5, 0.5]: flat water only), scale= (the whole case
 --       scaled by it, absorption by 1 / scale: the floor's light unchanged)
