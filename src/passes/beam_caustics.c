@@ -97,7 +97,10 @@ static const struct pass_param_desc params[] = {
     [BC_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
      .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
     [BC_GRID] = {.name = "grid", .type = PASS_PARAM_INTEGER, .default_number = 16, .min = 1, .max = BEAMS_MAX_LATTICE,
-     .help = "cells per side of the coarse projected grid in the light's view (§4.1)"},
+     .help = "cells per side of the coarse projected grid in the light's view (§4.1), which spans the refractors' "
+             "outline: a cell is that width / (grid x 2^refine) on them. One value cannot serve every scene: waves "
+             "want cells under a quarter of their length (grid >= 4 x the water's width / (wavelength x 2^refine); "
+             "16 over water 6 wide with waves 1 long left ripples 0.25 off, docs/OPTICS_MATRIX.md)"},
     [BC_REFINE] = {.name = "refine", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 0, .max = 8,
      .help = "adaptive refinement steps (§4.2) on every criterion of the split oracle"},
     [BC_EDGES] = {.name = "edges", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 6,

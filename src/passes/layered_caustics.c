@@ -51,7 +51,11 @@ enum layered_caustics_param {
 static const struct pass_param_desc params[] = {
     [LC_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
      .help = "the light (directional, point or spot; a linear light is traced from its midpoint)"},
-    [LC_BUFFER] = LAYERS_PARAM_BUFFER("the light's view of the refractors, buffer x buffer photons"),
+    [LC_BUFFER] = LAYERS_PARAM_BUFFER("the light's view of the refractors, buffer x buffer photons over their "
+                                      "outline: where the camera sees a receiver much smaller than that outline "
+                                      "(water 100 wide seen 1 wide), its photons land far apart and each covers "
+                                      "many pixels (exact on smooth light, blurred on sharp); raise it by the ratio "
+                                      "to keep them a pixel or two apart"),
     [LC_LAYERS] = LAYERS_PARAM_LAYERS(8, "depth layers per photon texel"),
     [LC_VOXELS] = LAYERS_PARAM_VOXELS("slices per texel, a multiple of 128"),
     [LC_SEARCH] = LAYERS_PARAM_SEARCH("bisection steps per interface"),
