@@ -6,10 +6,11 @@
 -- orthographic camera looks straight down at the 2.4-wide square of floor
 -- under the cube along the light; the output is the caustics pass's
 -- irradiance there. tests/lua/closed_forms.lua traces the same cube.
--- --set technique=NAME, ior=
+-- --set technique=NAME, ior=, tilt= (the sun that many degrees off the zenith, from the same side)
 local c = require "caustica"
 local caustics_pass = require "caustics_pass"
 local cube = require "cube_geometry"
+if c.param("tilt", 0) ~= 0 then cube = cube.tilted(c.param("tilt", 0)) end
 local scene = c.scene {
   camera = c.camera { eye = {cube.view_centre[1], 3, cube.view_centre[3]}, target = cube.view_centre, up = {0, 0, -1},
                       ortho = { width = cube.view_width } },
