@@ -264,34 +264,35 @@ for _, scale in ipairs { 0.01, 100 } do
          }))
 end
 
+-- Every water technique at 256 x 256 on water `set` makes: the pixels black
+-- in the columns the rays light (the closed form at `amplitude`).
+local function water_black_256(name, amplitude, set)
+  return function()
+    local columns = closed.water_columns { elevation = 60, amplitude = amplitude, wavelength = 1, ior = 1.33, depth = 2,
+                                           sigma = SIGMA, columns = 256, x0 = -0.5, x1 = 0.5, fresnel = false }
+    for _, technique in ipairs(WATER_TECHNIQUES) do
+      local s = { technique = technique, amplitude = amplitude, size = 256 }
+      for k, v in pairs(set) do s[k] = v end
+      local img = t.render(WATER, { set = s })
+      t.expect_finite(img)
+      local black = black_pixels(img, columns, 256)
+      print(string.format("black256| %s | %s | %d | 0 | ok |", name, technique, black))
+      t.expect(black == 0, string.format("%s: %d pixels black at 256 x 256 where the light reaches the floor", technique,
+                                         black))
+    end
+  end
+end
+
 -- The same folds at 256 x 256: each technique's photons or beams land 4x
 -- as many pixels apart as at 64 (layered_caustics' photons 30 pixels apart
 -- past a fold: black bands 14-30 pixels wide until the photons that land
 -- past the image's edge were kept for their neighbours' footprints). Only
 -- black pixels are counted here: the error is the 64-pixel cells' job.
-t.case("sinusoidal water, A = 0.1, at 256 x 256: no black column the rays light", function()
-  local columns = closed.water_columns { elevation = 60, amplitude = 0.1, wavelength = 1, ior = 1.33, depth = 2,
-                                         sigma = SIGMA, columns = 256, x0 = -0.5, x1 = 0.5, fresnel = false }
-  for _, technique in ipairs(WATER_TECHNIQUES) do
-    local img = t.render(WATER, { set = { technique = technique, amplitude = 0.1, size = 256 } })
-    t.expect_finite(img)
-    local black = black_pixels(img, columns, 256)
-    print(string.format("black256| ridges A = 0.1 | %s | %d | 0 | ok |", technique, black))
-    t.expect(black == 0, string.format("%s: %d pixels black at 256 x 256 where the rays light the floor", technique, black))
-  end
-end)
-
-t.case("water 100 wide seen 1 wide, at 256 x 256: no black pixel the light reaches", function()
-  local columns = closed.water_columns { elevation = 60, amplitude = 0, wavelength = 1, ior = 1.33, depth = 2,
-                                         sigma = SIGMA, columns = 256, x0 = -0.5, x1 = 0.5, fresnel = false }
-  for _, technique in ipairs(WATER_TECHNIQUES) do
-    local img = t.render(WATER, { set = { technique = technique, extent = 100, size = 256 } })
-    t.expect_finite(img)
-    local black = black_pixels(img, columns, 256)
-    print(string.format("black256| water 100 wide | %s | %d | 0 | ok |", technique, black))
-    t.expect(black == 0, string.format("%s: %d pixels black at 256 x 256 where the light reaches the floor", technique, black))
-  end
-end)
+t.case("sinusoidal water, A = 0.1, at 256 x 256: no black column the rays light",
+       water_black_256("ridges A = 0.1", 0.1, {}))
+-- Water 100 wide at 256 x 256: its photons 100 pixels apart (above).
+t.case("water 100 wide seen 1 wide, at 256 x 256: no black pixel the light reaches",
+       water_black_256("water 100 wide", 0, { extent = 100 }))
 
 -- Ball lens: mean irradiance in 16 rings of the ball's shadow (radius 0.5,
 -- seen 1.1 wide at 128 x 128) against the 2D trace's ring means.
