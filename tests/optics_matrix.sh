@@ -30,8 +30,10 @@ fi
   echo "  The same water under a sun 5 and 2 degrees up, 100 wide seen 1 wide (sun 60 and 3 degrees up), the whole"
   echo "  case scaled by 0.01 and 100, and flat water through a 174-degree perspective camera; \"light kept\": the"
   echo "  mean over the view against the truth's (the error column is |kept - 1|)."
-  echo "- **IOR 1.0 identity**: an IOR-1.0 sphere before a checkered wall, a box and a floor; an IOR-1.0 cube and"
-  echo "  sphere before the environment alone. Error: relative RMS difference from the same graph without them."
+  echo "- **IOR 1.0 identity**: an IOR-1.0 sphere before a checkered wall, a box and a floor (also with the near"
+  echo "  plane 1e-5 of the far); an IOR-1.0 cube and sphere before the environment alone; the room of coloured"
+  echo "  boxes (inside the sphere's silhouette, 256 x 256). Error: relative RMS difference from the same graph"
+  echo "  without them."
   echo "- **shadow border**: the ball at IOR 1.0 and 1.0001 lit with a shadow map, the caustics pass and shade;"
   echo "  the relative RMS difference from the floor without the ball."
   echo
