@@ -503,28 +503,49 @@ end)
 -- The identity: an IOR-1.0 sphere before a checkered wall and a box must
 -- vanish: relative RMS difference from the same graph without the sphere.
 local IDENTITY = "tests/scenes/matrix/identity.lua"
-t.case("IOR-1.0 sphere before a checkered wall: the image without it", function()
-  local failures = {}
-  local specs = {
-    refraction = { bound = 0.001 },
-    ["refraction:ortho"] = { bound = 0.012, known = "a few pixels at the sphere's rim under an orthographic camera see the wrong side of the wall's edge" },
-    refraction_impostors = { bound = 0.06, known = "lookup = \"impostors\": one rectangle per object (the paper's §2.2) cannot stand for the floor and the wall" },
-    layered_refraction = { bound = 0.001 },
-    sliced_refraction = { bound = 0.25, known = "six sliced object images of what lies behind the glass stand for it, each a slab projected onto one virtual plane (Iwasaki et al. §3)" },
-  }
-  for _, technique in ipairs { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" } do
+local VIEW_TECHNIQUES = { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" }
+
+-- One cell per view technique and camera: `script` with `set` against the
+-- same with `hide` = false (no glass), named `name`, its spec spec_of(
+-- technique, ortho); the black pixels counted where `count_black`.
+local function identity_cells(failures, script, name, set, hide, spec_of, count_black)
+  for _, technique in ipairs(VIEW_TECHNIQUES) do
     for _, ortho in ipairs { false, true } do
-      local set = { technique = technique, ortho = ortho }
-      warm_up(IDENTITY, set)
-      local img, ms = t.render(IDENTITY, { set = set })
-      local truth = t.render(IDENTITY, { set = { technique = technique, ortho = ortho, sphere = false } })
+      local s = { technique = technique, ortho = ortho }
+      for k, v in pairs(set) do s[k] = v end
+      warm_up(script, s)
+      local img, ms = t.render(script, { set = s })
+      s[hide] = false
+      local truth = t.render(script, { set = s })
       t.expect_finite(img)
-      local m = c.image.compare(img, truth)
-      local spec = specs[technique .. (ortho and ":ortho" or "")] or specs[technique]
-      failures[#failures + 1] = cell("IOR 1.0 identity", technique, ortho and "orthographic" or "perspective", m.rel_rmse,
-                                     0, pass_ms(ms), spec)
+      local black = 0
+      for y = 0, count_black and 127 or -1 do
+        for x = 0, 127 do
+          local r, g, b = img:pixel(x, y)
+          local tr, tg, tb = truth:pixel(x, y)
+          if r + g + b <= 0 and tr + tg + tb > 0 then black = black + 1 end
+        end
+      end
+      failures[#failures + 1] = cell(name, technique, ortho and "orthographic" or "perspective",
+                                     c.image.compare(img, truth).rel_rmse, black, pass_ms(ms), spec_of(technique, ortho))
     end
   end
+end
+
+local IDENTITY_SPECS = {
+  refraction = { bound = 0.001 },
+  ["refraction:ortho"] = { bound = 0.012, known = "a few pixels at the sphere's rim under an orthographic camera see the wrong side of the wall's edge" },
+  refraction_impostors = { bound = 0.06, known = "lookup = \"impostors\": one rectangle per object (the paper's §2.2) cannot stand for the floor and the wall" },
+  layered_refraction = { bound = 0.001 },
+  sliced_refraction = { bound = 0.25, known = "six sliced object images of what lies behind the glass stand for it, each a slab projected onto one virtual plane (Iwasaki et al. §3)" },
+}
+local function identity_spec(technique, ortho)
+  return IDENTITY_SPECS[technique .. (ortho and ":ortho" or "")] or IDENTITY_SPECS[technique]
+end
+
+t.case("IOR-1.0 sphere before a checkered wall: the image without it", function()
+  local failures = {}
+  identity_cells(failures, IDENTITY, "IOR 1.0 identity", {}, "sphere", identity_spec, false)
   finish(failures)
 end)
 
@@ -534,32 +555,8 @@ end)
 -- Each technique against its own render without the sphere at that near.
 t.case("IOR-1.0 sphere before a checkered wall, the near plane 1e-5 of the far: the image without it", function()
   local failures = {}
-  local specs = {
-    refraction = { bound = 0.001 },
-    ["refraction:ortho"] = { bound = 0.012, known = "a few pixels at the sphere's rim under an orthographic camera see the wrong side of the wall's edge" },
-    refraction_impostors = { bound = 0.06, known = "lookup = \"impostors\": one rectangle per object (the paper's §2.2) cannot stand for the floor and the wall" },
-    layered_refraction = { bound = 0.001 },
-    sliced_refraction = { bound = 0.25, known = "six sliced object images of what lies behind the glass stand for it, each a slab projected onto one virtual plane (Iwasaki et al. §3)" },
-  }
-  for _, technique in ipairs { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" } do
-    for _, ortho in ipairs { false, true } do
-      local set = { technique = technique, ortho = ortho, near = 0.001 }
-      local img, ms = t.render(IDENTITY, { set = set })
-      local truth = t.render(IDENTITY, { set = { technique = technique, ortho = ortho, near = 0.001, sphere = false } })
-      t.expect_finite(img)
-      local black = 0
-      for y = 0, 127 do
-        for x = 0, 127 do
-          local r, g, b = img:pixel(x, y)
-          local tr, tg, tb = truth:pixel(x, y)
-          if r + g + b <= 0 and tr + tg + tb > 0 then black = black + 1 end
-        end
-      end
-      local spec = specs[technique .. (ortho and ":ortho" or "")] or specs[technique]
-      failures[#failures + 1] = cell("IOR 1.0 identity, near 1e-5 of far", technique, ortho and "orthographic" or "perspective",
-                                     c.image.compare(img, truth).rel_rmse, black, pass_ms(ms), spec)
-    end
-  end
+  identity_cells(failures, IDENTITY, "IOR 1.0 identity, near 1e-5 of far", { near = 0.001 }, "sphere", identity_spec,
+                 true)
   finish(failures)
 end)
 
@@ -596,18 +593,8 @@ t.case("the camera inside an IOR-1.0 sphere: the image without it", function()
     layered_refraction = { bound = 0.001 },
     sliced_refraction = { bound = 0.06, known = "the camera inside: the view through the glass is not refracted at all (the pass warns: its images are seen through front faces); right here only because IOR 1.0 refracts nothing" },
   }
-  for _, technique in ipairs { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" } do
-    for _, ortho in ipairs { false, true } do
-      local set = { technique = technique, ortho = ortho, inside = true }
-      warm_up(IDENTITY, set)
-      local img, ms = t.render(IDENTITY, { set = set })
-      local truth = t.render(IDENTITY, { set = { technique = technique, ortho = ortho, inside = true, sphere = false } })
-      t.expect_finite(img)
-      local m = c.image.compare(img, truth)
-      failures[#failures + 1] = cell("camera inside, IOR 1.0", technique, ortho and "orthographic" or "perspective",
-                                     m.rel_rmse, 0, pass_ms(ms), specs[technique])
-    end
-  end
+  identity_cells(failures, IDENTITY, "camera inside, IOR 1.0", { inside = true }, "sphere",
+                 function(technique) return specs[technique] end, false)
   finish(failures)
 end)
 
@@ -629,19 +616,8 @@ t.case("IOR-1.0 cube and sphere before the environment alone: the image without 
     ["sliced_refraction:sphere"] = { bound = 0.1, known = SLICED_RIM },
   }
   for _, shape in ipairs { "cube", "sphere" } do
-    for _, technique in ipairs { "refraction", "refraction_impostors", "layered_refraction", "sliced_refraction" } do
-      for _, ortho in ipairs { false, true } do
-        local set = { technique = technique, ortho = ortho, shape = shape }
-        warm_up(IDENTITY_ENV, set)
-        local img, ms = t.render(IDENTITY_ENV, { set = set })
-        local truth = t.render(IDENTITY_ENV, { set = { technique = technique, ortho = ortho, glass = false } })
-        t.expect_finite(img)
-        local spec = specs[technique .. ":" .. shape] or specs[technique]
-        failures[#failures + 1] = cell("IOR 1.0 " .. shape .. ", environment", technique,
-                                       ortho and "orthographic" or "perspective", c.image.compare(img, truth).rel_rmse,
-                                       0, pass_ms(ms), spec)
-      end
-    end
+    identity_cells(failures, IDENTITY_ENV, "IOR 1.0 " .. shape .. ", environment", { shape = shape }, "glass",
+                   function(technique) return specs[technique .. ":" .. shape] or specs[technique] end, false)
   end
   finish(failures)
 end)
