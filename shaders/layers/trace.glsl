@@ -172,17 +172,27 @@ vec3 layer_normal_at(vec2 px, int k)
     vec2 f = px - 0.5;
     ivec2 c = ivec2(floor(f));
     vec2 t = f - vec2(c);
+    vec3 near_n = layer_normal(q, k);
     vec3 sum = vec3(0.0);
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
             ivec2 s = c + ivec2(i, j);
             if (layer_count(s) <= k || abs(layer_depth(s, k) - near_d) > 0.02 * u_layer_extent)
                 continue;
+            vec3 n = mat3(u_layer_view) * texelFetch(u_layer_normal, ivec3(s, k), 0).xyz;
+            // across an edge of a faceted object (normals ~25 degrees or
+            // more apart) the nearest texel's own normal, as
+            // common/surface_normal.glsl does: a blend there is a normal
+            // of neither face, and a path near the critical angle turns
+            // the wrong way along the edge (issue 52, case 12: bands of
+            // wrong pixels along the TIR cube's vertical edges)
+            if (dot(normalize(n), near_n) < 0.9)
+                return near_n;
             float w = (i == 1 ? t.x : 1.0 - t.x) * (j == 1 ? t.y : 1.0 - t.y);
-            sum += w * (mat3(u_layer_view) * texelFetch(u_layer_normal, ivec3(s, k), 0).xyz);
+            sum += w * n;
         }
     float len = length(sum);
-    return len > 1e-12 ? sum / len : layer_normal(q, k);
+    return len > 1e-12 ? sum / len : near_n;
 }
 
 float layer_range(int k, bool upper) { return uintBitsToFloat(layer_ranges[2 * k + (upper ? 1 : 0)]); }

@@ -76,7 +76,7 @@ static const struct pass_param_desc params[] = {
      .help = "impostor texture size"},
     [LR_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 2, .min = 0, .max = 4,
      .help = "further marches of the light an exit reflects back inside, each from where the last one left, while "
-             "a tenth of the pixel's light is in it (0: the thesis's one path, which drops it); unless set, only where "
+             "a hundredth of the pixel's light is in it (0: the thesis's one path, which drops it); unless set, only where "
              "a refractor's IOR is 2 or more or below 1 (else 0: they cost a tenth of the pass)"},
     [LR_CAMERA_LAYERS] = {.name = "camera_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers",
      .bundle = "layer_set", .default_output = "layers",
