@@ -153,6 +153,30 @@ void main()
         }
         vec3 p2 = p1 + dT * t1;
         vec3 n2 = surface_normal(u_back_normal, project(p2).xy);
+        // Fig. 9 finds where the photon meets the back surface, the faces
+        // turned away from the light. A photon bent steeply at the entry
+        // can leave first through a face turned towards the light (a cube's
+        // lit side face, the sun 40 degrees off the zenith: issue 52, case
+        // 3, a strip of its caustic missing): where the way to p2 passes in
+        // front of the front surface, the photon's exit is marched in both
+        // depth buffers (as after a total internal reflection) instead.
+        bool left_by_front = false;
+        for (int i = 1; i < 8 && !left_by_front; i++) {
+            vec3 q = project(p1 + (float(i) / 8.0) * dT * t1);
+            if (all(greaterThanEqual(q.xy, vec2(0.0))) && all(lessThanEqual(q.xy, vec2(1.0))))
+                left_by_front = q.z < texture(u_front_depth, q.xy).r;
+        }
+        if (left_by_front) {
+            vec3 start = p1 + t1 * (1e-3 * u_reach);
+            float t_exit, t_inside;
+            bool through_back;
+            if (depth_march(start, t1, u_reach, t_exit, t_inside, through_back)) {
+                vec2 q = project(start + t_inside * t1).xy;
+                n2 = through_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);
+                dT = t_exit + 1e-3 * u_reach;
+                p2 = start + t_exit * t1;
+            }
+        }
         if (dot(n2, n2) < 0.5) {
             nothing();
             return;

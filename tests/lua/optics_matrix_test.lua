@@ -695,11 +695,13 @@ t.case("glass cube, IOR 0.8 (total reflection at the way in), its shadow caustic
 
 t.case("glass cube, IOR 2.42, the sun 40 degrees off the zenith", cube_case(
   "cube, IOR 2.42, sun 40 deg off", 2.42, {
-    -- issue 52, case 3, measured and not fixed
-    photon_caustics = { bound = 0.22, black = 45, known = "Hu & Qin follow a photon from the light's front depths to "
-                        .. "its back depths: at 40 degrees the light that leaves by a side face the back depth map "
-                        .. "does not hold lands wrong (a strip of the caustic missing along its far edge, 36 pixels "
-                        .. "black at 64 x 64; layered_caustics, every interface, gets 0.049)" },
+    -- issue 52, case 3: 0.195 with 36 pixels black (a strip of the caustic
+    -- missing) while every photon's exit was sought in the back depth map
+    -- alone; the light that leaves by the lit side face is now marched
+    photon_caustics = { bound = 0.12, known = "the light that leaves by the lit side face is found by a march in the "
+                        .. "light's two depth buffers (24 steps and a bisection, as after a total internal "
+                        .. "reflection), not by Fig. 9's iteration: that part of the caustic is streaked "
+                        .. "(layered_caustics, every interface, gets 0.029)" },
     layered_caustics = { bound = 0.08 },
     beam_caustics = { bound = 0.5, known = BEAMS_CUBE },
     illumination_textures = { bound = 0.5, known = ILLUM_TIR },
