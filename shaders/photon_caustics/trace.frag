@@ -160,11 +160,19 @@ void main()
         // 3, a strip of its caustic missing): where the way to p2 passes in
         // front of the front surface, the photon's exit is marched in both
         // depth buffers (as after a total internal reflection) instead.
+        // The front depth is read at the nearest texel; one that holds no
+        // surface is outside the objects' outline, so the photon left too
+        // (by a face edge-on to the light). The march is not better
+        // everywhere: the IOR-0.8 cube, whose light bends outwards at the
+        // entry and leaves by its sides, went 0.029 -> 0.038 (and 0.043
+        // with only the photons marched out by a front face).
         bool left_by_front = false;
         for (int i = 1; i < 8 && !left_by_front; i++) {
             vec3 q = project(p1 + (float(i) / 8.0) * dT * t1);
-            if (all(greaterThanEqual(q.xy, vec2(0.0))) && all(lessThanEqual(q.xy, vec2(1.0))))
-                left_by_front = q.z < texture(u_front_depth, q.xy).r;
+            if (all(greaterThanEqual(q.xy, vec2(0.0))) && all(lessThan(q.xy, vec2(1.0)))) {
+                float zf = texelFetch(u_front_depth, ivec2(q.xy * u_buffer), 0).r;
+                left_by_front = zf >= 1.0 || q.z < zf;
+            }
         }
         if (left_by_front) {
             vec3 start = p1 + t1 * (1e-3 * u_reach);
