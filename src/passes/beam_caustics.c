@@ -34,6 +34,7 @@
 #include "graph/renderer.h"
 #include "graph/temporal.h"
 #include "passes/distance_map.h"
+#include "passes/caustic_coverage.h"
 #include "passes/layers.h"
 
 #define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
@@ -64,6 +65,7 @@ struct beam_caustics_state {
      * inscattered light, the lattice's jitter this frame, and the light
      * and geometry the last frame was built from */
     struct temporal_history irradiance_history, inscatter_history;
+    struct caustic_coverage coverage; /* what it left dark under glass, measured once */
     float jitter[2];
     uint64_t key;
     bool valid;
@@ -199,6 +201,7 @@ static void beam_caustics_destroy(struct pass *p)
     release_buffers(s);
     release_targets(s);
     distance_map_release(&s->distance);
+    caustic_coverage_release(&s->coverage);
     temporal_release(&s->irradiance_history);
     temporal_release(&s->inscatter_history);
     gl_framebuffer_destroy(&s->volumes_fb);
@@ -599,7 +602,11 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     snprintf(p->report, sizeof p->report, "%u beams (%u prisms) from %u cells, %llu fragments%s%s", counters[COUNT_BEAMS],
              counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
              counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "", dropped);
-    if (!gl_check("beam_caustics", err))
+    if (!gl_check("beam_caustics", err) ||
+        !caustic_coverage_check(&s->coverage, p, f, fl, s->receiver_depth, s->receiver_normal,
+                                &pass_frame_output(p, f, "irradiance")->texture,
+                                "raise `grid` (the lattice's cells) or `edges` (cells refined along the light's "
+                                "parting)", err))
         return false;
     return accumulate <= 1 || accumulate_outputs(p, f, accumulate, still, &depth->texture, err);
 }

@@ -35,6 +35,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/caustic_coverage.h"
 #include "passes/illumination_geometry.h"
 #include "passes/virtual_camera.h"
 #include "scene/transport.h"
@@ -68,6 +69,7 @@ struct illum_state {
     uint64_t key;              /* what the textures were made from */
     /* the virtual camera and planes of the last build */
     struct virtual_camera vc;
+    struct caustic_coverage coverage; /* what it left dark under glass, measured once */
     float plane_depth[ILLUM_MAX_PLANES];
     bool reused;
 };
@@ -135,6 +137,7 @@ static void illum_destroy(struct pass *p)
         mesh_table_fine_release(&s->fine[i]);
     }
     release_targets(s);
+    caustic_coverage_release(&s->coverage);
     gl_framebuffer_destroy(&s->target_fb);
     gl_framebuffer_destroy(&s->texture_fb);
     gl_framebuffer_destroy(&s->map_fb);
@@ -497,8 +500,12 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     /* glass objects are drawn too, writing depth only: what is behind them
      * is the refraction pass's to show, not this one's */
     draw_targets(p, r, f->scene, map);
+    gl.Disable(GL_DEPTH_TEST);
     pass_stage_end(p, s->reused ? "mapping (textures reused)" : "mapping");
-    return gl_check("illumination_textures", err);
+    return gl_check("illumination_textures", err) &&
+           caustic_coverage_check(&s->coverage, p, f, &f->snapshot->lights[f->snapshot->light_first[slot]],
+                                  s->receiver_depth.id, 0, &out->texture,
+                                  "raise `size` (the textures' texels) or `table` (directions per vertex)", err);
 }
 
 /* Iwasaki et al. build the light transport table per vertex of a closed

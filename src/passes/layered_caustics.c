@@ -17,6 +17,7 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "graph/temporal.h"
+#include "passes/caustic_coverage.h"
 #include "passes/layers.h"
 
 struct layered_caustics_state {
@@ -32,6 +33,7 @@ struct layered_caustics_state {
     struct temporal_history temporal;
     uint64_t key;
     bool valid;
+    struct caustic_coverage coverage; /* what it left dark under glass, measured once */
 };
 
 enum layered_caustics_param {
@@ -108,6 +110,7 @@ static void layered_caustics_destroy(struct pass *p)
     release_targets(s);
     temporal_release(&s->temporal);
     gl_framebuffer_destroy(&s->out_fb);
+    caustic_coverage_release(&s->coverage);
     free(s);
     p->state = NULL;
 }
@@ -302,7 +305,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
     renderer_draw_fullscreen(r);
     pass_stage_end(p, "resolve");
-    if (!gl_check("layered_caustics", err))
+    if (!gl_check("layered_caustics", err) ||
+        !caustic_coverage_check(&s->coverage, p, f, fl, receiver_depth, receiver_normal, &out->texture,
+                                "raise `buffer` (the photons' spacing) or `radius`", err))
         return false;
     if (accumulate <= 1)
         return true;

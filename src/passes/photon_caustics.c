@@ -23,6 +23,7 @@
 #include "graph/renderer.h"
 #include "graph/temporal.h"
 #include "scene/light_view.h"
+#include "passes/caustic_coverage.h"
 #include "passes/impostors.h"
 #include "scene/scene.h"
 
@@ -32,6 +33,7 @@
 #define PHOTON_WINDOW_STRIDE 9
 
 struct photon_state {
+    struct caustic_coverage dark_check; /* what it left dark under glass, measured once */
     struct impostor_set impostors;
     struct gl_framebuffer light_fb[2], photon_fb, map_fb;
     struct gl_texture light_normal[2], light_depth[2]; /* front, back as seen from the light */
@@ -149,6 +151,7 @@ static void photon_destroy(struct pass *p)
     if (!s)
         return;
     release_textures(s);
+    caustic_coverage_release(&s->dark_check);
     temporal_release(&s->temporal);
     impostors_release(&s->impostors);
     for (int i = 0; i < 2; i++)
@@ -563,6 +566,10 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
      * caustics too (drawing the refractors' depth hid them: no caustics at
      * all under water seen from above) */
     renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
+    gl.Disable(GL_DEPTH_TEST);
+    if (!caustic_coverage_check(&s->dark_check, p, f, &f->snapshot->lights[light_index], depth->texture.id, 0,
+                                &irr->texture, "raise `buffer` (the photons' spacing)", err))
+        return false;
     if (accumulate <= 1)
         return true;
     bool moving = !unchanged && s->previous_valid;

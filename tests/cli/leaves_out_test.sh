@@ -128,4 +128,20 @@ done
   && ! grep -q "lit without caustics" "$WORK/ib2.txt" "$WORK/ib3.txt" \
   && pass "the camera inside a ball the input shows: one line, none with the floor in the input or outside" \
   || fail "the camera inside a ball" "$(cat "$WORK/ib.txt" "$WORK/ib2.txt" "$WORK/ib3.txt")"
+# a ball lens resting 0.01 radii above its floor: each caustics pass leaves most of its shadow black
+# (the rim's light spread thin, samples far apart) and says so once, counting; at the paraxial focus
+# (1.5 radii) the shadow is lit and nothing is said; nor for the IOR-2.42 cube tilted in the sun, whose
+# shadow the exact trace itself leaves a quarter dark (issue 52, case 11)
+for t in photon_caustics layered_caustics beam_caustics illumination_textures; do
+  "$CAUSTICA" render tests/scenes/matrix/ball.lua --set technique=$t --set floor=1.01 --set near=0.0005 \
+    --size 64x64 -o "$WORK/touch.png" >"$WORK/touch.txt" 2>&1
+  "$CAUSTICA" render tests/scenes/matrix/ball.lua --set technique=$t --set floor=1.5 --size 64x64 \
+    -o "$WORK/focus.png" >"$WORK/focus.txt" 2>&1
+  "$CAUSTICA" render tests/scenes/matrix/cube.lua --set technique=$t --set ior=2.42 --size 64x64 \
+    -o "$WORK/cube.png" >"$WORK/cube.txt" 2>&1
+  [ "$(grep -cE "$t 'caustics': [0-9]+ of the [0-9]+ pixels in the shadow of object 2 \(glass\) \([0-9]+%\) got none of the light through it" "$WORK/touch.txt")" = 1 ] \
+    && ! grep -q "got none of the light" "$WORK/focus.txt" "$WORK/cube.txt" \
+    && pass "$t: a ball resting on its floor, the black in its shadow said once; at its focus and under the cube nothing" \
+    || fail "$t, the black in a ball's shadow" "$(cat "$WORK/touch.txt" "$WORK/focus.txt" "$WORK/cube.txt")"
+done
 finish

@@ -416,10 +416,13 @@ end)
 -- through its lower half lands within a hundredth of a radius of where it
 -- left, the rim's grazing light spreads thin over the shadow's outer part.
 -- The ring means hold (0.01-0.11), but every technique leaves pixels of
--- that thin light black (issue 52, case 11; measured, not fixed).
+-- that thin light black (issue 52, case 11; measured, not fixed): each
+-- says so in one line, counting the black pixels of the shadow
+-- (passes/caustic_coverage.c; tests/cli/leaves_out_test.sh).
 local RIM_TOUCHING = "the rim's grazing light, spread thin over the outer part of the shadow, reaches it as a few "
                      .. "photons, beams or volumes far apart: black pixels between them (822 photons, 2,734 layered, "
-                     .. "1,820 beams, 3,782 illumination textures of the shadow's 12,868)"
+                     .. "1,820 beams, 3,782 illumination textures of the shadow's 12,868), which each pass counts "
+                     .. "and says in one warning"
 t.case("ball lens n = 1.5, 0.01 radii above the floor", ball_case(
   "ball lens, floor 1.01 R", { floor = 1.01, near = 0.0005 }, {
     photon_caustics = { bound = 0.04, black = 900, known = RIM_TOUCHING },
