@@ -603,7 +603,11 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
              counters[COUNT_PRISMS], counters[COUNT_KEPT], (unsigned long long)fragments,
              counters[COUNT_OVERFLOW] ? " (some dropped: past the buffers' capacity)" : "", dropped);
     if (!gl_check("beam_caustics", err) ||
-        !caustic_coverage_check(&s->coverage, p, f, fl, s->receiver_depth, s->receiver_normal,
+        !caustic_coverage_check(&s->coverage, p, f, fl,
+                                &(struct caustic_coverage_view){.layers = true, .depth = s->layers->depth.id,
+                                                                .info = s->layers->info.id, .view = s->layers->view,
+                                                                .proj = s->layers->proj},
+                                s->receiver_depth, s->receiver_normal,
                                 &pass_frame_output(p, f, "irradiance")->texture,
                                 "raise `grid` (the lattice's cells) or `edges` (cells refined along the light's "
                                 "parting)", err))

@@ -1,7 +1,8 @@
 /* The measure of what a caustics pass left dark under glass (issue 52):
- * caustic_coverage.h says what and why. One depth-only draw of the
- * refractors from the light, one compute pass over the camera's receivers
- * and a read-back of two counters, once a pass instance. */
+ * caustic_coverage.h says what and why. One compute pass over the camera's
+ * receivers against the refractors' depth from the light (the pass's own,
+ * else one depth-only draw of them) and a read-back of two counters, once a
+ * pass instance. */
 #include "passes/caustic_coverage.h"
 
 #include <string.h>
@@ -34,11 +35,8 @@ static bool ensure_targets(struct caustic_coverage *c, struct error *err)
 {
     if (c->depth.id)
         return true;
-    if (!gl_texture_create(&c->depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, COVERAGE_SIZE, COVERAGE_SIZE, 1, err) ||
-        !gl_framebuffer_create(&c->fb, err) || !gl_framebuffer_attach(&c->fb, NULL, NULL, 0, &c->depth, -1, err))
-        return false;
-    const unsigned zero[2] = {0, 0};
-    return gl_buffer_create(&c->counters, zero, sizeof zero, GL_DYNAMIC_STORAGE_BIT, err);
+    return gl_texture_create(&c->depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, COVERAGE_SIZE, COVERAGE_SIZE, 1, err) &&
+           gl_framebuffer_create(&c->fb, err) && gl_framebuffer_attach(&c->fb, NULL, NULL, 0, &c->depth, -1, err);
 }
 
 /* "object 3 (glass)" where one refractor is in the scene, else what they are. */
@@ -61,31 +59,30 @@ static void refractor_names(const struct scene *scene, char *out, size_t size)
         snprintf(out, size, "the %d %s", count, water && glass ? "refractors" : water ? "water objects" : "glass objects");
 }
 
-bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct pass_frame *f,
-                            const struct frame_light *light, GLuint receiver_depth, GLuint receiver_normal,
-                            const struct gl_texture *irradiance, const char *remedy, struct error *err)
+/* The refractors' depth from the light where the pass has none of its own:
+ * one draw of them through the layers' fit of their box. */
+static bool draw_refractors(struct caustic_coverage *c, struct pass *p, struct pass_frame *f,
+                            const struct frame_light *light, struct caustic_coverage_view *out, bool *fitted,
+                            struct error *err)
 {
-    if (c->checked)
-        return true;
+    *fitted = false;
     vec3 lo, hi;
     if (!scene_specular_bounds(f->scene, &lo, &hi))
         return true;
-    /* The light's view of the refractors as the layers fit it; where it
-     * cannot be fit (a light inside their sphere) there is nothing to say. */
+    /* where the view cannot be fit (a light inside their sphere) there is
+     * nothing to say */
     struct light_view lv;
     struct error ignored;
     if (!layers_light_view(light, lo, hi, &lv, p->desc->name, &ignored))
         return true;
-    c->checked = true;
     struct renderer *r = f->renderer;
     if (!ensure_targets(c, err))
         return false;
-    mat4 light_view_proj = mat4_mul(lv.proj, lv.view);
-
     struct gl_program *draw;
     if (!gl_program_get(&r->programs, "caustic_coverage/refractors.vert", "caustic_coverage/refractors.frag", NULL,
                         &draw, err))
         return false;
+    mat4 light_view_proj = mat4_mul(lv.proj, lv.view);
     gl.ProgramUniformMatrix4fv(draw->id, gl_program_uniform(draw, "u_light_view_proj"), 1, GL_FALSE,
                                light_view_proj.m);
     gl.BindFramebuffer(GL_FRAMEBUFFER, c->fb.id);
@@ -98,9 +95,39 @@ bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct p
             renderer_draw_object(r, f->scene, draw, o);
     }
     gl.Disable(GL_DEPTH_TEST);
+    *out = (struct caustic_coverage_view){.layers = false, .depth = c->depth.id, .view = lv.view, .proj = lv.proj};
+    *fitted = true;
+    return true;
+}
+
+bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct pass_frame *f,
+                            const struct frame_light *light, const struct caustic_coverage_view *view,
+                            GLuint receiver_depth, GLuint receiver_normal, const struct gl_texture *irradiance,
+                            const char *remedy, struct error *err)
+{
+    if (c->checked)
+        return true;
+    struct caustic_coverage_view drawn;
+    if (!view || !view->depth) {
+        bool fitted;
+        if (!draw_refractors(c, p, f, light, &drawn, &fitted, err))
+            return false;
+        if (!fitted)
+            return true;
+        view = &drawn;
+    }
+    c->checked = true;
+    struct renderer *r = f->renderer;
+    if (!c->counters) {
+        const unsigned zero[2] = {0, 0};
+        if (!gl_buffer_create(&c->counters, zero, sizeof zero, GL_DYNAMIC_STORAGE_BIT, err))
+            return false;
+    }
+    mat4 light_view_proj = mat4_mul(view->proj, view->view);
 
     struct gl_program *count;
-    if (!gl_program_get_compute(&r->programs, "caustic_coverage/count.comp", NULL, NULL, &count, err))
+    if (!gl_program_get_compute(&r->programs, "caustic_coverage/count.comp",
+                                view->layers ? "#define LAYER_DEPTHS\n" : NULL, NULL, &count, err))
         return false;
     const unsigned zero[2] = {0, 0};
     if (!gl_buffer_update(c->counters, zero, sizeof zero, err))
@@ -111,7 +138,17 @@ bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct p
         gl_program_bind_texture(count, "u_receiver_normal", receiver_normal);
     gl.ProgramUniform1i(count->id, gl_program_uniform(count, "u_has_normal"), receiver_normal ? 1 : 0);
     gl_program_bind_texture(count, "u_irradiance", irradiance->id);
-    gl_program_bind_texture(count, "u_refractor_depth", c->depth.id);
+    if (view->layers) {
+        gl_program_bind_texture(count, "u_layer_depth", view->depth);
+        gl_program_bind_texture(count, "u_layer_info", view->info);
+        gl.ProgramUniformMatrix4fv(count->id, gl_program_uniform(count, "u_light_view"), 1, GL_FALSE,
+                                   view->view.m);
+    } else {
+        gl_program_bind_texture(count, "u_refractor_depth", view->depth);
+        if (view->normal)
+            gl_program_bind_texture(count, "u_refractor_normal", view->normal);
+        gl.ProgramUniform1i(count->id, gl_program_uniform(count, "u_has_refractor_normal"), view->normal ? 1 : 0);
+    }
     gl_program_bind_storage(count, "Coverage", c->counters);
     gl.ProgramUniformMatrix4fv(count->id, gl_program_uniform(count, "u_light_view_proj"), 1, GL_FALSE,
                                light_view_proj.m);

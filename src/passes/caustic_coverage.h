@@ -14,6 +14,7 @@
 #include <stdbool.h>
 
 #include "core/error.h"
+#include "core/vecmath.h"
 #include "gl/gl_texture.h"
 
 struct pass;
@@ -23,9 +24,20 @@ struct frame_light;
 struct caustic_coverage {
     bool checked;               /* measured already (once a pass instance) */
     unsigned shadow, dark;      /* what the measure found: pixels in the shadow, of them with no light */
-    struct gl_texture depth;    /* the refractors' depth from the light */
+    struct gl_texture depth;    /* the refractors' depth from the light, where the pass has none */
     struct gl_framebuffer fb;
     GLuint counters;            /* ssbo: shadow, dark */
+};
+
+/* Where the refractors lie as the pass's light sees them, from what the pass
+ * already made (no draw): the layers' first depths (eye depths, a 2D array,
+ * with their per-texel count), or a window depth of the nearest specular
+ * surface with its normals (w < 0: a mirror, left out). Neither (depth 0):
+ * the refractors are drawn once from the light, through the layers' fit. */
+struct caustic_coverage_view {
+    bool layers;
+    GLuint depth, info, normal;
+    mat4 view, proj;
 };
 
 void caustic_coverage_init(struct caustic_coverage *c);
@@ -37,7 +49,8 @@ void caustic_coverage_release(struct caustic_coverage *c);
  * more, is dark; `remedy` ends the warning (what to raise). Does nothing
  * after the first measure. */
 bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct pass_frame *f,
-                            const struct frame_light *light, GLuint receiver_depth, GLuint receiver_normal,
-                            const struct gl_texture *irradiance, const char *remedy, struct error *err);
+                            const struct frame_light *light, const struct caustic_coverage_view *view,
+                            GLuint receiver_depth, GLuint receiver_normal, const struct gl_texture *irradiance,
+                            const char *remedy, struct error *err);
 
 #endif

@@ -504,7 +504,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     pass_stage_end(p, s->reused ? "mapping (textures reused)" : "mapping");
     return gl_check("illumination_textures", err) &&
            caustic_coverage_check(&s->coverage, p, f, &f->snapshot->lights[f->snapshot->light_first[slot]],
-                                  s->receiver_depth.id, 0, &out->texture,
+                                  NULL, s->receiver_depth.id, 0, &out->texture,
                                   "raise `size` (the textures' texels) or `table` (directions per vertex)", err);
 }
 

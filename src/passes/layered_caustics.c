@@ -306,7 +306,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     renderer_draw_fullscreen(r);
     pass_stage_end(p, "resolve");
     if (!gl_check("layered_caustics", err) ||
-        !caustic_coverage_check(&s->coverage, p, f, fl, receiver_depth, receiver_normal, &out->texture,
+        !caustic_coverage_check(&s->coverage, p, f, fl,
+                                &(struct caustic_coverage_view){.layers = true, .depth = ls->depth.id,
+                                                                .info = ls->info.id, .view = ls->view, .proj = ls->proj},
+                                receiver_depth, receiver_normal, &out->texture,
                                 "raise `buffer` (the photons' spacing) or `radius`", err))
         return false;
     if (accumulate <= 1)

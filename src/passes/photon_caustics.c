@@ -567,7 +567,13 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
      * all under water seen from above) */
     renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
     gl.Disable(GL_DEPTH_TEST);
-    if (!caustic_coverage_check(&s->dark_check, p, f, &f->snapshot->lights[light_index], depth->texture.id, 0,
+    /* the light's front depths and normals as the photons were last traced
+     * (the view and projection in one matrix) */
+    if (!caustic_coverage_check(&s->dark_check, p, f, &f->snapshot->lights[light_index],
+                                &(struct caustic_coverage_view){.depth = s->light_depth[0].id,
+                                                                .normal = s->light_normal[0].id,
+                                                                .view = mat4_identity(), .proj = s->light_view_proj},
+                                depth->texture.id, 0,
                                 &irr->texture, "raise `buffer` (the photons' spacing)", err))
         return false;
     if (accumulate <= 1)
