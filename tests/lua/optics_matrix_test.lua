@@ -442,6 +442,19 @@ t.case("ball lens n = 1.5, floor 2.5 radii below (beyond the focus), Fresnel on 
   end
 end)
 
+-- Issue 52's scale dimension for the ball: radius 0.01 and 100 (the whole
+-- case, camera and near plane with it, scaled by 0.02 and 200), the floor
+-- 2.5 radii below: the same bounds as unscaled.
+for _, scale in ipairs { 0.02, 200 } do
+  t.case(string.format("ball lens of radius %g, floor 2.5 radii below: as at radius 0.5", 0.5 * scale), ball_case(
+    string.format("ball lens, floor 2.5 R, radius %g", 0.5 * scale), { floor = 2.5, scale = scale }, {
+      photon_caustics = { bound = 0.02 },
+      layered_caustics = { bound = 0.04 },
+      beam_caustics = { bound = 0.05 },
+      illumination_textures = { bound = 0.05 },
+    }))
+end
+
 t.case("ball lens at IOR 1.0001: the floor lit as if the ball were not there (no black rim)", ball_case(
   "ball lens, IOR 1.0001", { floor = 2.5, ior = 1.0001 }, {
     photon_caustics = { bound = 0.02 },

@@ -5,18 +5,20 @@
 -- orthographic camera between the ball and the floor looks straight down
 -- at the floor's square [-0.55, 0.55]^2; the output is the caustics pass's
 -- irradiance there.
--- --set technique=NAME, ior=, floor=, fresnel=true|false, segments=
+-- --set technique=NAME, ior=, floor=, fresnel=true|false, segments=, scale= (the
+-- whole case: radius, floor, camera and its near plane)
 local c = require "caustica"
 local caustics_pass = require "caustics_pass"
-local R = 0.5
+local S = c.param("scale", 1) -- the whole case scaled (the irradiance is not)
+local R = 0.5 * S
 local floor_y = -c.param("floor", 1.5) * R
 local scene = c.scene {
-  camera = c.camera { eye = {0, floor_y + 0.5 * (-R - floor_y), 0}, target = {0, floor_y, 0}, up = {0, 0, -1}, near = c.param("near", 0.01),
-                      ortho = { width = 2.2 * R } },
+  camera = c.camera { eye = {0, floor_y + 0.5 * (-R - floor_y), 0}, target = {0, floor_y, 0}, up = {0, 0, -1},
+                      near = c.param("near", 0.01) * S, ortho = { width = 2.2 * R } },
   background = {0, 0, 0},
 }
 local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1, 1, 1} })
-scene:add(c.object { mesh = c.mesh.plane { size = 8 }, position = {0, floor_y, 0},
+scene:add(c.object { mesh = c.mesh.plane { size = 8 * S }, position = {0, floor_y, 0},
                      material = c.material.diffuse { color = {1, 1, 1} } })
 scene:add(c.object { mesh = c.mesh.sphere { radius = R, segments = c.param("segments", 128) },
                      material = c.material.glass { ior = c.param("ior", 1.5), fresnel = c.param("fresnel", false),
