@@ -511,31 +511,30 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     gl_texture_clear(&pass_frame_output(p, f, "inscatter")->texture, zero);
     gl_texture_clear(&pass_frame_output(p, f, "irradiance")->texture, zero);
     p->report[0] = '\0';
-    struct light *light = pass_light_at(p, BC_LIGHT);
-    int slot = renderer_light_slot(r, f->scene, light);
-    vec3 lo, hi, slo, shi;
-    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi) || !scene_bounds(f->scene, &slo, &shi))
-        return true; /* the light is not in the scene, or nothing refracts: no beams */
     /* the building blocks' outputs, made earlier in this frame */
     struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
     struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
     if (!layers || !layers->record || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
     s->layers = layers->record;
-    if (!s->layers->built)
-        return true; /* the layers' light is not in the scene, or nothing refracts */
+    vec3 slo, shi;
+    if (!s->layers->built || !scene_bounds(f->scene, &slo, &shi))
+        return true; /* the layers' light is not in the scene, or nothing refracts: no beams */
+    int slot = s->layers->light_slot;
+    if (slot < 0)
+        return error_set(err, "its light_layers are the camera's (a depth_layers { view = \"light\" } pass's layers "
+                              "expected)");
     s->receiver_normal = normal->texture.id;
     s->receiver_depth = depth->texture.id;
     int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE);
     if (!ensure_buffers(s, grid, refine + pass_int(p, BC_EDGES), pass_flag(p, BC_REFLECTION), err) ||
         !ensure_targets(s, f->width, f->height, err))
         return false;
+    /* the light's view of the refractors as the layers' producer fit it */
     const struct frame_light *fl = &f->snapshot->lights[slot];
-    struct light_view lv;
-    if (!layers_light_view(fl, lo, hi, &lv, "beam_caustics", err))
-        return false;
-    float extent = 2.0f * fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
-    vec3 center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    const struct light_view lv = s->layers->light_view;
+    float extent = 2.0f * s->layers->radius;
+    vec3 center = vec3_scale(vec3_add(s->layers->lo, s->layers->hi), 0.5f);
     /* the distance impostor reaches past the whole scene from the refractors' centre */
     float range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) + vec3_length(vec3_sub(center, vec3_scale(vec3_add(slo, shi), 0.5f)))), 1e-3f);
 

@@ -8,6 +8,7 @@
  * script names none, so two techniques for one light build its layers
  * once. The output `layers` is a bundle (a `layer_set` record: five
  * textures, two buffers, the view) that readers bind with layers_bind. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -79,18 +80,21 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     vec3 lo, hi;
     mat4 view, proj;
     int width, height;
+    /* the refractors only (glass and water: what the layers hold; a mirror
+     * widened the light's view and took its texels) */
+    struct light_view lv = {0};
+    int slot = -1;
     if (pass_choice(p, DL_VIEW) == VIEW_CAMERA) {
-        if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj))
+        if (!scene_refractor_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj))
             return true; /* no glass or water in the camera's view: the readers pass the image through */
         view = f->snapshot->view;
         proj = f->snapshot->proj;
         width = f->width;
         height = f->height;
     } else {
-        int slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
-        if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
+        slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
+        if (slot < 0 || !scene_refractor_bounds(f->scene, &lo, &hi))
             return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
-        struct light_view lv;
         if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
             return false;
         view = lv.view;
@@ -101,6 +105,11 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     if (!layers_build(&s->layers, r, f->scene, view, proj, width, height, pass_int(p, DL_VOXELS),
                       pass_int(p, DL_LAYERS), pass_choice(p, DL_DEPTHS) == DEPTHS_EXACT, p, err))
         return false;
+    s->layers.light_slot = slot;
+    s->layers.lo = lo;
+    s->layers.hi = hi;
+    s->layers.light_view = lv;
+    s->layers.radius = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * LAYERS_RADIUS_SCALE;
     snprintf(p->report, sizeof p->report, "%d refractor draws, %ld triangles", s->layers.draws, s->layers.triangles);
     return true;
 }

@@ -152,11 +152,6 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     int accumulate = pass_int(p, LC_ACCUMULATE);
     if (accumulate <= 1)
         temporal_reset(&s->temporal);
-    struct light *light = pass_light_at(p, LC_LIGHT);
-    int slot = renderer_light_slot(r, f->scene, light);
-    vec3 lo, hi;
-    if (slot < 0 || !scene_specular_bounds(f->scene, &lo, &hi))
-        return true; /* the light is not in the scene, or nothing refracts: no caustics */
     /* the building blocks' outputs, made earlier in this frame */
     struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
     struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
@@ -164,20 +159,22 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         return error_set(err, "its light's layers or the receivers were not made this frame");
     const struct layer_set *ls = layers->record;
     if (!ls->built)
-        return true; /* the layers' light is not in the scene, or nothing refracts */
+        return true; /* the layers' light is not in the scene, or nothing refracts: no caustics */
+    int slot = ls->light_slot;
+    if (slot < 0)
+        return error_set(err, "its light_layers are the camera's (a depth_layers { view = \"light\" } pass's layers "
+                              "expected)");
     GLuint receiver_normal = normal->texture.id, receiver_depth = depth->texture.id;
     int buffer = ls->width;
     if (!ensure_targets(s, f->width, f->height, buffer, err))
         return false;
 
-    /* The light's view of the refractors' bounding sphere (as photon_caustics). */
+    /* The light's view of the refractors, as the layers' producer fit it. */
     const struct frame_light *fl = &f->snapshot->lights[slot];
-    struct light_view lv;
-    if (!layers_light_view(fl, lo, hi, &lv, "layered_caustics", err))
-        return false;
+    const struct light_view lv = ls->light_view;
     bool ortho = lv.ortho;
     mat4 proj = lv.proj;
-    float orad = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.02f;
+    float orad = ls->radius;
     float texel_area = 0.0f, texel_tan = 0.0f;
     if (ortho) {
         texel_area = (2.0f * lv.half_width / (float)buffer) * (2.0f * lv.half_height / (float)buffer);

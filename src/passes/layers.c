@@ -318,7 +318,7 @@ bool layers_configure_camera_block(struct pass *block, int layers, int voxels, b
  * planes from half a radius to six; a perspective view 2% wider than the
  * sphere, its near plane 10% before it and its far 10% of a radius past. */
 static const struct light_view_margins layers_margins = {
-    .radius_scale = 1.02f, .eye_radii = 3.0f, .ortho_near_radii = 0.5f, .ortho_far_radii = 6.0f,
+    .radius_scale = LAYERS_RADIUS_SCALE, .eye_radii = 3.0f, .ortho_near_radii = 0.5f, .ortho_far_radii = 6.0f,
     .fov_scale = 1.02f, .near_scale = 0.9f, .far_radii = 1.1f, .inside_half_angle = 0.0f,
     .up_z_when_vertical = true,
 };

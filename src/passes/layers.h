@@ -20,6 +20,7 @@
 #define LAYERS_MAX 32        /* depth layers per pixel (the thesis's 32: 8 render targets x 4 channels) */
 #define LAYERS_MAX_VOXELS 1024 /* slices per pixel: 8 RGBA32UI words */
 #define LAYERS_MAX_SLOTS 64  /* refractive objects one view tells apart */
+#define LAYERS_RADIUS_SCALE 1.02f /* a light's view widens the refractors' bounding sphere by 2% */
 
 struct renderer;
 
@@ -47,6 +48,16 @@ struct layer_set {
     struct object *slot_objects[LAYERS_MAX_SLOTS]; /* borrowed */
     int draws;                 /* geometry draws the last build made */
     long triangles;            /* triangles those draws rasterized */
+    /* What the producer decided, for its readers to take rather than redo
+     * (issue 54): from a light, its slot in the frame's lights (-1: the
+     * camera's set), the refractors' box the view was fit to, the view as
+     * fit (layers_light_view; its half sides, or half angle, over the
+     * buffer are a texel) and the box's bounding radius widened as the fit
+     * widens it (LAYERS_RADIUS_SCALE). */
+    int light_slot;
+    vec3 lo, hi;
+    struct light_view light_view;
+    float radius;
 };
 
 void layers_init(struct layer_set *ls);

@@ -315,7 +315,7 @@ void scene_object_remove(struct scene *scene, struct object *obj)
         }
 }
 
-enum bounds_filter { BOUNDS_ALL, BOUNDS_SPECULAR, BOUNDS_DIFFUSE };
+enum bounds_filter { BOUNDS_ALL, BOUNDS_SPECULAR, BOUNDS_REFRACTOR, BOUNDS_DIFFUSE };
 
 static bool bounds_of_visible(const struct scene *scene, enum bounds_filter filter, vec3 *lo, vec3 *hi)
 {
@@ -324,6 +324,7 @@ static bool bounds_of_visible(const struct scene *scene, enum bounds_filter filt
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
         unsigned want = filter == BOUNDS_SPECULAR ? OBJECT_ROLE_SPECULAR
+                        : filter == BOUNDS_REFRACTOR ? OBJECT_ROLE_REFRACTOR
                         : filter == BOUNDS_DIFFUSE ? OBJECT_ROLE_RECEIVER
                                                    : OBJECT_ROLE_SPECULAR | OBJECT_ROLE_RECEIVER;
         if (!object_is(o, want))
@@ -387,6 +388,11 @@ bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 {
     return bounds_of_visible(scene, BOUNDS_SPECULAR, lo, hi);
+}
+
+bool scene_refractor_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
+{
+    return bounds_of_visible(scene, BOUNDS_REFRACTOR, lo, hi);
 }
 
 bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)

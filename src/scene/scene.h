@@ -471,6 +471,9 @@ bool object_in_view(const struct object *o, mat4 view_proj);
 /* Bounds of the visible glass, water and mirrors only; false (and lo, hi
  * left as they were) when there are none. */
 bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Bounds of the visible glass and water (the refractors: what the depth
+ * layers hold); false as above. */
+bool scene_refractor_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
 /* Bounds of the visible objects that are not glass, water or mirrors. */
 bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
 /* Position of `light` in scene->lights, or -1 when it was never added. */
