@@ -1,9 +1,11 @@
 #version 450 core
 // An object in world space: its world position, normal and texture
-// coordinates, projected by the camera, or by the matrix uniform a program's
-// defines name as OBJECT_VIEW_PROJ (a distance map's cube face, an
-// impostor's view): the one object vertex shader of shade, the receivers,
-// the water surface, the distance maps and the impostors.
+// coordinates, projected by the camera, or, where a program defines
+// OBJECT_VIEW_PROJ, by u_object_view_proj (a distance map's cube face, an
+// impostor's view, a light's): the one object vertex shader of shade, the
+// receivers, the water surface, the distance maps and the impostors. (The
+// define once named the uniform itself: four names C set that no shader
+// declared, which tests/cli/uniform_names_test.sh now refuses.)
 #include "common/frame.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -15,7 +17,7 @@ uniform int u_vertex_colors;          // 0: the mesh has none (white)
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 #ifdef OBJECT_VIEW_PROJ
-uniform mat4 OBJECT_VIEW_PROJ;
+uniform mat4 u_object_view_proj;
 #endif
 out vec3 v_world;
 out vec3 v_normal;
@@ -33,7 +35,7 @@ void main()
     v_texcoord0 = a_texcoord0;
     v_texcoord1 = a_texcoord1;
 #ifdef OBJECT_VIEW_PROJ
-    gl_Position = OBJECT_VIEW_PROJ * w;
+    gl_Position = u_object_view_proj * w;
 #else
     gl_Position = u_view_proj * w;
 #endif

@@ -9,7 +9,7 @@
 #include "passes/shadow_inputs.h"
 
 /* common/object.vert projected by each cube face's matrix */
-#define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ u_face_view_proj\n"
+#define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ\n"
 
 void distance_map_release(struct distance_map *m)
 {
@@ -115,7 +115,7 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
             /* the second layer reads the first's distances (what to peel) */
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), layer);
             gl_program_bind_texture(prog, "u_first", layer ? m->distance[0].id : r->dummy_cube.id);
-            gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+            gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE, vp.m);
         }
         const struct gl_texture *colors[2] = {&m->color[layer], &m->distance[layer]};
         int layers[2] = {face, face};
@@ -174,7 +174,7 @@ bool distance_map_update_distances(struct distance_map *m, struct renderer *r, s
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 0, none);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE, vp.m);
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE, vp.m);
         renderer_draw_objects(r, scene, prog, DRAW_DIFFUSE);
     }
     renderer_reset_state(r);

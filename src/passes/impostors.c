@@ -9,7 +9,7 @@
 #include "passes/shadow_inputs.h"
 
 /* common/object.vert projected by the impostor's parallel view (set_impostor_view) */
-#define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ u_impostor_view_proj\n"
+#define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ\n"
 
 void impostors_release(struct impostor_set *set)
 {
@@ -49,7 +49,7 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
     mat4 view = mat4_look_at(eye, im->center, im->up);
     mat4 proj = mat4_ortho(-im->half, im->half, -im->half, im->half, 0.0f, 4.0f * im->half);
     mat4 vp = mat4_mul(proj, view);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_impostor_view_proj"), 1, GL_FALSE, vp.m);
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE, vp.m);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_center"), im->center.x, im->center.y,
                         im->center.z);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);

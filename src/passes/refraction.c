@@ -251,7 +251,7 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
     /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit) */
     struct gl_program *progs[2];
     if (!renderer_lit_programs(r, f->scene, "common/object.vert", "distance_map/distance.frag",
-                               "#define OBJECT_VIEW_PROJ u_face_view_proj\n", progs, err))
+                               "#define OBJECT_VIEW_PROJ\n", progs, err))
         return false;
     vec3 eye = f->snapshot->eye;
     for (int k = 0; k < 2 && progs[k]; k++) {
@@ -262,7 +262,7 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
         gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
         gl_program_bind_texture(prog, "u_first", r->dummy_cube.id);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_face_view_proj"), 1, GL_FALSE,
+        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE,
                                    f->snapshot->view_proj.m);
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->behind_fb.id);

@@ -132,7 +132,7 @@ static bool shadow_thin_filter(struct pass_frame *f, struct shadow_state *s, int
     struct gl_program *prog;
     if (!gl_framebuffer_attach(&s->filter_fb, colors, NULL, 1, NULL, -1, err) ||
         !gl_program_get(&r->programs, "common/object.vert", "shadow_map/thin_filter.frag",
-                        "#define OBJECT_VIEW_PROJ u_light_view_proj\n", &prog, err))
+                        "#define OBJECT_VIEW_PROJ\n", &prog, err))
         return false;
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->filter_fb.id);
     const float clear[4] = {1.0f, 1.0f, 1.0f, 2.0f}; /* all light passes; no pane (depths are at most 1) */
@@ -142,7 +142,7 @@ static bool shadow_thin_filter(struct pass_frame *f, struct shadow_state *s, int
     gl.Enablei(GL_BLEND, 0);
     gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_MIN);
     gl.BlendFuncSeparatei(0, GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_light_view_proj"), 1, GL_FALSE,
+    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE,
                                s->record.matrix.m);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light_index"), s->record.light_index);
     renderer_draw_objects(r, f->scene, prog, DRAW_THIN | DRAW_CASTERS);
