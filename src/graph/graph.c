@@ -295,6 +295,23 @@ static bool add_blocks(struct graph *g, struct error *err)
     return ok;
 }
 
+/* The descriptor parameter behind input slot `slot`: its name, or an input
+ * list's name with the item's index after it ("shadow1"). */
+static int input_param(const struct pass_desc *d, const char *slot)
+{
+    int i = pass_param_index(d, slot);
+    if (i >= 0)
+        return i;
+    size_t n = strlen(slot);
+    while (n > 0 && slot[n - 1] >= '0' && slot[n - 1] <= '9')
+        n--;
+    for (int k = 0; k < d->param_count; k++)
+        if (d->params[k].type == PASS_PARAM_INPUT_LIST && strlen(d->params[k].name) == n &&
+            strncmp(d->params[k].name, slot, n) == 0)
+            return k;
+    return -1;
+}
+
 bool graph_check(struct graph *g, struct error *err)
 {
     if (g->count == 0)
@@ -312,7 +329,7 @@ bool graph_check(struct graph *g, struct error *err)
             int producer = find_output_of(g, i, p->inputs[k].source, &which);
             if (producer >= 0) {
                 /* a texture where a texture is read, a record of the right type where one is */
-                int param = pass_param_index(p->desc, p->inputs[k].name);
+                int param = input_param(p->desc, p->inputs[k].name);
                 const char *want = param >= 0 ? p->desc->params[param].bundle : NULL;
                 const char *have = g->entries[producer].pass->outputs[which].bundle;
                 if (!(want == have || (want && have && strcmp(want, have) == 0)))
@@ -320,6 +337,24 @@ bool graph_check(struct graph *g, struct error *err)
                                      p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
                                      p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture", have ? have : "",
                                      want ? "a " : "a texture", want ? want : "");
+                /* a texture that must carry a typed record (a shadow map's
+                 * light matrix): another texture there rendered unshadowed,
+                 * exit 0 and no word (issue 54) */
+                const char *want_record = param >= 0 ? p->desc->params[param].record : NULL;
+                const char *have_record = g->entries[producer].pass->outputs[which].record;
+                if (want_record && !(have_record && strcmp(want_record, have_record) == 0)) {
+                    /* an input list's item as the script wrote it: shadow[2] */
+                    char shown[PASS_NAME_MAX + 16];
+                    const char *pname = p->desc->params[param].name;
+                    if (p->desc->params[param].type == PASS_PARAM_INPUT_LIST)
+                        snprintf(shown, sizeof shown, "%s[%d]", pname, atoi(p->inputs[k].name + strlen(pname)) + 1);
+                    else
+                        snprintf(shown, sizeof shown, "%s", pname);
+                    return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', a texture that is not a %s's (a %s "
+                                          "pass's `depth` is expected, e.g. \"shadow.depth\")",
+                                     p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                                     shown, p->inputs[k].source, want_record, want_record);
+                }
             }
             if (producer < 0) {
                 char producers[512];

@@ -477,10 +477,21 @@ bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum
         return error_set(err, "pass '%s': more than %d outputs", p->name, PASS_MAX_OUTPUTS);
     struct pass_output_decl *out = &p->outputs[p->output_count++];
     snprintf(out->name, sizeof out->name, "%s", name);
+    out->bundle = NULL;
+    out->record = NULL;
     out->format = format;
     out->target = target;
     out->width = width;
     out->height = height;
+    return true;
+}
+
+bool pass_declare_output_record(struct pass *p, const char *name, const char *record, GLenum format, GLenum target,
+                                int width, int height, struct error *err)
+{
+    if (!pass_declare_output(p, name, format, target, width, height, err))
+        return false;
+    p->outputs[p->output_count - 1].record = record;
     return true;
 }
 

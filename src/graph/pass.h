@@ -57,6 +57,10 @@ struct pass_param_desc {
     const char *block;
     /* input: the record type the input must be ("layer_set"); NULL: a texture */
     const char *bundle;
+    /* input (a texture): the typed record it must carry besides its texels
+     * ("shadow_map": a shadow map's light matrix), as its producer declares
+     * it (pass_output_decl.record); checked with the graph, not each frame */
+    const char *record;
     /* boolean: building blocks that differ only in this are one block with
      * it on (the receivers' `position`: one G-buffer serves both readers) */
     bool merge_or;
@@ -95,6 +99,9 @@ struct pass_output_decl {
     /* NULL: a texture the graph allocates; else a record of this type
      * ("layer_set") that the producer owns and points `record` at */
     const char *bundle;
+    /* a texture's typed record besides its texels ("shadow_map"), set by
+     * its producer when it declares it (pass_declare_output_record) */
+    const char *record;
     GLenum format;
     GLenum target;   /* GL_TEXTURE_2D or GL_TEXTURE_CUBE_MAP */
     int width, height; /* 0: the frame's size */
@@ -302,6 +309,11 @@ bool pass_declare(struct pass *p, struct error *err);
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err);
 bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum target, int width, int height,
                          struct error *err);
+/* The same, for a texture that carries a typed record besides its texels
+ * (`record`, e.g. "shadow_map"): inputs whose descriptor asks for that
+ * record accept it, and no other texture. */
+bool pass_declare_output_record(struct pass *p, const char *name, const char *record, GLenum format, GLenum target,
+                                int width, int height, struct error *err);
 /* A bundle output: a record of type `bundle` ("layer_set") that the pass
  * owns and points its resource's `record` at while it executes. */
 bool pass_declare_bundle(struct pass *p, const char *name, const char *bundle, struct error *err);

@@ -51,8 +51,9 @@ static bool shadow_declare(struct pass *p, struct error *err)
     struct light *l = pass_light_at(p, SHADOW_LIGHT);
     int size = pass_int(p, SHADOW_SIZE);
     if (is_cube(l))
-        return pass_declare_output(p, "depth", GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
-    return pass_declare_output(p, "depth", GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size, err);
+        return pass_declare_output_record(p, "depth", SHADOW_RECORD, GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
+    return pass_declare_output_record(p, "depth", SHADOW_RECORD, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size,
+                                      err);
 }
 
 static bool shadow_create(struct pass *p, struct renderer *r, struct error *err)
