@@ -79,11 +79,12 @@ static bool draw_refractors(struct caustic_coverage *c, struct pass *p, struct p
     if (!ensure_targets(c, err))
         return false;
     struct gl_program *draw;
-    if (!gl_program_get(&r->programs, "caustic_coverage/refractors.vert", "caustic_coverage/refractors.frag", NULL,
-                        &draw, err))
+    /* the one object vertex shader, projecting by the light's matrix */
+    if (!gl_program_get(&r->programs, "common/object.vert", "caustic_coverage/refractors.frag",
+                        "#define OBJECT_VIEW_PROJ\n", &draw, err))
         return false;
     mat4 light_view_proj = mat4_mul(lv.proj, lv.view);
-    gl.ProgramUniformMatrix4fv(draw->id, gl_program_uniform(draw, "u_light_view_proj"), 1, GL_FALSE,
+    gl.ProgramUniformMatrix4fv(draw->id, gl_program_uniform(draw, "u_object_view_proj"), 1, GL_FALSE,
                                light_view_proj.m);
     gl.BindFramebuffer(GL_FRAMEBUFFER, c->fb.id);
     gl.Viewport(0, 0, COVERAGE_SIZE, COVERAGE_SIZE);
