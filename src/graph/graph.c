@@ -173,11 +173,15 @@ static bool add_block(struct graph *g, struct graph_entry *list, int *count, int
         pass_destroy(want);
         return error_prefix(err, "pass '%s' (%s)", consumer->name, consumer->desc->name);
     }
-    /* A block already added for an earlier reader: it serves this one too,
-     * with the merged flags this reader needs turned on. */
+    /* A block already added for an earlier reader, or one the script
+     * itself added before this reader with the same values, serves this one
+     * too, with the merged flags this reader needs turned on (issue 54: the
+     * script's depth_layers and the graph's for the same light were both
+     * built, and nothing said so). */
     struct pass *block = NULL;
     for (int i = 0; i < *count && !block; i++)
-        if (list[i].pass->implicit && pass_values_equal(list[i].pass, want, true))
+        if ((list[i].pass->implicit || (i < consumer_index && list[i].pass->desc == desc)) &&
+            pass_values_equal(list[i].pass, want, true))
             block = list[i].pass;
     if (block) {
         for (int k = 0; k < desc->param_count; k++)
