@@ -286,6 +286,30 @@ function t.expect_finite(img)
   return s
 end
 
+--- Of the pixels where `mask`'s red is above 0, how many have an RGB
+--- relative error against `ref` (|img - ref| / |ref|) below `tol`; returns
+--- that count and the masked count.
+function t.count_within(img, ref, mask, tol)
+  check("count_within", 1, "img", img, "image")
+  check("count_within", 2, "ref", ref, "image")
+  check("count_within", 3, "mask", mask, "image")
+  check("count_within", 4, "tol", tol, "number")
+  local w, h = img.width, img.height
+  local within, n = 0, 0
+  for y = 0, h - 1 do
+    for x = 0, w - 1 do
+      if mask:pixel(x, y) > 0 then
+        local a, b = { img:pixel(x, y) }, { ref:pixel(x, y) }
+        local e, s = 0, 0
+        for k = 1, 3 do e, s = e + (a[k] - b[k]) ^ 2, s + b[k] ^ 2 end
+        n = n + 1
+        if math.sqrt(e / s) < tol then within = within + 1 end
+      end
+    end
+  end
+  return within, n
+end
+
 --- Exact unpolarised Fresnel reflectance, eta = n_incident / n_transmitted
 --- (1 under total internal reflection): for tests that derive closed forms.
 function t.fresnel(cos_i, eta)

@@ -103,22 +103,8 @@ for k in photon_caustics layered_caustics beam_caustics; do
 done
 # a block the script names is shared with a reader that names none (issue 54): the script's
 # depth_layers for the sun serves layered_caustics too, and the graph adds no second one
-cat >"$WORK/twice.lua" <<'LUA'
-local c = require "caustica"
-local scene = c.scene { camera = c.camera { eye = {0, 2, 3}, target = {0, 0, 0} } }
-local sun = scene:add(c.light.directional { direction = {0.3, -1, 0}, intensity = {1, 1, 1} })
-scene:add(c.object { mesh = c.mesh.plane { size = 4 }, position = {0, -1, 0}, material = c.material.diffuse {} })
-scene:add(c.object { mesh = c.mesh.sphere { radius = 0.4 }, material = c.material.glass {} })
-local g = c.graph()
-g:add("mylayers", c.pass.depth_layers { light = sun, buffer = c.param("buffer", 256) })
-g:add("beams", c.pass.beam_caustics { light = sun, light_layers = "mylayers.layers" })
-g:add("caustics", c.pass.layered_caustics { light = sun })
-g:add("shade", c.pass.shade { caustics = { "caustics.irradiance", "beams.irradiance" } })
-g:output("shade.color")
-return { scene = scene, graph = g, size = {32, 32} }
-LUA
-"$CAUSTICA" info "$WORK/twice.lua" --trusted --no-render >"$WORK/tw.txt" 2>&1
-"$CAUSTICA" info "$WORK/twice.lua" --trusted --no-render --set buffer=128 >"$WORK/tw2.txt" 2>&1
+"$CAUSTICA" info tests/scenes/graph_checks.lua --set case=twice --no-render >"$WORK/tw.txt" 2>&1
+"$CAUSTICA" info tests/scenes/graph_checks.lua --set case=twice --set buffer=128 --no-render >"$WORK/tw2.txt" 2>&1
 [ "$(grep -cE "^ +[0-9]+ +[a-z_0-9]+ +depth_layers " "$WORK/tw.txt")" = 1 ] \
   && grep -qE "in  light_layers <- mylayers.layers" <(sed -n '/ caustics /,/out caustics/p' "$WORK/tw.txt") \
   && [ "$(grep -cE "^ +[0-9]+ +[a-z_0-9]+ +depth_layers " "$WORK/tw2.txt")" = 2 ] \

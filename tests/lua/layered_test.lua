@@ -169,18 +169,7 @@ t.case("Fresnel with total internal reflection: the light an exit reflects back 
     local tir = t.reference("tests/scenes/tir_cube.lua", { set = { fresnel = true }, aov = "tir", size = {128, 128} })
     local ref = t.reference("tests/scenes/tir_cube.lua", { set = { fresnel = true }, photons = 0, spp = 32, size = {128, 128} })
     local img = t.render("tests/scenes/tir_cube.lua", { set = set, size = {128, 128} })
-    local good, n = 0, 0
-    for y = 0, 127 do
-      for x = 0, 127 do
-        if tir:pixel(x, y) > 0 then
-          local a, b = { img:pixel(x, y) }, { ref:pixel(x, y) }
-          local e, s = 0, 0
-          for k = 1, 3 do e, s = e + (a[k] - b[k]) ^ 2, s + b[k] ^ 2 end
-          n = n + 1
-          if math.sqrt(e / s) < 0.1 then good = good + 1 end
-        end
-      end
-    end
+    local good, n = t.count_within(img, ref, tir, 0.1)
     return good / n, n
   end
   local followed, n = within { method = "layered", fresnel = true }

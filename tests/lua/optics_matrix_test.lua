@@ -763,18 +763,7 @@ t.case("the IOR-2.42 cube with Fresnel: the totally reflected pixels against the
     t.render(TIR, { set = spec.set, size = { 16, 16 } }) -- the shaders compiled before the timed render
     local img, ms = t.render(TIR, { set = spec.set, size = { N, N } })
     t.expect_finite(img)
-    local within, n = 0, 0
-    for y = 0, N - 1 do
-      for x = 0, N - 1 do
-        if mask:pixel(x, y) > 0 then
-          local a, b = { img:pixel(x, y) }, { ref:pixel(x, y) }
-          local e, s = 0, 0
-          for k = 1, 3 do e, s = e + (a[k] - b[k]) ^ 2, s + b[k] ^ 2 end
-          n = n + 1
-          if math.sqrt(e / s) < 0.02 then within = within + 1 end
-        end
-      end
-    end
+    local within, n = t.count_within(img, ref, mask, 0.02)
     local name = string.format("cube IOR 2.42, Fresnel, the %d totally reflected pixels (%d within 0.02)", n, within)
     failures[#failures + 1] = cell(name, technique, "perspective", c.image.compare(img, ref, mask).rel_rmse, 0,
                                    pass_ms(ms), spec)
