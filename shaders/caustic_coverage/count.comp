@@ -19,12 +19,12 @@ uniform sampler2DArray u_layer_depth;
 uniform usampler2D u_layer_info;
 uniform mat4 u_light_view;
 ivec2 refractor_size() { return textureSize(u_layer_info, 0); }
-// Lies the refractors' nearest surface at texel s between x and the light?
-bool refractor_before(ivec2 s, vec3 x, vec3 q)
+// The point x's depth as the refractors' are kept (q: its window position)
+float point_depth(vec3 x, vec3 q) { return -(u_light_view * vec4(x, 1.0)).z; }
+// Lies the refractors' nearest surface at texel s nearer the light than depth?
+bool refractor_before(ivec2 s, float depth)
 {
-    if (texelFetch(u_layer_info, s, 0).r == 0u)
-        return false;
-    return texelFetch(u_layer_depth, ivec3(s, 0), 0).r < -(u_light_view * vec4(x, 1.0)).z;
+    return texelFetch(u_layer_info, s, 0).r != 0u && texelFetch(u_layer_depth, ivec3(s, 0), 0).r < depth;
 }
 #else
 // the window depth of the nearest refractor (or mirror: its normal's w < 0)
@@ -32,12 +32,11 @@ uniform sampler2D u_refractor_depth;
 uniform sampler2D u_refractor_normal;
 uniform int u_has_refractor_normal;
 ivec2 refractor_size() { return textureSize(u_refractor_depth, 0); }
-bool refractor_before(ivec2 s, vec3 x, vec3 q)
+float point_depth(vec3 x, vec3 q) { return q.z; }
+bool refractor_before(ivec2 s, float depth)
 {
     float z = texelFetch(u_refractor_depth, s, 0).r;
-    if (z >= 1.0 || z >= q.z)
-        return false;
-    return u_has_refractor_normal == 0 || texelFetch(u_refractor_normal, s, 0).w >= 0.0;
+    return z < 1.0 && z < depth && (u_has_refractor_normal == 0 || texelFetch(u_refractor_normal, s, 0).w >= 0.0);
 }
 #endif
 uniform int u_light_kind; // 0 point, 1 directional, 2 spot
@@ -67,10 +66,11 @@ void main()
     vec3 q = l.xyz / l.w * 0.5 + 0.5;
     ivec2 tsize = refractor_size();
     ivec2 t = ivec2(floor(q.xy * vec2(tsize)));
+    float depth = point_depth(x, q);
     for (int j = -1; j <= 1; j++)
         for (int i = -1; i <= 1; i++) {
             ivec2 s = t + ivec2(i, j);
-            if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, tsize)) || !refractor_before(s, x, q))
+            if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, tsize)) || !refractor_before(s, depth))
                 return;
         }
     atomicAdd(coverage[0], 1u);

@@ -44,6 +44,24 @@ vec3 project(vec3 p)
 // refraction pass does in the camera's).
 #include "common/depth_march.glsl"
 
+// From `from` (on an interface) along d inside the objects, the next
+// interface by depth_march: the distance to it, where, and its normal
+// (the back or front buffer's, by which it crosses; unnormalised, short
+// where neither buffer holds a surface there). False: none within u_reach.
+bool next_interface(vec3 from, vec3 d, out float t, out vec3 at, out vec3 n)
+{
+    vec3 start = from + d * (1e-3 * u_reach);
+    float t_exit, t_inside;
+    bool through_back;
+    if (!depth_march(start, d, u_reach, t_exit, t_inside, through_back))
+        return false;
+    vec2 q = project(start + t_inside * d).xy;
+    n = through_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);
+    t = t_exit + 1e-3 * u_reach;
+    at = start + t_exit * d;
+    return true;
+}
+
 void nothing()
 {
     o_photon = vec4(0.0);
@@ -174,16 +192,12 @@ void main()
                 left_by_front = zf >= 1.0 || q.z < zf;
             }
         }
-        if (left_by_front) {
-            vec3 start = p1 + t1 * (1e-3 * u_reach);
-            float t_exit, t_inside;
-            bool through_back;
-            if (depth_march(start, t1, u_reach, t_exit, t_inside, through_back)) {
-                vec2 q = project(start + t_inside * t1).xy;
-                n2 = through_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);
-                dT = t_exit + 1e-3 * u_reach;
-                p2 = start + t_exit * t1;
-            }
+        float t_next;
+        vec3 at, n_next;
+        if (left_by_front && next_interface(p1, t1, t_next, at, n_next)) {
+            n2 = n_next;
+            dT = t_next;
+            p2 = at;
         }
         if (dot(n2, n2) < 0.5) {
             nothing();
@@ -196,7 +210,7 @@ void main()
         // exact trace of it puts 0.45 of the light on the floor with them
         // followed, 0.29 with them dropped). Up to 4 interfaces; the part
         // Fresnel reflects where the photon leaves is not followed.
-        vec3 pos = p2, d_in = t1, n_here = n2;
+        vec3 pos = p2, d_in = t1, n_here = n2, pos_next;
         float travelled = dT;
         bool leaves = false;
         for (int crossing = 0; crossing < 4; crossing++) {
@@ -223,18 +237,13 @@ void main()
             if (ior * sqrt(max(1.0 - cos_i * cos_i, 0.0)) < 1.1)
                 break;
             d_in = reflect(d_in, m);
-            vec3 start = pos + d_in * (1e-3 * u_reach);
-            float t_exit, t_inside;
-            bool through_back;
-            if (!depth_march(start, d_in, u_reach, t_exit, t_inside, through_back))
-                break;
-            vec2 q = project(start + t_inside * d_in).xy;
-            vec3 nn = through_back ? surface_normal(u_back_normal, q) : surface_normal(u_front_normal, q);
-            if (dot(nn, nn) < 0.5)
+            float t;
+            vec3 nn;
+            if (!next_interface(pos, d_in, t, pos_next, nn) || dot(nn, nn) < 0.5)
                 break;
             n_here = normalize(nn);
-            pos = start + t_exit * d_in;
-            travelled += t_exit + 1e-3 * u_reach;
+            pos = pos_next;
+            travelled += t;
         }
         if (!leaves) {
             nothing();

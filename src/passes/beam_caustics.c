@@ -520,10 +520,9 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     vec3 slo, shi;
     if (!s->layers->built || !scene_bounds(f->scene, &slo, &shi))
         return true; /* the layers' light is not in the scene, or nothing refracts: no beams */
-    int slot = s->layers->light_slot;
+    int slot = layers_light_slot(s->layers, err);
     if (slot < 0)
-        return error_set(err, "its light_layers are the camera's (a depth_layers { view = \"light\" } pass's layers "
-                              "expected)");
+        return false;
     s->receiver_normal = normal->texture.id;
     s->receiver_depth = depth->texture.id;
     int grid = pass_int(p, BC_GRID), refine = pass_int(p, BC_REFINE);
@@ -582,12 +581,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     double parted = lit > 0.0 ? (double)counters[COUNT_PARTED] / lit : 0.0;
     char dropped[160] = "";
     if (parted > 0.05) {
-        bool water = false, glass = false;
-        for (int k = 0; k < f->scene->object_count; k++) {
-            water = water || object_is(f->scene->objects[k], OBJECT_ROLE_WATER);
-            glass = glass || object_is(f->scene->objects[k], OBJECT_ROLE_GLASS);
-        }
-        const char *through = water && glass ? "the glass and water" : water ? "the water" : "the glass";
+        const char *through = layers_refractors_named(f->scene);
         snprintf(dropped, sizeof dropped, "; %.0f%% of the light through %s dropped where paths part", 100.0 * parted,
                  through);
         static bool warned; /* one line a run: a renderer and its passes are made more than once a run */

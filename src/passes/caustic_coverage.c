@@ -43,20 +43,13 @@ static bool ensure_targets(struct caustic_coverage *c, struct error *err)
 static void refractor_names(const struct scene *scene, char *out, size_t size)
 {
     int count = 0, last = -1;
-    bool water = false, glass = false;
-    for (int i = 0; i < scene->object_count; i++) {
-        const struct object *o = scene->objects[i];
-        if (!o->visible || !layers_is_refractor(o))
-            continue;
-        count++;
-        last = i;
-        water = water || object_is(o, OBJECT_ROLE_WATER);
-        glass = glass || object_is(o, OBJECT_ROLE_GLASS);
-    }
+    for (int i = 0; i < scene->object_count; i++)
+        if (scene->objects[i]->visible && layers_is_refractor(scene->objects[i]))
+            count++, last = i;
     if (count == 1)
         snprintf(out, size, "object %d (%s)", last + 1, object_role_name(object_role(scene->objects[last])));
     else
-        snprintf(out, size, "the %d %s", count, water && glass ? "refractors" : water ? "water objects" : "glass objects");
+        snprintf(out, size, "%s", layers_refractors_named(scene));
 }
 
 /* The refractors' depth from the light where the pass has none of its own:
@@ -165,20 +158,19 @@ bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct p
     unsigned counters[2];
     if (!gl_buffer_read(c->counters, counters, sizeof counters, err))
         return false;
-    c->shadow = counters[0];
-    c->dark = counters[1];
+    unsigned shadow = counters[0], dark = counters[1];
     /* Glass keeps parts of its shadow dark (a cube of IOR 2.42 tilted in
      * the sun: a quarter of it), but exact light reaches nearly all of it;
      * where a third or more is dark the pass's samples lie too far apart
      * (a ball resting on its floor: 59-95% at the defaults, where the
      * exact trace lights all but a few pixels, thinly) */
-    if (c->dark >= 16 && c->dark * 10u > c->shadow * 3u) {
+    if (dark >= 16 && dark * 10u > shadow * 3u) {
         char names[64];
         refractor_names(f->scene, names, sizeof names);
         log_warn("%s '%s': %u of the %u pixels in the shadow of %s (%.0f%%) got none of the light through it, "
                  "which an exact trace spreads over nearly all of it (thinly where the light grazes a rim, as under "
                  "a ball resting on its floor): left black between samples too far apart; %s",
-                 p->desc->name, p->name, c->dark, c->shadow, names, 100.0 * c->dark / c->shadow, remedy);
+                 p->desc->name, p->name, dark, shadow, names, 100.0 * dark / shadow, remedy);
     }
     return gl_check(p->desc->name, err);
 }

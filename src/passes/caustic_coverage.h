@@ -23,7 +23,6 @@ struct frame_light;
 
 struct caustic_coverage {
     bool checked;               /* measured already (once a pass instance) */
-    unsigned shadow, dark;      /* what the measure found: pixels in the shadow, of them with no light */
     struct gl_texture depth;    /* the refractors' depth from the light, where the pass has none */
     struct gl_framebuffer fb;
     GLuint counters;            /* ssbo: shadow, dark */

@@ -160,10 +160,9 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     const struct layer_set *ls = layers->record;
     if (!ls->built)
         return true; /* the layers' light is not in the scene, or nothing refracts: no caustics */
-    int slot = ls->light_slot;
+    int slot = layers_light_slot(ls, err);
     if (slot < 0)
-        return error_set(err, "its light_layers are the camera's (a depth_layers { view = \"light\" } pass's layers "
-                              "expected)");
+        return false;
     GLuint receiver_normal = normal->texture.id, receiver_depth = depth->texture.id;
     int buffer = ls->width;
     if (!ensure_targets(s, f->width, f->height, buffer, err))

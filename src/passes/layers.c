@@ -54,6 +54,23 @@ bool layers_is_refractor(const struct object *o)
     return object_is(o, OBJECT_ROLE_REFRACTOR);
 }
 
+int layers_light_slot(const struct layer_set *ls, struct error *err)
+{
+    if (ls->light_slot < 0)
+        error_set(err, "its light_layers are the camera's (a depth_layers { view = \"light\" } pass's layers expected)");
+    return ls->light_slot;
+}
+
+const char *layers_refractors_named(const struct scene *scene)
+{
+    bool water = false, glass = false;
+    for (int k = 0; k < scene->object_count; k++) {
+        water = water || object_is(scene->objects[k], OBJECT_ROLE_WATER);
+        glass = glass || object_is(scene->objects[k], OBJECT_ROLE_GLASS);
+    }
+    return water && glass ? "the glass and water" : water ? "the water" : "the glass";
+}
+
 const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
     (void)p;

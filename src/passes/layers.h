@@ -88,6 +88,12 @@ bool layers_is_refractor(const struct object *o);
  * (a mirror: the layers hold glass and water only), for pass_desc.leaves_out;
  * NULL when it handles it. */
 const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o);
+/* The slot of the light a reader's light layers were taken from, or -1
+ * with an error where they are the camera's (a script may wire those in). */
+int layers_light_slot(const struct layer_set *ls, struct error *err);
+/* What the scene's refractors are, for a warning: "the glass", "the water"
+ * or "the glass and water". */
+const char *layers_refractors_named(const struct scene *scene);
 /* The uniforms of shaders/layers/scene_trace.glsl (what a leaving ray sees
  * in the camera's image) and of common/scene_bounds.glsl on `program`:
  * marched at most 1.5 times the scene's bounding diameter in 64 steps, and
