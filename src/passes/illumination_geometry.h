@@ -41,7 +41,10 @@ struct illum_volume_list {
  * traces exactly a vertex whose neighbouring table directions take
  * different paths, and splits a triangle whose vertices' paths part (leave
  * by different faces, or not at all) where they part; elsewhere, or
- * without a tracer or `flat` (NULL), such a triangle makes no volume. */
+ * without a tracer or `flat` (NULL), such a triangle makes no volume. On a
+ * curved surface a vertex within about 6 degrees of grazing (or whose table
+ * directions part) is traced too, and a triangle takes its corners' exact
+ * paths where they leave nearly parallel (the rim of an IOR-1.0 ball). */
 bool illum_volumes_collect(const struct mesh *m, const struct transport_table *table,
                            const struct transport_tracer *tracer, const bool *flat, mat4 model,
                            const struct frame_light *light, struct illum_volume_list *out, struct error *err);
