@@ -487,9 +487,9 @@ t.case("the shadow's border under an IOR-1.0 ball: shadow map and caustics meet"
   local failures = {}
   local specs = {
     ["1.0"] = { photon_caustics = { 0.08, 520 }, layered_caustics = { 0.08, 500 }, beam_caustics = { 0.08, 480 },
-              illumination_textures = { 0.11, 950 } },
+              illumination_textures = { 0.09, 700 } },
     ["1.0001"] = { photon_caustics = { 0.1, 880 }, layered_caustics = { 0.1, 900 }, beam_caustics = { 0.1, 750 },
-                   illumination_textures = { 0.13, 1250 } },
+                   illumination_textures = { 0.11, 980 } },
   }
   local R, width = 0.5, 1.6 -- tests/scenes/matrix/ball_lit.lua: radius, the camera's width
   for _, ior in ipairs { 1.0, 1.0001 } do
