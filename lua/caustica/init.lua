@@ -13,6 +13,9 @@ c.pass = graph.pass
 c.image = image
 c.param = host.param
 c.asset = host.asset
+-- c.gltf.open (C: the file as values) and c.gltf.load (Lua: objects,
+-- cameras, lights and animations made of them)
+c.gltf.load = require("caustica.gltf").loader(c)
 
 -- Small helpers for animation scripts.
 c.anim = {}
@@ -56,6 +59,7 @@ known_names(c.light, "light")
 known_names(c.texture, "texture")
 known_names(c.deform, "deformer")
 known_names(c.anim, "c.anim function")
+known_names(c.gltf, "c.gltf function")
 known_names(c, "c field")
 
 return c

@@ -102,6 +102,92 @@ struct gltf_mesh {
 bool gltf_load(const char *path, struct gltf_mesh *out, struct error *err);
 void gltf_mesh_free(struct gltf_mesh *mesh);
 
+/* ---- a file as a scene (issue 51) ---------------------------------------
+ * The file parsed once (gltf_file_open), then read as its parts: each glTF
+ * mesh in its own frame (gltf_file_mesh), and one scene's node tree,
+ * cameras, KHR_lights_punctual lights and animations (gltf_file_scene).
+ * scene/gltf_pose.c turns a scene and a time into node transforms. */
+struct gltf_file;
+bool gltf_file_open(const char *path, struct gltf_file **out, struct error *err);
+void gltf_file_close(struct gltf_file *file);
+/* How many meshes the file holds. */
+int gltf_file_mesh_count(const struct gltf_file *file);
+/* glTF mesh `index`'s triangle primitives, untransformed (the node that
+ * names it places it). */
+bool gltf_file_mesh(const struct gltf_file *file, int index, struct gltf_mesh *out, struct error *err);
+
+#define GLTF_NAME 64
+#define GLTF_MAX_WEIGHTS 8 /* morph weights a node carries (SCENE_MAX_MORPH_TARGETS) */
+
+struct gltf_node {
+    char name[GLTF_NAME];    /* the file's name, or "node N" */
+    int parent;              /* -1: a root */
+    int mesh, camera, light; /* indices into the file's meshes and the scene's cameras, lights; -1: none */
+    bool in_scene;           /* under one of the chosen scene's roots */
+    float translation[3], rotation[4], scale[3]; /* the rest pose (rotation x y z w); identity with a matrix */
+    bool has_matrix;         /* the file gives `matrix`: it is used as is, unless an animation drives the node */
+    float matrix[16];        /* column-major */
+    int weight_count;        /* the morph targets of its mesh (0: none) */
+    float weights[GLTF_MAX_WEIGHTS]; /* node.weights, else the mesh's, else 0 */
+};
+
+struct gltf_camera {
+    char name[GLTF_NAME];
+    bool orthographic;
+    float yfov, aspect;      /* perspective: vertical field of view (radians); aspect 0 when the file gives none */
+    float xmag, ymag;        /* orthographic: half the width and height */
+    float znear, zfar;       /* zfar 0: infinite (perspective) */
+};
+
+enum gltf_light_kind { GLTF_LIGHT_DIRECTIONAL, GLTF_LIGHT_POINT, GLTF_LIGHT_SPOT };
+struct gltf_light {
+    char name[GLTF_NAME];
+    enum gltf_light_kind kind;
+    float color[3], intensity; /* candela (point, spot) or lux (directional) */
+    float range;               /* 0: infinite */
+    float inner_cone, outer_cone; /* spot: radians from the axis */
+};
+
+enum gltf_path { GLTF_PATH_TRANSLATION, GLTF_PATH_ROTATION, GLTF_PATH_SCALE, GLTF_PATH_WEIGHTS };
+enum gltf_interpolation { GLTF_STEP, GLTF_LINEAR, GLTF_CUBICSPLINE };
+struct gltf_channel {
+    int node;
+    enum gltf_path path;
+    enum gltf_interpolation interpolation;
+    int components;   /* 3, 4, or the node's weight count */
+    size_t key_count;
+    float *times;     /* key_count, non-decreasing, finite */
+    float *values;    /* key_count x components; CUBICSPLINE: x 3 (in-tangent, value, out-tangent) */
+};
+struct gltf_animation {
+    char name[GLTF_NAME]; /* or "animation N" */
+    int channel_count;
+    struct gltf_channel *channels;
+    float start, end;     /* the first and last key of all its channels */
+};
+
+struct gltf_scene {
+    char name[GLTF_NAME]; /* the scene's name, or "scene N" */
+    int index;
+    int node_count;       /* every node of the file (in_scene marks the chosen scene's) */
+    struct gltf_node *nodes;
+    int camera_count;
+    struct gltf_camera *cameras;
+    int light_count;
+    struct gltf_light *lights;
+    int animation_count;
+    struct gltf_animation *animations;
+};
+
+/* The scene named `name` (NULL: the one numbered `index`; index < 0: the
+ * file's default scene, else its first). A node with two parents, a cycle,
+ * a tree deeper than 256, a bad camera or light, and animation keys that
+ * are not finite, go backwards, or outrun their accessor are errors naming
+ * the file and what is wrong. */
+bool gltf_file_scene(const struct gltf_file *file, const char *name, int index, struct gltf_scene *out,
+                     struct error *err);
+void gltf_scene_free(struct gltf_scene *scene);
+
 #ifdef __cplusplus
 }
 #endif

@@ -5,6 +5,7 @@
 // positions and truncated buffers are errors naming the file.
 #include "io/gltf.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -1049,66 +1050,117 @@ std::vector<unsigned char> read_file(const std::string &path)
 
 } // namespace
 
+namespace {
+// Parses the file at p into model: a GLB's or glTF's JSON (depth-checked
+// first), its buffers read from its own folder only, images kept as bytes.
+void parse_file(const std::string &p, tinygltf::Model &model)
+{
+    tinygltf::TinyGLTF loader;
+    std::string gerr, gwarn;
+    bool binary = p.size() > 4 && (p.compare(p.size() - 4, 4, ".glb") == 0 || p.compare(p.size() - 4, 4, ".GLB") == 0);
+    std::vector<unsigned char> bytes = read_file(p);
+    // The JSON part: the whole file, or the GLB's first chunk.
+    if (binary) {
+        if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0)
+            throw Fail{"cannot load glTF: not a binary glTF file (no 'glTF' header)"};
+        size_t json_len = read_u32(bytes.data() + 12);
+        if (json_len > bytes.size() - 20)
+            throw Fail{"cannot load glTF: the JSON chunk is longer than the file (truncated?)"};
+        check_json_depth(bytes.data() + 20, json_len);
+    } else {
+        check_json_depth(bytes.data(), bytes.size());
+    }
+    char *dir_c = realpath(p.c_str(), nullptr);
+    if (!dir_c)
+        throw Fail{std::string("cannot open: ") + std::strerror(errno)};
+    FsScope scope;
+    scope.dir = dir_c;
+    std::free(dir_c);
+    scope.dir = scope.dir.substr(0, scope.dir.rfind('/'));
+    if (scope.dir.empty())
+        scope.dir = "/";
+    tinygltf::FsCallbacks fs = {scoped_file_exists, scoped_expand, scoped_read, scoped_write, &scope};
+    loader.SetFsCallbacks(fs);
+    loader.SetImageLoader(keep_image_bytes, nullptr);
+    bool ok = binary ? loader.LoadBinaryFromMemory(&model, &gerr, &gwarn, bytes.data(), (unsigned int)bytes.size(),
+                                                   scope.dir)
+                     : loader.LoadASCIIFromString(&model, &gerr, &gwarn, (const char *)bytes.data(),
+                                                  (unsigned int)bytes.size(), scope.dir);
+    if (!ok) {
+        while (!gerr.empty() && (gerr.back() == '\n' || gerr.back() == ' '))
+            gerr.pop_back();
+        for (char &c : gerr)
+            if (c == '\n')
+                c = ' ';
+        throw Fail{"cannot load glTF: " + (gerr.empty() ? std::string("unknown error") : gerr)};
+    }
+}
+
+// What a Builder gathered, copied into out (which then owns the image bytes).
+void builder_out(Builder &b, gltf_mesh *out)
+{
+    out->vertex_count = b.positions.size() / 3;
+    out->index_count = b.indices.size();
+    out->positions = copy_out(b.positions);
+    out->normals = copy_out(b.normals);
+    out->indices = copy_out(b.indices);
+    for (int set = 0; set < 2; set++)
+        if (b.has_texcoords[set]) {
+            b.texcoords[set].resize(b.positions.size() / 3 * 2, 0.0f);
+            out->texcoords[set] = copy_out(b.texcoords[set]);
+        }
+    if (b.has_tangents) {
+        b.tangents.resize(b.positions.size() / 3 * 4, 0.0f);
+        out->tangents = copy_out(b.tangents);
+    }
+    if (b.has_colors) {
+        b.colors.resize(b.positions.size() / 3 * 4, 1.0f);
+        out->colors = copy_out(b.colors);
+    }
+    out->material_count = (int)b.materials.size();
+    out->materials = copy_out(b.materials);
+    for (gltf_material &m : b.materials) // out owns the image bytes now
+        for (gltf_texture *t : material_textures(m))
+            t->bytes = nullptr;
+    out->range_count = b.ranges.size();
+    out->ranges = copy_out(b.ranges);
+    out->target_count = b.target_count;
+    if (b.target_count > 0) {
+        std::vector<float> tp, tn;
+        for (int t = 0; t < b.target_count; t++) {
+            b.tpos[(size_t)t].resize(b.positions.size(), 0.0f);
+            b.tnrm[(size_t)t].resize(b.positions.size(), 0.0f);
+            tp.insert(tp.end(), b.tpos[(size_t)t].begin(), b.tpos[(size_t)t].end());
+            tn.insert(tn.end(), b.tnrm[(size_t)t].begin(), b.tnrm[(size_t)t].end());
+        }
+        out->target_positions = copy_out(tp);
+        out->target_normals = copy_out(tn);
+        out->weights = copy_out(b.weights);
+        out->target_names = (char **)std::calloc((size_t)b.target_count, sizeof(char *));
+        for (int t = 0; t < b.target_count && out->target_names; t++)
+            out->target_names[t] = strdup(b.target_names[(size_t)t].c_str());
+    }
+}
+} // namespace
+
 extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error *err)
 {
     std::memset(out, 0, sizeof *out);
     try {
         tinygltf::Model model;
-        tinygltf::TinyGLTF loader;
-        std::string gerr, gwarn;
-        std::string p(path);
-        bool binary = p.size() > 4 && (p.compare(p.size() - 4, 4, ".glb") == 0 || p.compare(p.size() - 4, 4, ".GLB") == 0);
-        std::vector<unsigned char> bytes = read_file(p);
-        // The JSON part: the whole file, or the GLB's first chunk.
-        if (binary) {
-            if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0)
-                throw Fail{"cannot load glTF: not a binary glTF file (no 'glTF' header)"};
-            size_t json_len = read_u32(bytes.data() + 12);
-            if (json_len > bytes.size() - 20)
-                throw Fail{"cannot load glTF: the JSON chunk is longer than the file (truncated?)"};
-            check_json_depth(bytes.data() + 20, json_len);
-        } else {
-            check_json_depth(bytes.data(), bytes.size());
-        }
-        char *dir_c = realpath(p.c_str(), nullptr);
-        if (!dir_c)
-            throw Fail{std::string("cannot open: ") + std::strerror(errno)};
-        FsScope scope;
-        scope.dir = dir_c;
-        std::free(dir_c);
-        scope.dir = scope.dir.substr(0, scope.dir.rfind('/'));
-        if (scope.dir.empty())
-            scope.dir = "/";
-        tinygltf::FsCallbacks fs = {scoped_file_exists, scoped_expand, scoped_read, scoped_write, &scope};
-        loader.SetFsCallbacks(fs);
-        loader.SetImageLoader(keep_image_bytes, nullptr);
-        bool ok = binary ? loader.LoadBinaryFromMemory(&model, &gerr, &gwarn, bytes.data(), (unsigned int)bytes.size(),
-                                                       scope.dir)
-                         : loader.LoadASCIIFromString(&model, &gerr, &gwarn, (const char *)bytes.data(),
-                                                      (unsigned int)bytes.size(), scope.dir);
-        if (!ok) {
-            while (!gerr.empty() && (gerr.back() == '\n' || gerr.back() == ' '))
-                gerr.pop_back();
-            for (char &c : gerr)
-                if (c == '\n')
-                    c = ' ';
-            throw Fail{"cannot load glTF: " + (gerr.empty() ? std::string("unknown error") : gerr)};
-        }
+        parse_file(path, model);
         Builder b;
         std::vector<int> roots;
-        int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+        int scene = model.defaultScene >= 0 && model.defaultScene < (int)model.scenes.size() ? model.defaultScene : 0;
         if (scene < (int)model.scenes.size())
             roots = model.scenes[(size_t)scene].nodes;
-        else
-            for (size_t i = 0; i < model.nodes.size(); i++)
-                roots.push_back((int)i); // no scene: every node is a root (children visited twice is avoided below)
         if (model.scenes.empty()) {
+            // no scene: every node no other names as a child is a root
             std::vector<bool> is_child(model.nodes.size(), false);
             for (const auto &n : model.nodes)
                 for (int c : n.children)
                     if (c >= 0 && c < (int)is_child.size())
                         is_child[(size_t)c] = true;
-            roots.clear();
             for (size_t i = 0; i < model.nodes.size(); i++)
                 if (!is_child[i])
                     roots.push_back((int)i);
@@ -1118,47 +1170,7 @@ extern "C" bool gltf_load(const char *path, struct gltf_mesh *out, struct error 
             visit(model, r, mat_identity(), b, 0, budget);
         if (b.indices.empty())
             throw Fail{"no triangles in the default scene"};
-        out->vertex_count = b.positions.size() / 3;
-        out->index_count = b.indices.size();
-        out->positions = copy_out(b.positions);
-        out->normals = copy_out(b.normals);
-        out->indices = copy_out(b.indices);
-        for (int set = 0; set < 2; set++)
-            if (b.has_texcoords[set]) {
-                b.texcoords[set].resize(b.positions.size() / 3 * 2, 0.0f);
-                out->texcoords[set] = copy_out(b.texcoords[set]);
-            }
-        if (b.has_tangents) {
-            b.tangents.resize(b.positions.size() / 3 * 4, 0.0f);
-            out->tangents = copy_out(b.tangents);
-        }
-        if (b.has_colors) {
-            b.colors.resize(b.positions.size() / 3 * 4, 1.0f);
-            out->colors = copy_out(b.colors);
-        }
-        out->material_count = (int)b.materials.size();
-        out->materials = copy_out(b.materials);
-        for (gltf_material &m : b.materials) // out owns the image bytes now
-            for (gltf_texture *t : material_textures(m))
-                t->bytes = nullptr;
-        out->range_count = b.ranges.size();
-        out->ranges = copy_out(b.ranges);
-        out->target_count = b.target_count;
-        if (b.target_count > 0) {
-            std::vector<float> tp, tn;
-            for (int t = 0; t < b.target_count; t++) {
-                b.tpos[(size_t)t].resize(b.positions.size(), 0.0f);
-                b.tnrm[(size_t)t].resize(b.positions.size(), 0.0f);
-                tp.insert(tp.end(), b.tpos[(size_t)t].begin(), b.tpos[(size_t)t].end());
-                tn.insert(tn.end(), b.tnrm[(size_t)t].begin(), b.tnrm[(size_t)t].end());
-            }
-            out->target_positions = copy_out(tp);
-            out->target_normals = copy_out(tn);
-            out->weights = copy_out(b.weights);
-            out->target_names = (char **)std::calloc((size_t)b.target_count, sizeof(char *));
-            for (int t = 0; t < b.target_count && out->target_names; t++)
-                out->target_names[t] = strdup(b.target_names[(size_t)t].c_str());
-        }
+        builder_out(b, out);
         return true;
     } catch (const Fail &f) {
         gltf_mesh_free(out);
@@ -1192,4 +1204,453 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
             std::free(mesh->target_names[t]);
     std::free(mesh->target_names);
     std::memset(mesh, 0, sizeof *mesh);
+}
+
+// ---- a file as a scene ----------------------------------------------------
+
+struct gltf_file {
+    std::string path;
+    tinygltf::Model model;
+};
+
+extern "C" bool gltf_file_open(const char *path, struct gltf_file **out, struct error *err)
+{
+    *out = nullptr;
+    try {
+        gltf_file *f = new gltf_file;
+        f->path = path;
+        try {
+            parse_file(f->path, f->model);
+        } catch (...) {
+            delete f;
+            throw;
+        }
+        *out = f;
+        return true;
+    } catch (const Fail &f) {
+        return error_set(err, "%s: %s", path, f.message.c_str());
+    } catch (const std::exception &e) {
+        return error_set(err, "%s: cannot load glTF: %s", path, e.what());
+    }
+}
+
+extern "C" void gltf_file_close(struct gltf_file *file) { delete file; }
+
+extern "C" int gltf_file_mesh_count(const struct gltf_file *file) { return (int)file->model.meshes.size(); }
+
+extern "C" bool gltf_file_mesh(const struct gltf_file *file, int index, struct gltf_mesh *out, struct error *err)
+{
+    std::memset(out, 0, sizeof *out);
+    try {
+        const tinygltf::Model &model = file->model;
+        if (index < 0 || index >= (int)model.meshes.size())
+            throw Fail{"mesh index " + std::to_string(index) + " is out of range"};
+        const tinygltf::Mesh &mesh = model.meshes[(size_t)index];
+        Builder b;
+        if (mesh.primitives.size() > GLTF_MAX_PRIMITIVES)
+            throw Fail{"mesh " + std::to_string(index) + " has more than " + std::to_string(GLTF_MAX_PRIMITIVES) +
+                       " primitives"};
+        for (const auto &prim : mesh.primitives) {
+            add_primitive(model, mesh, prim, mat_identity(), b);
+            if (b.positions.size() / 3 > GLTF_MAX_VERTICES)
+                throw Fail{"mesh " + std::to_string(index) + " has more than " + std::to_string(GLTF_MAX_VERTICES) +
+                           " vertices"};
+        }
+        if (b.indices.empty())
+            throw Fail{"mesh " + std::to_string(index) + " ('" + mesh.name + "') has no triangles"};
+        builder_out(b, out);
+        return true;
+    } catch (const Fail &f) {
+        gltf_mesh_free(out);
+        return error_set(err, "%s: %s", file->path.c_str(), f.message.c_str());
+    } catch (const std::exception &e) {
+        gltf_mesh_free(out);
+        return error_set(err, "%s: cannot load glTF: %s", file->path.c_str(), e.what());
+    }
+}
+
+namespace {
+void copy_name(char *dst, const std::string &name, const char *kind, size_t index)
+{
+    if (name.empty())
+        std::snprintf(dst, GLTF_NAME, "%s %zu", kind, index);
+    else
+        std::snprintf(dst, GLTF_NAME, "%s", name.c_str());
+}
+
+bool finite_all(const std::vector<double> &v)
+{
+    for (double x : v)
+        if (!std::isfinite(x))
+            return false;
+    return true;
+}
+
+// The rest pose of a node: its TRS, or its matrix (scene/gltf_pose.c
+// decomposes it should an animation drive the node, which glTF forbids).
+void node_rest(const tinygltf::Node &n, gltf_node &out, const std::string &what)
+{
+    out.translation[0] = out.translation[1] = out.translation[2] = 0;
+    out.rotation[0] = out.rotation[1] = out.rotation[2] = 0;
+    out.rotation[3] = 1;
+    out.scale[0] = out.scale[1] = out.scale[2] = 1;
+    if ((!n.translation.empty() && n.translation.size() != 3) || (!n.rotation.empty() && n.rotation.size() != 4) ||
+        (!n.scale.empty() && n.scale.size() != 3) || (!n.matrix.empty() && n.matrix.size() != 16))
+        throw Fail{what + ": translation, rotation, scale or matrix has the wrong number of values"};
+    if (!finite_all(n.translation) || !finite_all(n.rotation) || !finite_all(n.scale) || !finite_all(n.matrix))
+        throw Fail{what + ": its transform is not finite"};
+    if (n.matrix.size() == 16) {
+        out.has_matrix = true;
+        for (int i = 0; i < 16; i++)
+            out.matrix[i] = (float)n.matrix[(size_t)i];
+        return;
+    }
+    for (size_t i = 0; i < n.translation.size(); i++)
+        out.translation[i] = (float)n.translation[i];
+    if (n.rotation.size() == 4) {
+        double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+        double len = std::sqrt(x * x + y * y + z * z + w * w);
+        if (len > 1e-20) {
+            out.rotation[0] = (float)(x / len);
+            out.rotation[1] = (float)(y / len);
+            out.rotation[2] = (float)(z / len);
+            out.rotation[3] = (float)(w / len);
+        }
+    }
+    for (size_t i = 0; i < n.scale.size(); i++)
+        out.scale[i] = (float)n.scale[i];
+}
+
+// How many morph targets node n's mesh has (0 without a mesh).
+int node_targets(const tinygltf::Model &model, const tinygltf::Node &n)
+{
+    if (n.mesh < 0 || n.mesh >= (int)model.meshes.size())
+        return 0;
+    const tinygltf::Mesh &mesh = model.meshes[(size_t)n.mesh];
+    size_t t = mesh.weights.size();
+    for (const auto &p : mesh.primitives)
+        t = std::max(t, p.targets.size());
+    return (int)t;
+}
+
+// Bounds the keys of all a file's animations: each is a time and up to
+// 3 x 8 floats, so this caps the copy at about 1.6 GB... far below that,
+// a script's memory limit applies to what it keeps (see l_gltf.c).
+const size_t GLTF_MAX_KEYS = (size_t)16 << 20;
+
+void read_channel(const tinygltf::Model &model, const tinygltf::Animation &anim, const tinygltf::AnimationChannel &ch,
+                  const std::string &what, gltf_channel &out, size_t &keys_total)
+{
+    if (ch.target_node < 0 || ch.target_node >= (int)model.nodes.size())
+        throw Fail{what + ": target node " + std::to_string(ch.target_node) + " is out of range"};
+    if (ch.sampler < 0 || ch.sampler >= (int)anim.samplers.size())
+        throw Fail{what + ": sampler " + std::to_string(ch.sampler) + " is out of range"};
+    const tinygltf::AnimationSampler &sm = anim.samplers[(size_t)ch.sampler];
+    out.node = ch.target_node;
+    int comps;
+    if (ch.target_path == "translation") {
+        out.path = GLTF_PATH_TRANSLATION, comps = 3;
+    } else if (ch.target_path == "rotation") {
+        out.path = GLTF_PATH_ROTATION, comps = 4;
+    } else if (ch.target_path == "scale") {
+        out.path = GLTF_PATH_SCALE, comps = 3;
+    } else if (ch.target_path == "weights") {
+        out.path = GLTF_PATH_WEIGHTS;
+        comps = node_targets(model, model.nodes[(size_t)ch.target_node]);
+        if (comps == 0)
+            throw Fail{what + ": animates the weights of node " + std::to_string(ch.target_node) +
+                       ", whose mesh has no morph targets"};
+        if (comps > GLTF_MAX_WEIGHTS)
+            throw Fail{what + ": " + std::to_string(comps) + " morph weights, at most " +
+                       std::to_string(GLTF_MAX_WEIGHTS) + " are supported"};
+    } else {
+        throw Fail{what + ": target path '" + ch.target_path + "' is not translation, rotation, scale or weights"};
+    }
+    if (sm.interpolation == "STEP")
+        out.interpolation = GLTF_STEP;
+    else if (sm.interpolation == "LINEAR" || sm.interpolation.empty())
+        out.interpolation = GLTF_LINEAR;
+    else if (sm.interpolation == "CUBICSPLINE")
+        out.interpolation = GLTF_CUBICSPLINE;
+    else
+        throw Fail{what + ": interpolation '" + sm.interpolation + "' is not STEP, LINEAR or CUBICSPLINE"};
+    out.components = comps;
+    std::vector<double> times = read_accessor(model, sm.input, 1, (what + ": input").c_str());
+    if (times.empty())
+        throw Fail{what + ": no keyframes"};
+    for (size_t i = 0; i < times.size(); i++) {
+        if (!std::isfinite(times[i]))
+            throw Fail{what + ": keyframe time " + std::to_string(i) + " is not finite"};
+        if (i > 0 && times[i] < times[i - 1])
+            throw Fail{what + ": keyframe times are not in order (key " + std::to_string(i) + " at " +
+                       std::to_string(times[i]) + " s comes before key " + std::to_string(i - 1) + " at " +
+                       std::to_string(times[i - 1]) + " s)"};
+    }
+    keys_total += times.size();
+    if (keys_total > GLTF_MAX_KEYS)
+        throw Fail{what + ": the animations hold more than " + std::to_string(GLTF_MAX_KEYS) + " keyframes"};
+    size_t per_key = (size_t)comps * (out.interpolation == GLTF_CUBICSPLINE ? 3 : 1);
+    // weights come as scalars, one per target per key
+    if (sm.output < 0 || sm.output >= (int)model.accessors.size())
+        throw Fail{what + ": output accessor index out of range"};
+    int out_comps = out.path == GLTF_PATH_WEIGHTS ? 1 : comps;
+    std::vector<double> values = read_accessor(model, sm.output, out_comps, (what + ": output").c_str());
+    size_t want = times.size() * per_key;
+    if (values.size() < want)
+        throw Fail{what + ": output holds " + std::to_string(values.size() / (size_t)out_comps) + " values, " +
+                   std::to_string(times.size()) + " keyframes need " + std::to_string(want / (size_t)out_comps)};
+    if (!finite_all(values))
+        throw Fail{what + ": an output value is not finite"};
+    out.key_count = times.size();
+    std::vector<float> tf(times.begin(), times.end()), vf(values.begin(), values.begin() + (long)want);
+    out.times = copy_out(tf);
+    try {
+        out.values = copy_out(vf);
+    } catch (...) {
+        std::free(out.times);
+        out.times = nullptr;
+        throw;
+    }
+}
+} // namespace
+
+extern "C" bool gltf_file_scene(const struct gltf_file *file, const char *name, int index, struct gltf_scene *out,
+                                struct error *err)
+{
+    std::memset(out, 0, sizeof *out);
+    try {
+        const tinygltf::Model &model = file->model;
+        int scene = -1;
+        if (name) {
+            for (size_t i = 0; i < model.scenes.size() && scene < 0; i++)
+                if (model.scenes[i].name == name)
+                    scene = (int)i;
+            if (scene < 0) {
+                std::string known;
+                for (size_t i = 0; i < model.scenes.size(); i++)
+                    known += (i ? ", '" : "'") + model.scenes[i].name + "'";
+                throw Fail{std::string("no scene named '") + name + "' (the file has " +
+                           (known.empty() ? std::string("no named scene") : known) + ")"};
+            }
+        } else if (index >= 0) {
+            if (index >= (int)model.scenes.size())
+                throw Fail{"no scene " + std::to_string(index) + " (the file has " +
+                           std::to_string(model.scenes.size()) + ", numbered from 0)"};
+            scene = index;
+        } else if (!model.scenes.empty()) {
+            scene = model.defaultScene >= 0 && model.defaultScene < (int)model.scenes.size() ? model.defaultScene : 0;
+        }
+        out->index = scene;
+        if (scene >= 0)
+            copy_name(out->name, model.scenes[(size_t)scene].name, "scene", (size_t)scene);
+        else
+            std::snprintf(out->name, GLTF_NAME, "(no scene)");
+
+        size_t nn = model.nodes.size();
+        out->nodes = (gltf_node *)std::calloc(nn ? nn : 1, sizeof *out->nodes);
+        if (!out->nodes)
+            throw Fail{"out of memory"};
+        out->node_count = (int)nn;
+        for (size_t i = 0; i < nn; i++) {
+            const tinygltf::Node &n = model.nodes[i];
+            gltf_node &g = out->nodes[i];
+            copy_name(g.name, n.name, "node", i);
+            g.parent = -1;
+            g.mesh = n.mesh;
+            g.camera = n.camera;
+            g.light = -1;
+            std::string what = "node " + std::to_string(i) + " ('" + g.name + "')";
+            if (n.mesh >= (int)model.meshes.size() || n.mesh < -1)
+                throw Fail{what + ": mesh index " + std::to_string(n.mesh) + " is out of range"};
+            if (n.camera >= (int)model.cameras.size() || n.camera < -1)
+                throw Fail{what + ": camera index " + std::to_string(n.camera) + " is out of range"};
+            auto ext = n.extensions.find("KHR_lights_punctual");
+            if (ext != n.extensions.end() && ext->second.Has("light")) {
+                const tinygltf::Value &l = ext->second.Get("light");
+                int li = l.IsInt() ? l.Get<int>() : l.IsNumber() ? (int)l.Get<double>() : -1;
+                if (li < 0 || li >= (int)model.lights.size())
+                    throw Fail{what + ": KHR_lights_punctual light " + std::to_string(li) + " is out of range"};
+                g.light = li;
+            }
+            node_rest(n, g, what);
+            g.weight_count = node_targets(model, n);
+            if (g.weight_count > GLTF_MAX_WEIGHTS)
+                throw Fail{what + ": " + std::to_string(g.weight_count) + " morph targets, at most " +
+                           std::to_string(GLTF_MAX_WEIGHTS) + " are supported"};
+            const std::vector<double> *w = !n.weights.empty() ? &n.weights
+                                           : n.mesh >= 0 ? &model.meshes[(size_t)n.mesh].weights : nullptr;
+            for (int k = 0; w && k < g.weight_count && k < (int)w->size(); k++)
+                g.weights[k] = std::isfinite((*w)[(size_t)k]) ? (float)(*w)[(size_t)k] : 0.0f;
+        }
+        // parents: glTF's node hierarchy is a set of disjoint trees
+        for (size_t i = 0; i < nn; i++)
+            for (int c : model.nodes[i].children) {
+                if (c < 0 || c >= (int)nn)
+                    throw Fail{"node " + std::to_string(i) + ": child " + std::to_string(c) + " is out of range"};
+                if (c == (int)i)
+                    throw Fail{"node " + std::to_string(i) + " is its own child (a cycle)"};
+                if (out->nodes[c].parent >= 0)
+                    throw Fail{"node " + std::to_string(c) + " is a child of both node " +
+                               std::to_string(out->nodes[c].parent) + " and node " + std::to_string(i) +
+                               " (glTF allows one parent)"};
+                out->nodes[c].parent = (int)i;
+            }
+        // depth and cycles: walk up from each node
+        const int max_depth = 256;
+        for (size_t i = 0; i < nn; i++) {
+            int depth = 0;
+            for (int p = out->nodes[i].parent; p >= 0; p = out->nodes[p].parent) {
+                if (++depth <= max_depth)
+                    continue;
+                // too deep, or going round: a cycle comes back to a node within nn steps
+                int q = out->nodes[i].parent;
+                for (size_t step = 0; step <= nn && q >= 0; step++, q = out->nodes[q].parent)
+                    if (q == (int)i)
+                        throw Fail{"node " + std::to_string(i) + " is its own ancestor (a cycle in the node tree)"};
+                throw Fail{"node " + std::to_string(i) + " lies more than " + std::to_string(max_depth) +
+                           " levels deep in the node tree (at most " + std::to_string(max_depth) + ")"};
+            }
+        }
+        // the chosen scene's nodes
+        if (scene >= 0) {
+            for (int r : model.scenes[(size_t)scene].nodes) {
+                if (r < 0 || r >= (int)nn)
+                    throw Fail{"scene " + std::to_string(scene) + ": node " + std::to_string(r) + " is out of range"};
+                if (out->nodes[r].parent >= 0)
+                    throw Fail{"scene " + std::to_string(scene) + ": root node " + std::to_string(r) +
+                               " is also the child of node " + std::to_string(out->nodes[r].parent)};
+            }
+            for (size_t i = 0; i < nn; i++) {
+                int root = (int)i;
+                while (out->nodes[root].parent >= 0)
+                    root = out->nodes[root].parent;
+                for (int r : model.scenes[(size_t)scene].nodes)
+                    if (r == root)
+                        out->nodes[i].in_scene = true;
+            }
+        } else {
+            for (size_t i = 0; i < nn; i++)
+                out->nodes[i].in_scene = true; // no scene: every tree
+        }
+
+        out->cameras = (gltf_camera *)std::calloc(model.cameras.size() + 1, sizeof *out->cameras);
+        if (!out->cameras)
+            throw Fail{"out of memory"};
+        out->camera_count = (int)model.cameras.size();
+        for (size_t i = 0; i < model.cameras.size(); i++) {
+            const tinygltf::Camera &c = model.cameras[i];
+            gltf_camera &g = out->cameras[i];
+            copy_name(g.name, c.name, "camera", i);
+            std::string what = "camera " + std::to_string(i) + " ('" + g.name + "')";
+            if (c.type == "orthographic") {
+                g.orthographic = true;
+                g.xmag = (float)c.orthographic.xmag;
+                g.ymag = (float)c.orthographic.ymag;
+                g.znear = (float)c.orthographic.znear;
+                g.zfar = (float)c.orthographic.zfar;
+                if (!(std::isfinite(g.xmag) && std::isfinite(g.ymag) && g.xmag != 0 && g.ymag != 0))
+                    throw Fail{what + ": xmag and ymag must be finite and not zero"};
+                if (!(g.znear >= 0 && g.zfar > g.znear && std::isfinite(g.zfar)))
+                    throw Fail{what + ": znear must be 0 or more and zfar greater"};
+            } else if (c.type == "perspective") {
+                g.yfov = (float)c.perspective.yfov;
+                g.aspect = (float)c.perspective.aspectRatio;
+                g.znear = (float)c.perspective.znear;
+                g.zfar = (float)c.perspective.zfar;
+                if (!(g.yfov > 0 && g.yfov < 3.14159f))
+                    throw Fail{what + ": yfov " + std::to_string(g.yfov) + " is not in (0, pi) radians"};
+                if (!(g.znear > 0 && std::isfinite(g.znear)) || !(g.zfar == 0 || g.zfar > g.znear) ||
+                    !std::isfinite(g.zfar))
+                    throw Fail{what + ": znear must be positive and zfar greater (or absent)"};
+                if (!(g.aspect >= 0 && std::isfinite(g.aspect)))
+                    g.aspect = 0;
+            } else {
+                throw Fail{what + ": type '" + c.type + "' is not perspective or orthographic"};
+            }
+        }
+
+        out->lights = (gltf_light *)std::calloc(model.lights.size() + 1, sizeof *out->lights);
+        if (!out->lights)
+            throw Fail{"out of memory"};
+        out->light_count = (int)model.lights.size();
+        for (size_t i = 0; i < model.lights.size(); i++) {
+            const tinygltf::Light &l = model.lights[i];
+            gltf_light &g = out->lights[i];
+            copy_name(g.name, l.name, "light", i);
+            std::string what = "light " + std::to_string(i) + " ('" + g.name + "')";
+            if (l.type == "directional")
+                g.kind = GLTF_LIGHT_DIRECTIONAL;
+            else if (l.type == "point")
+                g.kind = GLTF_LIGHT_POINT;
+            else if (l.type == "spot")
+                g.kind = GLTF_LIGHT_SPOT;
+            else
+                throw Fail{what + ": type '" + l.type + "' is not directional, point or spot"};
+            g.color[0] = g.color[1] = g.color[2] = 1;
+            if (l.color.size() == 3)
+                for (int k = 0; k < 3; k++)
+                    g.color[k] = (float)l.color[(size_t)k];
+            g.intensity = (float)l.intensity;
+            g.range = (float)l.range;
+            g.inner_cone = (float)l.spot.innerConeAngle;
+            g.outer_cone = (float)l.spot.outerConeAngle;
+            if (!(g.intensity >= 0 && std::isfinite(g.intensity)) ||
+                !(g.color[0] >= 0 && g.color[1] >= 0 && g.color[2] >= 0 && std::isfinite(g.color[0] + g.color[1] + g.color[2])))
+                throw Fail{what + ": intensity and color must be finite and not negative"};
+            if (g.kind == GLTF_LIGHT_SPOT &&
+                !(g.inner_cone >= 0 && g.outer_cone > g.inner_cone - 1e-6f && g.outer_cone <= 1.5708f))
+                throw Fail{what + ": spot cones must satisfy 0 <= inner < outer <= pi/2"};
+            if (!(g.range >= 0 && std::isfinite(g.range)))
+                g.range = 0;
+        }
+
+        size_t na = model.animations.size();
+        out->animations = (gltf_animation *)std::calloc(na + 1, sizeof *out->animations);
+        if (!out->animations)
+            throw Fail{"out of memory"};
+        size_t keys_total = 0;
+        for (size_t a = 0; a < na; a++) {
+            const tinygltf::Animation &anim = model.animations[a];
+            gltf_animation &g = out->animations[a];
+            out->animation_count = (int)a + 1; // freed from here on
+            copy_name(g.name, anim.name, "animation", a);
+            g.channels = (gltf_channel *)std::calloc(anim.channels.size() + 1, sizeof *g.channels);
+            if (!g.channels)
+                throw Fail{"out of memory"};
+            g.start = INFINITY;
+            g.end = -INFINITY;
+            for (size_t k = 0; k < anim.channels.size(); k++) {
+                std::string what = "animation " + std::to_string(a) + " ('" + g.name + "') channel " + std::to_string(k);
+                read_channel(model, anim, anim.channels[k], what, g.channels[k], keys_total);
+                g.channel_count = (int)k + 1;
+                g.start = std::min(g.start, g.channels[k].times[0]);
+                g.end = std::max(g.end, g.channels[k].times[g.channels[k].key_count - 1]);
+            }
+            if (g.channel_count == 0)
+                g.start = g.end = 0;
+        }
+        return true;
+    } catch (const Fail &f) {
+        gltf_scene_free(out);
+        return error_set(err, "%s: %s", file->path.c_str(), f.message.c_str());
+    } catch (const std::exception &e) {
+        gltf_scene_free(out);
+        return error_set(err, "%s: cannot load glTF: %s", file->path.c_str(), e.what());
+    }
+}
+
+extern "C" void gltf_scene_free(struct gltf_scene *scene)
+{
+    std::free(scene->nodes);
+    std::free(scene->cameras);
+    std::free(scene->lights);
+    for (int a = 0; scene->animations && a < scene->animation_count; a++) {
+        for (int k = 0; k < scene->animations[a].channel_count; k++) {
+            std::free(scene->animations[a].channels[k].times);
+            std::free(scene->animations[a].channels[k].values);
+        }
+        std::free(scene->animations[a].channels);
+    }
+    std::free(scene->animations);
+    std::memset(scene, 0, sizeof *scene);
 }

@@ -33,7 +33,7 @@ static size_t mesh_array_bytes(const struct mesh *m)
     return bytes;
 }
 
-static int push_mesh(lua_State *L, struct mesh *m, struct error *err)
+int lmesh_push(lua_State *L, struct mesh *m, struct error *err)
 {
     if (!m)
         return lutil_error(L, "%s", err->message);
@@ -64,7 +64,7 @@ static void check_planned(lua_State *L, const char *fn, size_t vertices, size_t 
     struct error err;
     if (!lua_host_charge(L, bytes, what, &err))
         lutil_error(L, "%s", err.message);
-    lua_host_uncharge(L, bytes); /* charged for real by push_mesh, once made */
+    lua_host_uncharge(L, bytes); /* charged for real by lmesh_push, once made */
 }
 
 static int mesh_load(lua_State *L)
@@ -79,7 +79,7 @@ static int mesh_load(lua_State *L)
     struct mesh *m = mesh_load_gltf(path, left, &err);
     if (!m && left && strstr(err.message, "more than the"))
         return lutil_error(L, "%s (what --script-memory leaves the script; raise it, 0 = no limit)", err.message);
-    return push_mesh(L, m, &err);
+    return lmesh_push(L, m, &err);
 }
 
 /* An optional option table at 1 with these fields only. */
@@ -105,7 +105,7 @@ static int mesh_sphere(lua_State *L)
     mesh_sphere_counts(segments, &nv, &ni);
     check_planned(L, "sphere", nv, ni);
     struct error err;
-    return push_mesh(L, mesh_create_sphere(radius, segments, &err), &err);
+    return lmesh_push(L, mesh_create_sphere(radius, segments, &err), &err);
 }
 
 /* c.mesh.plane { size = s | {x, z}, subdivisions }: in the xz plane, +y up */
@@ -126,7 +126,7 @@ static int mesh_plane(lua_State *L)
                                       : mesh_create_grid_xz(size_x, size_z, subdivisions, subdivisions, &err);
     if (m)
         snprintf(m->name, sizeof m->name, "plane");
-    return push_mesh(L, m, &err);
+    return lmesh_push(L, m, &err);
 }
 
 static int mesh_grid(lua_State *L)
@@ -142,7 +142,7 @@ static int mesh_grid(lua_State *L)
     mesh_grid_counts(resolution, resolution, &nv, &ni);
     check_planned(L, "grid", nv, ni);
     struct error err;
-    return push_mesh(L, mesh_create_grid(size, resolution, &err), &err);
+    return lmesh_push(L, mesh_create_grid(size, resolution, &err), &err);
 }
 
 static int mesh_box(lua_State *L)
@@ -152,7 +152,7 @@ static int mesh_box(lua_State *L)
     if (options(L, "box", fields))
         lutil_opt_vec3(L, 1, "box", "size", &size);
     struct error err;
-    return push_mesh(L, mesh_create_box(size, &err), &err);
+    return lmesh_push(L, mesh_create_box(size, &err), &err);
 }
 
 static int mesh_torus(lua_State *L)
@@ -170,7 +170,7 @@ static int mesh_torus(lua_State *L)
     mesh_torus_counts(segments, sides, &nv, &ni);
     check_planned(L, "torus", nv, ni);
     struct error err;
-    return push_mesh(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
+    return lmesh_push(L, mesh_create_torus(radius, tube, segments, sides, &err), &err);
 }
 
 /* c.mesh.cylinder / c.mesh.cone { radius, height, segments }: about +y,
@@ -189,7 +189,7 @@ static int mesh_round(lua_State *L, const char *fn, bool cone)
     mesh_lathe_counts(cone ? 3 : 4, segments, &nv, &ni);
     check_planned(L, fn, nv, ni);
     struct error err;
-    return push_mesh(L, cone ? mesh_create_cone(radius, height, segments, &err)
+    return lmesh_push(L, cone ? mesh_create_cone(radius, height, segments, &err)
                              : mesh_create_cylinder(radius, height, segments, &err), &err);
 }
 
@@ -229,7 +229,7 @@ static int mesh_lathe(lua_State *L)
     struct error err;
     struct mesh *m = mesh_create_lathe("lathe", profile, count, segments, &err);
     lua_pop(L, 2);
-    return push_mesh(L, m, &err);
+    return lmesh_push(L, m, &err);
 }
 
 struct mesh *lmesh_check(lua_State *L, int idx)
@@ -657,7 +657,7 @@ static int water_new(lua_State *L)
         return lutil_error(L, "water: %s", err.message);
     }
     snprintf(m->name, sizeof m->name, "water %dx%d", sim->nx, sim->nz);
-    push_mesh(L, m, &err);
+    lmesh_push(L, m, &err);
     int mesh_idx = lua_gettop(L);
     struct l_object *u = lua_newuserdatauv(L, sizeof *u, 1);
     u->obj = object_create(m);

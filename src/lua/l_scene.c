@@ -464,6 +464,7 @@ int luaopen_caustica_scene(lua_State *L)
     lmaterials_open(L);
     lmedium_open(L);
     ltexture_open(L);
+    lgltf_open(L);
     static const luaL_Reg quats[] = {{"axis_angle", quat_axis_angle_l}, {"mul", quat_mul_l}, {NULL, NULL}};
     luaL_newlib(L, quats);
     lua_setfield(L, -2, "quat");

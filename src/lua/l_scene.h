@@ -35,6 +35,9 @@ struct l_medium { struct medium *medium; };
  * reach __gc through debug): an error, never a NULL dereference. */
 int lscene_released(lua_State *L, int idx, const char *what);
 struct mesh *lmesh_check(lua_State *L, int idx);
+/* Pushes m as a mesh value, charged against --script-memory (its arrays
+ * and textures); m NULL or over the limit: the error, raised. */
+int lmesh_push(lua_State *L, struct mesh *m, struct error *err);
 struct object *lobject_check(lua_State *L, int idx);
 struct light *llight_check(lua_State *L, int idx);
 /* NULL when the value is something else (or released). */
@@ -53,6 +56,7 @@ void llight_open(lua_State *L);
 void lmaterial_open(lua_State *L);
 void lmedium_open(lua_State *L);
 void ltexture_open(lua_State *L);
+void lgltf_open(lua_State *L);
 /* The texture reference of a Texture value, or NULL when it is something else. */
 const struct texture_ref *ltexture_test(lua_State *L, int idx);
 /* Pushes a Texture value for a reference a material holds (retained; not

@@ -332,11 +332,11 @@ static bool mesh_split(const char *path, struct mesh *m, const struct gltf_mesh 
     return ok;
 }
 
-struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err)
+/* The mesh, its materials and parts from what the loader read (g, freed
+ * here); `path` names it in messages. */
+static struct mesh *mesh_build(const char *path, struct gltf_mesh g, unsigned long long texture_budget,
+                               struct error *err)
 {
-    struct gltf_mesh g;
-    if (!gltf_load(path, &g, err))
-        return NULL;
     if (g.target_count > SCENE_MAX_MORPH_TARGETS) {
         error_set(err, "%s: %d morph targets, at most %d are supported", path, g.target_count,
                   SCENE_MAX_MORPH_TARGETS);
@@ -392,4 +392,21 @@ struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget,
         return NULL;
     }
     return m;
+}
+
+struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err)
+{
+    struct gltf_mesh g;
+    if (!gltf_load(path, &g, err))
+        return NULL;
+    return mesh_build(path, g, texture_budget, err);
+}
+
+struct mesh *mesh_load_gltf_mesh(const struct gltf_file *file, const char *path, int index,
+                                 unsigned long long texture_budget, struct error *err)
+{
+    struct gltf_mesh g;
+    if (!gltf_file_mesh(file, index, &g, err))
+        return NULL;
+    return mesh_build(path, g, texture_budget, err);
 }

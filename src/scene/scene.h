@@ -212,6 +212,11 @@ struct mesh *mesh_create_cone(float radius, float height, int segments, struct e
 /* `texture_budget`: the bytes its material's textures may take together,
  * checked before each is decoded (0: only the decoder's caps). */
 struct mesh *mesh_load_gltf(const char *path, unsigned long long texture_budget, struct error *err);
+/* Mesh `index` of a parsed file (io/gltf.h), in its own frame, named `path`
+ * (the file's, with the mesh's name) in messages. */
+struct gltf_file;
+struct mesh *mesh_load_gltf_mesh(const struct gltf_file *file, const char *path, int index,
+                                 unsigned long long texture_budget, struct error *err);
 /* The bytes of the textures a mesh's material holds. */
 size_t mesh_texture_bytes(const struct mesh *m);
 /* The triangles `first_index/3 ...` of `count` ranges (index ranges into

@@ -1,0 +1,172 @@
+-- A glTF file as a scene (issue 51): c.gltf.load's objects, cameras and
+-- animations against what tests/lua/gltf_reader.lua (its own JSON parser,
+-- accessors, matrices and samplers) computes from the same Khronos files.
+-- Placement is checked where it matters: the corners of a unit cube
+-- through each object's transform against the node's world matrix.
+local t = require "caustica.test"
+local c = require "caustica"
+local R = require "gltf_reader"
+
+local KHRONOS = (os.getenv("CAUSTICA_ROOT") or ".") .. "/scenes/assets/khronos/"
+local CORNERS = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 1 }, { -1, 0.5, 0.25 } }
+
+-- The object's matrix from what the script reads (position, rotation, scale).
+local function object_matrix(o)
+  return R.trs(o.position, o.rotation, o.scale)
+end
+
+local function near(a, b, tol, what)
+  for k = 1, #b do
+    t.expect(math.abs(a[k] - b[k]) <= tol * math.max(1, math.abs(b[k])),
+             string.format("%s: component %d is %.6g, the file says %.6g", what, k, a[k], b[k]))
+  end
+end
+
+-- Every corner through the object's transform and through the node's world.
+local function expect_placed(o, world, what)
+  local m = object_matrix(o)
+  for _, p in ipairs(CORNERS) do near(R.apply(m, p), R.apply(world, p), 1e-4, what) end
+end
+
+-- The nodes (0-based) with a mesh in the file's default scene, in node
+-- order: the order of c.gltf.load's objects.
+local function mesh_nodes(file, scene)
+  local roots = file.json.scenes[(scene or file.json.scene or 0) + 1].nodes
+  local parent = {}
+  for i, node in ipairs(file.json.nodes) do
+    for _, ch in ipairs(node.children or {}) do parent[ch] = i - 1 end
+  end
+  local list = {}
+  for i, node in ipairs(file.json.nodes) do
+    local root = i - 1
+    while parent[root] do root = parent[root] end
+    local inside = false
+    for _, r in ipairs(roots) do inside = inside or r == root end
+    if inside and node.mesh then list[#list + 1] = i - 1 end
+  end
+  return list
+end
+
+t.case("Cameras: the perspective and the orthographic camera where their nodes put them", function()
+  local path = KHRONOS .. "Cameras/Cameras.gltf"
+  local file, g = R.open(path), c.gltf.load(path)
+  t.expect(#g.cameras == 2, "two cameras, got " .. #g.cameras)
+  for i, cam in ipairs(g.cameras) do
+    local node
+    for k, n in ipairs(file.json.nodes) do if n.camera == i - 1 then node = k - 1 end end
+    local w = R.world(file, node)
+    local eye = R.apply(w, { 0, 0, 0 })
+    local ahead = R.apply(w, { 0, 0, -1 })
+    near(cam.eye, eye, 1e-5, "camera " .. i .. " eye")
+    local d = { cam.target[1] - cam.eye[1], cam.target[2] - cam.eye[2], cam.target[3] - cam.eye[3] }
+    near(d, { ahead[1] - eye[1], ahead[2] - eye[2], ahead[3] - eye[3] }, 1e-5, "camera " .. i .. " direction")
+    local info = file.json.cameras[i]
+    if info.type == "perspective" then
+      t.expect(math.abs(cam.fov - math.deg(info.perspective.yfov)) < 1e-3, "fov " .. cam.fov)
+      t.expect(math.abs(cam.near - info.perspective.znear) < 1e-6 and math.abs(cam.far - info.perspective.zfar) < 1e-3,
+               "near and far")
+      t.expect(not cam.ortho, "the perspective camera is not orthographic")
+    else
+      t.expect(cam.ortho and math.abs(cam.ortho.width - 2 * info.orthographic.xmag) < 1e-6,
+               "the orthographic camera is 2 xmag wide")
+    end
+  end
+  expect_placed(g.objects[1], R.world(file, 0), "the square")
+  -- both render (the orthographic one too), the square on screen
+  for i = 1, 2 do
+    local img = t.render(KHRONOS .. "../../../tests/scenes/gltf_file.lua",
+                         { set = { path = "khronos/Cameras/Cameras.gltf", camera = i, size = 64 } })
+    t.expect_finite(img)
+    local lit = 0
+    for y = 0, 63 do for x = 0, 63 do if img:pixel(x, y) > 0.05 then lit = lit + 1 end end end
+    t.expect(lit > 200, string.format("camera %d sees the square: %d lit pixels", i, lit))
+  end
+end)
+
+t.case("MultipleScenes: `scene` picks which nodes become objects", function()
+  local path = KHRONOS .. "MultipleScenes/MultipleScenes.gltf"
+  local file = R.open(path)
+  for scene = 0, 1 do
+    local g = c.gltf.load(path, { scene = scene })
+    local nodes = mesh_nodes(file, scene)
+    t.expect(#g.objects == #nodes, string.format("scene %d: %d objects, the file has %d", scene, #g.objects, #nodes))
+    t.expect(g.objects[1].mesh.vertex_count > 0, "a mesh")
+    for k, n in ipairs(nodes) do expect_placed(g.objects[k], R.world(file, n), "scene " .. scene) end
+  end
+  local a, b = c.gltf.load(path, { scene = 0 }), c.gltf.load(path, { scene = 1 })
+  t.expect(a.objects[1].mesh.vertex_count ~= b.objects[1].mesh.vertex_count,
+           "the two scenes hold different meshes (a square and a triangle)")
+  local ok, err = pcall(c.gltf.load, path, { scene = 5 })
+  t.expect(not ok and err:find("MultipleScenes.gltf: no scene 5 %(the file has 2, numbered from 0%)"), tostring(err))
+  ok, err = pcall(c.gltf.load, path, { scene = "Kitchen" })
+  t.expect(not ok and err:find("no scene named 'Kitchen'"), tostring(err))
+end)
+
+-- Animation `anim` (0-based) of `path`, its objects at each time against
+-- the reader's nodes.
+local function check_animation(path, anim, times)
+  local file, g = R.open(path), c.gltf.load(path)
+  local nodes = mesh_nodes(file)
+  local a = g.animations[anim + 1]
+  for _, time in ipairs(times) do
+    a:apply(time - a.start, { loop = false })
+    local override, weights = R.pose(file, anim, time)
+    for k, n in ipairs(nodes) do
+      local what = string.format("%s, animation '%s' at %g s, node %d", path:match("[^/]+$"), a.name, time, n)
+      expect_placed(g.objects[k], R.world(file, n, override), what)
+      if weights[n] then near(g.objects[k].morph_weights, weights[n], 1e-5, what .. " weights") end
+    end
+  end
+  return g, file
+end
+
+t.case("BoxAnimated: at its keyframes and between", function()
+  -- keys: rotation 1.25 and 2.5 s, translation 0, 1.25, 2.5, 3.708 s
+  check_animation(KHRONOS .. "BoxAnimated/BoxAnimated.glb", 0, { 0, 0.4, 1.25, 1.6, 1.875, 2.5, 3.1, 3.708, 6 })
+end)
+
+t.case("AnimatedTriangle: at its keyframes and between", function()
+  check_animation(KHRONOS .. "AnimatedTriangle/AnimatedTriangle.gltf", 0, { 0, 0.1, 0.25, 0.5, 0.66, 0.75, 1.0 })
+end)
+
+t.case("InterpolationTest: every cube where its STEP, LINEAR or CUBICSPLINE sampler puts it", function()
+  local path = KHRONOS .. "InterpolationTest/InterpolationTest.glb"
+  local file = R.open(path)
+  local kinds = {}
+  for anim = 0, #file.json.animations - 1 do
+    local a = file.json.animations[anim + 1]
+    kinds[#kinds + 1] = a.samplers[1].interpolation
+    local times = R.accessor(file, a.samplers[1].input)
+    local list = {}
+    for k = 1, #times - 1 do
+      local t0, t1 = times[k][1], times[k + 1][1]
+      list[#list + 1] = t0
+      list[#list + 1] = t0 + 0.3 * (t1 - t0)
+      list[#list + 1] = t0 + 0.77 * (t1 - t0)
+    end
+    list[#list + 1] = times[#times][1]
+    check_animation(path, anim, list)
+  end
+  local seen = table.concat(kinds, " ")
+  t.expect(seen:find("STEP") and seen:find("LINEAR") and seen:find("CUBICSPLINE"), "all three samplers: " .. seen)
+end)
+
+t.case("AnimatedMorphCube and SimpleMorph: morph weights at keys and between", function()
+  local g = check_animation(KHRONOS .. "AnimatedMorphCube/AnimatedMorphCube.glb", 0, { 0, 0.5, 1.0, 1.37, 2.0, 3.0 })
+  t.expect(#g.objects[1].morph_weights == 2, "two weights")
+  check_animation(KHRONOS .. "SimpleMorph/SimpleMorph.gltf", 0, { 0, 0.5, 1.0, 1.5, 2.2, 3.0, 4.0 })
+end)
+
+t.case("an animation loops by default and holds its last key with loop = false", function()
+  local path = KHRONOS .. "BoxAnimated/BoxAnimated.glb"
+  local g = c.gltf.load(path)
+  local a = g.animations[1]
+  a:apply(1.0)
+  local p1 = g.objects[1].position
+  a:apply(1.0 + a.duration)
+  near(g.objects[1].position, p1, 1e-5, "one period later")
+  a:apply(a.duration, { loop = false })
+  local last = g.objects[1].position
+  a:apply(a.duration + 5, { loop = false })
+  near(g.objects[1].position, last, 1e-5, "held")
+end)
