@@ -141,7 +141,7 @@ local function load(c, path, opts)
   local file = c.gltf.open(path, opts)
   local poses = file:pose(nil, 0)
   local out = { name = file.name, file = file, nodes = file.nodes, objects = {}, cameras = {}, lights = {},
-                animations = {} }
+                animations = {}, camera_info = {} }
   local bindings = { objects = {}, cameras = {}, lights = {} }
   local camera_info, light_info = file.cameras, file.lights
   for i, node in ipairs(out.nodes) do
@@ -156,6 +156,7 @@ local function load(c, path, opts)
       if node.camera then
         local cam = make_camera(c, camera_info[node.camera], pose)
         add(out.cameras, node.name, cam)
+        out.camera_info[#out.cameras] = camera_info[node.camera]
         bindings.cameras[i] = cam
       end
       if node.light then

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <lauxlib.h>
 
@@ -125,6 +126,12 @@ static void unload(struct session *s)
     s->graph = NULL;
 }
 
+bool session_is_gltf(const char *path)
+{
+    size_t n = strlen(path);
+    return (n > 5 && strcasecmp(path + n - 5, ".gltf") == 0) || (n > 4 && strcasecmp(path + n - 4, ".glb") == 0);
+}
+
 static bool load(struct session *s, struct error *err)
 {
     const char *asset_dirs[LUA_HOST_ASSET_DIRS_MAX];
@@ -149,7 +156,16 @@ static bool load(struct session *s, struct error *err)
     if (!s->L)
         return false;
     s->advanced = -1;
-    if (!lua_host_run_file(s->L, s->script, 1, err) || !read_result(s, err)) {
+    /* A glTF file given for a script is run as the built-in scene script
+     * for it (lua/caustica/gltf_scene.lua); the host still names the file
+     * as the scene's (its folder readable, its name in messages). */
+    char builtin[4200];
+    const char *run = s->script;
+    if (session_is_gltf(s->script)) {
+        snprintf(builtin, sizeof builtin, "%s/lua/caustica/gltf_scene.lua", s->app->root);
+        run = builtin;
+    }
+    if (!lua_host_run_file(s->L, run, 1, err) || !read_result(s, err)) {
         unload(s);
         return false;
     }

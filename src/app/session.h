@@ -47,6 +47,9 @@ struct session {
 };
 
 bool session_open(struct app *app, const struct session_options *options, struct session **out, struct error *err);
+/* Whether a scene path is a glTF file (.gltf, .glb), which the session runs
+ * through lua/caustica/gltf_scene.lua instead of as a script. */
+bool session_is_gltf(const char *path);
 void session_close(struct session *s);
 /* Overrides a number parameter of a pass: "pass.param" = value (what
  * `caustica bench --sweep shadow.size=512,1024` does). Before rendering. */

@@ -208,6 +208,14 @@ void lua_host_unused_params(lua_State *L, char *out, size_t outlen)
         }
 }
 
+/* The scene's own file: the script, or the glTF file a built-in script
+ * stands for (session.c: `caustica render model.glb`). */
+static int host_script(lua_State *L)
+{
+    lua_pushstring(L, host_of(L)->script);
+    return 1;
+}
+
 static int host_script_dir(lua_State *L)
 {
     lua_pushstring(L, host_of(L)->script_dir);
@@ -320,7 +328,7 @@ static int host_asset(lua_State *L)
 
 int luaopen_caustica_host(lua_State *L)
 {
-    static const luaL_Reg funcs[] = {{"param", host_param}, {"script_dir", host_script_dir}, {"root", host_root},
+    static const luaL_Reg funcs[] = {{"param", host_param}, {"script", host_script}, {"script_dir", host_script_dir}, {"root", host_root},
                                      {"asset", host_asset}, {"suggest", host_suggest}, {"test_options", host_test_options}, {"mkdir", host_mkdir}, {NULL, NULL}};
     luaL_newlib(L, funcs);
     return 1;

@@ -18,6 +18,10 @@ bad weights_no_targets "bad_scene_weights_no_targets.gltf: animation 0 ('move') 
 bad huge_keys "bad_scene_huge_keys.gltf: animation 0 ('move') channel 0: input: accessor count 3000000 is larger than the file can describe"
 bad bad_camera "bad_scene_bad_camera.gltf: camera 0 ('camera 0'): yfov 0.000000 is not in (0, pi) radians"
 
+# the same file given for a script (no script: lua/caustica/gltf_scene.lua)
+expect_error "a bad file with no script" 1 "$D/bad_scene_two_parents.gltf: node 2 is a child of both node 0 and node 1" \
+  "$O" -- "$CAUSTICA" render "$D/bad_scene_two_parents.gltf" -o "$O"
+
 # the scene asked for by a name the file does not have
 cat >"$WORK/scene_name.lua" <<LUA
 local c = require "caustica"

@@ -79,7 +79,7 @@ if "${RUN[@]}" >"$WORK/tutorial.log" 2>&1; then
 else
   fail "the tutorial from the installed prefix $hidden" "$(tail -8 "$WORK/tutorial.log")"
 fi
-for img in glass.png glass.pfm step1.png step2.png step3.png step4.png step5.png frames/frame_0012.png truth.pfm truth.png table.pfm; do
+for img in glass.png glass.pfm step1.png step2.png step3.png step4.png step5.png step8.png frames/frame_0012.png truth.pfm truth.png table.pfm; do
   [ -s "$HOME_DIR/$img" ] && pass "the tutorial made $img" || fail "the tutorial's $img" "missing"
 done
 grep -q "rel_rmse=" "$WORK/tutorial.log" && pass "compare printed the error against the truth" \
