@@ -43,8 +43,16 @@ local function light_place(light, kind, pose)
   if kind ~= "point" then light.direction = rotate(pose.rotation, { 0, 0, -1 }) end
 end
 
-local function object_place(obj, pose)
-  obj.position, obj.rotation, obj.scale = pose.position, pose.rotation, pose.scale
+-- A skinned node's object stands where its joints put it: its own
+-- transform is the identity (glTF 2.0 §3.7.3.3 has the skinned mesh's node
+-- transform ignored) and `joints` its skin's matrices.
+local function object_place(obj, pose, joints)
+  if joints then
+    obj.position, obj.rotation, obj.scale = { 0, 0, 0 }, { 0, 0, 0, 1 }, { 1, 1, 1 }
+    obj.joint_matrices = joints
+  else
+    obj.position, obj.rotation, obj.scale = pose.position, pose.rotation, pose.scale
+  end
   if #pose.weights > 0 then obj.morph_weights = pose.weights end
 end
 
@@ -95,28 +103,25 @@ function Animation:apply(t, opts)
   local span = self.stop - self.start
   local at = self.start + t
   if loop and span > 0 then at = self.start + (t % span) end
-  local poses = self.file:pose(self.index, at)
-  for node, obj in pairs(self.bindings.objects) do object_place(obj, poses[node]) end
+  local poses, skins = self.file:pose(self.index, at)
+  for node, obj in pairs(self.bindings.objects) do
+    local skin = self.bindings.skins[node]
+    object_place(obj, poses[node], skin and skins[skin])
+  end
   for node, cam in pairs(self.bindings.cameras) do camera_place(cam, poses[node]) end
   for node, l in pairs(self.bindings.lights) do light_place(l.light, l.kind, poses[node]) end
   return self
 end
 
--- The world box {min, max} of `objects` where they stand now (each mesh's
--- box through its object's transform), nil when there are none.
+-- The world box {min, max} of `objects` where they stand now (each
+-- object's own box: its mesh through its transform, or its skin as posed),
+-- nil when there are none.
 local function objects_bounds(objects)
   local lo, hi
   for _, o in ipairs(objects) do
-    local b = o.mesh.bounds
-    for corner = 0, 7 do
-      local p = { corner & 1 == 0 and b[1][1] or b[2][1], corner & 2 == 0 and b[1][2] or b[2][2],
-                  corner & 4 == 0 and b[1][3] or b[2][3] }
-      local s = o.scale
-      p = rotate(o.rotation, { p[1] * s[1], p[2] * s[2], p[3] * s[3] })
-      p = { p[1] + o.position[1], p[2] + o.position[2], p[3] + o.position[3] }
-      lo = lo and { math.min(lo[1], p[1]), math.min(lo[2], p[2]), math.min(lo[3], p[3]) } or p
-      hi = hi and { math.max(hi[1], p[1]), math.max(hi[2], p[2]), math.max(hi[3], p[3]) } or p
-    end
+    local b = o.bounds
+    lo = lo and { math.min(lo[1], b[1][1]), math.min(lo[2], b[1][2]), math.min(lo[3], b[1][3]) } or b[1]
+    hi = hi and { math.max(hi[1], b[2][1]), math.max(hi[2], b[2][2]), math.max(hi[3], b[2][3]) } or b[2]
   end
   return lo and { lo, hi } or nil
 end
@@ -139,17 +144,25 @@ end
 
 local function load(c, path, opts)
   local file = c.gltf.open(path, opts)
-  local poses = file:pose(nil, 0)
+  local poses, skins = file:pose(nil, 0)
   local out = { name = file.name, file = file, nodes = file.nodes, objects = {}, cameras = {}, lights = {},
                 animations = {}, camera_info = {} }
-  local bindings = { objects = {}, cameras = {}, lights = {} }
+  local bindings = { objects = {}, cameras = {}, lights = {}, skins = {} }
   local camera_info, light_info = file.cameras, file.lights
   for i, node in ipairs(out.nodes) do
     if node.in_scene then
       local pose = poses[i]
       if node.mesh then
-        local obj = c.object { mesh = file:mesh(node.mesh) }
-        object_place(obj, pose)
+        local mesh = file:mesh(node.mesh)
+        local obj = c.object { mesh = mesh }
+        -- a skin on a mesh without JOINTS_0 (or the reverse) poses nothing
+        local skin = node.skin and mesh.skinned and node.skin or nil
+        if skin and mesh.joint_count > #skins[skin] / 16 then
+          error(string.format("%s: node %d ('%s'): its mesh's JOINTS_0 names joint %d, its skin %d has %d joints",
+                              file.path, i - 1, node.name, mesh.joint_count - 1, skin - 1, #skins[skin] / 16), 0)
+        end
+        object_place(obj, pose, skin and skins[skin])
+        bindings.skins[i] = skin
         add(out.objects, node.name, obj)
         bindings.objects[i] = obj
       end

@@ -1,7 +1,8 @@
 #version 450 core
-// Morph targets then a deformer, per vertex, into the object's frame
-// buffers. DEFORM_KIND: 0 morphs only, 1 wave, 2 a GLSL function from the
-// script, `vec3 deform(vec3 p, float t)`, inserted above this line.
+// Morph targets, a glTF skin (SKINNED 1), then a deformer, per vertex,
+// into the object's frame buffers. DEFORM_KIND: 0 morphs only, 1 wave, 2 a
+// GLSL function from the script, `vec3 deform(vec3 p, float t)`, inserted
+// above this line.
 layout(local_size_x = 256) in;
 
 layout(std430) readonly buffer BasePositions { float base_positions[]; };
@@ -10,6 +11,16 @@ layout(std430) readonly buffer TargetPositions { float target_positions[]; };
 layout(std430) readonly buffer TargetNormals { float target_normals[]; };
 layout(std430) writeonly buffer OutPositions { float out_positions[]; };
 layout(std430) writeonly buffer OutNormals { float out_normals[]; };
+
+#if SKINNED
+// glTF 2.0 §3.7.3: four joints a vertex (their indices as floats), their
+// weights (summing to 1, or all 0: not skinned), and each joint's world
+// matrix times its inverse bind matrix, this frame
+layout(std430) readonly buffer Joints { float joints[]; };
+layout(std430) readonly buffer JointWeights { float joint_weights[]; };
+layout(std430) readonly buffer JointMatrices { mat4 joint_matrices[]; };
+uniform int u_joint_count;
+#endif
 
 uniform int u_vertex_count;
 uniform int u_target_count;
@@ -46,6 +57,24 @@ void main()
         p += u_weights[t] * vec3(target_positions[j], target_positions[j + 1u], target_positions[j + 2u]);
         n += u_weights[t] * vec3(target_normals[j], target_normals[j + 1u], target_normals[j + 2u]);
     }
+#if SKINNED
+    // the skin after the morphs (glTF 2.0 §3.7.3.3): the weighted blend of
+    // the joints' matrices; the normal by its cofactor (a blend of
+    // rotations and scales need not be orthogonal)
+    uint k4 = v * 4u;
+    vec4 w = vec4(joint_weights[k4], joint_weights[k4 + 1u], joint_weights[k4 + 2u], joint_weights[k4 + 3u]);
+    if (w.x + w.y + w.z + w.w > 0.0) {
+        mat4 s = mat4(0.0);
+        for (uint k = 0u; k < 4u; k++) {
+            int j = int(joints[k4 + k]);
+            if (w[k] > 0.0 && j >= 0 && j < u_joint_count)
+                s += w[k] * joint_matrices[j];
+        }
+        p = (s * vec4(p, 1.0)).xyz;
+        mat3 m = mat3(s);
+        n = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1])) * n;
+    }
+#endif
     vec3 q = apply_deform(p);
 #if DEFORM_KIND != 0
     // Normals transform by the cofactor of the deformation's Jacobian,

@@ -46,14 +46,17 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         }
         char defines[8192];
         const char *origin = NULL;
+        bool skinned = o->joint_matrix_count > 0 && o->mesh->joints;
+        const char *skin = skinned ? "#define SKINNED 1\n" : "#define SKINNED 0\n";
         if (o->deform.kind == DEFORM_GLSL) {
-            int n = snprintf(defines, sizeof defines, "#define DEFORM_KIND 2\n%s\n", o->deform.glsl ? o->deform.glsl : "");
+            int n = snprintf(defines, sizeof defines, "%s#define DEFORM_KIND 2\n%s\n", skin,
+                             o->deform.glsl ? o->deform.glsl : "");
             if (n < 0 || (size_t)n >= sizeof defines)
                 return error_set(err, "%s: the deformer's GLSL is longer than %zu characters", o->deform.origin,
                                  sizeof defines - 64);
             origin = o->deform.origin;
         } else {
-            snprintf(defines, sizeof defines, "#define DEFORM_KIND %d\n", o->deform.kind == DEFORM_WAVE ? 1 : 0);
+            snprintf(defines, sizeof defines, "%s#define DEFORM_KIND %d\n", skin, o->deform.kind == DEFORM_WAVE ? 1 : 0);
         }
         struct gl_program *prog;
         if (!gl_program_get_compute(&r->programs, "deform/deform.comp", defines, origin, &prog, err))
@@ -69,6 +72,23 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         gl_program_bind_storage(prog, "TargetNormals", m->target_count ? gm->target_normals : gm->normals);
         gl_program_bind_storage(prog, "OutPositions", g->deformed_positions);
         gl_program_bind_storage(prog, "OutNormals", g->deformed_normals);
+        if (skinned) {
+            /* this frame's joint matrices, in a buffer of the object's that
+             * grows with the skin */
+            size_t bytes = (size_t)o->joint_matrix_count * 16 * sizeof(float);
+            if (g->joint_capacity < o->joint_matrix_count) {
+                gl_buffer_destroy(&g->joint_matrices);
+                if (!gl_buffer_create(&g->joint_matrices, o->joint_matrices, bytes, GL_DYNAMIC_STORAGE_BIT, err))
+                    return false;
+                g->joint_capacity = o->joint_matrix_count;
+            } else if (!gl_buffer_update(g->joint_matrices, o->joint_matrices, bytes, err)) {
+                return false;
+            }
+            gl_program_bind_storage(prog, "Joints", gm->joints);
+            gl_program_bind_storage(prog, "JointWeights", gm->joint_weights);
+            gl_program_bind_storage(prog, "JointMatrices", g->joint_matrices);
+            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_joint_count"), o->joint_matrix_count);
+        }
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_vertex_count"), (GLint)m->vertex_count);
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_target_count"), m->target_count);
         for (int t = 0; t < SCENE_MAX_MORPH_TARGETS; t++) {

@@ -21,12 +21,15 @@ static void release_mesh(struct gpu_mesh *g)
     gl_buffer_destroy(&g->texcoords[1]);
     gl_buffer_destroy(&g->colors);
     gl_buffer_destroy(&g->tangents);
+    gl_buffer_destroy(&g->joints);
+    gl_buffer_destroy(&g->joint_weights);
 }
 
 static void release_object(struct gpu_object *g)
 {
     gl_buffer_destroy(&g->deformed_positions);
     gl_buffer_destroy(&g->deformed_normals);
+    gl_buffer_destroy(&g->joint_matrices);
     if (g->vao && gl_api_ready())
         gl.DeleteVertexArrays(1, &g->vao);
     g->vao = 0;
@@ -81,6 +84,9 @@ struct gpu_mesh *mesh_cache_mesh(struct mesh_cache *c, const struct mesh *m, str
         ok = gl_buffer_create(&g->colors, m->colors, m->vertex_count * 4 * sizeof(float), 0, err);
     if (ok && m->tangents)
         ok = gl_buffer_create(&g->tangents, m->tangents, m->vertex_count * 4 * sizeof(float), 0, err);
+    if (ok && m->joints)
+        ok = gl_buffer_create(&g->joints, m->joints, m->vertex_count * 4 * sizeof(float), 0, err) &&
+             gl_buffer_create(&g->joint_weights, m->joint_weights, m->vertex_count * 4 * sizeof(float), 0, err);
     if (ok && m->target_count > 0)
         ok = gl_buffer_create(&g->target_positions, m->target_positions, vbytes * (size_t)m->target_count, 0, err) &&
              gl_buffer_create(&g->target_normals, m->target_normals, vbytes * (size_t)m->target_count, 0, err);

@@ -22,6 +22,7 @@ struct gpu_mesh {
     GLuint texcoords[2]; /* 0 where the mesh has no such set (attribute locations 2 and 3) */
     GLuint colors;       /* glTF's COLOR_0 (location 4), 0 where the mesh has none */
     GLuint tangents;     /* a normal map's tangents (location 5), 0 where the mesh has none */
+    GLuint joints, joint_weights; /* a skin's JOINTS_0 and WEIGHTS_0 (deform.comp reads them), 0 without */
     GLuint thickness; /* d_N per vertex, uploaded on first use */
     bool used;        /* by the scene of the current frame */
 };
@@ -29,6 +30,8 @@ struct gpu_mesh {
 struct gpu_object {
     uint64_t serial;
     GLuint deformed_positions, deformed_normals; /* 0 until the object animates its geometry */
+    GLuint joint_matrices; /* a skinned object's joint matrices this frame, 0 until it has some */
+    int joint_capacity;    /* how many it holds */
     size_t deformed_vertices;
     GLuint vao;
     GLuint vao_positions; /* which position buffer the VAO reads */

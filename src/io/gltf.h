@@ -87,6 +87,9 @@ struct gltf_mesh {
     float *colors;       /* vertex_count * 4, COLOR_0 as linear RGBA (white where a primitive has none), or NULL */
     float *tangents;     /* vertex_count * 4: TANGENT (world xyz, w), or made per vertex where a normal map
                           * needs them; (0 0 0 1) where a primitive has none; NULL: no primitive has any */
+    float *joints;        /* vertex_count * 4: JOINTS_0 (indices into the node's skin's joints), or NULL;
+                           * read by gltf_file_mesh only */
+    float *joint_weights; /* vertex_count * 4: WEIGHTS_0, normalised to sum 1 (0 0 0 0: unskinned) */
     uint32_t *indices;
     int target_count;
     float *target_positions; /* target_count * vertex_count * 3 deltas */
@@ -118,11 +121,13 @@ bool gltf_file_mesh(const struct gltf_file *file, int index, struct gltf_mesh *o
 
 #define GLTF_NAME 64
 #define GLTF_MAX_WEIGHTS 8 /* morph weights a node carries (SCENE_MAX_MORPH_TARGETS) */
+#define GLTF_MAX_JOINTS 256 /* joints a skin may have (SCENE_MAX_JOINTS) */
 
 struct gltf_node {
     char name[GLTF_NAME];    /* the file's name, or "node N" */
     int parent;              /* -1: a root */
     int mesh, camera, light; /* indices into the file's meshes and the scene's cameras, lights; -1: none */
+    int skin;                /* index into the scene's skins; -1: none */
     bool in_scene;           /* under one of the chosen scene's roots */
     float translation[3], rotation[4], scale[3]; /* the rest pose (rotation x y z w); identity with a matrix */
     bool has_matrix;         /* the file gives `matrix`: it is used as is, unless an animation drives the node */
@@ -166,6 +171,15 @@ struct gltf_animation {
     float start, end;     /* the first and last key of all its channels */
 };
 
+/* A skin (glTF 2.0 §3.7.3): its joints, nodes of the file, each with the
+ * inverse of its bind matrix (identity when the file gives none). */
+struct gltf_skin {
+    char name[GLTF_NAME];
+    int joint_count;
+    int *joints;          /* node indices */
+    float *inverse_bind;  /* joint_count x 16, column-major */
+};
+
 struct gltf_scene {
     char name[GLTF_NAME]; /* the scene's name, or "scene N" */
     int index;
@@ -177,6 +191,8 @@ struct gltf_scene {
     struct gltf_light *lights;
     int animation_count;
     struct gltf_animation *animations;
+    int skin_count;
+    struct gltf_skin *skins;
 };
 
 /* The scene named `name` (NULL: the one numbered `index`; index < 0: the

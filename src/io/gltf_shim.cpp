@@ -181,6 +181,7 @@ int type_components(int type)
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16;
     default: return 0;
     }
 }
@@ -257,6 +258,11 @@ struct Builder {
     bool has_texcoords[2] = {false, false};
     std::vector<float> colors; // COLOR_0 as RGBA, white for primitives without it
     bool has_colors = false;
+    // JOINTS_0 and WEIGHTS_0 (a skin), read when the mesh is taken in its
+    // own frame for a skinned node (gltf_file_mesh); zeros where a
+    // primitive has none
+    bool read_skin = false, has_skin = false;
+    std::vector<float> joints, joint_weights;
     std::vector<float> tangents; // TANGENT (world xyz, w), or made per vertex; (0 0 0 1): none
     bool has_tangents = false;
     std::vector<uint32_t> indices;
@@ -660,12 +666,48 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     int slot = material_slot(model, prim.material, b);
     // Vertex attributes nothing draws yet (issue 50): said in the
     // material's list of what is ignored, once each, never dropped in silence
-    if (slot >= 0) {
+    if (slot >= 0 && !b.read_skin) {
         gltf_material &m = b.materials[(size_t)slot];
-        static const char *const unread[][2] = {{"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose)"}};
+        static const char *const unread[][2] = {
+            {"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose by c.mesh.load; c.gltf.load poses it)"}};
         for (const auto &u : unread)
             if (prim.attributes.count(u[0]) && !std::strstr(m.unread, u[0]))
                 note_unread(m, u[1]);
+    }
+    // The skin (glTF 2.0 §3.7.3): four joints a vertex and their weights,
+    // normalised to sum 1 (a vertex of no weight stays put: joint 0 at
+    // weight 0 is no move, see deform.comp)
+    if (b.read_skin) {
+        b.joints.resize(base * 4, 0.0f);
+        b.joint_weights.resize(base * 4, 0.0f);
+        auto j_it = prim.attributes.find("JOINTS_0"), w_it = prim.attributes.find("WEIGHTS_0");
+        if (j_it != prim.attributes.end() && w_it != prim.attributes.end()) {
+            if (j_it->second < 0 || j_it->second >= (int)model.accessors.size())
+                throw Fail{"JOINTS_0: accessor index out of range"};
+            int jt = model.accessors[(size_t)j_it->second].componentType;
+            if (jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+                throw Fail{"JOINTS_0 of mesh '" + mesh.name + "' must be unsigned bytes or shorts"};
+            std::vector<double> j = read_accessor(model, j_it->second, 4, "JOINTS_0");
+            std::vector<double> w = read_accessor(model, w_it->second, 4, "WEIGHTS_0");
+            if (j.size() != nv * 4 || w.size() != nv * 4)
+                throw Fail{"JOINTS_0 or WEIGHTS_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
+            for (size_t i = 0; i < nv; i++) {
+                double sum = 0;
+                for (int k = 0; k < 4; k++) {
+                    double v = w[i * 4 + (size_t)k];
+                    sum += std::isfinite(v) && v > 0 ? v : 0;
+                }
+                for (int k = 0; k < 4; k++) {
+                    double v = w[i * 4 + (size_t)k];
+                    b.joints.push_back((float)j[i * 4 + (size_t)k]);
+                    b.joint_weights.push_back(sum > 0 && std::isfinite(v) && v > 0 ? (float)(v / sum) : 0.0f);
+                }
+            }
+            b.has_skin = true;
+        } else {
+            b.joints.resize((base + nv) * 4, 0.0f);
+            b.joint_weights.resize((base + nv) * 4, 0.0f);
+        }
     }
     if (!b.ranges.empty() && b.ranges.back().material == slot)
         b.ranges.back().index_count += idx.size();
@@ -1117,6 +1159,12 @@ void builder_out(Builder &b, gltf_mesh *out)
         b.colors.resize(b.positions.size() / 3 * 4, 1.0f);
         out->colors = copy_out(b.colors);
     }
+    if (b.has_skin) {
+        b.joints.resize(b.positions.size() / 3 * 4, 0.0f);
+        b.joint_weights.resize(b.positions.size() / 3 * 4, 0.0f);
+        out->joints = copy_out(b.joints);
+        out->joint_weights = copy_out(b.joint_weights);
+    }
     out->material_count = (int)b.materials.size();
     out->materials = copy_out(b.materials);
     for (gltf_material &m : b.materials) // out owns the image bytes now
@@ -1189,6 +1237,8 @@ extern "C" void gltf_mesh_free(struct gltf_mesh *mesh)
     std::free(mesh->texcoords[0]);
     std::free(mesh->texcoords[1]);
     std::free(mesh->colors);
+    std::free(mesh->joints);
+    std::free(mesh->joint_weights);
     std::free(mesh->tangents);
     for (int i = 0; mesh->materials && i < mesh->material_count; i++) {
         for (gltf_texture *t : material_textures(mesh->materials[i]))
@@ -1247,6 +1297,7 @@ extern "C" bool gltf_file_mesh(const struct gltf_file *file, int index, struct g
             throw Fail{"mesh index " + std::to_string(index) + " is out of range"};
         const tinygltf::Mesh &mesh = model.meshes[(size_t)index];
         Builder b;
+        b.read_skin = true;
         if (mesh.primitives.size() > GLTF_MAX_PRIMITIVES)
             throw Fail{"mesh " + std::to_string(index) + " has more than " + std::to_string(GLTF_MAX_PRIMITIVES) +
                        " primitives"};
@@ -1472,6 +1523,9 @@ extern "C" bool gltf_file_scene(const struct gltf_file *file, const char *name, 
                     throw Fail{what + ": KHR_lights_punctual light " + std::to_string(li) + " is out of range"};
                 g.light = li;
             }
+            g.skin = n.skin;
+            if (n.skin >= (int)model.skins.size() || n.skin < -1)
+                throw Fail{what + ": skin index " + std::to_string(n.skin) + " is out of range"};
             node_rest(n, g, what);
             g.weight_count = node_targets(model, n);
             if (g.weight_count > GLTF_MAX_WEIGHTS)
@@ -1604,6 +1658,47 @@ extern "C" bool gltf_file_scene(const struct gltf_file *file, const char *name, 
                 g.range = 0;
         }
 
+        // skins: joints that are nodes, an inverse bind matrix each
+        out->skins = (gltf_skin *)std::calloc(model.skins.size() + 1, sizeof *out->skins);
+        if (!out->skins)
+            throw Fail{"out of memory"};
+        for (size_t i = 0; i < model.skins.size(); i++) {
+            const tinygltf::Skin &sk = model.skins[i];
+            gltf_skin &g = out->skins[i];
+            out->skin_count = (int)i + 1; // freed from here on
+            copy_name(g.name, sk.name, "skin", i);
+            std::string what = "skin " + std::to_string(i) + " ('" + g.name + "')";
+            if (sk.joints.empty())
+                throw Fail{what + ": no joints"};
+            if (sk.joints.size() > GLTF_MAX_JOINTS)
+                throw Fail{what + ": " + std::to_string(sk.joints.size()) + " joints, at most " +
+                           std::to_string(GLTF_MAX_JOINTS) + " are supported"};
+            g.joints = (int *)std::calloc(sk.joints.size(), sizeof *g.joints);
+            g.inverse_bind = (float *)std::calloc(sk.joints.size() * 16, sizeof *g.inverse_bind);
+            if (!g.joints || !g.inverse_bind)
+                throw Fail{"out of memory"};
+            g.joint_count = (int)sk.joints.size();
+            for (size_t k = 0; k < sk.joints.size(); k++) {
+                if (sk.joints[k] < 0 || sk.joints[k] >= (int)nn)
+                    throw Fail{what + ": joint " + std::to_string(k) + " is node " + std::to_string(sk.joints[k]) +
+                               ", out of range (the file has " + std::to_string(nn) + " nodes)"};
+                g.joints[k] = sk.joints[k];
+                for (int c = 0; c < 16; c++)
+                    g.inverse_bind[k * 16 + (size_t)c] = c % 5 == 0 ? 1.0f : 0.0f;
+            }
+            if (sk.inverseBindMatrices >= 0) {
+                std::vector<double> ibm = read_accessor(model, sk.inverseBindMatrices, 16,
+                                                        (what + ": inverseBindMatrices").c_str());
+                if (ibm.size() < sk.joints.size() * 16)
+                    throw Fail{what + ": inverseBindMatrices holds " + std::to_string(ibm.size() / 16) +
+                               " matrices for " + std::to_string(sk.joints.size()) + " joints"};
+                if (!finite_all(ibm))
+                    throw Fail{what + ": an inverse bind matrix is not finite"};
+                for (size_t k = 0; k < sk.joints.size() * 16; k++)
+                    g.inverse_bind[k] = (float)ibm[k];
+            }
+        }
+
         size_t na = model.animations.size();
         out->animations = (gltf_animation *)std::calloc(na + 1, sizeof *out->animations);
         if (!out->animations)
@@ -1652,5 +1747,10 @@ extern "C" void gltf_scene_free(struct gltf_scene *scene)
         std::free(scene->animations[a].channels);
     }
     std::free(scene->animations);
+    for (int k = 0; scene->skins && k < scene->skin_count; k++) {
+        std::free(scene->skins[k].joints);
+        std::free(scene->skins[k].inverse_bind);
+    }
+    std::free(scene->skins);
     std::memset(scene, 0, sizeof *scene);
 }

@@ -170,6 +170,7 @@ static int get_nodes(lua_State *L)
         set_index(L, "mesh", n->mesh);
         set_index(L, "camera", n->camera);
         set_index(L, "light", n->light);
+        set_index(L, "skin", n->skin);
         lua_pushboolean(L, n->in_scene);
         lua_setfield(L, -2, "in_scene");
         push_floats(L, n->weights, n->weight_count);
@@ -295,7 +296,9 @@ static int check_animation(lua_State *L, int idx, const struct gltf_scene *s)
 
 /* f:pose(animation, t): per node (1-based) { position, rotation, scale,
  * weights } of its world transform at t seconds (nil animation: the rest
- * pose); t outside the animation holds its first or last key. */
+ * pose); t outside the animation holds its first or last key. Second
+ * result: per skin its joint matrices, a flat list of 16 numbers a joint
+ * (what object.joint_matrices takes). */
 static int file_pose(lua_State *L)
 {
     struct l_gltf_file *u = check_file(L);
@@ -320,7 +323,16 @@ static int file_pose(lua_State *L)
         lua_setfield(L, -2, "weights");
         lua_rawseti(L, -2, i + 1);
     }
-    return 1;
+    lua_createtable(L, u->scene.skin_count, 0);
+    for (int k = 0; k < u->scene.skin_count; k++) {
+        int n = u->scene.skins[k].joint_count;
+        float *m = lua_newuserdatauv(L, (size_t)n * 16 * sizeof *m, 0); /* scratch, collected */
+        gltf_pose_joint_matrices(&u->pose, &u->scene, k, m);
+        push_floats(L, m, n * 16);
+        lua_remove(L, -2);
+        lua_rawseti(L, -2, k + 1);
+    }
+    return 2;
 }
 
 void lgltf_open(lua_State *L)

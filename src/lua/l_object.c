@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/gltf.h"
 #include "lua/l_scene.h"
 #include "lua/l_util.h"
 #include "lua/lua_host.h"
@@ -268,6 +269,20 @@ static int mesh_get_morph_targets(lua_State *L)
     return 1;
 }
 
+/* mesh.skinned: it carries a glTF skin's JOINTS_0 and WEIGHTS_0 (a mesh of
+ * c.gltf.load); mesh.joint_count: how many joints they use. */
+static int mesh_get_skinned(lua_State *L)
+{
+    lua_pushboolean(L, lmesh_check(L, 1)->joints != NULL);
+    return 1;
+}
+
+static int mesh_get_joint_count(lua_State *L)
+{
+    lua_pushinteger(L, lmesh_check(L, 1)->joint_count);
+    return 1;
+}
+
 static int mesh_get_bounds(lua_State *L)
 {
     struct mesh *m = lmesh_check(L, 1);
@@ -464,6 +479,74 @@ static int set_morph_weights(lua_State *L)
     }
     parts_follow(L, o);
     return 0;
+}
+
+/* object.joint_matrices = { 16 numbers a joint, ... } (a skinned glTF
+ * mesh, c.gltf.load's animations set it): each joint's world matrix times
+ * its inverse bind matrix, column-major; {} takes the skin off. */
+static int set_joint_matrices(lua_State *L)
+{
+    struct object *o = lobject_check(L, 1);
+    if (!lua_istable(L, 3))
+        lutil_field_error(L, "object", "joint_matrices", "table of numbers (16 a joint)", 3);
+    lua_Integer n = (lua_Integer)lua_rawlen(L, 3);
+    if (n % 16 != 0 || n / 16 > GLTF_MAX_JOINTS)
+        lutil_error(L, "bad argument 'joint_matrices' to 'object' (16 numbers a joint, at most %d joints, got %lld "
+                       "numbers)", GLTF_MAX_JOINTS, (long long)n);
+    if (n > 0 && !o->mesh->joints)
+        lutil_error(L, "bad argument 'joint_matrices' to 'object' (mesh '%s' has no skin: no JOINTS_0 and WEIGHTS_0)",
+                    o->mesh->name);
+    if (n > 0 && n / 16 < o->mesh->joint_count)
+        lutil_error(L, "bad argument 'joint_matrices' to 'object' (the mesh's skin uses %d joints, got %lld)",
+                    o->mesh->joint_count, (long long)(n / 16));
+    float m[GLTF_MAX_JOINTS * 16];
+    for (lua_Integer i = 0; i < n; i++) {
+        lua_rawgeti(L, 3, i + 1);
+        if (lua_type(L, -1) != LUA_TNUMBER)
+            lutil_field_error(L, "object", "joint_matrices", "table of numbers (16 a joint)", -1);
+        m[i] = (float)lua_tonumber(L, -1);
+        if (!isfinite(m[i]))
+            lutil_error(L, "bad argument 'joint_matrices' to 'object' (number %lld is not finite)", (long long)i + 1);
+        lua_pop(L, 1);
+    }
+    if (!object_set_joint_matrices(o, m, (int)(n / 16)))
+        lutil_error(L, "object: out of memory for %lld joint matrices", (long long)(n / 16));
+    o->version++;
+    parts_follow(L, o);
+    return 0;
+}
+
+/* object.bounds: its world box now ({min, max}): the mesh's box through
+ * its transform, grown by its morphs and deformer, a skin's as posed; a
+ * group's spans its parts. */
+static int get_object_bounds(lua_State *L)
+{
+    struct object *o = lobject_check(L, 1);
+    vec3 lo, hi;
+    object_world_bounds(o, &lo, &hi);
+    for (int p = 0; p < o->part_count; p++) {
+        vec3 a, b;
+        object_world_bounds(o->parts[p], &a, &b);
+        lo = vec3_min(lo, a);
+        hi = vec3_max(hi, b);
+    }
+    lua_createtable(L, 2, 0);
+    lutil_push_vec3(L, lo);
+    lua_rawseti(L, -2, 1);
+    lutil_push_vec3(L, hi);
+    lua_rawseti(L, -2, 2);
+    return 1;
+}
+
+static int get_joint_matrices(lua_State *L)
+{
+    struct object *o = lobject_check(L, 1);
+    lua_createtable(L, o->joint_matrix_count * 16, 0);
+    for (int i = 0; i < o->joint_matrix_count * 16; i++) {
+        lua_pushnumber(L, o->joint_matrices[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
 }
 
 static int set_deform(lua_State *L)
@@ -788,6 +871,7 @@ void lobject_open(lua_State *L)
     static const luaL_Reg mesh_getters[] = {{"vertex_count", mesh_get_vertex_count},
                                             {"triangle_count", mesh_get_triangle_count},
                                             {"morph_targets", mesh_get_morph_targets}, {"bounds", mesh_get_bounds},
+                                            {"skinned", mesh_get_skinned}, {"joint_count", mesh_get_joint_count},
                                             {"name", mesh_get_name}, {"materials", mesh_get_materials},
                                             {NULL, NULL}};
     lutil_class(L, MESH_MT, "mesh", mesh_meta, NULL, mesh_getters, NULL);
@@ -801,6 +885,8 @@ void lobject_open(lua_State *L)
                                               {"cast_shadows", get_cast_shadows}, {"mesh", get_mesh},
                                               {"material", get_material}, {"materials", get_materials},
                                               {"morph_weights", get_morph_weights},
+                                              {"joint_matrices", get_joint_matrices},
+                                              {"bounds", get_object_bounds},
                                               {"id", get_id}, {"energy", get_energy},
                                               {"stable_step", get_stable_step}, {"substeps", get_substeps},
                                               {"max_height", get_max_height}, {"depth", get_depth},
@@ -809,7 +895,7 @@ void lobject_open(lua_State *L)
                                               {"scale", set_scale}, {"visible", set_visible},
                                               {"cast_shadows", set_cast_shadows}, {"material", set_material},
                                               {"morph_weights", set_morph_weights}, {"deform", set_deform},
-                                              {NULL, NULL}};
+                                              {"joint_matrices", set_joint_matrices}, {NULL, NULL}};
     lutil_class(L, OBJECT_MT, "object", object_meta, object_methods, object_getters, object_setters);
 
     lua_pushcfunction(L, object_new);

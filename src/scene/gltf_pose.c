@@ -207,3 +207,14 @@ void gltf_pose_decompose(mat4 m, vec3 *position, quat *rotation, vec3 *scale)
     normalise4(q);
     *rotation = (quat){q[0], q[1], q[2], q[3]};
 }
+
+void gltf_pose_joint_matrices(const struct gltf_pose *pose, const struct gltf_scene *scene, int skin, float *out)
+{
+    const struct gltf_skin *k = &scene->skins[skin];
+    for (int j = 0; j < k->joint_count; j++) {
+        mat4 ibm;
+        memcpy(ibm.m, k->inverse_bind + (size_t)j * 16, sizeof ibm.m);
+        mat4 m = mat4_mul(pose->world[k->joints[j]], ibm);
+        memcpy(out + (size_t)j * 16, m.m, sizeof m.m);
+    }
+}

@@ -30,6 +30,12 @@ void gltf_pose_free(struct gltf_pose *pose);
  * value, after its last the last's. Then the world matrices. */
 void gltf_pose_at(struct gltf_pose *pose, const struct gltf_scene *scene, int animation, double t);
 
+/* Skin `skin`'s joint matrices at the pose: each joint's world matrix times
+ * its inverse bind matrix (glTF 2.0 §3.7.3.2), joint_count x 16 floats
+ * into out, column-major. The skinned mesh's own node is not applied (the
+ * specification has its transform ignored). */
+void gltf_pose_joint_matrices(const struct gltf_pose *pose, const struct gltf_scene *scene, int skin, float *out);
+
 /* One channel's value at t (out: `components` floats; a rotation comes out
  * normalised). */
 void gltf_channel_sample(const struct gltf_channel *channel, double t, float *out);

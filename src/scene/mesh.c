@@ -323,6 +323,8 @@ void mesh_destroy(struct mesh *m)
     free(m->texcoords[1]);
     free(m->colors);
     free(m->tangents);
+    free(m->joints);
+    free(m->joint_weights);
     material_release(&m->material);
     for (int p = 0; p < m->part_count; p++)
         mesh_destroy(m->parts[p]);

@@ -284,6 +284,12 @@ static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct
     g->colors = NULL;
     m->tangents = g->tangents;
     g->tangents = NULL;
+    m->joints = g->joints;
+    m->joint_weights = g->joint_weights;
+    g->joints = g->joint_weights = NULL;
+    for (size_t i = 0; m->joints && i < m->vertex_count * 4; i++)
+        if (m->joint_weights[i] > 0.0f && (int)m->joints[i] + 1 > m->joint_count)
+            m->joint_count = (int)m->joints[i] + 1;
     m->target_count = g->target_count;
     m->target_positions = g->target_positions;
     m->target_normals = g->target_normals;

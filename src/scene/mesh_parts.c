@@ -67,6 +67,9 @@ struct mesh *mesh_create_part(const struct mesh *whole, const char *name, const 
         m->texcoords[set] = part_attribute(whole->texcoords[set], whole->vertex_count, remap, nv, 2, &ok);
     m->colors = part_attribute(whole->colors, whole->vertex_count, remap, nv, 4, &ok);
     m->tangents = part_attribute(whole->tangents, whole->vertex_count, remap, nv, 4, &ok);
+    m->joints = part_attribute(whole->joints, whole->vertex_count, remap, nv, 4, &ok);
+    m->joint_weights = part_attribute(whole->joint_weights, whole->vertex_count, remap, nv, 4, &ok);
+    m->joint_count = whole->joint_count;
     if (ok && whole->target_count > 0) {
         size_t per = nv * 3, whole_per = whole->vertex_count * 3;
         m->target_positions = malloc(((size_t)whole->target_count * per + 1) * sizeof(float));

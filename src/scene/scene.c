@@ -92,7 +92,52 @@ bool object_sync_parts(struct object *g)
         }
         part->deform = g->deform;
         part->deform.glsl = glsl;
+        if (!object_set_joint_matrices(part, g->joint_matrices, g->joint_matrix_count))
+            return false;
         part->version = g->version;
+    }
+    return true;
+}
+
+bool object_set_joint_matrices(struct object *obj, const float *matrices, int count)
+{
+    if (count != obj->joint_matrix_count) {
+        float *m = count > 0 ? malloc((size_t)count * 16 * sizeof *m) : NULL;
+        if (count > 0 && !m)
+            return false;
+        free(obj->joint_matrices);
+        obj->joint_matrices = m;
+        obj->joint_matrix_count = count;
+    }
+    if (count > 0)
+        memcpy(obj->joint_matrices, matrices, (size_t)count * 16 * sizeof *matrices);
+    /* the box of the skinned base shape (deform.comp's blend, on the CPU):
+     * what bounds the object's shadow frusta and a camera framing it */
+    const struct mesh *m = obj->mesh;
+    obj->skin_min = m->bounds_min;
+    obj->skin_max = m->bounds_max;
+    if (count > 0 && m->joints) {
+        vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+        for (size_t v = 0; v < m->vertex_count; v++) {
+            vec3 p = vec3_make(m->positions[v * 3], m->positions[v * 3 + 1], m->positions[v * 3 + 2]), q = {0, 0, 0};
+            float total = 0.0f;
+            for (int k = 0; k < 4; k++) {
+                float w = m->joint_weights[v * 4 + (size_t)k];
+                int j = (int)m->joints[v * 4 + (size_t)k];
+                if (!(w > 0.0f) || j < 0 || j >= count)
+                    continue;
+                mat4 jm;
+                memcpy(jm.m, obj->joint_matrices + (size_t)j * 16, sizeof jm.m);
+                q = vec3_add(q, vec3_scale(mat4_transform_point(jm, p), w));
+                total += w;
+            }
+            if (total > 0.0f)
+                p = q;
+            lo = vec3_min(lo, p);
+            hi = vec3_max(hi, p);
+        }
+        if (m->vertex_count > 0)
+            obj->skin_min = lo, obj->skin_max = hi;
     }
     return true;
 }
@@ -118,6 +163,7 @@ void object_destroy(struct object *obj)
     if (!obj || --obj->references > 0)
         return;
     free(obj->deform.glsl);
+    free(obj->joint_matrices);
     material_release(&obj->material);
     for (int p = 0; p < obj->part_count; p++) {
         obj->parts[p]->group = NULL;
@@ -134,7 +180,7 @@ void object_destroy(struct object *obj)
 
 bool object_is_animated_geometry(const struct object *obj)
 {
-    if (obj->water || obj->deform.kind != DEFORM_NONE)
+    if (obj->water || obj->deform.kind != DEFORM_NONE || (obj->joint_matrix_count > 0 && obj->mesh->joints))
         return true;
     for (int t = 0; t < obj->mesh->target_count; t++)
         if (obj->morph_weights[t] != 0.0f)
@@ -149,7 +195,8 @@ mat4 object_model_matrix(const struct object *obj)
 
 void object_world_bounds(const struct object *obj, vec3 *lo, vec3 *hi)
 {
-    vec3 a = obj->mesh->bounds_min, b = obj->mesh->bounds_max;
+    bool skinned = obj->joint_matrix_count > 0 && obj->mesh->joints;
+    vec3 a = skinned ? obj->skin_min : obj->mesh->bounds_min, b = skinned ? obj->skin_max : obj->mesh->bounds_max;
     /* Morphs and deformers move vertices: grow the box by the largest
      * possible displacement so shadow frusta never clip the object. */
     float grow = 0.0f;

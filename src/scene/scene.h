@@ -175,6 +175,9 @@ struct mesh {
     float *colors;              /* vertex_count * 4: glTF's COLOR_0 (linear RGBA, multiplies the base colour), or NULL */
     float *tangents;            /* vertex_count * 4: a normal map's tangent (xyz along increasing u, w its
                                  * handedness), glTF's TANGENT or made at load; (0 0 0 1): none there; or NULL */
+    float *joints, *joint_weights; /* vertex_count * 4 each: a glTF skin's JOINTS_0 and WEIGHTS_0 (weights
+                                    * summing to 1, or 0 0 0 0: unskinned), or NULL (c.gltf.load) */
+    int joint_count;                /* the largest joint index + 1 (0 without a skin) */
     uint32_t *indices;
     int target_count;
     float *target_positions, *target_normals; /* target_count * vertex_count * 3 deltas */
@@ -311,6 +314,13 @@ struct object {
     quat rotation;
     bool visible, cast_shadows;
     float morph_weights[SCENE_MAX_MORPH_TARGETS];
+    /* A skinned mesh's joint matrices (joint_matrix_count x 16, column-major,
+     * the joint's world matrix times its inverse bind matrix; owned), set by
+     * c.gltf.load's animations: the skin is applied after the morphs, before
+     * a deformer (graph/deform.c), and the object's own transform after it. */
+    float *joint_matrices;
+    int joint_matrix_count;
+    vec3 skin_min, skin_max; /* the box of the skinned base shape (object_set_joint_matrices) */
     struct deformer deform;
     uint64_t version;
     /* An object of a mesh with parts is a group: it holds one part object
@@ -332,6 +342,9 @@ struct object *object_create(struct mesh *mesh);
  * onto its parts (nothing for an object without parts); false when out of
  * memory for a deformer's source. */
 bool object_sync_parts(struct object *group);
+/* Copies `count` joint matrices (16 floats each) into the object (0: no
+ * skin); false when out of memory (the object keeps what it had). */
+bool object_set_joint_matrices(struct object *obj, const float *matrices, int count);
 /* Sets the material of a group's parts (or of the object itself). */
 void object_set_material(struct object *obj, const struct material *m);
 void object_retain(struct object *obj);

@@ -17,6 +17,9 @@ bad short_output "bad_scene_short_output.gltf: animation 0 ('move') channel 0: o
 bad weights_no_targets "bad_scene_weights_no_targets.gltf: animation 0 ('move') channel 0: animates the weights of node 0, whose mesh has no morph targets"
 bad huge_keys "bad_scene_huge_keys.gltf: animation 0 ('move') channel 0: input: accessor count 3000000 is larger than the file can describe"
 bad bad_camera "bad_scene_bad_camera.gltf: camera 0 ('camera 0'): yfov 0.000000 is not in (0, pi) radians"
+bad skin_joint_missing "bad_scene_skin_joint_missing.gltf: skin 0 ('skin 0'): joint 1 is node 7, out of range (the file has 2 nodes)"
+bad skin_joint_unused "bad_scene_skin_joint_unused.gltf: node 0 ('node 0'): its mesh's JOINTS_0 names joint 3, its skin 0 has 1 joints"
+bad skin_short_ibm "bad_scene_skin_short_ibm.gltf: skin 0 ('skin 0'): inverseBindMatrices holds 1 matrices for 2 joints"
 
 # the same file given for a script (no script: lua/caustica/gltf_scene.lua)
 expect_error "a bad file with no script" 1 "$D/bad_scene_two_parents.gltf: node 2 is a child of both node 0 and node 1" \

@@ -50,7 +50,33 @@ def huge(doc):
     doc["animations"][0]["samplers"][0]["input"] = 3
 
 
+def skinned(joint_nodes, joints_used, ibm_count):
+    """One triangle skinned to joints_used (each vertex to one), a skin of
+    joint_nodes with ibm_count inverse bind matrices (identity)."""
+    def extra(doc):
+        j = struct.pack("<12B", *([joints_used, 0, 0, 0] * 3))
+        w = struct.pack("<12f", *([1.0, 0, 0, 0] * 3))
+        ibm = struct.pack("<%df" % (16 * ibm_count), *([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] * ibm_count))
+        extra_buf = j + w + ibm
+        doc["buffers"].append({"byteLength": len(extra_buf), "uri": data_uri("application/octet-stream", extra_buf)})
+        views = [(0, 12), (12, 48), (60, len(ibm))]
+        for off, ln in views:
+            doc["bufferViews"].append({"buffer": 1, "byteOffset": off, "byteLength": ln})
+        base = len(doc["bufferViews"]) - 3
+        doc["accessors"] += [{"bufferView": base, "componentType": 5121, "count": 3, "type": "VEC4"},
+                             {"bufferView": base + 1, "componentType": 5126, "count": 3, "type": "VEC4"},
+                             {"bufferView": base + 2, "componentType": 5126, "count": ibm_count, "type": "MAT4"}]
+        a = len(doc["accessors"]) - 3
+        doc["meshes"][0]["primitives"][0]["attributes"].update({"JOINTS_0": a, "WEIGHTS_0": a + 1})
+        doc["skins"] = [{"joints": joint_nodes, "inverseBindMatrices": a + 2}]
+        doc["nodes"][0]["skin"] = 0
+    return scene([{"mesh": 0}, {}], extra=extra)
+
+
 files = {
+    "skin_joint_missing": skinned([1, 7], 0, 2),
+    "skin_joint_unused": skinned([1], 3, 1),
+    "skin_short_ibm": skinned([1, 1], 0, 1),
     "cycle": scene([{"mesh": 0}, {"children": [2]}, {"children": [1]}]),
     "two_parents": scene([{"mesh": 0, "children": [2]}, {"children": [2]}, {}],
                          extra=lambda d: d["scenes"][0]["nodes"].append(1)),

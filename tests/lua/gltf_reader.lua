@@ -256,4 +256,74 @@ function R.pose(file, anim, t)
   return override, weights
 end
 
+-- ---- skins -------------------------------------------------------------------
+--- The triangles (lists of three {x, y, z}) of node `n`'s mesh skinned by
+--- its skin at animation `anim`'s time t (glTF 2.0 §3.7.3: per vertex the
+--- weighted sum of its joints' world matrix times inverse bind matrix).
+function R.skinned_triangles(file, n, anim, t)
+  local override = anim and R.pose(file, anim, t) or nil
+  local node = file.json.nodes[n + 1]
+  local skin = file.json.skins[node.skin + 1]
+  local ibm = skin.inverseBindMatrices and R.accessor(file, skin.inverseBindMatrices) or nil
+  local joints = {}
+  for k, j in ipairs(skin.joints) do
+    local inv = ibm and ibm[k] or R.trs()
+    joints[k - 1] = mat_mul(R.world(file, j, override), inv)
+  end
+  local tris = {}
+  for _, prim in ipairs(file.json.meshes[node.mesh + 1].primitives) do
+    local pos = R.accessor(file, prim.attributes.POSITION)
+    local js = R.accessor(file, prim.attributes.JOINTS_0)
+    local ws = R.accessor(file, prim.attributes.WEIGHTS_0)
+    local skinned = {}
+    for v = 1, #pos do
+      local sum, q = 0, { 0, 0, 0 }
+      for k = 1, 4 do sum = sum + ws[v][k] end
+      for k = 1, 4 do
+        local w = ws[v][k] / sum
+        if w > 0 then
+          local p = R.apply(joints[js[v][k]], pos[v])
+          q = { q[1] + w * p[1], q[2] + w * p[2], q[3] + w * p[3] }
+        end
+      end
+      skinned[v] = q
+    end
+    local idx = R.accessor(file, prim.indices)
+    for k = 1, #idx, 3 do
+      tris[#tris + 1] = { skinned[idx[k][1] + 1], skinned[idx[k + 1][1] + 1], skinned[idx[k + 2][1] + 1] }
+    end
+  end
+  return tris
+end
+
+--- The silhouette of `tris` seen down -z through an orthographic camera
+--- `width` wide about (cx, cy), size x size pixels: rows of booleans (row 1
+--- at the top), pixel centres inside a triangle.
+function R.silhouette(tris, cx, cy, width, size)
+  local mask = {}
+  for y = 1, size do mask[y] = {} end
+  local px = width / size
+  for _, tri in ipairs(tris) do
+    local a, b, c = tri[1], tri[2], tri[3]
+    local x0 = math.max(1, math.floor((math.min(a[1], b[1], c[1]) - cx + width / 2) / px))
+    local x1 = math.min(size, math.ceil((math.max(a[1], b[1], c[1]) - cx + width / 2) / px) + 1)
+    local y0 = math.max(1, math.floor((cy + width / 2 - math.max(a[2], b[2], c[2])) / px))
+    local y1 = math.min(size, math.ceil((cy + width / 2 - math.min(a[2], b[2], c[2])) / px) + 1)
+    local area = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1])
+    if area ~= 0 then
+      for y = y0, y1 do
+        local wy = cy + width / 2 - (y - 0.5) * px
+        for x = x0, x1 do
+          local wx = cx - width / 2 + (x - 0.5) * px
+          local e0 = ((b[1] - a[1]) * (wy - a[2]) - (b[2] - a[2]) * (wx - a[1])) / area
+          local e1 = ((c[1] - b[1]) * (wy - b[2]) - (c[2] - b[2]) * (wx - b[1])) / area
+          local e2 = ((a[1] - c[1]) * (wy - c[2]) - (a[2] - c[2]) * (wx - c[1])) / area
+          if e0 >= 0 and e1 >= 0 and e2 >= 0 then mask[y][x] = true end
+        end
+      end
+    end
+  end
+  return mask
+end
+
 return R

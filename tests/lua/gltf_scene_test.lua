@@ -170,3 +170,76 @@ t.case("an animation loops by default and holds its last key with loop = false",
   a:apply(a.duration + 5, { loop = false })
   near(g.objects[1].position, last, 1e-5, "held")
 end)
+
+-- Skins: the GPU's skinned mesh (deform.comp) against gltf_reader's own
+-- skinning of the file, as silhouettes: flat white through an orthographic
+-- camera down -z (tests/scenes/gltf_silhouette.lua), 64 x 64, pixel
+-- centres inside a skinned triangle. Each time is checked to pose the mesh
+-- far from its bind pose first, so that a skin not applied fails.
+local function skinned_node(file)
+  for i, node in ipairs(file.json.nodes) do
+    if node.skin and node.mesh then return i - 1 end
+  end
+end
+
+local function mismatch(a, b, size)
+  local n, inside = 0, 0
+  for y = 1, size do
+    for x = 1, size do
+      if (a[y][x] or false) ~= (b[y][x] or false) then n = n + 1 end
+      if a[y][x] then inside = inside + 1 end
+    end
+  end
+  return n, inside
+end
+
+local function check_skin(name, times)
+  local rel = "khronos/" .. name .. "/" .. name .. ".glb"
+  local path = KHRONOS .. name .. "/" .. name .. ".glb"
+  local file = R.open(path)
+  local n = skinned_node(file)
+  local size = 64
+  for _, time in ipairs(times) do
+    local tris = R.skinned_triangles(file, n, 0, time)
+    local lo, hi = { math.huge, math.huge }, { -math.huge, -math.huge }
+    for _, tri in ipairs(tris) do
+      for _, p in ipairs(tri) do
+        lo = { math.min(lo[1], p[1]), math.min(lo[2], p[2]) }
+        hi = { math.max(hi[1], p[1]), math.max(hi[2], p[2]) }
+      end
+    end
+    local cx, cy = (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2
+    local width = 1.15 * math.max(hi[1] - lo[1], hi[2] - lo[2])
+    local want = R.silhouette(tris, cx, cy, width, size)
+    local img = t.render("tests/scenes/gltf_silhouette.lua",
+                         { set = { path = rel, time = time, cx = cx, cy = cy, width = width, size = size } })
+    t.expect_finite(img)
+    local got = {}
+    for y = 1, size do
+      got[y] = {}
+      for x = 1, size do got[y][x] = img:pixel(x - 1, y - 1) > 0.1 or nil end
+    end
+    local wrong, inside = mismatch(want, got, size)
+    local bound = math.max(3, math.floor(0.01 * inside)) -- edge pixels: rasterisation rules
+    -- the bind pose (every joint matrix the identity) seen the same way
+    local rest = {}
+    for _, prim in ipairs(file.json.meshes[file.json.nodes[n + 1].mesh + 1].primitives) do
+      local pos, idx = R.accessor(file, prim.attributes.POSITION), R.accessor(file, prim.indices)
+      for k = 1, #idx, 3 do
+        rest[#rest + 1] = { pos[idx[k][1] + 1], pos[idx[k + 1][1] + 1], pos[idx[k + 2][1] + 1] }
+      end
+    end
+    local unposed = mismatch(want, R.silhouette(rest, cx, cy, width, size), size)
+    print(string.format("%s at %g s: %d of %d silhouette pixels differ (bound %d); unskinned %d", name, time, wrong,
+                        inside, bound, unposed))
+    t.expect(unposed > 3 * bound, string.format("%s at %g s: the pose differs from the bind pose (%d pixels)", name,
+                                                time, unposed))
+    t.expect(wrong <= bound, string.format("%s at %g s: %d of %d silhouette pixels differ from the file's skinning "
+                                           .. "(at most %d)", name, time, wrong, inside, bound))
+  end
+end
+
+t.case("RiggedSimple and CesiumMan: the skinned mesh where the file's joints put it, at two times", function()
+  check_skin("RiggedSimple", { 0.5, 2.1 })
+  check_skin("CesiumMan", { 0.4, 1.3 })
+end)
