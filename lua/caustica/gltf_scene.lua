@@ -12,8 +12,9 @@
 --   the file holds glass (--set caustics=layered|beams|illumination|none
 --   for another technique; `techniques` lists them for bench and choose),
 --   shade, and refraction through the glass (each pass at its defaults);
--- - its animations all playing (--set animation=NAME or a number: that
---   one alone), frames = the longest at --set fps=N (24), looped;
+-- - its animations all playing (the first alone where two drive the same
+--   node; --set animation=NAME or a number: that one), frames = the
+--   longest at --set fps=N (24), looped;
 -- - the image 512 px high, as wide as the camera's aspectRatio asks (1:1
 --   without one); --size overrides.
 --
@@ -122,7 +123,18 @@ if which ~= "" then
                         #file.animations), 0)
   end
 else
-  playing = file.animations
+  -- all of them, unless two drive the same node (a character's walk and
+  -- run): then the first alone, as a viewer plays a file
+  local driven, overlap = {}, false
+  for i, a in ipairs(file.file.animations) do
+    local mine = {}
+    for _, n in ipairs(a.nodes) do
+      if driven[n] and driven[n] ~= i then overlap = true end
+      mine[n] = true
+    end
+    for n in pairs(mine) do driven[n] = i end
+  end
+  playing = overlap and { file.animations[1] } or file.animations
 end
 local fps = c.param("fps", 24)
 local longest = 0

@@ -246,6 +246,12 @@ static int get_animations(lua_State *L)
         set_number(L, "stop", a->end);
         lua_pushinteger(L, a->channel_count);
         lua_setfield(L, -2, "channels");
+        lua_createtable(L, a->channel_count, 0); /* the nodes it drives, 1-based, one per channel */
+        for (int k = 0; k < a->channel_count; k++) {
+            lua_pushinteger(L, a->channels[k].node + 1);
+            lua_rawseti(L, -2, k + 1);
+        }
+        lua_setfield(L, -2, "nodes");
         lua_rawseti(L, -2, i + 1);
     }
     return 1;
