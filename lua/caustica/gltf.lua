@@ -18,7 +18,9 @@ local M = {}
 -- Lights: glTF gives candela (point, spot) and lux (directional);
 -- caustica's lights are radiometric (W/sr, W/m^2): divided by 683 lm/W,
 -- the luminous efficacy of light at 555 nm, which is how the photometric
--- units are defined.
+-- units are defined. Blender's exporter (3.4, "Khronos glTF Blender I/O")
+-- writes a point or spot light's W as W / 4 pi x 683 candela, but a sun's
+-- W/m^2 as that many lux without the 683: its suns are taken as W/m^2.
 M.LUMENS_PER_WATT = 683
 
 -- v rotated by the unit quaternion q = {x, y, z, w}.
@@ -73,8 +75,9 @@ local function make_camera(c, info, pose)
   return cam
 end
 
-local function make_light(c, info, pose)
+local function make_light(c, info, pose, generator)
   local k = info.intensity / M.LUMENS_PER_WATT
+  if info.type == "directional" and generator:find("^Khronos glTF Blender I/O") then k = info.intensity end
   local intensity = { info.color[1] * k, info.color[2] * k, info.color[3] * k }
   local light
   if info.type == "directional" then
@@ -174,7 +177,7 @@ local function load(c, path, opts)
       end
       if node.light then
         local info = light_info[node.light]
-        local light = make_light(c, info, pose)
+        local light = make_light(c, info, pose, file.generator)
         add(out.lights, node.name, light)
         bindings.lights[i] = { light = light, kind = info.type }
       end

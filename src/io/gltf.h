@@ -182,6 +182,7 @@ struct gltf_skin {
 
 struct gltf_scene {
     char name[GLTF_NAME]; /* the scene's name, or "scene N" */
+    char generator[128];  /* asset.generator: the tool that wrote the file ("" when unsaid) */
     int index;
     int node_count;       /* every node of the file (in_scene marks the chosen scene's) */
     struct gltf_node *nodes;

@@ -1492,6 +1492,7 @@ extern "C" bool gltf_file_scene(const struct gltf_file *file, const char *name, 
             scene = model.defaultScene >= 0 && model.defaultScene < (int)model.scenes.size() ? model.defaultScene : 0;
         }
         out->index = scene;
+        std::snprintf(out->generator, sizeof out->generator, "%s", model.asset.generator.c_str());
         if (scene >= 0)
             copy_name(out->name, model.scenes[(size_t)scene].name, "scene", (size_t)scene);
         else

@@ -149,6 +149,12 @@ static int get_name(lua_State *L)
     return 1;
 }
 
+static int get_generator(lua_State *L)
+{
+    lua_pushstring(L, check_file(L)->scene.generator);
+    return 1;
+}
+
 static int get_path(lua_State *L)
 {
     lua_pushstring(L, check_file(L)->path);
@@ -345,7 +351,7 @@ void lgltf_open(lua_State *L)
 {
     static const luaL_Reg meta[] = {{"__gc", file_gc}, {NULL, NULL}};
     static const luaL_Reg methods[] = {{"mesh", file_mesh}, {"pose", file_pose}, {NULL, NULL}};
-    static const luaL_Reg getters[] = {{"name", get_name},       {"path", get_path},     {"nodes", get_nodes},
+    static const luaL_Reg getters[] = {{"name", get_name},       {"path", get_path}, {"generator", get_generator},     {"nodes", get_nodes},
                                        {"cameras", get_cameras}, {"lights", get_lights}, {"animations", get_animations},
                                        {NULL, NULL}};
     lutil_class(L, GLTF_FILE_MT, "glTF file", meta, methods, getters, NULL);

@@ -243,3 +243,59 @@ t.case("RiggedSimple and CesiumMan: the skinned mesh where the file's joints put
   check_skin("RiggedSimple", { 0.5, 2.1 })
   check_skin("CesiumMan", { 0.4, 1.3 })
 end)
+
+-- Blender as the client: scenes/assets/make_blender_scene.py builds a
+-- scene in Blender 3.4 and exports it with Blender's own glTF exporter
+-- (blender_scene.glb), and renders it through its camera with Cycles
+-- (blender_scene_cycles.png, 160 x 120, frame 1). caustica renders the file
+-- with no script (its camera, lights, animations): the red cube and the
+-- green rod must stand where Blender's render has them.
+local function centroid(img, w, h, test)
+  local sx, sy, n = 0, 0, 0
+  for y = 0, h - 1 do
+    for x = 0, w - 1 do
+      local r, g, b = img:pixel(x, y)
+      if test(r, g, b) then sx, sy, n = sx + x, sy + y, n + 1 end
+    end
+  end
+  return n > 0 and { sx / n, sy / n } or nil, n
+end
+local function red(r, g, b) return r > 0.15 and r > 4 * g and r > 4 * b end
+local function green(r, g, b) return g > 0.08 and g > 2 * r and g > 2 * b end
+
+t.case("a scene made and exported by Blender renders with Blender's camera framing", function()
+  local root = (os.getenv("CAUSTICA_ROOT") or ".") .. "/scenes/assets/"
+  local blender = c.image.load(root .. "blender_scene_cycles.png")
+  local mine = t.render(root .. "blender_scene.glb", { size = { 160, 120 } })
+  t.expect_finite(mine)
+  for _, part in ipairs { { "the red cube", red }, { "the green rod", green } } do
+    local want, nw = centroid(blender, 160, 120, part[2])
+    local got, ng = centroid(mine, 160, 120, part[2])
+    t.expect(want and got, string.format("%s is in both images (%d and %d pixels)", part[1], nw, ng))
+    local d = math.sqrt((want[1] - got[1]) ^ 2 + (want[2] - got[2]) ^ 2)
+    print(string.format("%s: Blender's at (%.1f, %.1f), %d px; caustica's at (%.1f, %.1f), %d px: %.2f px apart",
+                        part[1], want[1], want[2], nw, got[1], got[2], ng, d))
+    t.expect(d < 1.5, string.format("%s: %.2f pixels from where Blender draws it (at most 1.5)", part[1], d))
+    t.expect(math.abs(ng - nw) < 0.25 * nw, string.format("%s: %d pixels against Blender's %d", part[1], ng, nw))
+  end
+end)
+
+t.case("KHR_lights_punctual: kinds, units, cones and where the nodes point them", function()
+  local root = (os.getenv("CAUSTICA_ROOT") or ".") .. "/tests/data/"
+  local f = c.gltf.load(root .. "lights.gltf")
+  t.expect(#f.lights == 3, "three lights")
+  local sun, bulb, spot = f.lights.SunNode, f.lights.BulbNode, f.lights.SpotNode
+  -- lux and candela over 683 lm/W, times the colour
+  near(sun.intensity, { 3 / 683, 1.5 / 683, 0.75 / 683 }, 1e-6, "the sun's W/m^2")
+  near(sun.direction, { 0, -1, 0 }, 1e-5, "the sun along its node's -z")
+  near(bulb.intensity, { 1, 1, 1 }, 1e-6, "683 cd: 1 W/sr")
+  near(bulb.position, { 1, 2, 3 }, 1e-6, "the bulb where its node is")
+  near(spot.intensity, { 2, 2, 2 }, 1e-6, "1366 cd: 2 W/sr")
+  near(spot.direction, { -1, 0, 0 }, 1e-5, "the spot along its node's -z")
+  t.expect(math.abs(spot.angle - math.deg(0.4)) < 1e-3, "the outer cone: " .. spot.angle)
+  t.expect(math.abs(spot.softness - 0.5) < 1e-5, "softness (outer - inner) / outer: " .. spot.softness)
+  -- Blender's exporter writes a sun's W/m^2 as lux without the 683
+  local b = c.gltf.load(root .. "lights_blender.gltf")
+  near(b.lights.SunNode.intensity, { 3, 1.5, 0.75 }, 1e-6, "a Blender sun's W/m^2")
+  near(b.lights.BulbNode.intensity, { 1, 1, 1 }, 1e-6, "a Blender point light as any other")
+end)
