@@ -46,9 +46,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         struct gltf_pose pose;
         if (gltf_pose_init(&pose, &scene, &err)) {
             static const double times[] = {-1.0, 0.0, 0.37, 1.0, 1e9};
+            float joints[GLTF_MAX_JOINTS * 16];
             for (int a = -1; a < scene.animation_count && a < 4; a++)
-                for (size_t k = 0; k < sizeof times / sizeof *times; k++)
+                for (size_t k = 0; k < sizeof times / sizeof *times; k++) {
                     gltf_pose_at(&pose, &scene, a, times[k]);
+                    for (int s = 0; s < scene.skin_count && s < 4; s++)
+                        gltf_pose_joint_matrices(&pose, &scene, s, joints);
+                }
             gltf_pose_free(&pose);
         }
         gltf_scene_free(&scene);
