@@ -15,6 +15,7 @@
 #define CAUSTICA_GL_PROGRAM_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "core/error.h"
 #include "gl/gl_api.h"
@@ -51,6 +52,18 @@ struct gl_program {
     int nslots;
     struct gl_program_location *locations; /* owned */
     int nlocations;
+    /* Every stage's assembled GLSL (owned), to tell a name C asks for that
+     * the shaders never declare (a misspelt uniform: an error) from one the
+     * compiler dropped as unused (a variant without the feature: fine). */
+    char *source;
+    struct gl_program_names *checked;  /* owned: the missing names already looked for in `source` */
+    struct gl_program_cache *cache;    /* where an undeclared name is reported */
+};
+
+/* The missing names a program was asked for (see gl_program.source). */
+struct gl_program_names {
+    char (*names)[GL_PROGRAM_NAME_MAX];
+    int count, capacity;
 };
 
 /* A name's unit in one namespace ("" for a reserved name: every namespace). */
@@ -67,6 +80,10 @@ struct gl_program_cache {
     int count, capacity;
     struct gl_slot_assignment *assigned; /* owned: reserved names, then each folder's */
     int nassigned, assigned_capacity;
+    /* Names C asked a program for that none of its stages declares, since
+     * the last gl_program_cache_take_undeclared: "'u_x' (shade/shade.frag)". */
+    char undeclared[512];
+    int undeclared_count;
 };
 
 void gl_program_cache_init(struct gl_program_cache *cache, const char *shader_root);
@@ -84,8 +101,19 @@ bool gl_program_get_compute(struct gl_program_cache *cache, const char *comp, co
 bool gl_program_cache_reload_changed(struct gl_program_cache *cache, bool *any_reloaded, struct error *err);
 
 /* The location of a uniform (-1 when the program does not use it), from
- * the table read after link. */
+ * the table read after link. A name that no stage of the program declares
+ * at all is also reported to the cache (gl_program_cache_take_undeclared). */
 GLint gl_program_uniform(const struct gl_program *p, const char *name);
+
+/* The same, for a helper that sets what any of many programs may have
+ * (the renderer's per-object material uniforms, a shared binding): a name
+ * the program lacks is no error. */
+GLint gl_program_uniform_optional(const struct gl_program *p, const char *name);
+
+/* The undeclared names reported since the last call, as one line in `out`
+ * ("'u_strenght' (fx/glow.frag), ..."); their count (0: none). The graph
+ * makes them an error naming the pass that asked. */
+int gl_program_cache_take_undeclared(struct gl_program_cache *cache, char *out, size_t outlen);
 
 /* Gives `name` of `kind` the units [unit, unit + count) in every program:
  * for what the renderer binds once for all passes. Call before the first

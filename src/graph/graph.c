@@ -598,6 +598,9 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
          * dispatch (seen with the deformers), while timestamps hold. */
         p->stages.count = 0;
         long draws = r->draw_calls, triangles = r->draw_triangles;
+        char undeclared[512];
+        if (gl_program_cache_take_undeclared(&r->programs, undeclared, sizeof undeclared) > 0)
+            return error_set(err, "the renderer asked its shaders for %s, which they do not declare", undeclared);
         gl.QueryCounter(e->queries[0], GL_TIMESTAMP);
         bool ok = p->desc->execute(p, &f, err);
         gl.QueryCounter(e->queries[1], GL_TIMESTAMP);
@@ -605,6 +608,11 @@ static bool execute_passes(struct graph *g, struct renderer *r, struct scene *sc
         e->last_triangles = r->draw_triangles - triangles;
         if (!ok)
             return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
+        /* a name C sets or binds that no stage of the program declares (a
+         * misspelt uniform would otherwise be location -1, in silence) */
+        if (gl_program_cache_take_undeclared(&r->programs, undeclared, sizeof undeclared) > 0)
+            return error_set(err, "pass '%s' (%s): its shaders do not declare %s (a misspelt name, or one the "
+                                  "shader lost)", p->name, p->desc->name, undeclared);
         if (!gl_check("executing the pass", err))
             return error_prefix(err, "pass '%s' (%s)", p->name, p->desc->name);
         for (int o = 0; o < p->output_count; o++)

@@ -217,33 +217,33 @@ static void material_locations_find(const struct gl_program *program, struct mat
     for (int s = 0; s < MATERIAL_SLOTS; s++) {
         char name[64];
         snprintf(name, sizeof name, "u_texture_set[%d]", s);
-        loc->set[s] = gl_program_uniform(program, name);
+        loc->set[s] = gl_program_uniform_optional(program, name);
     }
     for (int row = 0; row < MATERIAL_SLOTS * 2; row++) {
         char name[64];
         snprintf(name, sizeof name, "u_texture_transform[%d]", row);
-        loc->transform[row] = gl_program_uniform(program, name);
+        loc->transform[row] = gl_program_uniform_optional(program, name);
     }
-    loc->normal_scale = gl_program_uniform(program, "u_normal_scale");
-    loc->alpha = gl_program_uniform(program, "u_alpha");
-    loc->alpha_cutoff = gl_program_uniform(program, "u_alpha_cutoff");
-    loc->single_sided = gl_program_uniform(program, "u_single_sided");
-    loc->alpha_blend = gl_program_uniform(program, "u_alpha_blend");
-    loc->transmission_set = gl_program_uniform(program, "u_transmission_set");
-    loc->transmission_transform[0] = gl_program_uniform(program, "u_transmission_transform[0]");
-    loc->transmission_transform[1] = gl_program_uniform(program, "u_transmission_transform[1]");
-    loc->thickness_set = gl_program_uniform(program, "u_thickness_set");
-    loc->thickness_transform[0] = gl_program_uniform(program, "u_thickness_transform[0]");
-    loc->thickness_transform[1] = gl_program_uniform(program, "u_thickness_transform[1]");
-    loc->metallic = gl_program_uniform(program, "u_metallic");
-    loc->roughness = gl_program_uniform(program, "u_pbr_roughness");
-    loc->ior = gl_program_uniform(program, "u_pbr_ior");
-    loc->occlusion_strength = gl_program_uniform(program, "u_occlusion_strength");
-    loc->specular = gl_program_uniform(program, "u_specular");
-    loc->specular_color = gl_program_uniform(program, "u_specular_color");
-    loc->clearcoat = gl_program_uniform(program, "u_clearcoat");
-    loc->clearcoat_roughness = gl_program_uniform(program, "u_clearcoat_roughness");
-    loc->clearcoat_normal_scale = gl_program_uniform(program, "u_clearcoat_normal_scale");
+    loc->normal_scale = gl_program_uniform_optional(program, "u_normal_scale");
+    loc->alpha = gl_program_uniform_optional(program, "u_alpha");
+    loc->alpha_cutoff = gl_program_uniform_optional(program, "u_alpha_cutoff");
+    loc->single_sided = gl_program_uniform_optional(program, "u_single_sided");
+    loc->alpha_blend = gl_program_uniform_optional(program, "u_alpha_blend");
+    loc->transmission_set = gl_program_uniform_optional(program, "u_transmission_set");
+    loc->transmission_transform[0] = gl_program_uniform_optional(program, "u_transmission_transform[0]");
+    loc->transmission_transform[1] = gl_program_uniform_optional(program, "u_transmission_transform[1]");
+    loc->thickness_set = gl_program_uniform_optional(program, "u_thickness_set");
+    loc->thickness_transform[0] = gl_program_uniform_optional(program, "u_thickness_transform[0]");
+    loc->thickness_transform[1] = gl_program_uniform_optional(program, "u_thickness_transform[1]");
+    loc->metallic = gl_program_uniform_optional(program, "u_metallic");
+    loc->roughness = gl_program_uniform_optional(program, "u_pbr_roughness");
+    loc->ior = gl_program_uniform_optional(program, "u_pbr_ior");
+    loc->occlusion_strength = gl_program_uniform_optional(program, "u_occlusion_strength");
+    loc->specular = gl_program_uniform_optional(program, "u_specular");
+    loc->specular_color = gl_program_uniform_optional(program, "u_specular_color");
+    loc->clearcoat = gl_program_uniform_optional(program, "u_clearcoat");
+    loc->clearcoat_roughness = gl_program_uniform_optional(program, "u_clearcoat_roughness");
+    loc->clearcoat_normal_scale = gl_program_uniform_optional(program, "u_clearcoat_normal_scale");
 }
 
 /* The glTF BRDF's ambient table (core/brdf.h), read texel by texel by
@@ -356,21 +356,21 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
 {
     struct material_locations material_loc;
     material_locations_find(program, &material_loc);
-    GLint loc_model = gl_program_uniform(program, "u_model");
-    GLint loc_normal = gl_program_uniform(program, "u_normal_matrix");
-    GLint loc_kind = gl_program_uniform(program, "u_material_kind");
-    GLint loc_color = gl_program_uniform(program, "u_color");
-    GLint loc_ior = gl_program_uniform(program, "u_ior");
-    GLint loc_roughness = gl_program_uniform(program, "u_roughness");
-    GLint loc_transmission = gl_program_uniform(program, "u_transmission");
-    GLint loc_thickness = gl_program_uniform(program, "u_thickness");
-    GLint loc_tint = gl_program_uniform(program, "u_tint");
-    GLint loc_ideal = gl_program_uniform(program, "u_ideal");
-    GLint loc_emission = gl_program_uniform(program, "u_emission");
-    GLint loc_abs = gl_program_uniform(program, "u_absorption");
-    GLint loc_id = gl_program_uniform(program, "u_object_id");
-    GLint loc_vertex_colors = gl_program_uniform(program, "u_vertex_colors");
-    GLint loc_tangents = gl_program_uniform(program, "u_has_tangents");
+    GLint loc_model = gl_program_uniform_optional(program, "u_model");
+    GLint loc_normal = gl_program_uniform_optional(program, "u_normal_matrix");
+    GLint loc_kind = gl_program_uniform_optional(program, "u_material_kind");
+    GLint loc_color = gl_program_uniform_optional(program, "u_color");
+    GLint loc_ior = gl_program_uniform_optional(program, "u_ior");
+    GLint loc_roughness = gl_program_uniform_optional(program, "u_roughness");
+    GLint loc_transmission = gl_program_uniform_optional(program, "u_transmission");
+    GLint loc_thickness = gl_program_uniform_optional(program, "u_thickness");
+    GLint loc_tint = gl_program_uniform_optional(program, "u_tint");
+    GLint loc_ideal = gl_program_uniform_optional(program, "u_ideal");
+    GLint loc_emission = gl_program_uniform_optional(program, "u_emission");
+    GLint loc_abs = gl_program_uniform_optional(program, "u_absorption");
+    GLint loc_id = gl_program_uniform_optional(program, "u_object_id");
+    GLint loc_vertex_colors = gl_program_uniform_optional(program, "u_vertex_colors");
+    GLint loc_tangents = gl_program_uniform_optional(program, "u_has_tangents");
     gl.UseProgram(program->id);
     /* DRAW_BLENDED: the blended surfaces back to front, by the distance
      * from the eye to each object's box centre (per object, not per
@@ -514,7 +514,8 @@ void renderer_run_fullscreen(struct renderer *r, const struct gl_program *progra
         default: gl.ProgramUniform4f(program->id, loc, v[0], v[1], v[2], v[3]); break;
         }
     }
-    gl.ProgramUniform1f(program->id, gl_program_uniform(program, "u_time"), (float)time);
+    /* a script's shader may not use the time */
+    gl.ProgramUniform1f(program->id, gl_program_uniform_optional(program, "u_time"), (float)time);
     renderer_draw_fullscreen(r);
 }
 

@@ -141,7 +141,7 @@ static void draw_refractors(struct layer_set *ls, struct renderer *r, const stru
                             const struct gl_program *prog)
 {
     for (int s = 0; s < ls->slots; s++) {
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_slot"), s);
+        gl.ProgramUniform1i(prog->id, gl_program_uniform_optional(prog, "u_slot"), s); /* the bounds draw has none */
         renderer_draw_object(r, scene, prog, ls->slot_objects[s]);
         ls->draws++;
         ls->triangles += (long)(ls->slot_objects[s]->mesh->index_count / 3);
@@ -298,18 +298,20 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *prog, cons
 
 void layers_bind_scene_trace(const struct gl_program *prog, const struct scene *scene)
 {
+    /* optional: a program that traces the layers alone (beam_caustics'
+     * trace.comp) has no scene trace */
     vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
     scene_bounds(scene, &lo, &hi);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_extent"),
+    gl.ProgramUniform1f(prog->id, gl_program_uniform_optional(prog, "u_scene_extent"),
                         fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.5f);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_scene_steps"), 64);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform_optional(prog, "u_scene_steps"), 64);
     /* what a ray can meet there: the diffuse objects (none: an empty box) */
     if (!scene_diffuse_bounds(scene, &lo, &hi)) {
         lo = vec3_make(1e30f, 1e30f, 1e30f);
         hi = vec3_make(-1e30f, -1e30f, -1e30f);
     }
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_scene_lo"), lo.x, lo.y, lo.z);
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_scene_hi"), hi.x, hi.y, hi.z);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform_optional(prog, "u_scene_lo"), lo.x, lo.y, lo.z);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform_optional(prog, "u_scene_hi"), hi.x, hi.y, hi.z);
 }
 
 bool layers_configure_block(struct pass *block, struct light *light, int buffer, int layers, int voxels,

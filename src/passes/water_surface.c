@@ -100,7 +100,8 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl_program_bind_texture(copy, "u_image", in_color->texture.id);
     gl_program_bind_texture(copy, "u_scene_position", in_pos->texture.id);
     vec3 c = water->material.absorption;
-    gl.ProgramUniform3f(copy->id, gl_program_uniform(copy, "u_absorption"), c.x, c.y, c.z);
+    /* underwater.frag's (copy.frag, above the water, has none) */
+    gl.ProgramUniform3f(copy->id, gl_program_uniform_optional(copy, "u_absorption"), c.x, c.y, c.z);
     renderer_draw_fullscreen(r);
     struct gl_program *prog;
     if (!gl_program_get(&r->programs, "common/object.vert", "water_surface/surface.frag", NULL, &prog, err))

@@ -1,4 +1,4 @@
--- User passes: --set mode=fullscreen|custom|broken_shader|late_input|prune|environment
+-- User passes: --set mode=fullscreen|custom|broken_shader|misspelt_uniform|late_input|prune|environment
 local c = require "caustica"
 local mode = c.param("mode", "fullscreen")
 local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0.3, 0} },
@@ -21,6 +21,12 @@ elseif mode == "broken_shader" then
   g:add("shade", c.pass.shade {})
   g:add("bad", c.pass.fullscreen { shader = "broken.frag", inputs = { image = "shade.color" } })
   g:output("bad.color")
+elseif mode == "misspelt_uniform" then
+  -- `gian` for `gain`: invert.frag declares no such uniform
+  g:add("shade", c.pass.shade {})
+  g:add("invert", c.pass.fullscreen { shader = "invert.frag", inputs = { image = "shade.color" },
+                                      uniforms = { gian = 0.5 } })
+  g:output("invert.color")
 elseif mode == "late_input" then
   g:add("invert", c.pass.fullscreen { shader = "invert.frag", inputs = { image = "shade.color" } })
   g:add("shade", c.pass.shade {})

@@ -98,6 +98,19 @@ int main(void)
     CHECK(gl_program_unit(pb, GL_SLOT_TEXTURE, "u_y") == y); /* one name, one unit in a folder */
     CHECK(z > 0 && z != x && z != y && z + 1 != x && z + 1 != y); /* an array: two units of its own */
     CHECK(sampler_value(pa, "u_x") == x && sampler_value(pa, "u_y") == y && sampler_value(pa, "u_env") == 0);
+
+    /* a uniform no stage declares is reported (a misspelt name); one the
+     * linker dropped (declared, unread) and an optional look-up are not */
+    char undeclared[512];
+    CHECK(gl_program_cache_take_undeclared(&cache, undeclared, sizeof undeclared) == 0);
+    CHECK(gl_program_uniform(pa, "u_gian") == -1);
+    CHECK(gl_program_uniform(pc, "u_env") == -1);          /* declared in c.comp, unread */
+    CHECK(gl_program_uniform_optional(pc, "u_other") == -1); /* a shared helper's guess */
+    CHECK(gl_program_uniform(pa, "u_gian[2]") == -1);     /* the same base name: reported once */
+    CHECK(gl_program_cache_take_undeclared(&cache, undeclared, sizeof undeclared) == 1);
+    CHECK(strcmp(undeclared, "'u_gian' (first/a.comp)") == 0);
+    CHECK(gl_program_uniform(pa, "u_gian") == -1); /* asked again: known missing, no new report */
+    CHECK(gl_program_cache_take_undeclared(&cache, undeclared, sizeof undeclared) == 0);
     CHECK(sampler_value(pb, "u_z[1]") == z + 1);
     CHECK(gl_program_unit(pb, GL_SLOT_IMAGE, "u_img") >= 0);
     CHECK(gl_program_unit(pa, GL_SLOT_STORAGE, "Out") == gl_program_unit(pb, GL_SLOT_STORAGE, "Out"));
