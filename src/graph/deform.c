@@ -49,8 +49,10 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         bool skinned = o->joint_matrix_count > 0 && o->mesh->joints;
         const char *skin = skinned ? "#define SKINNED 1\n" : "#define SKINNED 0\n";
         if (o->deform.kind == DEFORM_GLSL) {
-            int n = snprintf(defines, sizeof defines, "%s#define DEFORM_KIND 2\n%s\n", skin,
-                             o->deform.glsl ? o->deform.glsl : "");
+            /* the skin's define after the script's GLSL: its lines keep the
+             * numbers the error messages give (deform.lua:18 (deformer):3) */
+            int n = snprintf(defines, sizeof defines, "#define DEFORM_KIND 2\n%s\n%s",
+                             o->deform.glsl ? o->deform.glsl : "", skin);
             if (n < 0 || (size_t)n >= sizeof defines)
                 return error_set(err, "%s: the deformer's GLSL is longer than %zu characters", o->deform.origin,
                                  sizeof defines - 64);
