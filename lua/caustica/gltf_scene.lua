@@ -14,7 +14,7 @@
 --   shade, and refraction through the glass (each pass at its defaults);
 -- - its animations all playing (the first alone where two drive the same
 --   node; --set animation=NAME or a number: that one), frames = the
---   longest at --set fps=N (24), looped;
+--   longest at --fps N (the command line puts it in --set fps=N; 24), looped;
 -- - the image 512 px high, as wide as the camera's aspectRatio asks (1:1
 --   without one); --size overrides.
 --

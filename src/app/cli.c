@@ -83,6 +83,9 @@ static const struct cli_option {
      "frames timed per variant, the median taken (default 5; 3 with a technique sweep; at most 1024)"},
     {"--frame-count", NULL, "N", VB_RENDER | VB_RECORD | VB_RUN,
      "the animation's length in frames instead of the script's `frames` (1..10000000): record renders 0..N-1"},
+    {"--fps", NULL, "N", VB_RENDER | VB_RECORD | VB_RUN | VB_INFO | VB_REFERENCE,
+     "frames a second instead of the script's `fps` (0.01..10000; a glTF file with no script plays its animations "
+     "at it, its frame count following)"},
     {"--video", NULL, "OUT.mp4|OUT.gif", VB_RECORD,
      "also encode every frame of the set with ffmpeg (H.264, BT.709/sRGB tagged, an odd size padded by a pixel; "
      "not with --shard)"},
@@ -557,6 +560,11 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
                 return usage_error("--crf needs a quality in 0..51, got '%s'", next);
         } else if (strcmp(a, "--tonemap") == 0) {
             cli->tonemap = next;
+        } else if (strcmp(a, "--fps") == 0) {
+            char *end;
+            cli->fps = strtod(next, &end);
+            if (*next == '\0' || *end != '\0' || !(cli->fps >= 0.01 && cli->fps <= 1e4))
+                return usage_error("--fps needs frames a second in 0.01..10000, got '%s'", next);
         } else if (strcmp(a, "--frame-count") == 0) {
             if (!parse_int(next, &cli->frame_count) || cli->frame_count < 1 || cli->frame_count > 10000000)
                 return usage_error("--frame-count needs a count in 1..10000000, got '%s'", next);

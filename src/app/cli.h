@@ -21,6 +21,7 @@ struct cli {
     int frames_from, frames_to; /* --frames: the set's first and last frame (N: 0..N-1) */
     bool frames_set;
     int frame_count;         /* --frame-count N (render, record, run): the animation's length instead of the script's */
+    double fps;              /* --fps N (render, record, run): frames a second instead of the script's (0: its) */
     struct frame_set frame_set; /* --frames as given (record renders exactly these) */
     bool overwrite;          /* --overwrite (record): render frames whose file exists */
     const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */

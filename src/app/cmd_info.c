@@ -71,7 +71,7 @@ int cmd_info(struct app *app, struct cli *cli)
         return EXIT_USAGE;
     }
     struct session_options o = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
-                                .height = cli->height};
+                                .height = cli->height, .fps = cli->fps};
     struct session *s;
     struct error err;
     if (!session_open(app, &o, &s, &err)) {

@@ -19,7 +19,7 @@ int cmd_reference(struct app *app, struct cli *cli)
         return status;
     struct error err;
     struct session_options so = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
-                                 .height = cli->height};
+                                 .height = cli->height, .fps = cli->fps};
     struct session *s;
     if (!session_open(app, &so, &s, &err)) {
         cli_print_error(&err);

@@ -15,7 +15,8 @@
 static bool open_session(struct app *app, struct cli *cli, const char *write_dir, struct session **s)
 {
     struct session_options o = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
-                                .height = cli->height, .write_dir = write_dir, .frame_count = cli->frame_count};
+                                .height = cli->height, .write_dir = write_dir, .frame_count = cli->frame_count,
+                                .fps = cli->fps};
     struct error err;
     if (!session_open(app, &o, s, &err)) {
         cli_print_error(&err);

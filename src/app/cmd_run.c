@@ -180,7 +180,8 @@ int cmd_run(struct app *app, struct cli *cli)
         return EXIT_SCENE_ERROR;
     }
     struct session_options o = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
-                                .height = cli->height, .frame_count = cli->frame_count};
+                                .height = cli->height, .frame_count = cli->frame_count,
+                                .fps = cli->fps};
     /* The script is read before the window opens, to size the window. */
     struct session *s;
     app->backend = GL_BACKEND_GLFW;

@@ -86,7 +86,7 @@ static bool read_result(struct session *s, struct error *err)
     if (!(exposure >= 0) || !isfinite(exposure))
         return error_set(err, "%s: the returned table's exposure = %g: a multiplier >= 0", script, exposure);
     s->frames = s->options.frame_count > 0 ? s->options.frame_count : (int)frames; /* --frame-count wins */
-    s->fps = fps;
+    s->fps = s->options.fps > 0 ? s->options.fps : fps; /* --fps wins */
     s->exposure = (float)exposure;
     s->tonemap = TONEMAP_CLAMP;
     if (lua_getfield(L, t, "tonemap") != LUA_TNIL) {
@@ -134,6 +134,14 @@ bool session_is_gltf(const char *path)
 
 static bool load(struct session *s, struct error *err)
 {
+    /* --fps tells a glTF file's built-in script the rate its animations'
+     * frames are counted at (a script's own `fps` it simply replaces) */
+    if (session_is_gltf(s->script) && s->options.fps > 0) {
+        char assignment[64];
+        snprintf(assignment, sizeof assignment, "fps=%.17g", s->options.fps);
+        if (!lua_params_add(&s->options.params, assignment, err))
+            return false;
+    }
     const char *asset_dirs[LUA_HOST_ASSET_DIRS_MAX];
     int asset_dir_count = app_asset_dirs(s->app, asset_dirs, LUA_HOST_ASSET_DIRS_MAX);
     struct lua_host_options ho = {

@@ -21,6 +21,7 @@ struct session_options {
     bool past_last_frame;    /* frames past the script's count are allowed (bench times still scenes over
                                 several frames) */
     int frame_count;         /* --frame-count: the animation's length instead of the script's `frames` (0: its) */
+    double fps;              /* --fps: frames a second instead of the script's (0: its) */
 };
 
 #define SESSION_MAX_AOVS 8

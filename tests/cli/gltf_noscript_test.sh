@@ -25,6 +25,10 @@ grep -q "photon_caustics" "$WORK/info" && grep -q "refraction" "$WORK/info" \
   && pass "info of a file with glass: photon caustics and refraction chosen" \
   || fail "info of a file with glass" "$(head -3 "$WORK/info")"
 
+"$CAUSTICA" info $K/BoxAnimated/BoxAnimated.glb --fps 10 >"$WORK/info" 2>&1
+grep -q "37 frames at 10 fps" "$WORK/info" && pass "info --fps 10: the animation's 3.708 s in 37 frames" \
+  || fail "info --fps 10" "$(head -1 "$WORK/info")"
+
 # the animation plays: frame 0 and frame 30 (1.25 s, the inner box risen) differ
 "$CAUSTICA" render $K/BoxAnimated/BoxAnimated.glb --size 48x48 --frame 0 -o "$WORK/f0.pfm" -q
 "$CAUSTICA" render $K/BoxAnimated/BoxAnimated.glb --size 48x48 --frame 30 -o "$WORK/f30.pfm" -q
