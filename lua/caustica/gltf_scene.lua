@@ -18,15 +18,16 @@
 -- - the image 512 px high, as wide as the camera's aspectRatio asks (1:1
 --   without one); --size overrides.
 --
--- `caustica info model.glb` prints what was chosen, to start a script from.
+-- `caustica info model.glb` prints what was chosen; `caustica info
+-- model.glb --script` writes this script for the file, to start from.
 local c = require "caustica"
 local host = require "caustica.host"
 
-local path = host.script()
+local path = host.script() -- info --script: the file
 local scene_choice = c.param("scene", "")
 -- the file by its name: relative paths resolve against its own folder, and
 -- an error is the file's, not this script's line
-local ok, file = pcall(c.gltf.load, path:match("[^/]+$"),
+local ok, file = pcall(c.gltf.load, path:match("[^/]+$"), -- info --script: by its path
                        scene_choice ~= "" and { scene = tonumber(scene_choice) or scene_choice } or nil)
 if not ok then error(tostring(file):gsub("^[^\n]-gltf_scene%.lua:%d+: ", ""), 0) end
 if #file.objects == 0 then

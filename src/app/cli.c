@@ -91,6 +91,9 @@ static const struct cli_option {
      "not with --shard)"},
     {"--crf", NULL, "Q", VB_RECORD, "the video's quality, 0 (lossless) .. 51 (worst); default 18"},
     {"--overwrite", NULL, NULL, VB_RECORD, "render frames whose file exists (default: skip them)"},
+    {"--script", NULL, NULL, VB_INFO,
+     "for a glTF file: print the Lua scene script it is rendered with (its camera, lights, floor, graph and "
+     "animations), to save and edit"},
     {"--shard", NULL, "i/n", VB_RECORD,
      "render every n-th frame of the set from the i-th, 0 <= i < n (one job of an array)"},
     {"--shard", NULL, "i/n", VB_REFERENCE,
@@ -423,6 +426,8 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
             cli->video = next;
         } else if (strcmp(a, "--overwrite") == 0) {
             cli->overwrite = true;
+        } else if (strcmp(a, "--script") == 0) {
+            cli->script = true;
         } else if (strcmp(a, "--shard") == 0) {
             /* 0/99999999999 is refused, not wrapped */
             if (!parse_int_pair(next, '/', &cli->shard_index, &cli->shard_count) || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)

@@ -24,6 +24,7 @@ struct cli {
     double fps;              /* --fps N (render, record, run): frames a second instead of the script's (0: its) */
     struct frame_set frame_set; /* --frames as given (record renders exactly these) */
     bool overwrite;          /* --overwrite (record): render frames whose file exists */
+    bool script;             /* --script (info): a glTF file's scene written as the Lua script it runs */
     const char *aovs[8];     /* --aov pass.output (render, record to .exr): extra layers */
     int aov_count;
     bool half;               /* --half: an EXR's beauty channels as 16-bit half floats */

@@ -1,8 +1,14 @@
 /* `caustica info`: the compiled graph, every pass kept or left out, why. */
+#define _DEFAULT_SOURCE /* realpath */
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app/cli.h"
+#include "app/session.h"
+#include "core/fileio.h"
 #include "graph/graph.h"
 #include "graph/graph_lint.h"
 
@@ -64,10 +70,45 @@ static void print_file_materials(const struct scene *scene)
     }
 }
 
+/* `info FILE.glb --script`: lua/caustica/gltf_scene.lua, the script the
+ * file is rendered with, made to stand alone: the file named by its full
+ * path on the lines marked "info --script". */
+static bool print_gltf_script(const struct app *app, const char *gltf, struct error *err)
+{
+    char builtin[4200], full[PATH_MAX];
+    snprintf(builtin, sizeof builtin, "%s/lua/caustica/gltf_scene.lua", app->root);
+    if (!realpath(gltf, full))
+        return error_set(err, "%s: %s", gltf, strerror(errno));
+    size_t n;
+    char *text;
+    if (!file_read_all(builtin, &text, &n, err))
+        return false;
+    printf("-- Written by `caustica info %s --script`: the scene caustica renders for the\n"
+           "-- file with no script. Save it, edit it, render it as any script.\n", full);
+    for (char *line = text, *next; line && *line; line = next) {
+        next = strchr(line, '\n');
+        if (next)
+            *next++ = '\0';
+        if (strstr(line, "-- info --script: the file"))
+            printf("local path = \"%s\"\n", full);
+        else if (strstr(line, "-- info --script: by its path"))
+            printf("local ok, file = pcall(c.gltf.load, path,\n");
+        else
+            printf("%s\n", line);
+    }
+    free(text);
+    return true;
+}
+
 int cmd_info(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
         fprintf(stderr, "caustica: info needs one scene script\n");
+        return EXIT_USAGE;
+    }
+    if (cli->script && !session_is_gltf(cli->positional[0])) {
+        fprintf(stderr, "caustica: info --script writes the script of a glTF file (.gltf, .glb); %s is a script "
+                        "already\n", cli->positional[0]);
         return EXIT_USAGE;
     }
     struct session_options o = {.script = cli->positional[0], .params = cli->params, .width = cli->width,
@@ -77,6 +118,15 @@ int cmd_info(struct app *app, struct cli *cli)
     if (!session_open(app, &o, &s, &err)) {
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
+    }
+    if (cli->script) {
+        bool written = print_gltf_script(app, s->script, &err);
+        session_close(s);
+        if (!written) {
+            cli_print_error(&err);
+            return EXIT_SCENE_ERROR;
+        }
+        return EXIT_SUCCESS;
     }
     bool ok = graph_check(s->graph, &err);
     /* Two frames show what the graph reuses from one frame to the next (a

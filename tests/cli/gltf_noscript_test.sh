@@ -29,6 +29,17 @@ grep -q "photon_caustics" "$WORK/info" && grep -q "refraction" "$WORK/info" \
 grep -q "37 frames at 10 fps" "$WORK/info" && pass "info --fps 10: the animation's 3.708 s in 37 frames" \
   || fail "info --fps 10" "$(head -1 "$WORK/info")"
 
+# info --script writes the script the file is rendered with: saved and
+# rendered as any script, the same image
+"$CAUSTICA" info $K/BoxAnimated/BoxAnimated.glb --script >"$WORK/box.lua" 2>"$WORK/err"
+"$CAUSTICA" render "$WORK/box.lua" --size 48x48 --frame 30 -o "$WORK/s30.pfm" -q 2>>"$WORK/err"
+"$CAUSTICA" render $K/BoxAnimated/BoxAnimated.glb --size 48x48 --frame 30 -o "$WORK/g30.pfm" -q 2>>"$WORK/err"
+line=$("$CAUSTICA" compare "$WORK/s30.pfm" "$WORK/g30.pfm" 2>&1 | tail -1)
+[ "$(metric rmse "$line")" = 0 ] && pass "info --script: the written script renders the same image" \
+  || fail "info --script" "$line $(head -2 "$WORK/err")"
+expect_error "info --script of a script" 2 "info --script writes the script of a glTF file" - -- \
+  "$CAUSTICA" info tests/scenes/passes.lua --script
+
 # the animation plays: frame 0 and frame 30 (1.25 s, the inner box risen) differ
 "$CAUSTICA" render $K/BoxAnimated/BoxAnimated.glb --size 48x48 --frame 0 -o "$WORK/f0.pfm" -q
 "$CAUSTICA" render $K/BoxAnimated/BoxAnimated.glb --size 48x48 --frame 30 -o "$WORK/f30.pfm" -q
