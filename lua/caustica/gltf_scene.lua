@@ -7,7 +7,8 @@
 --   else one framing the objects from the front and a little above;
 -- - its lights (KHR_lights_punctual), else a sun from the upper left, and
 --   always an ambient sky (`ambient`, default 0.2);
--- - a grey floor under the objects as a receiver (--set ground=false: none);
+-- - a grey floor under the objects as a receiver, unless the file has one
+--   (--set ground=false: none);
 -- - the graph: a shadow map of the first light, photon caustics where
 --   the file holds glass (--set caustics=layered|beams|illumination|none
 --   for another technique; `techniques` lists them for bench and choose),
@@ -78,9 +79,22 @@ if #lights == 0 then
   lights[1] = scene:add(c.light.directional { direction = { -0.4, -1, -0.6 }, intensity = { 2, 2, 1.95 } })
 end
 
--- the floor
+-- the floor, unless the file has its own: an object flat in y at the
+-- bottom of the others, under at least half of their width and depth
 local bounds = file.bounds()
-if c.param("ground", true) then
+local function has_floor()
+  local lo, hi = bounds[1], bounds[2]
+  local extent = math.max(hi[1] - lo[1], hi[3] - lo[3], hi[2] - lo[2], 1e-6)
+  for _, o in ipairs(file.objects) do
+    local b = o.bounds
+    if b[2][2] - b[1][2] <= 0.01 * extent and b[2][2] <= lo[2] + 0.01 * extent
+       and b[2][1] - b[1][1] >= 0.5 * (hi[1] - lo[1]) and b[2][3] - b[1][3] >= 0.5 * (hi[3] - lo[3]) then
+      return true
+    end
+  end
+  return false
+end
+if c.param("ground", true) and not has_floor() then
   local lo, hi = bounds[1], bounds[2]
   local extent = math.max(hi[1] - lo[1], hi[3] - lo[3], hi[2] - lo[2], 1e-3)
   scene:add(c.object { mesh = c.mesh.plane { size = 6 * extent },
