@@ -458,6 +458,7 @@ int luaopen_caustica_scene(lua_State *L)
     static const luaL_Reg top[] = {{"scene", scene_new}, {"camera", camera_new}, {"cubemap", cubemap_new},
                                    {"environment", cubemap_new}, {NULL, NULL}};
     luaL_newlib(L, top);
+    lmesh_open(L);
     lobject_open(L);
     llight_open(L);
     lmaterial_open(L);

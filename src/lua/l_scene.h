@@ -38,6 +38,9 @@ struct mesh *lmesh_check(lua_State *L, int idx);
 /* Pushes m as a mesh value, charged against --script-memory (its arrays
  * and textures); m NULL or over the limit: the error, raised. */
 int lmesh_push(lua_State *L, struct mesh *m, struct error *err);
+/* Refuses (an error) a procedural mesh of this size that --script-memory
+ * cannot hold, before it is made. */
+void lmesh_check_planned(lua_State *L, const char *fn, size_t vertices, size_t indices);
 struct object *lobject_check(lua_State *L, int idx);
 struct light *llight_check(lua_State *L, int idx);
 /* NULL when the value is something else (or released). */
@@ -57,6 +60,7 @@ void lmaterial_open(lua_State *L);
 void lmedium_open(lua_State *L);
 void ltexture_open(lua_State *L);
 void lgltf_open(lua_State *L);
+void lmesh_open(lua_State *L);
 /* The texture reference of a Texture value, or NULL when it is something else. */
 const struct texture_ref *ltexture_test(lua_State *L, int idx);
 /* Pushes a Texture value for a reference a material holds (retained; not
