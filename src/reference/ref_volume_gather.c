@@ -1,0 +1,159 @@
+/* The reference's volume caustics: the photons that scattered in a medium
+ * after specular surfaces, in a hash grid, gathered along each pixel's
+ * camera segments (ref_sppm.c runs it). */
+#define _POSIX_C_SOURCE 200809L
+#include "reference/ref_sppm_internal.h"
+
+/* ---- photons ------------------------------------------------------------ */
+
+
+
+void sppm_volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux, int light)
+{
+    if (v->count == v->capacity) {
+        size_t cap = v->capacity ? v->capacity * 2 : 1024;
+        struct volume_photon *q = realloc(v->items, cap * sizeof *q);
+        if (!q)
+            return;
+        v->items = q;
+        v->capacity = cap;
+    }
+    v->items[v->count++] = (struct volume_photon){{(float)p.x, (float)p.y, (float)p.z},
+                                                  {(float)d.x, (float)d.y, (float)d.z},
+                                                  {(float)flux.x, (float)flux.y, (float)flux.z}, light};
+}
+
+
+static size_t volume_hash(const struct volume_grid *g, long x, long y, long z)
+{
+    uint64_t h = ((uint64_t)x * 73856093u) ^ ((uint64_t)y * 19349663u) ^ ((uint64_t)z * 83492791u);
+    return (size_t)(h % g->size);
+}
+
+void sppm_volume_grid_build(struct volume_grid *g, const struct volume_photons *chunks, int nchunks, double radius)
+{
+    size_t n = 0;
+    for (int c = 0; c < nchunks; c++)
+        n += chunks[c].count;
+    g->radius = radius;
+    g->cell = radius;
+    g->size = n > 0 ? n * 2 : 1;
+    g->start = calloc(g->size + 1, sizeof *g->start);
+    g->items = malloc((n + 1) * sizeof *g->items);
+    if (!g->start || !g->items) {
+        g->size = 0;
+        return;
+    }
+    for (int c = 0; c < nchunks; c++)
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            const float *p = chunks[c].items[k].position;
+            g->start[volume_hash(g, (long)floor(p[0] / g->cell), (long)floor(p[1] / g->cell), (long)floor(p[2] / g->cell)) + 1]++;
+        }
+    for (size_t s = 0; s < g->size; s++)
+        g->start[s + 1] += g->start[s];
+    size_t *fill = malloc((g->size + 1) * sizeof *fill);
+    if (!fill) {
+        g->size = 0;
+        return;
+    }
+    memcpy(fill, g->start, (g->size + 1) * sizeof *fill);
+    for (int c = 0; c < nchunks; c++)
+        for (size_t k = 0; k < chunks[c].count; k++) {
+            const float *p = chunks[c].items[k].position;
+            size_t h = volume_hash(g, (long)floor(p[0] / g->cell), (long)floor(p[1] / g->cell), (long)floor(p[2] / g->cell));
+            g->items[fill[h]++] = chunks[c].items[k];
+        }
+    free(fill);
+}
+
+void sppm_volume_grid_release(struct volume_grid *g)
+{
+    free(g->start);
+    free(g->items);
+    memset(g, 0, sizeof *g);
+}
+
+/* In-scattered radiance of the volume photons at x towards -view: the
+ * volume radiance estimate sum(flux * phase) / (4/3 pi r^3) (Jensen &
+ * Christensen 1998). */
+static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 x, dvec3 view)
+{
+    dvec3 sum = dv(0, 0, 0);
+    if (g->size == 0)
+        return sum;
+    long cx = (long)floor(x.x / g->cell), cy = (long)floor(x.y / g->cell), cz = (long)floor(x.z / g->cell);
+    double r2 = g->radius * g->radius;
+    /* two of the 27 cells may hash to one slot: each slot is read once, or
+     * its photons would count twice */
+    size_t seen[27];
+    int nseen = 0;
+    for (long z = cz - 1; z <= cz + 1; z++)
+        for (long y = cy - 1; y <= cy + 1; y++)
+            for (long xx = cx - 1; xx <= cx + 1; xx++) {
+                size_t h = volume_hash(g, xx, y, z);
+                if (!ref_slot_first(seen, &nseen, h))
+                    continue;
+                for (size_t k = g->start[h]; k < g->start[h + 1]; k++) {
+                    const struct volume_photon *p = &g->items[k];
+                    dvec3 d = dv(p->position[0] - x.x, p->position[1] - x.y, p->position[2] - x.z);
+                    if (dv_dot(d, d) > r2)
+                        continue;
+                    /* hash collisions bring photons of far cells: the distance test rejects them */
+                    double ph = ref_phase_hg(phase_g, -(p->dir[0] * view.x + p->dir[1] * view.y + p->dir[2] * view.z));
+                    sum = dv_add(sum, dv_scale(dv(p->flux[0], p->flux[1], p->flux[2]), ph));
+                }
+            }
+    return dv_scale(sum, 1.0 / (4.0 / 3.0 * MATH_PI * g->radius * g->radius * g->radius));
+}
+
+/* The volume caustic seen along a pixel's medium segments. */
+static void gather_volume(struct job *j, int x, int y)
+{
+    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    px->volume_samples += j->pass_fraction;
+    if (px->segment_count == 0)
+        return;
+    struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 3u,
+                                      (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
+    const struct ref_medium *rm = j->medium;
+    for (int k = 0; k < px->segment_count; k++) {
+        int samples = j->volume_samples > 0 ? j->volume_samples : VOLUME_SAMPLES;
+        double t0 = px->segments[k].t0, t1 = px->segments[k].t1, step = (t1 - t0) / samples;
+        dvec3 o = px->segments[k].origin, d = px->segments[k].dir;
+        dvec3 sum = dv(0, 0, 0);
+        for (int s = 0; s < samples; s++) {
+            double t = t0 + step * (s + ref_rng_uniform(&rng));
+            dvec3 p = dv_add(o, dv_scale(d, t));
+            dvec3 l = volume_estimate(j->volume_grid, rm->g, p, d);
+            if (l.x + l.y + l.z <= 0.0)
+                continue;
+            sum = dv_add(sum, dv_mul(ref_medium_transmittance(rm, o, d, t, &rng), l));
+        }
+        px->volume = dv_add(px->volume, dv_mul(px->segments[k].beta, dv_scale(sum, step)));
+    }
+}
+
+/* The rows a volume gather does: all, or (the first gather under a time
+ * budget) every VOLUME_PROBE_STRIDE-th row first at VOLUME_PROBE_SAMPLES
+ * points a ray, timed (1/128 of the whole gather's cost), then the rest. */
+
+void *sppm_volume_thread(void *arg)
+{
+    struct job *j = arg;
+    for (int y = j->thread; y < j->o->height; y += j->threads) {
+        bool probe_row = y % VOLUME_PROBE_STRIDE == 0;
+        if ((j->volume_rows == VOLUME_ROWS_PROBE && !probe_row) || (j->volume_rows == VOLUME_ROWS_REST && probe_row))
+            continue;
+        if (j->iteration > 0 && sppm_budget_spent(j->budget))
+            return NULL;
+        if (j->volume_rows == VOLUME_ROWS_REST && sppm_budget_spent(j->budget)) {
+            /* the last resort of a first gather the probe misjudged: the
+             * row keeps no medium light, and the warning counts it */
+            atomic_fetch_add(&j->volume_rows_left, 1);
+            continue;
+        }
+        for (int x = 0; x < j->o->width; x++)
+            gather_volume(j, x, y);
+    }
+    return NULL;
+}
