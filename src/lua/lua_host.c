@@ -1,6 +1,10 @@
+/* The Lua host: one state per scene script, its parameters, assets, memory
+ * and time limits, its errors with file and line (the sandbox is
+ * lua_sandbox.c). */
 #define _GNU_SOURCE
 #include "lua/lua_host.h"
 #include "lua/lua_pattern.h"
+#include "lua/lua_host_state.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -20,36 +24,7 @@
 #include "core/suggest.h"
 #include "io/image.h"
 
-#define HOST_KEY "caustica.host"
 
-struct host_state {
-    struct lua_host_options options;
-    struct lua_params params;
-    bool used[LUA_PARAMS_MAX];
-    char root[4096];
-    char script[4096];
-    char script_dir[4096];
-    char write_dir[4096];
-    char filter[256];
-    /* Real paths of the folders a sandboxed script may read. */
-    char read_roots[24][PATH_MAX];
-    int read_root_count;
-    /* Real paths of the folders c.asset searches, the project's last. */
-    char asset_dirs[LUA_HOST_ASSET_DIRS_MAX + 1][PATH_MAX];
-    int asset_dir_count;
-    /* The time limit: the call in progress must end by `deadline`. */
-    double deadline;
-    int call_depth;
-    /* The time limit's first error in the call, "file:line: script ran
-     * longer than …": once a pcall (a test harness's xpcall too) has
-     * caught it, it is raised again wherever the script goes on, so the
-     * call's error reports the line where the limit was met. */
-    char limit_message[512];
-    /* lua_host_run_file: the line of the main chunk's return statement
-     * (where the table read_result checks is written), 0 when unknown */
-    bool watch_return;
-    int return_line;
-};
 
 /* The Lua heap, counted by the allocator so that a table bomb becomes a
  * clean "used more than N MB" instead of the machine's OOM killer. */
@@ -124,7 +99,7 @@ static double now_seconds(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-static struct host_state *host_of(lua_State *L)
+struct host_state *lua_host_state_of(lua_State *L)
 {
     lua_getfield(L, LUA_REGISTRYINDEX, HOST_KEY);
     struct host_state *h = lua_touserdata(L, -1);
@@ -157,7 +132,7 @@ bool lua_params_add(struct lua_params *params, const char *assignment, struct er
 /* c.param(name, default): the --set value converted to the default's type. */
 static int host_param(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     const char *name = luaL_checkstring(L, 1);
     if (lua_isnone(L, 2))
         return luaL_argerror(L, 2, "a default value expected");
@@ -197,7 +172,7 @@ static int host_param(lua_State *L)
 
 void lua_host_unused_params(lua_State *L, char *out, size_t outlen)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     size_t used = 0;
     out[0] = '\0';
     for (int i = 0; h && i < h->params.count; i++)
@@ -212,20 +187,20 @@ void lua_host_unused_params(lua_State *L, char *out, size_t outlen)
  * stands for (session.c: `caustica render model.glb`). */
 static int host_script(lua_State *L)
 {
-    lua_pushstring(L, host_of(L)->script);
+    lua_pushstring(L, lua_host_state_of(L)->script);
     return 1;
 }
 
 static int host_script_dir(lua_State *L)
 {
-    lua_pushstring(L, host_of(L)->script_dir);
+    lua_pushstring(L, lua_host_state_of(L)->script_dir);
     return 1;
 }
 
 /* For the test harness: {update_refs = bool, filter = string|nil}. */
 static int host_test_options(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     lua_createtable(L, 0, 2);
     lua_pushboolean(L, h->options.update_refs);
     lua_setfield(L, -2, "update_refs");
@@ -247,7 +222,7 @@ static int host_test_options(lua_State *L)
 static int host_mkdir(lua_State *L)
 {
     const char *path = luaL_checkstring(L, 1);
-    if (!host_of(L)->options.trusted)
+    if (!lua_host_state_of(L)->options.trusted)
         return luaL_error(L, "host.mkdir: only trusted scripts (tests) may make folders");
     struct error err;
     if (!dir_ensure(path, &err))
@@ -257,13 +232,13 @@ static int host_mkdir(lua_State *L)
 
 static int host_root(lua_State *L)
 {
-    lua_pushstring(L, host_of(L)->root);
+    lua_pushstring(L, lua_host_state_of(L)->root);
     return 1;
 }
 
 bool lua_host_find_asset(lua_State *L, const char *name, char *out, size_t outlen, struct error *err)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (!name || !name[0] || name[0] == '/')
         return error_set(err, "c.asset needs a path inside an asset folder (e.g. \"env/room\"), got '%s'",
                          name ? name : "");
@@ -334,281 +309,11 @@ int luaopen_caustica_host(lua_State *L)
     return 1;
 }
 
-/* ---- sandbox --------------------------------------------------------- */
-
-static int sandbox_denied(lua_State *L)
-{
-    return luaL_error(L, "%s is not available to a sandboxed scene script (run with --trusted to allow it)",
-                      lua_tostring(L, lua_upvalueindex(1)));
-}
-
-static void deny(lua_State *L, const char *lib, const char *name)
-{
-    if (lua_getglobal(L, lib) != LUA_TTABLE) {
-        lua_pop(L, 1);
-        return;
-    }
-    lua_pushfstring(L, "%s.%s", lib, name);
-    lua_pushcclosure(L, sandbox_denied, 1);
-    lua_setfield(L, -2, name);
-    lua_pop(L, 1);
-}
-
-static bool inside(const char *real, const char *root)
-{
-    size_t n = strlen(root);
-    if (n == 1 && root[0] == '/')
-        return true;
-    return strncmp(real, root, n) == 0 && (real[n] == '\0' || real[n] == '/');
-}
-
-/* The real path of `path`, or of its folder (plus the last component) when
- * the file does not exist yet. */
-static bool real_path_of(const char *path, char *out, bool *exists)
-{
-    if (realpath(path, out)) {
-        *exists = true;
-        return true;
-    }
-    *exists = false;
-    char dir[4096], real_dir[PATH_MAX];
-    path_dirname(path, dir, sizeof dir);
-    if (!realpath(dir, real_dir))
-        return false;
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    return snprintf(out, PATH_MAX, "%s/%s", real_dir, base) < PATH_MAX;
-}
-
-bool lua_host_check_read(lua_State *L, const char *path, struct error *err)
-{
-    struct host_state *h = host_of(L);
-    if (!h || h->options.trusted)
-        return true;
-    /* the file that will be opened: "x.exr:layer/name" opens x.exr, so x.exr is what is checked */
-    char file[PATH_MAX];
-    if (!image_path_file(path, file, sizeof file))
-        return error_set(err, "%.200s...: the path is too long", path);
-    char real[PATH_MAX];
-    bool exists;
-    if (!real_path_of(file, real, &exists))
-        return error_set(err, "%s: no such file (its folder does not exist)", file);
-    for (int i = 0; i < h->read_root_count; i++)
-        if (inside(real, h->read_roots[i]))
-            return true;
-    return error_set(err, "%s: a sandboxed scene script may read only its own folder, the project's lua/, shaders/ "
-                          "and scenes/, and the output folder (add --allow-read DIR, or run with --trusted)", path);
-}
-
-bool lua_host_check_write(lua_State *L, const char *path, struct error *err)
-{
-    struct host_state *h = host_of(L);
-    if (!h || h->options.trusted)
-        return true;
-    if (!h->write_dir[0])
-        return error_set(err, "%s: a sandboxed scene script may not write files here (render writes only its -o "
-                              "image; give --allow-write DIR, or run with --trusted)", path);
-    char dir[4096], real_dir[PATH_MAX], real_allowed[PATH_MAX];
-    path_dirname(path, dir, sizeof dir);
-    if (!realpath(dir, real_dir) || !realpath(h->write_dir, real_allowed) || !inside(real_dir, real_allowed))
-        return error_set(err, "%s: a sandboxed scene script may write only inside %s (run with --trusted to allow "
-                              "it)", path, h->write_dir);
-    /* The last component must not be a link out of the folder (or into it:
-     * the link may be changed between the check and the write). */
-    struct stat st;
-    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode))
-        return error_set(err, "%s: is a symbolic link; a sandboxed scene script does not write through links", path);
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    if (!base[0] || strcmp(base, ".") == 0 || strcmp(base, "..") == 0)
-        return error_set(err, "%s: not a file name", path);
-    return true;
-}
-
-static int raise_error(lua_State *L, const struct error *err)
-{
-    luaL_where(L, 1);
-    lua_pushstring(L, err->message);
-    lua_concat(L, 2);
-    return lua_error(L);
-}
-
-/* io.open with the sandbox's read and write rules. */
-static int sandbox_io_open(lua_State *L)
-{
-    const char *path = luaL_checkstring(L, 1);
-    const char *mode = luaL_optstring(L, 2, "r");
-    struct error err;
-    bool writes = strpbrk(mode, "wa+") != NULL;
-    if (writes ? !lua_host_check_write(L, path, &err) : !lua_host_check_read(L, path, &err))
-        return raise_error(L, &err);
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
-    return lua_gettop(L);
-}
-
-/* io.lines(file) and io.input(file) read: the read rule. */
-static int sandbox_io_read_file(lua_State *L)
-{
-    if (lua_type(L, 1) == LUA_TSTRING) {
-        struct error err;
-        if (!lua_host_check_read(L, lua_tostring(L, 1), &err))
-            return raise_error(L, &err);
-    }
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
-    return lua_gettop(L);
-}
-
-/* load/loadfile accept text only: a crafted binary chunk can crash Lua.
- * The mode is forced to "t"; the environment argument is passed on only
- * when the caller gave one (Lua's load tells "no env" from an explicit
- * nil by the argument count: padding it would give every chunk a nil
- * _ENV, so that any global it touched failed). */
-static int sandbox_load(lua_State *L)
-{
-    int n = lua_gettop(L);
-    if (n < 1)
-        return luaL_argerror(L, 1, "value expected");
-    int nargs = n >= 4 ? 4 : 3;
-    lua_settop(L, nargs);
-    lua_pushstring(L, "t");
-    lua_replace(L, 3);
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, nargs, LUA_MULTRET);
-    return lua_gettop(L);
-}
-
-static int sandbox_loadfile(lua_State *L)
-{
-    if (lua_type(L, 1) != LUA_TSTRING)
-        return luaL_error(L, "loadfile needs a file name in a sandboxed scene script (no standard input)");
-    struct error err;
-    if (!lua_host_check_read(L, lua_tostring(L, 1), &err))
-        return raise_error(L, &err);
-    int nargs = lua_gettop(L) >= 3 ? 3 : 2; /* an environment only when given, as for load */
-    lua_settop(L, nargs);
-    lua_pushstring(L, "t");
-    lua_replace(L, 2);
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, nargs, LUA_MULTRET);
-    return lua_gettop(L);
-}
-
-/* require's searcher for Lua files, text chunks only and under the read rule
- * (the standard one loads binary chunks: string.dump output written to a
- * file and required ran, and a patched one crashed the process). */
-static int sandbox_lua_searcher(lua_State *L)
-{
-    const char *name = luaL_checkstring(L, 1);
-    lua_getglobal(L, "package");
-    lua_getfield(L, -1, "path");
-    const char *path = lua_tostring(L, -1);
-    if (!path)
-        return luaL_error(L, "'package.path' must be a string");
-    const char *file = luaL_gsub(L, name, ".", "/");
-    luaL_Buffer tried;
-    luaL_buffinit(L, &tried);
-    char candidate[4096];
-    for (const char *p = path; *p;) {
-        const char *semi = strchr(p, ';');
-        size_t n = semi ? (size_t)(semi - p) : strlen(p);
-        if (n > 0 && n < 1024) {
-            char tmpl[1024];
-            memcpy(tmpl, p, n);
-            tmpl[n] = '\0';
-            size_t used = 0;
-            candidate[0] = '\0';
-            for (const char *t = tmpl; *t && used + strlen(file) + 1 < sizeof candidate; t++) {
-                if (*t == '?')
-                    used += (size_t)snprintf(candidate + used, sizeof candidate - used, "%s", file);
-                else
-                    candidate[used++] = *t, candidate[used] = '\0';
-            }
-            FILE *f = fopen(candidate, "r");
-            if (f) {
-                fclose(f);
-                struct error err;
-                if (!lua_host_check_read(L, candidate, &err))
-                    return raise_error(L, &err);
-                if (luaL_loadfilex(L, candidate, "t") != LUA_OK)
-                    return luaL_error(L, "error loading module '%s' from file '%s': %s", name, candidate,
-                                      lua_tostring(L, -1));
-                lua_pushstring(L, candidate);
-                return 2;
-            }
-            luaL_addstring(&tried, "\n\tno file '");
-            luaL_addstring(&tried, candidate);
-            luaL_addstring(&tried, "'");
-        }
-        p += n;
-        if (*p == ';')
-            p++;
-    }
-    luaL_pushresult(&tried);
-    return 1;
-}
-
-static void wrap_global(lua_State *L, const char *lib, const char *name, lua_CFunction wrapper)
-{
-    if (lib) {
-        lua_getglobal(L, lib);
-        lua_getfield(L, -1, name);
-        lua_pushcclosure(L, wrapper, 1);
-        lua_setfield(L, -2, name);
-        lua_pop(L, 1);
-    } else {
-        lua_getglobal(L, name);
-        lua_pushcclosure(L, wrapper, 1);
-        lua_setglobal(L, name);
-    }
-}
-
-static void apply_sandbox(lua_State *L)
-{
-    deny(L, "os", "execute");
-    deny(L, "os", "exit");
-    deny(L, "os", "remove");
-    deny(L, "os", "rename");
-    deny(L, "os", "tmpname");
-    deny(L, "os", "getenv");
-    deny(L, "os", "setlocale");
-    deny(L, "io", "popen");
-    deny(L, "io", "output");
-    deny(L, "io", "tmpfile");
-    deny(L, "package", "loadlib");
-    wrap_global(L, "io", "open", sandbox_io_open);
-    wrap_global(L, "io", "lines", sandbox_io_read_file);
-    wrap_global(L, "io", "input", sandbox_io_read_file);
-    wrap_global(L, NULL, "load", sandbox_load);
-    wrap_global(L, NULL, "loadfile", sandbox_loadfile);
-    /* dofile through the wrapped loadfile. */
-    luaL_dostring(L, "local loadfile = loadfile; dofile = function(f) local fn = assert(loadfile(f)); return fn() end");
-    /* No C modules, Lua modules as text only, and no debug library (it
-     * reaches past every wrapper and every protected metatable). */
-    lua_getglobal(L, "package");
-    lua_pushstring(L, "");
-    lua_setfield(L, -2, "cpath");
-    lua_getfield(L, -1, "searchers");
-    lua_pushcfunction(L, sandbox_lua_searcher);
-    lua_rawseti(L, -2, 2);
-    lua_pushnil(L);
-    lua_rawseti(L, -2, 4);
-    lua_pushnil(L);
-    lua_rawseti(L, -2, 3);
-    lua_pop(L, 2);
-    luaL_dostring(L, "local tb = debug.traceback; debug = { traceback = tb }; package.loaded.debug = debug");
-}
-
 static void timeout_hook(lua_State *L, lua_Debug *ar);
 
 void lua_host_check_deadline(lua_State *L, const char *where)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
         return;
     lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 1); /* a pcall around it cannot keep the script going */
@@ -625,7 +330,7 @@ void lua_host_check_deadline(lua_State *L, const char *where)
 
 double lua_host_suspend_deadline(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (!h || h->deadline <= 0)
         return 0.0;
     double left = h->deadline - now_seconds();
@@ -635,7 +340,7 @@ double lua_host_suspend_deadline(lua_State *L)
 
 void lua_host_resume_deadline(lua_State *L, double left)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (!h || left <= 0.0 || h->deadline <= 0)
         return;
     h->deadline = now_seconds() + left;
@@ -653,7 +358,7 @@ static void pattern_deadline(lua_State *L) { lua_host_check_deadline(L, "a strin
  * error raises it again, one level further out, until it reaches the top. */
 static void timeout_hook(lua_State *L, lua_Debug *ar)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (!h || h->deadline <= 0 || now_seconds() < h->deadline)
         return;
     lua_sethook(L, timeout_hook, LUA_MASKCOUNT, 1);
@@ -684,14 +389,14 @@ static void run_file_hook(lua_State *L, lua_Debug *ar)
     lua_Debug caller;
     if (lua_getstack(L, 1, &caller))
         return; /* a function the chunk called */
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (h && lua_getinfo(L, "l", ar) && ar->currentline > 0)
         h->return_line = ar->currentline;
 }
 
 int lua_host_return_line(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     return h ? h->return_line : 0;
 }
 
@@ -783,7 +488,7 @@ lua_State *lua_host_create(const struct lua_host_options *options, struct error 
     lua_setfield(L, -2, "caustica.host");
     lua_pop(L, 2);
     if (!options->trusted)
-        apply_sandbox(L);
+        lua_sandbox_apply(L);
     return L;
 }
 
@@ -795,7 +500,7 @@ void lua_host_destroy(lua_State *L)
     lua_getallocf(L, &mem);
     /* finalizers (__gc) run here without hooks: the watchdog holds them to
      * the script's time limit (at most 5 s) */
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     /* a nested host (c.image.render from a test) is destroyed inside its
      * caller's call: the caller's deadline is watched again afterwards */
     double outer = atomic_load(&watched_deadline);
@@ -808,19 +513,19 @@ void lua_host_destroy(lua_State *L)
 
 const struct lua_host_options *lua_host_options_of(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     return h ? &h->options : NULL;
 }
 
 const char *lua_host_root(lua_State *L)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     return h ? h->root : ".";
 }
 
 void lua_host_resolve_path(lua_State *L, const char *rel, char *out, size_t outlen)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     path_join(h ? h->script_dir : ".", rel, out, outlen);
 }
 
@@ -878,7 +583,7 @@ static void format_error(const char *raw, const char *context, struct error *err
 
 bool lua_host_call(lua_State *L, int nargs, int nresults, const char *context, struct error *err)
 {
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     /* The time limit counts from the outermost call into the script. A
      * host made inside another's call (c.image.render of a test) watches
      * its own deadline while it runs and gives the caller's back when its
@@ -946,7 +651,7 @@ bool lua_host_run_file(lua_State *L, const char *path, int nresults, struct erro
         lua_pop(L, 1);
         return false;
     }
-    struct host_state *h = host_of(L);
+    struct host_state *h = lua_host_state_of(L);
     if (h && h->call_depth == 0) {
         h->watch_return = true;
         h->return_line = 0;
