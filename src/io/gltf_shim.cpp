@@ -1465,266 +1465,306 @@ void read_channel(const tinygltf::Model &model, const tinygltf::Animation &anim,
 }
 } // namespace
 
+namespace {
+// The scene chosen by name, index or the file's default: its index (-1:
+// the file has none), name and the file's generator into out.
+int scene_choose(const tinygltf::Model &model, const char *name, int index, gltf_scene *out)
+{
+    int scene = -1;
+    if (name) {
+        for (size_t i = 0; i < model.scenes.size() && scene < 0; i++)
+            if (model.scenes[i].name == name)
+                scene = (int)i;
+        if (scene < 0) {
+            std::string known;
+            for (size_t i = 0; i < model.scenes.size(); i++)
+                known += (i ? ", '" : "'") + model.scenes[i].name + "'";
+            throw Fail{std::string("no scene named '") + name + "' (the file has " +
+                       (known.empty() ? std::string("no named scene") : known) + ")"};
+        }
+    } else if (index >= 0) {
+        if (index >= (int)model.scenes.size())
+            throw Fail{"no scene " + std::to_string(index) + " (the file has " +
+                       std::to_string(model.scenes.size()) + ", numbered from 0)"};
+        scene = index;
+    } else if (!model.scenes.empty()) {
+        scene = model.defaultScene >= 0 && model.defaultScene < (int)model.scenes.size() ? model.defaultScene : 0;
+    }
+    out->index = scene;
+    std::snprintf(out->generator, sizeof out->generator, "%s", model.asset.generator.c_str());
+    if (scene >= 0)
+        copy_name(out->name, model.scenes[(size_t)scene].name, "scene", (size_t)scene);
+    else
+        std::snprintf(out->name, GLTF_NAME, "(no scene)");
+    return scene;
+}
+
+// Every node: its name, mesh, camera, light, skin, rest pose and weights;
+// the tree's parents, checked for a node of two parents, cycles and depth.
+void scene_nodes(const tinygltf::Model &model, gltf_scene *out)
+{
+    size_t nn = model.nodes.size();
+    out->nodes = (gltf_node *)std::calloc(nn ? nn : 1, sizeof *out->nodes);
+    if (!out->nodes)
+        throw Fail{"out of memory"};
+    out->node_count = (int)nn;
+    for (size_t i = 0; i < nn; i++) {
+        const tinygltf::Node &n = model.nodes[i];
+        gltf_node &g = out->nodes[i];
+        copy_name(g.name, n.name, "node", i);
+        g.parent = -1;
+        g.mesh = n.mesh;
+        g.camera = n.camera;
+        g.light = -1;
+        std::string what = "node " + std::to_string(i) + " ('" + g.name + "')";
+        if (n.mesh >= (int)model.meshes.size() || n.mesh < -1)
+            throw Fail{what + ": mesh index " + std::to_string(n.mesh) + " is out of range"};
+        if (n.camera >= (int)model.cameras.size() || n.camera < -1)
+            throw Fail{what + ": camera index " + std::to_string(n.camera) + " is out of range"};
+        auto ext = n.extensions.find("KHR_lights_punctual");
+        if (ext != n.extensions.end() && ext->second.Has("light")) {
+            const tinygltf::Value &l = ext->second.Get("light");
+            int li = l.IsInt() ? l.Get<int>() : l.IsNumber() ? (int)l.Get<double>() : -1;
+            if (li < 0 || li >= (int)model.lights.size())
+                throw Fail{what + ": KHR_lights_punctual light " + std::to_string(li) + " is out of range"};
+            g.light = li;
+        }
+        g.skin = n.skin;
+        if (n.skin >= (int)model.skins.size() || n.skin < -1)
+            throw Fail{what + ": skin index " + std::to_string(n.skin) + " is out of range"};
+        node_rest(n, g, what);
+        g.weight_count = node_targets(model, n);
+        if (g.weight_count > GLTF_MAX_WEIGHTS)
+            throw Fail{what + ": " + std::to_string(g.weight_count) + " morph targets, at most " +
+                       std::to_string(GLTF_MAX_WEIGHTS) + " are supported"};
+        const std::vector<double> *w = !n.weights.empty() ? &n.weights
+                                       : n.mesh >= 0 ? &model.meshes[(size_t)n.mesh].weights : nullptr;
+        for (int k = 0; w && k < g.weight_count && k < (int)w->size(); k++)
+            g.weights[k] = std::isfinite((*w)[(size_t)k]) ? (float)(*w)[(size_t)k] : 0.0f;
+    }
+    // parents: glTF's node hierarchy is a set of disjoint trees
+    for (size_t i = 0; i < nn; i++)
+        for (int c : model.nodes[i].children) {
+            if (c < 0 || c >= (int)nn)
+                throw Fail{"node " + std::to_string(i) + ": child " + std::to_string(c) + " is out of range"};
+            if (c == (int)i)
+                throw Fail{"node " + std::to_string(i) + " is its own child (a cycle)"};
+            if (out->nodes[c].parent >= 0)
+                throw Fail{"node " + std::to_string(c) + " is a child of both node " +
+                           std::to_string(out->nodes[c].parent) + " and node " + std::to_string(i) +
+                           " (glTF allows one parent)"};
+            out->nodes[c].parent = (int)i;
+        }
+    // depth and cycles: walk up from each node
+    const int max_depth = 256;
+    for (size_t i = 0; i < nn; i++) {
+        int depth = 0;
+        for (int p = out->nodes[i].parent; p >= 0; p = out->nodes[p].parent) {
+            if (++depth <= max_depth)
+                continue;
+            // too deep, or going round: a cycle comes back to a node within nn steps
+            int q = out->nodes[i].parent;
+            for (size_t step = 0; step <= nn && q >= 0; step++, q = out->nodes[q].parent)
+                if (q == (int)i)
+                    throw Fail{"node " + std::to_string(i) + " is its own ancestor (a cycle in the node tree)"};
+            throw Fail{"node " + std::to_string(i) + " lies more than " + std::to_string(max_depth) +
+                       " levels deep in the node tree (at most " + std::to_string(max_depth) + ")"};
+        }
+    }
+}
+
+// Which nodes lie under the chosen scene's roots (every tree without one).
+void scene_mark(const tinygltf::Model &model, int scene, gltf_scene *out)
+{
+    size_t nn = model.nodes.size();
+    // the chosen scene's nodes
+    if (scene >= 0) {
+        for (int r : model.scenes[(size_t)scene].nodes) {
+            if (r < 0 || r >= (int)nn)
+                throw Fail{"scene " + std::to_string(scene) + ": node " + std::to_string(r) + " is out of range"};
+            if (out->nodes[r].parent >= 0)
+                throw Fail{"scene " + std::to_string(scene) + ": root node " + std::to_string(r) +
+                           " is also the child of node " + std::to_string(out->nodes[r].parent)};
+        }
+        for (size_t i = 0; i < nn; i++) {
+            int root = (int)i;
+            while (out->nodes[root].parent >= 0)
+                root = out->nodes[root].parent;
+            for (int r : model.scenes[(size_t)scene].nodes)
+                if (r == root)
+                    out->nodes[i].in_scene = true;
+        }
+    } else {
+        for (size_t i = 0; i < nn; i++)
+            out->nodes[i].in_scene = true; // no scene: every tree
+    }
+}
+
+void scene_cameras(const tinygltf::Model &model, gltf_scene *out)
+{
+    out->cameras = (gltf_camera *)std::calloc(model.cameras.size() + 1, sizeof *out->cameras);
+    if (!out->cameras)
+        throw Fail{"out of memory"};
+    out->camera_count = (int)model.cameras.size();
+    for (size_t i = 0; i < model.cameras.size(); i++) {
+        const tinygltf::Camera &c = model.cameras[i];
+        gltf_camera &g = out->cameras[i];
+        copy_name(g.name, c.name, "camera", i);
+        std::string what = "camera " + std::to_string(i) + " ('" + g.name + "')";
+        if (c.type == "orthographic") {
+            g.orthographic = true;
+            g.xmag = (float)c.orthographic.xmag;
+            g.ymag = (float)c.orthographic.ymag;
+            g.znear = (float)c.orthographic.znear;
+            g.zfar = (float)c.orthographic.zfar;
+            if (!(std::isfinite(g.xmag) && std::isfinite(g.ymag) && g.xmag != 0 && g.ymag != 0))
+                throw Fail{what + ": xmag and ymag must be finite and not zero"};
+            if (!(g.znear >= 0 && g.zfar > g.znear && std::isfinite(g.zfar)))
+                throw Fail{what + ": znear must be 0 or more and zfar greater"};
+        } else if (c.type == "perspective") {
+            g.yfov = (float)c.perspective.yfov;
+            g.aspect = (float)c.perspective.aspectRatio;
+            g.znear = (float)c.perspective.znear;
+            g.zfar = (float)c.perspective.zfar;
+            if (!(g.yfov > 0 && g.yfov < 3.14159f))
+                throw Fail{what + ": yfov " + std::to_string(g.yfov) + " is not in (0, pi) radians"};
+            if (!(g.znear > 0 && std::isfinite(g.znear)) || !(g.zfar == 0 || g.zfar > g.znear) ||
+                !std::isfinite(g.zfar))
+                throw Fail{what + ": znear must be positive and zfar greater (or absent)"};
+            if (!(g.aspect >= 0 && std::isfinite(g.aspect)))
+                g.aspect = 0;
+        } else {
+            throw Fail{what + ": type '" + c.type + "' is not perspective or orthographic"};
+        }
+    }
+}
+
+void scene_lights(const tinygltf::Model &model, gltf_scene *out)
+{
+    out->lights = (gltf_light *)std::calloc(model.lights.size() + 1, sizeof *out->lights);
+    if (!out->lights)
+        throw Fail{"out of memory"};
+    out->light_count = (int)model.lights.size();
+    for (size_t i = 0; i < model.lights.size(); i++) {
+        const tinygltf::Light &l = model.lights[i];
+        gltf_light &g = out->lights[i];
+        copy_name(g.name, l.name, "light", i);
+        std::string what = "light " + std::to_string(i) + " ('" + g.name + "')";
+        if (l.type == "directional")
+            g.kind = GLTF_LIGHT_DIRECTIONAL;
+        else if (l.type == "point")
+            g.kind = GLTF_LIGHT_POINT;
+        else if (l.type == "spot")
+            g.kind = GLTF_LIGHT_SPOT;
+        else
+            throw Fail{what + ": type '" + l.type + "' is not directional, point or spot"};
+        g.color[0] = g.color[1] = g.color[2] = 1;
+        if (l.color.size() == 3)
+            for (int k = 0; k < 3; k++)
+                g.color[k] = (float)l.color[(size_t)k];
+        g.intensity = (float)l.intensity;
+        g.range = (float)l.range;
+        g.inner_cone = (float)l.spot.innerConeAngle;
+        g.outer_cone = (float)l.spot.outerConeAngle;
+        if (!(g.intensity >= 0 && std::isfinite(g.intensity)) ||
+            !(g.color[0] >= 0 && g.color[1] >= 0 && g.color[2] >= 0 && std::isfinite(g.color[0] + g.color[1] + g.color[2])))
+            throw Fail{what + ": intensity and color must be finite and not negative"};
+        if (g.kind == GLTF_LIGHT_SPOT &&
+            !(g.inner_cone >= 0 && g.outer_cone > g.inner_cone - 1e-6f && g.outer_cone <= 1.5708f))
+            throw Fail{what + ": spot cones must satisfy 0 <= inner < outer <= pi/2"};
+        if (!(g.range >= 0 && std::isfinite(g.range)))
+            g.range = 0;
+    }
+}
+
+void scene_skins(const tinygltf::Model &model, gltf_scene *out)
+{
+    size_t nn = model.nodes.size();
+    // skins: joints that are nodes, an inverse bind matrix each
+    out->skins = (gltf_skin *)std::calloc(model.skins.size() + 1, sizeof *out->skins);
+    if (!out->skins)
+        throw Fail{"out of memory"};
+    for (size_t i = 0; i < model.skins.size(); i++) {
+        const tinygltf::Skin &sk = model.skins[i];
+        gltf_skin &g = out->skins[i];
+        out->skin_count = (int)i + 1; // freed from here on
+        copy_name(g.name, sk.name, "skin", i);
+        std::string what = "skin " + std::to_string(i) + " ('" + g.name + "')";
+        if (sk.joints.empty())
+            throw Fail{what + ": no joints"};
+        if (sk.joints.size() > GLTF_MAX_JOINTS)
+            throw Fail{what + ": " + std::to_string(sk.joints.size()) + " joints, at most " +
+                       std::to_string(GLTF_MAX_JOINTS) + " are supported"};
+        g.joints = (int *)std::calloc(sk.joints.size(), sizeof *g.joints);
+        g.inverse_bind = (float *)std::calloc(sk.joints.size() * 16, sizeof *g.inverse_bind);
+        if (!g.joints || !g.inverse_bind)
+            throw Fail{"out of memory"};
+        g.joint_count = (int)sk.joints.size();
+        for (size_t k = 0; k < sk.joints.size(); k++) {
+            if (sk.joints[k] < 0 || sk.joints[k] >= (int)nn)
+                throw Fail{what + ": joint " + std::to_string(k) + " is node " + std::to_string(sk.joints[k]) +
+                           ", out of range (the file has " + std::to_string(nn) + " nodes)"};
+            g.joints[k] = sk.joints[k];
+            for (int c = 0; c < 16; c++)
+                g.inverse_bind[k * 16 + (size_t)c] = c % 5 == 0 ? 1.0f : 0.0f;
+        }
+        if (sk.inverseBindMatrices >= 0) {
+            std::vector<double> ibm = read_accessor(model, sk.inverseBindMatrices, 16,
+                                                    (what + ": inverseBindMatrices").c_str());
+            if (ibm.size() < sk.joints.size() * 16)
+                throw Fail{what + ": inverseBindMatrices holds " + std::to_string(ibm.size() / 16) +
+                           " matrices for " + std::to_string(sk.joints.size()) + " joints"};
+            if (!finite_all(ibm))
+                throw Fail{what + ": an inverse bind matrix is not finite"};
+            for (size_t k = 0; k < sk.joints.size() * 16; k++)
+                g.inverse_bind[k] = (float)ibm[k];
+        }
+    }
+}
+
+void scene_animations(const tinygltf::Model &model, gltf_scene *out)
+{
+    size_t na = model.animations.size();
+    out->animations = (gltf_animation *)std::calloc(na + 1, sizeof *out->animations);
+    if (!out->animations)
+        throw Fail{"out of memory"};
+    size_t keys_total = 0;
+    for (size_t a = 0; a < na; a++) {
+        const tinygltf::Animation &anim = model.animations[a];
+        gltf_animation &g = out->animations[a];
+        out->animation_count = (int)a + 1; // freed from here on
+        copy_name(g.name, anim.name, "animation", a);
+        g.channels = (gltf_channel *)std::calloc(anim.channels.size() + 1, sizeof *g.channels);
+        if (!g.channels)
+            throw Fail{"out of memory"};
+        g.start = INFINITY;
+        g.end = -INFINITY;
+        for (size_t k = 0; k < anim.channels.size(); k++) {
+            std::string what = "animation " + std::to_string(a) + " ('" + g.name + "') channel " + std::to_string(k);
+            read_channel(model, anim, anim.channels[k], what, g.channels[k], keys_total);
+            g.channel_count = (int)k + 1;
+            g.start = std::min(g.start, g.channels[k].times[0]);
+            g.end = std::max(g.end, g.channels[k].times[g.channels[k].key_count - 1]);
+        }
+        if (g.channel_count == 0)
+            g.start = g.end = 0;
+    }
+}
+} // namespace
+
 extern "C" bool gltf_file_scene(const struct gltf_file *file, const char *name, int index, struct gltf_scene *out,
                                 struct error *err)
 {
     std::memset(out, 0, sizeof *out);
     try {
         const tinygltf::Model &model = file->model;
-        int scene = -1;
-        if (name) {
-            for (size_t i = 0; i < model.scenes.size() && scene < 0; i++)
-                if (model.scenes[i].name == name)
-                    scene = (int)i;
-            if (scene < 0) {
-                std::string known;
-                for (size_t i = 0; i < model.scenes.size(); i++)
-                    known += (i ? ", '" : "'") + model.scenes[i].name + "'";
-                throw Fail{std::string("no scene named '") + name + "' (the file has " +
-                           (known.empty() ? std::string("no named scene") : known) + ")"};
-            }
-        } else if (index >= 0) {
-            if (index >= (int)model.scenes.size())
-                throw Fail{"no scene " + std::to_string(index) + " (the file has " +
-                           std::to_string(model.scenes.size()) + ", numbered from 0)"};
-            scene = index;
-        } else if (!model.scenes.empty()) {
-            scene = model.defaultScene >= 0 && model.defaultScene < (int)model.scenes.size() ? model.defaultScene : 0;
-        }
-        out->index = scene;
-        std::snprintf(out->generator, sizeof out->generator, "%s", model.asset.generator.c_str());
-        if (scene >= 0)
-            copy_name(out->name, model.scenes[(size_t)scene].name, "scene", (size_t)scene);
-        else
-            std::snprintf(out->name, GLTF_NAME, "(no scene)");
-
-        size_t nn = model.nodes.size();
-        out->nodes = (gltf_node *)std::calloc(nn ? nn : 1, sizeof *out->nodes);
-        if (!out->nodes)
-            throw Fail{"out of memory"};
-        out->node_count = (int)nn;
-        for (size_t i = 0; i < nn; i++) {
-            const tinygltf::Node &n = model.nodes[i];
-            gltf_node &g = out->nodes[i];
-            copy_name(g.name, n.name, "node", i);
-            g.parent = -1;
-            g.mesh = n.mesh;
-            g.camera = n.camera;
-            g.light = -1;
-            std::string what = "node " + std::to_string(i) + " ('" + g.name + "')";
-            if (n.mesh >= (int)model.meshes.size() || n.mesh < -1)
-                throw Fail{what + ": mesh index " + std::to_string(n.mesh) + " is out of range"};
-            if (n.camera >= (int)model.cameras.size() || n.camera < -1)
-                throw Fail{what + ": camera index " + std::to_string(n.camera) + " is out of range"};
-            auto ext = n.extensions.find("KHR_lights_punctual");
-            if (ext != n.extensions.end() && ext->second.Has("light")) {
-                const tinygltf::Value &l = ext->second.Get("light");
-                int li = l.IsInt() ? l.Get<int>() : l.IsNumber() ? (int)l.Get<double>() : -1;
-                if (li < 0 || li >= (int)model.lights.size())
-                    throw Fail{what + ": KHR_lights_punctual light " + std::to_string(li) + " is out of range"};
-                g.light = li;
-            }
-            g.skin = n.skin;
-            if (n.skin >= (int)model.skins.size() || n.skin < -1)
-                throw Fail{what + ": skin index " + std::to_string(n.skin) + " is out of range"};
-            node_rest(n, g, what);
-            g.weight_count = node_targets(model, n);
-            if (g.weight_count > GLTF_MAX_WEIGHTS)
-                throw Fail{what + ": " + std::to_string(g.weight_count) + " morph targets, at most " +
-                           std::to_string(GLTF_MAX_WEIGHTS) + " are supported"};
-            const std::vector<double> *w = !n.weights.empty() ? &n.weights
-                                           : n.mesh >= 0 ? &model.meshes[(size_t)n.mesh].weights : nullptr;
-            for (int k = 0; w && k < g.weight_count && k < (int)w->size(); k++)
-                g.weights[k] = std::isfinite((*w)[(size_t)k]) ? (float)(*w)[(size_t)k] : 0.0f;
-        }
-        // parents: glTF's node hierarchy is a set of disjoint trees
-        for (size_t i = 0; i < nn; i++)
-            for (int c : model.nodes[i].children) {
-                if (c < 0 || c >= (int)nn)
-                    throw Fail{"node " + std::to_string(i) + ": child " + std::to_string(c) + " is out of range"};
-                if (c == (int)i)
-                    throw Fail{"node " + std::to_string(i) + " is its own child (a cycle)"};
-                if (out->nodes[c].parent >= 0)
-                    throw Fail{"node " + std::to_string(c) + " is a child of both node " +
-                               std::to_string(out->nodes[c].parent) + " and node " + std::to_string(i) +
-                               " (glTF allows one parent)"};
-                out->nodes[c].parent = (int)i;
-            }
-        // depth and cycles: walk up from each node
-        const int max_depth = 256;
-        for (size_t i = 0; i < nn; i++) {
-            int depth = 0;
-            for (int p = out->nodes[i].parent; p >= 0; p = out->nodes[p].parent) {
-                if (++depth <= max_depth)
-                    continue;
-                // too deep, or going round: a cycle comes back to a node within nn steps
-                int q = out->nodes[i].parent;
-                for (size_t step = 0; step <= nn && q >= 0; step++, q = out->nodes[q].parent)
-                    if (q == (int)i)
-                        throw Fail{"node " + std::to_string(i) + " is its own ancestor (a cycle in the node tree)"};
-                throw Fail{"node " + std::to_string(i) + " lies more than " + std::to_string(max_depth) +
-                           " levels deep in the node tree (at most " + std::to_string(max_depth) + ")"};
-            }
-        }
-        // the chosen scene's nodes
-        if (scene >= 0) {
-            for (int r : model.scenes[(size_t)scene].nodes) {
-                if (r < 0 || r >= (int)nn)
-                    throw Fail{"scene " + std::to_string(scene) + ": node " + std::to_string(r) + " is out of range"};
-                if (out->nodes[r].parent >= 0)
-                    throw Fail{"scene " + std::to_string(scene) + ": root node " + std::to_string(r) +
-                               " is also the child of node " + std::to_string(out->nodes[r].parent)};
-            }
-            for (size_t i = 0; i < nn; i++) {
-                int root = (int)i;
-                while (out->nodes[root].parent >= 0)
-                    root = out->nodes[root].parent;
-                for (int r : model.scenes[(size_t)scene].nodes)
-                    if (r == root)
-                        out->nodes[i].in_scene = true;
-            }
-        } else {
-            for (size_t i = 0; i < nn; i++)
-                out->nodes[i].in_scene = true; // no scene: every tree
-        }
-
-        out->cameras = (gltf_camera *)std::calloc(model.cameras.size() + 1, sizeof *out->cameras);
-        if (!out->cameras)
-            throw Fail{"out of memory"};
-        out->camera_count = (int)model.cameras.size();
-        for (size_t i = 0; i < model.cameras.size(); i++) {
-            const tinygltf::Camera &c = model.cameras[i];
-            gltf_camera &g = out->cameras[i];
-            copy_name(g.name, c.name, "camera", i);
-            std::string what = "camera " + std::to_string(i) + " ('" + g.name + "')";
-            if (c.type == "orthographic") {
-                g.orthographic = true;
-                g.xmag = (float)c.orthographic.xmag;
-                g.ymag = (float)c.orthographic.ymag;
-                g.znear = (float)c.orthographic.znear;
-                g.zfar = (float)c.orthographic.zfar;
-                if (!(std::isfinite(g.xmag) && std::isfinite(g.ymag) && g.xmag != 0 && g.ymag != 0))
-                    throw Fail{what + ": xmag and ymag must be finite and not zero"};
-                if (!(g.znear >= 0 && g.zfar > g.znear && std::isfinite(g.zfar)))
-                    throw Fail{what + ": znear must be 0 or more and zfar greater"};
-            } else if (c.type == "perspective") {
-                g.yfov = (float)c.perspective.yfov;
-                g.aspect = (float)c.perspective.aspectRatio;
-                g.znear = (float)c.perspective.znear;
-                g.zfar = (float)c.perspective.zfar;
-                if (!(g.yfov > 0 && g.yfov < 3.14159f))
-                    throw Fail{what + ": yfov " + std::to_string(g.yfov) + " is not in (0, pi) radians"};
-                if (!(g.znear > 0 && std::isfinite(g.znear)) || !(g.zfar == 0 || g.zfar > g.znear) ||
-                    !std::isfinite(g.zfar))
-                    throw Fail{what + ": znear must be positive and zfar greater (or absent)"};
-                if (!(g.aspect >= 0 && std::isfinite(g.aspect)))
-                    g.aspect = 0;
-            } else {
-                throw Fail{what + ": type '" + c.type + "' is not perspective or orthographic"};
-            }
-        }
-
-        out->lights = (gltf_light *)std::calloc(model.lights.size() + 1, sizeof *out->lights);
-        if (!out->lights)
-            throw Fail{"out of memory"};
-        out->light_count = (int)model.lights.size();
-        for (size_t i = 0; i < model.lights.size(); i++) {
-            const tinygltf::Light &l = model.lights[i];
-            gltf_light &g = out->lights[i];
-            copy_name(g.name, l.name, "light", i);
-            std::string what = "light " + std::to_string(i) + " ('" + g.name + "')";
-            if (l.type == "directional")
-                g.kind = GLTF_LIGHT_DIRECTIONAL;
-            else if (l.type == "point")
-                g.kind = GLTF_LIGHT_POINT;
-            else if (l.type == "spot")
-                g.kind = GLTF_LIGHT_SPOT;
-            else
-                throw Fail{what + ": type '" + l.type + "' is not directional, point or spot"};
-            g.color[0] = g.color[1] = g.color[2] = 1;
-            if (l.color.size() == 3)
-                for (int k = 0; k < 3; k++)
-                    g.color[k] = (float)l.color[(size_t)k];
-            g.intensity = (float)l.intensity;
-            g.range = (float)l.range;
-            g.inner_cone = (float)l.spot.innerConeAngle;
-            g.outer_cone = (float)l.spot.outerConeAngle;
-            if (!(g.intensity >= 0 && std::isfinite(g.intensity)) ||
-                !(g.color[0] >= 0 && g.color[1] >= 0 && g.color[2] >= 0 && std::isfinite(g.color[0] + g.color[1] + g.color[2])))
-                throw Fail{what + ": intensity and color must be finite and not negative"};
-            if (g.kind == GLTF_LIGHT_SPOT &&
-                !(g.inner_cone >= 0 && g.outer_cone > g.inner_cone - 1e-6f && g.outer_cone <= 1.5708f))
-                throw Fail{what + ": spot cones must satisfy 0 <= inner < outer <= pi/2"};
-            if (!(g.range >= 0 && std::isfinite(g.range)))
-                g.range = 0;
-        }
-
-        // skins: joints that are nodes, an inverse bind matrix each
-        out->skins = (gltf_skin *)std::calloc(model.skins.size() + 1, sizeof *out->skins);
-        if (!out->skins)
-            throw Fail{"out of memory"};
-        for (size_t i = 0; i < model.skins.size(); i++) {
-            const tinygltf::Skin &sk = model.skins[i];
-            gltf_skin &g = out->skins[i];
-            out->skin_count = (int)i + 1; // freed from here on
-            copy_name(g.name, sk.name, "skin", i);
-            std::string what = "skin " + std::to_string(i) + " ('" + g.name + "')";
-            if (sk.joints.empty())
-                throw Fail{what + ": no joints"};
-            if (sk.joints.size() > GLTF_MAX_JOINTS)
-                throw Fail{what + ": " + std::to_string(sk.joints.size()) + " joints, at most " +
-                           std::to_string(GLTF_MAX_JOINTS) + " are supported"};
-            g.joints = (int *)std::calloc(sk.joints.size(), sizeof *g.joints);
-            g.inverse_bind = (float *)std::calloc(sk.joints.size() * 16, sizeof *g.inverse_bind);
-            if (!g.joints || !g.inverse_bind)
-                throw Fail{"out of memory"};
-            g.joint_count = (int)sk.joints.size();
-            for (size_t k = 0; k < sk.joints.size(); k++) {
-                if (sk.joints[k] < 0 || sk.joints[k] >= (int)nn)
-                    throw Fail{what + ": joint " + std::to_string(k) + " is node " + std::to_string(sk.joints[k]) +
-                               ", out of range (the file has " + std::to_string(nn) + " nodes)"};
-                g.joints[k] = sk.joints[k];
-                for (int c = 0; c < 16; c++)
-                    g.inverse_bind[k * 16 + (size_t)c] = c % 5 == 0 ? 1.0f : 0.0f;
-            }
-            if (sk.inverseBindMatrices >= 0) {
-                std::vector<double> ibm = read_accessor(model, sk.inverseBindMatrices, 16,
-                                                        (what + ": inverseBindMatrices").c_str());
-                if (ibm.size() < sk.joints.size() * 16)
-                    throw Fail{what + ": inverseBindMatrices holds " + std::to_string(ibm.size() / 16) +
-                               " matrices for " + std::to_string(sk.joints.size()) + " joints"};
-                if (!finite_all(ibm))
-                    throw Fail{what + ": an inverse bind matrix is not finite"};
-                for (size_t k = 0; k < sk.joints.size() * 16; k++)
-                    g.inverse_bind[k] = (float)ibm[k];
-            }
-        }
-
-        size_t na = model.animations.size();
-        out->animations = (gltf_animation *)std::calloc(na + 1, sizeof *out->animations);
-        if (!out->animations)
-            throw Fail{"out of memory"};
-        size_t keys_total = 0;
-        for (size_t a = 0; a < na; a++) {
-            const tinygltf::Animation &anim = model.animations[a];
-            gltf_animation &g = out->animations[a];
-            out->animation_count = (int)a + 1; // freed from here on
-            copy_name(g.name, anim.name, "animation", a);
-            g.channels = (gltf_channel *)std::calloc(anim.channels.size() + 1, sizeof *g.channels);
-            if (!g.channels)
-                throw Fail{"out of memory"};
-            g.start = INFINITY;
-            g.end = -INFINITY;
-            for (size_t k = 0; k < anim.channels.size(); k++) {
-                std::string what = "animation " + std::to_string(a) + " ('" + g.name + "') channel " + std::to_string(k);
-                read_channel(model, anim, anim.channels[k], what, g.channels[k], keys_total);
-                g.channel_count = (int)k + 1;
-                g.start = std::min(g.start, g.channels[k].times[0]);
-                g.end = std::max(g.end, g.channels[k].times[g.channels[k].key_count - 1]);
-            }
-            if (g.channel_count == 0)
-                g.start = g.end = 0;
-        }
+        int scene = scene_choose(model, name, index, out);
+        scene_nodes(model, out);
+        scene_mark(model, scene, out);
+        scene_cameras(model, out);
+        scene_lights(model, out);
+        scene_skins(model, out);
+        scene_animations(model, out);
         return true;
     } catch (const Fail &f) {
         gltf_scene_free(out);
