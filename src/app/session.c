@@ -134,14 +134,6 @@ bool session_is_gltf(const char *path)
 
 static bool load(struct session *s, struct error *err)
 {
-    /* --fps tells a glTF file's built-in script the rate its animations'
-     * frames are counted at (a script's own `fps` it simply replaces) */
-    if (session_is_gltf(s->script) && s->options.fps > 0) {
-        char assignment[64];
-        snprintf(assignment, sizeof assignment, "fps=%.17g", s->options.fps);
-        if (!lua_params_add(&s->options.params, assignment, err))
-            return false;
-    }
     const char *asset_dirs[LUA_HOST_ASSET_DIRS_MAX];
     int asset_dir_count = app_asset_dirs(s->app, asset_dirs, LUA_HOST_ASSET_DIRS_MAX);
     struct lua_host_options ho = {
@@ -193,6 +185,16 @@ bool session_open(struct app *app, const struct session_options *options, struct
     s->options = *options;
     snprintf(s->script, sizeof s->script, "%s", options->script);
     s->options.script = s->script;
+    /* --fps tells a glTF file's built-in script the rate its animations'
+     * frames are counted at (a script's own `fps` it simply replaces) */
+    if (session_is_gltf(s->script) && s->options.fps > 0) {
+        char assignment[64];
+        snprintf(assignment, sizeof assignment, "fps=%.17g", s->options.fps);
+        if (!lua_params_add(&s->options.params, assignment, err)) {
+            free(s);
+            return false;
+        }
+    }
     if (!load(s, err)) {
         free(s);
         return false;

@@ -262,6 +262,8 @@ static bool program_build(struct gl_program_cache *cache, struct gl_program *p, 
     free(p->source);
     p->source = all.data;
     p->cache = cache;
+    if (!p->checked)
+        p->checked = calloc(1, sizeof *p->checked); /* NULL (out of memory): misses are not remembered */
     if (p->checked)
         p->checked->count = 0; /* a rebuilt source: look again */
     return true;

@@ -54,11 +54,7 @@ static void note_missing(const struct gl_program *p, const char *name)
                      rel);
         cache->undeclared_count++;
     }
-    /* remember it, declared or not (the pointer is the program's own) */
-    struct gl_program *mut = (struct gl_program *)p;
-    if (!mut->checked)
-        mut->checked = calloc(1, sizeof *mut->checked);
-    c = mut->checked;
+    /* remember it, declared or not (the list the build made) */
     if (c && c->count == c->capacity) {
         int cap = c->capacity ? c->capacity * 2 : 8;
         void *names = realloc(c->names, (size_t)cap * sizeof *c->names);

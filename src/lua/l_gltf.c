@@ -338,10 +338,9 @@ static int file_pose(lua_State *L)
     lua_createtable(L, u->scene.skin_count, 0);
     for (int k = 0; k < u->scene.skin_count; k++) {
         int n = u->scene.skins[k].joint_count;
-        float *m = lua_newuserdatauv(L, (size_t)n * 16 * sizeof *m, 0); /* scratch, collected */
+        float m[GLTF_MAX_JOINTS * 16];
         gltf_pose_joint_matrices(&u->pose, &u->scene, k, m);
         push_floats(L, m, n * 16);
-        lua_remove(L, -2);
         lua_rawseti(L, -2, k + 1);
     }
     return 2;

@@ -283,11 +283,7 @@ static int mesh_get_joint_count(lua_State *L)
 static int mesh_get_bounds(lua_State *L)
 {
     struct mesh *m = lmesh_check(L, 1);
-    lua_createtable(L, 2, 0);
-    lutil_push_vec3(L, m->bounds_min);
-    lua_rawseti(L, -2, 1);
-    lutil_push_vec3(L, m->bounds_max);
-    lua_rawseti(L, -2, 2);
+    lutil_push_box(L, m->bounds_min, m->bounds_max);
     return 1;
 }
 

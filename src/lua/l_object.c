@@ -230,11 +230,7 @@ static int get_object_bounds(lua_State *L)
         lo = vec3_min(lo, a);
         hi = vec3_max(hi, b);
     }
-    lua_createtable(L, 2, 0);
-    lutil_push_vec3(L, lo);
-    lua_rawseti(L, -2, 1);
-    lutil_push_vec3(L, hi);
-    lua_rawseti(L, -2, 2);
+    lutil_push_box(L, lo, hi);
     return 1;
 }
 

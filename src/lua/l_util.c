@@ -189,6 +189,15 @@ void lutil_push_quat(lua_State *L, quat q)
     lua_rawseti(L, -2, 4);
 }
 
+void lutil_push_box(lua_State *L, vec3 lo, vec3 hi)
+{
+    lua_createtable(L, 2, 0);
+    lutil_push_vec3(L, lo);
+    lua_rawseti(L, -2, 1);
+    lutil_push_vec3(L, hi);
+    lua_rawseti(L, -2, 2);
+}
+
 void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, float *out)
 {
     if (lua_getfield(L, t, field) != LUA_TNIL)

@@ -26,6 +26,8 @@ vec3 lutil_check_color(lua_State *L, int idx, const char *fn, const char *field)
 quat lutil_check_quat(lua_State *L, int idx, const char *fn, const char *field);
 void lutil_push_vec3(lua_State *L, vec3 v);
 void lutil_push_quat(lua_State *L, quat q);
+/* A box as { {min}, {max} } (mesh.bounds, object.bounds). */
+void lutil_push_box(lua_State *L, vec3 lo, vec3 hi);
 /* Optional fields of the option table at `t`: leave *out unchanged when
  * absent. Numbers must be finite; integers must fit an int. */
 void lutil_opt_number(lua_State *L, int t, const char *fn, const char *field, float *out);

@@ -266,7 +266,8 @@ bool illum_volumes_collect(const struct mesh *m, const struct transport_table *t
         vec3 dl = vec3_normalize_or(mat4_transform_dir(inverse, dw), dw);
         vec3 lp, ld;
         vp[v].world = pw;
-        vp[v].facing = vec3_dot(n, dl) < 0.0f;
+        float cos_in = -vec3_dot(n, dl); /* the light's cosine on the vertex's front */
+        vp[v].facing = cos_in > 0.0f;
         bool smooth;
         bool ok = transport_lookup_smooth(table, v, dl, &lp, &ld, &vp[v].transmittance, &smooth);
         if (!smooth && tracer && flat[v]) {
@@ -274,7 +275,7 @@ bool illum_volumes_collect(const struct mesh *m, const struct transport_table *t
              * different paths: their blend is none of them, so this vertex
              * is traced exactly */
             ok = transport_trace(tracer, p, n, dl, &lp, &ld, &vp[v].transmittance);
-        } else if (tracer && -vec3_dot(n, dl) >= -1e-4f && (!smooth || -vec3_dot(n, dl) < ILLUM_GRAZING_COS)) {
+        } else if (tracer && cos_in >= -1e-4f && (!smooth || cos_in < ILLUM_GRAZING_COS)) {
             traced[v] = vp[v];
             vec3 tp, td;
             bool tok = transport_trace(tracer, p, n, dl, &tp, &td, &traced[v].transmittance);

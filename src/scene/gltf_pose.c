@@ -15,7 +15,9 @@ bool gltf_pose_init(struct gltf_pose *pose, const struct gltf_scene *scene, stru
     pose->driven = malloc(n * sizeof *pose->driven);
     pose->weights = malloc(n * sizeof *pose->weights);
     pose->world = malloc(n * sizeof *pose->world);
-    if (!pose->translation || !pose->rotation || !pose->scale || !pose->driven || !pose->weights || !pose->world) {
+    pose->composed = malloc(n * sizeof *pose->composed);
+    if (!pose->translation || !pose->rotation || !pose->scale || !pose->driven || !pose->weights || !pose->world ||
+        !pose->composed) {
         gltf_pose_free(pose);
         return error_set(err, "glTF: out of memory for the pose of %d nodes", scene->node_count);
     }
@@ -32,6 +34,7 @@ void gltf_pose_free(struct gltf_pose *pose)
     free(pose->driven);
     free(pose->weights);
     free(pose->world);
+    free(pose->composed);
     memset(pose, 0, sizeof *pose);
 }
 
@@ -152,10 +155,11 @@ void gltf_pose_at(struct gltf_pose *pose, const struct gltf_scene *scene, int an
     }
     /* parents before children: a node's world waits for its parent's
      * (gltf_file_scene refused cycles and trees deeper than 256) */
-    bool *done = calloc((size_t)(scene->node_count > 0 ? scene->node_count : 1), sizeof *done);
+    bool *done = pose->composed;
+    memset(done, 0, (size_t)scene->node_count * sizeof *done);
     for (int i = 0; i < scene->node_count; i++) {
         int chain[258], len = 0;
-        for (int j = i; j >= 0 && !(done ? done[j] : false) && len < 258; j = scene->nodes[j].parent)
+        for (int j = i; j >= 0 && !done[j] && len < 258; j = scene->nodes[j].parent)
             chain[len++] = j;
         while (len > 0) {
             int j = chain[--len];
@@ -166,11 +170,9 @@ void gltf_pose_at(struct gltf_pose *pose, const struct gltf_scene *scene, int an
             else
                 local = mat4_trs(pose->translation[j], pose->rotation[j], pose->scale[j]);
             pose->world[j] = g->parent >= 0 ? mat4_mul(pose->world[g->parent], local) : local;
-            if (done)
-                done[j] = true;
+            done[j] = true;
         }
     }
-    free(done);
 }
 
 void gltf_pose_decompose(mat4 m, vec3 *position, quat *rotation, vec3 *scale)

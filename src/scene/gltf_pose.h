@@ -20,6 +20,7 @@ struct gltf_pose {
     bool *driven; /* an animation moves the node: its TRS is used, not the file's matrix */
     float (*weights)[GLTF_MAX_WEIGHTS];
     mat4 *world;  /* after gltf_pose_compose */
+    bool *composed; /* scratch: whose world this composition has made */
 };
 
 bool gltf_pose_init(struct gltf_pose *pose, const struct gltf_scene *scene, struct error *err);
