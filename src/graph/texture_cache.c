@@ -34,13 +34,13 @@ void texture_cache_begin_frame(struct texture_cache *c, const struct scene *scen
     for (int i = 0; i < c->count; i++)
         c->entries[i].used = false;
     for (int i = 0; i < scene->object_count; i++) {
-        const struct material *m = &scene->objects[i]->material;
-        mark(c, m->base_color.texture);
-        mark(c, m->normal.texture);
-        mark(c, m->emissive.texture);
-        mark(c, m->metallic_roughness.texture);
-        mark(c, m->occlusion.texture);
-        mark(c, m->transmission_map.texture);
+        /* every slot: one left out was released and uploaded again, with
+         * its mipmaps, every frame (the specular and clearcoat textures) */
+        const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS];
+        bool srgb[MATERIAL_TEXTURE_SLOTS];
+        material_texture_slots(&scene->objects[i]->material, slots, srgb);
+        for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++)
+            mark(c, slots[k]->texture);
     }
     int kept = 0;
     for (int i = 0; i < c->count; i++) {

@@ -4,6 +4,7 @@
  * at the first diffuse vertex, to a visible point per pixel and iteration
  * where the photons are gathered. */
 #define _POSIX_C_SOURCE 200809L
+#include "reference/ref_footprint.h"
 #include "reference/ref_sppm_internal.h"
 
 /* The material's reflectance (core/optics.h): Fresnel's, or for an ideal
@@ -360,6 +361,12 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
         sy = ref_rng_uniform(&rng);
     }
     ref_scene_camera_ray(rs, x + sx, y + sy, j->o->width, j->o->height, &origin, &dir);
+    /* The pixel's footprint, for the textures' mip levels, where the
+     * pixel is point-sampled as the rasterizer samples it; spread over the
+     * pixel, the iterations filter the textures themselves. */
+    struct ref_footprint footprint = {.valid = false};
+    if (!j->o->antialias)
+        ref_footprint_camera(rs, x + sx, y + sy, j->o->width, j->o->height, &footprint);
     struct media media = *j->camera_media;
     /* The ray starts on the near plane (what the rasterizer clips), but the
      * camera sits at the eye: the medium around it absorbs from there. */
@@ -401,6 +408,7 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
             break;
         }
         beta = sppm_attenuate(beta, sppm_medium_sigma(rs, &media), h.t);
+        ref_footprint_hit(rs, &footprint, &h);
         if (sppm_hit_is_diffuse(rs, &h, &rng)) {
             dvec3 n = dv_dot(h.shading_normal, dir) < 0 ? h.shading_normal : dv_scale(h.shading_normal, -1.0);
             struct ref_surface surface;
@@ -457,8 +465,8 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                 /* First visible point: start the gather radius at a few
                  * pixel footprints at this distance (then SPPM shrinks it). */
                 dvec3 eye_to = dv_sub(h.position, rs->eye);
-                double footprint = rs->ortho ? j->pixel_size : sqrt(dv_dot(eye_to, eye_to)) * j->pixel_angle;
-                px->radius = j->o->initial_radius > 0 ? j->o->initial_radius : fmax(RADIUS_PIXELS * footprint, 1e-6);
+                double width = rs->ortho ? j->pixel_size : sqrt(dv_dot(eye_to, eye_to)) * j->pixel_angle;
+                px->radius = j->o->initial_radius > 0 ? j->o->initial_radius : fmax(RADIUS_PIXELS * width, 1e-6);
             }
             px->vp.valid = true;
             px->vp.position = h.position;
@@ -466,7 +474,9 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
             px->vp.weight = f;
             break;
         }
+        dvec3 in = dir;
         sppm_specular_step(rs, &h, &media, &dir, &origin, &beta, &rng);
+        ref_footprint_bounce(rs, &footprint, &h, in, dir);
         if (dv_dot(beta, beta) < 1e-30)
             break;
     }

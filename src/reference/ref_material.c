@@ -1,18 +1,54 @@
 /* Textured diffuse surfaces in the reference: the same texels, filter,
- * texture transform and tangent frame as common/material.glsl. The GPU
- * filters with mipmaps when a texture is minified; the reference samples
- * level 0 (the pixel centre's point sample), so the two agree wherever a
- * texel covers at least a pixel, and differ by the texture's own contrast
- * at smaller scales (docs/LUA_API.md, Textures). */
+ * texture transform and tangent frame as common/material.glsl. Where an
+ * eye path knows its pixel's footprint (ref_footprint.c) a texture is
+ * read through the mip level the rasterizer would choose there; elsewhere
+ * (photons, shadow and glossy rays, a path beyond a rough bounce) at
+ * level 0 (docs/LUA_API.md, Textures). */
 #include <math.h>
 
 #include "reference/ref_scene.h"
 
 #include "core/optics.h"
 
-static void hit_uv(const struct ref_object *o, const struct ref_hit *h, int set, float uv[2])
+/* The texture coordinates' change across and down one pixel (h's
+ * footprint): the set's coordinates at the triangle's corners weighted by
+ * the barycentrics' change. */
+static void hit_uv_gradient(const struct ref_object *o, const struct ref_hit *h, int set, float duv[4])
 {
-    ref_object_uv(o, h->primitive, h->bary_u, h->bary_v, set, uv);
+    const uint32_t *tri = o->indices + (size_t)h->primitive * 3;
+    const float *tc = o->texcoords[set];
+    for (int c = 0; c < 2; c++) {
+        double t0 = tc[tri[0] * 2 + (uint32_t)c], t1 = tc[tri[1] * 2 + (uint32_t)c], t2 = tc[tri[2] * 2 + (uint32_t)c];
+        for (int k = 0; k < 2; k++)
+            duv[2 * k + c] = (float)(h->dbary[2 * k] * (t1 - t0) + h->dbary[2 * k + 1] * (t2 - t0));
+    }
+}
+
+/* A slot's texture at the hit: RGBA through the footprint's mip level
+ * where the hit has one, else level 0 (texture_sample's filter). */
+static void slot_rgba(const struct ref_object *o, const struct ref_hit *h, const struct texture_ref *ref, bool srgb,
+                      float rgba[4])
+{
+    float uv[2];
+    ref_object_uv(o, h->primitive, h->bary_u, h->bary_v, ref->texcoord, uv);
+    if (h->footprint) {
+        float duv[4];
+        hit_uv_gradient(o, h, ref->texcoord, duv);
+        texture_sample_grad(ref, uv, duv, srgb, rgba);
+        return;
+    }
+    vec3 c = texture_sample(ref, uv, srgb);
+    rgba[0] = c.x;
+    rgba[1] = c.y;
+    rgba[2] = c.z;
+    rgba[3] = texture_sample_alpha(ref, uv);
+}
+
+static vec3 slot_rgb(const struct ref_object *o, const struct ref_hit *h, const struct texture_ref *ref, bool srgb)
+{
+    float rgba[4];
+    slot_rgba(o, h, ref, srgb, rgba);
+    return vec3_make(rgba[0], rgba[1], rgba[2]);
 }
 
 static bool slot_active(const struct ref_object *o, const struct texture_ref *ref)
@@ -25,9 +61,7 @@ double ref_object_transmission(const struct ref_object *o, const struct ref_hit 
     const struct material *m = &o->material;
     double t = m->transmission;
     if (slot_active(o, &m->transmission_map)) {
-        float uv[2];
-        hit_uv(o, h, m->transmission_map.texcoord, uv);
-        t *= texture_sample(&m->transmission_map, uv, false).x;
+        t *= slot_rgb(o, h, &m->transmission_map, false).x;
     }
     return t;
 }
@@ -79,9 +113,7 @@ static dvec3 mapped_normal(const struct ref_object *o, const struct ref_hit *h, 
     dvec3 b = dv_cross(n, t);
     if (dv_dot(b, pv) * det > 0.0)
         b = dv_scale(b, -1.0); /* a mirrored mapping: v runs the other way round n */
-    float uv[2];
-    hit_uv(o, h, ref->texcoord, uv);
-    vec3 m = texture_sample(ref, uv, false);
+    vec3 m = slot_rgb(o, h, ref, false);
     double s = ref->scale;
     dvec3 mapped = dv_add(dv_add(dv_scale(t, (m.x * 2.0 - 1.0) * s), dv_scale(b, (m.y * 2.0 - 1.0) * s)),
                           dv_scale(n, m.z * 2.0 - 1.0));
@@ -93,9 +125,7 @@ dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h)
     const struct material *m = &o->material;
     dvec3 tint = to_dvec3(m->tint);
     if (slot_active(o, &m->base_color)) {
-        float uv[2];
-        hit_uv(o, h, m->base_color.texcoord, uv);
-        tint = dv_mul(tint, to_dvec3(texture_sample(&m->base_color, uv, true)));
+        tint = dv_mul(tint, to_dvec3(slot_rgb(o, h, &m->base_color, true)));
     }
     return tint;
 }
@@ -123,18 +153,13 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->occlusion = 1.0;
     if (!material_is_textured_surface(m))
         return; /* (thin glass's diffuse share: its base colour, textured, as on the GPU) */
-    double rgba[4];
-    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, rgba);
-    out->albedo = dv_mul(out->albedo, dv(rgba[0], rgba[1], rgba[2]));
-    float uv[2];
-    if (slot_active(o, &m->base_color)) {
-        hit_uv(o, h, m->base_color.texcoord, uv);
-        out->albedo = dv_mul(out->albedo, to_dvec3(texture_sample(&m->base_color, uv, true)));
-    }
-    if (slot_active(o, &m->emissive)) {
-        hit_uv(o, h, m->emissive.texcoord, uv);
-        out->emission = dv_mul(out->emission, to_dvec3(texture_sample(&m->emissive, uv, true)));
-    }
+    double color0[4];
+    ref_object_color(o, h->primitive, h->bary_u, h->bary_v, color0);
+    out->albedo = dv_mul(out->albedo, dv(color0[0], color0[1], color0[2]));
+    if (slot_active(o, &m->base_color))
+        out->albedo = dv_mul(out->albedo, to_dvec3(slot_rgb(o, h, &m->base_color, true)));
+    if (slot_active(o, &m->emissive))
+        out->emission = dv_mul(out->emission, to_dvec3(slot_rgb(o, h, &m->emissive, true)));
     if (slot_active(o, &m->normal))
         out->normal = mapped_normal(o, h, &m->normal, n);
     if (!m->pbr)
@@ -142,10 +167,8 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     /* material_brdf() and material_occlusion() of common/material.glsl */
     out->pbr = true;
     vec3 mr = vec3_make(1, 1, 1);
-    if (slot_active(o, &m->metallic_roughness)) {
-        hit_uv(o, h, m->metallic_roughness.texcoord, uv);
-        mr = texture_sample(&m->metallic_roughness, uv, false);
-    }
+    if (slot_active(o, &m->metallic_roughness))
+        mr = slot_rgb(o, h, &m->metallic_roughness, false);
     out->brdf = brdf_material_default(out->albedo.x, out->albedo.y, out->albedo.z,
                                       fmin(fmax(m->metallic * mr.z, 0.0), 1.0),
                                       fmin(fmax(m->roughness * mr.y, 0.0), 1.0));
@@ -156,12 +179,12 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->brdf.specular_color[2] = m->specular_color.z;
     /* KHR_materials_specular's textures (material_brdf): A and RGB (sRGB) */
     if (slot_active(o, &m->specular_map)) {
-        hit_uv(o, h, m->specular_map.texcoord, uv);
-        out->brdf.specular *= texture_sample_alpha(&m->specular_map, uv);
+        float rgba[4];
+        slot_rgba(o, h, &m->specular_map, false, rgba);
+        out->brdf.specular *= rgba[3];
     }
     if (slot_active(o, &m->specular_color_map)) {
-        hit_uv(o, h, m->specular_color_map.texcoord, uv);
-        vec3 c = texture_sample(&m->specular_color_map, uv, true);
+        vec3 c = slot_rgb(o, h, &m->specular_color_map, true);
         out->brdf.specular_color[0] *= c.x;
         out->brdf.specular_color[1] *= c.y;
         out->brdf.specular_color[2] *= c.z;
@@ -172,12 +195,10 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
     out->brdf.clearcoat_roughness = m->clearcoat_roughness;
     if (m->clearcoat > 0.0f) {
         if (slot_active(o, &m->clearcoat_map)) {
-            hit_uv(o, h, m->clearcoat_map.texcoord, uv);
-            out->brdf.clearcoat *= texture_sample(&m->clearcoat_map, uv, false).x;
+            out->brdf.clearcoat *= slot_rgb(o, h, &m->clearcoat_map, false).x;
         }
         if (slot_active(o, &m->clearcoat_roughness_map)) {
-            hit_uv(o, h, m->clearcoat_roughness_map.texcoord, uv);
-            out->brdf.clearcoat_roughness *= texture_sample(&m->clearcoat_roughness_map, uv, false).y;
+            out->brdf.clearcoat_roughness *= slot_rgb(o, h, &m->clearcoat_roughness_map, false).y;
         }
         out->brdf.clearcoat = fmin(fmax(out->brdf.clearcoat, 0.0), 1.0);
         out->brdf.clearcoat_roughness = fmin(fmax(out->brdf.clearcoat_roughness, 0.0), 1.0);
@@ -187,7 +208,6 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
         out->brdf.clearcoat_normal[2] = nc.z;
     }
     if (slot_active(o, &m->occlusion)) {
-        hit_uv(o, h, m->occlusion.texcoord, uv);
-        out->occlusion = 1.0 + m->occlusion_strength * (texture_sample(&m->occlusion, uv, false).x - 1.0);
+        out->occlusion = 1.0 + m->occlusion_strength * (slot_rgb(o, h, &m->occlusion, false).x - 1.0);
     }
 }

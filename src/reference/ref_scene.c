@@ -144,6 +144,16 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         const struct object *o = scene->objects[i];
         if (!o->visible || o->mesh->index_count == 0)
             continue;
+        /* the mip chains an eye path's footprint reads (ref_footprint.c),
+         * made here, before the threads */
+        const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS];
+        bool srgb[MATERIAL_TEXTURE_SLOTS];
+        material_texture_slots(&o->material, slots, srgb);
+        for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++)
+            if (slots[k]->texture && !texture_build_mips(slots[k]->texture, srgb[k], err)) {
+                ref_scene_release(rs);
+                return false;
+            }
         struct ref_object *ro = &rs->objects[rs->object_count];
         size_t n = o->mesh->vertex_count;
         ro->positions = malloc((n * 3 + 4) * sizeof(float)); /* Embree reads 16 bytes past a vertex */
@@ -294,6 +304,7 @@ bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, do
     double u = rh.hit.u, v = rh.hit.v, w = 1.0 - u - v;
     hit->bary_u = u;
     hit->bary_v = v;
+    hit->footprint = false;
     hit->t = rh.ray.tfar;
     hit->object = (int)rs->geometry_object[rh.hit.geomID];
     hit->primitive = rh.hit.primID;

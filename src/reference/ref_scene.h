@@ -117,6 +117,12 @@ struct ref_hit {
     dvec3 geometric_normal; /* unit, outward (counter-clockwise winding) */
     dvec3 shading_normal;   /* unit, on the same side as the geometric normal */
     double bary_u, bary_v;  /* Embree's barycentrics: the hit is (1-u-v) p0 + u p1 + v p2 */
+    /* The pixel's footprint where an eye path knows it (ref_footprint.c):
+     * the barycentrics' change to the next pixel across (dbary[0], [1])
+     * and down ([2], [3]), for the textures' mip level. false: textures
+     * are read at level 0 (photons, shadow and glossy rays). */
+    bool footprint;
+    double dbary[4];
 };
 
 /* The share of a glass or water surface that is the interface at the hit

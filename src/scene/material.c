@@ -70,45 +70,43 @@ void material_init(struct material *m, enum material_kind kind)
     texture_ref_init(&m->clearcoat_normal);
 }
 
+void material_texture_slots(const struct material *m, const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS],
+                            bool srgb[MATERIAL_TEXTURE_SLOTS])
+{
+    const struct texture_ref *all[MATERIAL_TEXTURE_SLOTS] = {
+        &m->base_color,    &m->normal,           &m->emissive,      &m->transmission_map,
+        &m->metallic_roughness, &m->occlusion,   &m->specular_map,  &m->specular_color_map,
+        &m->thickness_map, &m->clearcoat_map,    &m->clearcoat_roughness_map, &m->clearcoat_normal};
+    for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++) {
+        slots[k] = all[k];
+        srgb[k] = all[k] == &m->base_color || all[k] == &m->emissive || all[k] == &m->specular_color_map;
+    }
+}
+
 void material_assign(struct material *dst, const struct material *src)
 {
     if (dst == src)
         return;
-    texture_retain(src->base_color.texture);
-    texture_retain(src->normal.texture);
-    texture_retain(src->emissive.texture);
-    texture_retain(src->transmission_map.texture);
-    texture_retain(src->metallic_roughness.texture);
-    texture_retain(src->occlusion.texture);
-    texture_retain(src->specular_map.texture);
-    texture_retain(src->specular_color_map.texture);
-    texture_retain(src->thickness_map.texture);
-    texture_retain(src->clearcoat_map.texture);
-    texture_retain(src->clearcoat_roughness_map.texture);
-    texture_retain(src->clearcoat_normal.texture);
+    const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS];
+    bool srgb[MATERIAL_TEXTURE_SLOTS];
+    material_texture_slots(src, slots, srgb);
+    for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++)
+        texture_retain(slots[k]->texture);
     material_release(dst);
     *dst = *src;
 }
 
 void material_release(struct material *m)
 {
-    texture_destroy(m->base_color.texture);
-    texture_destroy(m->normal.texture);
-    texture_destroy(m->emissive.texture);
-    texture_destroy(m->transmission_map.texture);
-    texture_destroy(m->metallic_roughness.texture);
-    texture_destroy(m->occlusion.texture);
-    texture_destroy(m->specular_map.texture);
-    texture_destroy(m->specular_color_map.texture);
+    const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS];
+    bool srgb[MATERIAL_TEXTURE_SLOTS];
+    material_texture_slots(m, slots, srgb);
+    for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++)
+        texture_destroy(slots[k]->texture);
     m->base_color.texture = m->normal.texture = m->emissive.texture = m->transmission_map.texture = NULL;
-    m->metallic_roughness.texture = m->occlusion.texture = NULL;
-    texture_destroy(m->thickness_map.texture);
-    m->thickness_map.texture = NULL;
-    texture_destroy(m->clearcoat_map.texture);
-    texture_destroy(m->clearcoat_roughness_map.texture);
-    texture_destroy(m->clearcoat_normal.texture);
-    m->specular_map.texture = m->specular_color_map.texture = NULL;
-    m->clearcoat_map.texture = m->clearcoat_roughness_map.texture = m->clearcoat_normal.texture = NULL;
+    m->metallic_roughness.texture = m->occlusion.texture = m->specular_map.texture = NULL;
+    m->specular_color_map.texture = m->thickness_map.texture = m->clearcoat_map.texture = NULL;
+    m->clearcoat_roughness_map.texture = m->clearcoat_normal.texture = NULL;
 }
 
 bool material_has_textures(const struct material *m)

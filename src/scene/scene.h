@@ -37,8 +37,14 @@ struct texture {
     int width, height;
     uint8_t *texels;  /* owned, width * height * 4 */
     bool nearest;     /* magnification: nearest texel (else bilinear) */
-    bool mipmaps;     /* minification through mipmaps on the GPU (the reference samples level 0) */
+    bool mipmaps;     /* minification through mipmaps on the GPU, and in the reference where a
+                         pixel's footprint is known (texture_sample_grad) */
     enum texture_wrap wrap_s, wrap_t;
+    /* The reference's copy of the chain glGenerateMipmap makes: levels 1..
+     * one after the other, 8-bit RGBA, averaged as linear values [0] or
+     * as sRGB colours decoded first [1] (texture_build_mips; NULL until). */
+    uint8_t *mip_chain[2];
+    int levels; /* 1 + floor(log2(the longer side)) once a chain is built */
 };
 
 /* Where a material reads a texture: which texture coordinate set, and
@@ -147,6 +153,19 @@ void texture_ref_init(struct texture_ref *ref);
 vec3 texture_sample(const struct texture_ref *ref, const float uv[2], bool srgb);
 /* The texture's alpha at uv with the same filter (1 without a texture). */
 float texture_sample_alpha(const struct texture_ref *ref, const float uv[2]);
+/* Makes the mip chain texture_sample_grad reads (once per texture and
+ * colour space; not thread-safe: the reference builds it before its
+ * threads start). Nothing to do for a texture without mipmaps. */
+bool texture_build_mips(struct texture *t, bool srgb, struct error *err);
+/* The value at uv as GL's trilinear filter reads it where the texture
+ * coordinates change by duv = (du/dx, dv/dx, du/dy, dv/dy) from one pixel
+ * to the next (before the reference's transform, which is applied to
+ * both): the level of detail of the OpenGL 4.5 specification §8.14 (the
+ * longer of the two derivatives, isotropic), linear between two levels;
+ * level 0 as texture_sample where the texture is magnified, has no
+ * mipmaps or no chain for `srgb`. RGB in rgba[0..2], alpha in rgba[3]. */
+void texture_sample_grad(const struct texture_ref *ref, const float uv[2], const float duv[4], bool srgb,
+                         float rgba[4]);
 void texture_ref_apply(const struct texture_ref *ref, const float uv[2], float out[2]);
 
 void material_init(struct material *m, enum material_kind kind);
@@ -154,6 +173,11 @@ void material_init(struct material *m, enum material_kind kind);
 void material_assign(struct material *dst, const struct material *src);
 void material_release(struct material *m);
 bool material_has_textures(const struct material *m);
+/* Every texture slot a material has, and whether each holds colours (read
+ * as sRGB: base colour, emission, specular colour) or data (linear). */
+enum { MATERIAL_TEXTURE_SLOTS = 12 };
+void material_texture_slots(const struct material *m, const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS],
+                            bool srgb[MATERIAL_TEXTURE_SLOTS]);
 
 struct mesh {
     int references;
