@@ -300,11 +300,13 @@ static dvec3 direct_light(const struct ref_scene *rs, const struct ref_medium *r
  * the environment in its mirror direction, unoccluded), without its
  * caustics and without a second glossy bounce. Absorbed by the media it
  * crosses (not the scene's participating medium). */
-static dvec3 glossy_radiance(const struct ref_scene *rs, const struct ref_medium *rm, struct ref_rng *rng,
-                             dvec3 origin, dvec3 dir, struct media media)
+static dvec3 glossy_radiance(const struct job *j, struct ref_rng *rng, dvec3 origin, dvec3 dir, struct media media)
 {
+    const struct ref_scene *rs = j->rs;
+    const struct ref_medium *rm = j->medium;
     dvec3 beta = dv(1, 1, 1);
-    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+    int depth;
+    for (depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
         if (!ref_scene_intersect(rs, origin, dir, INFINITY, &h))
             return dv_mul(beta, ref_scene_environment(rs, dir));
@@ -337,6 +339,8 @@ static dvec3 glossy_radiance(const struct ref_scene *rs, const struct ref_medium
         if (dv_dot(beta, beta) < 1e-30)
             break;
     }
+    if (depth == MAX_DEPTH)
+        atomic_fetch_add(&j->budget->paths_cut[1], 1);
     return dv(0, 0, 0);
 }
 
@@ -376,7 +380,8 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
     px->vp.valid = false;
     px->segment_count = 0;
     const struct ref_medium *rm = j->medium;
-    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+    int depth;
+    for (depth = 0; depth < MAX_DEPTH; depth++) {
         struct ref_hit h;
         bool hit = eye_intersect(rs, origin, dir, &h);
         double t0, t1;
@@ -444,7 +449,7 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                     dvec3 w = dv(fs[0] / (pdf * GLOSSY_SAMPLES), fs[1] / (pdf * GLOSSY_SAMPLES),
                                  fs[2] / (pdf * GLOSSY_SAMPLES));
                     dvec3 from = dv_add(h.position, dv_scale(h.geometric_normal, side * rs->epsilon));
-                    sky = dv_add(sky, dv_mul(w, glossy_radiance(rs, rm, &rng, from, ld, media)));
+                    sky = dv_add(sky, dv_mul(w, glossy_radiance(j, &rng, from, ld, media)));
                 }
                 sky = dv_scale(sky, surface.occlusion);
                 seen = dv_add(seen, dv_mul(beta, dv_add(dv_add(lit, sky), surface.emission)));
@@ -480,6 +485,8 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
         if (dv_dot(beta, beta) < 1e-30)
             break;
     }
+    if (depth == MAX_DEPTH)
+        atomic_fetch_add(&j->budget->paths_cut[0], 1);
     *rngp = rng;
     return seen;
 }

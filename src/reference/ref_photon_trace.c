@@ -57,7 +57,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
     struct ref_rng rng = *rng_in;
     struct media media = {.count = 0}; /* lights are outside every dielectric */
     int specular = 0;
-    for (int depth = 0; depth < MAX_DEPTH; depth++) {
+    for (int depth = 0; depth < MAX_PHOTON_DEPTH; depth++) {
         struct ref_hit h;
         bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
         /* Aimed at one triangle: if another surface comes first, this
@@ -104,6 +104,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         if (dv_dot(flux, flux) < 1e-40)
             return;
     }
+    atomic_fetch_add(&j->budget->paths_cut[2], 1); /* (every other way out returns) */
 }
 
 void sppm_chunk_range(const struct job *j, int c, long *begin, long *end)

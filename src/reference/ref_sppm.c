@@ -673,6 +673,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct budget *budget = buf.budget;
     atomic_init(&budget->cut, 0);
     atomic_init(&budget->photons_cut, 0);
+    for (int k = 0; k < 3; k++)
+        atomic_init(&budget->paths_cut[k], 0);
     budget->start = start;
     budget->gather_share = 0.25;
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
@@ -775,6 +777,16 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
                      "is %s than one iteration would make it; raise --time-budget",
                      o->time_budget, list, elapsed, totals.gather_rows_left > 0 ? "incomplete, and noisier" : "noisier");
     }
+    /* Paths cut at the bounce cap lose their light: say so where it shows
+     * (an eye path's pixel, a glossy reflection), or where photons lost
+     * more than 1% of the caustic ones. */
+    long cut[3];
+    for (int k = 0; k < 3; k++)
+        cut[k] = atomic_load(&budget->paths_cut[k]);
+    if (cut[0] + cut[1] > 0 || cut[2] > totals.caustic_total / 100)
+        log_warn("reference: %ld eye paths and %ld glossy rays were cut after %d specular bounces, %ld photons "
+                 "after %d (light trapped by total internal reflection): the light they carried is missing from "
+                 "the image", cut[0], cut[1], MAX_DEPTH, cut[2], MAX_PHOTON_DEPTH);
     write_estimates(buf.pixels, npix, &totals, out, caustic_out);
     if (stats) {
         double passes = totals.photon_passes > 0 ? totals.photon_passes : 1;

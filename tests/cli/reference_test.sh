@@ -90,4 +90,13 @@ last=$(grep "noise ~" "$WORK/err.txt" | tail -1 | sed 's/.*noise ~\([0-9.e+-]*\)
 "$CAUSTICA" reference tests/scenes/ortho.lua -o "$WORK/p0.pfm" --size 16x16 --spp 2 --photons 0 >"$WORK/p0.txt" 2>&1
 grep -q "2 iterations, 0 photons (0 caustic)" "$WORK/p0.txt" && pass "--photons 0 traces none" \
   || fail "--photons 0" "$(cat "$WORK/p0.txt")"
+# Paths cut at the bounce cap say so: a glass rod of 200 guides the light past 1,024 total internal
+# reflections (the rod of 6, about 90, shows its end exactly: tests/lua/reference_test.lua)
+"$CAUSTICA" reference tests/scenes/light_guide.lua --set length=200 -o "$WORK/guide.pfm" --spp 1 --photons 0 \
+  >"$WORK/guide.txt" 2>&1
+"$CAUSTICA" reference tests/scenes/light_guide.lua -o "$WORK/guide6.pfm" --spp 1 --photons 0 >"$WORK/guide6.txt" 2>&1
+grep -q "warning: reference: [1-9][0-9]* eye paths and 0 glossy rays were cut after 1024 specular bounces" \
+  "$WORK/guide.txt" && ! grep -q "were cut" "$WORK/guide6.txt" \
+  && pass "eye paths cut at the bounce cap are counted and said, once; none in a rod they cross" \
+  || fail "bounce cap" "$(cat "$WORK/guide.txt" "$WORK/guide6.txt")"
 finish

@@ -235,6 +235,22 @@ t.case("a camera inside glass sees by total internal reflection without NaN", fu
   t.expect(img:stats().max > 0, "something is visible")
 end)
 
+t.case("a light guide: about 90 total internal reflections along a glass rod, its end shows the background", function()
+  -- tests/scenes/light_guide.lua: an ideal interface (no Fresnel branch),
+  -- every side met beyond the critical angle, so each path through the
+  -- rod's end face leaves its far end as it entered: radiance 1. Eye paths
+  -- were cut at 32 bounces before (issue 50's vase): the end face was black.
+  local img = t.reference("tests/scenes/light_guide.lua", { photons = 0, spp = 1 })
+  local least = math.huge
+  for y = 22, 41 do
+    for x = 22, 41 do
+      local r, g, b = img:pixel(x, y)
+      least = math.min(least, r, g, b)
+    end
+  end
+  t.expect(least > 0.999, string.format("the rod's end face: least channel %.4f (want 1)", least))
+end)
+
 t.case("the reference is deterministic for a seed, whatever the thread count", function()
   local opts = { set = { floor = 0.9, aperture = 0.09, view = "down" }, size = { 32, 32 }, photons = 20000, spp = 2 }
   opts.threads, opts.seed = 1, 7
