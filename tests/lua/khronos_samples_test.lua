@@ -8,8 +8,7 @@
 -- TextureTransformTest 0.015, TextureSettingsTest 0.032, NormalTangentTest
 -- 0.041, NormalTangentMirrorTest 0.052, DamagedHelmet 0.052,
 -- AlphaBlendModeTest 0.066, SpecularTest 0.016, ClearCoatTest 0.037, ToyCar
--- 0.095, GlassVaseFlowers 0.111; the candle holder 0.149 (bound 0.2, see
--- its case). Point-sampling
+-- 0.095, GlassVaseFlowers 0.111, GlassHurricaneCandleHolder 0.147. Point-sampling
 -- level 0, the helmet was 0.173, AlphaBlendModeTest 0.162, ClearCoatTest
 -- 0.143, TextureSettingsTest 0.133 and ToyCar 0.149.
 local t = require "caustica.test"
@@ -172,19 +171,21 @@ t.case("DamagedHelmet: every texture of a real asset, GPU within 0.15, its 4 x 4
   t.expect(e < 0.08, string.format("4 x 4 block means: rel_rmse %.4f (bound 0.08)", e))
 end)
 
-t.case("GlassHurricaneCandleHolder: the base colour texture colours the glass (its glTF logo), GPU within 0.2", function()
+t.case("GlassHurricaneCandleHolder: the base colour texture colours the glass (its glTF logo), GPU within 0.15", function()
   -- Before, glass took its base colour factor alone: a plain blue holder,
   -- no logo, in both renderers. The reference with its photons (they
   -- light the candle inside through the glass), 16 iterations of its seed
-  -- (not a time budget: the same image on a busy machine): 0.153. Its
-  -- glossy foot reflects the blue bowl above it in the reference (the
-  -- glossy lobes traced), the environment alone on the GPU: 0.143 while
-  -- both lit the lobes by a uniform ambient sky.
+  -- (not a time budget: the same image on a busy machine): 0.147 (bound
+  -- 0.15; 0.153 while the reference read level 0 of the minified textures
+  -- and cut its eye paths at 32 bounces). 86% of the squared error is in
+  -- the glass, darker and bluer in the reference; the rest in its glossy
+  -- foot, which reflects the blue bowl above it in the reference (the
+  -- glossy lobes traced), the environment alone on the GPU.
   local set = { sample = "candle_holder" }
   local gpu = t.render(SCENE, { set = set })
   t.expect_finite(gpu)
   local ref = t.reference(SCENE, { set = set, spp = 16 })
-  within(gpu, ref, 0.2, "candle_holder")
+  within(gpu, ref, 0.15, "candle_holder")
   for name, img in pairs { shade = gpu, reference = ref } do
     local green = count(img, 60, 60, 135, 105, function(r, g, b) return g > 1.3 * b and g > r end)
     t.expect(green > 500, string.format("%s: %d pixels of the green logo seen through the glass", name, green))
