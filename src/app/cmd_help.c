@@ -26,7 +26,7 @@ static const char *param_type_name(const struct pass_param_desc *d)
     case PASS_PARAM_INPUT:
         if (d->bundle) { /* a record, not a texture: say which */
             static char bundle[64];
-            snprintf(bundle, sizeof bundle, "input \"pass.output\" (%s)", d->bundle);
+            snprintf(bundle, sizeof bundle, "input \"pass.output\" (%s)", d->bundle->name);
             return bundle;
         }
         return "input \"pass.output\"";

@@ -168,7 +168,8 @@ int cmd_info(struct app *app, struct cli *cli)
                 printf("      in  %-12s <- %s\n", p->inputs[k].name, p->inputs[k].source);
             for (int k = 0; k < p->output_count; k++)
                 printf("      out %s.%s (%s)\n", p->name, p->outputs[k].name,
-                       p->outputs[k].bundle ? p->outputs[k].bundle : gl_format_name(p->outputs[k].format));
+                       p->outputs[k].kind == RESOURCE_RECORD ? p->outputs[k].record->name
+                                                             : gl_format_name(p->outputs[k].format));
         }
     }
     if (ok) {

@@ -400,7 +400,7 @@ static void aov_choices(const struct session *s, const char *wanted, char *out, 
     size_t count = 0, used = (size_t)snprintf(out, outlen, "; the graph's images:");
     for (int r = 0; r < s->graph->resource_count && count < 256; r++) {
         const struct graph_resource *res = &s->graph->resources[r];
-        if (res->bundle || (res->producer >= 0 && res->producer < s->graph->count &&
+        if (res->decl.kind == RESOURCE_RECORD || (res->producer >= 0 && res->producer < s->graph->count &&
                             s->graph->entries[res->producer].state != GRAPH_PASS_KEPT))
             continue;
         names[count++] = res->name;
@@ -447,9 +447,9 @@ bool session_write_image(struct session *s, const char *path, struct error *err)
                                s->graph->entries[res->producer].reason);
                 break;
             }
-            if (res->bundle) {
+            if (res->decl.kind == RESOURCE_RECORD) {
                 ok = error_set(err, "--aov %s: a %s, not an image; name one of the textures its readers make",
-                               s->aovs[i], res->bundle);
+                               s->aovs[i], res->decl.record->name);
                 break;
             }
             ok = read_resource(s, res, &layers_img[n], err);

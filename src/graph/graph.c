@@ -334,19 +334,19 @@ bool graph_check(struct graph *g, struct error *err)
             if (producer >= 0) {
                 /* a texture where a texture is read, a record of the right type where one is */
                 int param = input_param(p->desc, p->inputs[k].name);
-                const char *want = param >= 0 ? p->desc->params[param].bundle : NULL;
-                const char *have = g->entries[producer].pass->outputs[which].bundle;
-                if (!(want == have || (want && have && strcmp(want, have) == 0)))
+                const struct pass_output_decl *made = &g->entries[producer].pass->outputs[which];
+                const struct record_type *want = param >= 0 ? p->desc->params[param].bundle : NULL;
+                const struct record_type *have = made->kind == RESOURCE_RECORD ? made->record : NULL;
+                if (want != have)
                     return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', which is %s%s, where %s%s is expected",
                                      p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                                     p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture", have ? have : "",
-                                     want ? "a " : "a texture", want ? want : "");
+                                     p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture",
+                                     have ? have->name : "", want ? "a " : "a texture", want ? want->name : "");
                 /* a texture that must carry a typed record (a shadow map's
                  * light matrix): another texture there rendered unshadowed,
                  * exit 0 and no word (issue 54) */
-                const char *want_record = param >= 0 ? p->desc->params[param].record : NULL;
-                const char *have_record = g->entries[producer].pass->outputs[which].record;
-                if (want_record && !(have_record && strcmp(want_record, have_record) == 0)) {
+                const struct record_type *want_record = param >= 0 ? p->desc->params[param].record : NULL;
+                if (want_record && made->record != want_record) {
                     /* an input list's item as the script wrote it: shadow[2] */
                     char shown[PASS_NAME_MAX + 16];
                     const char *pname = p->desc->params[param].name;
@@ -357,7 +357,7 @@ bool graph_check(struct graph *g, struct error *err)
                     return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', a texture that is not a %s's (a %s "
                                           "pass's `depth` is expected, e.g. \"shadow.depth\")",
                                      p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                                     shown, p->inputs[k].source, want_record, want_record);
+                                     shown, p->inputs[k].source, want_record->name, want_record->name);
                 }
             }
             if (producer < 0) {
@@ -414,9 +414,9 @@ bool graph_check(struct graph *g, struct error *err)
         return error_set(err, "%sgraph output '%s' is made by no pass%s%s%s", g->output_where, g->output, nearest,
                          producers[0] ? "; outputs of that name: " : "", producers);
     }
-    if (g->entries[out_pass].pass->outputs[which].bundle)
+    if (g->entries[out_pass].pass->outputs[which].kind == RESOURCE_RECORD)
         return error_set(err, "graph output '%s' is a %s, not an image: output one of the textures made from it",
-                         g->output, g->entries[out_pass].pass->outputs[which].bundle);
+                         g->output, g->entries[out_pass].pass->outputs[which].record->name);
     /* Keep what the output depends on, walking backwards. */
     for (int i = 0; i < g->count; i++) {
         g->entries[i].state = GRAPH_PASS_PRUNED;
@@ -474,8 +474,7 @@ bool graph_compile(struct graph *g, struct renderer *r, int width, int height, s
             snprintf(res->name, sizeof res->name, "%s.%s", p->name, d->name);
             res->decl = *d;
             res->producer = i;
-            if (d->bundle) { /* the producer's record: no texture */
-                res->bundle = d->bundle;
+            if (d->kind == RESOURCE_RECORD) { /* the producer's record: no texture */
                 e->output_resources[o] = g->resource_count++;
                 continue;
             }

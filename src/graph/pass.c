@@ -477,7 +477,7 @@ bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum
         return error_set(err, "pass '%s': more than %d outputs", p->name, PASS_MAX_OUTPUTS);
     struct pass_output_decl *out = &p->outputs[p->output_count++];
     snprintf(out->name, sizeof out->name, "%s", name);
-    out->bundle = NULL;
+    out->kind = RESOURCE_TEXTURE;
     out->record = NULL;
     out->format = format;
     out->target = target;
@@ -486,8 +486,8 @@ bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum
     return true;
 }
 
-bool pass_declare_output_record(struct pass *p, const char *name, const char *record, GLenum format, GLenum target,
-                                int width, int height, struct error *err)
+bool pass_declare_output_record(struct pass *p, const char *name, const struct record_type *record, GLenum format,
+                                GLenum target, int width, int height, struct error *err)
 {
     if (!pass_declare_output(p, name, format, target, width, height, err))
         return false;
@@ -495,11 +495,12 @@ bool pass_declare_output_record(struct pass *p, const char *name, const char *re
     return true;
 }
 
-bool pass_declare_bundle(struct pass *p, const char *name, const char *bundle, struct error *err)
+bool pass_declare_bundle(struct pass *p, const char *name, const struct record_type *record, struct error *err)
 {
     if (!pass_declare_output(p, name, GL_NONE, GL_NONE, 0, 0, err))
         return false;
-    p->outputs[p->output_count - 1].bundle = bundle;
+    p->outputs[p->output_count - 1].kind = RESOURCE_RECORD;
+    p->outputs[p->output_count - 1].record = record;
     return true;
 }
 
@@ -547,6 +548,12 @@ struct graph_resource *pass_frame_output(const struct pass *p, struct pass_frame
         if (strcmp(p->outputs[i].name, name) == 0)
             return f->outputs[i];
     return NULL;
+}
+
+void *pass_frame_record(const struct pass *p, struct pass_frame *f, const char *slot, const struct record_type *type)
+{
+    struct graph_resource *res = pass_frame_input(p, f, slot);
+    return res && res->decl.record == type ? res->record : NULL;
 }
 
 uint64_t pass_key_mix(uint64_t key, const void *data, size_t size) { return hash_fnv1a(key, data, size); }

@@ -37,6 +37,24 @@ enum pass_param_type {
     PASS_PARAM_FUNCTION,   /* a Lua function kept by reference (custom passes) */
 };
 
+/* A record a resource carries (issue 54): a struct its producer owns,
+ * named by one static descriptor per type, defined by the module that owns
+ * the struct (LAYER_SET_RECORD in passes/layers.c, SHADOW_MAP_RECORD in
+ * passes/shadow_inputs.c) and compared by pointer, never by its name.
+ * A reader gets it through pass_frame_record, which graph_check has made
+ * safe: a connected input is of the type its descriptor asks for. What the
+ * reader gets is the producer's: valid from the producer's execute in this
+ * frame until the producer's next execute or release; a reader uses it
+ * within its own execute and keeps no pointer into it. */
+struct record_type {
+    const char *name; /* for messages, `help` and `info` ("layer_set") */
+};
+
+/* What a graph resource is: a texture the graph allocates (which may also
+ * carry a record: a shadow map's light matrix), or a record alone (a
+ * light's layer set), which has no texture. */
+enum resource_kind { RESOURCE_TEXTURE, RESOURCE_RECORD };
+
 struct pass_param_desc {
     const char *name;
     enum pass_param_type type;
@@ -55,12 +73,13 @@ struct pass_param_desc {
      * graph adds and shares when the script names none (issue 26); its
      * parameters come from the reader's `configure_block`. */
     const char *block;
-    /* input: the record type the input must be ("layer_set"); NULL: a texture */
-    const char *bundle;
-    /* input (a texture): the typed record it must carry besides its texels
-     * ("shadow_map": a shadow map's light matrix), as its producer declares
-     * it (pass_output_decl.record); checked with the graph, not each frame */
-    const char *record;
+    /* input: the record alone it must be (&LAYER_SET_RECORD); NULL: a texture */
+    const struct record_type *bundle;
+    /* input (a texture): the record it must carry besides its texels
+     * (&SHADOW_MAP_RECORD: a shadow map's light matrix), as its producer
+     * declares it (pass_output_decl.record); checked with the graph, not
+     * each frame */
+    const struct record_type *record;
     /* boolean: building blocks that differ only in this are one block with
      * it on (the receivers' `position`: one G-buffer serves both readers) */
     bool merge_or;
@@ -96,12 +115,11 @@ struct pass_input_decl {
 
 struct pass_output_decl {
     char name[PASS_NAME_MAX];
-    /* NULL: a texture the graph allocates; else a record of this type
-     * ("layer_set") that the producer owns and points `record` at */
-    const char *bundle;
-    /* a texture's typed record besides its texels ("shadow_map"), set by
-     * its producer when it declares it (pass_declare_output_record) */
-    const char *record;
+    enum resource_kind kind;
+    /* RESOURCE_RECORD: the record's type (the producer points the
+     * resource's `record` at one); RESOURCE_TEXTURE: the record it carries
+     * besides its texels (pass_declare_output_record), or NULL */
+    const struct record_type *record;
     GLenum format;
     GLenum target;   /* GL_TEXTURE_2D or GL_TEXTURE_CUBE_MAP */
     int width, height; /* 0: the frame's size */
@@ -111,12 +129,13 @@ struct pass_output_decl {
  * it: a shadow map's light-space matrix, the light it belongs to. */
 struct graph_resource {
     char name[RESOURCE_NAME_MAX];
-    struct pass_output_decl decl;
-    struct gl_texture texture; /* a texture output's (none for a bundle) */
-    const char *bundle;        /* a bundle's record type, NULL for a texture */
-    void *record;              /* a bundle's record, owned by its producer (set in its execute) */
+    struct pass_output_decl decl; /* its kind and record type */
+    struct gl_texture texture; /* a texture's (none for a record alone) */
+    /* the record of decl.record's type, owned by its producer, which sets
+     * it in its execute (NULL: not made this frame); read through
+     * pass_frame_record */
+    void *record;
     uint64_t version;          /* bumped each time its producer runs (what readers' reuse keys hold) */
-    const char *record_type;   /* a texture's typed record besides its texels (a shadow map's), or NULL */
     int producer;      /* index of the pass in the graph */
 };
 
@@ -309,14 +328,14 @@ bool pass_declare(struct pass *p, struct error *err);
 bool pass_declare_input(struct pass *p, const char *slot, const char *source, struct error *err);
 bool pass_declare_output(struct pass *p, const char *name, GLenum format, GLenum target, int width, int height,
                          struct error *err);
-/* The same, for a texture that carries a typed record besides its texels
- * (`record`, e.g. "shadow_map"): inputs whose descriptor asks for that
- * record accept it, and no other texture. */
-bool pass_declare_output_record(struct pass *p, const char *name, const char *record, GLenum format, GLenum target,
-                                int width, int height, struct error *err);
-/* A bundle output: a record of type `bundle` ("layer_set") that the pass
- * owns and points its resource's `record` at while it executes. */
-bool pass_declare_bundle(struct pass *p, const char *name, const char *bundle, struct error *err);
+/* The same, for a texture that carries a record besides its texels
+ * (&SHADOW_MAP_RECORD): inputs whose descriptor asks for that record
+ * accept it, and no other texture. */
+bool pass_declare_output_record(struct pass *p, const char *name, const struct record_type *record, GLenum format,
+                                GLenum target, int width, int height, struct error *err);
+/* A record alone (&LAYER_SET_RECORD), no texture: the pass owns it and
+ * points its resource's `record` at it while it executes. */
+bool pass_declare_bundle(struct pass *p, const char *name, const struct record_type *record, struct error *err);
 /* Do two passes of one descriptor have the same values (lights and
  * objects by identity)? Booleans marked `merge_or` are ignored when
  * `ignore_merged`. For sharing building blocks. */
@@ -324,6 +343,11 @@ bool pass_values_equal(const struct pass *a, const struct pass *b, bool ignore_m
 /* The resolved input for `slot` (NULL when the script gave none). */
 struct graph_resource *pass_frame_input(const struct pass *p, struct pass_frame *f, const char *slot);
 struct graph_resource *pass_frame_output(const struct pass *p, struct pass_frame *f, const char *name);
+/* Input `slot`'s record, of `type` (NULL when the script gave none, or its
+ * producer made none this frame: a shadow map of no light). graph_check
+ * refused a connection of another type, so a mismatch here is a bug in
+ * the pass's descriptor: NULL too, never another struct. */
+void *pass_frame_record(const struct pass *p, struct pass_frame *f, const char *slot, const struct record_type *type);
 
 /* The registry of descriptors (pass_registry.c). */
 int pass_registry_count(void);

@@ -142,7 +142,7 @@ static const struct pass_param_desc params[] = {
              "caustics passes"},
     [BC_RECEIVER_DEPTH] = {.name = "receiver_depth", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
      .default_output = "depth", .help = "their depth, which clips the beams (by default beside `receivers`)"},
-    [BC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = "layer_set",
+    [BC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = &LAYER_SET_RECORD,
      .default_output = "layers",
      .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
              "`buffer`, `layers` and `voxels`, shared with layered_caustics for the same light"},
@@ -512,11 +512,10 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     gl_texture_clear(&pass_frame_output(p, f, "irradiance")->texture, zero);
     p->report[0] = '\0';
     /* the building blocks' outputs, made earlier in this frame */
-    struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
+    s->layers = pass_frame_record(p, f, "light_layers", &LAYER_SET_RECORD);
     struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
-    if (!layers || !layers->record || !normal || !depth)
+    if (!s->layers || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
-    s->layers = layers->record;
     vec3 slo, shi;
     if (!s->layers->built || !scene_bounds(f->scene, &slo, &shi))
         return true; /* the layers' light is not in the scene, or nothing refracts: no beams */

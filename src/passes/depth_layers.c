@@ -47,7 +47,7 @@ static bool depth_layers_declare(struct pass *p, struct error *err)
     if (pass_choice(p, DL_VIEW) == VIEW_LIGHT && !pass_light_at(p, DL_LIGHT))
         return error_set(err, "bad argument 'light' to 'depth_layers' (a light expected for view = \"light\", got no "
                               "value)");
-    return pass_declare_bundle(p, "layers", "layer_set", err);
+    return pass_declare_bundle(p, "layers", &LAYER_SET_RECORD, err);
 }
 
 static bool depth_layers_create(struct pass *p, struct renderer *r, struct error *err)

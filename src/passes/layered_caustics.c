@@ -69,7 +69,7 @@ static const struct pass_param_desc params[] = {
              "one, shared with the other caustics passes"},
     [LC_RECEIVER_DEPTH] = {.name = "receiver_depth", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
      .default_output = "depth", .help = "their depth (by default beside `receivers`)"},
-    [LC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = "layer_set",
+    [LC_LIGHT_LAYERS] = {.name = "light_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers", .bundle = &LAYER_SET_RECORD,
      .default_output = "layers",
      .help = "the light's depth layers (a depth_layers pass's `layers`): by default the graph adds one for `light` at "
              "`buffer`, `layers` and `voxels`, shared with beam_caustics for the same light"},
@@ -153,11 +153,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     if (accumulate <= 1)
         temporal_reset(&s->temporal);
     /* the building blocks' outputs, made earlier in this frame */
-    struct graph_resource *layers = pass_frame_input(p, f, "light_layers");
+    const struct layer_set *ls = pass_frame_record(p, f, "light_layers", &LAYER_SET_RECORD);
     struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
-    if (!layers || !layers->record || !normal || !depth)
+    if (!ls || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
-    const struct layer_set *ls = layers->record;
     if (!ls->built)
         return true; /* the layers' light is not in the scene, or nothing refracts: no caustics */
     int slot = layers_light_slot(ls, err);

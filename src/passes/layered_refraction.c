@@ -79,7 +79,7 @@ static const struct pass_param_desc params[] = {
              "a hundredth of the pixel's light is in it (0: the thesis's one path, which drops it); unless set, only where "
              "a refractor's IOR is 2 or more or below 1 (else 0: they cost a tenth of the pass)"},
     [LR_CAMERA_LAYERS] = {.name = "camera_layers", .type = PASS_PARAM_INPUT, .block = "depth_layers",
-     .bundle = "layer_set", .default_output = "layers",
+     .bundle = &LAYER_SET_RECORD, .default_output = "layers",
      .help = "the camera's depth layers (a depth_layers { view = \"camera\" } pass's `layers`): by default the graph "
              "adds one at `layers`, `voxels` and `depths`"},
 };
@@ -132,10 +132,9 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     struct layered_refraction_state *s = p->state;
     struct renderer *r = f->renderer;
     struct graph_resource *in_color = pass_frame_input(p, f, "color"), *in_depth = pass_frame_input(p, f, "depth");
-    struct graph_resource *layer_input = pass_frame_input(p, f, "camera_layers");
-    if (!layer_input || !layer_input->record)
+    const struct layer_set *ls = pass_frame_record(p, f, "camera_layers", &LAYER_SET_RECORD);
+    if (!ls)
         return error_set(err, "the camera's depth layers were not made this frame");
-    const struct layer_set *ls = layer_input->record;
     int layers = ls->layers;
     const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&f->outputs[1]->texture, zero);

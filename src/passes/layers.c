@@ -24,6 +24,8 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 
+const struct record_type LAYER_SET_RECORD = {"layer_set"};
+
 void layers_init(struct layer_set *ls) { memset(ls, 0, sizeof *ls); }
 
 static void release_targets(struct layer_set *ls)

@@ -30,6 +30,11 @@ struct layers_material_gpu {
     float absorption[4];
 };
 
+/* The record type a layer set is published as (depth_layers' `layers`,
+ * graph/pass.h). */
+struct record_type;
+extern const struct record_type LAYER_SET_RECORD;
+
 struct layer_set {
     int width, height, voxels, layers;
     bool built;                /* built this frame (false: nothing refracts in its view, read nothing) */

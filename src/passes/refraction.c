@@ -101,7 +101,7 @@ static const struct pass_param_desc params[] = {
              "paper's one rectangle per object "
              "(§2.2), which large receivers break (docs/techniques/hu_qin.md)"},
     [REFRACTION_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
-     .record = SHADOW_RECORD,
+     .record = &SHADOW_MAP_RECORD,
      .help = "shadow maps for lighting the distance map's surfaces and the diffuse share of partly "
              "transmissive glass as shade does (e.g. \"shadow.depth\"); without them they are unshadowed"},
     [REFRACTION_INTERNAL] = {.name = "internal", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 8,

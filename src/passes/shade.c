@@ -32,7 +32,7 @@ enum shade_param {
 };
 
 static const struct pass_param_desc params[] = {
-    [SHADE_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .record = SHADOW_RECORD,
+    [SHADE_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .record = &SHADOW_MAP_RECORD,
      .help = "shadow map(s) from shadow_map passes, e.g. \"shadow.depth\" or {\"s1.depth\", \"s2.depth\"}"},
     [SHADE_BACKGROUND] = {.name = "background", .type = PASS_PARAM_INPUT,
      .help = "an image to draw behind the objects (default: the scene's environment or background colour)"},

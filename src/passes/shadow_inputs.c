@@ -5,6 +5,8 @@
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
 
+const struct record_type SHADOW_MAP_RECORD = {"shadow_map"};
+
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
 {
     struct renderer *r = f->renderer;
@@ -15,11 +17,11 @@ void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_pr
         struct graph_resource *sh = pass_frame_input(p, f, slot);
         if (!sh)
             continue;
+        const struct shadow_record *made = pass_frame_record(p, f, slot, &SHADOW_MAP_RECORD);
         bool cube = sh->texture.target == GL_TEXTURE_CUBE_MAP;
         static const struct shadow_record none = {.matrix = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}},
                                                   .light_index = -1};
-        const struct shadow_record *rec =
-            sh->record && sh->record_type && strcmp(sh->record_type, SHADOW_RECORD) == 0 ? sh->record : &none;
+        const struct shadow_record *rec = made ? made : &none; /* none: a map of no light this frame */
         gl_program_bind_texture_at(prog, "u_shadow_2d", i, cube ? r->dummy_depth.id : sh->texture.id);
         gl_program_bind_texture_at(prog, "u_shadow_cubes", i, cube ? sh->texture.id : r->dummy_cube.id);
         gl_program_bind_texture_at(prog, "u_shadow_filter", i, rec->filter ? rec->filter : r->dummy_2d.id);

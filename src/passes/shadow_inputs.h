@@ -14,9 +14,9 @@
 #define SHADOW_INPUTS_MAX 4 /* the sampler arrays u_shadow_2d[4] and u_shadow_cubes[4] */
 
 /* What a shadow map's depth texture carries for its readers: the
- * resource's typed record (record_type SHADOW_RECORD), owned by the
- * shadow_map pass, NULL on a frame it made nothing. */
-#define SHADOW_RECORD "shadow_map"
+ * resource's record, of SHADOW_MAP_RECORD's type (graph/pass.h), owned by
+ * the shadow_map pass, NULL on a frame it made nothing. */
+extern const struct record_type SHADOW_MAP_RECORD;
 struct shadow_record {
     mat4 matrix;     /* the light's view-projection (2D), or its translation to the origin (cube) */
     int light_index; /* the light's first entry in the frame's GPU light list */

@@ -51,8 +51,8 @@ static bool shadow_declare(struct pass *p, struct error *err)
     struct light *l = pass_light_at(p, SHADOW_LIGHT);
     int size = pass_int(p, SHADOW_SIZE);
     if (is_cube(l))
-        return pass_declare_output_record(p, "depth", SHADOW_RECORD, GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
-    return pass_declare_output_record(p, "depth", SHADOW_RECORD, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size,
+        return pass_declare_output_record(p, "depth", &SHADOW_MAP_RECORD, GL_R32F, GL_TEXTURE_CUBE_MAP, size, size, err);
+    return pass_declare_output_record(p, "depth", &SHADOW_MAP_RECORD, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D, size, size,
                                       err);
 }
 
@@ -250,7 +250,6 @@ static bool shadow_execute(struct pass *p, struct pass_frame *f, struct error *e
     }
     rec->bias = bias;
     out->record = rec;
-    out->record_type = SHADOW_RECORD;
     s->valid = true;
     s->key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
     return true;

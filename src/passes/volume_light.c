@@ -32,7 +32,7 @@ static const struct pass_param_desc params[] = {
      .help = "the scene's surfaces (e.g. \"shade.color\"), attenuated by the medium in front of them"},
     [VL_DEPTH] = {.name = "depth", .type = PASS_PARAM_INPUT, .default_beside = "color", .default_output = "depth",
      .help = "its depth buffer; default: the depth output of the pass that made color"},
-    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .record = SHADOW_RECORD,
+    [VL_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .record = &SHADOW_MAP_RECORD,
      .help = "shadow map(s) of the lights, shadowing the light in the medium (a light without one is unshadowed)"},
     [VL_ADD] = {.name = "add", .type = PASS_PARAM_INPUT_LIST, .max = VOLUME_LIGHT_MAX_ADD,
      .help = "radiance images added on top, e.g. \"beams.inscatter\" (volume caustics)"},
