@@ -10,9 +10,10 @@
  * lights are the emitters, the environment is seen directly and through
  * specular chains, diffuse surfaces get direct light, caustics and the
  * scene's ambient term, and there is no diffuse interreflection.
- * This file runs the stages (the pilot, each iteration, the clock, the
- * estimates); the stages are ref_eye_paths.c, ref_photon_trace.c,
- * ref_volume_gather.c and ref_surface_gather.c (ref_sppm_internal.h). */
+ * This file runs the stages (the pilot, each iteration, the estimates);
+ * the stages are ref_eye_paths.c, ref_photon_trace.c, ref_volume_gather.c
+ * and ref_surface_gather.c, the clock and progress ref_budget.c
+ * (ref_sppm_internal.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "reference/ref_sppm_internal.h"
 
@@ -25,67 +26,6 @@ void ref_options_default(struct ref_options *o)
     o->iterations = 16;
     o->seed = 1;
 }
-
-/* ---- optics ------------------------------------------------------------ */
-
-
-/* A photon stage that must end by `until` (0: no budget) stops tracing
- * early enough for the surface gather after it, as long as the last one
- * took (the first guess, before any was measured, is a quarter). */
-static double photon_deadline_before_gather(const struct budget *b, double until)
-{
-    if (until <= 0.0)
-        return 0.0;
-    double now = log_now();
-    return now + fmax(until - now, 0.0) * (1.0 - b->gather_share);
-}
-
-static void gather_share_measured(struct budget *b, double trace_seconds, double gather_seconds)
-{
-    if (trace_seconds + gather_seconds > 0.0)
-        b->gather_share = fmin(gather_seconds / (trace_seconds + gather_seconds), 0.9);
-}
-
-/* The one progress writer: on a terminal, the line rewritten in place
- * (padded over the longer line before it); off one, nothing here (the
- * iteration lines are whole lines). */
-void sppm_progress_line(struct budget *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void sppm_progress_line(struct budget *b, const char *fmt, ...)
-{
-    if (!b->tty)
-        return;
-    char text[256];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(text, sizeof text, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        return;
-    if (n > (int)sizeof text - 1)
-        n = (int)sizeof text - 1;
-    fprintf(stderr, "\r%s%*s", text, b->line_length > n ? b->line_length - n : 0, "");
-    b->line_length = n;
-    fflush(stderr);
-}
-
-bool sppm_budget_photons_spent(struct budget *b)
-{
-    if (b->photon_deadline > 0 && log_now() >= b->photon_deadline) {
-        atomic_store(&b->photons_cut, 1);
-        return true;
-    }
-    return atomic_load(&b->photons_cut) != 0;
-}
-
-bool sppm_budget_spent(struct budget *b)
-{
-    if (b->deadline > 0 && log_now() >= b->deadline) {
-        atomic_store(&b->cut, 1);
-        return true;
-    }
-    return atomic_load(&b->cut) != 0;
-}
-
 
 /* The pilot: before the first photon pass, rounds of a quarter of its
  * photons each are traced only to learn where photons are useful and how
@@ -124,12 +64,12 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
         for (size_t i = 0; i < npix; i++)
             pixels[i].m = 0;
         job->iteration = -1 - round;
-        budget->photon_deadline = photon_deadline_before_gather(budget, pilot_deadline);
+        budget->photon_deadline = sppm_photon_deadline(budget, pilot_deadline);
         double trace_start = log_now();
         sppm_run_threads(job, threads, sppm_photon_thread);
         double gather_start = log_now();
         sppm_gather_surface_photons(job, threads, NULL, true);
-        gather_share_measured(budget, gather_start - trace_start, log_now() - gather_start);
+        sppm_gather_share_measured(budget, gather_start - trace_start, log_now() - gather_start);
         long long traced = 0;
         for (int l = 0; l < job->rs->light_count; l++)
             traced += photons_traced(job, budget, l);
@@ -343,7 +283,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         double trace = budget->seconds_per_traced * (double)job->photons_total;
         budget->gather_share = fmin(gather / (gather + trace), 0.9);
     }
-    budget->photon_deadline = photon_deadline_before_gather(budget, budget->photon_deadline);
+    budget->photon_deadline = sppm_photon_deadline(budget, budget->photon_deadline);
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         long begin, end;
         sppm_chunk_range(job, c, &begin, &end);
@@ -374,7 +314,7 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     job->pass_fraction = pass_fraction;
     job->gather_until = budget->deadline > 0 ? budget->deadline - 0.03 * job->o->time_budget : 0.0;
     sppm_gather_surface_photons(job, threads, scale, false);
-    gather_share_measured(budget, gather_start - stage_start, log_now() - gather_start);
+    sppm_gather_share_measured(budget, gather_start - stage_start, log_now() - gather_start);
     budget->gather_seen = true;
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         t->caustic_total += job->caustic_photons[c];

@@ -251,5 +251,10 @@ void sppm_radius_search(struct job *job, int threads, struct radius_search *sear
 void sppm_progress_line(struct budget *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 bool sppm_budget_photons_spent(struct budget *b);
 bool sppm_budget_spent(struct budget *b);
+/* ref_budget.c: when a photon stage that must end by `until` (0: no
+ * budget) stops tracing to leave its surface gather the time the last one
+ * took; that share, measured. */
+double sppm_photon_deadline(const struct budget *b, double until);
+void sppm_gather_share_measured(struct budget *b, double trace_seconds, double gather_seconds);
 
 #endif

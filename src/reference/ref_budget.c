@@ -1,0 +1,61 @@
+/* The reference's clock and progress (struct budget, shared by every
+ * thread of a render): whether the time budget is spent, when a photon
+ * stage must stop to leave its gather time, and the progress line. */
+#define _POSIX_C_SOURCE 200809L
+#include "reference/ref_sppm_internal.h"
+
+/* A photon stage that must end by `until` (0: no budget) stops tracing
+ * early enough for the surface gather after it, as long as the last one
+ * took (the first guess, before any was measured, is a quarter). */
+double sppm_photon_deadline(const struct budget *b, double until)
+{
+    if (until <= 0.0)
+        return 0.0;
+    double now = log_now();
+    return now + fmax(until - now, 0.0) * (1.0 - b->gather_share);
+}
+
+void sppm_gather_share_measured(struct budget *b, double trace_seconds, double gather_seconds)
+{
+    if (trace_seconds + gather_seconds > 0.0)
+        b->gather_share = fmin(gather_seconds / (trace_seconds + gather_seconds), 0.9);
+}
+
+/* The one progress writer: on a terminal, the line rewritten in place
+ * (padded over the longer line before it); off one, nothing here (the
+ * iteration lines are whole lines). */
+void sppm_progress_line(struct budget *b, const char *fmt, ...)
+{
+    if (!b->tty)
+        return;
+    char text[256];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return;
+    if (n > (int)sizeof text - 1)
+        n = (int)sizeof text - 1;
+    fprintf(stderr, "\r%s%*s", text, b->line_length > n ? b->line_length - n : 0, "");
+    b->line_length = n;
+    fflush(stderr);
+}
+
+bool sppm_budget_photons_spent(struct budget *b)
+{
+    if (b->photon_deadline > 0 && log_now() >= b->photon_deadline) {
+        atomic_store(&b->photons_cut, 1);
+        return true;
+    }
+    return atomic_load(&b->photons_cut) != 0;
+}
+
+bool sppm_budget_spent(struct budget *b)
+{
+    if (b->deadline > 0 && log_now() >= b->deadline) {
+        atomic_store(&b->cut, 1);
+        return true;
+    }
+    return atomic_load(&b->cut) != 0;
+}
