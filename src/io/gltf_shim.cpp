@@ -759,13 +759,10 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     }
 
     // Tangents for normal maps (issue 50): the file's TANGENT (its xyz by the
-    // node transform), else made here per vertex from the primitive's
-    // positions, normals and the normal map's texture coordinates, as
-    // MikkTSpace makes them in spirit (each corner's dp/du weighted by its
-    // angle, summed per vertex, made perpendicular to the vertex normal; the
-    // side of decreasing v, the normal map's up, as the handedness w).
-    // Both renderers then take the tangent's direction from the
-    // interpolated attribute (docs/GLTF.md); (0 0 0 1): none.
+    // node transform), else zero, which mesh_gltf.c has made by
+    // scene/mesh_tangents.c once the mesh is whole. Both renderers then take
+    // the tangent's direction from the interpolated attribute
+    // (docs/GLTF.md); (0 0 0 1): none.
     {
         b.tangents.resize(base * 4, 0.0f);
         auto it = prim.attributes.find("TANGENT");
@@ -795,49 +792,10 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             }
             b.has_tangents = true;
         } else if (set >= 0 && set < 2 && b.has_texcoords[set]) {
-            std::vector<double> acc_t(nv * 3, 0.0), acc_b(nv * 3, 0.0);
-            const std::vector<float> &tc = b.texcoords[set];
-            for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-                size_t v[3] = {base + idx[t], base + idx[t + 1], base + idx[t + 2]};
-                for (int k = 0; k < 3; k++) {
-                    // the corner at v[k]: its edges to the other two
-                    size_t a = v[k], p = v[(k + 1) % 3], q = v[(k + 2) % 3];
-                    double e1[3], e2[3];
-                    for (int r = 0; r < 3; r++) {
-                        e1[r] = (double)b.positions[p * 3 + (size_t)r] - b.positions[a * 3 + (size_t)r];
-                        e2[r] = (double)b.positions[q * 3 + (size_t)r] - b.positions[a * 3 + (size_t)r];
-                    }
-                    double du1 = (double)tc[p * 2] - tc[a * 2], dv1 = (double)tc[p * 2 + 1] - tc[a * 2 + 1];
-                    double du2 = (double)tc[q * 2] - tc[a * 2], dv2 = (double)tc[q * 2 + 1] - tc[a * 2 + 1];
-                    double det = du1 * dv2 - dv1 * du2;
-                    double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-                    double l2 = std::sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
-                    if (!(std::fabs(det) > 1e-20) || !(l1 > 1e-20) || !(l2 > 1e-20))
-                        continue; // no area in uv or in space: no direction
-                    double c = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / (l1 * l2);
-                    double angle = std::acos(std::fmin(std::fmax(c, -1.0), 1.0));
-                    for (int r = 0; r < 3; r++) {
-                        double pu = (e1[r] * dv2 - e2[r] * dv1) / det; // dp/du
-                        double pv = (e2[r] * du1 - e1[r] * du2) / det; // dp/dv
-                        if (std::isfinite(pu) && std::isfinite(pv)) {
-                            acc_t[(a - base) * 3 + (size_t)r] += angle * pu;
-                            acc_b[(a - base) * 3 + (size_t)r] -= angle * pv; // decreasing v: the map's up
-                        }
-                    }
-                }
-            }
-            for (size_t i = 0; i < nv; i++) {
-                const float *n = &b.normals[(base + i) * 3];
-                double *t = &acc_t[i * 3], *bt = &acc_b[i * 3];
-                double d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-                double o[3] = {t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]};
-                double len = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
-                bool ok = len > 1e-20 && std::isfinite(len);
-                for (int r = 0; r < 3; r++)
-                    b.tangents.push_back(ok ? (float)(o[r] / len) : 0.0f);
-                double cx[3] = {n[1] * o[2] - n[2] * o[1], n[2] * o[0] - n[0] * o[2], n[0] * o[1] - n[1] * o[0]};
-                b.tangents.push_back(cx[0] * bt[0] + cx[1] * bt[1] + cx[2] * bt[2] < 0.0 ? -1.0f : 1.0f);
-            }
+            // made from the normal map's texture coordinates after the mesh
+            // is whole (scene/mesh_tangents.c: MikkTSpace's construction,
+            // which splits vertices): zero here says "make me"
+            b.tangents.resize((base + nv) * 4, 0.0f);
             b.has_tangents = true;
         } else {
             b.tangents.resize((base + nv) * 4, 0.0f);

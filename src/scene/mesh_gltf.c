@@ -296,6 +296,18 @@ static struct mesh *mesh_from_gltf(const char *path, struct gltf_mesh *g, struct
     g->target_positions = g->target_normals = NULL;
     for (int t = 0; t < g->target_count; t++)
         m->default_weights[t] = g->weights[t];
+    /* tangents for the normal maps of ranges whose file gave none */
+    for (size_t r = 0; m->tangents && r < g->range_count; r++) {
+        int slot = g->ranges[r].material;
+        const struct gltf_material *gm = slot >= 0 && slot < g->material_count ? &g->materials[slot] : NULL;
+        int set = gm && gm->normal_texture.bytes             ? gm->normal_texture.texcoord
+                  : gm && gm->clearcoat_normal_texture.bytes ? gm->clearcoat_normal_texture.texcoord
+                                                             : -1;
+        if (set >= 0 && !mesh_make_tangents(m, g->ranges[r].first_index, g->ranges[r].index_count, set, err)) {
+            mesh_destroy(m);
+            return NULL;
+        }
+    }
     mesh_compute_bounds(m);
     return m;
 }

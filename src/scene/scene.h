@@ -234,6 +234,11 @@ struct mesh *mesh_create_torus(float radius, float tube, int segments, int sides
  * the profile (0 at its top). Centred like the box: a cylinder or cone of
  * height h spans y in [-h/2, h/2], the cone's apex at the top. */
 struct mesh *mesh_create_lathe(const char *name, const float *profile, int count, int segments, struct error *err);
+/* Tangents by MikkTSpace's construction (scene/mesh_tangents.c) for the
+ * vertices of triangles [first_index, first_index + index_count) whose
+ * tangent is zero (the file gave none), from texture coordinates `set`;
+ * a vertex its triangles map both ways is split in two. */
+bool mesh_make_tangents(struct mesh *m, size_t first_index, size_t index_count, int set, struct error *err);
 struct mesh *mesh_create_cylinder(float radius, float height, int segments, struct error *err);
 struct mesh *mesh_create_cone(float radius, float height, int segments, struct error *err);
 /* `texture_budget`: the bytes its material's textures may take together,
