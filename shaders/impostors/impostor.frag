@@ -11,13 +11,13 @@
 #include "common/shadows.glsl"
 #include "common/medium.glsl"
 #include "common/surface_light.glsl"
+#include "common/roles.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
 uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
 uniform vec3 u_emission; // a diffuse surface's own radiance
-uniform int u_material_kind;
 uniform float u_ior;
 uniform float u_ideal;
 layout(location = 0) out vec4 o_depth;
@@ -31,15 +31,15 @@ void main()
     vec3 mapped = material_normal(n, v_world);
     if (material_cut_out()) // (after the derivatives)
         discard;
-    if (u_material_kind == 0)
+    if (role_is(ROLE_RECEIVER))
         n = mapped;
-    if (u_material_kind != 0) {
+    if (!role_is(ROLE_RECEIVER)) {
         // a reflector/refractor seen along the axis: level 0 of the recursion
         // reflects and refracts (one interface) the environment only
         vec3 v = u_impostor_axis;
-        float f = u_material_kind == 2 ? 1.0 : fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
+        float f = role_is(ROLE_MIRROR) ? 1.0 : fresnel_of(-dot(v, n), 1.0 / u_ior, u_ideal);
         vec3 t = refract_or_reflect(v, n, 1.0 / u_ior);
-        vec3 tint = u_material_kind == 2 ? u_color : vec3(1.0);
+        vec3 tint = role_is(ROLE_MIRROR) ? u_color : vec3(1.0);
         o_color = vec4(tint * (f * environment_radiance(reflect(v, n)) + (1.0 - f) * environment_radiance(t)), 1.0);
         return;
     }

@@ -6,12 +6,12 @@
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
 #include "impostors/impostors.glsl"
+#include "common/roles.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_impostor_center;
 uniform vec3 u_impostor_axis;
 uniform vec3 u_color;
-uniform int u_material_kind;
 uniform float u_ior;
 uniform float u_ideal;
 layout(location = 0) out vec4 o_depth;
@@ -33,7 +33,7 @@ void main()
     if (dot(n, v) > 0.0)
         n = -n;
     vec3 reflected = look(v_world, reflect(v, n));
-    if (u_material_kind == 2) {
+    if (role_is(ROLE_MIRROR)) {
         o_color = vec4(u_color * reflected, 1.0);
         return;
     }

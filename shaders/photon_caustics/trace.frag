@@ -9,6 +9,7 @@
 // the two transmittances and Beer-Lambert absorption.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
+#include "common/roles.glsl"
 #include "common/surface_normal.glsl"
 #include "impostors/impostors.glsl"
 in vec2 v_uv;
@@ -25,7 +26,7 @@ uniform int u_iterations;
 uniform float u_buffer;
 uniform float u_reach; // the specular objects' bounding diameter: how far a photon inside is marched
 uniform int u_reflect_glass; // mode "reflect": follow the light glass reflects (Fresnel-weighted)
-uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w material kind
+uniform sampler2D u_front_material; // rgb absorption (a mirror's tint), w the roles (common/roles.glsl)
 
 vec3 unproject(vec2 uv, float d)
 {
@@ -101,7 +102,7 @@ void main()
     float ior = is_mirror ? 1.5 : front.w - ideal * IDEAL_IOR_OFFSET;
     vec3 absorption = is_mirror ? vec3(0.0) : material.rgb;
     vec3 tint = is_mirror ? material.rgb : vec3(1.0);
-    bool single = int(material.w + 0.5) == 3; // water: one interface (Fig. 28)
+    bool single = (int(material.w + 0.5) & ROLE_WATER) != 0; // water: one interface (Fig. 28)
     if (dot(ldir, n1) > 0.0)
         n1 = -n1;
     float eps = 1e-4 * length(p1 - unproject(vec2(0.5), 0.5)) + 1e-5;

@@ -8,6 +8,7 @@
 #include "common/shadows.glsl"
 #include "common/medium.glsl"
 #include "common/surface_light.glsl"
+#include "common/roles.glsl"
 #ifdef NEARBY
 #ifdef DISTANCE_MAP
 #include "distance_map/lookup.glsl"
@@ -61,7 +62,6 @@ vec3 glass_tint()
 }
 uniform float u_ideal;
 uniform vec3 u_absorption;
-uniform int u_material_kind; // 2: a mirror
 uniform vec3 u_color;
 uniform int u_iterations;
 uniform float u_tolerance;
@@ -107,7 +107,7 @@ vec3 seen_rough(ivec2 px, vec3 hit)
 {
     float alpha = u_roughness * u_roughness;
     // (a rough mirror: a facet tilted by theta turns the reflected ray by 2 theta)
-    float spread = u_material_kind == 2 ? 2.0 * alpha : alpha * abs(u_ior - 1.0 / u_ior);
+    float spread = role_is(ROLE_MIRROR) ? 2.0 * alpha : alpha * abs(u_ior - 1.0 / u_ior);
     float z = u_proj[3][3] == 0.0 ? max(-(u_view * vec4(hit, 1.0)).z, 1e-6) : 1.0;
     float pixel = 2.0 * z / (u_proj[1][1] * u_viewport.y); // a pixel's size at the hit
     float radius = length(hit - v_world) * tan(min(spread, 1.2)) / max(pixel, 1e-9);
@@ -419,7 +419,7 @@ void main()
     o_tir = vec4(0.0);
     vec3 exit_dir = reflect_dir; // the first way out (the `exit` output)
     vec4 exit_key = vec4(n1, 0.0);
-    if (u_material_kind == 2) // a mirror: reflection alone, of nearby objects too
+    if (role_is(ROLE_MIRROR)) // a mirror: reflection alone, of nearby objects too
         gather(v_world, reflect_dir, u_color, 1.0, true);
     else if (u_camera_inside == 1) {
         // The camera inside the glass (Hu & Qin's two interfaces assume it
@@ -465,7 +465,7 @@ void main()
         transmission *= texture(u_transmission_texture,
                                 vec2(dot(u_transmission_transform[0], q), dot(u_transmission_transform[1], q))).r;
     }
-    if (transmission < 1.0 && u_material_kind != 2) {
+    if (transmission < 1.0 && !role_is(ROLE_MIRROR)) {
         vec3 diffuse = surface_light_diffuse(v_world, n1, u_color, vec3(0.0), vec3(0.0));
         pixel_radiance = transmission * pixel_radiance + (1.0 - transmission) * diffuse;
     }

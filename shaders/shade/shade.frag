@@ -6,6 +6,7 @@
 #include "common/shadows.glsl"
 #include "common/medium.glsl"
 #include "common/surface_light.glsl"
+#include "common/roles.glsl"
 
 in vec3 v_world;
 in vec3 v_normal;
@@ -13,7 +14,6 @@ layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_normal;   // world normal, w = object id + 1
 layout(location = 2) out vec4 o_position; // world position, w = 1 on geometry
 
-uniform int u_material_kind; // 0 diffuse, 1 glass, 2 mirror, 3 water
 uniform vec3 u_color;
 uniform vec3 u_emission; // a diffuse surface's own radiance (seen; it lights nothing)
 uniform float u_ior;
@@ -34,19 +34,19 @@ void main()
 {
     vec3 n = normalize(v_normal);
     vec3 view = view_direction(v_world);
-    if (dot(n, view) > 0.0 && u_material_kind == 0)
+    if (dot(n, view) > 0.0 && role_is(ROLE_RECEIVER))
         n = -n; // two-sided diffuse surfaces
     vec3 mapped = material_normal(n, v_world); // (derivatives: before any branch)
     if ((u_blending == 0 && material_cut_out()) || (u_single_sided == 1 && !gl_FrontFacing))
         discard; // a cut-out, or the back of a single-sided surface (glTF's doubleSided false)
     vec3 radiance;
-    if (u_material_kind == 0) {
+    if (role_is(ROLE_RECEIVER)) {
         n = mapped;
         vec3 caustic = vec3(0.0);
         for (int k = 0; k < u_has_caustics; k++)
             caustic += texelFetch(u_caustics[k], ivec2(gl_FragCoord.xy), 0).rgb;
         radiance = surface_light_material(v_world, n, -view, u_color, u_emission, caustic);
-    } else if (u_material_kind == 2) {
+    } else if (role_is(ROLE_MIRROR)) {
         radiance = u_color * environment_radiance(reflect(view, n));
     } else {
         // One interface only: the refraction passes trace the second. What

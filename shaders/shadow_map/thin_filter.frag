@@ -10,11 +10,11 @@
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
 #include "common/material.glsl"
+#include "common/roles.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 out vec4 o_filter;
 uniform int u_light_index; // the light's entry in the frame's list
-uniform int u_material_kind; // 0: a blended diffuse surface (alphaMode BLEND), else thin glass
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_tint;
@@ -23,7 +23,7 @@ void main()
     vec3 to_light;
     float dist;
     light_arrival(u_light_index, v_world, to_light, dist);
-    if (u_material_kind == 0) {
+    if (role_is(ROLE_RECEIVER)) { // a blended diffuse surface (alphaMode BLEND), else thin glass
         // a blended surface covers alpha of the light's way: 1 - alpha passes
         o_filter = vec4(vec3(1.0 - material_alpha()), gl_FragCoord.z);
         return;

@@ -358,7 +358,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
     material_locations_find(program, &material_loc);
     GLint loc_model = gl_program_uniform_optional(program, "u_model");
     GLint loc_normal = gl_program_uniform_optional(program, "u_normal_matrix");
-    GLint loc_kind = gl_program_uniform_optional(program, "u_material_kind");
+    GLint loc_role = gl_program_uniform_optional(program, "u_object_role");
     GLint loc_color = gl_program_uniform_optional(program, "u_color");
     GLint loc_ior = gl_program_uniform_optional(program, "u_ior");
     GLint loc_roughness = gl_program_uniform_optional(program, "u_roughness");
@@ -417,7 +417,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
             continue; /* not in the scene this frame was built for */
         gl.ProgramUniformMatrix4fv(program->id, loc_model, 1, GL_FALSE, fo->model.m);
         gl.ProgramUniformMatrix4fv(program->id, loc_normal, 1, GL_FALSE, fo->normal_matrix.m);
-        gl.ProgramUniform1i(program->id, loc_kind, (GLint)o->material.kind);
+        gl.ProgramUniform1i(program->id, loc_role, (GLint)material_role(&o->material)); /* common/roles.glsl */
         gl.ProgramUniform3f(program->id, loc_color, o->material.color.x, o->material.color.y, o->material.color.z);
         gl.ProgramUniform1f(program->id, loc_ior, o->material.ior);
         gl.ProgramUniform1f(program->id, loc_roughness, o->material.roughness);

@@ -97,7 +97,7 @@ bool renderer_lit_programs(struct renderer *r, const struct scene *scene, const 
 void renderer_draw_lit(struct renderer *r, const struct scene *scene, const struct gl_program *plain,
                        const struct gl_program *pbr, unsigned filter);
 /* Draws the visible objects with `program`, setting u_model,
- * u_normal_matrix, u_material_kind, u_color, u_ior, u_absorption,
+ * u_normal_matrix, u_object_role, u_color, u_ior, u_absorption,
  * u_object_id. */
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter);

@@ -25,6 +25,7 @@
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
 #include "graph/renderer.h"
+#include "scene/scene.h"
 
 enum { LIGHT_CASES = 96, BRDF_CASES = 7 * 6 * 3 * 5, FURNACE_CASES = 7 * 5 * 4 };
 /* The furnace's quadrature: FURNACE_SIDE^2 GGX half vectors and as many
@@ -469,6 +470,44 @@ int main(void)
                "quadrature\n", bad, 100.0 * worst_estimate);
         CHECK(bad == 0);
         CHECK(worst_estimate < 0.015);
+    }
+
+    /* the roles the shaders test (common/roles.glsl) are scene.h's bits:
+     * the renderer sets u_object_role = material_role() on every object */
+    {
+        static const char roles_comp[] = "#version 450 core\n"
+                                         "layout(local_size_x = 1) in;\n"
+                                         "#include \"common/roles.glsl\"\n"
+                                         "layout(std430) buffer Results { int results[]; };\n"
+                                         "void main() {\n"
+                                         "    results[0] = ROLE_RECEIVER; results[1] = ROLE_GLASS;\n"
+                                         "    results[2] = ROLE_WATER; results[3] = ROLE_MIRROR; results[4] = ROLE_THIN;\n"
+                                         "}\n";
+        snprintf(path, sizeof path, "%s/test/roles.comp", root);
+        FILE *rf = fopen(path, "w");
+        CHECK(rf != NULL);
+        if (rf) {
+            fputs(roles_comp, rf);
+            fclose(rf);
+        }
+        struct gl_program *roles = NULL;
+        CHECK(gl_program_get_compute(&cache, "test/roles.comp", NULL, NULL, &roles, &err));
+        GLuint out;
+        int got[5] = {0};
+        gl.CreateBuffers(1, &out);
+        gl.NamedBufferStorage(out, sizeof got, NULL, GL_DYNAMIC_STORAGE_BIT);
+        if (roles) {
+            gl.UseProgram(roles->id);
+            CHECK(gl_program_bind_storage(roles, "Results", out));
+            gl.DispatchCompute(1, 1, 1);
+            gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+            gl.GetNamedBufferSubData(out, 0, sizeof got, got);
+        }
+        gl.DeleteBuffers(1, &out);
+        const int want[5] = {OBJECT_ROLE_RECEIVER, OBJECT_ROLE_GLASS, OBJECT_ROLE_WATER, OBJECT_ROLE_MIRROR,
+                             OBJECT_ROLE_THIN};
+        for (int k = 0; k < 5; k++)
+            CHECK(got[k] == want[k]);
     }
 
     gl.DeleteBuffers(1, &ubo);
