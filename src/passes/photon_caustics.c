@@ -25,6 +25,7 @@
 #include "scene/light_view.h"
 #include "passes/caustic_coverage.h"
 #include "passes/impostors.h"
+#include "passes/shadow_inputs.h"
 #include "scene/scene.h"
 
 /* per receiver in the PhotonWindows buffer: the box (lo.x, lo.y, hi.x, hi.y)
@@ -77,6 +78,7 @@ enum photon_caustics_param {
     PHOTON_FIT,
     PHOTON_PIXEL_SAMPLES,
     PHOTON_ACCUMULATE,
+    PHOTON_SHADOW,
 };
 
 static const struct pass_param_desc params[] = {
@@ -106,6 +108,11 @@ static const struct pass_param_desc params[] = {
     [PHOTON_PIXEL_SAMPLES] = {.name = "pixel_samples", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 16,
      .help = "caustic lookups per pixel along each screen axis where its footprint spans more caustic texels "
              "(the pixel's mean light; 1: its centre; docs/techniques/hu_qin.md)"},
+    [PHOTON_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
+                       .record = &SHADOW_MAP_RECORD,
+                       .help = "the light's shadow map (its `depth`): a photon that crossed thin-walled panes on its "
+                               "way to the glass carries what they let through, (1 - F) x tint, as the map's pane "
+                               "filter has it; without it panes are not seen"},
     [PHOTON_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
      .help = "temporal accumulation: the photon grid moves by a sub-texel jitter every frame and the irradiance "
              "averages the last this many frames while the light and the geometry stay, half as many (at least 2; the "
@@ -493,6 +500,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
         gl_program_bind_texture(trace, "u_front_depth", s->light_depth[0].id);
         gl_program_bind_texture(trace, "u_back_depth", s->light_depth[1].id);
         gl_program_bind_texture(trace, "u_front_material", s->light_material[0].id);
+        shadow_inputs_bind(p, f, trace); /* the panes between the light and the glass (its pane filter) */
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
                                    s->light_view_proj.m);
         gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,

@@ -81,3 +81,33 @@ t.case("the tinted pane's shadow is orange in both renderers", function()
     t.expect(r > g * 1.2 and g > b * 1.5, string.format("the shadow's colour %.3f %.3f %.3f", r, g, b))
   end
 end)
+
+t.case("a caustic under a pane: photon_caustics dims and tints it by the sun's pane filter, as the reference", function()
+  -- tests/scenes/pane_caustic.lua: a sun straight above, an orange pane
+  -- (tint (1, 0.6, 0.2)) over a glass ball. The caustic's centre with the
+  -- pane over the one without: (0.963, 0.605, 0.247) on the GPU, (0.966,
+  -- 0.606, 0.247) in the reference; photon_caustics without the sun's
+  -- shadow map does not see the pane (1, 1, 1), as it did not before.
+  local S = "tests/scenes/pane_caustic.lua"
+  local function centre(img)
+    local s = { 0, 0, 0 }
+    for y = 62, 68 do
+      for x = 60, 67 do
+        local p = { img:pixel(x, y) }
+        for k = 1, 3 do s[k] = s[k] + p[k] / 56 end
+      end
+    end
+    return s
+  end
+  local gpu, bare, unseen = t.render(S), t.render(S, { set = { pane = false } }), t.render(S, { set = { shadow = false } })
+  local ref, ref_bare = t.reference(S, { spp = 16 }), t.reference(S, { set = { pane = false }, spp = 16 })
+  local g, g0, u, r, r0 = centre(gpu), centre(bare), centre(unseen), centre(ref), centre(ref_bare)
+  for k = 1, 3 do
+    t.expect(math.abs(g[k] / g0[k] - r[k] / r0[k]) < 0.03,
+             string.format("channel %d: the pane passes %.3f of the caustic on the GPU, %.3f in the reference", k,
+                           g[k] / g0[k], r[k] / r0[k]))
+  end
+  t.expect(u[3] / g0[3] > 0.95, string.format("without the shadow map the pane is unseen (blue %.3f)", u[3] / g0[3]))
+  local e = c.image.compare(gpu, ref).rel_rmse
+  t.expect(e < 0.05, string.format("the whole image: rel_rmse %.4f (bound 0.05; 0.072 with the pane unseen)", e))
+end)

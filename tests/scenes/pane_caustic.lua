@@ -1,0 +1,28 @@
+-- A glass ball's caustic under a pane (issue 50): a sun straight above, an
+-- orange pane of thin-walled glass (c.material.glass { thin = true }) above
+-- a glass ball over a floor. The light reaching the ball has crossed the
+-- pane: its caustic is (1 - F) x tint of the bare ball's, in the reference
+-- (its photons cross panes) and on the GPU, where photon_caustics reads the
+-- sun's shadow map and its pane filter. --set pane=false: no pane;
+-- shadow=false: photon_caustics without the shadow map (the pane unseen).
+local c = require "caustica"
+local scene = c.scene {
+  camera = c.camera { eye = {0, 2.6, 2.2}, target = {0, 0, 0}, fov = 40 },
+  background = {0.3, 0.3, 0.32},
+  ambient = {0.05, 0.05, 0.05},
+}
+local sun = scene:add(c.light.directional { direction = {0, -1, 0}, intensity = {1.5, 1.5, 1.5} })
+scene:add(c.object { mesh = c.mesh.plane { size = 4 }, material = c.material.diffuse { color = {0.7, 0.7, 0.7} } })
+scene:add(c.object { mesh = c.mesh.sphere { radius = 0.3, segments = 96 }, position = {0, 0.75, 0},
+                     material = c.material.glass { ior = 1.5 } })
+if c.param("pane", true) then
+  scene:add(c.object { mesh = c.mesh.plane { size = 1.0 }, position = {0, 1.6, 0},
+                       material = c.material.glass { thin = true, ior = 1.5, tint = {1, 0.6, 0.2} } })
+end
+local g = c.graph()
+g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
+g:add("photons", c.pass.photon_caustics { light = sun, shadow = c.param("shadow", true) and "shadow.depth" or nil })
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
+g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
+g:output("glass.color")
+return { scene = scene, graph = g, size = {128, 128} }
