@@ -2,20 +2,21 @@
  * 50), by MikkTSpace's construction (Mikkelsen 2008, "Simulation of
  * Wrinkled Surfaces Revisited", the tangent space Blender bakes and exports
  * normal maps in): each triangle's dp/du, made perpendicular to the vertex
- * normal at each of its corners and normalized, summed per vertex weighted
- * by the corner's angle (measured in the plane perpendicular to the
- * normal), over the corners whose triangles map the texture with the same
- * orientation, vertices of equal position, normal and coordinates counted
- * as one. A vertex whose triangles map it both ways (a mirrored texture's
- * seam, a fold) is split in two, one frame each, as MikkTSpace splits it;
- * before, its one averaged frame was wrong for both sides. w is the
- * orientation: the bitangent n x t * w points up the normal map (glTF's
- * decreasing v), as both renderers read it (common/material.glsl). What
- * is not MikkTSpace's: triangles around a vertex are grouped by
- * orientation alone, not also by being connected through its edges, and a
- * triangle with no area in texture space adds nothing (MikkTSpace gives it
- * its neighbours' frame). `tests/unit/test_tangents.c` holds the frames to
- * the ones Blender 3.4 exports. */
+ * normal at each of its corners and normalized, summed per group of
+ * corners weighted by the corner's angle (measured in the plane
+ * perpendicular to the normal). A group is the corners at one vertex
+ * (vertices of equal position, normal and coordinates counted as one)
+ * whose triangles map the texture the same way round and are joined
+ * through the edges they share there. A vertex of several groups (a
+ * mirrored texture's seam, a fold) is split, one frame each, as MikkTSpace
+ * splits it; before, its one averaged frame was wrong for every side. w is
+ * the orientation: the bitangent n x t * w points up the normal map
+ * (glTF's decreasing v), as both renderers read it (common/material.glsl).
+ * What is not MikkTSpace's: a triangle with no area in texture space adds
+ * nothing (MikkTSpace gives it its neighbours' frame), and a mesh made of
+ * quads is taken as the file's triangles (MikkTSpace, given the quads,
+ * splits them along its own diagonal). `tests/unit/test_tangents.c` holds
+ * the frames to the ones Blender 3.4 exports. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
