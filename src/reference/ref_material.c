@@ -46,6 +46,11 @@ static void slot_rgba(const struct ref_object *o, const struct ref_hit *h, const
 
 static vec3 slot_rgb(const struct ref_object *o, const struct ref_hit *h, const struct texture_ref *ref, bool srgb)
 {
+    if (!h->footprint) { /* (photons, shadow and glossy rays: no alpha read beside it) */
+        float uv[2];
+        ref_object_uv(o, h->primitive, h->bary_u, h->bary_v, ref->texcoord, uv);
+        return texture_sample(ref, uv, srgb);
+    }
     float rgba[4];
     slot_rgba(o, h, ref, srgb, rgba);
     return vec3_make(rgba[0], rgba[1], rgba[2]);
