@@ -21,10 +21,12 @@
 #include "graph/renderer.h"
 #include "passes/impostors.h"
 #include "passes/layers.h"
+#include "passes/thin_glass_over.h"
 
 struct layered_refraction_state {
     struct gl_framebuffer out_fb;
     struct impostor_set impostors;
+    struct thin_glass_over panes;
 };
 
 enum { LOOKUP_SCENE, LOOKUP_ENVIRONMENT };
@@ -109,6 +111,7 @@ static void layered_refraction_destroy(struct pass *p)
     if (!s)
         return;
     impostors_release(&s->impostors);
+    thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->out_fb);
     free(s);
     p->state = NULL;
@@ -211,7 +214,10 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), 3);
     renderer_draw_fullscreen(r);
     pass_stage_end(p, "trace");
-    return gl_check("layered_refraction", err);
+    /* the panes in front of the glass, over it (shade drew them under it) */
+    return gl_check("layered_refraction", err) &&
+           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+                                OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER, NULL, err);
 }
 
 /* Its camera's layers come from a depth_layers block (issue 26) at this

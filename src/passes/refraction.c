@@ -26,6 +26,7 @@
 #include "passes/impostors.h"
 #include "passes/layers.h"
 #include "passes/shadow_inputs.h"
+#include "passes/thin_glass_over.h"
 #include "scene/scene.h"
 
 #define MAX_ITERATIONS 16
@@ -34,6 +35,7 @@
 struct refraction_state {
     struct impostor_set impostors;
     struct distance_map distance;
+    struct thin_glass_over panes;
     struct gl_framebuffer front_fb, back_fb, out_fb, behind_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
     /* lookup = "scene": the diffuse objects as the camera sees them without
@@ -156,6 +158,7 @@ static void refraction_destroy(struct pass *p)
     release_targets(s);
     impostors_release(&s->impostors);
     distance_map_release(&s->distance);
+    thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
@@ -278,6 +281,12 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
     gl.Disable(GL_CULL_FACE);
     renderer_draw_lit(r, f->scene, progs[0], progs[1], DRAW_DIFFUSE);
     return gl_check("drawing the scene behind the glass", err);
+}
+
+static unsigned refraction_draws(const struct pass *p)
+{
+    (void)p;
+    return OBJECT_ROLE_SPECULAR;
 }
 
 static bool refraction_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -436,13 +445,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         gl.CullFace(GL_BACK);
     }
     free(inside);
-    return ok;
-}
-
-static unsigned refraction_draws(const struct pass *p)
-{
-    (void)p;
-    return OBJECT_ROLE_SPECULAR;
+    /* the panes in front of the glass, over it (shade drew them under it) */
+    return ok && thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+                                      refraction_draws(p), NULL, err);
 }
 
 /* Rough glass is blurred where the ray that leaves finds the input image

@@ -14,11 +14,13 @@
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
+#include "passes/thin_glass_over.h"
 
 #define SHADE_MAX_CAUSTICS 4 /* caustics inputs (sampler units 9-12) */
 
 struct shade_state {
     struct gl_framebuffer fb;
+    struct thin_glass_over panes;
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -67,42 +69,9 @@ static void shade_destroy(struct pass *p)
     if (!s)
         return;
     gl_framebuffer_destroy(&s->fb);
+    thin_glass_over_release(&s->panes);
     free(s);
     p->state = NULL;
-}
-
-/* Thin-walled glass (material.thin), last, back to front: each pane adds
- * its reflection and multiplies what lies behind it by what it lets
- * through (shade/thin_glass.frag's two outputs, dual-source blending), the
- * depth, normal and position left to what lies behind, as for the blended
- * surfaces. A pass after shade that draws glass or water over this image
- * draws over a pane in front of them too (docs/GLTF.md). */
-static bool shade_thin_glass(struct pass *p, struct pass_frame *f, struct shade_state *s, struct error *err)
-{
-    bool any = false;
-    for (int i = 0; i < f->scene->object_count && !any; i++)
-        any = object_is(f->scene->objects[i], OBJECT_ROLE_THIN);
-    if (!any)
-        return true;
-    struct renderer *r = f->renderer;
-    struct gl_program *prog;
-    if (!gl_program_get(&r->programs, "common/object.vert", "shade/thin_glass.frag", NULL, &prog, err))
-        return false;
-    shadow_inputs_bind(p, f, prog);
-    if (!medium_gpu_bind(r, f->scene, prog, err))
-        return false;
-    /* dual-source blending writes one draw buffer */
-    const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
-    const GLenum all_buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, color_only);
-    gl.Enablei(GL_BLEND, 0);
-    gl.BlendFunci(0, GL_ONE, GL_SRC1_COLOR);
-    gl.DepthMask(GL_FALSE);
-    renderer_draw_objects(r, f->scene, prog, DRAW_THIN);
-    gl.DepthMask(GL_TRUE);
-    gl.Disablei(GL_BLEND, 0);
-    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
-    return true;
 }
 
 static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *err)
@@ -183,7 +152,22 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     gl.ColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.ColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.Disablei(GL_BLEND, 0);
-    return shade_thin_glass(p, f, s, err);
+    /* Thin-walled glass (material.thin), last, back to front: each pane
+     * adds its reflection and multiplies what lies behind it by what it
+     * lets through (common/thin_glass.frag's two outputs, dual-source
+     * blending), the depth, normal and position left to what lies behind,
+     * as for the blended surfaces. Those in front of the glass, water and
+     * mirrors a view technique draws over this image are that technique's
+     * to draw (thin_glass_over.h). Dual-source blending writes one draw
+     * buffer. */
+    if (!thin_glass_in_scene(f->scene))
+        return true;
+    static const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, color_only);
+    bool ok = thin_glass_draw(&s->panes, p, f, pass_flag(p, SHADE_SPECULAR) ? THIN_GLASS_ALL : THIN_GLASS_BEHIND_SURFACES,
+                              NULL, &depth->texture, OBJECT_ROLE_SPECULAR, NULL, err);
+    gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
+    return ok;
 }
 
 static unsigned shade_draws(const struct pass *p)

@@ -25,6 +25,7 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
+#include "passes/thin_glass_over.h"
 #include "passes/virtual_camera.h"
 #include "scene/transport.h"
 
@@ -55,6 +56,7 @@ struct sliced_state {
     size_t exit_capacity[SLICED_MAX_REFRACTORS];
     struct gl_texture slices, slice_depth;
     struct gl_framebuffer slice_fb, out_fb;
+    struct thin_glass_over panes;
     int size, count;
 };
 
@@ -142,6 +144,7 @@ static void sliced_destroy(struct pass *p)
     gl_texture_destroy(&s->slice_depth);
     gl_framebuffer_destroy(&s->slice_fb);
     gl_framebuffer_destroy(&s->out_fb);
+    thin_glass_over_release(&s->panes);
     free(s);
     p->state = NULL;
 }
@@ -353,7 +356,10 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     }
     gl.BindVertexArray(0);
     pass_stage_end(p, "glass");
-    return gl_check("sliced_refraction", err);
+    /* the panes in front of the glass, over it (shade drew them under it) */
+    return gl_check("sliced_refraction", err) &&
+           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+                                SLICED_REFRACTORS, NULL, err);
 }
 
 /* The sliced object images are mapped onto the glass's front faces

@@ -14,9 +14,11 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
+#include "passes/thin_glass_over.h"
 
 struct water_surface_state {
     struct gl_framebuffer fb;
+    struct thin_glass_over panes;
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -69,6 +71,7 @@ static void water_surface_destroy(struct pass *p)
     if (!s)
         return;
     gl_framebuffer_destroy(&s->fb);
+    thin_glass_over_release(&s->panes);
     free(s);
     p->state = NULL;
 }
@@ -115,7 +118,9 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
                         pass_choice(p, SURFACE_MAPPING) == SURFACE_MAPPING_REFRACT);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_eye_in_water"), under);
     renderer_draw_object(r, f->scene, prog, water);
-    return true;
+    /* the panes in front of the water, over it (shade drew them under it) */
+    return thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &out->texture, in_depth ? &in_depth->texture : NULL, 0, water,
+                                err);
 }
 
 static unsigned water_surface_draws(const struct pass *p)

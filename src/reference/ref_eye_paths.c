@@ -137,7 +137,7 @@ bool sppm_specular_step(const struct ref_scene *rs, const struct ref_hit *h, str
     if (m->thin) {
         /* Thin-walled glass (glTF's glass without a volume): reflect F
          * about the shading normal, else go on undeviated, x the tint
-         * (shade/thin_glass.frag). No random number where F is 0 (an
+         * (common/thin_glass.frag). No random number where F is 0 (an
          * ideal pane: the eye path stays fixed). */
         dvec3 normal, tint;
         double f = ref_thin_surface(o, h, *dir, nn, &normal, &tint);

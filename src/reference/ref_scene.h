@@ -166,7 +166,7 @@ void ref_scene_blend_begin(uint64_t salt);
 bool ref_scene_blend_met(void);
 /* Thin-walled glass where a ray along `dir` meets it: the shading normal
  * (n, on the ray's side, through the normal map), the tint (base colour x
- * baseColorTexture x COLOR_0), as shade/thin_glass.frag reads them, and
+ * baseColorTexture x COLOR_0), as common/thin_glass.frag reads them, and
  * the Fresnel reflectance it returns (from air into the pane's IOR). */
 double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 dir, dvec3 n, dvec3 *normal,
                         dvec3 *tint);

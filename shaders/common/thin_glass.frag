@@ -7,6 +7,10 @@
 // bending). Dual-source blending (shade.c): the colour is what the surface
 // adds, the second output what it multiplies the image behind it by.
 // The reference (ref_sppm.c's specular_step) follows the same rule.
+// Which panes (u_panes, src/passes/thin_glass_over.c): 0 all; 1 all but those
+// in front of a visible glass, water or mirror surface that a view technique
+// draws later over shade's image (shade); 2 those alone, over that surface
+// (the view technique). u_surface_depth: that surface's window depth.
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/fresnel.glsl"
@@ -24,9 +28,17 @@ uniform vec3 u_color;
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_tint;
+uniform int u_panes;
+uniform sampler2D u_surface_depth;
 
 void main()
 {
+    if (u_panes != 0) {
+        float surface = texelFetch(u_surface_depth, ivec2(gl_FragCoord.xy), 0).r;
+        bool over = surface < 1.0 && gl_FragCoord.z < surface;
+        if (over != (u_panes == 2))
+            discard;
+    }
     vec3 n = normalize(v_normal);
     vec3 view = view_direction(v_world);
     if (dot(n, view) > 0.0)
