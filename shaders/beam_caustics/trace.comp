@@ -11,6 +11,7 @@
 // centre, Szirmay-Kalos et al. 2005).
 #include "common/frame.glsl"
 #include "common/medium.glsl"
+#include "common/shadows.glsl"
 #include "layers/trace.glsl"
 #include "beam_caustics/beams.glsl"
 #include "beam_caustics/distance.glsl"
@@ -114,6 +115,10 @@ void main()
         w *= medium_transmittance_ray(entry_world, to_light, dist);
         LayerPath path = layer_trace_at(at, d0);
         vec3 n0 = normalize(to_world * path.normal0);
+        // the panes between the light and the glass let (1 - F) x tint of
+        // it through, from the light's shadow map where the pass reads one
+        // (its pane filter), as the reference's photons cross them (issue 50)
+        w *= pane_filter(u_light, entry_world, n0, to_light);
         bv.normal = vec4(n0, 0.0);
         vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
         bv.refl_pos = vec4(entry_world, depth0);

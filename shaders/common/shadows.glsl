@@ -52,6 +52,31 @@ vec3 shadow_filter(int k, vec3 p, vec3 n, vec3 to_light)
     return q.z > f.a ? f.rgb : vec3(1.0);
 }
 
+// What thin-walled glass lets through from `light` to p, where light meets
+// glass, water or a mirror (a caustics pass's photon or beam: it takes the
+// panes between the light and the refractor), from the maps of that light
+// that the pass reads; 1 where none. Each map by a constant index: LLVM 15
+// in llvmpipe failed to compile photon_caustics' trace shader with the
+// sampler array indexed by a loop's counter ("Cannot select
+// X86ISD::CVTP2SI"), which shade's lighting loop does not hit.
+bool pane_map(int k, int light)
+{
+    return k < u_shadow_total && light >= u_shadow_first[k] && light < u_shadow_first[k] + u_shadow_count[k];
+}
+vec3 pane_filter(int light, vec3 p, vec3 n, vec3 to_light)
+{
+    vec3 f = vec3(1.0);
+    if (pane_map(0, light))
+        f *= shadow_filter(0, p, n, to_light);
+    if (pane_map(1, light))
+        f *= shadow_filter(1, p, n, to_light);
+    if (pane_map(2, light))
+        f *= shadow_filter(2, p, n, to_light);
+    if (pane_map(3, light))
+        f *= shadow_filter(3, p, n, to_light);
+    return f;
+}
+
 // The light of `light` reaching p: the shadow maps' visibility x what thin
 // glass lets through.
 vec3 visibility_color(int light, vec3 p, vec3 n, vec3 to_light)

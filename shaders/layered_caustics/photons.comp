@@ -10,6 +10,7 @@
 #include "common/frame.glsl"
 #include "layers/trace.glsl"
 #include "layers/scene_trace.glsl"
+#include "common/shadows.glsl"
 uniform sampler2D u_receiver_normal;
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform writeonly image2DArray u_hits;
@@ -76,6 +77,12 @@ void main()
     LayerPath path = layer_trace_at(at_px, d0);
     mat3 to_world = mat3(u_layer_inv_view);
     vec3 entry = (u_layer_inv_view * vec4(path.entry, 1.0)).xyz;
+    // the panes between the light and the glass let (1 - F) x tint of it
+    // through, from the light's shadow map where the pass reads one (its
+    // pane filter, shadow_map/thin_filter.frag), as the reference's photons
+    // cross them (issue 50)
+    vec3 to_light = u_light_ortho == 1 ? -normalize(light.direction.xyz) : normalize(light.position.xyz - entry);
+    flux *= pane_filter(u_light, entry, normalize(to_world * path.normal0), to_light);
     vec3 reflected = normalize(to_world * reflect(d0, path.normal0));
     vec3 at;
     ivec2 px;

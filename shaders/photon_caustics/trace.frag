@@ -70,25 +70,6 @@ void nothing()
     o_flux = vec4(0.0);
 }
 
-// The light's shadow map's pane filter at p (common/shadows.glsl), each
-// map by a constant index: LLVM 15 in llvmpipe failed to compile this
-// shader with the sampler array indexed by the loop's counter ("Cannot
-// select X86ISD::CVTP2SI"), which shade's lighting loop does not hit.
-bool pane_map(int k) { return k < u_shadow_total && u_light >= u_shadow_first[k] && u_light < u_shadow_first[k] + u_shadow_count[k]; }
-vec3 pane_filter(vec3 p, vec3 n, vec3 to_light)
-{
-    vec3 f = vec3(1.0);
-    if (pane_map(0))
-        f *= shadow_filter(0, p, n, to_light);
-    if (pane_map(1))
-        f *= shadow_filter(1, p, n, to_light);
-    if (pane_map(2))
-        f *= shadow_filter(2, p, n, to_light);
-    if (pane_map(3))
-        f *= shadow_filter(3, p, n, to_light);
-    return f;
-}
-
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -117,7 +98,7 @@ void main()
     // through, (1 - F) x tint, from the light's shadow map where the pass
     // reads one (its pane filter, shadow_map/thin_filter.frag), as the
     // reference's photons cross them (issue 50)
-    flux *= pane_filter(p1, texelFetch(u_front_normal, px, 0).xyz, -ldir);
+    flux *= pane_filter(u_light, p1, texelFetch(u_front_normal, px, 0).xyz, -ldir);
     vec4 front = texelFetch(u_front_normal, px, 0);
     vec3 n1 = normalize(front.xyz);
     // the material of the object this photon meets (several may be in view)

@@ -36,6 +36,7 @@
 #include "passes/distance_map.h"
 #include "passes/caustic_coverage.h"
 #include "passes/layers.h"
+#include "passes/shadow_inputs.h"
 
 #define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
 #define BEAMS_MAX_BEAMS (1 << 18)  /* beams one frame may build (64 MB); more are dropped and reported */
@@ -93,6 +94,7 @@ enum beam_caustics_param {
     BC_RECEIVER_DEPTH,
     BC_LIGHT_LAYERS,
     BC_ACCUMULATE,
+    BC_SHADOW,
 };
 
 static const struct pass_param_desc params[] = {
@@ -151,6 +153,7 @@ static const struct pass_param_desc params[] = {
              "sub-cell jitter every frame and the surface caustics and inscattered light (where a receiver lies behind "
              "it) average the last this many frames; while they move, every frame stands alone; 1: none "
              "(docs/TEMPORAL.md)"},
+    [BC_SHADOW] = SHADOW_PARAM_PANES("a beam"),
 };
 
 static bool beam_caustics_declare(struct pass *p, struct error *err)
@@ -326,6 +329,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     set_lattice(trace, s);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
     gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
+    shadow_inputs_bind(p, f, trace); /* the panes between the light and the glass (its pane filter) */
     /* accumulating a still scene: the lattice moved by this frame's
      * sub-cell offset (beam_caustics_execute; the refinement follows it) */
     gl.ProgramUniform2f(trace->id, gl_program_uniform(trace, "u_jitter"), s->jitter[0], s->jitter[1]);

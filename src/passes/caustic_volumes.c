@@ -23,6 +23,7 @@
 
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 #include "scene/scene.h"
 #include "scene/water.h"
 
@@ -224,7 +225,7 @@ static const char *caustic_volumes_leaves_out(const struct pass *p, const struct
                    : "only the water surface named by `water` makes caustic volumes: no caustics through this one "
                      "(add a caustic_volumes pass for it)";
     if (object_is(o, OBJECT_ROLE_THIN))
-        return NULL; /* light crosses it undeviated: a coloured shadow, not a caustic */
+        return shadow_inputs_pane_left_out(p, o); /* undeviated: no caustic of its own */
     return "caustic volumes are built from the water surface named by `water` alone: no caustics through glass "
            "or off a mirror (photon_caustics or layered_caustics make them)";
 }

@@ -37,6 +37,7 @@
 #include "graph/renderer.h"
 #include "passes/caustic_coverage.h"
 #include "passes/illumination_geometry.h"
+#include "passes/shadow_inputs.h"
 #include "passes/virtual_camera.h"
 #include "scene/transport.h"
 
@@ -521,6 +522,8 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
     if (object_is(o, OBJECT_ROLE_MIRROR))
         return "only glass refracts light into the illumination textures: no caustics off a mirror "
                "(photon_caustics makes them)";
+    if (object_is(o, OBJECT_ROLE_THIN))
+        return shadow_inputs_pane_left_out(p, o);
     return pass_refractor_left_out(o, true);
 }
 

@@ -19,6 +19,7 @@
 #include "graph/temporal.h"
 #include "passes/caustic_coverage.h"
 #include "passes/layers.h"
+#include "passes/shadow_inputs.h"
 
 struct layered_caustics_state {
     struct gl_framebuffer out_fb;
@@ -48,6 +49,7 @@ enum layered_caustics_param {
     LC_RECEIVER_DEPTH,
     LC_LIGHT_LAYERS,
     LC_ACCUMULATE,
+    LC_SHADOW,
 };
 
 static const struct pass_param_desc params[] = {
@@ -77,6 +79,7 @@ static const struct pass_param_desc params[] = {
      .help = "temporal accumulation while the light and the geometry stand still: each photon starts at a sub-texel "
              "jitter within its light texel, a new one every frame, and the irradiance averages the last this many "
              "frames; while they move, every frame stands alone; 1: none (docs/TEMPORAL.md)"},
+    [LC_SHADOW] = SHADOW_PARAM_PANES("a photon"),
 };
 
 static bool layered_caustics_declare(struct pass *p, struct error *err)
@@ -205,6 +208,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     layers_bind(ls, photons, f->scene, &trace);
     gl_program_bind_texture(photons, "u_scene_depth", receiver_depth);
     gl_program_bind_texture(photons, "u_receiver_normal", receiver_normal);
+    shadow_inputs_bind(p, f, photons); /* the panes between the light and the glass (its pane filter) */
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);

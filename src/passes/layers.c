@@ -23,6 +23,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
+#include "passes/shadow_inputs.h"
 
 const struct record_type LAYER_SET_RECORD = {"layer_set"};
 
@@ -75,8 +76,9 @@ const char *layers_refractors_named(const struct scene *scene)
 
 const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
-    (void)p;
     (void)scene;
+    if (object_is(o, OBJECT_ROLE_THIN))
+        return shadow_inputs_pane_left_out(p, o);
     if (object_is(o, OBJECT_ROLE_MIRROR))
         return "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
                "makes them)";

@@ -108,11 +108,7 @@ static const struct pass_param_desc params[] = {
     [PHOTON_PIXEL_SAMPLES] = {.name = "pixel_samples", .type = PASS_PARAM_INTEGER, .default_number = 4, .min = 1, .max = 16,
      .help = "caustic lookups per pixel along each screen axis where its footprint spans more caustic texels "
              "(the pixel's mean light; 1: its centre; docs/techniques/hu_qin.md)"},
-    [PHOTON_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
-                       .record = &SHADOW_MAP_RECORD,
-                       .help = "the light's shadow map (its `depth`): a photon that crossed thin-walled panes on its "
-                               "way to the glass carries what they let through, (1 - F) x tint, as the map's pane "
-                               "filter has it; without it panes are not seen"},
+    [PHOTON_SHADOW] = SHADOW_PARAM_PANES("a photon"),
     [PHOTON_ACCUMULATE] = {.name = "accumulate", .type = PASS_PARAM_INTEGER, .default_number = 1, .min = 1, .max = 64,
      .help = "temporal accumulation: the photon grid moves by a sub-texel jitter every frame and the irradiance "
              "averages the last this many frames while the light and the geometry stay, half as many (at least 2; the "
@@ -611,8 +607,9 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
  * partly diffuse glass as smooth, clear glass. */
 static const char *photon_caustics_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
-    (void)p;
     (void)scene;
+    if (object_is(o, OBJECT_ROLE_THIN))
+        return shadow_inputs_pane_left_out(p, o);
     return pass_refractor_left_out(o, true);
 }
 

@@ -7,6 +7,21 @@
 
 const struct record_type SHADOW_MAP_RECORD = {"shadow_map"};
 
+const char *shadow_inputs_pane_left_out(const struct pass *p, const struct object *o)
+{
+    if (!object_is(o, OBJECT_ROLE_THIN))
+        return NULL;
+    int k = pass_param_index(p->desc, "shadow");
+    if (k >= 0 && p->values[k].set)
+        return NULL; /* between the light and the glass, by the map's pane filter */
+    return k >= 0 ? "the light that crosses this pane on its way to the glass is neither dimmed nor tinted in the "
+                    "caustic: give the pass the light's shadow map (shadow = \"shadow.depth\"), whose pane filter "
+                    "has it"
+                  : "the light that crosses this pane on its way to the glass is neither dimmed nor tinted in the "
+                    "caustic (photon_caustics, layered_caustics and beam_caustics see it, given the light's shadow "
+                    "map)";
+}
+
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
 {
     struct renderer *r = f->renderer;

@@ -26,6 +26,20 @@ struct shadow_record {
     GLuint filter;   /* 2D maps: what thin-walled glass lets through (RGB) and its depth (A), or 0 */
 };
 
+/* A caustics pass's `shadow` parameter: the light's shadow map, whose pane
+ * filter dims and tints the light where it meets the glass (issue 50;
+ * pane_filter in common/shadows.glsl). `what`: the pass's light carrier. */
+#define SHADOW_PARAM_PANES(what)                                                                                 \
+    {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX, .record = &SHADOW_MAP_RECORD,     \
+     .help = "the light's shadow map (its `depth`): " what " that crossed thin-walled panes on its way to the glass " \
+             "carries what they let through, (1 - F) x tint, as the map's pane filter has it; without it panes are " \
+             "not seen"}
+
+/* What a caustics pass leaves out of pane `o` (thin-walled glass), or NULL:
+ * a pass with a `shadow` parameter (SHADOW_PARAM_PANES) sees panes when it
+ * is given the light's shadow map; one without does not see them. */
+const char *shadow_inputs_pane_left_out(const struct pass *p, const struct object *o);
+
 /* Binds the shadow maps and sets the uniforms on `program`. */
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *program);
 

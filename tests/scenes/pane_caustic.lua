@@ -4,7 +4,8 @@
 -- pane: its caustic is (1 - F) x tint of the bare ball's, in the reference
 -- (its photons cross panes) and on the GPU, where photon_caustics reads the
 -- sun's shadow map and its pane filter. --set pane=false: no pane;
--- shadow=false: photon_caustics without the shadow map (the pane unseen).
+-- shadow=false: photon_caustics without the shadow map (the pane unseen);
+-- technique=layered_caustics or beam_caustics: that caustics pass instead.
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 2.6, 2.2}, target = {0, 0, 0}, fov = 40 },
@@ -21,7 +22,8 @@ if c.param("pane", true) then
 end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("photons", c.pass.photon_caustics { light = sun, shadow = c.param("shadow", true) and "shadow.depth" or nil })
+g:add("photons", c.pass[c.param("technique", "photon_caustics")] {
+  light = sun, shadow = c.param("shadow", true) and "shadow.depth" or nil })
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
 g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
 g:output("glass.color")
