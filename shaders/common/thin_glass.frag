@@ -30,6 +30,13 @@ uniform float u_ideal;
 uniform vec3 u_tint;
 uniform int u_panes;
 uniform sampler2D u_surface_depth;
+#ifdef VIEW_FROM_CENTER
+// drawn into a distance map (src/passes/distance_map.c): seen from its centre
+uniform vec3 u_center;
+vec3 pane_view(vec3 p) { return normalize(p - u_center); }
+#else
+vec3 pane_view(vec3 p) { return view_direction(p); }
+#endif
 
 void main()
 {
@@ -40,7 +47,7 @@ void main()
             discard;
     }
     vec3 n = normalize(v_normal);
-    vec3 view = view_direction(v_world);
+    vec3 view = pane_view(v_world);
     if (dot(n, view) > 0.0)
         n = -n; // seen from either side
     n = material_normal(n, v_world);

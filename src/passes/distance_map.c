@@ -7,6 +7,7 @@
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
 #include "passes/shadow_inputs.h"
+#include "passes/thin_glass_over.h"
 
 /* common/object.vert projected by each cube face's matrix */
 #define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ\n"
@@ -95,6 +96,24 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
             return false;
         gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     }
+    /* Thin-walled glass over the diffuse surfaces it lies in front of, as
+     * shade blends it (common/thin_glass.frag, seen from the centre): a pane
+     * behind the glass tints what a ray that leaves the glass finds there. */
+    struct gl_program *panes = NULL;
+    if (thin_glass_in_scene(scene)) {
+        if (!gl_program_get(&r->programs, "common/object.vert", "common/thin_glass.frag",
+                            DISTANCE_MAP_VIEW "#define VIEW_FROM_CENTER 1\n", &panes, err))
+            return false;
+        if (shadow_pass)
+            shadow_inputs_bind(shadow_pass, f, panes);
+        else
+            gl.ProgramUniform1i(panes->id, gl_program_uniform(panes, "u_shadow_total"), 0);
+        if (!medium_gpu_bind(r, scene, panes, err))
+            return false;
+        gl.ProgramUniform3f(panes->id, gl_program_uniform(panes, "u_center"), center.x, center.y, center.z);
+        gl.ProgramUniform1i(panes->id, gl_program_uniform(panes, "u_panes"), 0);
+        gl_program_bind_texture(panes, "u_surface_depth", r->dummy_2d.id);
+    }
     /* near: a hundredth of the scene's size around the centre (what is
      * nearer than that is inside the refractor); far: the whole scene */
     vec3 lo, hi;
@@ -127,6 +146,20 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         gl.ClearNamedFramebufferfv(m->fb.id, GL_COLOR, 1, none);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         renderer_draw_lit(r, scene, progs[0], progs[1], DRAW_DIFFUSE);
+        if (panes) {
+            /* the colour alone (dual-source blending writes one draw buffer), the distance kept */
+            static const GLenum color_only[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+            gl.NamedFramebufferDrawBuffers(m->fb.id, 2, color_only);
+            gl.ProgramUniformMatrix4fv(panes->id, gl_program_uniform(panes, "u_object_view_proj"), 1, GL_FALSE, vp.m);
+            gl.DepthMask(GL_FALSE);
+            gl.Enablei(GL_BLEND, 0);
+            gl.BlendFunci(0, GL_ONE, GL_SRC1_COLOR);
+            renderer_draw_objects(r, scene, panes, DRAW_THIN);
+            gl.Disablei(GL_BLEND, 0);
+            gl.DepthMask(GL_TRUE);
+            static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+            gl.NamedFramebufferDrawBuffers(m->fb.id, 2, both);
+        }
     }
     gl.DepthFunc(GL_LESS);
     if (!gl_check("building the distance map", err))

@@ -455,6 +455,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
  * the impostors and the environment are read as through smooth glass. */
 static const char *refraction_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
+    if (object_is(o, OBJECT_ROLE_THIN))
+        return pass_flag(p, REFRACTION_NEARBY) && pass_choice(p, REFRACTION_LOOKUP) == REFRACTION_LOOKUP_IMPOSTORS
+                   ? "a pane is not among the nearby objects' impostors: it is not seen through the glass or in a "
+                     "mirror (lookup = \"scene\" or \"map\" see it)"
+                   : NULL;
     bool rough = object_is_rough_refractor(o) || (object_is(o, OBJECT_ROLE_MIRROR) && o->material.roughness > 0.0f);
     if (rough && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_SCENE)
         return pass_refractor_holds(scene, o,

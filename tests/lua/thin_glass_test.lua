@@ -155,3 +155,40 @@ t.case("a pane in front of glass or water: every view technique draws it over th
     end
   end
 end)
+
+t.case("a pane behind glass is seen through it: in the input image, and in refraction's distance map", function()
+  -- tests/scenes/pane.lua with front=true: the glass ball before the pane,
+  -- which it shows (upside down). At the ball's middle, through the orange
+  -- pane over through a clear one: (1, 0.670, 0.361) in the reference;
+  -- (1, 0.660, 0.343) by refraction's screen lookup and by its distance map
+  -- alone (lookup = "map"), (1, 0.643, 0.304) by layered_refraction and by
+  -- sliced_refraction. Before, the distance map held no panes: (1, 1, 1).
+  local box = { 60, 74, 76, 90 }
+  local function ratio(render, set)
+    local function mean(img)
+      local s, n = { 0, 0, 0 }, 0
+      for y = box[2], box[4] do
+        for x = box[1], box[3] do
+          local p = { img:pixel(x, y) }
+          for k = 1, 3 do s[k] = s[k] + p[k] end
+          n = n + 1
+        end
+      end
+      return { s[1] / n, s[2] / n, s[3] / n }
+    end
+    set.tint = true
+    local a = mean(render(set))
+    set.tint = false
+    local b = mean(render(set))
+    return { a[1] / b[1], a[2] / b[2], a[3] / b[3] }
+  end
+  local r = ratio(function(set) return (t.reference(SCENE, { set = set, photons = 0, spp = 4 })) end,
+                  { view = "refraction", front = true })
+  for _, v in ipairs { { "refraction", "scene" }, { "refraction", "map" }, { "layered_refraction" }, { "sliced_refraction" } } do
+    local g = ratio(function(set) return t.render(SCENE, { set = set }) end, { view = v[1], front = true, lookup = v[2] })
+    for k = 2, 3 do
+      t.expect(math.abs(g[k] - r[k]) < 0.07, string.format("%s (lookup %s), channel %d: %.3f on the GPU, %.3f in the "
+                                                           .. "reference", v[1], v[2] or "-", k, g[k], r[k]))
+    end
+  end
+end)

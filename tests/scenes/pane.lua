@@ -12,7 +12,8 @@
 -- view=PASS: a glass ball (or, view=water_surface, a pool) behind the pane,
 -- drawn over shade by that view technique (refraction, layered_refraction,
 -- sliced_refraction), which must draw the pane over it; the sun from the
--- right.
+-- right; front=true: the ball before the pane instead, which it shows;
+-- lookup=map: refraction's lookup of what lies behind the glass.
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 0.4, 3.2}, target = {0, 0, 0}, fov = 40 },
@@ -48,7 +49,9 @@ local water
 if view == "water_surface" then
   water = scene:add(c.water { size = {1.4, 0.9}, resolution = 64, depth = 0.45, position = {0, -0.35, -0.3} })
 elseif view ~= "none" then
-  scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, position = {0.05, -0.1, -0.2},
+  -- front=true: the ball before the pane, which is seen through it
+  local z = c.param("front", false) and 1.1 or -0.2
+  scene:add(c.object { mesh = c.mesh.sphere { radius = 0.35, segments = 64 }, position = {0.05, -0.1, z},
                        material = c.material.glass { ior = 1.5 } })
 end
 local g = c.graph()
@@ -61,7 +64,8 @@ elseif view == "water_surface" then
                                        depth = "shade.depth", position = "shade.position" })
   g:output("view.color")
 else
-  g:add("view", c.pass[view] { color = "shade.color", depth = "shade.depth" })
+  -- lookup=map: refraction finds what lies behind the glass in its distance map alone
+  g:add("view", c.pass[view] { color = "shade.color", depth = "shade.depth", lookup = c.param("lookup", nil) })
   g:output("view.color")
 end
 return { scene = scene, graph = g, size = {128, 128} }
