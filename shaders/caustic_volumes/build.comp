@@ -6,6 +6,7 @@
 // triangle or a ray that does not go down gives an empty volume.
 #include "common/frame.glsl"
 #include "common/fresnel.glsl"
+#include "common/shadows.glsl"
 #include "caustic_volumes/volume.glsl"
 layout(local_size_x = 64) in;
 layout(std430) readonly buffer Positions { float positions[]; };
@@ -97,6 +98,11 @@ void main()
         e /= max(dot(d, d), 1e-8);
     }
     float transmit = 1.0 - fresnel_of(cos_i, 1.0 / u_ior, u_ideal);
+    // the panes between the light and the water let (1 - F) x tint of it
+    // through, from the light's shadow map where the pass reads one (its
+    // pane filter at the triangle's centre), as the reference's photons
+    // cross them (issue 50)
+    e *= pane_filter(u_light, centre, face, -l);
     for (int k = 0; k < 3; k++) {
         float t = (u_bottom - p[k].y) / r[k].y;
         volumes[id].top[k] = vec4(p[k], 1.0);

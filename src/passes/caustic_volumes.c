@@ -45,6 +45,7 @@ enum caustic_volumes_param {
     VOLUMES_RESOLUTION,
     VOLUMES_RECEIVERS,
     VOLUMES_RECEIVER_POSITION,
+    VOLUMES_SHADOW,
 };
 
 static const struct pass_param_desc params[] = {
@@ -60,6 +61,7 @@ static const struct pass_param_desc params[] = {
     [VOLUMES_RECEIVER_POSITION] = {.name = "receiver_position", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
      .default_output = "position", .help = "their world positions (by default beside `receivers`: a receivers pass "
                                            "with position = true)"},
+    [VOLUMES_SHADOW] = SHADOW_PARAM_PANES("a surface triangle's volume"),
 };
 
 static bool caustic_volumes_declare(struct pass *p, struct error *err)
@@ -171,6 +173,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_water_resolution"), w->nx, w->nz);
     gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_resolution"), gen_x, gen_z);
     gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
+    shadow_inputs_bind(p, f, build); /* the panes between the light and the water (its pane filter) */
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ideal"), water->material.ideal ? 1.0f : 0.0f);
     gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_bottom"), bottom);

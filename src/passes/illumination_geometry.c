@@ -129,7 +129,9 @@ static bool add_volume(const struct vertex_path *a, const struct vertex_path *b,
     out->items[out->count++] = (struct illum_volume){
         .o = {a->exit_position, b->exit_position, c->exit_position},
         .d = {a->exit_direction, b->exit_direction, c->exit_direction},
-        .flux = vec3_scale(vec3_mul(e, ft), 0.5f * area2 * cos_theta)};
+        .flux = vec3_scale(vec3_mul(e, ft), 0.5f * area2 * cos_theta),
+        .entry = centre,
+        .to_light = vec3_scale(dw, -1.0f)};
     return true;
 }
 
@@ -472,11 +474,13 @@ bool illum_covers_a_texel_centre(const float a[2], const float b[2], const float
     return false;
 }
 
-static void put_vertex(float *o, vec3 p, vec3 intensity, vec3 dir)
+static void put_vertex(float *o, vec3 p, vec3 intensity, vec3 dir, const struct illum_volume *vol)
 {
     o[0] = p.x, o[1] = p.y, o[2] = p.z;
     o[3] = intensity.x, o[4] = intensity.y, o[5] = intensity.z;
     o[6] = dir.x, o[7] = dir.y, o[8] = dir.z;
+    o[9] = vol->entry.x, o[10] = vol->entry.y, o[11] = vol->entry.z;
+    o[12] = vol->to_light.x, o[13] = vol->to_light.y, o[14] = vol->to_light.z;
 }
 
 #define ILLUM_SLIVER_SPLIT 3
@@ -558,14 +562,14 @@ bool illum_intersect(const struct illum_volume_list *vols, vec3 d, vec3 u, vec3 
                         w[2] = 1.0f - w[0] - w[1];
                     }
                     vec3 c = vec3_add(vec3_add(vec3_scale(q[0], w[0]), vec3_scale(q[1], w[1])), vec3_scale(q[2], w[2]));
-                    put_vertex(out->points + np * ILLUM_VERTEX_FLOATS, c, in, dd);
+                    put_vertex(out->points + np * ILLUM_VERTEX_FLOATS, c, in, dd, vol);
                     np++;
                 }
                 continue;
             }
             for (int k = 0; k < 3; k++)
                 put_vertex(out->triangles + (n + (size_t)k) * ILLUM_VERTEX_FLOATS, q[k],
-                           vec3_scale(vol->flux, 1.0f / (s0 * fmaxf(cd[k], 1e-4f))), vol->d[k]);
+                           vec3_scale(vol->flux, 1.0f / (s0 * fmaxf(cd[k], 1e-4f))), vol->d[k], vol);
             n += 3;
         }
         out->count[pl] = n - out->first[pl];

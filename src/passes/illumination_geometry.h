@@ -18,13 +18,15 @@
 #include "scene/transport.h"
 
 #define ILLUM_MAX_PLANES 16
-#define ILLUM_VERTEX_FLOATS 9 /* position, intensity, direction */
+#define ILLUM_VERTEX_FLOATS 15 /* position, intensity, direction, its volume's entry and the way to the light */
 
 /* One illumination volume: the three outgoing rays of a surface triangle
  * and the flux through it. */
 struct illum_volume {
     vec3 o[3], d[3];
     vec3 flux;
+    vec3 entry, to_light; /* where the light meets the glass (the triangle's centre), and the way back to the light:
+                             the panes it crossed on its way there (illumination.vert's pane_filter) */
 };
 
 struct illum_volume_list {

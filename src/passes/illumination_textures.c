@@ -75,7 +75,7 @@ struct illum_state {
     bool reused;
 };
 
-enum illum_param { IT_LIGHT, IT_PLANES, IT_SIZE, IT_TABLE, IT_INTERNAL, IT_TARGETS };
+enum illum_param { IT_LIGHT, IT_PLANES, IT_SIZE, IT_TABLE, IT_INTERNAL, IT_TARGETS, IT_SHADOW };
 enum { INTERNAL_NONE, INTERNAL_FIRST };
 
 static const struct pass_param_desc params[] = {
@@ -92,6 +92,7 @@ static const struct pass_param_desc params[] = {
              "where none left a black band; a ball never reflects inside), or none (the paper's)"},
     [IT_TARGETS] = {.name = "targets", .type = PASS_PARAM_OBJECT_LIST,
      .help = "the diffuse objects that receive the caustics (default: every visible diffuse object)"},
+    [IT_SHADOW] = SHADOW_PARAM_PANES("an illumination volume"),
 };
 
 static bool illum_declare(struct pass *p, struct error *err)
@@ -110,7 +111,7 @@ static bool illum_create(struct pass *p, struct renderer *r, struct error *err)
         !gl_framebuffer_create(&s->map_fb, err))
         return false;
     gl.CreateVertexArrays(1, &s->vao);
-    for (GLuint a = 0; a < 3; a++) {
+    for (GLuint a = 0; a < ILLUM_VERTEX_FLOATS / 3; a++) {
         gl.EnableVertexArrayAttrib(s->vao, a);
         gl.VertexArrayAttribFormat(s->vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
         gl.VertexArrayAttribBinding(s->vao, a, 0);
@@ -430,6 +431,9 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     gl.UseProgram(illum->id);
     gl.BindVertexArray(s->vao);
     gl_program_bind_texture(illum, "u_target", s->target.id);
+    /* the panes between the light and the glass (the shadow map's pane filter) */
+    shadow_inputs_bind(p, f, illum);
+    gl.ProgramUniform1i(illum->id, gl_program_uniform(illum, "u_light"), first);
     gl.Enable(GL_BLEND);
     gl.BlendFunc(GL_ONE, GL_ONE);
     for (int pl = 0; pl < planes; pl++) {

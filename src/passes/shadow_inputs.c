@@ -18,8 +18,7 @@ const char *shadow_inputs_pane_left_out(const struct pass *p, const struct objec
                     "caustic: give the pass the light's shadow map (shadow = \"shadow.depth\"), whose pane filter "
                     "has it"
                   : "the light that crosses this pane on its way to the glass is neither dimmed nor tinted in the "
-                    "caustic (photon_caustics, layered_caustics and beam_caustics see it, given the light's shadow "
-                    "map)";
+                    "caustic";
 }
 
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
