@@ -1,5 +1,5 @@
 // Liktor & Dachsbacher 2011: the data the stages of beam_caustics share
-// (src/passes/beam_caustics.c mirrors the layouts and counter offsets).
+// (src/passes/techniques/beam_caustics.c mirrors the layouts and counter offsets).
 
 // One vertex of the finest lattice of the light's projected grid (§4.1):
 // the edge rays of every beam that has it as a corner, traced once.

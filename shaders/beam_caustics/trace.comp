@@ -2,7 +2,7 @@
 // Liktor & Dachsbacher 2011 §4.1 and §6: the edge rays of the projected
 // grid. Each vertex of the finest lattice samples the light's view of the
 // specular surfaces (the light-space G-buffer: here the refractors' depth
-// layers, passes/layers.c, so the "two-sided refraction" of §6 follows the
+// layers, passes/helpers/layers.c, so the "two-sided refraction" of §6 follows the
 // ray through every interface, with total internal reflection, instead of
 // a distance impostor of the back faces), and keeps the transmitted ray
 // where it leaves the last interface and the ray reflected off the first.

@@ -1,4 +1,4 @@
-// The shadow maps a pass reads (src/passes/shadow_inputs.c binds them):
+// The shadow maps a pass reads (src/passes/helpers/shadow_inputs.c binds them):
 // up to 4, 2D (directional and spot lights) or distance cube maps (point
 // and linear lights), each covering a run of the frame's light entries.
 uniform int u_shadow_total;

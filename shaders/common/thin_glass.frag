@@ -7,7 +7,7 @@
 // bending). Dual-source blending (shade.c): the colour is what the surface
 // adds, the second output what it multiplies the image behind it by.
 // The reference (ref_sppm.c's specular_step) follows the same rule.
-// Which panes (u_panes, src/passes/thin_glass_over.c): 0 all; 1 all but those
+// Which panes (u_panes, src/passes/helpers/thin_glass_over.c): 0 all; 1 all but those
 // in front of a visible glass, water or mirror surface that a view technique
 // draws later over shade's image (shade); 2 those alone, over that surface
 // (the view technique). u_surface_depth: that surface's window depth.
@@ -31,7 +31,7 @@ uniform vec3 u_tint;
 uniform int u_panes;
 uniform sampler2D u_surface_depth;
 #ifdef VIEW_FROM_CENTER
-// drawn into a distance map (src/passes/distance_map.c): seen from its centre
+// drawn into a distance map (src/passes/helpers/distance_map.c): seen from its centre
 uniform vec3 u_center;
 vec3 pane_view(vec3 p) { return normalize(p - u_center); }
 #else

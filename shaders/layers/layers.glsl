@@ -1,6 +1,6 @@
 // Depth layers (Chaudhari 2008): the view they were taken from and the
 // slice of a depth between a pixel's bounds (§3.3). Mirrors
-// src/passes/layers.c.
+// src/passes/helpers/layers.c.
 uniform mat4 u_layer_view;
 uniform mat4 u_layer_proj;
 uniform int u_voxels;     // slices per pixel (a multiple of 128)

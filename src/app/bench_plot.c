@@ -98,6 +98,170 @@ static int log_ticks(double lo, double hi, double *ticks, int max)
     return n;
 }
 
+/* Where the plot's parts lie in the SVG: the log axes' ranges, the plot
+ * area, the side table's column. */
+struct svg_frame {
+    double lx0, lx1, ly0, ly1; /* log10 of the axes' ends */
+    double left, top, pw, ph;  /* the plot area */
+    double W, H, right;        /* the image; the side table's width */
+    double legend_h, line, tx; /* the side table: the legend's height, a line's, its x */
+};
+static double svg_x(const struct svg_frame *fr, double v)
+{
+    return fr->left + (log10(v) - fr->lx0) / (fr->lx1 - fr->lx0) * fr->pw;
+}
+static double svg_y(const struct svg_frame *fr, double v)
+{
+    return fr->top + fr->ph - (log10(v) - fr->ly0) / (fr->ly1 - fr->ly0) * fr->ph;
+}
+#define PX_(v) svg_x(fr, v)
+#define PY_(v) svg_y(fr, v)
+
+/* The frame: the title, the ticks and their labels, the frame-time guides, the axes' names. */
+static void svg_axes(FILE *f, const struct plot *plot, const struct svg_frame *fr)
+{
+    const double lx0 = fr->lx0, lx1 = fr->lx1, ly0 = fr->ly0, ly1 = fr->ly1;
+    const double left = fr->left, top = fr->top, pw = fr->pw, ph = fr->ph, W = fr->W, H = fr->H, right = fr->right;
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" "
+               "font-size=\"12\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", W, H);
+    fprintf(f, "<text x=\"%.0f\" y=\"24\" font-size=\"15\" text-anchor=\"middle\">", (W - right + left) / 2);
+    escape(f, plot->title);
+    fputs("</text>\n", f);
+    double ticks[64];
+    int nt = log_ticks(lx0, lx1, ticks, 64);
+    for (int k = 0; k < nt; k++) {
+        double x = PX_(ticks[k]);
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, top, x, top + ph);
+        /* with many ticks, labels at 1, 2, 3 and 5 only: they would overlap */
+        double mantissa = ticks[k] / pow(10.0, floor(log10(ticks[k]) + 1e-9));
+        bool labelled = nt <= 8 || fabs(mantissa - 1) < 1e-6 || fabs(mantissa - 2) < 1e-6 ||
+                        fabs(mantissa - 3) < 1e-6 || fabs(mantissa - 5) < 1e-6;
+        if (labelled) {
+            char text[32];
+            format_tick_ms(ticks[k], text, sizeof text);
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", x, top + ph + 18, text);
+        }
+    }
+    /* the frame-time budgets a reader asks about: 30 fps, 10 fps, 1 fps */
+    static const double guides[3] = {1000.0 / 30.0, 100.0, 1000.0};
+    static const char *const guide_names[3] = {"33 ms (30 fps)", "100 ms", "1 s"};
+    for (int k = 0; k < 3; k++) {
+        double l = log10(guides[k]);
+        if (l < lx0 || l > lx1)
+            continue;
+        double x = PX_(guides[k]);
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\" stroke-dasharray=\"5 4\"/>\n",
+                x, top, x, top + ph);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"#555\">%s</text>\n", x + 3, top + 12,
+                guide_names[k]);
+    }
+    nt = log_ticks(ly0, ly1, ticks, 64);
+    for (int k = 0; k < nt; k++) {
+        double y = PY_(ticks[k]);
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", left, y, left + pw, y);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", left - 6, y + 4, ticks[k]);
+    }
+    fprintf(f, "<rect x=\"%.0f\" y=\"%.0f\" width=\"%.0f\" height=\"%.0f\" fill=\"none\" stroke=\"black\"/>\n", left, top,
+            pw, ph);
+    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">", left + pw / 2, top + ph + 44);
+    escape(f, plot->x_label);
+    fprintf(f, "</text>\n<text transform=\"translate(20 %.0f) rotate(-90)\" text-anchor=\"middle\">", top + ph / 2);
+    escape(f, plot->y_label);
+    fputs("</text>\n", f);
+}
+
+/* The series (and their joined frontier lines), then what the markers and bars mean. */
+static void svg_legend(FILE *f, const struct plot *plot, const struct svg_frame *fr)
+{
+    const double top = fr->top, tx = fr->tx;
+    for (int s = 0; s < plot->series_count; s++) {
+        const char *c = colours[s % PLOT_MAX_SERIES];
+        if (plot->series_lines[s]) {
+            /* its joined points in the order of x (selection: the counts are small) */
+            fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", c);
+            double last = -INFINITY;
+            for (;;) {
+                int next = -1;
+                for (int i = 0; i < plot->count; i++) {
+                    const struct plot_point *p = &plot->points[i];
+                    if (p->series == s && p->joined && drawable(p) && p->x > last &&
+                        (next < 0 || p->x < plot->points[next].x))
+                        next = i;
+                }
+                if (next < 0)
+                    break;
+                last = plot->points[next].x;
+                fprintf(f, "%.1f,%.1f ", PX_(plot->points[next].x), PY_(plot->points[next].y));
+            }
+            fputs("\"/>\n", f);
+        }
+        double ly = top + 10 + 20 * s;
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"5\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">", tx, ly, c,
+                tx + 10, ly + 4);
+        escape(f, plot->series_names[s]);
+        fputs("</text>\n", f);
+    }
+    {
+        /* what the two kinds of marker mean */
+        double ly = top + 10 + 20 * plot->series_count;
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"#444\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                   "font-size=\"10\">on its technique's frontier (nothing faster is as good)</text>\n",
+                tx, ly, tx + 10, ly + 4);
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"white\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                   "font-size=\"10\">hollow: dominated (a faster setting is as good or better)</text>\n",
+                tx, ly + 18, tx + 10, ly + 22);
+        bool bars = false;
+        for (int i = 0; i < plot->count; i++)
+            bars |= plot->points[i].y_low > 0 && plot->points[i].y_low < 0.98 * plot->points[i].y;
+        if (bars)
+            fprintf(f, "<line x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
+                       "font-size=\"10\">bar: the error less the truth's own (from the reference curve)</text>\n",
+                    tx, ly + 30, tx, ly + 42, tx + 10, ly + 40);
+    }
+}
+
+/* The points: a marker with its number, and the numbered side table. */
+static void svg_points(FILE *f, const struct plot *plot, const struct svg_frame *fr)
+{
+    const double top = fr->top, legend_h = fr->legend_h, line = fr->line, tx = fr->tx;
+    int number = 0;
+    struct label_box boxes[512];
+    int nboxes = 0;
+    /* the points: a marker with its number, and the numbered side table */
+    for (int i = 0; i < plot->count; i++) {
+        const struct plot_point *p = &plot->points[i];
+        if (!drawable(p))
+            continue;
+        const char *c = colours[p->series % PLOT_MAX_SERIES];
+        number++;
+        /* a point off its series' line (dominated by a faster, better one) is hollow */
+        bool hollow = plot->series_lines[p->series % PLOT_MAX_SERIES] && !p->joined;
+        if (p->y_low > 0 && isfinite(p->y_low) && p->y_low < 0.98 * p->y) {
+            /* how much of the error may be the truth's own */
+            fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>"
+                       "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>\n",
+                    PX_(p->x), PY_(p->y), PX_(p->x), PY_(p->y_low), c, PX_(p->x) - 3, PY_(p->y_low), PX_(p->x) + 3,
+                    PY_(p->y_low), c);
+        }
+        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"%s\"/>\n", PX_(p->x), PY_(p->y),
+                hollow ? "white" : c, c);
+        double lx, ly;
+        char num[16];
+        snprintf(num, sizeof num, "%d", number);
+        place_label(boxes, &nboxes, 512, PX_(p->x), PY_(p->y), 5.5 * (double)strlen(num), 9, &lx, &ly);
+        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", lx, ly, c, number);
+        fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"10\" fill=\"%s\">%d  ", tx,
+                top + legend_h + line * number, c, number);
+        escape(f, p->label);
+        char time[32];
+        bench_plot_format_ms(p->x, time, sizeof time);
+        fprintf(f, " (%s, %.3g)</text>\n", time, p->y);
+    }
+}
+
+#undef PX_
+#undef PY_
+
 bool bench_plot_write_svg(const char *path, const struct plot *plot, struct error *err)
 {
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
@@ -147,134 +311,12 @@ bool bench_plot_write_svg(const char *path, const struct plot *plot, struct erro
         }
         return fd >= 0 ? error_set(err, "%s: cannot write: %s", path, strerror(errno)) : false;
     }
-#define PX(v) (left + (log10(v) - lx0) / (lx1 - lx0) * pw)
-#define PY(v) (top + ph - (log10(v) - ly0) / (ly1 - ly0) * ph)
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" "
-               "font-size=\"12\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", W, H);
-    fprintf(f, "<text x=\"%.0f\" y=\"24\" font-size=\"15\" text-anchor=\"middle\">", (W - right + left) / 2);
-    escape(f, plot->title);
-    fputs("</text>\n", f);
-    double ticks[64];
-    int nt = log_ticks(lx0, lx1, ticks, 64);
-    for (int k = 0; k < nt; k++) {
-        double x = PX(ticks[k]);
-        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, top, x, top + ph);
-        /* with many ticks, labels at 1, 2, 3 and 5 only: they would overlap */
-        double mantissa = ticks[k] / pow(10.0, floor(log10(ticks[k]) + 1e-9));
-        bool labelled = nt <= 8 || fabs(mantissa - 1) < 1e-6 || fabs(mantissa - 2) < 1e-6 ||
-                        fabs(mantissa - 3) < 1e-6 || fabs(mantissa - 5) < 1e-6;
-        if (labelled) {
-            char text[32];
-            format_tick_ms(ticks[k], text, sizeof text);
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", x, top + ph + 18, text);
-        }
-    }
-    /* the frame-time budgets a reader asks about: 30 fps, 10 fps, 1 fps */
-    static const double guides[3] = {1000.0 / 30.0, 100.0, 1000.0};
-    static const char *const guide_names[3] = {"33 ms (30 fps)", "100 ms", "1 s"};
-    for (int k = 0; k < 3; k++) {
-        double l = log10(guides[k]);
-        if (l < lx0 || l > lx1)
-            continue;
-        double x = PX(guides[k]);
-        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\" stroke-dasharray=\"5 4\"/>\n",
-                x, top, x, top + ph);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"#555\">%s</text>\n", x + 3, top + 12,
-                guide_names[k]);
-    }
-    nt = log_ticks(ly0, ly1, ticks, 64);
-    for (int k = 0; k < nt; k++) {
-        double y = PY(ticks[k]);
-        fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", left, y, left + pw, y);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", left - 6, y + 4, ticks[k]);
-    }
-    fprintf(f, "<rect x=\"%.0f\" y=\"%.0f\" width=\"%.0f\" height=\"%.0f\" fill=\"none\" stroke=\"black\"/>\n", left, top,
-            pw, ph);
-    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">", left + pw / 2, top + ph + 44);
-    escape(f, plot->x_label);
-    fprintf(f, "</text>\n<text transform=\"translate(20 %.0f) rotate(-90)\" text-anchor=\"middle\">", top + ph / 2);
-    escape(f, plot->y_label);
-    fputs("</text>\n", f);
-    double tx = W - right + 20;
-    int number = 0;
-    for (int s = 0; s < plot->series_count; s++) {
-        const char *c = colours[s % PLOT_MAX_SERIES];
-        if (plot->series_lines[s]) {
-            /* its joined points in the order of x (selection: the counts are small) */
-            fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"", c);
-            double last = -INFINITY;
-            for (;;) {
-                int next = -1;
-                for (int i = 0; i < plot->count; i++) {
-                    const struct plot_point *p = &plot->points[i];
-                    if (p->series == s && p->joined && drawable(p) && p->x > last &&
-                        (next < 0 || p->x < plot->points[next].x))
-                        next = i;
-                }
-                if (next < 0)
-                    break;
-                last = plot->points[next].x;
-                fprintf(f, "%.1f,%.1f ", PX(plot->points[next].x), PY(plot->points[next].y));
-            }
-            fputs("\"/>\n", f);
-        }
-        double ly = top + 10 + 20 * s;
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"5\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">", tx, ly, c,
-                tx + 10, ly + 4);
-        escape(f, plot->series_names[s]);
-        fputs("</text>\n", f);
-    }
-    {
-        /* what the two kinds of marker mean */
-        double ly = top + 10 + 20 * plot->series_count;
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"#444\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
-                   "font-size=\"10\">on its technique's frontier (nothing faster is as good)</text>\n",
-                tx, ly, tx + 10, ly + 4);
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"white\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
-                   "font-size=\"10\">hollow: dominated (a faster setting is as good or better)</text>\n",
-                tx, ly + 18, tx + 10, ly + 22);
-        bool bars = false;
-        for (int i = 0; i < plot->count; i++)
-            bars |= plot->points[i].y_low > 0 && plot->points[i].y_low < 0.98 * plot->points[i].y;
-        if (bars)
-            fprintf(f, "<line x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\" stroke=\"#444\"/><text x=\"%.0f\" y=\"%.0f\" "
-                       "font-size=\"10\">bar: the error less the truth's own (from the reference curve)</text>\n",
-                    tx, ly + 30, tx, ly + 42, tx + 10, ly + 40);
-    }
-    struct label_box boxes[512];
-    int nboxes = 0;
-    /* the points: a marker with its number, and the numbered side table */
-    for (int i = 0; i < plot->count; i++) {
-        const struct plot_point *p = &plot->points[i];
-        if (!drawable(p))
-            continue;
-        const char *c = colours[p->series % PLOT_MAX_SERIES];
-        number++;
-        /* a point off its series' line (dominated by a faster, better one) is hollow */
-        bool hollow = plot->series_lines[p->series % PLOT_MAX_SERIES] && !p->joined;
-        if (p->y_low > 0 && isfinite(p->y_low) && p->y_low < 0.98 * p->y) {
-            /* how much of the error may be the truth's own */
-            fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>"
-                       "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-opacity=\"0.6\"/>\n",
-                    PX(p->x), PY(p->y), PX(p->x), PY(p->y_low), c, PX(p->x) - 3, PY(p->y_low), PX(p->x) + 3,
-                    PY(p->y_low), c);
-        }
-        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"%s\"/>\n", PX(p->x), PY(p->y),
-                hollow ? "white" : c, c);
-        double lx, ly;
-        char num[16];
-        snprintf(num, sizeof num, "%d", number);
-        place_label(boxes, &nboxes, 512, PX(p->x), PY(p->y), 5.5 * (double)strlen(num), 9, &lx, &ly);
-        fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%d</text>\n", lx, ly, c, number);
-        fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" font-size=\"10\" fill=\"%s\">%d  ", tx,
-                top + legend_h + line * number, c, number);
-        escape(f, p->label);
-        char time[32];
-        bench_plot_format_ms(p->x, time, sizeof time);
-        fprintf(f, " (%s, %.3g)</text>\n", time, p->y);
-    }
-#undef PX
-#undef PY
+    const struct svg_frame frame = {.lx0 = lx0, .lx1 = lx1, .ly0 = ly0, .ly1 = ly1, .left = left, .top = top, .pw = pw,
+                                    .ph = ph, .W = W, .H = H, .right = right, .legend_h = legend_h, .line = line,
+                                    .tx = W - right + 20};
+    svg_axes(f, plot, &frame);
+    svg_legend(f, plot, &frame);
+    svg_points(f, plot, &frame);
     fputs("</svg>\n", f);
     bool ok = fclose(f) == 0;
     if (!ok || rename(tmp, path) != 0) {

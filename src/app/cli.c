@@ -357,6 +357,229 @@ static bool unknown_option(const char *arg, size_t len, unsigned verb_bit)
     return false;
 }
 
+static int usage_fail(const char *fmt, const char *arg)
+{
+    usage_error(fmt, arg);
+    return -1;
+}
+
+/* The options of what is rendered and where it goes: 1 taken, 0 not one of them, -1 refused (said). */
+static int output_file_option(const char *a, const char *next, struct app *app, struct cli *cli)
+{
+    if (strcmp(a, "--output") == 0) {
+        cli->output = next;
+    } else if (strcmp(a, "--frame") == 0) {
+        if (!parse_int(next, &cli->frame) || cli->frame < 0)
+            return usage_fail("--frame needs a frame number >= 0, got '%s'", next);
+    } else if (strcmp(a, "--frames") == 0) {
+        char message[300];
+        if (!frame_set_parse(next, &cli->frame_set, message, sizeof message))
+            return usage_fail("%s", message);
+        cli->frames_set = true;
+        cli->frames_from = cli->frame_set.ranges[0].from;
+        cli->frames_to = cli->frame_set.ranges[0].to;
+        for (int k = 1; k < cli->frame_set.count; k++) {
+            if (cli->frame_set.ranges[k].from < cli->frames_from)
+                cli->frames_from = cli->frame_set.ranges[k].from;
+            if (cli->frame_set.ranges[k].to > cli->frames_to)
+                cli->frames_to = cli->frame_set.ranges[k].to;
+        }
+    } else if (strcmp(a, "--video") == 0) {
+        cli->video = next;
+    } else if (strcmp(a, "--overwrite") == 0) {
+        cli->overwrite = true;
+    } else if (strcmp(a, "--script") == 0) {
+        cli->script = true;
+    } else if (strcmp(a, "--shard") == 0) {
+        /* 0/99999999999 is refused, not wrapped */
+        if (!parse_int_pair(next, '/', &cli->shard_index, &cli->shard_count) || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
+            return usage_fail("--shard needs i/n with 0 <= i < n (e.g. $SLURM_ARRAY_TASK_ID/4), got '%s'", next);
+    } else if (strcmp(a, "--size") == 0) {
+        if (!parse_int_pair(next, 'x', &cli->width, &cli->height) || cli->width < 1 || cli->height < 1 ||
+            cli->width > 16384 || cli->height > 16384)
+            return usage_fail("--size needs WxH (1..16384), got '%s'", next);
+    } else if (strcmp(a, "--backend") == 0) {
+        if (!gl_backend_parse(next, &app->backend) || app->backend == GL_BACKEND_GLFW)
+            return usage_fail("--backend must be osmesa or egl, got '%s'", next);
+    } else if (strcmp(a, "--set") == 0) {
+        struct error err;
+        if (!lua_params_add(&cli->params, next, &err))
+            return usage_fail("%s", err.message);
+    } else if (strcmp(a, "--screenshot") == 0) {
+        cli->screenshot = next;
+    } else if (strcmp(a, "--keys") == 0) {
+        cli->keys = next;
+    } else if (strcmp(a, "--mask") == 0) {
+        cli->mask = next;
+    } else if (strcmp(a, "--filter") == 0) {
+        cli->filter = next;
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* The reference's and the images' options: 1 taken, 0 not one of them, -1 refused (said). */
+static int reference_option(const char *a, const char *next, struct app *app, struct cli *cli)
+{
+    (void)app;
+    if (strcmp(a, "--photons") == 0) {
+        char *end;
+        cli->photons = strtol(next, &end, 10);
+        if (end == next || *end || cli->photons < 0 || cli->photons > 2000000000L)
+            return usage_fail("--photons needs a count >= 0, got '%s'", next);
+    } else if (strcmp(a, "--spp") == 0) {
+        if (!parse_int(next, &cli->spp) || cli->spp < 1)
+            return usage_fail("--spp needs a count >= 1, got '%s'", next);
+    } else if (strcmp(a, "--exposure") == 0) {
+        char *end;
+        cli->exposure = strtod(next, &end);
+        if (end == next || *end || !(cli->exposure > 0))
+            return usage_fail("--exposure needs a positive number, got '%s'", next);
+    } else if (strcmp(a, "--time-budget") == 0 || strcmp(a, "--radius") == 0) {
+        char *end;
+        double value = strtod(next, &end);
+        if (end == next || *end || !(value > 0) || value > 1e9)
+            return usage_fail("this option needs a positive number, got '%s'", next);
+        if (a[2] == 't')
+            cli->time_budget = value;
+        else
+            cli->radius = value;
+    } else if (strcmp(a, "--aov") == 0) {
+        /* `reference --aov tir|exit`: a debug output; `render/record --aov pass.output`: an EXR layer */
+        if (strcmp(next, "tir") == 0)
+            cli->aov = 1;
+        else if (strcmp(next, "exit") == 0)
+            cli->aov = 2;
+        else if ((strchr(next, '.') || strcmp(next, "holdout") == 0) && cli->aov_count < 8)
+            cli->aovs[cli->aov_count++] = next;
+        else
+            return usage_fail("--aov needs tir or exit (reference) or pass.output or holdout (render, record to "
+                               ".exr), at most 8, got '%s'", next);
+    } else if (strcmp(a, "--antialias") == 0 || strcmp(a, "--ref-antialias") == 0) {
+        cli->antialias = true;
+    } else if (strcmp(a, "--report") == 0) {
+        if (next)
+            cli->report_html = next;
+        else
+            cli->report = true;
+    } else if (strcmp(a, "--seed") == 0) {
+        char *end;
+        cli->seed = strtoll(next, &end, 10);
+        if (end == next || *end || cli->seed < 0)
+            return usage_fail("--seed needs an integer >= 0, got '%s'", next);
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* bench's, choose's and test's options: 1 taken, 0 not one of them, -1 refused (said). */
+static int bench_option(const char *a, const char *next, struct app *app, struct cli *cli)
+{
+    (void)app;
+    if (strcmp(a, "--sweep") == 0) {
+        if (cli->nsweeps >= 16 || !strchr(next, '=') || next[0] == '=')
+            return usage_fail("--sweep needs key=v1,v2,... (at most 16 sweeps), got '%s'", next);
+        cli->sweeps[cli->nsweeps++] = next;
+    } else if (strcmp(a, "--ref-photons") == 0) {
+        char *end;
+        cli->ref_photons = strtol(next, &end, 10);
+        if (end == next || *end || cli->ref_photons < 0)
+            return usage_fail("--ref-photons needs a count >= 0, got '%s'", next);
+    } else if (strcmp(a, "--truth") == 0) {
+        cli->truth = next;
+    } else if (strcmp(a, "--ref-spp") == 0) {
+        if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
+            return usage_fail("--ref-spp needs a count >= 8, got '%s'", next);
+    } else if (strcmp(a, "--truth-spp") == 0) {
+        if (!parse_int(next, &cli->truth_spp) || cli->truth_spp < 8 || cli->truth_spp > 1000000)
+            return usage_fail("--truth-spp needs a count from 8 to 1000000, got '%s'", next);
+    } else if (strcmp(a, "--error-frames") == 0) {
+        if (!parse_int(next, &cli->error_frames) || cli->error_frames < 1 || cli->error_frames > 16)
+            return usage_fail("--error-frames needs a count in 1..16, got '%s'", next);
+    } else if (strcmp(a, "--error") == 0 || strcmp(a, "--time") == 0 || strcmp(a, "--flicker") == 0) {
+        char *end;
+        double value = strtod(next, &end);
+        if (end == next || *end || !(value > 0) || value > 1e12)
+            return usage_fail(strcmp(a, "--error") == 0 ? "--error needs a relative error > 0 (e.g. 0.1), got '%s'"
+                               : strcmp(a, "--flicker") == 0 ? "--flicker needs a relative flicker > 0 (e.g. 0.05), got '%s'"
+                                                             : "--time needs milliseconds a frame > 0, got '%s'", next);
+        if (strcmp(a, "--error") == 0)
+            cli->max_error = value;
+        else if (strcmp(a, "--flicker") == 0)
+            cli->max_flicker = value;
+        else
+            cli->max_time_ms = value;
+    } else if (strcmp(a, "--timings") == 0) {
+        cli->timings = true;
+    } else if (strcmp(a, "--update-refs") == 0) {
+        cli->update_refs = true;
+    } else if (strcmp(a, "--cached") == 0) {
+        cli->cached_only = true;
+    } else if (strcmp(a, "--no-render") == 0) {
+        cli->no_render = true;
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* The session's options (the sandbox, the log, video, threads): 1 taken, 0 not one of them, -1 refused (said). */
+static int app_option(const char *a, const char *next, struct app *app, struct cli *cli)
+{
+    if (strcmp(a, "--script-timeout") == 0 || strcmp(a, "--script-memory") == 0) {
+        char *end;
+        double value = strtod(next, &end);
+        if (end == next || *end || !(value >= 0) || value > 1e9)
+            return usage_fail("this option needs a number >= 0 (0 = no limit), got '%s'", next);
+        if (strcmp(a, "--script-timeout") == 0)
+            app->script_timeout = value;
+        else
+            app->script_memory = value * 1024.0 * 1024.0;
+    } else if (strcmp(a, "--allow-read") == 0) {
+        if (app->allow_read_count >= (int)(sizeof app->allow_read / sizeof app->allow_read[0]))
+            return usage_fail("at most 8 --allow-read folders (%s)", next);
+        app->allow_read[app->allow_read_count++] = next;
+    } else if (strcmp(a, "--allow-write") == 0) {
+        app->allow_write = next;
+    } else if (strcmp(a, "--half") == 0) {
+        cli->half = true;
+    } else if (strcmp(a, "--trusted") == 0) {
+        app->trusted = true;
+    } else if (strcmp(a, "--verbose") == 0) {
+        log_set_verbose(true);
+    } else if (strcmp(a, "--quiet") == 0) {
+        log_set_quiet(true);
+    } else if (strcmp(a, "--crf") == 0) {
+        if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
+            return usage_fail("--crf needs a quality in 0..51, got '%s'", next);
+    } else if (strcmp(a, "--tonemap") == 0) {
+        cli->tonemap = next;
+    } else if (strcmp(a, "--fps") == 0) {
+        char *end;
+        cli->fps = strtod(next, &end);
+        if (*next == '\0' || *end != '\0' || !(cli->fps >= 0.01 && cli->fps <= 1e4))
+            return usage_fail("--fps needs frames a second in 0.01..10000, got '%s'", next);
+    } else if (strcmp(a, "--frame-count") == 0) {
+        if (!parse_int(next, &cli->frame_count) || cli->frame_count < 1 || cli->frame_count > 10000000)
+            return usage_fail("--frame-count needs a count in 1..10000000, got '%s'", next);
+    } else if (strcmp(a, "--junit") == 0) {
+        cli->junit = next;
+    } else if (strcmp(a, "--threads") == 0) {
+        if (!parse_int(next, &app->threads) || app->threads < 1 || app->threads > 1024)
+            return usage_fail("--threads needs a count in 1..1024, got '%s'", next);
+    } else if (strcmp(a, "--asset-path") == 0) {
+        if (app->asset_path_count >= 8)
+            return usage_fail("at most 8 --asset-path folders (%s)", next);
+        app->asset_path[app->asset_path_count++] = next;
+
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
 bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct cli *cli)
 {
     memset(cli, 0, sizeof *cli);
@@ -404,185 +627,15 @@ bool cli_parse(const char *verb, int argc, char **argv, struct app *app, struct 
                 return usage_error("%s needs a value", a);
             next = argv[++i];
         }
-        if (strcmp(a, "--output") == 0) {
-            cli->output = next;
-        } else if (strcmp(a, "--frame") == 0) {
-            if (!parse_int(next, &cli->frame) || cli->frame < 0)
-                return usage_error("--frame needs a frame number >= 0, got '%s'", next);
-        } else if (strcmp(a, "--frames") == 0) {
-            char message[300];
-            if (!frame_set_parse(next, &cli->frame_set, message, sizeof message))
-                return usage_error("%s", message);
-            cli->frames_set = true;
-            cli->frames_from = cli->frame_set.ranges[0].from;
-            cli->frames_to = cli->frame_set.ranges[0].to;
-            for (int k = 1; k < cli->frame_set.count; k++) {
-                if (cli->frame_set.ranges[k].from < cli->frames_from)
-                    cli->frames_from = cli->frame_set.ranges[k].from;
-                if (cli->frame_set.ranges[k].to > cli->frames_to)
-                    cli->frames_to = cli->frame_set.ranges[k].to;
-            }
-        } else if (strcmp(a, "--video") == 0) {
-            cli->video = next;
-        } else if (strcmp(a, "--overwrite") == 0) {
-            cli->overwrite = true;
-        } else if (strcmp(a, "--script") == 0) {
-            cli->script = true;
-        } else if (strcmp(a, "--shard") == 0) {
-            /* 0/99999999999 is refused, not wrapped */
-            if (!parse_int_pair(next, '/', &cli->shard_index, &cli->shard_count) || cli->shard_count < 1 || cli->shard_index < 0 || cli->shard_index >= cli->shard_count)
-                return usage_error("--shard needs i/n with 0 <= i < n (e.g. $SLURM_ARRAY_TASK_ID/4), got '%s'", next);
-        } else if (strcmp(a, "--size") == 0) {
-            if (!parse_int_pair(next, 'x', &cli->width, &cli->height) || cli->width < 1 || cli->height < 1 ||
-                cli->width > 16384 || cli->height > 16384)
-                return usage_error("--size needs WxH (1..16384), got '%s'", next);
-        } else if (strcmp(a, "--backend") == 0) {
-            if (!gl_backend_parse(next, &app->backend) || app->backend == GL_BACKEND_GLFW)
-                return usage_error("--backend must be osmesa or egl, got '%s'", next);
-        } else if (strcmp(a, "--set") == 0) {
-            struct error err;
-            if (!lua_params_add(&cli->params, next, &err))
-                return usage_error("%s", err.message);
-        } else if (strcmp(a, "--screenshot") == 0) {
-            cli->screenshot = next;
-        } else if (strcmp(a, "--keys") == 0) {
-            cli->keys = next;
-        } else if (strcmp(a, "--mask") == 0) {
-            cli->mask = next;
-        } else if (strcmp(a, "--filter") == 0) {
-            cli->filter = next;
-        } else if (strcmp(a, "--photons") == 0) {
-            char *end;
-            cli->photons = strtol(next, &end, 10);
-            if (end == next || *end || cli->photons < 0 || cli->photons > 2000000000L)
-                return usage_error("--photons needs a count >= 0, got '%s'", next);
-        } else if (strcmp(a, "--spp") == 0) {
-            if (!parse_int(next, &cli->spp) || cli->spp < 1)
-                return usage_error("--spp needs a count >= 1, got '%s'", next);
-        } else if (strcmp(a, "--exposure") == 0) {
-            char *end;
-            cli->exposure = strtod(next, &end);
-            if (end == next || *end || !(cli->exposure > 0))
-                return usage_error("--exposure needs a positive number, got '%s'", next);
-        } else if (strcmp(a, "--time-budget") == 0 || strcmp(a, "--radius") == 0) {
-            char *end;
-            double value = strtod(next, &end);
-            if (end == next || *end || !(value > 0) || value > 1e9)
-                return usage_error("this option needs a positive number, got '%s'", next);
-            if (a[2] == 't')
-                cli->time_budget = value;
-            else
-                cli->radius = value;
-        } else if (strcmp(a, "--aov") == 0) {
-            /* `reference --aov tir|exit`: a debug output; `render/record --aov pass.output`: an EXR layer */
-            if (strcmp(next, "tir") == 0)
-                cli->aov = 1;
-            else if (strcmp(next, "exit") == 0)
-                cli->aov = 2;
-            else if ((strchr(next, '.') || strcmp(next, "holdout") == 0) && cli->aov_count < 8)
-                cli->aovs[cli->aov_count++] = next;
-            else
-                return usage_error("--aov needs tir or exit (reference) or pass.output or holdout (render, record to "
-                                   ".exr), at most 8, got '%s'", next);
-        } else if (strcmp(a, "--antialias") == 0 || strcmp(a, "--ref-antialias") == 0) {
-            cli->antialias = true;
-        } else if (strcmp(a, "--report") == 0) {
-            if (next)
-                cli->report_html = next;
-            else
-                cli->report = true;
-        } else if (strcmp(a, "--seed") == 0) {
-            char *end;
-            cli->seed = strtoll(next, &end, 10);
-            if (end == next || *end || cli->seed < 0)
-                return usage_error("--seed needs an integer >= 0, got '%s'", next);
-        } else if (strcmp(a, "--sweep") == 0) {
-            if (cli->nsweeps >= 16 || !strchr(next, '=') || next[0] == '=')
-                return usage_error("--sweep needs key=v1,v2,... (at most 16 sweeps), got '%s'", next);
-            cli->sweeps[cli->nsweeps++] = next;
-        } else if (strcmp(a, "--ref-photons") == 0) {
-            char *end;
-            cli->ref_photons = strtol(next, &end, 10);
-            if (end == next || *end || cli->ref_photons < 0)
-                return usage_error("--ref-photons needs a count >= 0, got '%s'", next);
-        } else if (strcmp(a, "--truth") == 0) {
-            cli->truth = next;
-        } else if (strcmp(a, "--ref-spp") == 0) {
-            if (!parse_int(next, &cli->ref_spp) || cli->ref_spp < 8)
-                return usage_error("--ref-spp needs a count >= 8, got '%s'", next);
-        } else if (strcmp(a, "--truth-spp") == 0) {
-            if (!parse_int(next, &cli->truth_spp) || cli->truth_spp < 8 || cli->truth_spp > 1000000)
-                return usage_error("--truth-spp needs a count from 8 to 1000000, got '%s'", next);
-        } else if (strcmp(a, "--error-frames") == 0) {
-            if (!parse_int(next, &cli->error_frames) || cli->error_frames < 1 || cli->error_frames > 16)
-                return usage_error("--error-frames needs a count in 1..16, got '%s'", next);
-        } else if (strcmp(a, "--error") == 0 || strcmp(a, "--time") == 0 || strcmp(a, "--flicker") == 0) {
-            char *end;
-            double value = strtod(next, &end);
-            if (end == next || *end || !(value > 0) || value > 1e12)
-                return usage_error(strcmp(a, "--error") == 0 ? "--error needs a relative error > 0 (e.g. 0.1), got '%s'"
-                                   : strcmp(a, "--flicker") == 0 ? "--flicker needs a relative flicker > 0 (e.g. 0.05), got '%s'"
-                                                                 : "--time needs milliseconds a frame > 0, got '%s'", next);
-            if (strcmp(a, "--error") == 0)
-                cli->max_error = value;
-            else if (strcmp(a, "--flicker") == 0)
-                cli->max_flicker = value;
-            else
-                cli->max_time_ms = value;
-        } else if (strcmp(a, "--timings") == 0) {
-            cli->timings = true;
-        } else if (strcmp(a, "--update-refs") == 0) {
-            cli->update_refs = true;
-        } else if (strcmp(a, "--cached") == 0) {
-            cli->cached_only = true;
-        } else if (strcmp(a, "--no-render") == 0) {
-            cli->no_render = true;
-        } else if (strcmp(a, "--script-timeout") == 0 || strcmp(a, "--script-memory") == 0) {
-            char *end;
-            double value = strtod(next, &end);
-            if (end == next || *end || !(value >= 0) || value > 1e9)
-                return usage_error("this option needs a number >= 0 (0 = no limit), got '%s'", next);
-            if (strcmp(a, "--script-timeout") == 0)
-                app->script_timeout = value;
-            else
-                app->script_memory = value * 1024.0 * 1024.0;
-        } else if (strcmp(a, "--allow-read") == 0) {
-            if (app->allow_read_count >= (int)(sizeof app->allow_read / sizeof app->allow_read[0]))
-                return usage_error("at most 8 --allow-read folders (%s)", next);
-            app->allow_read[app->allow_read_count++] = next;
-        } else if (strcmp(a, "--allow-write") == 0) {
-            app->allow_write = next;
-        } else if (strcmp(a, "--half") == 0) {
-            cli->half = true;
-        } else if (strcmp(a, "--trusted") == 0) {
-            app->trusted = true;
-        } else if (strcmp(a, "--verbose") == 0) {
-            log_set_verbose(true);
-        } else if (strcmp(a, "--quiet") == 0) {
-            log_set_quiet(true);
-        } else if (strcmp(a, "--crf") == 0) {
-            if (!parse_int(next, &cli->crf) || cli->crf < 0 || cli->crf > 51)
-                return usage_error("--crf needs a quality in 0..51, got '%s'", next);
-        } else if (strcmp(a, "--tonemap") == 0) {
-            cli->tonemap = next;
-        } else if (strcmp(a, "--fps") == 0) {
-            char *end;
-            cli->fps = strtod(next, &end);
-            if (*next == '\0' || *end != '\0' || !(cli->fps >= 0.01 && cli->fps <= 1e4))
-                return usage_error("--fps needs frames a second in 0.01..10000, got '%s'", next);
-        } else if (strcmp(a, "--frame-count") == 0) {
-            if (!parse_int(next, &cli->frame_count) || cli->frame_count < 1 || cli->frame_count > 10000000)
-                return usage_error("--frame-count needs a count in 1..10000000, got '%s'", next);
-        } else if (strcmp(a, "--junit") == 0) {
-            cli->junit = next;
-        } else if (strcmp(a, "--threads") == 0) {
-            if (!parse_int(next, &app->threads) || app->threads < 1 || app->threads > 1024)
-                return usage_error("--threads needs a count in 1..1024, got '%s'", next);
-        } else if (strcmp(a, "--asset-path") == 0) {
-            if (app->asset_path_count >= 8)
-                return usage_error("at most 8 --asset-path folders (%s)", next);
-            app->asset_path[app->asset_path_count++] = next;
-        }
+        int taken = output_file_option(a, next, app, cli);
+        if (taken == 0)
+            taken = reference_option(a, next, app, cli);
+        if (taken == 0)
+            taken = bench_option(a, next, app, cli);
+        if (taken == 0)
+            taken = app_option(a, next, app, cli);
+        if (taken < 0)
+            return false;
     }
     return true;
 }

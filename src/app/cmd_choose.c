@@ -129,6 +129,162 @@ static bool technique_leaves_out(struct app *app, const struct cli *cli, const c
     return ok;
 }
 
+/* The sweep `choose` picks from: its cache entry's path in `cached`, run
+ * by bench first where the cache has none (not with --cached). 0, or the
+ * exit status. */
+static int choose_sweep(struct app *app, const struct cli *cli, struct cli *sweep, const char *dir, char *cached,
+                        size_t cached_size)
+{
+    const char *script = cli->positional[0];
+    struct error err;
+    if (!bench_sweep_cache_path(sweep, dir, cached, cached_size, &err)) {
+        cli_print_error(&err);
+        return EXIT_SCENE_ERROR;
+    }
+    struct stat st;
+    bool present = lstat(cached, &st) == 0;
+    FILE *probe = present ? file_open_read(cached, true, &err) : NULL;
+    if (present && !probe) {
+        cli_print_error(&err); /* a link or a FIFO where the cache entry should be: never read, never replaced */
+        return EXIT_SCENE_ERROR;
+    }
+    if (probe) {
+        fclose(probe);
+        fprintf(stderr, "caustica: choose: the sweep from the bench cache %s\n", cached);
+    } else if (cli->cached_only) {
+        fprintf(stderr, "caustica: choose: --cached: no sweep of %s with these options in %s/cache (%s); run `caustica "
+                        "bench %s --sweep %s -o %s` with the same --size, --frames, --error-frames and --ref-* options, "
+                        "or leave out --cached\n", script, dir, cached, script, sweep->sweeps[0], dir);
+        return EXIT_SCENE_ERROR;
+    } else {
+        fprintf(stderr, "caustica: choose: no sweep of %s with these options in %s/cache: running `caustica bench %s "
+                        "--sweep %s -o %s` ...\n", script, dir, script, sweep->sweeps[0], dir);
+        return cmd_bench(app, sweep);
+    }
+    return 0;
+}
+
+/* Times measured on another renderer (a cache from an llvmpipe node read
+ * on a GPU node) do not hold here: said once. Techniques that leave out
+ * part of the scene are not considered (one line each says which and why;
+ * their rows marked excluded). The script's techniques, read once. */
+static bool choose_exclude(struct app *app, const struct cli *cli, struct bench_row *rows, int n, struct error *err)
+{
+    const char *script = cli->positional[0];
+    if (app_ensure_gl(app, err)) {
+        char here[256];
+        bench_renderer_label(app->gl->renderer, here, sizeof here);
+        if (!rows[0].renderer[0])
+            fprintf(stderr, "caustica: choose: warning: the cached sweep does not say which renderer measured it; "
+                            "its times may not be this machine's (%s)\n", here);
+        else if (strcmp(rows[0].renderer, here) != 0)
+            fprintf(stderr, "caustica: choose: warning: the cached sweep was measured on %s, this machine renders "
+                            "with %s: its frame times do not hold here (run bench again on this machine, or keep "
+                            "another -o DIR per machine)\n", rows[0].renderer, here);
+    }
+    struct technique_list *all = calloc(1, sizeof *all);
+    struct session_options base = {.script = script, .params = cli->params, .width = cli->width,
+                                   .height = cli->height, .past_last_frame = true};
+    struct session *s0 = NULL;
+    bool read = all && session_open(app, &base, &s0, err) && techniques_read(s0, all, err);
+    if (s0)
+        session_close(s0);
+    if (!read) {
+        free(all);
+        return false;
+    }
+    for (int i = 0; i < n; i++) {
+        bool seen = false;
+        for (int j = 0; j < i && !seen; j++)
+            seen = strcmp(rows[j].technique, rows[i].technique) == 0;
+        const struct technique *tech = NULL;
+        for (int j = 0; j < all->count && !tech; j++)
+            if (strcmp(all->items[j].name, rows[i].technique) == 0)
+                tech = &all->items[j];
+        if (seen || !tech) /* a cached row of a technique the script no longer declares: judged as it was */
+            continue;
+        bool leaves;
+        char why[400];
+        if (!technique_leaves_out(app, cli, script, tech, &leaves, why, sizeof why, err)) {
+            free(all);
+            return false;
+        }
+        if (!leaves)
+            continue;
+        fprintf(stderr, "caustica: choose: %s is not considered: %s\n", rows[i].technique, why);
+        for (int j = i; j < n; j++)
+            if (strcmp(rows[j].technique, rows[i].technique) == 0)
+                rows[j].excluded = true;
+    }
+    free(all);
+    return true;
+}
+
+/* No row within the bounds: what the sweep's most accurate, fastest (and
+ * steadiest) reach instead. */
+static void choose_report_none(const struct cli *cli, const struct bench_row *rows, int n)
+{
+    const char *script = cli->positional[0];
+    int accurate = -1, fastest = -1;
+    for (int i = 0; i < n; i++) {
+        if (rows[i].excluded)
+            continue;
+        if (accurate < 0 || rows[i].error < rows[accurate].error)
+            accurate = i;
+        if (fastest < 0 || rows[i].ms < rows[fastest].ms)
+            fastest = i;
+    }
+    if (accurate < 0) {
+        fprintf(stderr, "caustica: choose: every technique of %s leaves out part of the scene (above)\n", script);
+        return;
+    }
+    fprintf(stderr, "caustica: choose: no technique of %s reaches", script);
+    if (cli->max_error >= 0)
+        fprintf(stderr, " error %g", cli->max_error);
+    if (cli->max_time_ms >= 0)
+        fprintf(stderr, "%s %g ms a frame", cli->max_error >= 0 ? " within" : "", cli->max_time_ms);
+    if (cli->max_flicker >= 0)
+        fprintf(stderr, "%s flicker %g", cli->max_error >= 0 || cli->max_time_ms >= 0 ? " with" : "",
+                cli->max_flicker);
+    fprintf(stderr, " on this machine; the most accurate is %s (%s): %.4g in %.1f ms, the fastest %s (%s): "
+                    "%.4g in %.1f ms", rows[accurate].technique, rows[accurate].settings, rows[accurate].error,
+            rows[accurate].ms, rows[fastest].technique, rows[fastest].settings, rows[fastest].error,
+            rows[fastest].ms);
+    if (cli->max_flicker >= 0) {
+        int steady = -1;
+        for (int i = 0; i < n; i++)
+            if (!rows[i].excluded && rows[i].flicker >= 0 && (steady < 0 || rows[i].flicker < rows[steady].flicker))
+                steady = i;
+        if (steady >= 0)
+            fprintf(stderr, ", the steadiest %s (%s): flicker %.4g", rows[steady].technique,
+                    rows[steady].settings, rows[steady].flicker);
+        else
+            fprintf(stderr, "; the sweep has no flicker (measured before bench measured it: run bench again)");
+    }
+    fprintf(stderr, "\n");
+}
+
+/* With --error: the cheapest row within the error (and the time); with
+ * --time only: the most accurate within the time. -1: none. */
+static int choose_best(const struct cli *cli, const struct bench_row *rows, int n)
+{
+    int best = -1;
+    for (int i = 0; i < n; i++) {
+        if (rows[i].excluded)
+            continue;
+        /* a row without a flicker (a cache from before it was measured) fits no flicker bound */
+        bool fits = (cli->max_error < 0 || rows[i].error <= cli->max_error) &&
+                    (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms) &&
+                    (cli->max_flicker < 0 || (rows[i].flicker >= 0 && rows[i].flicker <= cli->max_flicker));
+        if (!fits)
+            continue;
+        bool better = best < 0 || (cli->max_error >= 0 ? rows[i].ms < rows[best].ms : rows[i].error < rows[best].error);
+        if (better)
+            best = i;
+    }
+    return best;
+}
+
 int cmd_choose(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1 || (cli->max_error < 0 && cli->max_time_ms < 0 && cli->max_flicker < 0)) {
@@ -148,32 +304,9 @@ int cmd_choose(struct app *app, struct cli *cli)
     }
     struct error err;
     char cached[4400];
-    if (!bench_sweep_cache_path(&sweep, dir, cached, sizeof cached, &err)) {
-        cli_print_error(&err);
-        return EXIT_SCENE_ERROR;
-    }
-    struct stat st;
-    bool present = lstat(cached, &st) == 0;
-    FILE *probe = present ? file_open_read(cached, true, &err) : NULL;
-    if (present && !probe) {
-        cli_print_error(&err); /* a link or a FIFO where the cache entry should be: never read, never replaced */
-        return EXIT_SCENE_ERROR;
-    }
-    if (probe) {
-        fclose(probe);
-        fprintf(stderr, "caustica: choose: the sweep from the bench cache %s\n", cached);
-    } else if (cli->cached_only) {
-        fprintf(stderr, "caustica: choose: --cached: no sweep of %s with these options in %s/cache (%s); run `caustica "
-                        "bench %s --sweep %s -o %s` with the same --size, --frames, --error-frames and --ref-* options, "
-                        "or leave out --cached\n", script, dir, cached, script, sweep.sweeps[0], dir);
-        return EXIT_SCENE_ERROR;
-    } else {
-        fprintf(stderr, "caustica: choose: no sweep of %s with these options in %s/cache: running `caustica bench %s "
-                        "--sweep %s -o %s` ...\n", script, dir, script, sweep.sweeps[0], dir);
-        int rc = cmd_bench(app, &sweep);
-        if (rc != 0)
-            return rc;
-    }
+    int rc = choose_sweep(app, cli, &sweep, dir, cached, sizeof cached);
+    if (rc != 0)
+        return rc;
     struct bench_row *rows = calloc(BENCH_CACHE_MAX_ROWS, sizeof *rows);
     int n = 0;
     if (!rows || !bench_cache_read(cached, rows, &n, &err)) {
@@ -181,115 +314,14 @@ int cmd_choose(struct app *app, struct cli *cli)
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    /* Times measured on another renderer (a cache from an llvmpipe node read
-     * on a GPU node) do not hold here: say so, once. */
-    if (app_ensure_gl(app, &err)) {
-        char here[256];
-        bench_renderer_label(app->gl->renderer, here, sizeof here);
-        if (!rows[0].renderer[0])
-            fprintf(stderr, "caustica: choose: warning: the cached sweep does not say which renderer measured it; "
-                            "its times may not be this machine's (%s)\n", here);
-        else if (strcmp(rows[0].renderer, here) != 0)
-            fprintf(stderr, "caustica: choose: warning: the cached sweep was measured on %s, this machine renders "
-                            "with %s: its frame times do not hold here (run bench again on this machine, or keep "
-                            "another -o DIR per machine)\n", rows[0].renderer, here);
-    }
-    /* Techniques that leave out part of the scene are not considered (one
-     * line each says which and why). The script's techniques, read once. */
-    struct technique_list *all = calloc(1, sizeof *all);
-    struct session_options base = {.script = script, .params = cli->params, .width = cli->width,
-                                   .height = cli->height, .past_last_frame = true};
-    struct session *s0 = NULL;
-    bool read = all && session_open(app, &base, &s0, &err) && techniques_read(s0, all, &err);
-    if (s0)
-        session_close(s0);
-    if (!read) {
-        free(all);
+    if (!choose_exclude(app, cli, rows, n, &err)) {
         free(rows);
         cli_print_error(&err);
         return EXIT_SCENE_ERROR;
     }
-    for (int i = 0; i < n; i++) {
-        bool seen = false;
-        for (int j = 0; j < i && !seen; j++)
-            seen = strcmp(rows[j].technique, rows[i].technique) == 0;
-        const struct technique *tech = NULL;
-        for (int j = 0; j < all->count && !tech; j++)
-            if (strcmp(all->items[j].name, rows[i].technique) == 0)
-                tech = &all->items[j];
-        if (seen || !tech) /* a cached row of a technique the script no longer declares: judged as it was */
-            continue;
-        bool leaves;
-        char why[400];
-        if (!technique_leaves_out(app, cli, script, tech, &leaves, why, sizeof why, &err)) {
-            free(all);
-            free(rows);
-            cli_print_error(&err);
-            return EXIT_SCENE_ERROR;
-        }
-        if (!leaves)
-            continue;
-        fprintf(stderr, "caustica: choose: %s is not considered: %s\n", rows[i].technique, why);
-        for (int j = i; j < n; j++)
-            if (strcmp(rows[j].technique, rows[i].technique) == 0)
-                rows[j].excluded = true;
-    }
-    free(all);
-    /* with --error: the cheapest within the error (and the time); with
-     * --time only: the most accurate within the time */
-    int best = -1;
-    for (int i = 0; i < n; i++) {
-        if (rows[i].excluded)
-            continue;
-        /* a row without a flicker (a cache from before it was measured) fits no flicker bound */
-        bool fits = (cli->max_error < 0 || rows[i].error <= cli->max_error) &&
-                    (cli->max_time_ms < 0 || rows[i].ms <= cli->max_time_ms) &&
-                    (cli->max_flicker < 0 || (rows[i].flicker >= 0 && rows[i].flicker <= cli->max_flicker));
-        if (!fits)
-            continue;
-        bool better = best < 0 || (cli->max_error >= 0 ? rows[i].ms < rows[best].ms : rows[i].error < rows[best].error);
-        if (better)
-            best = i;
-    }
+    int best = choose_best(cli, rows, n);
     if (best < 0) {
-        int accurate = -1, fastest = -1;
-        for (int i = 0; i < n; i++) {
-            if (rows[i].excluded)
-                continue;
-            if (accurate < 0 || rows[i].error < rows[accurate].error)
-                accurate = i;
-            if (fastest < 0 || rows[i].ms < rows[fastest].ms)
-                fastest = i;
-        }
-        if (accurate < 0) {
-            fprintf(stderr, "caustica: choose: every technique of %s leaves out part of the scene (above)\n", script);
-            free(rows);
-            return EXIT_SCENE_ERROR;
-        }
-        fprintf(stderr, "caustica: choose: no technique of %s reaches", script);
-        if (cli->max_error >= 0)
-            fprintf(stderr, " error %g", cli->max_error);
-        if (cli->max_time_ms >= 0)
-            fprintf(stderr, "%s %g ms a frame", cli->max_error >= 0 ? " within" : "", cli->max_time_ms);
-        if (cli->max_flicker >= 0)
-            fprintf(stderr, "%s flicker %g", cli->max_error >= 0 || cli->max_time_ms >= 0 ? " with" : "",
-                    cli->max_flicker);
-        fprintf(stderr, " on this machine; the most accurate is %s (%s): %.4g in %.1f ms, the fastest %s (%s): "
-                        "%.4g in %.1f ms", rows[accurate].technique, rows[accurate].settings, rows[accurate].error,
-                rows[accurate].ms, rows[fastest].technique, rows[fastest].settings, rows[fastest].error,
-                rows[fastest].ms);
-        if (cli->max_flicker >= 0) {
-            int steady = -1;
-            for (int i = 0; i < n; i++)
-                if (!rows[i].excluded && rows[i].flicker >= 0 && (steady < 0 || rows[i].flicker < rows[steady].flicker))
-                    steady = i;
-            if (steady >= 0)
-                fprintf(stderr, ", the steadiest %s (%s): flicker %.4g", rows[steady].technique,
-                        rows[steady].settings, rows[steady].flicker);
-            else
-                fprintf(stderr, "; the sweep has no flicker (measured before bench measured it: run bench again)");
-        }
-        fprintf(stderr, "\n");
+        choose_report_none(cli, rows, n);
         free(rows);
         return EXIT_SCENE_ERROR;
     }

@@ -131,14 +131,14 @@ static void remove_created_folders(const char *dir, const char *created)
     }
 }
 
-int cmd_record(struct app *app, struct cli *cli)
+/* record's options that do not go together (EXIT_USAGE), or 0. */
+static int record_check_options(const struct cli *cli)
 {
     if (cli->npositional != 1 || !cli->output) {
         fprintf(stderr, "caustica: record needs one scene script and -o DIR or -o PATTERN (out/shot_####.png)\n");
         cli_usage_hint(cli->verb);
         return EXIT_USAGE;
     }
-    struct error err;
     if (cli->half && !image_path_is_exr(cli->output)) {
         fprintf(stderr, "caustica: --half: half floats are for EXR frames (-o %s)\n", cli->output);
         return EXIT_USAGE;
@@ -156,19 +156,23 @@ int cmd_record(struct app *app, struct cli *cli)
                         "without --shard once every shard is done (the frames on disk are skipped) to encode them all\n");
         return EXIT_USAGE;
     }
-    /* -o DIR writes DIR/frame_####.png; -o out/shot_####.png names each file
-     * by its frame (a run of # is the zero-padded frame number; %04d is
-     * taken as ####, and out/shot.png, which every frame would overwrite,
-     * as out/shot_####.png). */
-    char output[4096], note[4400];
-    if (!output_pattern_normalize(cli->output, output, sizeof output, note, sizeof note)) {
+    return 0;
+}
+
+/* -o DIR writes DIR/frame_####.png; -o out/shot_####.png names each file
+ * by its frame (a run of # is the zero-padded frame number; %04d is
+ * taken as ####, and out/shot.png, which every frame would overwrite,
+ * as out/shot_####.png). */
+static int record_output(const struct cli *cli, char *output, size_t output_size, char *dir, size_t dir_size)
+{
+    char note[4400];
+    if (!output_pattern_normalize(cli->output, output, output_size, note, sizeof note)) {
         fprintf(stderr, "caustica: -o %s: the path is too long\n", cli->output);
         return EXIT_USAGE;
     }
     if (note[0] && !log_quiet())
         fprintf(stderr, "caustica: %s\n", note);
     bool pattern = output_pattern_is_pattern(output);
-    char dir[4096];
     if (pattern) {
         if (!image_path_is_display(output) && !image_path_is_pfm(output) && !image_path_is_hdr(output) &&
             !image_path_is_exr(output)) {
@@ -180,10 +184,84 @@ int cmd_record(struct app *app, struct cli *cli)
             fprintf(stderr, "caustica: -o %s: the # run must be in the file name, not in a folder\n", cli->output);
             return EXIT_USAGE;
         }
-        path_dirname(output, dir, sizeof dir);
+        path_dirname(output, dir, dir_size);
     } else {
-        snprintf(dir, sizeof dir, "%s", output);
+        snprintf(dir, dir_size, "%s", output);
     }
+    return 0;
+}
+
+/* The frames to render: the set given (in order, each once), or the
+ * script's; NULL (said) where one is past the script's last frame. */
+static int *record_frames(const struct cli *cli, const struct session *s, int *count)
+{
+    int *frames;
+    *count = 0;
+    if (cli->frames_set) {
+        frames = frame_set_list(&cli->frame_set, count);
+    } else {
+        *count = s->frames;
+        frames = malloc((size_t)(*count > 0 ? *count : 1) * sizeof *frames);
+        for (int f = 0; frames && f < *count; f++)
+            frames[f] = f;
+    }
+    if (!frames) {
+        fprintf(stderr, "caustica: out of memory for the list of frames\n");
+        return NULL;
+    }
+    /* The whole set checked before the first frame: not two frames, then an error. */
+    for (int k = 0; k < *count; k++) {
+        if (frames[k] >= s->frames) {
+            fprintf(stderr, "caustica: --frames: frame %d is past the script's last frame %d (it returns frames = %d; "
+                            "raise it, or ask for frames up to %d)\n", frames[k], s->frames - 1, s->frames,
+                    s->frames - 1);
+            free(frames);
+            return NULL;
+        }
+    }
+    /* A shard of a farm's array job: every n-th frame of the set, from the
+     * i-th (interleaved, so each shard spans the whole animation). */
+    if (cli->shard_count > 0) {
+        int kept = 0;
+        for (int k = 0; k < *count; k++)
+            if (k % cli->shard_count == cli->shard_index)
+                frames[kept++] = frames[k];
+        *count = kept;
+    }
+    return frames;
+}
+
+/* The video preview: every frame of the set, written now or before. */
+static bool record_video(const struct cli *cli, const char *output, const int *frames, int count, double video_fps,
+                         struct error *err)
+{
+    char **paths = calloc((size_t)(count > 0 ? count : 1), sizeof *paths);
+    int n = 0;
+    for (int k = 0; paths && k < count; k++) {
+        char path[4200];
+        if (output_pattern_path(output, frames[k], path, sizeof path) && file_exists(path))
+            paths[n++] = strdup(path);
+    }
+    bool ok = paths && video_encode((const char *const *)paths, n, video_fps, cli->video, cli->crf, err);
+    if (!paths)
+        error_set(err, "out of memory");
+    for (int k = 0; paths && k < n; k++)
+        free(paths[k]);
+    free(paths);
+    if (ok)
+        printf("wrote %s (%d frame%s at %g fps)\n", cli->video, n, n == 1 ? "" : "s", video_fps);
+    return ok;
+}
+
+int cmd_record(struct app *app, struct cli *cli)
+{
+    int rc = record_check_options(cli);
+    if (rc)
+        return rc;
+    struct error err;
+    char output[4096], dir[4096];
+    if ((rc = record_output(cli, output, sizeof output, dir, sizeof dir)) != 0)
+        return rc;
     char created[4096];
     if (!dir_ensure_all(dir, created, sizeof created, &err)) {
         cli_print_error(&err);
@@ -198,42 +276,12 @@ int cmd_record(struct app *app, struct cli *cli)
         remove_created_folders(dir, created); /* made for this run, still empty: nothing left behind */
         return EXIT_SCENE_ERROR;
     }
-    /* The frames: the set given (in order, each once), or the script's. */
     int count = 0;
-    int *frames;
-    if (cli->frames_set) {
-        frames = frame_set_list(&cli->frame_set, &count);
-    } else {
-        count = s->frames;
-        frames = malloc((size_t)(count > 0 ? count : 1) * sizeof *frames);
-        for (int f = 0; frames && f < count; f++)
-            frames[f] = f;
-    }
+    int *frames = record_frames(cli, s, &count);
     if (!frames) {
         session_close(s);
-        fprintf(stderr, "caustica: out of memory for the list of frames\n");
+        remove_created_folders(dir, created);
         return EXIT_SCENE_ERROR;
-    }
-    /* The whole set checked before the first frame: not two frames, then an error. */
-    for (int k = 0; k < count; k++) {
-        if (frames[k] >= s->frames) {
-            fprintf(stderr, "caustica: --frames: frame %d is past the script's last frame %d (it returns frames = %d; "
-                            "raise it, or ask for frames up to %d)\n", frames[k], s->frames - 1, s->frames,
-                    s->frames - 1);
-            free(frames);
-            session_close(s);
-            remove_created_folders(dir, created);
-            return EXIT_SCENE_ERROR;
-        }
-    }
-    /* A shard of a farm's array job: every n-th frame of the set, from the
-     * i-th (interleaved, so each shard spans the whole animation). */
-    if (cli->shard_count > 0) {
-        int kept = 0;
-        for (int k = 0; k < count; k++)
-            if (k % cli->shard_count == cli->shard_index)
-                frames[kept++] = frames[k];
-        count = kept;
     }
     bool tty = isatty(STDERR_FILENO);
     double start = log_now();
@@ -278,24 +326,8 @@ int cmd_record(struct app *app, struct cli *cli)
     if (tty && !log_quiet() && written)
         fputc('\n', stderr);
     session_close(s);
-    /* The video preview: every frame of the set, written now or before. */
-    if (ok && cli->video) {
-        char **paths = calloc((size_t)(count > 0 ? count : 1), sizeof *paths);
-        int n = 0;
-        for (int k = 0; paths && k < count; k++) {
-            char path[4200];
-            if (output_pattern_path(output, frames[k], path, sizeof path) && file_exists(path))
-                paths[n++] = strdup(path);
-        }
-        ok = paths && video_encode((const char *const *)paths, n, video_fps, cli->video, cli->crf, &err);
-        if (!paths)
-            error_set(&err, "out of memory");
-        for (int k = 0; paths && k < n; k++)
-            free(paths[k]);
-        free(paths);
-        if (ok)
-            printf("wrote %s (%d frame%s at %g fps)\n", cli->video, n, n == 1 ? "" : "s", video_fps);
-    }
+    if (ok && cli->video)
+        ok = record_video(cli, output, frames, count, video_fps, &err);
     free(frames);
     if (!ok) {
         cli_print_error(&err);

@@ -161,6 +161,50 @@ static bool save_window(int w, int h, const char *path, struct error *err)
     return ok;
 }
 
+/* The keys pressed since the last frame: pause, a frame back or forward
+ * (pausing), a screenshot, a reload. */
+static void take_keys(const struct session *s, bool *paused, double *clock, bool *reload, bool *screenshot)
+{
+    int current = (int)floor(*clock * s->fps + 1e-6);
+    for (int k = 0; k < keys.count; k++) {
+        switch (keys.queue[k]) {
+        case KEY_PAUSE: *paused = !*paused; break;
+        case KEY_BACK: *paused = true; current--; break;
+        case KEY_FORWARD: *paused = true; current++; break;
+        case KEY_SCREENSHOT: *screenshot = true; break;
+        case KEY_RELOAD: *reload = true; break;
+        }
+        if (keys.queue[k] == KEY_BACK || keys.queue[k] == KEY_FORWARD)
+            *clock = ((current % s->frames + s->frames) % s->frames) / s->fps;
+    }
+    keys.count = 0;
+}
+
+/* Live reload (a changed script, or r), then shaders. A failure keeps the
+ * last good state. */
+static void reload_changed(struct app *app, const struct session_options *o, struct session **s,
+                           long long *script_mtime, bool reload)
+{
+    struct error err;
+    long long mt = file_mtime_ns((*s)->script);
+    if (mt != *script_mtime || reload) {
+        *script_mtime = mt;
+        struct session *fresh;
+        if (session_open(app, o, &fresh, &err)) {
+            session_close(*s);
+            *s = fresh;
+            fprintf(stderr, "caustica: reloaded %s\n", (*s)->script);
+        } else {
+            cli_print_error(&err);
+        }
+    }
+    bool reloaded;
+    if (!gl_program_cache_reload_changed(&app->renderer.programs, &reloaded, &err))
+        cli_print_error(&err);
+    else if (reloaded)
+        fprintf(stderr, "caustica: reloaded shaders\n");
+}
+
 int cmd_run(struct app *app, struct cli *cli)
 {
     if (cli->npositional != 1) {
@@ -218,37 +262,8 @@ int cmd_run(struct app *app, struct cli *cli)
             clock += now - last;
         last = now;
         bool reload = false, screenshot = false;
-        int current = (int)floor(clock * s->fps + 1e-6);
-        for (int k = 0; k < keys.count; k++) {
-            switch (keys.queue[k]) {
-            case KEY_PAUSE: paused = !paused; break;
-            case KEY_BACK: paused = true; current--; break;
-            case KEY_FORWARD: paused = true; current++; break;
-            case KEY_SCREENSHOT: screenshot = true; break;
-            case KEY_RELOAD: reload = true; break;
-            }
-            if (keys.queue[k] == KEY_BACK || keys.queue[k] == KEY_FORWARD)
-                clock = ((current % s->frames + s->frames) % s->frames) / s->fps;
-        }
-        keys.count = 0;
-        /* Live reload (a changed script, or r), then shaders. A failure keeps the last good state. */
-        long long mt = file_mtime_ns(s->script);
-        if (mt != script_mtime || reload) {
-            script_mtime = mt;
-            struct session *fresh;
-            if (session_open(app, &o, &fresh, &err)) {
-                session_close(s);
-                s = fresh;
-                fprintf(stderr, "caustica: reloaded %s\n", s->script);
-            } else {
-                cli_print_error(&err);
-            }
-        }
-        bool reloaded;
-        if (!gl_program_cache_reload_changed(&app->renderer.programs, &reloaded, &err))
-            cli_print_error(&err);
-        else if (reloaded)
-            fprintf(stderr, "caustica: reloaded shaders\n");
+        take_keys(s, &paused, &clock, &reload, &screenshot);
+        reload_changed(app, &o, &s, &script_mtime, reload);
         /* --frames N steps frame by frame, looping as playback does (a still
          * shows its one frame N times) */
         int want = limit > 0 && !paused && clock == 0.0 ? frame % s->frames

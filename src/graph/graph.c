@@ -316,108 +316,104 @@ static int input_param(const struct pass_desc *d, const char *slot)
     return -1;
 }
 
-bool graph_check(struct graph *g, struct error *err)
+/* Input k of pass i, made by output `which` of pass `producer`: a texture
+ * where a texture is read, a record of the right type where one is. */
+static bool check_input_kind(const struct graph *g, int i, int k, int producer, int which, struct error *err)
 {
-    if (g->count == 0)
-        return error_set(err, "the graph has no passes: add one with g:add(name, c.pass.<kind>{...})");
-    if (!add_blocks(g, err))
-        return false;
-    if (!g->output[0])
-        return error_set(err, "the graph has no output: call g:output(\"pass.output\")");
-    /* Every input must be produced by an earlier pass. */
-    for (int i = 0; i < g->count; i++) {
-        struct graph_entry *e = &g->entries[i];
-        struct pass *p = e->pass;
-        for (int k = 0; k < p->input_count; k++) {
-            int which = 0;
-            int producer = find_output_of(g, i, p->inputs[k].source, &which);
-            if (producer >= 0) {
-                /* a texture where a texture is read, a record of the right type where one is */
-                int param = input_param(p->desc, p->inputs[k].name);
-                const struct pass_output_decl *made = &g->entries[producer].pass->outputs[which];
-                const struct record_type *want = param >= 0 ? p->desc->params[param].bundle : NULL;
-                const struct record_type *have = made->kind == RESOURCE_RECORD ? made->record : NULL;
-                if (want != have)
-                    return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', which is %s%s, where %s%s is expected",
-                                     p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                                     p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture",
-                                     have ? have->name : "", want ? "a " : "a texture", want ? want->name : "");
-                /* a texture that must carry a typed record (a shadow map's
-                 * light matrix): another texture there rendered unshadowed,
-                 * exit 0 and no word (issue 54) */
-                const struct record_type *want_record = param >= 0 ? p->desc->params[param].record : NULL;
-                if (want_record && made->record != want_record) {
-                    /* an input list's item as the script wrote it: shadow[2] */
-                    char shown[PASS_NAME_MAX + 16];
-                    const char *pname = p->desc->params[param].name;
-                    if (p->desc->params[param].type == PASS_PARAM_INPUT_LIST)
-                        snprintf(shown, sizeof shown, "%s[%d]", pname, atoi(p->inputs[k].name + strlen(pname)) + 1);
-                    else
-                        snprintf(shown, sizeof shown, "%s", pname);
-                    return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', a texture that is not a %s's (a %s "
-                                          "pass's `depth` is expected, e.g. \"shadow.depth\")",
-                                     p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                                     shown, p->inputs[k].source, want_record->name, want_record->name);
-                }
-            }
-            if (producer < 0) {
-                char producers[512];
-                list_producers(g, p->inputs[k].source, producers, sizeof producers);
-                int later = find_output_of(g, g->count, p->inputs[k].source, &which);
-                if (later >= 0)
-                    return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which pass '%s' (pass %d) "
-                                          "makes only later: move '%s' before '%s'",
-                                     p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
-                                     g->entries[later].pass->name, later + 1, g->entries[later].pass->name, p->name);
-                /* Say what the named pass does make ("shade.colour": shade makes color, ...). */
-                char made[512] = "";
-                const char *dot = strchr(p->inputs[k].source, '.');
-                for (int j = 0; dot && j < g->count; j++) {
-                    const struct pass *q = g->entries[j].pass;
-                    if (strlen(q->name) != (size_t)(dot - p->inputs[k].source) ||
-                        strncmp(q->name, p->inputs[k].source, (size_t)(dot - p->inputs[k].source)) != 0)
-                        continue;
-                    size_t used = (size_t)snprintf(made, sizeof made, "; pass '%s' makes ", q->name);
-                    for (int o = 0; o < q->output_count && used < sizeof made; o++) {
-                        int w = snprintf(made + used, sizeof made - used, "%s'%s.%s'", o ? ", " : "", q->name,
-                                         q->outputs[o].name);
-                        if (w > 0)
-                            used += (size_t)w;
-                    }
-                }
-                return error_set(err, "%s%spass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s%s",
-                                 p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                                 i + 1, p->inputs[k].name, p->inputs[k].source,
-                                 producers[0] ? "; outputs of that name: " : "", producers, made);
-            }
+    const struct pass *p = g->entries[i].pass;
+    int param = input_param(p->desc, p->inputs[k].name);
+    const struct pass_output_decl *made = &g->entries[producer].pass->outputs[which];
+    const struct record_type *want = param >= 0 ? p->desc->params[param].bundle : NULL;
+    const struct record_type *have = made->kind == RESOURCE_RECORD ? made->record : NULL;
+    if (want != have)
+        return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', which is %s%s, where %s%s is expected",
+                         p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                         p->inputs[k].name, p->inputs[k].source, have ? "a " : "a texture",
+                         have ? have->name : "", want ? "a " : "a texture", want ? want->name : "");
+    /* a texture that must carry a typed record (a shadow map's
+     * light matrix): another texture there rendered unshadowed,
+     * exit 0 and no word (issue 54) */
+    const struct record_type *want_record = param >= 0 ? p->desc->params[param].record : NULL;
+    if (want_record && made->record != want_record) {
+        /* an input list's item as the script wrote it: shadow[2] */
+        char shown[PASS_NAME_MAX + 16];
+        const char *pname = p->desc->params[param].name;
+        if (p->desc->params[param].type == PASS_PARAM_INPUT_LIST)
+            snprintf(shown, sizeof shown, "%s[%d]", pname, atoi(p->inputs[k].name + strlen(pname)) + 1);
+        else
+            snprintf(shown, sizeof shown, "%s", pname);
+        return error_set(err, "%s%spass '%s' (%s) reads %s = '%s', a texture that is not a %s's (a %s "
+                              "pass's `depth` is expected, e.g. \"shadow.depth\")",
+                         p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                         shown, p->inputs[k].source, want_record->name, want_record->name);
+    }
+    return true;
+}
+
+/* Input k of pass i, which no earlier pass makes: which pass makes it
+ * later, or what the named pass does make ("shade.colour": shade makes
+ * color, ...). Always false. */
+static bool explain_missing_input(const struct graph *g, int i, int k, struct error *err)
+{
+    const struct pass *p = g->entries[i].pass;
+    int which = 0;
+    char producers[512];
+    list_producers(g, p->inputs[k].source, producers, sizeof producers);
+    int later = find_output_of(g, g->count, p->inputs[k].source, &which);
+    if (later >= 0)
+        return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which pass '%s' (pass %d) "
+                              "makes only later: move '%s' before '%s'",
+                         p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
+                         g->entries[later].pass->name, later + 1, g->entries[later].pass->name, p->name);
+    /* what the named pass does make */
+    char made[512] = "";
+    const char *dot = strchr(p->inputs[k].source, '.');
+    for (int j = 0; dot && j < g->count; j++) {
+        const struct pass *q = g->entries[j].pass;
+        if (strlen(q->name) != (size_t)(dot - p->inputs[k].source) ||
+            strncmp(q->name, p->inputs[k].source, (size_t)(dot - p->inputs[k].source)) != 0)
+            continue;
+        size_t used = (size_t)snprintf(made, sizeof made, "; pass '%s' makes ", q->name);
+        for (int o = 0; o < q->output_count && used < sizeof made; o++) {
+            int w = snprintf(made + used, sizeof made - used, "%s'%s.%s'", o ? ", " : "", q->name,
+                             q->outputs[o].name);
+            if (w > 0)
+                used += (size_t)w;
         }
     }
+    return error_set(err, "%s%spass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s%s",
+                     p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
+                     i + 1, p->inputs[k].name, p->inputs[k].source,
+                     producers[0] ? "; outputs of that name: " : "", producers, made);
+}
+
+/* The graph's output, which no pass makes: the nearest name it makes (a
+ * typo: "env.colr"). Always false. */
+static bool explain_missing_output(const struct graph *g, struct error *err)
+{
+    char producers[512], nearest[RESOURCE_NAME_MAX + 32] = "";
+    list_producers(g, g->output, producers, sizeof producers);
+    char names[256][RESOURCE_NAME_MAX];
+    const char *candidates[256];
+    size_t count = 0;
+    for (int i = 0; i < g->count; i++)
+        for (int o = 0; o < g->entries[i].pass->output_count && count < 256; o++) {
+            snprintf(names[count], sizeof names[count], "%s.%s", g->entries[i].pass->name,
+                     g->entries[i].pass->outputs[o].name);
+            candidates[count] = names[count];
+            count++;
+        }
+    const char *near = count ? suggest_nearest(g->output, candidates, count) : NULL;
+    if (near)
+        snprintf(nearest, sizeof nearest, " (did you mean '%s'?)", near);
+    return error_set(err, "%sgraph output '%s' is made by no pass%s%s%s", g->output_where, g->output, nearest,
+                     producers[0] ? "; outputs of that name: " : "", producers);
+}
+
+/* Keeps what the output depends on, walking backwards. */
+static void keep_needed(struct graph *g, int out_pass)
+{
     int which = 0;
-    int out_pass = find_output_of(g, g->count, g->output, &which);
-    if (out_pass < 0) {
-        char producers[512], nearest[RESOURCE_NAME_MAX + 32] = "";
-        list_producers(g, g->output, producers, sizeof producers);
-        /* a typo ("env.colr"): the nearest "pass.output" the graph makes */
-        char names[256][RESOURCE_NAME_MAX];
-        const char *candidates[256];
-        size_t count = 0;
-        for (int i = 0; i < g->count; i++)
-            for (int o = 0; o < g->entries[i].pass->output_count && count < 256; o++) {
-                snprintf(names[count], sizeof names[count], "%s.%s", g->entries[i].pass->name,
-                         g->entries[i].pass->outputs[o].name);
-                candidates[count] = names[count];
-                count++;
-            }
-        const char *near = count ? suggest_nearest(g->output, candidates, count) : NULL;
-        if (near)
-            snprintf(nearest, sizeof nearest, " (did you mean '%s'?)", near);
-        return error_set(err, "%sgraph output '%s' is made by no pass%s%s%s", g->output_where, g->output, nearest,
-                         producers[0] ? "; outputs of that name: " : "", producers);
-    }
-    if (g->entries[out_pass].pass->outputs[which].kind == RESOURCE_RECORD)
-        return error_set(err, "graph output '%s' is a %s, not an image: output one of the textures made from it",
-                         g->output, g->entries[out_pass].pass->outputs[which].record->name);
-    /* Keep what the output depends on, walking backwards. */
     for (int i = 0; i < g->count; i++) {
         g->entries[i].state = GRAPH_PASS_PRUNED;
         snprintf(g->entries[i].reason, sizeof g->entries[i].reason,
@@ -437,6 +433,37 @@ bool graph_check(struct graph *g, struct error *err)
             }
         }
     }
+}
+
+bool graph_check(struct graph *g, struct error *err)
+{
+    if (g->count == 0)
+        return error_set(err, "the graph has no passes: add one with g:add(name, c.pass.<kind>{...})");
+    if (!add_blocks(g, err))
+        return false;
+    if (!g->output[0])
+        return error_set(err, "the graph has no output: call g:output(\"pass.output\")");
+    /* Every input must be produced by an earlier pass. */
+    for (int i = 0; i < g->count; i++) {
+        struct graph_entry *e = &g->entries[i];
+        struct pass *p = e->pass;
+        for (int k = 0; k < p->input_count; k++) {
+            int which = 0;
+            int producer = find_output_of(g, i, p->inputs[k].source, &which);
+            if (producer < 0)
+                return explain_missing_input(g, i, k, err);
+            if (!check_input_kind(g, i, k, producer, which, err))
+                return false;
+        }
+    }
+    int which = 0;
+    int out_pass = find_output_of(g, g->count, g->output, &which);
+    if (out_pass < 0)
+        return explain_missing_output(g, err);
+    if (g->entries[out_pass].pass->outputs[which].kind == RESOURCE_RECORD)
+        return error_set(err, "graph output '%s' is a %s, not an image: output one of the textures made from it",
+                         g->output, g->entries[out_pass].pass->outputs[which].record->name);
+    keep_needed(g, out_pass);
     return true;
 }
 

@@ -39,8 +39,8 @@ enum pass_param_type {
 
 /* A record a resource carries (issue 54): a struct its producer owns,
  * named by one static descriptor per type, defined by the module that owns
- * the struct (LAYER_SET_RECORD in passes/layers.c, SHADOW_MAP_RECORD in
- * passes/shadow_inputs.c) and compared by pointer, never by its name.
+ * the struct (LAYER_SET_RECORD in passes/helpers/layers.c, SHADOW_MAP_RECORD in
+ * passes/helpers/shadow_inputs.c) and compared by pointer, never by its name.
  * A reader gets it through pass_frame_record, which graph_check has made
  * safe: a connected input is of the type its descriptor asks for. What the
  * reader gets is the producer's: valid from the producer's execute in this

@@ -396,6 +396,86 @@ bool extension_read(const std::string &name)
            name == "KHR_materials_emissive_strength";
 }
 
+// KHR_materials_specular: the dielectric reflectance's factor and colour.
+static void read_specular(const tinygltf::Model &model, const tinygltf::Material &mat, const tinygltf::Value &v,
+                          gltf_material &m)
+{
+    if (v.Has("specularFactor"))
+        m.specular = (float)v.Get("specularFactor").GetNumberAsDouble();
+    if (v.Has("specularColorFactor")) {
+        const tinygltf::Value &c = v.Get("specularColorFactor");
+        for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
+            m.specular_color[i] = (float)c.Get(i).GetNumberAsDouble();
+    }
+    std::string where = "material '" + mat.name + "'";
+    read_extension_texture(model, v, "specularTexture", m.specular_texture, where);
+    read_extension_texture(model, v, "specularColorTexture", m.specular_color_texture, where);
+    if (!std::isfinite(m.specular) || m.specular < 0.0f || m.specular > 1.0f)
+        throw Fail{where + ": KHR_materials_specular specularFactor must be in [0, 1]"};
+    for (int c = 0; c < 3; c++)
+        if (!std::isfinite(m.specular_color[c]) || m.specular_color[c] < 0.0f || m.specular_color[c] > 1e3f)
+            throw Fail{where + ": KHR_materials_specular specularColorFactor must be in [0, 1000]"};
+}
+
+// KHR_materials_clearcoat: a second GGX lobe over the material (brdf.h).
+static void read_clearcoat(const tinygltf::Model &model, const tinygltf::Material &mat, const tinygltf::Value &v,
+                           gltf_material &m)
+{
+    std::string where = "material '" + mat.name + "'";
+    if (v.Has("clearcoatFactor"))
+        m.clearcoat = (float)v.Get("clearcoatFactor").GetNumberAsDouble();
+    if (v.Has("clearcoatRoughnessFactor"))
+        m.clearcoat_roughness = (float)v.Get("clearcoatRoughnessFactor").GetNumberAsDouble();
+    read_extension_texture(model, v, "clearcoatTexture", m.clearcoat_texture, where);
+    read_extension_texture(model, v, "clearcoatRoughnessTexture", m.clearcoat_roughness_texture, where);
+    read_extension_texture(model, v, "clearcoatNormalTexture", m.clearcoat_normal_texture, where);
+    if (v.Has("clearcoatNormalTexture") && v.Get("clearcoatNormalTexture").Has("scale"))
+        m.clearcoat_normal_texture.scale = (float)v.Get("clearcoatNormalTexture").Get("scale").GetNumberAsDouble();
+    if (!std::isfinite(m.clearcoat) || m.clearcoat < 0.0f || m.clearcoat > 1.0f ||
+        !std::isfinite(m.clearcoat_roughness) || m.clearcoat_roughness < 0.0f || m.clearcoat_roughness > 1.0f)
+        throw Fail{where + ": KHR_materials_clearcoat clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]"};
+    if (!std::isfinite(m.clearcoat_normal_texture.scale) || std::fabs(m.clearcoat_normal_texture.scale) > 1e3)
+        throw Fail{where + ": KHR_materials_clearcoat clearcoatNormalTexture.scale must be finite"};
+}
+
+// The rules c.material.glass applies (finite, IOR > 0, colours in
+// [0, 1]): a file must not slip past them into NaN or negative absorption.
+static void check_material(const tinygltf::Material &mat, const gltf_material &m)
+{
+    std::string name = "material '" + mat.name + "'";
+    for (int c = 0; c < 3; c++) {
+        if (!std::isfinite(m.base_color[c]) || m.base_color[c] < 0.0f)
+            throw Fail{name + ": baseColorFactor must be finite and >= 0"};
+        if (!std::isfinite(m.attenuation_color[c]) || m.attenuation_color[c] < 0.0f || m.attenuation_color[c] > 1.0f)
+            throw Fail{name + ": KHR_materials_volume attenuationColor must be in [0, 1]"};
+        if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
+            throw Fail{name + ": emissiveFactor x KHR_materials_emissive_strength must be finite and >= 0"};
+    }
+    if (!std::isfinite(m.ior) || !(m.ior > 0.0f))
+        throw Fail{name + ": KHR_materials_ior ior must be a positive finite number, got " + std::to_string(m.ior)};
+    if (!std::isfinite(m.transmission) || m.transmission < 0.0f || m.transmission > 1.0f)
+        throw Fail{name + ": KHR_materials_transmission transmissionFactor must be in [0, 1]"};
+    if (!std::isfinite(m.alpha) || m.alpha < 0.0f || m.alpha > 1.0f)
+        throw Fail{name + ": baseColorFactor's alpha must be in [0, 1]"};
+    if (!std::isfinite(m.metallic) || m.metallic < 0.0f || m.metallic > 1.0f || !std::isfinite(m.roughness) ||
+        m.roughness < 0.0f || m.roughness > 1.0f)
+        throw Fail{name + ": metallicFactor and roughnessFactor must be in [0, 1]"};
+    if (!std::isfinite(m.alpha_cutoff) || m.alpha_cutoff < 0.0f)
+        throw Fail{name + ": alphaCutoff must be a finite number >= 0"};
+    // 0 stands for "infinite" (no absorption); anything else must be a
+    // distance at which -ln(c)/d stays finite (c >= 1e-6 in mesh.c: d >= 1e-30
+    // keeps 13.8/d below FLT_MAX).
+    // A path length inside the glass in the mesh's units: finite and
+    // >= 0 (1e308 was inf as a float, and a negative one turned absorption
+    // into gain: NaN and Inf pixels). 1e6 units is past any scene's size.
+    if (!std::isfinite(m.thickness) || m.thickness < 0.0f || m.thickness > 1e6f)
+        throw Fail{name + ": KHR_materials_volume thicknessFactor must be a finite distance in [0, 1e6], got " +
+                   std::to_string(m.thickness)};
+    if (!std::isfinite(m.attenuation_distance) || m.attenuation_distance < 0.0f ||
+        (m.attenuation_distance > 0.0f && m.attenuation_distance < 1e-30f))
+        throw Fail{name + ": KHR_materials_volume attenuationDistance must be a positive finite distance"};
+}
+
 void read_material(const tinygltf::Model &model, int index, gltf_material &m)
 {
     const tinygltf::Material &mat = model.materials[(size_t)index];
@@ -429,43 +509,11 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
     for (int c = 0; c < 3; c++)
         m.specular_color[c] = 1.0f;
     ext = mat.extensions.find("KHR_materials_specular");
-    if (ext != mat.extensions.end()) {
-        if (ext->second.Has("specularFactor"))
-            m.specular = (float)ext->second.Get("specularFactor").GetNumberAsDouble();
-        if (ext->second.Has("specularColorFactor")) {
-            const tinygltf::Value &c = ext->second.Get("specularColorFactor");
-            for (int i = 0; i < 3 && i < (int)c.ArrayLen(); i++)
-                m.specular_color[i] = (float)c.Get(i).GetNumberAsDouble();
-        }
-        std::string where = "material '" + mat.name + "'";
-        read_extension_texture(model, ext->second, "specularTexture", m.specular_texture, where);
-        read_extension_texture(model, ext->second, "specularColorTexture", m.specular_color_texture, where);
-        if (!std::isfinite(m.specular) || m.specular < 0.0f || m.specular > 1.0f)
-            throw Fail{where + ": KHR_materials_specular specularFactor must be in [0, 1]"};
-        for (int c = 0; c < 3; c++)
-            if (!std::isfinite(m.specular_color[c]) || m.specular_color[c] < 0.0f || m.specular_color[c] > 1e3f)
-                throw Fail{where + ": KHR_materials_specular specularColorFactor must be in [0, 1000]"};
-    }
-    // KHR_materials_clearcoat: a second GGX lobe over the material (brdf.h)
+    if (ext != mat.extensions.end())
+        read_specular(model, mat, ext->second, m);
     ext = mat.extensions.find("KHR_materials_clearcoat");
-    if (ext != mat.extensions.end()) {
-        const tinygltf::Value &v = ext->second;
-        std::string where = "material '" + mat.name + "'";
-        if (v.Has("clearcoatFactor"))
-            m.clearcoat = (float)v.Get("clearcoatFactor").GetNumberAsDouble();
-        if (v.Has("clearcoatRoughnessFactor"))
-            m.clearcoat_roughness = (float)v.Get("clearcoatRoughnessFactor").GetNumberAsDouble();
-        read_extension_texture(model, v, "clearcoatTexture", m.clearcoat_texture, where);
-        read_extension_texture(model, v, "clearcoatRoughnessTexture", m.clearcoat_roughness_texture, where);
-        read_extension_texture(model, v, "clearcoatNormalTexture", m.clearcoat_normal_texture, where);
-        if (v.Has("clearcoatNormalTexture") && v.Get("clearcoatNormalTexture").Has("scale"))
-            m.clearcoat_normal_texture.scale = (float)v.Get("clearcoatNormalTexture").Get("scale").GetNumberAsDouble();
-        if (!std::isfinite(m.clearcoat) || m.clearcoat < 0.0f || m.clearcoat > 1.0f ||
-            !std::isfinite(m.clearcoat_roughness) || m.clearcoat_roughness < 0.0f || m.clearcoat_roughness > 1.0f)
-            throw Fail{where + ": KHR_materials_clearcoat clearcoatFactor and clearcoatRoughnessFactor must be in [0, 1]"};
-        if (!std::isfinite(m.clearcoat_normal_texture.scale) || std::fabs(m.clearcoat_normal_texture.scale) > 1e3)
-            throw Fail{where + ": KHR_materials_clearcoat clearcoatNormalTexture.scale must be finite"};
-    }
+    if (ext != mat.extensions.end())
+        read_clearcoat(model, mat, ext->second, m);
     ext = mat.extensions.find("KHR_materials_ior");
     if (ext != mat.extensions.end() && ext->second.Has("ior"))
         m.ior = (float)ext->second.Get("ior").GetNumberAsDouble();
@@ -510,40 +558,7 @@ void read_material(const tinygltf::Model &model, int index, gltf_material &m)
         read_texture(model, mat.occlusionTexture.index, mat.occlusionTexture.texCoord, mat.occlusionTexture.extensions,
                      m.occlusion_texture, where);
     }
-    // The rules c.material.glass applies (finite, IOR > 0, colours in
-    // [0, 1]): a file must not slip past them into NaN or negative absorption.
-    std::string name = "material '" + mat.name + "'";
-    for (int c = 0; c < 3; c++) {
-        if (!std::isfinite(m.base_color[c]) || m.base_color[c] < 0.0f)
-            throw Fail{name + ": baseColorFactor must be finite and >= 0"};
-        if (!std::isfinite(m.attenuation_color[c]) || m.attenuation_color[c] < 0.0f || m.attenuation_color[c] > 1.0f)
-            throw Fail{name + ": KHR_materials_volume attenuationColor must be in [0, 1]"};
-        if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
-            throw Fail{name + ": emissiveFactor x KHR_materials_emissive_strength must be finite and >= 0"};
-    }
-    if (!std::isfinite(m.ior) || !(m.ior > 0.0f))
-        throw Fail{name + ": KHR_materials_ior ior must be a positive finite number, got " + std::to_string(m.ior)};
-    if (!std::isfinite(m.transmission) || m.transmission < 0.0f || m.transmission > 1.0f)
-        throw Fail{name + ": KHR_materials_transmission transmissionFactor must be in [0, 1]"};
-    if (!std::isfinite(m.alpha) || m.alpha < 0.0f || m.alpha > 1.0f)
-        throw Fail{name + ": baseColorFactor's alpha must be in [0, 1]"};
-    if (!std::isfinite(m.metallic) || m.metallic < 0.0f || m.metallic > 1.0f || !std::isfinite(m.roughness) ||
-        m.roughness < 0.0f || m.roughness > 1.0f)
-        throw Fail{name + ": metallicFactor and roughnessFactor must be in [0, 1]"};
-    if (!std::isfinite(m.alpha_cutoff) || m.alpha_cutoff < 0.0f)
-        throw Fail{name + ": alphaCutoff must be a finite number >= 0"};
-    // 0 stands for "infinite" (no absorption); anything else must be a
-    // distance at which -ln(c)/d stays finite (c >= 1e-6 in mesh.c: d >= 1e-30
-    // keeps 13.8/d below FLT_MAX).
-    // A path length inside the glass in the mesh's units: finite and
-    // >= 0 (1e308 was inf as a float, and a negative one turned absorption
-    // into gain: NaN and Inf pixels). 1e6 units is past any scene's size.
-    if (!std::isfinite(m.thickness) || m.thickness < 0.0f || m.thickness > 1e6f)
-        throw Fail{name + ": KHR_materials_volume thicknessFactor must be a finite distance in [0, 1e6], got " +
-                   std::to_string(m.thickness)};
-    if (!std::isfinite(m.attenuation_distance) || m.attenuation_distance < 0.0f ||
-        (m.attenuation_distance > 0.0f && m.attenuation_distance < 1e-30f))
-        throw Fail{name + ": KHR_materials_volume attenuationDistance must be a positive finite distance"};
+    check_material(mat, m);
 }
 
 // The index in b.materials of glTF material `index` (read on first use), or
@@ -562,26 +577,11 @@ int material_slot(const tinygltf::Model &model, int index, Builder &b)
     return b.slot_of[(size_t)index];
 }
 
-void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
-                   const Mat &world, Builder &b)
+// The primitive's triangle indices, checked (unsigned integers within its
+// nv vertices, whole triangles); 0..nv-1 where it has none.
+static std::vector<uint32_t> read_indices(const tinygltf::Model &model, const tinygltf::Mesh &mesh,
+                                          const tinygltf::Primitive &prim, size_t nv)
 {
-    if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES)
-        return; // points and lines carry no surface
-    auto pos_it = prim.attributes.find("POSITION");
-    if (pos_it == prim.attributes.end())
-        throw Fail{"a primitive of mesh '" + mesh.name + "' has no POSITION"};
-    std::vector<double> pos = read_accessor(model, pos_it->second, 3, "POSITION");
-    size_t nv = pos.size() / 3;
-    for (double v : pos)
-        if (!std::isfinite(v))
-            throw Fail{"mesh '" + mesh.name + "' has a non-finite (NaN or Inf) vertex position"};
-    std::vector<double> nrm;
-    auto n_it = prim.attributes.find("NORMAL");
-    if (n_it != prim.attributes.end()) {
-        nrm = read_accessor(model, n_it->second, 3, "NORMAL");
-        if (nrm.size() != pos.size())
-            throw Fail{"NORMAL and POSITION counts differ in mesh '" + mesh.name + "'"};
-    }
     std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
         // the spec allows unsigned byte, short and int indices only: a FLOAT
@@ -610,23 +610,14 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
     if (idx.size() % 3 != 0)
         throw Fail{"mesh '" + mesh.name + "': index count is not a multiple of 3"};
 
-    double nm[9];
-    normal_matrix(world, nm);
-    size_t base = b.positions.size() / 3;
-    if (base + nv > 0xffffffffu)
-        throw Fail{"too many vertices"};
-    for (size_t i = 0; i < nv; i++) {
-        double x = pos[i * 3], y = pos[i * 3 + 1], z = pos[i * 3 + 2];
-        for (int r = 0; r < 3; r++) {
-            // Checked after the node transform too: a scale of 1e300 turns
-            // finite file values into Inf (or overflows the float).
-            double v = world[r] * x + world[4 + r] * y + world[8 + r] * z + world[12 + r];
-            if (!std::isfinite(v) || std::fabs(v) > 1e30)
-                throw Fail{"mesh '" + mesh.name + "': a vertex position is not finite after its node transform"};
-            b.positions.push_back((float)v);
-        }
-    }
-    // Normals: transformed by the normal matrix, or generated below.
+    return idx;
+}
+
+// Normals: the file's by the normal matrix nm, or area-weighted vertex
+// normals of the primitive's triangles where it has none.
+static void add_normals(Builder &b, const std::vector<double> &nrm, const double nm[9], const std::vector<uint32_t> &idx,
+                        size_t base, size_t nv)
+{
     b.normals.resize(b.positions.size(), 0.0f);
     if (!nrm.empty()) {
         for (size_t i = 0; i < nv; i++) {
@@ -661,60 +652,50 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             }
         }
     }
-    // This primitive's triangles and its material (a run of primitives with
-    // one material stays one range).
-    int slot = material_slot(model, prim.material, b);
-    // Vertex attributes nothing draws yet (issue 50): said in the
-    // material's list of what is ignored, once each, never dropped in silence
-    if (slot >= 0 && !b.read_skin) {
-        gltf_material &m = b.materials[(size_t)slot];
-        static const char *const unread[][2] = {
-            {"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose by c.mesh.load; c.gltf.load poses it)"}};
-        for (const auto &u : unread)
-            if (prim.attributes.count(u[0]) && !std::strstr(m.unread, u[0]))
-                note_unread(m, u[1]);
-    }
-    // The skin (glTF 2.0 §3.7.3): four joints a vertex and their weights,
-    // normalised to sum 1 (a vertex of no weight stays put: joint 0 at
-    // weight 0 is no move, see deform.comp)
-    if (b.read_skin) {
-        b.joints.resize(base * 4, 0.0f);
-        b.joint_weights.resize(base * 4, 0.0f);
-        auto j_it = prim.attributes.find("JOINTS_0"), w_it = prim.attributes.find("WEIGHTS_0");
-        if (j_it != prim.attributes.end() && w_it != prim.attributes.end()) {
-            if (j_it->second < 0 || j_it->second >= (int)model.accessors.size())
-                throw Fail{"JOINTS_0: accessor index out of range"};
-            int jt = model.accessors[(size_t)j_it->second].componentType;
-            if (jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
-                throw Fail{"JOINTS_0 of mesh '" + mesh.name + "' must be unsigned bytes or shorts"};
-            std::vector<double> j = read_accessor(model, j_it->second, 4, "JOINTS_0");
-            std::vector<double> w = read_accessor(model, w_it->second, 4, "WEIGHTS_0");
-            if (j.size() != nv * 4 || w.size() != nv * 4)
-                throw Fail{"JOINTS_0 or WEIGHTS_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
-            for (size_t i = 0; i < nv; i++) {
-                double sum = 0;
-                for (int k = 0; k < 4; k++) {
-                    double v = w[i * 4 + (size_t)k];
-                    sum += std::isfinite(v) && v > 0 ? v : 0;
-                }
-                for (int k = 0; k < 4; k++) {
-                    double v = w[i * 4 + (size_t)k];
-                    b.joints.push_back((float)j[i * 4 + (size_t)k]);
-                    b.joint_weights.push_back(sum > 0 && std::isfinite(v) && v > 0 ? (float)(v / sum) : 0.0f);
-                }
+}
+
+// The skin (glTF 2.0 §3.7.3): four joints a vertex and their weights,
+// normalised to sum 1 (a vertex of no weight stays put: joint 0 at
+// weight 0 is no move, see deform.comp)
+static void add_skin(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                     Builder &b, size_t base, size_t nv)
+{
+    b.joints.resize(base * 4, 0.0f);
+    b.joint_weights.resize(base * 4, 0.0f);
+    auto j_it = prim.attributes.find("JOINTS_0"), w_it = prim.attributes.find("WEIGHTS_0");
+    if (j_it != prim.attributes.end() && w_it != prim.attributes.end()) {
+        if (j_it->second < 0 || j_it->second >= (int)model.accessors.size())
+            throw Fail{"JOINTS_0: accessor index out of range"};
+        int jt = model.accessors[(size_t)j_it->second].componentType;
+        if (jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+            throw Fail{"JOINTS_0 of mesh '" + mesh.name + "' must be unsigned bytes or shorts"};
+        std::vector<double> j = read_accessor(model, j_it->second, 4, "JOINTS_0");
+        std::vector<double> w = read_accessor(model, w_it->second, 4, "WEIGHTS_0");
+        if (j.size() != nv * 4 || w.size() != nv * 4)
+            throw Fail{"JOINTS_0 or WEIGHTS_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
+        for (size_t i = 0; i < nv; i++) {
+            double sum = 0;
+            for (int k = 0; k < 4; k++) {
+                double v = w[i * 4 + (size_t)k];
+                sum += std::isfinite(v) && v > 0 ? v : 0;
             }
-            b.has_skin = true;
-        } else {
-            b.joints.resize((base + nv) * 4, 0.0f);
-            b.joint_weights.resize((base + nv) * 4, 0.0f);
+            for (int k = 0; k < 4; k++) {
+                double v = w[i * 4 + (size_t)k];
+                b.joints.push_back((float)j[i * 4 + (size_t)k]);
+                b.joint_weights.push_back(sum > 0 && std::isfinite(v) && v > 0 ? (float)(v / sum) : 0.0f);
+            }
         }
+        b.has_skin = true;
+    } else {
+        b.joints.resize((base + nv) * 4, 0.0f);
+        b.joint_weights.resize((base + nv) * 4, 0.0f);
     }
-    if (!b.ranges.empty() && b.ranges.back().material == slot)
-        b.ranges.back().index_count += idx.size();
-    else
-        b.ranges.push_back(gltf_range{b.indices.size(), idx.size(), slot});
-    for (uint32_t i : idx)
-        b.indices.push_back((uint32_t)base + i);
+}
+
+// TEXCOORD_0 and TEXCOORD_1 (0 0 where the primitive has none).
+static void add_texcoords(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                          Builder &b, size_t base, size_t nv)
+{
     for (int set = 0; set < 2; set++) {
         std::vector<float> &tc = b.texcoords[set];
         tc.resize(base * 2, 0.0f);
@@ -730,79 +711,87 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
             tc.push_back(std::isfinite(v) && std::fabs(v) < 1e6 ? (float)v : 0.0f);
         b.has_texcoords[set] = true;
     }
+}
 
-    // COLOR_0 (glTF 2.0 §3.7.2.1): VEC3 or VEC4, float or normalized
-    // unsigned byte/short, linear; it multiplies the base colour (and its
-    // alpha the material's). White for a primitive without it.
-    {
-        b.colors.resize(base * 4, 1.0f);
-        auto it = prim.attributes.find("COLOR_0");
-        if (it == prim.attributes.end()) {
-            b.colors.resize((base + nv) * 4, 1.0f);
-        } else {
-            if (it->second < 0 || it->second >= (int)model.accessors.size())
-                throw Fail{"COLOR_0: accessor index out of range"};
-            int ncomp = type_components(model.accessors[(size_t)it->second].type);
-            if (ncomp != 3 && ncomp != 4)
-                throw Fail{"COLOR_0 of mesh '" + mesh.name + "' must be VEC3 or VEC4"};
-            std::vector<double> c = read_accessor(model, it->second, ncomp, "COLOR_0");
-            if (c.size() != nv * (size_t)ncomp)
-                throw Fail{"COLOR_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
-            for (size_t i = 0; i < nv; i++)
-                for (int k = 0; k < 4; k++) {
-                    double v = k < ncomp ? c[i * (size_t)ncomp + (size_t)k] : 1.0;
-                    // a colour multiplies: in [0, 1] (a float one outside it is clamped)
-                    b.colors.push_back(std::isfinite(v) ? (float)std::fmin(std::fmax(v, 0.0), 1.0) : 1.0f);
-                }
-            b.has_colors = true;
-        }
-    }
-
-    // Tangents for normal maps (issue 50): the file's TANGENT (its xyz by the
-    // node transform), else zero, which mesh_gltf.c has made by
-    // scene/mesh_tangents.c once the mesh is whole. Both renderers then take
-    // the tangent's direction from the interpolated attribute
-    // (docs/GLTF.md); (0 0 0 1): none.
-    {
-        b.tangents.resize(base * 4, 0.0f);
-        auto it = prim.attributes.find("TANGENT");
-        const gltf_material *mat = slot >= 0 ? &b.materials[(size_t)slot] : nullptr;
-        int set = mat && mat->normal_texture.bytes ? mat->normal_texture.texcoord
-                  : mat && mat->clearcoat_normal_texture.bytes ? mat->clearcoat_normal_texture.texcoord : -1;
-        if (it != prim.attributes.end()) {
-            if (it->second < 0 || it->second >= (int)model.accessors.size())
-                throw Fail{"TANGENT: accessor index out of range"};
-            if (type_components(model.accessors[(size_t)it->second].type) != 4)
-                throw Fail{"TANGENT of mesh '" + mesh.name + "' must be VEC4"};
-            std::vector<double> tg = read_accessor(model, it->second, 4, "TANGENT");
-            if (tg.size() != nv * 4)
-                throw Fail{"TANGENT and POSITION counts differ in mesh '" + mesh.name + "'"};
-            double det = world[0] * (world[5] * world[10] - world[9] * world[6]) -
-                         world[4] * (world[1] * world[10] - world[9] * world[2]) +
-                         world[8] * (world[1] * world[6] - world[5] * world[2]);
-            for (size_t i = 0; i < nv; i++) {
-                double t[3];
-                for (int r = 0; r < 3; r++)
-                    t[r] = world[r] * tg[i * 4] + world[4 + r] * tg[i * 4 + 1] + world[8 + r] * tg[i * 4 + 2];
-                double len = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-                bool ok = len > 1e-20 && std::isfinite(len) && std::isfinite(tg[i * 4 + 3]);
-                for (int r = 0; r < 3; r++)
-                    b.tangents.push_back(ok ? (float)(t[r] / len) : 0.0f);
-                b.tangents.push_back((tg[i * 4 + 3] < 0.0) != (det < 0.0) ? -1.0f : 1.0f);
+// COLOR_0 (glTF 2.0 §3.7.2.1): VEC3 or VEC4, float or normalized
+// unsigned byte/short, linear; it multiplies the base colour (and its
+// alpha the material's). White for a primitive without it.
+static void add_colors(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                       Builder &b, size_t base, size_t nv)
+{
+    b.colors.resize(base * 4, 1.0f);
+    auto it = prim.attributes.find("COLOR_0");
+    if (it == prim.attributes.end()) {
+        b.colors.resize((base + nv) * 4, 1.0f);
+    } else {
+        if (it->second < 0 || it->second >= (int)model.accessors.size())
+            throw Fail{"COLOR_0: accessor index out of range"};
+        int ncomp = type_components(model.accessors[(size_t)it->second].type);
+        if (ncomp != 3 && ncomp != 4)
+            throw Fail{"COLOR_0 of mesh '" + mesh.name + "' must be VEC3 or VEC4"};
+        std::vector<double> c = read_accessor(model, it->second, ncomp, "COLOR_0");
+        if (c.size() != nv * (size_t)ncomp)
+            throw Fail{"COLOR_0 and POSITION counts differ in mesh '" + mesh.name + "'"};
+        for (size_t i = 0; i < nv; i++)
+            for (int k = 0; k < 4; k++) {
+                double v = k < ncomp ? c[i * (size_t)ncomp + (size_t)k] : 1.0;
+                // a colour multiplies: in [0, 1] (a float one outside it is clamped)
+                b.colors.push_back(std::isfinite(v) ? (float)std::fmin(std::fmax(v, 0.0), 1.0) : 1.0f);
             }
-            b.has_tangents = true;
-        } else if (set >= 0 && set < 2 && b.has_texcoords[set]) {
-            // made from the normal map's texture coordinates after the mesh
-            // is whole (scene/mesh_tangents.c: MikkTSpace's construction,
-            // which splits vertices): zero here says "make me"
-            b.tangents.resize((base + nv) * 4, 0.0f);
-            b.has_tangents = true;
-        } else {
-            b.tangents.resize((base + nv) * 4, 0.0f);
-        }
+        b.has_colors = true;
     }
+}
 
-    // Morph targets: per target index across primitives (weights are per mesh).
+// Tangents for normal maps (issue 50): the file's TANGENT (its xyz by the
+// node transform), else zero, which mesh_gltf.c has made by
+// scene/mesh_tangents.c once the mesh is whole. Both renderers then take
+// the tangent's direction from the interpolated attribute
+// (docs/GLTF.md); (0 0 0 1): none.
+static void add_tangents(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                         const Mat &world, Builder &b, size_t base, size_t nv, int slot)
+{
+    b.tangents.resize(base * 4, 0.0f);
+    auto it = prim.attributes.find("TANGENT");
+    const gltf_material *mat = slot >= 0 ? &b.materials[(size_t)slot] : nullptr;
+    int set = mat && mat->normal_texture.bytes ? mat->normal_texture.texcoord
+              : mat && mat->clearcoat_normal_texture.bytes ? mat->clearcoat_normal_texture.texcoord : -1;
+    if (it != prim.attributes.end()) {
+        if (it->second < 0 || it->second >= (int)model.accessors.size())
+            throw Fail{"TANGENT: accessor index out of range"};
+        if (type_components(model.accessors[(size_t)it->second].type) != 4)
+            throw Fail{"TANGENT of mesh '" + mesh.name + "' must be VEC4"};
+        std::vector<double> tg = read_accessor(model, it->second, 4, "TANGENT");
+        if (tg.size() != nv * 4)
+            throw Fail{"TANGENT and POSITION counts differ in mesh '" + mesh.name + "'"};
+        double det = world[0] * (world[5] * world[10] - world[9] * world[6]) -
+                     world[4] * (world[1] * world[10] - world[9] * world[2]) +
+                     world[8] * (world[1] * world[6] - world[5] * world[2]);
+        for (size_t i = 0; i < nv; i++) {
+            double t[3];
+            for (int r = 0; r < 3; r++)
+                t[r] = world[r] * tg[i * 4] + world[4 + r] * tg[i * 4 + 1] + world[8 + r] * tg[i * 4 + 2];
+            double len = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            bool ok = len > 1e-20 && std::isfinite(len) && std::isfinite(tg[i * 4 + 3]);
+            for (int r = 0; r < 3; r++)
+                b.tangents.push_back(ok ? (float)(t[r] / len) : 0.0f);
+            b.tangents.push_back((tg[i * 4 + 3] < 0.0) != (det < 0.0) ? -1.0f : 1.0f);
+        }
+        b.has_tangents = true;
+    } else if (set >= 0 && set < 2 && b.has_texcoords[set]) {
+        // made from the normal map's texture coordinates after the mesh
+        // is whole (scene/mesh_tangents.c: MikkTSpace's construction,
+        // which splits vertices): zero here says "make me"
+        b.tangents.resize((base + nv) * 4, 0.0f);
+        b.has_tangents = true;
+    } else {
+        b.tangents.resize((base + nv) * 4, 0.0f);
+    }
+}
+
+// Morph targets: per target index across primitives (weights are per mesh).
+static void add_morph_targets(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                              const Mat &world, const double nm[9], Builder &b, size_t base, size_t nv, size_t values)
+{
     int nt = (int)prim.targets.size();
     if (nt > b.target_count) {
         b.tpos.resize((size_t)nt);
@@ -834,7 +823,7 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
         auto tp_it = target.find("POSITION");
         if (tp_it != target.end()) {
             std::vector<double> d = read_accessor(model, tp_it->second, 3, "morph target POSITION");
-            if (d.size() != pos.size())
+            if (d.size() != values)
                 throw Fail{"a morph target's POSITION count differs from the mesh's"};
             for (size_t i = 0; i < nv; i++) {
                 if (!std::isfinite(d[i * 3]) || !std::isfinite(d[i * 3 + 1]) || !std::isfinite(d[i * 3 + 2]))
@@ -850,7 +839,7 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
         auto tn_it = target.find("NORMAL");
         if (tn_it != target.end()) {
             std::vector<double> d = read_accessor(model, tn_it->second, 3, "morph target NORMAL");
-            if (d.size() != pos.size())
+            if (d.size() != values)
                 throw Fail{"a morph target's NORMAL count differs from the mesh's"};
             for (size_t i = 0; i < nv; i++)
                 for (int r = 0; r < 3; r++) {
@@ -859,6 +848,72 @@ void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, con
                 }
         }
     }
+}
+
+void add_primitive(const tinygltf::Model &model, const tinygltf::Mesh &mesh, const tinygltf::Primitive &prim,
+                   const Mat &world, Builder &b)
+{
+    if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES)
+        return; // points and lines carry no surface
+    auto pos_it = prim.attributes.find("POSITION");
+    if (pos_it == prim.attributes.end())
+        throw Fail{"a primitive of mesh '" + mesh.name + "' has no POSITION"};
+    std::vector<double> pos = read_accessor(model, pos_it->second, 3, "POSITION");
+    size_t nv = pos.size() / 3;
+    for (double v : pos)
+        if (!std::isfinite(v))
+            throw Fail{"mesh '" + mesh.name + "' has a non-finite (NaN or Inf) vertex position"};
+    std::vector<double> nrm;
+    auto n_it = prim.attributes.find("NORMAL");
+    if (n_it != prim.attributes.end()) {
+        nrm = read_accessor(model, n_it->second, 3, "NORMAL");
+        if (nrm.size() != pos.size())
+            throw Fail{"NORMAL and POSITION counts differ in mesh '" + mesh.name + "'"};
+    }
+    std::vector<uint32_t> idx = read_indices(model, mesh, prim, nv);
+
+    double nm[9];
+    normal_matrix(world, nm);
+    size_t base = b.positions.size() / 3;
+    if (base + nv > 0xffffffffu)
+        throw Fail{"too many vertices"};
+    for (size_t i = 0; i < nv; i++) {
+        double x = pos[i * 3], y = pos[i * 3 + 1], z = pos[i * 3 + 2];
+        for (int r = 0; r < 3; r++) {
+            // Checked after the node transform too: a scale of 1e300 turns
+            // finite file values into Inf (or overflows the float).
+            double v = world[r] * x + world[4 + r] * y + world[8 + r] * z + world[12 + r];
+            if (!std::isfinite(v) || std::fabs(v) > 1e30)
+                throw Fail{"mesh '" + mesh.name + "': a vertex position is not finite after its node transform"};
+            b.positions.push_back((float)v);
+        }
+    }
+    add_normals(b, nrm, nm, idx, base, nv);
+    // This primitive's triangles and its material (a run of primitives with
+    // one material stays one range).
+    int slot = material_slot(model, prim.material, b);
+    // Vertex attributes nothing draws yet (issue 50): said in the
+    // material's list of what is ignored, once each, never dropped in silence
+    if (slot >= 0 && !b.read_skin) {
+        gltf_material &m = b.materials[(size_t)slot];
+        static const char *const unread[][2] = {
+            {"JOINTS_0", "JOINTS_0 and WEIGHTS_0 (a skin: drawn in its bind pose by c.mesh.load; c.gltf.load poses it)"}};
+        for (const auto &u : unread)
+            if (prim.attributes.count(u[0]) && !std::strstr(m.unread, u[0]))
+                note_unread(m, u[1]);
+    }
+    if (b.read_skin)
+        add_skin(model, mesh, prim, b, base, nv);
+    if (!b.ranges.empty() && b.ranges.back().material == slot)
+        b.ranges.back().index_count += idx.size();
+    else
+        b.ranges.push_back(gltf_range{b.indices.size(), idx.size(), slot});
+    for (uint32_t i : idx)
+        b.indices.push_back((uint32_t)base + i);
+    add_texcoords(model, mesh, prim, b, base, nv);
+    add_colors(model, mesh, prim, b, base, nv);
+    add_tangents(model, mesh, prim, world, b, base, nv, slot);
+    add_morph_targets(model, mesh, prim, world, nm, b, base, nv, pos.size());
 }
 
 // Instancing (a node listed by several parents) is legal glTF, so a node may

@@ -267,6 +267,56 @@ bool image_write_exr(const char *path, const struct image *img, const struct ima
     return true;
 }
 
+/* Points the decoder's channels of `layer` (NULL: the top level) at the
+ * image's rows of this chunk: R, G, B and A, or Z where the layer has no
+ * colour (a depth layer, *depth_only); other channels are not read.
+ * Whether any channel is read. */
+static bool exr_route_channels(exr_decode_pipeline_t *decoder, const char *layer, struct image *img, int w,
+                               int min_y, int start_y, bool *depth_only)
+{
+    bool found = false;
+    size_t row = (size_t)w * 4 * sizeof(float);
+    bool has_color = false;
+    for (int c = 0; c < decoder->channel_count; c++) {
+        const char *name = decoder->channels[c].channel_name;
+        size_t prefix = layer ? strlen(layer) : 0;
+        if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
+            continue;
+        name += layer ? prefix + 1 : 0;
+        has_color |= (name[0] == 'R' || name[0] == 'G' || name[0] == 'B') && !name[1];
+    }
+    for (int c = 0; c < decoder->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &decoder->channels[c];
+        const char *name = ch->channel_name;
+        /* the layer's own channels: "R" at the top, "layer.R" in a layer */
+        size_t prefix = layer ? strlen(layer) : 0;
+        if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
+            name = "";
+        else if (layer)
+            name += prefix + 1;
+        static const char comps[] = "RGBA";
+        /* Z is the image only where it has no colour (a depth layer); beside R, G, B (a
+         * render's first-surface distance) it is left out */
+        const char *k = NULL;
+        if (name[0] && !name[1])
+            k = name[0] == 'Z' ? (has_color ? NULL : comps) : strchr(comps, name[0]);
+        if (k && name[0] == 'Z')
+            *depth_only = true; /* a depth layer: Z into R, copied to G and B by the caller */
+        if (!k || ch->x_samples != 1 || ch->y_samples != 1) {
+            ch->decode_to_ptr = NULL; /* a layer or a subsampled channel: not read */
+            continue;
+        }
+        found = true;
+        ch->decode_to_ptr = (uint8_t *)(img->rgba + (size_t)(start_y - min_y) * (size_t)w * 4 +
+                                        (size_t)(k - comps));
+        ch->user_pixel_stride = 4 * (int32_t)sizeof(float);
+        ch->user_line_stride = (int32_t)row;
+        ch->user_bytes_per_element = 4;
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    return found;
+}
+
 bool image_read_exr_layer(const char *path, const char *layer, struct image *img, struct error *err)
 {
     memset(img, 0, sizeof *img);
@@ -320,7 +370,6 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
     rv = exr_get_scanlines_per_chunk(ctxt, 0, &lines);
     exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
     bool started = false, found = false, depth_only = false;
-    size_t row = (size_t)w * 4 * sizeof(float);
     for (int y = box.min.y; y <= box.max.y && rv == EXR_ERR_SUCCESS; y += lines) {
         exr_chunk_info_t chunk;
         rv = exr_read_scanline_chunk_info(ctxt, 0, y, &chunk);
@@ -330,44 +379,7 @@ bool image_read_exr_layer(const char *path, const char *layer, struct image *img
                      : exr_decoding_initialize(ctxt, 0, &chunk, &decoder);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        bool has_color = false;
-        for (int c = 0; c < decoder.channel_count; c++) {
-            const char *name = decoder.channels[c].channel_name;
-            size_t prefix = layer ? strlen(layer) : 0;
-            if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
-                continue;
-            name += layer ? prefix + 1 : 0;
-            has_color |= (name[0] == 'R' || name[0] == 'G' || name[0] == 'B') && !name[1];
-        }
-        for (int c = 0; c < decoder.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &decoder.channels[c];
-            const char *name = ch->channel_name;
-            /* the layer's own channels: "R" at the top, "layer.R" in a layer */
-            size_t prefix = layer ? strlen(layer) : 0;
-            if (layer && (strncmp(name, layer, prefix) != 0 || name[prefix] != '.'))
-                name = "";
-            else if (layer)
-                name += prefix + 1;
-            static const char comps[] = "RGBA";
-            /* Z is the image only where it has no colour (a depth layer); beside R, G, B (a
-             * render's first-surface distance) it is left out */
-            const char *k = NULL;
-            if (name[0] && !name[1])
-                k = name[0] == 'Z' ? (has_color ? NULL : comps) : strchr(comps, name[0]);
-            if (k && name[0] == 'Z')
-                depth_only = true; /* a depth layer: Z into R, copied to G and B below */
-            if (!k || ch->x_samples != 1 || ch->y_samples != 1) {
-                ch->decode_to_ptr = NULL; /* a layer or a subsampled channel: not read */
-                continue;
-            }
-            found = true;
-            ch->decode_to_ptr = (uint8_t *)(img->rgba + (size_t)(chunk.start_y - box.min.y) * (size_t)w * 4 +
-                                            (size_t)(k - comps));
-            ch->user_pixel_stride = 4 * (int32_t)sizeof(float);
-            ch->user_line_stride = (int32_t)row;
-            ch->user_bytes_per_element = 4;
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-        }
+        found |= exr_route_channels(&decoder, layer, img, w, box.min.y, chunk.start_y, &depth_only);
         if (!started)
             rv = exr_decoding_choose_default_routines(ctxt, 0, &decoder);
         started = true;

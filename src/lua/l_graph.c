@@ -135,6 +135,59 @@ static void read_map(lua_State *L, int idx, struct pass *p, int param, const cha
     lua_pop(L, 4); /* the scratch arrays */
 }
 
+/* An object list parameter: a group (a file of several materials) stands
+ * for its parts, which are what the scene holds. */
+static void read_object_list(lua_State *L, struct pass *p, int i, int idx)
+{
+    const struct pass_param_desc *d = &p->desc->params[i];
+    const char *fn = p->desc->name;
+    int t = lua_type(L, idx);
+    if (t != LUA_TTABLE)
+        lutil_field_error(L, fn, d->name, "list of objects", idx);
+    int listed = (int)lua_rawlen(L, idx), n = 0;
+    struct object *objects[256];
+    for (int k = 0; k < listed; k++) {
+        lua_rawgeti(L, idx, k + 1);
+        struct object *o = lobject_test(L, -1);
+        if (!o)
+            lutil_field_error(L, fn, d->name, "list of objects", -1);
+        int parts = o->part_count > 0 ? o->part_count : 1;
+        if (n + parts > 256)
+            lutil_error(L, "bad argument '%s' to '%s' (at most 256 objects, a file's parts counted one each)",
+                        d->name, fn);
+        for (int part = 0; part < parts; part++)
+            objects[n++] = o->part_count > 0 ? o->parts[part] : o;
+        lua_pop(L, 1);
+    }
+    if (!pass_set_objects(p, i, objects, n))
+        luaL_error(L, "out of memory");
+}
+
+/* An input list parameter: one "pass.output" or a list of them. */
+static void read_input_list(lua_State *L, struct pass *p, int i, int idx)
+{
+    const struct pass_param_desc *d = &p->desc->params[i];
+    const char *fn = p->desc->name;
+    int t = lua_type(L, idx);
+    int n = t == LUA_TSTRING ? 1 : t == LUA_TTABLE ? (int)lua_rawlen(L, idx) : -1;
+    if (n < 0)
+        lutil_field_error(L, fn, d->name, type_name(d->type), idx);
+    const char **items = scratch(L, (size_t)(n > 0 ? n : 0) * sizeof *items);
+    if (t == LUA_TSTRING)
+        items[0] = lua_tostring(L, idx);
+    for (int k = 0; t == LUA_TTABLE && k < n; k++) {
+        lua_rawgeti(L, idx, k + 1);
+        if (lua_type(L, -1) != LUA_TSTRING)
+            lutil_field_error(L, fn, d->name, type_name(d->type), -1);
+        items[k] = lua_tostring(L, -1); /* alive in the table */
+        lua_pop(L, 1);
+    }
+    struct error err;
+    if (!pass_set_list(p, i, items, n, &err))
+        luaL_error(L, "%s", err.message);
+    lua_pop(L, 1);
+}
+
 static void read_param(lua_State *L, struct pass *p, int i, int idx)
 {
     const struct pass_param_desc *d = &p->desc->params[i];
@@ -192,50 +245,12 @@ static void read_param(lua_State *L, struct pass *p, int i, int idx)
             lutil_field_error(L, fn, d->name, "object", idx);
         pass_set_object(p, i, lobject_test(L, idx));
         break;
-    case PASS_PARAM_OBJECT_LIST: {
-        if (t != LUA_TTABLE)
-            lutil_field_error(L, fn, d->name, "list of objects", idx);
-        int listed = (int)lua_rawlen(L, idx), n = 0;
-        struct object *objects[256];
-        for (int k = 0; k < listed; k++) {
-            lua_rawgeti(L, idx, k + 1);
-            struct object *o = lobject_test(L, -1);
-            if (!o)
-                lutil_field_error(L, fn, d->name, "list of objects", -1);
-            /* a group (a file of several materials) stands for its parts,
-             * which are what the scene holds */
-            int parts = o->part_count > 0 ? o->part_count : 1;
-            if (n + parts > 256)
-                lutil_error(L, "bad argument '%s' to '%s' (at most 256 objects, a file's parts counted one each)",
-                            d->name, fn);
-            for (int part = 0; part < parts; part++)
-                objects[n++] = o->part_count > 0 ? o->parts[part] : o;
-            lua_pop(L, 1);
-        }
-        if (!pass_set_objects(p, i, objects, n))
-            luaL_error(L, "out of memory");
+    case PASS_PARAM_OBJECT_LIST:
+        read_object_list(L, p, i, idx);
         break;
-    }
-    case PASS_PARAM_INPUT_LIST: {
-        int n = t == LUA_TSTRING ? 1 : t == LUA_TTABLE ? (int)lua_rawlen(L, idx) : -1;
-        if (n < 0)
-            lutil_field_error(L, fn, d->name, type_name(d->type), idx);
-        const char **items = scratch(L, (size_t)(n > 0 ? n : 0) * sizeof *items);
-        if (t == LUA_TSTRING)
-            items[0] = lua_tostring(L, idx);
-        for (int k = 0; t == LUA_TTABLE && k < n; k++) {
-            lua_rawgeti(L, idx, k + 1);
-            if (lua_type(L, -1) != LUA_TSTRING)
-                lutil_field_error(L, fn, d->name, type_name(d->type), -1);
-            items[k] = lua_tostring(L, -1); /* alive in the table */
-            lua_pop(L, 1);
-        }
-        struct error err;
-        if (!pass_set_list(p, i, items, n, &err))
-            luaL_error(L, "%s", err.message);
-        lua_pop(L, 1);
+    case PASS_PARAM_INPUT_LIST:
+        read_input_list(L, p, i, idx);
         break;
-    }
     case PASS_PARAM_INPUT_MAP:
     case PASS_PARAM_OUTPUT_MAP:
     case PASS_PARAM_UNIFORM_MAP:

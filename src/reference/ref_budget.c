@@ -4,6 +4,23 @@
 #define _POSIX_C_SOURCE 200809L
 #include "reference/ref_sppm_internal.h"
 
+#include <unistd.h>
+
+/* The render's clock from `start`: the deadline --time-budget sets, the
+ * cut counters at 0, progress on a terminal or as log lines. */
+void sppm_budget_start(struct budget *budget, const struct ref_options *o, double start)
+{
+    atomic_init(&budget->cut, 0);
+    atomic_init(&budget->photons_cut, 0);
+    for (int k = 0; k < 3; k++)
+        atomic_init(&budget->paths_cut[k], 0);
+    budget->start = start;
+    budget->gather_share = 0.25;
+    budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
+    budget->tty = o->progress && isatty(STDERR_FILENO) && !log_quiet();
+    budget->log_lines = o->progress && !budget->tty && !log_quiet();
+}
+
 /* A photon stage that must end by `until` (0: no budget) stops tracing
  * early enough for the surface gather after it, as long as the last one
  * took (the first guess, before any was measured, is a quarter). */

@@ -348,6 +348,42 @@ static dvec3 glossy_radiance(const struct job *j, struct ref_rng *rng, dvec3 ori
  * the medium and its first radius into the pixel; returns the radiance it
  * gathered on the way (the lights seen directly, single scattering, the
  * environment, emission). */
+/* surface_light_gltf (common/surface_light.glsl) by its C twins: the
+ * lights through the BRDF, the ambient sky by the BRDF's directional
+ * albedo and the occlusion, the specular lobes reflecting the environment
+ * and the scene (GLOSSY_SAMPLES directions drawn from them per iteration,
+ * docs/GLTF.md), and the emission: the radiance the eye path sees there.
+ * *diffuse: the diffuse lobe's albedo, by which photons (the caustics) are
+ * weighed, as the GPU weighs caustic irradiance. */
+static dvec3 gltf_surface_radiance(struct job *j, struct ref_rng *rng, const struct ref_hit *h, dvec3 dir, dvec3 n,
+                                   const struct ref_surface *surface, struct media media, dvec3 *diffuse)
+{
+    const struct ref_scene *rs = j->rs;
+    dvec3 v = dv_scale(dir, -1.0);
+    double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, diff[3];
+    dvec3 lit = direct_light(rs, j->medium, rng, h->position, n, &surface->brdf, v);
+    brdf_diffuse_albedo(nn, vv, &surface->brdf, diff);
+    dvec3 sky = dv_mul(rs->ambient, dv(diff[0], diff[1], diff[2]));
+    for (int s = 0; s < GLOSSY_SAMPLES; s++) {
+        double l[3], pdf, fs[3];
+        if (!brdf_sample_specular(nn, vv, &surface->brdf, ref_rng_uniform(rng), ref_rng_uniform(rng),
+                                  ref_rng_uniform(rng), l, &pdf))
+            continue;
+        dvec3 ld = dv(l[0], l[1], l[2]);
+        /* (a mapped normal may send l under the triangle: it meets the surface itself, nothing) */
+        double side = dv_dot(h->geometric_normal, dir) < 0 ? 1.0 : -1.0;
+        if (!(side * dv_dot(ld, h->geometric_normal) > 0.0))
+            continue;
+        brdf_gltf_specular_cos(nn, vv, l, &surface->brdf, fs);
+        dvec3 w = dv(fs[0] / (pdf * GLOSSY_SAMPLES), fs[1] / (pdf * GLOSSY_SAMPLES), fs[2] / (pdf * GLOSSY_SAMPLES));
+        dvec3 from = dv_add(h->position, dv_scale(h->geometric_normal, side * rs->epsilon));
+        sky = dv_add(sky, dv_mul(w, glossy_radiance(j, rng, from, ld, media)));
+    }
+    sky = dv_scale(sky, surface->occlusion);
+    *diffuse = dv(diff[0], diff[1], diff[2]);
+    return dv_add(dv_add(lit, sky), surface->emission);
+}
+
 static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struct ref_rng *rngp)
 {
     const struct ref_scene *rs = j->rs;
@@ -422,38 +458,9 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
             dvec3 albedo = surface.albedo;
             dvec3 f;
             if (surface.pbr) {
-                /* surface_light_gltf (common/surface_light.glsl) by its C
-                 * twins: the lights through the BRDF, the ambient sky by the
-                 * BRDF's directional albedo and the occlusion; photons (the
-                 * caustics) by the diffuse lobe's albedo, as the GPU weighs
-                 * caustic irradiance */
-                dvec3 v = dv_scale(dir, -1.0);
-                double nn[3] = {n.x, n.y, n.z}, vv[3] = {v.x, v.y, v.z}, diff[3];
-                dvec3 lit = direct_light(rs, rm, &rng, h.position, n, &surface.brdf, v);
-                brdf_diffuse_albedo(nn, vv, &surface.brdf, diff);
-                /* the ambient sky on the diffuse lobe; the specular lobes
-                 * reflect the environment and the scene, GLOSSY_SAMPLES
-                 * directions drawn from them per iteration (docs/GLTF.md) */
-                dvec3 sky = dv_mul(rs->ambient, dv(diff[0], diff[1], diff[2]));
-                for (int s = 0; s < GLOSSY_SAMPLES; s++) {
-                    double l[3], pdf, fs[3];
-                    if (!brdf_sample_specular(nn, vv, &surface.brdf, ref_rng_uniform(&rng), ref_rng_uniform(&rng),
-                                              ref_rng_uniform(&rng), l, &pdf))
-                        continue;
-                    dvec3 ld = dv(l[0], l[1], l[2]);
-                    /* (a mapped normal may send l under the triangle: it meets the surface itself, nothing) */
-                    double side = dv_dot(h.geometric_normal, dir) < 0 ? 1.0 : -1.0;
-                    if (!(side * dv_dot(ld, h.geometric_normal) > 0.0))
-                        continue;
-                    brdf_gltf_specular_cos(nn, vv, l, &surface.brdf, fs);
-                    dvec3 w = dv(fs[0] / (pdf * GLOSSY_SAMPLES), fs[1] / (pdf * GLOSSY_SAMPLES),
-                                 fs[2] / (pdf * GLOSSY_SAMPLES));
-                    dvec3 from = dv_add(h.position, dv_scale(h.geometric_normal, side * rs->epsilon));
-                    sky = dv_add(sky, dv_mul(w, glossy_radiance(j, &rng, from, ld, media)));
-                }
-                sky = dv_scale(sky, surface.occlusion);
-                seen = dv_add(seen, dv_mul(beta, dv_add(dv_add(lit, sky), surface.emission)));
-                f = dv_scale(dv_mul(beta, dv(diff[0], diff[1], diff[2])), 1.0 / MATH_PI);
+                dvec3 diff;
+                seen = dv_add(seen, dv_mul(beta, gltf_surface_radiance(j, &rng, &h, dir, n, &surface, media, &diff)));
+                f = dv_scale(dv_mul(beta, diff), 1.0 / MATH_PI);
             } else {
                 dvec3 e = direct_light(rs, rm, &rng, h.position, n, NULL, dv(0, 0, 0));
                 f = dv_scale(dv_mul(beta, albedo), 1.0 / MATH_PI);

@@ -122,6 +122,50 @@ static void cut_out_filter(const struct RTCFilterFunctionNArguments *args)
     }
 }
 
+/* Lights exactly as the shaders see them: the frame snapshot's (linear
+ * lights already split into their samples). */
+static void copy_lights(struct ref_scene *rs, const struct frame *f)
+{
+    rs->light_count = f->light_count;
+    for (int i = 0; i < rs->light_count; i++) {
+        const struct frame_light *g = &f->lights[i];
+        struct ref_light *l = &rs->lights[i];
+        l->kind = g->kind == LIGHT_DIRECTIONAL ? 1 : g->kind == LIGHT_SPOT ? 2 : 0;
+        l->position = from_vec3(g->position);
+        l->direction = dv_normalize_or(from_vec3(g->direction), dv(0, -1, 0));
+        l->intensity = from_vec3(g->intensity);
+        l->cos_outer = g->cos_outer;
+        l->cos_inner = g->cos_inner;
+        l->shading = (struct shading_light){.kind = l->kind,
+                                            .position = {l->position.x, l->position.y, l->position.z},
+                                            .direction = {l->direction.x, l->direction.y, l->direction.z},
+                                            .intensity = {l->intensity.x, l->intensity.y, l->intensity.z},
+                                            .cos_outer = l->cos_outer,
+                                            .cos_inner = l->cos_inner};
+    }
+}
+
+/* The object's triangles as an Embree geometry of the scene (its world
+ * positions shared, not copied); a cut-out surface's filter skips the hits
+ * its alpha removes. Its geometry id. */
+static unsigned attach_triangles(struct ref_scene *rs, struct ref_object *ro)
+{
+    RTCGeometry geom = rtcNewGeometry(rs->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, ro->positions, 0, 3 * sizeof(float),
+                               ro->vertex_count);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0, 3 * sizeof(uint32_t),
+                               ro->triangle_count);
+    if (material_is_textured_surface(&ro->material) && (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend)) {
+        rtcSetGeometryUserData(geom, ro);
+        rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
+        rtcSetGeometryOccludedFilterFunction(geom, cut_out_filter);
+    }
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(rs->rtc, geom);
+    rtcReleaseGeometry(geom);
+    return id;
+}
+
 bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err)
 {
     memset(rs, 0, sizeof *rs);
@@ -198,20 +242,7 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;
-        RTCGeometry geom = rtcNewGeometry(rs->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, ro->positions, 0,
-                                   3 * sizeof(float), n);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0,
-                                   3 * sizeof(uint32_t), ro->triangle_count);
-        if (material_is_textured_surface(&ro->material) &&
-            (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend)) {
-            rtcSetGeometryUserData(geom, ro);
-            rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
-            rtcSetGeometryOccludedFilterFunction(geom, cut_out_filter);
-        }
-        rtcCommitGeometry(geom);
-        unsigned id = rtcAttachGeometry(rs->rtc, geom);
-        rtcReleaseGeometry(geom);
+        unsigned id = attach_triangles(rs, ro);
         rs->geometry_object[id] = (unsigned)rs->object_count;
         rs->has_thin = rs->has_thin || ro->material.thin;
         rs->geometry_count = (int)id + 1;
@@ -233,26 +264,8 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         rs->specular_center = dv_scale(dv_add(slo, shi), 0.5);
         rs->specular_radius = 0.5 * sqrt(dv_dot(dv_sub(shi, slo), dv_sub(shi, slo))) * 1.001 + rs->epsilon;
     }
-    /* Lights exactly as the shaders see them: the frame snapshot's (linear
-     * lights already split into their samples). */
     const struct frame *f = &r->frame;
-    rs->light_count = f->light_count;
-    for (int i = 0; i < rs->light_count; i++) {
-        const struct frame_light *g = &f->lights[i];
-        struct ref_light *l = &rs->lights[i];
-        l->kind = g->kind == LIGHT_DIRECTIONAL ? 1 : g->kind == LIGHT_SPOT ? 2 : 0;
-        l->position = from_vec3(g->position);
-        l->direction = dv_normalize_or(from_vec3(g->direction), dv(0, -1, 0));
-        l->intensity = from_vec3(g->intensity);
-        l->cos_outer = g->cos_outer;
-        l->cos_inner = g->cos_inner;
-        l->shading = (struct shading_light){.kind = l->kind,
-                                            .position = {l->position.x, l->position.y, l->position.z},
-                                            .direction = {l->direction.x, l->direction.y, l->direction.z},
-                                            .intensity = {l->intensity.x, l->intensity.y, l->intensity.z},
-                                            .cos_outer = l->cos_outer,
-                                            .cos_inner = l->cos_inner};
-    }
+    copy_lights(rs, f);
     rs->inv_view_proj = f->inv_view_proj;
     rs->eye = from_vec3(scene->camera.eye);
     rs->ortho = scene->camera.ortho_width > 0.0f;

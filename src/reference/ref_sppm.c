@@ -242,17 +242,13 @@ static void volume_photons_thin(struct volume_photons *chunks, double keep, uint
  * visible points' grid (the first iteration after a pilot that aims the
  * lights), reduced in chunk order, the volume photons gathered, and each
  * visible point's radius and flux updated. */
-static void photon_iteration(struct job *job, int it, int threads, size_t npix, struct sppm_totals *t)
+/* This iteration's photon deadline under a budget (sppm_photon_deadline),
+ * and on the first iteration the gather's share of the time, from the
+ * pilot's rates. */
+static void plan_photon_budget(struct job *job, const struct sppm_totals *t, size_t npix)
 {
-    const struct ref_scene *rs = job->rs;
     struct budget *budget = job->budget;
-    struct pixel *pixels = job->pixels;
-    struct volume_photons *volume_chunks = job->volume_chunks;
-    double stage_start = log_now();
-    if (it == 0 && !job->pilot_done)
-        pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
-    t->stage_pilot += log_now() - stage_start;
-    stage_start = log_now();
+    const struct pixel *pixels = job->pixels;
     /* With a medium, the volume gather after the photons must fit in the
      * budget too: reserve what the last one cost per photon for this
      * iteration's photons (the first iteration, with nothing to go by,
@@ -284,6 +280,126 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
         budget->gather_share = fmin(gather / (gather + trace), 0.9);
     }
     budget->photon_deadline = sppm_photon_deadline(budget, budget->photon_deadline);
+}
+
+/* With a medium: this iteration's volume photons scaled as the surface
+ * ones, then gathered along the eye rays (sppm_volume_thread); under a
+ * budget the first gather is probed and thinned to fit. */
+static void gather_volume_photons(struct job *job, int it, int threads, struct sppm_totals *t, const double *scale,
+                                  long long traced)
+{
+    struct budget *budget = job->budget;
+    struct volume_photons *volume_chunks = job->volume_chunks;
+    for (int c = 0; c < PHOTON_CHUNKS; c++)
+        for (size_t k = 0; k < volume_chunks[c].count; k++) {
+            struct volume_photon *vp = &volume_chunks[c].items[k];
+            for (int q = 0; q < 3; q++)
+                vp->flux[q] = (float)(vp->flux[q] * scale[vp->light]);
+        }
+    /* Volume caustics: gather this iteration's volume photons with the
+     * current radius, which shrinks as r^3 ~ i^(alpha - 1) (Knaus &
+     * Zwicker 2011), so the average over iterations converges. */
+    if (job->independent)
+        t->volume_radius = t->volume_radius_first * cbrt(pass_shrink(job->iteration));
+    struct volume_grid vgrid;
+    sppm_volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
+    job->volume_grid = &vgrid;
+    double volume_start = log_now();
+    if (it == 0 && budget->deadline > 0) {
+        /* The first gather under a budget has no earlier one to go by:
+         * every 16th row first, timed, and if the rest would pass the
+         * deadline the volume photons are thinned for it (each kept
+         * with probability f, its flux divided by f: the same
+         * expectation, more noise), so the budget holds however the
+         * machine is loaded. */
+        job->volume_rows = VOLUME_ROWS_PROBE;
+        job->volume_samples = VOLUME_PROBE_SAMPLES;
+        sppm_run_threads(job, threads, sppm_volume_thread);
+        job->volume_samples = VOLUME_SAMPLES;
+        /* the rest at full samples: the cost is about linear in them */
+        double rest = (log_now() - volume_start) * (VOLUME_PROBE_STRIDE - 1) * VOLUME_SAMPLES / VOLUME_PROBE_SAMPLES;
+        double left = budget->deadline - log_now();
+        if (rest > 0.9 * left) {
+            /* fewer points along each ray first (the march is most of
+             * the cost, photons or not), then fewer photons */
+            double fit = fmax(0.9 * left / rest, 0.0);
+            int samples = (int)floor(VOLUME_SAMPLES * fit);
+            job->volume_samples = samples < 1 ? 1 : samples;
+            t->gather_samples = job->volume_samples;
+            double still = rest * job->volume_samples / VOLUME_SAMPLES;
+            if (still > 0.9 * left) {
+                double keep = fmax(0.9 * left / still, 1e-3);
+                volume_photons_thin(volume_chunks, keep, job->o->seed);
+                sppm_volume_grid_release(&vgrid);
+                sppm_volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
+                t->gather_kept = keep;
+            }
+        }
+        job->volume_rows = VOLUME_ROWS_REST;
+        atomic_store(&job->volume_rows_left, 0);
+    }
+    sppm_run_threads(job, threads, sppm_volume_thread);
+    if (job->volume_rows == VOLUME_ROWS_REST)
+        t->gather_rows_left = atomic_load(&job->volume_rows_left);
+    job->volume_rows = VOLUME_ROWS_ALL;
+    job->volume_samples = VOLUME_SAMPLES;
+    t->gather_seconds = log_now() - volume_start;
+    t->stage_gather += t->gather_seconds;
+    t->gather_photons = (double)traced;
+    sppm_volume_grid_release(&vgrid);
+    for (int c = 0; c < PHOTON_CHUNKS; c++)
+        volume_chunks[c].count = 0;
+    if (!job->independent)
+        t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
+}
+
+/* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7), with
+ * the progressive estimate of independent passes (pppm). */
+static void update_pixels(struct job *job, int it, size_t npix, double pass_fraction, const struct sppm_totals *t)
+{
+    struct pixel *pixels = job->pixels;
+    for (size_t i = 0; i < npix; i++) {
+        struct pixel *px = &pixels[i];
+        if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
+            dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
+            px->half_photons[it % 2] = dv_add(px->half_photons[it % 2], dv_scale(e, pass_fraction));
+            if (job->independent)
+                px->pppm = dv_add(px->pppm, e);
+        }
+        /* (never on an iteration the budget cut short: the estimate would
+         * start again from a fraction of an iteration's photons) */
+        if (px->m > 0 && !job->independent && pass_fraction >= 1.0 &&
+            sppm_structure_restart(px, t->photon_passes - pass_fraction)) {
+            /* the estimate starts again with this iteration's photons
+             * within the new radius */
+            px->phi = px->phi_inner;
+            px->m = px->m_inner;
+        }
+        if (px->m > 0 && !job->independent) {
+            double n_new = px->n + SPPM_ALPHA * (double)px->m;
+            double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
+            double shrink = (r_new * r_new) / (px->radius * px->radius);
+            px->tau = dv_scale(dv_add(px->tau, px->phi), shrink);
+            px->n = n_new;
+            px->radius = r_new;
+        }
+        px->phi = px->phi_inner = dv(0, 0, 0);
+        px->m = px->m_inner = 0;
+    }
+}
+
+static void photon_iteration(struct job *job, int it, int threads, size_t npix, struct sppm_totals *t)
+{
+    const struct ref_scene *rs = job->rs;
+    struct budget *budget = job->budget;
+    struct pixel *pixels = job->pixels;
+    struct volume_photons *volume_chunks = job->volume_chunks;
+    double stage_start = log_now();
+    if (it == 0 && !job->pilot_done)
+        pilot_photons(job, threads, budget, volume_chunks, job->o->photons, pixels, npix);
+    t->stage_pilot += log_now() - stage_start;
+    stage_start = log_now();
+    plan_photon_budget(job, t, npix);
     for (int c = 0; c < PHOTON_CHUNKS; c++) {
         long begin, end;
         sppm_chunk_range(job, c, &begin, &end);
@@ -330,101 +446,12 @@ static void photon_iteration(struct job *job, int it, int threads, size_t npix, 
     t->photon_passes += pass_fraction;
     t->half_fraction[it % 2] += pass_fraction;
     job->pass_fraction = pass_fraction;
-    if (job->medium->present) {
-        for (int c = 0; c < PHOTON_CHUNKS; c++)
-            for (size_t k = 0; k < volume_chunks[c].count; k++) {
-                struct volume_photon *vp = &volume_chunks[c].items[k];
-                for (int q = 0; q < 3; q++)
-                    vp->flux[q] = (float)(vp->flux[q] * scale[vp->light]);
-            }
-        /* Volume caustics: gather this iteration's volume photons with the
-         * current radius, which shrinks as r^3 ~ i^(alpha - 1) (Knaus &
-         * Zwicker 2011), so the average over iterations converges. */
-        if (job->independent)
-            t->volume_radius = t->volume_radius_first * cbrt(pass_shrink(job->iteration));
-        struct volume_grid vgrid;
-        sppm_volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
-        job->volume_grid = &vgrid;
-        double volume_start = log_now();
-        if (it == 0 && budget->deadline > 0) {
-            /* The first gather under a budget has no earlier one to go by:
-             * every 16th row first, timed, and if the rest would pass the
-             * deadline the volume photons are thinned for it (each kept
-             * with probability f, its flux divided by f: the same
-             * expectation, more noise), so the budget holds however the
-             * machine is loaded. */
-            job->volume_rows = VOLUME_ROWS_PROBE;
-            job->volume_samples = VOLUME_PROBE_SAMPLES;
-            sppm_run_threads(job, threads, sppm_volume_thread);
-            job->volume_samples = VOLUME_SAMPLES;
-            /* the rest at full samples: the cost is about linear in them */
-            double rest = (log_now() - volume_start) * (VOLUME_PROBE_STRIDE - 1) * VOLUME_SAMPLES / VOLUME_PROBE_SAMPLES;
-            double left = budget->deadline - log_now();
-            if (rest > 0.9 * left) {
-                /* fewer points along each ray first (the march is most of
-                 * the cost, photons or not), then fewer photons */
-                double fit = fmax(0.9 * left / rest, 0.0);
-                int samples = (int)floor(VOLUME_SAMPLES * fit);
-                job->volume_samples = samples < 1 ? 1 : samples;
-                t->gather_samples = job->volume_samples;
-                double still = rest * job->volume_samples / VOLUME_SAMPLES;
-                if (still > 0.9 * left) {
-                    double keep = fmax(0.9 * left / still, 1e-3);
-                    volume_photons_thin(volume_chunks, keep, job->o->seed);
-                    sppm_volume_grid_release(&vgrid);
-                    sppm_volume_grid_build(&vgrid, volume_chunks, PHOTON_CHUNKS, t->volume_radius);
-                    t->gather_kept = keep;
-                }
-            }
-            job->volume_rows = VOLUME_ROWS_REST;
-            atomic_store(&job->volume_rows_left, 0);
-        }
-        sppm_run_threads(job, threads, sppm_volume_thread);
-        if (job->volume_rows == VOLUME_ROWS_REST)
-            t->gather_rows_left = atomic_load(&job->volume_rows_left);
-        job->volume_rows = VOLUME_ROWS_ALL;
-        job->volume_samples = VOLUME_SAMPLES;
-        t->gather_seconds = log_now() - volume_start;
-        t->stage_gather += t->gather_seconds;
-        t->gather_photons = (double)traced;
-        sppm_volume_grid_release(&vgrid);
-        for (int c = 0; c < PHOTON_CHUNKS; c++)
-            volume_chunks[c].count = 0;
-        if (!job->independent)
-            t->volume_radius *= cbrt((it + 1 + SPPM_ALPHA) / (it + 2.0));
-    }
+    if (job->medium->present)
+        gather_volume_photons(job, it, threads, t, scale, traced);
     /* SPPM radius and flux update (Hachisuka & Jensen 2009, eq. 6-7). */
     stage_start = log_now();
-    for (size_t i = 0; i < npix; i++) {
-        struct pixel *px = &pixels[i];
-        if (px->m > 0 && px->radius > 0 && pass_fraction > 0) {
-            dvec3 e = dv_scale(px->phi, 1.0 / (pass_fraction * MATH_PI * px->radius * px->radius));
-            px->half_photons[it % 2] = dv_add(px->half_photons[it % 2], dv_scale(e, pass_fraction));
-            if (job->independent)
-                px->pppm = dv_add(px->pppm, e);
-        }
-        /* (never on an iteration the budget cut short: the estimate would
-         * start again from a fraction of an iteration's photons) */
-        if (px->m > 0 && !job->independent && pass_fraction >= 1.0 &&
-            sppm_structure_restart(px, t->photon_passes - pass_fraction)) {
-            /* the estimate starts again with this iteration's photons
-             * within the new radius */
-            px->phi = px->phi_inner;
-            px->m = px->m_inner;
-        }
-        if (px->m > 0 && !job->independent) {
-            double n_new = px->n + SPPM_ALPHA * (double)px->m;
-            double r_new = px->radius * sqrt(n_new / (px->n + (double)px->m));
-            double shrink = (r_new * r_new) / (px->radius * px->radius);
-            px->tau = dv_scale(dv_add(px->tau, px->phi), shrink);
-            px->n = n_new;
-            px->radius = r_new;
-        }
-        px->phi = px->phi_inner = dv(0, 0, 0);
-        px->m = px->m_inner = 0;
-    }
+    update_pixels(job, it, npix, pass_fraction, t);
     t->stage_update += log_now() - stage_start;
-
 }
 
 /* After iteration `it`: the eye-path and volume estimates into the noise
@@ -557,6 +584,91 @@ static bool sppm_buffers_create(struct sppm_buffers *b, size_t npix)
     return b->pixels && b->chunks && b->volume_chunks && b->aims && b->budget;
 }
 
+/* A budget that did not buy one whole iteration says so: the image is
+ * an unbiased estimate, but a noisier one than a single iteration at
+ * the scene's settings, which a user of --time-budget would not guess. */
+static void warn_short_budget(const struct ref_options *o, const struct sppm_totals *t, bool caustics, double start)
+{
+    if (o->time_budget <= 0)
+        return;
+    char parts[5][96];
+    int n = 0;
+    double elapsed = log_now() - start;
+    if (t->stage_eye > o->time_budget)
+        snprintf(parts[n++], sizeof parts[0], "the first eye pass alone took %.1f s", t->stage_eye);
+    if (caustics && t->photon_passes < 0.999)
+        snprintf(parts[n++], sizeof parts[0], "%.2g%% of one iteration's photons",
+                 100.0 * t->photon_passes);
+    if (t->gather_samples > 0)
+        snprintf(parts[n++], sizeof parts[0], "the medium's gather at %d of %d points a ray",
+                 t->gather_samples, VOLUME_SAMPLES);
+    if (t->gather_kept < 1.0)
+        snprintf(parts[n++], sizeof parts[0], "with %.2g%% of its photons", 100.0 * t->gather_kept);
+    if (t->gather_rows_left > 0)
+        snprintf(parts[n++], sizeof parts[0], "%d rows left without the medium's light", t->gather_rows_left);
+    char list[512] = "";
+    for (int i = 0; i < n; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", parts[i]);
+    if (n > 0)
+        log_warn("reference: --time-budget %g s bought less than one full iteration (%s; %.2f s in all): the image "
+                 "is %s than one iteration would make it; raise --time-budget",
+                 o->time_budget, list, elapsed, t->gather_rows_left > 0 ? "incomplete, and noisier" : "noisier");
+}
+
+/* Paths cut at the bounce cap lose their light: say so where it shows
+ * (an eye path's pixel, a glossy reflection), or where photons lost
+ * more than 1% of the caustic ones. */
+static void warn_cut_paths(struct budget *budget, const struct sppm_totals *t)
+{
+    long cut[3];
+    for (int k = 0; k < 3; k++)
+        cut[k] = atomic_load(&budget->paths_cut[k]);
+    if (cut[0] + cut[1] > 0 || cut[2] > t->caustic_total / 100)
+        log_warn("reference: %ld eye paths and %ld glossy rays were cut after %d specular bounces, %ld photons "
+                 "after %d (light trapped by total internal reflection): the light they carried is missing from "
+                 "the image", cut[0], cut[1], MAX_DEPTH, cut[2], MAX_PHOTON_DEPTH);
+}
+
+/* The pilot, the same in every shard (it depends on the seed
+ * alone): pass 0's eye paths aim the lights and give each pixel its
+ * first radius; what they gathered is not kept, since a shard
+ * without pass 0 renders none of it. */
+static void independent_pilot(struct job *job, int threads, bool caustics, size_t npix, struct sppm_totals *t)
+{
+    double eye_start = log_now();
+    job->iteration = 0;
+    sppm_run_threads(job, threads, sppm_camera_thread);
+    t->stage_eye += log_now() - eye_start;
+    if (caustics) {
+        double pilot_start = log_now();
+        pilot_photons(job, threads, job->budget, job->volume_chunks, job->o->photons, job->pixels, npix);
+        t->stage_pilot += log_now() - pilot_start;
+        job->pilot_done = true;
+    }
+    for (size_t i = 0; i < npix; i++) {
+        struct pixel *px = &job->pixels[i];
+        double r1 = px->radius;
+        memset(px, 0, sizeof *px);
+        px->r1 = r1;
+    }
+}
+
+/* What the render measured, for the caller's report. */
+static void fill_stats(struct ref_stats *stats, const struct pixel *pixels, size_t npix, const struct sppm_totals *t,
+                       int it, int threads, double start)
+{
+    double passes = t->photon_passes > 0 ? t->photon_passes : 1;
+    stats->noise = noise_estimate(pixels, npix, it > 0 ? it : 1, t->half_fraction);
+    stats->iterations = it > 0 ? it : 1;
+    stats->photons = t->emitted;
+    stats->caustic_photons = t->caustic_total;
+    stats->seconds = log_now() - start;
+    stats->threads = threads < 64 ? threads : 64; /* run_threads' cap */
+    stats->passes = t->independent_passes;
+    for (int k = 0; k < 3; k++)
+        stats->caustic_power[k] = t->caustic_power[k] / passes;
+}
+
 bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_options *o, struct image *out,
                       struct image *caustic_out, struct ref_stats *stats, struct error *err)
 {
@@ -611,15 +723,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     sppm_media_at(&rs, cam_origin, &camera_media);
 
     struct budget *budget = buf.budget;
-    atomic_init(&budget->cut, 0);
-    atomic_init(&budget->photons_cut, 0);
-    for (int k = 0; k < 3; k++)
-        atomic_init(&budget->paths_cut[k], 0);
-    budget->start = start;
-    budget->gather_share = 0.25;
-    budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
-    budget->tty = o->progress && isatty(STDERR_FILENO) && !log_quiet();
-    budget->log_lines = o->progress && !budget->tty && !log_quiet();
+    sppm_budget_start(budget, o, start);
     struct ref_photon_map photon_map = {0};
     struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
@@ -634,28 +738,8 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     }
     totals.volume_radius_first = totals.volume_radius;
     job.independent = o->shard_count > 0;
-    if (job.independent) {
-        /* The pilot, the same in every shard (it depends on the seed
-         * alone): pass 0's eye paths aim the lights and give each pixel its
-         * first radius; what they gathered is not kept, since a shard
-         * without pass 0 renders none of it. */
-        double eye_start = log_now();
-        job.iteration = 0;
-        sppm_run_threads(&job, threads, sppm_camera_thread);
-        totals.stage_eye += log_now() - eye_start;
-        if (caustics) {
-            double pilot_start = log_now();
-            pilot_photons(&job, threads, budget, buf.volume_chunks, o->photons, buf.pixels, npix);
-            totals.stage_pilot += log_now() - pilot_start;
-            job.pilot_done = true;
-        }
-        for (size_t i = 0; i < npix; i++) {
-            struct pixel *px = &buf.pixels[i];
-            double r1 = px->radius;
-            memset(px, 0, sizeof *px);
-            px->r1 = r1;
-        }
-    }
+    if (job.independent)
+        independent_pilot(&job, threads, caustics, npix, &totals);
     int it = 0;
     int pass = job.independent ? o->shard_index : 0, pass_stride = job.independent ? o->shard_count : 1;
     for (; pass < o->iterations; it++, pass += pass_stride) {
@@ -690,56 +774,11 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     }
     if (budget->tty)
         fputc('\n', stderr);
-    /* A budget that did not buy one whole iteration says so: the image is
-     * an unbiased estimate, but a noisier one than a single iteration at
-     * the scene's settings, which a user of --time-budget would not guess. */
-    if (o->time_budget > 0) {
-        char parts[5][96];
-        int n = 0;
-        double elapsed = log_now() - start;
-        if (totals.stage_eye > o->time_budget)
-            snprintf(parts[n++], sizeof parts[0], "the first eye pass alone took %.1f s", totals.stage_eye);
-        if (caustics && totals.photon_passes < 0.999)
-            snprintf(parts[n++], sizeof parts[0], "%.2g%% of one iteration's photons",
-                     100.0 * totals.photon_passes);
-        if (totals.gather_samples > 0)
-            snprintf(parts[n++], sizeof parts[0], "the medium's gather at %d of %d points a ray",
-                     totals.gather_samples, VOLUME_SAMPLES);
-        if (totals.gather_kept < 1.0)
-            snprintf(parts[n++], sizeof parts[0], "with %.2g%% of its photons", 100.0 * totals.gather_kept);
-        if (totals.gather_rows_left > 0)
-            snprintf(parts[n++], sizeof parts[0], "%d rows left without the medium's light", totals.gather_rows_left);
-        char list[512] = "";
-        for (int i = 0; i < n; i++)
-            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", parts[i]);
-        if (n > 0)
-            log_warn("reference: --time-budget %g s bought less than one full iteration (%s; %.2f s in all): the image "
-                     "is %s than one iteration would make it; raise --time-budget",
-                     o->time_budget, list, elapsed, totals.gather_rows_left > 0 ? "incomplete, and noisier" : "noisier");
-    }
-    /* Paths cut at the bounce cap lose their light: say so where it shows
-     * (an eye path's pixel, a glossy reflection), or where photons lost
-     * more than 1% of the caustic ones. */
-    long cut[3];
-    for (int k = 0; k < 3; k++)
-        cut[k] = atomic_load(&budget->paths_cut[k]);
-    if (cut[0] + cut[1] > 0 || cut[2] > totals.caustic_total / 100)
-        log_warn("reference: %ld eye paths and %ld glossy rays were cut after %d specular bounces, %ld photons "
-                 "after %d (light trapped by total internal reflection): the light they carried is missing from "
-                 "the image", cut[0], cut[1], MAX_DEPTH, cut[2], MAX_PHOTON_DEPTH);
+    warn_short_budget(o, &totals, caustics, start);
+    warn_cut_paths(budget, &totals);
     write_estimates(buf.pixels, npix, &totals, out, caustic_out);
-    if (stats) {
-        double passes = totals.photon_passes > 0 ? totals.photon_passes : 1;
-        stats->noise = noise_estimate(buf.pixels, npix, it > 0 ? it : 1, totals.half_fraction);
-        stats->iterations = it > 0 ? it : 1;
-        stats->photons = totals.emitted;
-        stats->caustic_photons = totals.caustic_total;
-        stats->seconds = log_now() - start;
-        stats->threads = threads < 64 ? threads : 64; /* run_threads' cap */
-        stats->passes = totals.independent_passes;
-        for (int k = 0; k < 3; k++)
-            stats->caustic_power[k] = totals.caustic_power[k] / passes;
-    }
+    if (stats)
+        fill_stats(stats, buf.pixels, npix, &totals, it, threads, start);
     ref_photon_map_release(&photon_map);
     sppm_buffers_release(&buf);
     for (int l = 0; l < rs.light_count; l++)

@@ -254,6 +254,7 @@ bool sppm_budget_spent(struct budget *b);
 /* ref_budget.c: when a photon stage that must end by `until` (0: no
  * budget) stops tracing to leave its surface gather the time the last one
  * took; that share, measured. */
+void sppm_budget_start(struct budget *budget, const struct ref_options *o, double start);
 double sppm_photon_deadline(const struct budget *b, double until);
 void sppm_gather_share_measured(struct budget *b, double trace_seconds, double gather_seconds);
 

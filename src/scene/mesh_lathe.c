@@ -29,21 +29,19 @@ void mesh_lathe_counts(int points, int segments, size_t *vertices, size_t *indic
     *indices = profile_segments * around * 6;
 }
 
-struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int count, int segments,
-                               struct error *err)
+/* The profile checked and cleaned: points that repeat the previous one
+ * make no surface and are dropped; either order is accepted, the profile
+ * closed along the axis turned to run counter-clockwise in (r, y) so that
+ * the normals face out (shoelace). Its point count in *out_count; NULL
+ * (said) where it is not a profile. */
+static float *lathe_profile(const char *name, const float *profile_in, int count, int *out_count, struct error *err)
 {
-    if (count < 2 || count > 4096 || segments < 3 || segments > 4096) {
-        error_set(err, "%s: 2..4096 profile points and 3..4096 segments expected (got %d, %d)", name, count, segments);
-        return NULL;
-    }
     float *profile = malloc((size_t)count * 2 * sizeof(float));
     if (!profile) {
         error_set(err, "%s: out of memory", name);
         return NULL;
     }
-    /* Points that repeat the previous one make no surface: dropped. */
     int n = 0;
-    double area = 0.0;
     bool off_axis = false;
     for (int i = 0; i < count; i++) {
         float r = profile_in[i * 2], y = profile_in[i * 2 + 1];
@@ -64,8 +62,7 @@ struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int co
         error_set(err, "%s: the profile needs two distinct points, one off the axis", name);
         return NULL;
     }
-    /* Either order is accepted: the profile closed along the axis must run
-     * counter-clockwise in (r, y) for the normals to face out (shoelace). */
+    double area = 0.0;
     for (int i = 0; i < n; i++) {
         const float *a = profile + i * 2, *b = profile + ((i + 1) % n) * 2;
         area += (double)a[0] * b[1] - (double)b[0] * a[1];
@@ -77,7 +74,21 @@ struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int co
                 profile[i * 2 + k] = profile[(n - 1 - i) * 2 + k];
                 profile[(n - 1 - i) * 2 + k] = t;
             }
+    *out_count = n;
+    return profile;
+}
 
+struct mesh *mesh_create_lathe(const char *name, const float *profile_in, int count, int segments,
+                               struct error *err)
+{
+    if (count < 2 || count > 4096 || segments < 3 || segments > 4096) {
+        error_set(err, "%s: 2..4096 profile points and 3..4096 segments expected (got %d, %d)", name, count, segments);
+        return NULL;
+    }
+    int n = 0;
+    float *profile = lathe_profile(name, profile_in, count, &n, err);
+    if (!profile)
+        return NULL;
     /* Each profile segment has its own two rings of vertices, so that a
      * crease keeps its two normals; smooth joints share the mean normal. */
     int nseg = n - 1;

@@ -418,7 +418,7 @@ end)
 -- The ring means hold (0.01-0.11), but every technique leaves pixels of
 -- that thin light black (issue 52, case 11; measured, not fixed): each
 -- says so in one line, counting the black pixels of the shadow
--- (passes/caustic_coverage.c; tests/cli/leaves_out_test.sh).
+-- (passes/helpers/caustic_coverage.c; tests/cli/leaves_out_test.sh).
 local RIM_TOUCHING = "the rim's grazing light, spread thin over the outer part of the shadow, reaches it as a few "
                      .. "photons, beams or volumes far apart: black pixels between them (822 photons, 2,734 layered, "
                      .. "1,820 beams, 3,782 illumination textures of the shadow's 12,868), which each pass counts "

@@ -1,4 +1,4 @@
-/* The illumination textures' geometry without GL (passes/illumination_geometry.c):
+/* The illumination textures' geometry without GL (passes/helpers/illumination_geometry.c):
  * the volumes a glass cube's transport table gives under a sun (their flux
  * is the light through the top face, less Fresnel at two interfaces), the
  * planes, the flux square, the intersection triangles (a parallel beam
@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "passes/illumination_geometry.h"
+#include "passes/helpers/illumination_geometry.h"
 
 static struct illum_volume beam(float x, float z, float side, float spread, vec3 flux)
 {

@@ -11,7 +11,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 #include "scene/light_view.h"
 #include "scene/scene.h"
 

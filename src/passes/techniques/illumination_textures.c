@@ -35,10 +35,10 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/caustic_coverage.h"
-#include "passes/illumination_geometry.h"
-#include "passes/shadow_inputs.h"
-#include "passes/virtual_camera.h"
+#include "passes/helpers/caustic_coverage.h"
+#include "passes/helpers/illumination_geometry.h"
+#include "passes/helpers/shadow_inputs.h"
+#include "passes/helpers/virtual_camera.h"
 #include "scene/transport.h"
 
 #define ILLUM_MAX_REFRACTORS 8
@@ -270,15 +270,13 @@ static uint64_t tracer_key(const struct mesh *m, const struct material *mat, enu
     return hash_fnv1a(hash_fnv1a(HASH_FNV1A_BASIS, &m->serial, sizeof m->serial), optics, sizeof optics);
 }
 
-static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struct error *err)
+/* §3: the tables, one per glass object (built once per mesh, IOR,
+ * resolution), and their tracers for the exact paths on flat faces. */
+static bool ensure_tables(struct illum_state *s, struct pass *p, const struct scene *scene, struct error *err)
 {
-    struct illum_state *s = p->state;
-    struct renderer *r = f->renderer;
-    const struct scene *scene = f->scene;
-    int resolution = pass_int(p, IT_TABLE), planes = pass_int(p, IT_PLANES), size = s->size;
+    int resolution = pass_int(p, IT_TABLE);
     enum transport_internal internal = pass_choice(p, IT_INTERNAL) == INTERNAL_FIRST ? TRANSPORT_INTERNAL_FIRST
                                                                                     : TRANSPORT_INTERNAL_NONE;
-    /* §3: the tables, one per glass object (built once per mesh, IOR, resolution) */
     s->table_count = 0;
     p->report[0] = '\0';
     for (int i = 0; i < scene->object_count && s->table_count < ILLUM_MAX_REFRACTORS; i++) {
@@ -306,6 +304,80 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
             s->tracer_key[k] = key;
         }
     }
+    return true;
+}
+
+/* The planes span the depths the virtual camera sees of the targets
+ * within its square (read back: size^2 texels), not the targets' whole
+ * bounds: a large receiver (a floor) seen at a slant would otherwise
+ * spread the planes over depths no caustic reaches. */
+static void spread_over_seen(struct illum_state *s, int size, int planes, float *pd, struct error *err)
+{
+    float *texels = malloc((size_t)size * (size_t)size * 4 * sizeof(float));
+    if (texels && gl_texture_read_rgba32f(&s->target, 0, texels, err)) {
+        float seen_min = INFINITY, seen_max = -INFINITY;
+        for (size_t i = 0; i < (size_t)size * (size_t)size; i++) {
+            float z = texels[i * 4 + 3];
+            if (z < 1e29f) {
+                seen_min = fminf(seen_min, z);
+                seen_max = fmaxf(seen_max, z);
+            }
+        }
+        if (seen_min <= seen_max)
+            illum_planes_spread(seen_min, seen_max, planes, pd);
+    }
+    free(texels);
+}
+
+/* The targets' normal map and depth from the virtual camera (§4.2). */
+static bool draw_target_map(struct illum_state *s, struct pass *p, struct renderer *r, const struct scene *scene,
+                            int size, struct error *err)
+{
+    struct gl_program *target;
+    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "illumination_textures/target.frag", NULL,
+                        &target, err))
+        return false;
+    virtual_camera_set(target, &s->vc);
+    const float no_target[4] = {0, 0, 0, 1e30f};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
+    gl.Viewport(0, 0, size, size);
+    gl.ClearNamedFramebufferfv(s->target_fb.id, GL_COLOR, 0, no_target);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    draw_targets(p, r, scene, target);
+    renderer_reset_state(r);
+    return true;
+}
+
+/* The intersection triangles' vertices, the points after them, in one
+ * buffer. */
+static void upload_intersections(struct illum_state *s, const struct illum_intersections *x)
+{
+    size_t n = x->triangle_vertices, np = x->point_vertices;
+    size_t tri_bytes = n * ILLUM_VERTEX_FLOATS * sizeof(float), point_bytes = np * ILLUM_VERTEX_FLOATS * sizeof(float);
+    size_t bytes = tri_bytes + point_bytes;
+    if (bytes > s->vbo_capacity) {
+        if (s->vbo)
+            gl.DeleteBuffers(1, &s->vbo);
+        gl.CreateBuffers(1, &s->vbo);
+        gl.NamedBufferStorage(s->vbo, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+        s->vbo_capacity = bytes;
+        gl.VertexArrayVertexBuffer(s->vao, 0, s->vbo, 0, ILLUM_VERTEX_FLOATS * sizeof(float));
+    }
+    if (tri_bytes)
+        gl.NamedBufferSubData(s->vbo, 0, (GLsizeiptr)tri_bytes, x->triangles);
+    if (point_bytes)
+        gl.NamedBufferSubData(s->vbo, (GLintptr)tri_bytes, (GLsizeiptr)point_bytes, x->points);
+}
+
+static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struct error *err)
+{
+    struct illum_state *s = p->state;
+    struct renderer *r = f->renderer;
+    const struct scene *scene = f->scene;
+    int planes = pass_int(p, IT_PLANES), size = s->size;
+    if (!ensure_tables(s, p, scene, err))
+        return false;
     pass_stage_end(p, "tables");
     struct illum_volume_list vols = {0};
     int first = r->frame.light_first[slot], entries = r->frame.light_entries[slot];
@@ -361,43 +433,15 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     s->vc.near = dmin - pad, s->vc.far = dmax + pad;
     memcpy(s->plane_depth, pd, sizeof pd);
     s->planes = planes;
-    /* the targets' normal map and depth from the virtual camera */
-    struct gl_program *target, *illum;
-    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "illumination_textures/target.frag", NULL,
-                        &target, err) ||
+    struct gl_program *illum;
+    if (!draw_target_map(s, p, r, scene, size, err) ||
         !gl_program_get(&r->programs, "illumination_textures/illumination.vert",
                         "illumination_textures/illumination.frag", NULL, &illum, err)) {
         free(vols.items);
         return false;
     }
-    virtual_camera_set(target, &s->vc);
     virtual_camera_set(illum, &s->vc);
-    const float no_target[4] = {0, 0, 0, 1e30f};
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->target_fb.id);
-    gl.Viewport(0, 0, size, size);
-    gl.ClearNamedFramebufferfv(s->target_fb.id, GL_COLOR, 0, no_target);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    draw_targets(p, r, scene, target);
-    renderer_reset_state(r);
-    /* The planes span the depths the virtual camera sees of the targets
-     * within its square (read back: size^2 texels), not the targets' whole
-     * bounds: a large receiver (a floor) seen at a slant would otherwise
-     * spread the planes over depths no caustic reaches. */
-    float *texels = malloc((size_t)size * (size_t)size * 4 * sizeof(float));
-    if (texels && gl_texture_read_rgba32f(&s->target, 0, texels, err)) {
-        float seen_min = INFINITY, seen_max = -INFINITY;
-        for (size_t i = 0; i < (size_t)size * (size_t)size; i++) {
-            float z = texels[i * 4 + 3];
-            if (z < 1e29f) {
-                seen_min = fminf(seen_min, z);
-                seen_max = fmaxf(seen_max, z);
-            }
-        }
-        if (seen_min <= seen_max)
-            illum_planes_spread(seen_min, seen_max, planes, pd);
-    }
-    free(texels);
+    spread_over_seen(s, size, planes, pd, err);
     memcpy(s->plane_depth, pd, sizeof pd);
     pass_stage_end(p, "targets");
     /* §4.2: intersection triangles, eq. 3 without cos(gamma) at each vertex */
@@ -406,25 +450,10 @@ static bool build_textures(struct pass *p, struct pass_frame *f, int slot, struc
     free(vols.items);
     if (!made)
         return false;
-    size_t n = x.triangle_vertices, np = x.point_vertices;
-    /* the points after the triangles in one buffer */
-    size_t tri_bytes = n * ILLUM_VERTEX_FLOATS * sizeof(float), point_bytes = np * ILLUM_VERTEX_FLOATS * sizeof(float);
-    size_t bytes = tri_bytes + point_bytes;
-    if (bytes > s->vbo_capacity) {
-        if (s->vbo)
-            gl.DeleteBuffers(1, &s->vbo);
-        gl.CreateBuffers(1, &s->vbo);
-        gl.NamedBufferStorage(s->vbo, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
-        s->vbo_capacity = bytes;
-        gl.VertexArrayVertexBuffer(s->vao, 0, s->vbo, 0, ILLUM_VERTEX_FLOATS * sizeof(float));
-    }
-    if (tri_bytes)
-        gl.NamedBufferSubData(s->vbo, 0, (GLsizeiptr)tri_bytes, x.triangles);
-    if (point_bytes)
-        gl.NamedBufferSubData(s->vbo, (GLintptr)tri_bytes, (GLsizeiptr)point_bytes, x.points);
+    size_t n = x.triangle_vertices;
+    upload_intersections(s, &x);
     illum_intersections_release(&x);
     pass_stage_end(p, "volumes");
-
 
     /* each plane's illumination texture: its intersection triangles, added */
     gl.Viewport(0, 0, size, size);

@@ -1,4 +1,4 @@
-#include "passes/virtual_camera.h"
+#include "passes/helpers/virtual_camera.h"
 
 #include <math.h>
 

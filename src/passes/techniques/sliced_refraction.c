@@ -24,9 +24,9 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
-#include "passes/thin_glass_over.h"
-#include "passes/virtual_camera.h"
+#include "passes/helpers/shadow_inputs.h"
+#include "passes/helpers/thin_glass_over.h"
+#include "passes/helpers/virtual_camera.h"
 #include "scene/transport.h"
 
 #define SLICED_MAX_REFRACTORS 8
@@ -198,6 +198,98 @@ static bool viewing_rays(struct sliced_state *s, int k, const struct object *o, 
     return true;
 }
 
+/* The virtual planes along the average leaving direction, across the
+ * targets; the square over the targets' extent (§3). `planes`: count + 1. */
+static void fit_planes(const struct scene *scene, vec3 dir_sum, vec3 exit_sum, int exit_count, int count,
+                       struct virtual_camera *out, float *planes)
+{
+    struct virtual_camera vc;
+    virtual_camera_axes(&vc, vec3_normalize_or(dir_sum, vec3_normalize_or(vec3_sub(scene->camera.target,
+                                                                                   scene->camera.eye), vec3_make(0, 0, -1))));
+    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
+    bool any = false;
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *o = scene->objects[i];
+        if (!object_is(o, OBJECT_ROLE_RECEIVER))
+            continue;
+        vec3 olo, ohi;
+        object_world_bounds(o, &olo, &ohi);
+        lo = any ? vec3_min(lo, olo) : olo;
+        hi = any ? vec3_max(hi, ohi) : ohi;
+        any = true;
+    }
+    float dmin = INFINITY, dmax = -INFINITY, umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+    for (int c = 0; any && c < 8; c++) {
+        vec3 corner = vec3_make(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+        float z = vec3_dot(corner, vc.d), cu = vec3_dot(corner, vc.u), cv = vec3_dot(corner, vc.v);
+        dmin = fminf(dmin, z), dmax = fmaxf(dmax, z);
+        umin = fminf(umin, cu), umax = fmaxf(umax, cu), vmin = fminf(vmin, cv), vmax = fmaxf(vmax, cv);
+    }
+    if (!any)
+        dmin = dmax = umin = umax = vmin = vmax = 0.0f;
+    vc.center[0] = 0.5f * (umin + umax), vc.center[1] = 0.5f * (vmin + vmax);
+    vc.half = fmaxf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.02f, 1e-4f);
+    float pad = 0.01f * (dmax - dmin) + 1e-4f;
+    vc.near = dmin - pad, vc.far = dmax + pad;
+    /* the slabs start where the viewing rays leave the glass: what lies in
+     * front of it is not seen through it */
+    if (exit_count > 0) {
+        float start = vec3_dot(vec3_scale(exit_sum, 1.0f / (float)exit_count), vc.d);
+        if (start > vc.near && start < vc.far)
+            vc.near = start;
+    }
+    for (int i = 0; i <= count; i++)
+        planes[i] = vc.near + (vc.far - vc.near) * (float)i / (float)count;
+    *out = vc;
+}
+
+/* The sliced object images (Iwasaki et al. §3): the diffuse objects
+ * between each pair of planes, seen along the virtual camera. */
+static bool draw_slices(struct sliced_state *s, struct pass *p, struct pass_frame *f, const struct virtual_camera *vc,
+                        const float *planes, int count, int size, const struct gl_texture *in_color,
+                        const struct gl_texture *in_depth, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    const struct scene *scene = f->scene;
+    if (!s->slices.id || s->size != size || s->count != count) {
+        gl_texture_destroy(&s->slices);
+        gl_texture_destroy(&s->slice_depth);
+        if (!gl_texture_create(&s->slices, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
+            !gl_texture_create(&s->slice_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err))
+            return false;
+        s->size = size;
+        s->count = count;
+    }
+    struct gl_program *slice;
+    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "sliced_refraction/slice.frag", NULL, &slice,
+                        err))
+        return false;
+    virtual_camera_set(slice, vc);
+    /* the slices' own lighting (common/surface_light.glsl): this pass has no
+     * shadow maps (u_shadow_total 0), the medium it has */
+    shadow_inputs_bind(p, f, slice);
+    if (!medium_gpu_bind(r, scene, slice, err))
+        return false;
+    gl_program_bind_texture(slice, "u_scene", in_color->id);
+    gl_program_bind_texture(slice, "u_scene_depth", in_depth->id);
+    const float clear[4] = {0, 0, 0, 0};
+    for (int i = 0; i < count; i++) {
+        const struct gl_texture *layer[1] = {&s->slices};
+        int index[1] = {i};
+        if (!gl_framebuffer_attach(&s->slice_fb, layer, index, 1, &s->slice_depth, -1, err))
+            return false;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s->slice_fb.id);
+        gl.Viewport(0, 0, size, size);
+        gl.ClearNamedFramebufferfv(s->slice_fb.id, GL_COLOR, 0, clear);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.ProgramUniform2f(slice->id, gl_program_uniform(slice, "u_slab"), planes[i], planes[i + 1]);
+        renderer_draw_objects(r, scene, slice, DRAW_DIFFUSE);
+    }
+    renderer_reset_state(r);
+    return true;
+}
+
 static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct sliced_state *s = p->state;
@@ -237,87 +329,17 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     if (k == 0)
         return true;
 
-    /* the virtual planes along the average leaving direction, across the
-     * targets; the square over the targets' extent */
     struct virtual_camera vc;
-    virtual_camera_axes(&vc, vec3_normalize_or(dir_sum, vec3_normalize_or(vec3_sub(scene->camera.target,
-                                                                                   scene->camera.eye), vec3_make(0, 0, -1))));
-    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
-    bool any = false;
-    for (int i = 0; i < scene->object_count; i++) {
-        const struct object *o = scene->objects[i];
-        if (!object_is(o, OBJECT_ROLE_RECEIVER))
-            continue;
-        vec3 olo, ohi;
-        object_world_bounds(o, &olo, &ohi);
-        lo = any ? vec3_min(lo, olo) : olo;
-        hi = any ? vec3_max(hi, ohi) : ohi;
-        any = true;
-    }
-    float dmin = INFINITY, dmax = -INFINITY, umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    for (int c = 0; any && c < 8; c++) {
-        vec3 corner = vec3_make(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
-        float z = vec3_dot(corner, vc.d), cu = vec3_dot(corner, vc.u), cv = vec3_dot(corner, vc.v);
-        dmin = fminf(dmin, z), dmax = fmaxf(dmax, z);
-        umin = fminf(umin, cu), umax = fmaxf(umax, cu), vmin = fminf(vmin, cv), vmax = fmaxf(vmax, cv);
-    }
-    if (!any)
-        dmin = dmax = umin = umax = vmin = vmax = 0.0f;
-    vc.center[0] = 0.5f * (umin + umax), vc.center[1] = 0.5f * (vmin + vmax);
-    vc.half = fmaxf(0.5f * fmaxf(umax - umin, vmax - vmin) * 1.02f, 1e-4f);
-    float pad = 0.01f * (dmax - dmin) + 1e-4f;
-    vc.near = dmin - pad, vc.far = dmax + pad;
-    /* the slabs start where the viewing rays leave the glass: what lies in
-     * front of it is not seen through it */
-    if (exit_count > 0) {
-        float start = vec3_dot(vec3_scale(exit_sum, 1.0f / (float)exit_count), vc.d);
-        if (start > vc.near && start < vc.far)
-            vc.near = start;
-    }
     float planes[SLICED_MAX_SLICES + 1];
-    for (int i = 0; i <= count; i++)
-        planes[i] = vc.near + (vc.far - vc.near) * (float)i / (float)count;
+    fit_planes(scene, dir_sum, exit_sum, exit_count, count, &vc, planes);
 
-    /* the sliced object images */
-    if (!s->slices.id || s->size != size || s->count != count) {
-        gl_texture_destroy(&s->slices);
-        gl_texture_destroy(&s->slice_depth);
-        if (!gl_texture_create(&s->slices, GL_TEXTURE_2D_ARRAY, GL_RGBA16F, size, size, count, err) ||
-            !gl_texture_create(&s->slice_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size, 1, err))
-            return false;
-        s->size = size;
-        s->count = count;
-    }
-    struct gl_program *slice, *glass;
-    if (!gl_program_get(&r->programs, "illumination_textures/target.vert", "sliced_refraction/slice.frag", NULL, &slice,
-                        err) ||
-        !gl_program_get(&r->programs, "sliced_refraction/glass.vert", "sliced_refraction/glass.frag", NULL, &glass, err))
+    if (!draw_slices(s, p, f, &vc, planes, count, size, &in_color->texture, &in_depth->texture, err))
         return false;
-    virtual_camera_set(slice, &vc);
-    virtual_camera_set(glass, &vc);
-    /* the slices' own lighting (common/surface_light.glsl): this pass has no
-     * shadow maps (u_shadow_total 0), the medium it has */
-    shadow_inputs_bind(p, f, slice);
-    if (!medium_gpu_bind(r, scene, slice, err))
-        return false;
-    gl_program_bind_texture(slice, "u_scene", in_color->texture.id);
-    gl_program_bind_texture(slice, "u_scene_depth", in_depth->texture.id);
-    const float clear[4] = {0, 0, 0, 0};
-    for (int i = 0; i < count; i++) {
-        const struct gl_texture *layer[1] = {&s->slices};
-        int index[1] = {i};
-        if (!gl_framebuffer_attach(&s->slice_fb, layer, index, 1, &s->slice_depth, -1, err))
-            return false;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, s->slice_fb.id);
-        gl.Viewport(0, 0, size, size);
-        gl.ClearNamedFramebufferfv(s->slice_fb.id, GL_COLOR, 0, clear);
-        gl.Clear(GL_DEPTH_BUFFER_BIT);
-        gl.Enable(GL_DEPTH_TEST);
-        gl.ProgramUniform2f(slice->id, gl_program_uniform(slice, "u_slab"), planes[i], planes[i + 1]);
-        renderer_draw_objects(r, scene, slice, DRAW_DIFFUSE);
-    }
-    renderer_reset_state(r);
     pass_stage_end(p, "slices");
+    struct gl_program *glass;
+    if (!gl_program_get(&r->programs, "sliced_refraction/glass.vert", "sliced_refraction/glass.frag", NULL, &glass, err))
+        return false;
+    virtual_camera_set(glass, &vc);
 
     /* the glass: its front surface shows the slices along its leaving rays */
     gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);

@@ -22,11 +22,11 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/distance_map.h"
-#include "passes/impostors.h"
-#include "passes/layers.h"
-#include "passes/shadow_inputs.h"
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/distance_map.h"
+#include "passes/helpers/impostors.h"
+#include "passes/helpers/layers.h"
+#include "passes/helpers/shadow_inputs.h"
+#include "passes/helpers/thin_glass_over.h"
 #include "scene/scene.h"
 
 #define MAX_ITERATIONS 16
@@ -283,6 +283,88 @@ static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_
     return gl_check("drawing the scene behind the glass", err);
 }
 
+/* Initial pass (Hu & Qin §2.1): the refractors' front- and back-facing
+ * normals and depths. */
+static bool draw_surfaces(struct refraction_state *s, struct pass_frame *f, bool wyman, const char *defines,
+                          struct error *err)
+{
+    struct renderer *r = f->renderer;
+    struct gl_program *surf;
+    if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/surfaces.frag", defines, &surf, err))
+        return false;
+    const float zero[4] = {0, 0, 0, 0};
+    gl.Enable(GL_DEPTH_TEST);
+    gl.Enable(GL_CULL_FACE);
+    gl.Viewport(0, 0, f->width, f->height);
+    for (int side = 0; side < 2; side++) {
+        struct gl_framebuffer *fb = side == 0 ? &s->front_fb : &s->back_fb;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fb->id);
+        gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
+        gl.Clear(GL_DEPTH_BUFFER_BIT);
+        gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
+        if (!draw_refractors(r, f->scene, surf, wyman, NULL, NULL, false, err))
+            return false;
+    }
+    gl.Disable(GL_CULL_FACE);
+    return true;
+}
+
+/* What a ray leaving the glass looks up: the distance map (and, for the
+ * screen lookup, the diffuse objects behind the glass from the camera), or
+ * §2.2.1's impostors of the nearby (diffuse) objects around the
+ * refractors' centre. */
+static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, vec3 centre, bool distance,
+                        bool screen, bool nearby, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    if (distance)
+        return distance_map_update(&s->distance, r, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), err) &&
+               (!screen || draw_behind(s, p, f, err));
+    if (!nearby)
+        return true;
+    /* recursion redraws the impostors' colours: made again every frame */
+    uint64_t key = impostors_key(p, f);
+    if (impostors_current(&s->impostors, f, key) && pass_int(p, REFRACTION_RECURSION) == 0)
+        return true;
+    int levels = pass_int(p, REFRACTION_RECURSION);
+    if (!impostors_build(&s->impostors, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key, err))
+        return false;
+    for (int level = 0; level < levels; level++)
+        if (!impostors_recurse(&s->impostors, r, f->scene, err))
+            return false;
+    return true;
+}
+
+/* The distance map and the input image for the rays that leave the glass
+ * (scene_trace.glsl: the screen first where `screen`, then the map). */
+static bool bind_distance_lookup(struct refraction_state *s, const struct gl_program *prog, struct pass_frame *f,
+                                 vec3 centre, const struct gl_texture *in_color, const struct gl_texture *in_depth,
+                                 struct error *err)
+{
+    gl_program_bind_texture(prog, "u_distance_color", s->distance.color[0].id);
+    gl_program_bind_texture(prog, "u_distance_distance", s->distance.distance[0].id);
+    gl_program_bind_texture(prog, "u_distance_color_behind", s->distance.color[1].id);
+    gl_program_bind_texture(prog, "u_distance_distance_behind", s->distance.distance[1].id);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), centre.x, centre.y, centre.z);
+    /* the input image first: what the camera sees where the ray goes */
+    gl_program_bind_texture(prog, "u_scene", in_color->id);
+    gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
+    gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
+    gl_program_bind_texture(prog, "u_input_depth", in_depth->id);
+    bool rough = scene_has_rough_glass(f->scene);
+    if (rough && (!gl_texture_copy(&s->rough_scene, in_color, true, err) ||
+                  !gl_texture_copy(&s->rough_behind, &s->behind_color, true, err)))
+        return false;
+    gl_program_bind_texture(prog, "u_scene_mips", rough ? s->rough_scene.id : in_color->id);
+    gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : s->behind_color.id);
+    layers_bind_scene_trace(prog, f->scene);
+    /* a surface the camera sees at more than about 63 degrees (its depth
+     * changing by two pixel widths a pixel) is asked of the distance map
+     * when the ray looks at it from elsewhere (scene_trace.glsl) */
+    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_grazing"), 2.0f);
+    return true;
+}
+
 static unsigned refraction_draws(const struct pass *p)
 {
     (void)p;
@@ -316,43 +398,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
              distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
     vec3 lo, hi;
     vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
-    if (distance) {
-        if (!distance_map_update(&s->distance, r, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), err) ||
-            (screen && !draw_behind(s, p, f, err)))
-            return false;
-    } else if (nearby) {
-        /* §2.2.1: impostors of the nearby (diffuse) objects around the refractors' centre */
-        /* recursion redraws the impostors' colours: made again every frame */
-        uint64_t key = impostors_key(p, f);
-        if (!impostors_current(&s->impostors, f, key) || pass_int(p, REFRACTION_RECURSION) > 0) {
-            int levels = pass_int(p, REFRACTION_RECURSION);
-            if (!impostors_build(&s->impostors, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key,
-                                 err))
-                return false;
-            for (int level = 0; level < levels; level++)
-                if (!impostors_recurse(&s->impostors, r, f->scene, err))
-                    return false;
-        }
-    }
-
-    /* Initial pass: front- and back-facing normals and depths. */
-    struct gl_program *surf;
-    if (!gl_program_get(&r->programs, "refraction/refract.vert", "refraction/surfaces.frag", defines, &surf, err))
+    if (!make_lookup(s, p, f, centre, distance, screen, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
         return false;
     const float zero[4] = {0, 0, 0, 0};
-    gl.Enable(GL_DEPTH_TEST);
-    gl.Enable(GL_CULL_FACE);
-    gl.Viewport(0, 0, f->width, f->height);
-    for (int side = 0; side < 2; side++) {
-        struct gl_framebuffer *fb = side == 0 ? &s->front_fb : &s->back_fb;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fb->id);
-        gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
-        gl.Clear(GL_DEPTH_BUFFER_BIT);
-        gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
-        if (!draw_refractors(r, f->scene, surf, wyman, NULL, NULL, false, err))
-            return false;
-    }
-    gl.Disable(GL_CULL_FACE);
 
     /* Rendering pass: the input image, then the refractors' visible front
      * surfaces refracting the environment (depth-tested against the input). */
@@ -382,29 +430,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
-    if (distance) {
-        gl_program_bind_texture(prog, "u_distance_color", s->distance.color[0].id);
-        gl_program_bind_texture(prog, "u_distance_distance", s->distance.distance[0].id);
-        gl_program_bind_texture(prog, "u_distance_color_behind", s->distance.color[1].id);
-        gl_program_bind_texture(prog, "u_distance_distance_behind", s->distance.distance[1].id);
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), centre.x, centre.y, centre.z);
-        /* the input image first: what the camera sees where the ray goes */
-        gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
-        gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
-        gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
-        gl_program_bind_texture(prog, "u_input_depth", in_depth->texture.id);
-        bool rough = scene_has_rough_glass(f->scene);
-        if (rough && (!gl_texture_copy(&s->rough_scene, &in_color->texture, true, err) ||
-                      !gl_texture_copy(&s->rough_behind, &s->behind_color, true, err)))
-            return false;
-        gl_program_bind_texture(prog, "u_scene_mips", rough ? s->rough_scene.id : in_color->texture.id);
-        gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : s->behind_color.id);
-        layers_bind_scene_trace(prog, f->scene);
-        /* a surface the camera sees at more than about 63 degrees (its depth
-         * changing by two pixel widths a pixel) is asked of the distance map
-         * when the ray looks at it from elsewhere (scene_trace.glsl) */
-        gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_grazing"), 2.0f);
-    } else if (nearby && s->impostors.count > 0) {
+    if (distance && !bind_distance_lookup(s, prog, f, centre, &in_color->texture, &in_depth->texture, err))
+        return false;
+    if (!distance && nearby && s->impostors.count > 0) {
         gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
         gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
         gl_program_bind_texture(prog, "u_impostor_color", s->impostors.color.id);

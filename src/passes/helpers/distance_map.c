@@ -1,4 +1,4 @@
-#include "passes/distance_map.h"
+#include "passes/helpers/distance_map.h"
 
 #include <math.h>
 #include <string.h>
@@ -6,8 +6,8 @@
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/shadow_inputs.h"
+#include "passes/helpers/thin_glass_over.h"
 
 /* common/object.vert projected by each cube face's matrix */
 #define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ\n"

@@ -14,7 +14,7 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "scene/water.h"
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/thin_glass_over.h"
 
 struct water_surface_state {
     struct gl_framebuffer fb;

@@ -3,7 +3,7 @@
  * a participating medium (volume caustics) and onto surfaces (surface
  * caustics), from beams of light rather than photons:
  *   1. the light's view of the specular surfaces (§4.1: here the depth
- *      layers of passes/layers.c, so each edge ray is traced through every
+ *      layers of passes/helpers/layers.c, so each edge ray is traced through every
  *      interface, with total internal reflection: §6's two-sided
  *      refraction and more);
  *   2. the edge rays of the finest lattice of a projected grid, traced
@@ -33,10 +33,10 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "graph/temporal.h"
-#include "passes/distance_map.h"
-#include "passes/caustic_coverage.h"
-#include "passes/layers.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/distance_map.h"
+#include "passes/helpers/caustic_coverage.h"
+#include "passes/helpers/layers.h"
+#include "passes/helpers/shadow_inputs.h"
 
 #define BEAMS_MAX_LATTICE 512     /* grid x 2^(refine + edges): the finest lattice's cells per side */
 #define BEAMS_MAX_BEAMS (1 << 18)  /* beams one frame may build (64 MB); more are dropped and reported */

@@ -13,8 +13,8 @@
 #include "graph/pass.h"
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/shadow_inputs.h"
+#include "passes/helpers/thin_glass_over.h"
 
 #define SHADE_MAX_CAUSTICS 4 /* caustics inputs (sampler units 9-12) */
 

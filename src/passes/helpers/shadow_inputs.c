@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 
 const struct record_type SHADOW_MAP_RECORD = {"shadow_map"};
 

@@ -1,6 +1,6 @@
 /* layered_caustics: caustics through every interface (Chaudhari 2008
  * §4.1, Figs. 4.5-4.6). The refractors' depth layers are taken from the
- * light (passes/layers.c) and each texel of the first layer is a photon
+ * light (passes/helpers/layers.c) and each texel of the first layer is a photon
  * traced through all of them like the camera's rays; the photons that
  * leave are traced in the camera's image of the receivers (eye-space
  * photon tracing, Kruger et al. 2006) and splatted with a small
@@ -17,9 +17,9 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "graph/temporal.h"
-#include "passes/caustic_coverage.h"
-#include "passes/layers.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/caustic_coverage.h"
+#include "passes/helpers/layers.h"
+#include "passes/helpers/shadow_inputs.h"
 
 struct layered_caustics_state {
     struct gl_framebuffer out_fb;
@@ -145,6 +145,105 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
            gl_buffer_create(&s->landed, &none, sizeof none, GL_DYNAMIC_STORAGE_BIT, err);
 }
 
+/* Each photon splatted over its own footprint (its neighbours' landing
+ * points: footprint.glsl), its flux added in fixed point per pixel. */
+static bool splat_photons(struct layered_caustics_state *s, struct renderer *r, int buffer, GLuint receiver_normal,
+                          float max_radius, float stretch_limit, float fixed_point, struct error *err)
+{
+    struct gl_program *splat;
+    if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
+        return false;
+    gl.UseProgram(splat->id);
+    gl_program_bind_image(splat, "u_hits", s->hits.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
+    gl_program_bind_image(splat, "u_photons", s->photons.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
+    gl_program_bind_image(splat, "u_flux", s->flux.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
+    gl_program_bind_texture(splat, "u_receiver_normal", receiver_normal);
+    gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
+    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
+    gl_program_bind_storage(splat, "LandedFlux", s->landed);
+    /* Accumulating, each frame's photons still cover their whole cells:
+     * with the splats as boxes that tile (box_taps.glsl), a focused photon
+     * covering a quarter x quarter of its cell (so that 16 jitters tile a
+     * grid 4 x 4 as fine, the rule while splats were bilinear tents) made
+     * the ball's 32 x 32 photons worse over 16 frames, 0.102 -> 0.120
+     * against a 64-iteration truth, where whole cells stay at 0.103
+     * (docs/TEMPORAL.md). */
+    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    return true;
+}
+
+/* Flux per pixel -> irradiance. */
+static bool resolve_flux(struct layered_caustics_state *s, struct pass_frame *f, struct graph_resource *out,
+                         GLuint receiver_depth, GLuint receiver_normal, float fixed_point, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    const struct camera *cam = &f->scene->camera;
+    float pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height;
+    float pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f;
+    struct gl_program *resolve;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_caustics/resolve.frag", NULL, &resolve, err))
+        return false;
+    const struct gl_texture *oc_tex[1] = {&out->texture};
+    if (!gl_framebuffer_attach(&s->out_fb, oc_tex, NULL, 1, NULL, -1, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
+    gl.Viewport(0, 0, f->width, f->height);
+    gl.UseProgram(resolve->id);
+    gl_program_bind_texture(resolve, "u_receiver_depth", receiver_depth);
+    gl_program_bind_texture(resolve, "u_receiver_normal", receiver_normal);
+    gl_program_bind_image(resolve, "u_flux", s->flux.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
+    gl_program_bind_storage(resolve, "LandedFlux", s->landed);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
+    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
+    renderer_draw_fullscreen(r);
+    return true;
+}
+
+/* Accumulating (issue 32), while the light and the geometry stand still:
+ * every photon starts at this frame's sub-texel offset within its light
+ * texel, so 16 frames' photons interleave into a grid 4 x 4 as dense.
+ * The layers stay as they are (other passes read them); the photon's
+ * first interface is interpolated there (layer_trace_at). While
+ * anything moves, the photons start at the texels' centres and each
+ * frame stands alone: one frame's photons, spread over their
+ * footprints, are not noise to average, and a history dragged after
+ * the light lagged and dimmed the focus (measured, docs/TEMPORAL.md). */
+static bool photons_jitter(struct layered_caustics_state *s, struct pass *p, struct pass_frame *f, int accumulate,
+                           float jitter[2])
+{
+    uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
+    bool still = pass_frame_reusable(f, s->valid, s->key, key);
+    s->key = key;
+    s->valid = true;
+    if (!still)
+        temporal_reset(&s->temporal);
+    jitter[0] = jitter[1] = 0.0f;
+    if (accumulate > 1 && still)
+        temporal_jitter(&s->temporal, &jitter[0], &jitter[1]);
+    return still;
+}
+
+/* Temporal accumulation (issue 32) while the light and the geometry stand
+ * still (docs/TEMPORAL.md). */
+static bool accumulate_frames(struct layered_caustics_state *s, struct pass *p, struct pass_frame *f,
+                              struct graph_resource *out, struct graph_resource *depth, bool still, int accumulate,
+                              struct error *err)
+{
+    struct renderer *r = f->renderer;
+    int held = 0;
+    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &out->texture, &depth->texture, NULL, still, accumulate,
+                             &held, err))
+        return false;
+    pass_stage_end(p, "accumulate");
+    snprintf(p->report, sizeof p->report, "accumulated: %s",
+             held == 0 ? "the history starts (the light or the geometry moved)" : "the light and geometry still, frames averaged");
+    return true;
+}
+
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct layered_caustics_state *s = p->state;
@@ -213,24 +312,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
-    /* Accumulating (issue 32), while the light and the geometry stand still:
-     * every photon starts at this frame's sub-texel offset within its light
-     * texel, so 16 frames' photons interleave into a grid 4 x 4 as dense.
-     * The layers stay as they are (other passes read them); the photon's
-     * first interface is interpolated there (layer_trace_at). While
-     * anything moves, the photons start at the texels' centres and each
-     * frame stands alone: one frame's photons, spread over their
-     * footprints, are not noise to average, and a history dragged after
-     * the light lagged and dimmed the focus (measured, docs/TEMPORAL.md). */
-    uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
-    bool still = pass_frame_reusable(f, s->valid, s->key, key);
-    s->key = key;
-    s->valid = true;
-    if (!still)
-        temporal_reset(&s->temporal);
-    float jitter[2] = {0.0f, 0.0f};
-    if (accumulate > 1 && still)
-        temporal_jitter(&s->temporal, &jitter[0], &jitter[1]);
+    float jitter[2];
+    bool still = photons_jitter(s, p, f, accumulate, jitter);
     gl.ProgramUniform2f(photons->id, gl_program_uniform(photons, "u_jitter"), jitter[0], jitter[1]);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     /* The longest a footprint's side may stretch where its neighbours say
@@ -257,52 +340,11 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "photons");
 
-    /* Each photon splatted over its own footprint. */
-    const struct camera *cam = &f->scene->camera;
-    float pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height;
-    float pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f;
-    struct gl_program *splat;
-    if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
+    if (!splat_photons(s, r, buffer, receiver_normal, max_radius, stretch_limit, fixed_point, err))
         return false;
-    gl.UseProgram(splat->id);
-    gl_program_bind_image(splat, "u_hits", s->hits.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
-    gl_program_bind_image(splat, "u_photons", s->photons.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
-    gl_program_bind_image(splat, "u_flux", s->flux.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
-    gl_program_bind_texture(splat, "u_receiver_normal", receiver_normal);
-    gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
-    gl_program_bind_storage(splat, "LandedFlux", s->landed);
-    /* Accumulating, each frame's photons still cover their whole cells:
-     * with the splats as boxes that tile (box_taps.glsl), a focused photon
-     * covering a quarter x quarter of its cell (so that 16 jitters tile a
-     * grid 4 x 4 as fine, the rule while splats were bilinear tents) made
-     * the ball's 32 x 32 photons worse over 16 frames, 0.102 -> 0.120
-     * against a 64-iteration truth, where whole cells stay at 0.103
-     * (docs/TEMPORAL.md). */
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "splat");
-
-    /* Flux per pixel -> irradiance. */
-    struct gl_program *resolve;
-    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_caustics/resolve.frag", NULL, &resolve, err))
+    if (!resolve_flux(s, f, out, receiver_depth, receiver_normal, fixed_point, err))
         return false;
-    const struct gl_texture *oc_tex[1] = {&out->texture};
-    if (!gl_framebuffer_attach(&s->out_fb, oc_tex, NULL, 1, NULL, -1, err))
-        return false;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->out_fb.id);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.UseProgram(resolve->id);
-    gl_program_bind_texture(resolve, "u_receiver_depth", receiver_depth);
-    gl_program_bind_texture(resolve, "u_receiver_normal", receiver_normal);
-    gl_program_bind_image(resolve, "u_flux", s->flux.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
-    gl_program_bind_storage(resolve, "LandedFlux", s->landed);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
-    renderer_draw_fullscreen(r);
     pass_stage_end(p, "resolve");
     if (!gl_check("layered_caustics", err) ||
         !caustic_coverage_check(&s->coverage, p, f, fl,
@@ -311,16 +353,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
                                 receiver_depth, receiver_normal, &out->texture,
                                 "raise `buffer` (the photons' spacing) or `radius`", err))
         return false;
-    if (accumulate <= 1)
-        return true;
-    int held = 0;
-    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &out->texture, &depth->texture, NULL, still, accumulate,
-                             &held, err))
-        return false;
-    pass_stage_end(p, "accumulate");
-    snprintf(p->report, sizeof p->report, "accumulated: %s",
-             held == 0 ? "the history starts (the light or the geometry moved)" : "the light and geometry still, frames averaged");
-    return true;
+    return accumulate <= 1 || accumulate_frames(s, p, f, out, depth, still, accumulate, err);
 }
 
 /* The blocks it reads (issue 26): the light's layers at this pass's size

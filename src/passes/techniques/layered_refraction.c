@@ -19,9 +19,9 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/impostors.h"
-#include "passes/layers.h"
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/impostors.h"
+#include "passes/helpers/layers.h"
+#include "passes/helpers/thin_glass_over.h"
 
 struct layered_refraction_state {
     struct gl_framebuffer out_fb;

@@ -1,10 +1,10 @@
 /* Thin-walled glass in front of what a view technique draws (see
  * thin_glass_over.h). */
-#include "passes/thin_glass_over.h"
+#include "passes/helpers/thin_glass_over.h"
 
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 
 bool thin_glass_in_scene(const struct scene *scene)
 {

@@ -3,7 +3,7 @@
  * receivers against the refractors' depth from the light (the pass's own,
  * else one depth-only draw of them) and a read-back of two counters, once a
  * pass instance. */
-#include "passes/caustic_coverage.h"
+#include "passes/helpers/caustic_coverage.h"
 
 #include <string.h>
 
@@ -13,7 +13,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/layers.h"
+#include "passes/helpers/layers.h"
 #include "scene/light_view.h"
 
 #define COVERAGE_SIZE 512 /* the refractors' depth from the light, texels a side */

@@ -14,7 +14,7 @@
  *   (§4.1 suggests bits per voxel per material).
  * - Per-layer depth ranges for restricting the search (§3.7) are exact
  *   atomic min/max over the layer, not a reduced MIP level. */
-#include "passes/layers.h"
+#include "passes/helpers/layers.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -23,7 +23,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 
 const struct record_type LAYER_SET_RECORD = {"layer_set"};
 
@@ -152,6 +152,27 @@ static void draw_refractors(struct layer_set *ls, struct renderer *r, const stru
     }
 }
 
+/* The refractors' slots: each one's IOR and absorption for the traces. */
+static void upload_materials(struct layer_set *ls, const struct scene *scene)
+{
+    ls->slots = 0;
+    struct layers_material_gpu mats[LAYERS_MAX_SLOTS];
+    memset(mats, 0, sizeof mats);
+    for (int i = 0; i < scene->object_count && ls->slots < LAYERS_MAX_SLOTS; i++) {
+        struct object *o = scene->objects[i];
+        if (!layers_is_refractor(o))
+            continue;
+        struct layers_material_gpu *m = &mats[ls->slots];
+        m->ior = o->material.ior;
+        m->ideal = o->material.ideal ? 1.0f : 0.0f;
+        m->absorption[0] = o->material.absorption.x;
+        m->absorption[1] = o->material.absorption.y;
+        m->absorption[2] = o->material.absorption.z;
+        ls->slot_objects[ls->slots++] = o;
+    }
+    gl.NamedBufferSubData(ls->materials, 0, (GLsizeiptr)sizeof mats, mats);
+}
+
 bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *scene, mat4 view, mat4 proj,
                   int width, int height, int voxels, int layers, bool exact_depth, struct pass *timed,
                   struct error *err)
@@ -172,22 +193,7 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     ls->ortho = proj.m[11] == 0.0f; /* [2][3]: -1 for a perspective projection */
     ls->draws = 0;
     ls->triangles = 0;
-    ls->slots = 0;
-    struct layers_material_gpu mats[LAYERS_MAX_SLOTS];
-    memset(mats, 0, sizeof mats);
-    for (int i = 0; i < scene->object_count && ls->slots < LAYERS_MAX_SLOTS; i++) {
-        struct object *o = scene->objects[i];
-        if (!layers_is_refractor(o))
-            continue;
-        struct layers_material_gpu *m = &mats[ls->slots];
-        m->ior = o->material.ior;
-        m->ideal = o->material.ideal ? 1.0f : 0.0f;
-        m->absorption[0] = o->material.absorption.x;
-        m->absorption[1] = o->material.absorption.y;
-        m->absorption[2] = o->material.absorption.z;
-        ls->slot_objects[ls->slots++] = o;
-    }
-    gl.NamedBufferSubData(ls->materials, 0, (GLsizeiptr)sizeof mats, mats);
+    upload_materials(ls, scene);
 
     struct gl_program *bounds, *voxelize, *attributes, *peel, *ranges;
     if (!gl_program_get(&r->programs, "layers/layers.vert", "layers/bounds.frag", NULL, &bounds, err) ||

@@ -23,9 +23,9 @@
 #include "graph/renderer.h"
 #include "graph/temporal.h"
 #include "scene/light_view.h"
-#include "passes/caustic_coverage.h"
-#include "passes/impostors.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/caustic_coverage.h"
+#include "passes/helpers/impostors.h"
+#include "passes/helpers/shadow_inputs.h"
 #include "scene/scene.h"
 
 /* per receiver in the PhotonWindows buffer: the box (lo.x, lo.y, hi.x, hi.y)
@@ -417,6 +417,104 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
     return true;
 }
 
+/* §3.1: the photon buffer. One fullscreen draw traces every photon. */
+static bool trace_photons(struct photon_state *s, struct pass *p, struct pass_frame *f, int light_index, int buffer,
+                          float orad, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    int iterations = pass_int(p, PHOTON_ITERATIONS);
+    const float zero[4] = {0, 0, 0, 0};
+    struct gl_program *trace;
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "photon_caustics/trace.frag", NULL, &trace, err))
+        return false;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s->photon_fb.id);
+    gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 0, zero);
+    gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 1, zero);
+    gl.UseProgram(trace->id);
+    bind_impostors(s, trace);
+    gl_program_bind_texture(trace, "u_front_normal", s->light_normal[0].id);
+    gl_program_bind_texture(trace, "u_back_normal", s->light_normal[1].id);
+    gl_program_bind_texture(trace, "u_front_depth", s->light_depth[0].id);
+    gl_program_bind_texture(trace, "u_back_depth", s->light_depth[1].id);
+    gl_program_bind_texture(trace, "u_front_material", s->light_material[0].id);
+    shadow_inputs_bind(p, f, trace); /* the panes between the light and the glass (its pane filter) */
+    gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
+                               s->light_view_proj.m);
+    gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
+                               s->light_inverse.m);
+    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
+    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
+    gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
+    gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_reach"), 2.0f * orad);
+    /* each photon reads the material it meets from the light-space
+     * buffers (mirror or index of refraction, tint or absorption, water's
+     * one interface): several specular objects may share the view */
+    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_reflect_glass"),
+                        pass_choice(p, PHOTON_MODE) == PHOTON_MODE_REFLECT);
+    gl.Viewport(0, 0, buffer, buffer);
+    renderer_draw_fullscreen(r);
+    return true;
+}
+
+/* Temporal accumulation (issue 32): this frame's irradiance averaged
+ * with the history, which follows the light where it moved. */
+static bool accumulate_frames(struct photon_state *s, struct pass *p, struct pass_frame *f, bool unchanged,
+                              int accumulate, int buffer, struct graph_resource *irr, struct graph_resource *depth,
+                              struct error *err)
+{
+    struct renderer *r = f->renderer;
+    bool moving = !unchanged && s->previous_valid;
+    if (moving && !light_motion(s, r, f, buffer, &depth->texture, err))
+        return false;
+    int held = 0;
+    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &irr->texture, &depth->texture, moving ? &s->motion : NULL,
+                             unchanged, accumulate, &held, err))
+        return false;
+    /* this frame's photons are the next one's previous */
+    gl.CopyImageSubData(s->photons.id, GL_TEXTURE_2D, 0, 0, 0, 0, s->photons_previous.id, GL_TEXTURE_2D, 0, 0, 0, 0,
+                        buffer, buffer, 1);
+    s->jitter_previous[0] = s->jitter[0];
+    s->jitter_previous[1] = s->jitter[1];
+    s->previous_valid = true;
+    size_t used = strlen(p->report);
+    if (used + 8 < sizeof p->report)
+        snprintf(p->report + used, sizeof p->report - used, "; accumulated: %s", held == 0 ? "the history starts"
+                 : s->temporal.still > 1 ? "the light and geometry still, frames averaged"
+                                         : "the light or geometry moved, the history clipped");
+    return true;
+}
+
+/* §3.3: the caustic textures mapped onto the receivers the camera sees
+ * (the bound framebuffer). */
+static bool map_caustics(struct photon_state *s, struct pass *p, struct pass_frame *f, int texture, struct error *err)
+{
+    struct renderer *r = f->renderer;
+    struct gl_program *map;
+    if (!gl_program_get(&r->programs, "common/object.vert", "photon_caustics/map.frag", NULL, &map, err))
+        return false;
+    gl.UseProgram(map->id);
+    bind_impostors(s, map);
+    gl_program_bind_texture(map, "u_caustics", s->caustics.id);
+    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_texture"), texture);
+    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
+    for (int k = 0; k < s->impostors.count; k++) {
+        char name[48];
+        snprintf(name, sizeof name, "u_impostor_object[%d]", k);
+        gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors.items[k].object->id);
+    }
+    gl.Enable(GL_DEPTH_TEST);
+    /* the diffuse surfaces only, as shade { specular = false } draws them: the
+     * refraction passes and water_surface look up that image through the
+     * glass or water, so a floor under water or behind glass needs its
+     * caustics too (drawing the refractors' depth hid them: no caustics at
+     * all under water seen from above) */
+    renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
+    gl.Disable(GL_DEPTH_TEST);
+    return true;
+}
+
 static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct photon_state *s = p->state;
@@ -429,7 +527,6 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     float orad = 1.0f; /* photon_needed left the pass out when nothing is specular */
     specular_bounds(f->scene, &oc, &orad);
     int buffer = pass_int(p, PHOTON_BUFFER), texture = pass_int(p, PHOTON_TEXTURE);
-    int iterations = pass_int(p, PHOTON_ITERATIONS);
     /* the light side depends on the light, the geometry and the parameters,
      * not on the camera (§4) */
     uint64_t key = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY);
@@ -481,37 +578,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
             !fit_light_view(s, r, f->scene, buffer, view, jitter, &proj, err))
             return false;
 
-        /* §3.1: the photon buffer. One fullscreen draw traces every photon. */
-        const float zero[4] = {0, 0, 0, 0};
-        struct gl_program *trace;
-        if (!gl_program_get(&r->programs, "common/fullscreen.vert", "photon_caustics/trace.frag", NULL, &trace, err))
+        if (!trace_photons(s, p, f, light_index, buffer, orad, err))
             return false;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, s->photon_fb.id);
-        gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 0, zero);
-        gl.ClearNamedFramebufferfv(s->photon_fb.id, GL_COLOR, 1, zero);
-        gl.UseProgram(trace->id);
-        bind_impostors(s, trace);
-        gl_program_bind_texture(trace, "u_front_normal", s->light_normal[0].id);
-        gl_program_bind_texture(trace, "u_back_normal", s->light_normal[1].id);
-        gl_program_bind_texture(trace, "u_front_depth", s->light_depth[0].id);
-        gl_program_bind_texture(trace, "u_back_depth", s->light_depth[1].id);
-        gl_program_bind_texture(trace, "u_front_material", s->light_material[0].id);
-        shadow_inputs_bind(p, f, trace); /* the panes between the light and the glass (its pane filter) */
-        gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_view_proj"), 1, GL_FALSE,
-                                   s->light_view_proj.m);
-        gl.ProgramUniformMatrix4fv(trace->id, gl_program_uniform(trace, "u_light_inverse"), 1, GL_FALSE,
-                                   s->light_inverse.m);
-        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), light_index);
-        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_iterations"), iterations);
-        gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_buffer"), (float)buffer);
-        gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_reach"), 2.0f * orad);
-        /* each photon reads the material it meets from the light-space
-         * buffers (mirror or index of refraction, tint or absorption, water's
-         * one interface): several specular objects may share the view */
-        gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_reflect_glass"),
-                            pass_choice(p, PHOTON_MODE) == PHOTON_MODE_REFLECT);
-        gl.Viewport(0, 0, buffer, buffer);
-        renderer_draw_fullscreen(r);
 
         /* §3.2: accumulate into the caustic textures (fixed point: the
          * scale keeps even all the light in one texel below 2^31). */
@@ -548,29 +616,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     if (s->impostors.count == 0)
         return true;
-    struct gl_program *map;
-    if (!gl_program_get(&r->programs, "common/object.vert", "photon_caustics/map.frag", NULL, &map, err))
+    if (!map_caustics(s, p, f, texture, err))
         return false;
-    gl.UseProgram(map->id);
-    bind_impostors(s, map);
-    gl_program_bind_texture(map, "u_caustics", s->caustics.id);
-    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_texture"), texture);
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
-    for (int k = 0; k < s->impostors.count; k++) {
-        char name[48];
-        snprintf(name, sizeof name, "u_impostor_object[%d]", k);
-        gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors.items[k].object->id);
-    }
-    gl.Enable(GL_DEPTH_TEST);
-    /* the diffuse surfaces only, as shade { specular = false } draws them: the
-     * refraction passes and water_surface look up that image through the
-     * glass or water, so a floor under water or behind glass needs its
-     * caustics too (drawing the refractors' depth hid them: no caustics at
-     * all under water seen from above) */
-    renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
-    gl.Disable(GL_DEPTH_TEST);
     /* the light's front depths and normals as the photons were last traced
      * (the view and projection in one matrix) */
     if (!caustic_coverage_check(&s->dark_check, p, f, &f->snapshot->lights[light_index],
@@ -580,27 +627,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                                 depth->texture.id, 0,
                                 &irr->texture, "raise `buffer` (the photons' spacing)", err))
         return false;
-    if (accumulate <= 1)
-        return true;
-    bool moving = !unchanged && s->previous_valid;
-    if (moving && !light_motion(s, r, f, buffer, &depth->texture, err))
-        return false;
-    int held = 0;
-    if (!temporal_accumulate(&s->temporal, r, f->snapshot, &irr->texture, &depth->texture, moving ? &s->motion : NULL,
-                             unchanged, accumulate, &held, err))
-        return false;
-    /* this frame's photons are the next one's previous */
-    gl.CopyImageSubData(s->photons.id, GL_TEXTURE_2D, 0, 0, 0, 0, s->photons_previous.id, GL_TEXTURE_2D, 0, 0, 0, 0,
-                        buffer, buffer, 1);
-    s->jitter_previous[0] = s->jitter[0];
-    s->jitter_previous[1] = s->jitter[1];
-    s->previous_valid = true;
-    used = strlen(p->report);
-    if (used + 8 < sizeof p->report)
-        snprintf(p->report + used, sizeof p->report - used, "; accumulated: %s", held == 0 ? "the history starts"
-                 : s->temporal.still > 1 ? "the light and geometry still, frames averaged"
-                                         : "the light or geometry moved, the history clipped");
-    return true;
+    return accumulate <= 1 || accumulate_frames(s, p, f, unchanged, accumulate, buffer, irr, depth, err);
 }
 
 /* Photons refract at the interpolated normal, all of them: rough or

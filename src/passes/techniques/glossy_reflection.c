@@ -18,7 +18,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/layers.h"
+#include "passes/helpers/layers.h"
 #include "scene/scene.h"
 
 struct glossy_reflection_state {

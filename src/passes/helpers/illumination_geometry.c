@@ -1,6 +1,6 @@
 /* Iwasaki et al.'s illumination volumes and planes on the CPU (see
  * illumination_geometry.h). */
-#include "passes/illumination_geometry.h"
+#include "passes/helpers/illumination_geometry.h"
 
 #include <math.h>
 #include <stdlib.h>

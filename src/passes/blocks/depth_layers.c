@@ -1,5 +1,5 @@
 /* depth_layers: the refractors' depth layers seen from a light or from the
- * camera, a building block (issue 26). Chaudhari 2008 §3.3-3.5 (passes/layers.c builds them:
+ * camera, a building block (issue 26). Chaudhari 2008 §3.3-3.5 (passes/helpers/layers.c builds them:
  * bounds, voxelization, peeling, per-layer normals): from the light they
  * are Liktor & Dachsbacher's light-space G-buffer (§4.1), through which
  * beam_caustics traces its grid, and the photons of layered_caustics
@@ -15,7 +15,7 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/layers.h"
+#include "passes/helpers/layers.h"
 
 struct depth_layers_state {
     struct layer_set layers;

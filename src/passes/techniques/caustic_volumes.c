@@ -23,7 +23,7 @@
 
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 #include "scene/scene.h"
 #include "scene/water.h"
 

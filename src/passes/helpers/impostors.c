@@ -1,4 +1,4 @@
-#include "passes/impostors.h"
+#include "passes/helpers/impostors.h"
 
 #include <math.h>
 #include <string.h>
@@ -6,7 +6,7 @@
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 
 /* common/object.vert projected by the impostor's parallel view (set_impostor_view) */
 #define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ\n"

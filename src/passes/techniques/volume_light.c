@@ -11,7 +11,7 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/shadow_inputs.h"
+#include "passes/helpers/shadow_inputs.h"
 
 #define VOLUME_LIGHT_MAX_ADD 4 /* the sampler array u_add */
 
