@@ -35,7 +35,7 @@ if c.param("one_material", false) then model.material = model.materials[1] end
 
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
-g:add("photons", c.pass.photon_caustics { light = sun })
+g:add("photons", c.pass.photon_caustics { light = sun, shadow = "shadow.depth" }) -- (its pane filter: thin glass between the sun and the glass)
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
 if c.param("refraction", true) then
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })

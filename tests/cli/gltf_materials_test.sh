@@ -33,9 +33,10 @@ against_reference() {
 # highlight on its smooth cubes holding 80% of the squared error (the GPU point-samples a highlight
 # narrower than a pixel, the reference averages the pixel; 0.115 without the 20 worst pixels):
 # its bound is 0.3.
+# TransmissionTest and AttenuationTest are held to issue 50's 0.15 (2026-12-07: 0.133 and 0.11).
 for sample in transmission roughness attenuation; do
   scene="scenes/khronos_samples.lua --set sample=$sample"
-  bound=0.22
+  bound=0.15
   [ "$sample" = roughness ] && bound=0.3
   if against_reference "$scene" "$scene --set one_material=true" "--photons 20000 --spp 64" $bound 0.4; then
     pass "$sample at 256 px: GPU against the reference rel_rmse $gpu_rel (bound $bound); one material per mesh $contrast_rel (>= 0.4)"
