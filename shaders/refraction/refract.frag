@@ -50,6 +50,7 @@ in vec2 v_texcoord1;
 uniform sampler2D u_base_color_texture;
 uniform int u_texture_set[5];
 uniform vec3 u_texture_transform[10];
+#include "refraction/interface_normal.glsl"
 
 // The tint of the light entering here: the base colour x its texture (the
 // reference's ref_glass_tint)
@@ -411,7 +412,10 @@ void leave_glass(vec3 pos, vec3 dir, vec3 n2, vec3 throughput, float transmitted
 
 void main()
 {
-    vec3 n1 = normalize(v_normal);
+    // through the normal map where the surface has one (interface_normal.glsl,
+    // as the reference maps it), in uniform control flow (its derivatives)
+    vec3 mapped = interface_normal(normalize(v_normal));
+    vec3 n1 = mapped;
     vec3 v = view_direction(v_world);
     if (dot(v, n1) > 0.0)
         n1 = -n1;
@@ -429,7 +433,7 @@ void main()
         // the front-face drawing stands.
         if (texelFetch(u_front_depth, ivec2(gl_FragCoord.xy), 0).r < gl_FragCoord.z)
             discard;
-        vec3 n_out = normalize(v_normal);
+        vec3 n_out = mapped;
         if (dot(v, n_out) < 0.0)
             n_out = -n_out;
         reflect_dir = v; // no reflection off the outside to filter

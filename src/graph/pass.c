@@ -607,14 +607,21 @@ bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_ke
 
 const char *pass_refractor_left_out(const struct object *o, bool caustics)
 {
-    /* one sentence for what of roughness, partial transmission and tint
-     * the object has (graph_lint copies it before the next call) */
+    /* one sentence for what of roughness, partial transmission, tint and a
+     * normal map the object has (graph_lint copies it before the next call) */
     static char sentence[400];
-    if (object_is(o, OBJECT_ROLE_MIRROR) && o->material.roughness > 0.0f)
-        return caustics ? "its roughness: the light it reflects is reflected as by a smooth mirror, so its caustic is "
-                          "sharp (the reference spreads it)"
-                        : "its roughness: drawn as a smooth mirror (refraction's scene lookup blurs it)";
-    const char *parts[3];
+    bool mapped = o->material.normal.texture != NULL && !o->material.thin;
+    if (object_is(o, OBJECT_ROLE_MIRROR) && (o->material.roughness > 0.0f || mapped)) {
+        const char *what = o->material.roughness > 0.0f && mapped ? "its roughness and its normal map"
+                           : mapped                                ? "its normal map"
+                                                                   : "its roughness";
+        snprintf(sentence, sizeof sentence, "%s: %s", what,
+                 caustics ? "the light it reflects is reflected as by a smooth, flat mirror, so its caustic is sharp "
+                            "(the reference spreads it)"
+                          : "drawn as a smooth mirror (refraction's scene lookup blurs it and maps it)");
+        return sentence;
+    }
+    const char *parts[4];
     int n = 0;
     if (object_is_rough_refractor(o))
         parts[n++] = "its roughness";
@@ -622,16 +629,19 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
         parts[n++] = "its transmission below 1";
     if (object_is_tinted_refractor(o))
         parts[n++] = "its tint";
+    if (mapped && object_is(o, OBJECT_ROLE_REFRACTOR))
+        parts[n++] = "its normal map";
     if (n == 0)
         return NULL;
-    char list[120];
-    snprintf(list, sizeof list, "%s%s%s%s%s", parts[0], n == 3 ? ", " : n == 2 ? " and " : "", n > 1 ? parts[1] : "",
-             n == 3 ? " and " : "", n == 3 ? parts[2] : "");
+    char list[160] = "";
+    for (int k = 0; k < n; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k == 0 ? "" : k == n - 1 ? " and " : ", ",
+                 parts[k]);
     snprintf(sentence, sizeof sentence, "%s: %s", list,
              caustics ? "all the light that meets it is refracted as by smooth, clear glass, so the caustic it "
                         "focuses is sharp, too bright or uncoloured (the reference spreads, shares and tints it)"
                       : "the view through it is drawn as through smooth, clear glass (refraction blurs it, blends "
-                        "in the diffuse share and tints it)");
+                        "in the diffuse share, tints it and maps its normals)");
     return sentence;
 }
 

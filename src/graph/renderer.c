@@ -286,9 +286,11 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         struct error err;
         /* Textures apply to diffuse surfaces only, in both renderers; a set
          * the mesh lacks reads nothing (the glTF loader refuses that case). */
-        /* (glass: its base colour texture, which tints it) */
-        bool slot_used = material_is_textured_surface(&o->material) ||
-                         (s == 0 && material_role(&o->material) == OBJECT_ROLE_GLASS);
+        /* (glass: its base colour texture, which tints it; glass and
+         * mirrors: their normal map, which refraction maps) */
+        unsigned role = material_role(&o->material);
+        bool slot_used = material_is_textured_surface(&o->material) || (s == 0 && role == OBJECT_ROLE_GLASS) ||
+                         (s == 1 && (role == OBJECT_ROLE_GLASS || role == OBJECT_ROLE_MIRROR));
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2 || s == 6, &id, &err); /* colours are sRGB */
         gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);

@@ -35,10 +35,10 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
         static const char *const diffuse_fields[] = {"color", "emission", "normal", "normal_scale", NULL};
-        static const char *const mirror_fields[] = {"color", "roughness", NULL};
+        static const char *const mirror_fields[] = {"color", "roughness", "normal", "normal_scale", NULL};
         static const char *const emissive_fields[] = {"color", "strength", "albedo", NULL};
         static const char *const glass_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
-                                                   "color", "tint", "thin", NULL};
+                                                   "color", "tint", "thin", "normal", "normal_scale", NULL};
         static const char *const water_fields[] = {"ior", "absorption", "fresnel", "roughness", "transmission",
                                                    "color", "tint", NULL};
         lutil_check_fields(L, 1, fn, emissive ? emissive_fields : kind == MATERIAL_DIFFUSE ? diffuse_fields
@@ -67,6 +67,9 @@ static int push_material(lua_State *L, enum material_kind kind, const char *fn)
                 m.emission = vec3_make(1, 1, 1);
             else
                 opt_emission(L, 1, fn, &m.emission);
+        }
+        /* a normal map: on diffuse surfaces, glass and mirrors */
+        if (!emissive && kind != MATERIAL_WATER) {
             lua_getfield(L, 1, "normal");
             bool has_normal = !lua_isnil(L, -1);
             lua_pop(L, 1);

@@ -107,6 +107,11 @@ bool sppm_specular_step(const struct ref_scene *rs, const struct ref_hit *h, str
     const struct ref_object *o = &rs->objects[h->object];
     const struct material *m = &o->material;
     dvec3 ng = h->geometric_normal, n = h->shading_normal;
+    if (!m->thin) { /* a normal map on glass or a mirror (the pane maps its own below) */
+        dvec3 mapped = ref_interface_normal(o, h, n);
+        if (dv_dot(mapped, h->geometric_normal) > 0.0) /* (one turned past the triangle: the triangle's side) */
+            n = mapped;
+    }
     bool entering = dv_dot(*dir, ng) < 0.0;
     dvec3 nn = entering ? n : dv_scale(n, -1.0);
     dvec3 ngo = entering ? ng : dv_scale(ng, -1.0);

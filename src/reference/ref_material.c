@@ -135,6 +135,11 @@ dvec3 ref_glass_tint(const struct ref_object *o, const struct ref_hit *h)
     return tint;
 }
 
+dvec3 ref_interface_normal(const struct ref_object *o, const struct ref_hit *h, dvec3 n)
+{
+    return slot_active(o, &o->material.normal) ? mapped_normal(o, h, &o->material.normal, n) : n;
+}
+
 double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 dir, dvec3 n, dvec3 *normal,
                         dvec3 *tint)
 {

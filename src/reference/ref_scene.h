@@ -168,6 +168,10 @@ bool ref_scene_blend_met(void);
  * (n, on the ray's side, through the normal map), the tint (base colour x
  * baseColorTexture x COLOR_0), as common/thin_glass.frag reads them, and
  * the Fresnel reflectance it returns (from air into the pane's IOR). */
+/* A glass or mirror surface's normal at the hit: the outward normal n
+ * through its normal map where it has one (refraction's
+ * interface_normal.glsl maps the same), else n. */
+dvec3 ref_interface_normal(const struct ref_object *o, const struct ref_hit *h, dvec3 n);
 double ref_thin_surface(const struct ref_object *o, const struct ref_hit *h, dvec3 dir, dvec3 n, dvec3 *normal,
                         dvec3 *tint);
 /* Glass's tint at a hit: the base colour x baseColorTexture (glTF's

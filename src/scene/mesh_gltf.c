@@ -125,8 +125,6 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
             ignored_add(m, "emission (drawn on diffuse surfaces only)");
         if (g->base_color_texture.bytes && m->kind != MATERIAL_GLASS)
             ignored_add(m, "baseColorTexture (drawn on diffuse surfaces only)");
-        if (g->normal_texture.bytes && !m->thin)
-            ignored_add(m, "normalTexture (drawn on diffuse surfaces and thin-walled glass only)");
         if (g->emissive_texture.bytes)
             ignored_add(m, "emissiveTexture (drawn on diffuse surfaces only)");
         if (g->occlusion_texture.bytes)
@@ -176,15 +174,17 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
                   {&g->thickness_texture, &m->thickness_map}};
     /* diffuse surfaces read all but the transmission (the specular and
      * clearcoat ones where glTF's BRDF draws them), glass its transmission and its base
-     * colour (the tint per texel), thin glass its normal map too, solid
-     * glass its thickness */
-    bool glass = m->kind == MATERIAL_GLASS;
-    if (!glass && m->kind != MATERIAL_DIFFUSE)
+     * colour (the tint per texel), its normal map (refraction and the
+     * reference map it) and, solid, its thickness; mirrors their normal
+     * map */
+    bool glass = m->kind == MATERIAL_GLASS, mirror = m->kind == MATERIAL_MIRROR;
+    if (!glass && !mirror && m->kind != MATERIAL_DIFFUSE)
         return true;
     for (int s = 0; s < 12; s++) {
         struct gltf_texture *gt = slots[s].from;
-        bool read = glass ? s == 5 || s == 0 || (m->thin && s == 1) || (!m->thin && s == 11)
-                          : s < 5 || (s >= 6 && s < 11 && m->pbr);
+        bool read = mirror  ? s == 1
+                    : glass ? s == 5 || s == 0 || s == 1 || (!m->thin && s == 11)
+                            : s < 5 || (s >= 6 && s < 11 && m->pbr);
         if (!gt->bytes || !read)
             continue;
         if (!whole->texcoords[gt->texcoord])
