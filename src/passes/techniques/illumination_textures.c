@@ -508,7 +508,7 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
 
     /* §4.3: the receivers seen by the camera read the textures */
     struct gl_program *map;
-    if (!gl_program_get(&r->programs, "illumination_textures/map.vert", "illumination_textures/map.frag", NULL, &map,
+    if (!gl_program_get(&r->programs, "common/object.vert", "illumination_textures/map.frag", NULL, &map,
                         err))
         return false;
     GLuint id = map->id;
