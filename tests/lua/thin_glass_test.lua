@@ -23,6 +23,29 @@ local function max_difference(a, b)
   return most
 end
 
+-- The mean colour over box {x0, y0, x1, y1} (inclusive)
+local function box_mean(img, box)
+  local s, n = { 0, 0, 0 }, 0
+  for y = box[2], box[4] do
+    for x = box[1], box[3] do
+      local p = { img:pixel(x, y) }
+      for k = 1, 3 do s[k] = s[k] + p[k] end
+      n = n + 1
+    end
+  end
+  return { s[1] / n, s[2] / n, s[3] / n }
+end
+
+-- What the orange pane lets through over what a clear one does, per
+-- channel, over a box: render(set) renders pane.lua with `set`
+local function tint_ratio(render, set, box)
+  set.tint = true
+  local a = box_mean(render(set), box)
+  set.tint = false
+  local b = box_mean(render(set), box)
+  return { a[1] / b[1], a[2] / b[2], a[3] / b[3] }
+end
+
 t.case("an ideal thin pane (no Fresnel, no tint) vanishes in both renderers", function()
   local ideal = { fresnel = false }
   local none = { pane = false }
@@ -98,16 +121,7 @@ t.case("a caustic under a pane: the caustics passes dim and tint it by the sun's
   -- the pane unseen), 0.086 for the pool (0.195). Each pass's `shadow`
   -- parameter is its shadow map; passes without one said nothing.
   local S = "tests/scenes/pane_caustic.lua"
-  local function centre(img)
-    local s = { 0, 0, 0 }
-    for y = 62, 68 do
-      for x = 60, 67 do
-        local p = { img:pixel(x, y) }
-        for k = 1, 3 do s[k] = s[k] + p[k] / 56 end
-      end
-    end
-    return s
-  end
+  local function centre(img) return box_mean(img, { 60, 62, 67, 68 }) end
   local refs = {}
   for _, case in ipairs { { "photon_caustics", "ball", 0.05 }, { "layered_caustics", "ball", 0.05 },
                           { "beam_caustics", "ball", 0.05 }, { "illumination_textures", "ball", 0.05 },
@@ -144,25 +158,11 @@ t.case("a pane in front of glass or water: every view technique draws it over th
   -- 0.255..0.284) on the GPU. Before, the technique drew its glass over
   -- the pane (blue 0.36 to 0.80: the ball only tinted by what it
   -- refracted of the pane's image in shade's).
-  local function mean(img, x0, y0, x1, y1)
-    local s, n = { 0, 0, 0 }, 0
-    for y = y0, y1 do
-      for x = x0, x1 do
-        local p = { img:pixel(x, y) }
-        for k = 1, 3 do s[k] = s[k] + p[k] end
-        n = n + 1
-      end
-    end
-    return { s[1] / n, s[2] / n, s[3] / n }
-  end
   for _, view in ipairs { "refraction", "layered_refraction", "sliced_refraction", "water_surface" } do
     local box = view == "water_surface" and { 50, 72, 80, 78 } or { 60, 58, 74, 72 }
-    local function ratio(render)
-      local a, b = mean(render { view = view, tint = true }, table.unpack(box)), mean(render { view = view }, table.unpack(box))
-      return { a[1] / b[1], a[2] / b[2], a[3] / b[3] }
-    end
-    local g = ratio(function(set) return t.render(SCENE, { set = set }) end)
-    local r = ratio(function(set) return (t.reference(SCENE, { set = set, photons = 0, spp = 4 })) end)
+    local g = tint_ratio(function(set) return (t.render(SCENE, { set = set })) end, { view = view }, box)
+    local r = tint_ratio(function(set) return (t.reference(SCENE, { set = set, photons = 0, spp = 4 })) end,
+                         { view = view }, box)
     for k = 2, 3 do
       t.expect(math.abs(g[k] - r[k]) < 0.05, string.format("%s, channel %d: the pane passes %.3f on the GPU, %.3f in the reference",
                                                            view, k, g[k], r[k]))
@@ -178,28 +178,11 @@ t.case("a pane behind glass is seen through it: in the input image, and in refra
   -- alone (lookup = "map"), (1, 0.643, 0.304) by layered_refraction and by
   -- sliced_refraction. Before, the distance map held no panes: (1, 1, 1).
   local box = { 60, 74, 76, 90 }
-  local function ratio(render, set)
-    local function mean(img)
-      local s, n = { 0, 0, 0 }, 0
-      for y = box[2], box[4] do
-        for x = box[1], box[3] do
-          local p = { img:pixel(x, y) }
-          for k = 1, 3 do s[k] = s[k] + p[k] end
-          n = n + 1
-        end
-      end
-      return { s[1] / n, s[2] / n, s[3] / n }
-    end
-    set.tint = true
-    local a = mean(render(set))
-    set.tint = false
-    local b = mean(render(set))
-    return { a[1] / b[1], a[2] / b[2], a[3] / b[3] }
-  end
-  local r = ratio(function(set) return (t.reference(SCENE, { set = set, photons = 0, spp = 4 })) end,
-                  { view = "refraction", front = true })
+  local r = tint_ratio(function(set) return (t.reference(SCENE, { set = set, photons = 0, spp = 4 })) end,
+                       { view = "refraction", front = true }, box)
   for _, v in ipairs { { "refraction", "scene" }, { "refraction", "map" }, { "layered_refraction" }, { "sliced_refraction" } } do
-    local g = ratio(function(set) return t.render(SCENE, { set = set }) end, { view = v[1], front = true, lookup = v[2] })
+    local g = tint_ratio(function(set) return (t.render(SCENE, { set = set })) end,
+                         { view = v[1], front = true, lookup = v[2] }, box)
     for k = 2, 3 do
       t.expect(math.abs(g[k] - r[k]) < 0.07, string.format("%s (lookup %s), channel %d: %.3f on the GPU, %.3f in the "
                                                            .. "reference", v[1], v[2] or "-", k, g[k], r[k]))
