@@ -165,7 +165,7 @@ static bool shade_execute(struct pass *p, struct pass_frame *f, struct error *er
     static const GLenum color_only[3] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     gl.NamedFramebufferDrawBuffers(s->fb.id, 3, color_only);
     bool ok = thin_glass_draw(&s->panes, p, f, pass_flag(p, SHADE_SPECULAR) ? THIN_GLASS_ALL : THIN_GLASS_BEHIND_SURFACES,
-                              NULL, &depth->texture, OBJECT_ROLE_SPECULAR, NULL, err);
+                              s->fb.id, NULL, &depth->texture, OBJECT_ROLE_SPECULAR, NULL, err);
     gl.NamedFramebufferDrawBuffers(s->fb.id, 3, all_buffers);
     return ok;
 }

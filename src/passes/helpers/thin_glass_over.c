@@ -61,7 +61,7 @@ static bool draw_surfaces(struct thin_glass_over *s, struct pass_frame *f, const
 }
 
 bool thin_glass_draw(struct thin_glass_over *s, struct pass *p, struct pass_frame *f, enum thin_glass_panes which,
-                     const struct gl_texture *color, const struct gl_texture *scene_depth, unsigned roles,
+                     GLuint framebuffer, const struct gl_texture *color, const struct gl_texture *scene_depth, unsigned roles,
                      struct object *only, struct error *err)
 {
     if (!thin_glass_in_scene(f->scene))
@@ -74,9 +74,6 @@ bool thin_glass_draw(struct thin_glass_over *s, struct pass *p, struct pass_fram
         return true;
     if (!surfaces)
         which = THIN_GLASS_ALL;
-    /* the framebuffer to draw the panes into: the caller's, as bound */
-    GLint bound = 0;
-    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     if (which != THIN_GLASS_ALL && !draw_surfaces(s, f, scene_depth, roles, only, err))
         return false;
     struct gl_program *prog;
@@ -86,9 +83,9 @@ bool thin_glass_draw(struct thin_glass_over *s, struct pass *p, struct pass_fram
         const struct gl_texture *targets[1] = {color};
         if (!gl_framebuffer_attach(&s->color_fb, targets, NULL, 1, scene_depth, -1, err))
             return false;
-        bound = (GLint)s->color_fb.id;
+        framebuffer = s->color_fb.id;
     }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, (GLuint)bound);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     gl.Viewport(0, 0, f->width, f->height);
     shadow_inputs_bind(p, f, prog); /* the diffuse share of a partly transmissive pane */
     if (!medium_gpu_bind(r, f->scene, prog, err))

@@ -33,12 +33,13 @@ enum thin_glass_panes {
 bool thin_glass_in_scene(const struct scene *scene);
 
 /* Draws the panes of `which` back to front, blended (dual-source) into
- * `color` (NULL: the bound framebuffer's first draw buffer, as set), depth
+ * `color`, or where it is NULL into `framebuffer`'s first draw buffer (as
+ * its owner set its draw buffers), depth
  * tested against `scene_depth` where it is not NULL. The surfaces are the
  * visible objects of `roles` (OBJECT_ROLE_*), or `only` alone where it is
  * not NULL, where they lie in front of `scene_depth`. */
 bool thin_glass_draw(struct thin_glass_over *s, struct pass *p, struct pass_frame *f, enum thin_glass_panes which,
-                     const struct gl_texture *color, const struct gl_texture *scene_depth, unsigned roles,
+                     GLuint framebuffer, const struct gl_texture *color, const struct gl_texture *scene_depth, unsigned roles,
                      struct object *only, struct error *err);
 void thin_glass_over_release(struct thin_glass_over *s);
 

@@ -216,7 +216,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     pass_stage_end(p, "trace");
     /* the panes in front of the glass, over it (shade drew them under it) */
     return gl_check("layered_refraction", err) &&
-           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, 0, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
                                 OBJECT_ROLE_GLASS | OBJECT_ROLE_WATER, NULL, err);
 }
 

@@ -474,7 +474,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     }
     free(inside);
     /* the panes in front of the glass, over it (shade drew them under it) */
-    return ok && thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+    return ok && thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, 0, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
                                       refraction_draws(p), NULL, err);
 }
 

@@ -380,7 +380,7 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     pass_stage_end(p, "glass");
     /* the panes in front of the glass, over it (shade drew them under it) */
     return gl_check("sliced_refraction", err) &&
-           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
+           thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, 0, &f->outputs[0]->texture, in_depth ? &in_depth->texture : NULL,
                                 SLICED_REFRACTORS, NULL, err);
 }
 

@@ -119,7 +119,7 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_eye_in_water"), under);
     renderer_draw_object(r, f->scene, prog, water);
     /* the panes in front of the water, over it (shade drew them under it) */
-    return thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, &out->texture, in_depth ? &in_depth->texture : NULL, 0, water,
+    return thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, 0, &out->texture, in_depth ? &in_depth->texture : NULL, 0, water,
                                 err);
 }
 
