@@ -50,6 +50,22 @@ static bool map_current(const struct distance_map *m, const struct pass *owner, 
     return m->built && m->built_key == *key && !diffuse_animated(f->scene);
 }
 
+/* A program that lights the map's surfaces from its centre: the shadow
+ * maps of `shadow_pass`'s inputs (none without it), the medium, the
+ * centre. */
+static bool bind_lighting(const struct gl_program *prog, struct pass *shadow_pass, struct pass_frame *f, vec3 center,
+                          struct error *err)
+{
+    if (shadow_pass)
+        shadow_inputs_bind(shadow_pass, f, prog);
+    else
+        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
+    if (!medium_gpu_bind(f->renderer, f->scene, prog, err))
+        return false;
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
+    return true;
+}
+
 bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
                          vec3 center, int size, struct error *err)
 {
@@ -87,14 +103,9 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
                                err))
         return false;
     for (int k = 0; k < 2 && progs[k]; k++) {
-        struct gl_program *prog = progs[k];
-        if (shadow_pass)
-            shadow_inputs_bind(shadow_pass, f, prog);
-        else
-            gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
-        if (!medium_gpu_bind(r, scene, prog, err)) /* lit as shade lights (common/surface_light.glsl) */
+        /* lit as shade lights (common/surface_light.glsl) */
+        if (!bind_lighting(progs[k], shadow_pass, f, center, err))
             return false;
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     }
     /* Thin-walled glass over the diffuse surfaces it lies in front of, as
      * shade blends it (common/thin_glass.frag, seen from the centre): a pane
@@ -104,13 +115,8 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
         if (!gl_program_get(&r->programs, "common/object.vert", "common/thin_glass.frag",
                             DISTANCE_MAP_VIEW "#define VIEW_FROM_CENTER 1\n", &panes, err))
             return false;
-        if (shadow_pass)
-            shadow_inputs_bind(shadow_pass, f, panes);
-        else
-            gl.ProgramUniform1i(panes->id, gl_program_uniform(panes, "u_shadow_total"), 0);
-        if (!medium_gpu_bind(r, scene, panes, err))
+        if (!bind_lighting(panes, shadow_pass, f, center, err))
             return false;
-        gl.ProgramUniform3f(panes->id, gl_program_uniform(panes, "u_center"), center.x, center.y, center.z);
         gl.ProgramUniform1i(panes->id, gl_program_uniform(panes, "u_panes"), 0);
         gl_program_bind_texture(panes, "u_surface_depth", r->dummy_2d.id);
     }
