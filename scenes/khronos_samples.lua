@@ -36,8 +36,11 @@ if c.param("one_material", false) then model.material = model.materials[1] end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 g:add("photons", c.pass.photon_caustics { light = sun, shadow = "shadow.depth" }) -- (its pane filter: thin glass between the sun and the glass)
-g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance" })
-if c.param("refraction", true) then
+local refraction = c.param("refraction", true)
+-- with refraction after it, shade leaves glass and mirrors to it (their
+-- alphaMode holes show what lies behind them, not shade's drawing of them)
+g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = "photons.irradiance", specular = not refraction })
+if refraction then
   g:add("glass", c.pass.refraction { color = "shade.color", depth = "shade.depth" })
   g:output("glass.color")
 else

@@ -34,9 +34,6 @@ uniform float u_clearcoat;     // KHR_materials_clearcoat (0 without)
 uniform float u_clearcoat_roughness;
 uniform float u_clearcoat_normal_scale;
 uniform float u_normal_scale;
-uniform float u_alpha;         // the base colour's alpha factor
-uniform float u_alpha_cutoff;  // glTF alphaMode MASK: cut out below it; 0: opaque (struct material)
-uniform int u_alpha_blend;     // glTF alphaMode BLEND: kept with probability alpha (an ordered dither)
 uniform int u_single_sided;    // glTF doubleSided false: the camera does not see its back faces (shade discards them)
 // thin glass: the share of the surface that is glass (glTF's transmissionFactor) x its texture's red channel
 uniform float u_transmission = 1.0;
@@ -45,10 +42,11 @@ uniform int u_transmission_set;           // 0: none, 1: TEXCOORD_0, 2: TEXCOORD
 uniform vec3 u_transmission_transform[2]; // uv' = (dot(row0, (uv, 1)), dot(row1, (uv, 1)))
 in vec2 v_texcoord0;
 in vec2 v_texcoord1;
-in vec4 v_color; // glTF's COLOR_0: it multiplies the base colour and its alpha ...
+// u_alpha, u_alpha_cutoff, u_alpha_blend, v_color (COLOR_0), u_vertex_colors,
+// material_alpha and material_cut_out:
+#include "common/alpha.glsl"
 // v_tangent, u_has_tangents and material_mapped_normal:
 #include "common/normal_map.glsl"
-uniform int u_vertex_colors; // ... where the mesh has one (an interpolated constant 1 is not always exactly 1)
 
 // The clearcoat's normal, set by material_normal for material_brdf: its own
 // normal map, else the geometry's normal
@@ -69,36 +67,6 @@ vec3 material_albedo(vec3 color)
     if (u_vertex_colors == 1)
         color *= v_color.rgb;
     return u_texture_set[0] > 0 ? color * texture(u_base_color_texture, material_uv(0)).rgb : color;
-}
-
-// A cut-out (glTF alphaMode MASK): the surface is not there where the
-// base colour's alpha (factor x texture) is below the cutoff. The
-// reference cuts out the same texels (ref_scene.c's filter).
-// BLEND, where a pass cannot blend (the shadow map, the distance map,
-// impostors: shade blends, back to front), is a stochastic cut-out: a
-// region keeps alpha of its texels by a 4 x 4 Bayer threshold over blocks
-// of 4 x 4 texels (whole blocks: the shadow lookup filters depths
-// bilinearly, which would smear a per-texel pattern into a whole shadow),
-// which its 3 x 3 filter turns into a partial shadow; the reference keeps
-// the surface per ray with probability alpha.
-// The base colour's alpha: factor x texture.
-float material_alpha()
-{
-    float a = u_vertex_colors == 1 ? u_alpha * v_color.a : u_alpha;
-    return a * (u_texture_set[0] > 0 ? texture(u_base_color_texture, material_uv(0)).a : 1.0);
-}
-
-bool material_cut_out()
-{
-    if (u_alpha_cutoff <= 0.0 && u_alpha_blend == 0)
-        return false;
-    float a = material_alpha();
-    if (u_alpha_blend == 0)
-        return a < u_alpha_cutoff;
-    ivec2 q = (ivec2(gl_FragCoord.xy) >> 2) & 3; // blocks of 4 x 4 texels: depths filtered bilinearly stay whole
-    int s = q.x ^ q.y; // the 4 x 4 Bayer index: bits of (x ^ y) and y interleaved, reversed
-    int bayer = ((s & 1) << 3) | ((q.y & 1) << 2) | (((s >> 1) & 1) << 1) | ((q.y >> 1) & 1);
-    return a <= (float(bayer) + 0.5) / 16.0;
 }
 
 // Thin glass's transmission at this texel (refraction/refract.frag reads

@@ -51,6 +51,8 @@ uniform sampler2D u_base_color_texture;
 uniform int u_texture_set[5];
 uniform vec3 u_texture_transform[10];
 #include "refraction/interface_normal.glsl"
+// glTF's alphaMode on glass and mirrors: material_alpha, material_cut_out
+#include "common/alpha.glsl"
 
 // The tint of the light entering here: the base colour x its texture (the
 // reference's ref_glass_tint)
@@ -423,9 +425,12 @@ void main()
     o_tir = vec4(0.0);
     vec3 exit_dir = reflect_dir; // the first way out (the `exit` output)
     vec4 exit_key = vec4(n1, 0.0);
+    // the far side of glass or a mirror with holes, seen through a hole in
+    // its front (refraction.c draws such objects' back faces too)
+    bool far_side = !gl_FrontFacing && u_camera_inside == 0;
     if (role_is(ROLE_MIRROR)) // a mirror: reflection alone, of nearby objects too
         gather(v_world, reflect_dir, u_color, 1.0, true);
-    else if (u_camera_inside == 1) {
+    else if (u_camera_inside == 1 || far_side) {
         // The camera inside the glass (Hu & Qin's two interfaces assume it
         // outside): the view ray is in the glass already, absorbed on the way
         // to this back face, and meets only the way out. Where a front face
@@ -438,7 +443,10 @@ void main()
             n_out = -n_out;
         reflect_dir = v; // no reflection off the outside to filter
         exit_dir = v;
-        leave_glass(v_world, v, n_out, exp(-u_absorption * view_distance(v_world)), 1.0, exit_dir, exit_key);
+        // (a ray in through a hole crossed no surface: unabsorbed, as the
+        // reference's media stack has it)
+        leave_glass(v_world, v, n_out, far_side ? vec3(1.0) : exp(-u_absorption * view_distance(v_world)), 1.0,
+                    exit_dir, exit_key);
     } else
         refract_paths(v, n1, reflect_dir, exit_dir, exit_key);
     // The environment over each pixel's spread of directions (issue 8): the
@@ -473,5 +481,17 @@ void main()
         vec3 diffuse = surface_light_diffuse(v_world, n1, u_color, vec3(0.0), vec3(0.0));
         pixel_radiance = transmission * pixel_radiance + (1.0 - transmission) * diffuse;
     }
-    o_color = vec4(pixel_radiance, 1.0);
+    // glTF's alphaMode on glass and mirrors (issue 50), after the
+    // derivatives: MASK cuts a hole, through which the input image shows
+    // undeviated; BLEND covers alpha of the pixel, blended over the input
+    // (refraction.c blends such objects' colour). The reference keeps the
+    // same surfaces (ref_scene.c's filter).
+    if (u_alpha_blend == 0 && material_cut_out())
+        discard;
+    // a mirror's inner side, drawn where it has holes (refraction.c), is
+    // seen only where no front face lies nearer (the front surfaces' depth
+    // keeps the holes out; glass's far side was tested above)
+    if (far_side && texelFetch(u_front_depth, ivec2(gl_FragCoord.xy), 0).r < gl_FragCoord.z)
+        discard;
+    o_color = vec4(pixel_radiance, u_alpha_blend == 1 ? clamp(material_alpha(), 0.0, 1.0) : 1.0);
 }

@@ -6,7 +6,9 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_texcoord0;
 layout(location = 3) in vec2 a_texcoord1;
+layout(location = 4) in vec4 a_color;   // glTF's COLOR_0 (its alpha cuts out or blends: common/alpha.glsl)
 layout(location = 5) in vec4 a_tangent; // a normal map's (common/normal_map.glsl)
+uniform int u_vertex_colors;           // 0: the mesh has none (white)
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 out vec3 v_normal;
@@ -15,6 +17,7 @@ out float v_thickness;
 out vec2 v_texcoord0; // for glass's transmission texture (refract.frag)
 out vec2 v_texcoord1;
 out vec4 v_tangent;
+out vec4 v_color;
 #ifdef WYMAN
 layout(std430) readonly buffer Thickness { float thickness[]; };
 #endif
@@ -25,6 +28,7 @@ void main()
     v_world = w.xyz;
     v_texcoord0 = a_texcoord0;
     v_texcoord1 = a_texcoord1;
+    v_color = u_vertex_colors == 1 ? a_color : vec4(1.0);
     v_tangent = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
 #ifdef WYMAN
     // d_N scales with the object (uniform scale assumed)

@@ -23,7 +23,7 @@ void main()
     vec3 to_light;
     float dist;
     light_arrival(u_light_index, v_world, to_light, dist);
-    if (role_is(ROLE_RECEIVER)) { // a blended diffuse surface (alphaMode BLEND), else thin glass
+    if (!role_is(ROLE_THIN)) { // a blended surface (alphaMode BLEND: diffuse, glass or a mirror)
         // a blended surface covers alpha of the light's way: 1 - alpha passes
         o_filter = vec4(vec3(1.0 - material_alpha()), gl_FragCoord.z);
         return;

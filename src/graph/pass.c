@@ -611,37 +611,50 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
      * normal map the object has (graph_lint copies it before the next call) */
     static char sentence[400];
     bool mapped = o->material.normal.texture != NULL && !o->material.thin;
-    if (object_is(o, OBJECT_ROLE_MIRROR) && (o->material.roughness > 0.0f || mapped)) {
-        const char *what = o->material.roughness > 0.0f && mapped ? "its roughness and its normal map"
-                           : mapped                                ? "its normal map"
-                                                                   : "its roughness";
-        snprintf(sentence, sizeof sentence, "%s: %s", what,
-                 caustics ? "the light it reflects is reflected as by a smooth, flat mirror, so its caustic is sharp "
-                            "(the reference spreads it)"
-                          : "drawn as a smooth mirror (refraction's scene lookup blurs it and maps it)");
-        return sentence;
-    }
-    const char *parts[4];
+    const char *alpha = o->material.alpha_blend          ? "its alphaMode BLEND"
+                        : o->material.alpha_cutoff > 0.0f ? "its alphaMode MASK's holes"
+                                                          : NULL;
+    const char *parts[5];
     int n = 0;
-    if (object_is_rough_refractor(o))
+    bool mirror = object_is(o, OBJECT_ROLE_MIRROR);
+    if (mirror ? o->material.roughness > 0.0f : object_is_rough_refractor(o))
         parts[n++] = "its roughness";
-    if (object_is_partly_diffuse_refractor(o))
+    if (!mirror && object_is_partly_diffuse_refractor(o))
         parts[n++] = "its transmission below 1";
-    if (object_is_tinted_refractor(o))
+    if (!mirror && object_is_tinted_refractor(o))
         parts[n++] = "its tint";
-    if (mapped && object_is(o, OBJECT_ROLE_REFRACTOR))
+    if (mapped && object_is(o, OBJECT_ROLE_SPECULAR))
         parts[n++] = "its normal map";
+    if (alpha && object_is(o, OBJECT_ROLE_SPECULAR))
+        parts[n++] = alpha;
     if (n == 0)
         return NULL;
-    char list[160] = "";
+    char list[200] = "";
     for (int k = 0; k < n; k++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k == 0 ? "" : k == n - 1 ? " and " : ", ",
                  parts[k]);
-    snprintf(sentence, sizeof sentence, "%s: %s", list,
-             caustics ? "all the light that meets it is refracted as by smooth, clear glass, so the caustic it "
-                        "focuses is sharp, too bright or uncoloured (the reference spreads, shares and tints it)"
-                      : "the view through it is drawn as through smooth, clear glass (refraction blurs it, blends "
-                        "in the diffuse share, tints it and maps its normals)");
+    /* what the pass draws instead: a mirror or glass without those */
+    char as[80] = "";
+    const char *adjectives[4] = {n && !strcmp(parts[0], "its roughness") ? "smooth" : NULL,
+                                 !mirror && (object_is_partly_diffuse_refractor(o) || object_is_tinted_refractor(o))
+                                     ? "clear"
+                                     : NULL,
+                                 mapped ? "flat" : NULL, alpha ? "whole" : NULL};
+    for (int k = 0, m = 0; k < 4; k++)
+        if (adjectives[k])
+            snprintf(as + strlen(as), sizeof as - strlen(as), "%s%s", m++ ? ", " : "", adjectives[k]);
+    if (mirror)
+        snprintf(sentence, sizeof sentence, "%s: %s%s%s", list,
+                 caustics ? "the light it reflects is reflected as by a " : "drawn as a ", as,
+                 caustics ? " mirror, so its caustic is sharp or whole (the reference draws the mirror as it is)"
+                          : " mirror (refraction draws it as it is, a rough one by its scene lookup)");
+    else
+        snprintf(sentence, sizeof sentence, "%s: %s%s%s", list,
+                 caustics ? "all the light that meets it is refracted as by " : "the view through it is drawn as through ",
+                 as,
+                 caustics ? " glass, so the caustic it focuses is sharp, too bright or uncoloured (the reference draws "
+                            "the glass as it is)"
+                          : " glass (refraction draws it as it is, rough glass by its scene lookup)");
     return sentence;
 }
 

@@ -354,11 +354,12 @@ int pass_registry_count(void);
 const struct pass_desc *pass_registry_get(int index);
 const struct pass_desc *pass_registry_find(const char *name);
 
-/* What a pass that treats every refractor as smooth, clear glass leaves out
- * of `o` (its roughness, its diffuse share: material.roughness > 0,
- * material.transmission < 1), for its leaves_out: `caustics` for a pass
- * that carries light through the glass, else for one that shows the view
- * through it. NULL when `o` is smooth, clear glass or no refractor. */
+/* What a pass that treats every refractor as smooth, clear, whole glass
+ * (and every mirror as smooth, flat and whole) leaves out of `o`: its
+ * roughness, its diffuse share, its tint, its normal map, its alphaMode
+ * holes or blending, for its leaves_out: `caustics` for a pass that carries
+ * light through the glass, else for one that shows the view through it.
+ * NULL when `o` has none of them or is neither glass nor a mirror. */
 const char *pass_refractor_left_out(const struct object *o, bool caustics);
 
 /* What a view technique that finds what lies behind a refractor's surfaces

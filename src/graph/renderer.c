@@ -289,7 +289,8 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
         /* (glass: its base colour texture, which tints it; glass and
          * mirrors: their normal map, which refraction maps) */
         unsigned role = material_role(&o->material);
-        bool slot_used = material_is_textured_surface(&o->material) || (s == 0 && role == OBJECT_ROLE_GLASS) ||
+        bool cut = o->material.alpha_cutoff > 0.0f || o->material.alpha_blend; /* (its alpha, any role) */
+        bool slot_used = material_is_textured_surface(&o->material) || (s == 0 && (role == OBJECT_ROLE_GLASS || cut)) ||
                          (s == 1 && (role == OBJECT_ROLE_GLASS || role == OBJECT_ROLE_MIRROR));
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2 || s == 6, &id, &err); /* colours are sRGB */
@@ -313,11 +314,13 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->clearcoat_normal_scale, o->material.clearcoat_normal.scale);
     if (pbr)
         gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
-    /* cut-outs, like textures, on diffuse surfaces and thin glass only */
+    /* cut-outs and blending on every surface the loader gave them (glTF's
+     * alphaMode: diffuse surfaces, glass and mirrors); single-sidedness on
+     * diffuse surfaces and thin glass only */
     bool diffuse = material_is_textured_surface(&o->material);
     gl.ProgramUniform1f(program->id, loc->alpha, o->material.alpha);
-    gl.ProgramUniform1f(program->id, loc->alpha_cutoff, diffuse ? o->material.alpha_cutoff : 0.0f);
-    gl.ProgramUniform1i(program->id, loc->alpha_blend, diffuse && o->material.alpha_blend);
+    gl.ProgramUniform1f(program->id, loc->alpha_cutoff, o->material.alpha_cutoff);
+    gl.ProgramUniform1i(program->id, loc->alpha_blend, o->material.alpha_blend);
     gl.ProgramUniform1i(program->id, loc->single_sided, diffuse && o->material.single_sided);
     /* glass's transmission texture (its red channel, linear), which refraction reads */
     const struct texture_ref *tm = &o->material.transmission_map;
@@ -403,7 +406,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         bool thin = object_is(o, OBJECT_ROLE_THIN);
         if (filter != DRAW_ALL && thin != ((filter & DRAW_THIN) != 0))
             continue;
-        bool blended = o->material.alpha_blend && material_role(&o->material) == OBJECT_ROLE_RECEIVER;
+        bool blended = o->material.alpha_blend;
         if (((filter & DRAW_OPAQUE) && blended) || ((filter & DRAW_BLENDED) && !blended))
             continue;
         bool pbr = o->material.pbr && material_role(&o->material) == OBJECT_ROLE_RECEIVER;

@@ -57,7 +57,7 @@ void ref_object_color(const struct ref_object *o, unsigned primitive, double u, 
 bool ref_object_cut_out(const struct ref_object *o, unsigned primitive, double u, double v, double xi)
 {
     const struct material *m = &o->material;
-    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend) || !material_is_textured_surface(m))
+    if (!(m->alpha_cutoff > 0.0f || m->alpha_blend))
         return false;
     double rgba[4];
     ref_object_color(o, primitive, u, v, rgba);
@@ -155,7 +155,7 @@ static unsigned attach_triangles(struct ref_scene *rs, struct ref_object *ro)
                                ro->vertex_count);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, ro->indices, 0, 3 * sizeof(uint32_t),
                                ro->triangle_count);
-    if (material_is_textured_surface(&ro->material) && (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend)) {
+    if (ro->material.alpha_cutoff > 0.0f || ro->material.alpha_blend) {
         rtcSetGeometryUserData(geom, ro);
         rtcSetGeometryIntersectFilterFunction(geom, cut_out_filter);
         rtcSetGeometryOccludedFilterFunction(geom, cut_out_filter);

@@ -124,26 +124,26 @@ static void material_map(const struct gltf_material *g, bool smooth_metal_textur
         if (g->emission[0] > 0.0f || g->emission[1] > 0.0f || g->emission[2] > 0.0f)
             ignored_add(m, "emission (drawn on diffuse surfaces only)");
         if (g->base_color_texture.bytes && m->kind != MATERIAL_GLASS)
-            ignored_add(m, "baseColorTexture (drawn on diffuse surfaces only)");
+            ignored_add(m, g->alpha_mode != GLTF_ALPHA_OPAQUE
+                               ? "baseColorTexture's colour (drawn on diffuse surfaces only; its alpha is read)"
+                               : "baseColorTexture (drawn on diffuse surfaces only)");
         if (g->emissive_texture.bytes)
             ignored_add(m, "emissiveTexture (drawn on diffuse surfaces only)");
         if (g->occlusion_texture.bytes)
             ignored_add(m, "occlusionTexture (drawn on diffuse surfaces only)");
     }
-    bool cut = m->kind == MATERIAL_DIFFUSE || m->thin; /* a crack cut out of a pane is a hole */
-    m->single_sided = cut && !g->double_sided;
-    if (g->alpha_mode == GLTF_ALPHA_MASK && cut) {
+    /* alphaMode on every kind: a crack cut out of a pane is a hole, and so
+     * is one cut out of a mirror or of solid glass (the surface is not
+     * there: a path through it meets what lies beyond, the glass's far
+     * side included) */
+    m->single_sided = (m->kind == MATERIAL_DIFFUSE || m->thin) && !g->double_sided;
+    if (g->alpha_mode == GLTF_ALPHA_MASK) {
         m->alpha = g->alpha;
         m->alpha_cutoff = g->alpha_cutoff;
-    } else if (g->alpha_mode == GLTF_ALPHA_BLEND && cut) {
+    } else if (g->alpha_mode == GLTF_ALPHA_BLEND) {
         m->alpha = g->alpha;
         m->alpha_blend = true;
-    } else if (g->alpha_mode != GLTF_ALPHA_OPAQUE) {
-        ignored_add(m, "alphaMode %s (cut-outs and blending on diffuse surfaces and thin-walled glass only: drawn "
-                       "whole)", g->alpha_mode == GLTF_ALPHA_MASK ? "MASK" : "BLEND");
     }
-    else if (g->alpha_mode == GLTF_ALPHA_BLEND)
-        ignored_add(m, "alphaMode BLEND (drawn opaque)");
     if (g->unread[0])
         ignored_add(m, "%s", g->unread);
     if (g->unread_more)
@@ -176,13 +176,13 @@ static bool material_textures(const char *path, struct gltf_material *g, const s
      * clearcoat ones where glTF's BRDF draws them), glass its transmission and its base
      * colour (the tint per texel), its normal map (refraction and the
      * reference map it) and, solid, its thickness; mirrors their normal
-     * map */
+     * map, and their base colour where its alpha cuts or blends them */
     bool glass = m->kind == MATERIAL_GLASS, mirror = m->kind == MATERIAL_MIRROR;
     if (!glass && !mirror && m->kind != MATERIAL_DIFFUSE)
         return true;
     for (int s = 0; s < 12; s++) {
         struct gltf_texture *gt = slots[s].from;
-        bool read = mirror  ? s == 1
+        bool read = mirror  ? s == 1 || (s == 0 && g->alpha_mode != GLTF_ALPHA_OPAQUE)
                     : glass ? s == 5 || s == 0 || s == 1 || (!m->thin && s == 11)
                             : s < 5 || (s >= 6 && s < 11 && m->pbr);
         if (!gt->bytes || !read)

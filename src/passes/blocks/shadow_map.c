@@ -103,13 +103,14 @@ static enum pass_need shadow_needed(struct pass *p, struct pass_frame *f, char *
 }
 
 /* Casters that let a share of the light through: thin glass, and glTF's
- * alphaMode BLEND surfaces (what passes them is 1 - alpha) */
+ * alphaMode BLEND surfaces, diffuse, glass or mirrors (what passes them is
+ * 1 - alpha) */
 static bool scene_has_filtering_casters(const struct scene *scene)
 {
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
         if (o->cast_shadows && o->visible &&
-            (object_is(o, OBJECT_ROLE_THIN) || (object_is(o, OBJECT_ROLE_RECEIVER) && o->material.alpha_blend)))
+            (object_is(o, OBJECT_ROLE_THIN) || o->material.alpha_blend))
             return true;
     }
     return false;

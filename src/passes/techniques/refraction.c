@@ -190,10 +190,12 @@ static enum pass_need refraction_needed(struct pass *p, struct pass_frame *f, ch
 }
 
 /* Draws each refractive object alone (its d_N buffer bound for Wyman's);
- * with `inside`, only those whose inside[i] is `which`. */
+ * with `inside`, only those whose inside[i] is `which`. With `blend`, a
+ * surface of glTF's alphaMode BLEND is blended over the colour by its alpha
+ * (refract.frag's o_color.a; the other outputs are written whole). */
 static bool draw_refractors(struct renderer *r, const struct scene *scene, const struct gl_program *prog,
-                            bool wyman, const struct impostor_set *impostors, const bool *inside, bool which,
-                            struct error *err)
+                            bool wyman, bool blend, const struct impostor_set *impostors, const bool *inside,
+                            bool which, struct error *err)
 {
     for (int i = 0; i < scene->object_count; i++) {
         struct object *o = scene->objects[i];
@@ -210,7 +212,22 @@ static bool draw_refractors(struct renderer *r, const struct scene *scene, const
         }
         if (impostors)
             gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_skip_impostor"), impostors_find(impostors, o));
+        bool blended = blend && o->material.alpha_blend;
+        if (blended) {
+            gl.Enablei(GL_BLEND, 0);
+            gl.BlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        }
+        /* glass or a mirror with holes (alphaMode MASK) shows its far side
+         * through them: its back faces too, each kept where no front face
+         * lies nearer (refract.frag's far_side) */
+        bool holed = blend && !inside && o->material.alpha_cutoff > 0.0f;
+        if (holed)
+            gl.Disable(GL_CULL_FACE);
         renderer_draw_object(r, scene, prog, o);
+        if (holed)
+            gl.Enable(GL_CULL_FACE);
+        if (blended)
+            gl.Disablei(GL_BLEND, 0);
     }
     return true;
 }
@@ -302,7 +319,7 @@ static bool draw_surfaces(struct refraction_state *s, struct pass_frame *f, bool
         gl.ClearNamedFramebufferfv(fb->id, GL_COLOR, 0, zero);
         gl.Clear(GL_DEPTH_BUFFER_BIT);
         gl.CullFace(side == 0 ? GL_BACK : GL_FRONT);
-        if (!draw_refractors(r, f->scene, surf, wyman, NULL, NULL, false, err))
+        if (!draw_refractors(r, f->scene, surf, wyman, false, NULL, NULL, false, err))
             return false;
     }
     gl.Disable(GL_CULL_FACE);
@@ -465,11 +482,11 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     }
     const struct impostor_set *imp = nearby && !distance ? &s->impostors : NULL;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_inside"), 0);
-    bool ok = draw_refractors(r, f->scene, prog, wyman, imp, NULL, false, err);
+    bool ok = draw_refractors(r, f->scene, prog, wyman, true, imp, NULL, false, err);
     if (ok && any_inside && !wyman) {
         gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_inside"), 1);
         gl.CullFace(GL_FRONT);
-        ok = draw_refractors(r, f->scene, prog, wyman, imp, inside, true, err);
+        ok = draw_refractors(r, f->scene, prog, wyman, true, imp, inside, true, err);
         gl.CullFace(GL_BACK);
     }
     free(inside);
