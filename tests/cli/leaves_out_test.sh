@@ -144,4 +144,49 @@ for t in photon_caustics layered_caustics beam_caustics illumination_textures; d
     && pass "$t: a ball resting on its floor, the black in its shadow said once; at its focus and under the cube nothing" \
     || fail "$t, the black in a ball's shadow" "$(cat "$WORK/touch.txt" "$WORK/focus.txt" "$WORK/cube.txt")"
 done
+# A pane between the glass and the floor (tests/scenes/pane_caustic.lua --set below=true): every caustics
+# pass says, once, that the caustic through it is not dimmed; with the pane above the glass (its light on
+# the way to the glass, which the pane filter dims) none says anything of it (issue 50)
+for t in photon_caustics layered_caustics beam_caustics illumination_textures caustic_volumes; do
+  "$CAUSTICA" info tests/scenes/pane_caustic.lua --set technique=$t --set below=true --no-render >"$WORK/below.txt" 2>&1
+  "$CAUSTICA" info tests/scenes/pane_caustic.lua --set technique=$t --no-render >"$WORK/above.txt" 2>&1
+  [ "$(grep -c "($t) leaves out object 3 (thin glass): it lies beyond object 2 (\(glass\|water\))" "$WORK/below.txt")" = 1 ] \
+    && [ "$(leaves_out "$WORK/above.txt")" = 0 ] \
+    && pass "$t: a pane between the glass and the floor said once; one above the glass not" \
+    || fail "$t, a pane below the glass" "$(cat "$WORK/below.txt" "$WORK/above.txt")"
+done
+
+# glossy_reflection adds its reflections over shade's panes: it says so of each pane in a scene with
+# glTF BRDF surfaces (the pane of tests/data/pane.gltf before brdf_quads.gltf's quads), not without them
+cat >"$WORK/glossy_pane.lua" <<LUA
+local c = require "caustica"
+local scene = c.scene { camera = c.camera { eye = {0, 1, 3}, target = {0, 0, 0} } }
+scene:add(c.light.directional { direction = {0, -1, -1}, intensity = {1, 1, 1} })
+if c.param("brdf", true) then scene:add(c.object { mesh = c.mesh.load("$ROOT/tests/data/brdf_quads.gltf") }) end
+scene:add(c.object { mesh = c.mesh.load("$ROOT/tests/data/pane.gltf"), position = {0, 0, 1},
+                     rotation = c.quat.axis_angle({1, 0, 0}, math.pi / 2) })
+local g = c.graph()
+g:add("shade", c.pass.shade {})
+g:add("glossy", c.pass.glossy_reflection { color = "shade.color" })
+g:output("glossy.color")
+return { scene = scene, graph = g, size = {32, 32} }
+LUA
+"$CAUSTICA" info "$WORK/glossy_pane.lua" --no-render --trusted >"$WORK/gp.txt" 2>&1
+"$CAUSTICA" info "$WORK/glossy_pane.lua" --set brdf=false --no-render --trusted >"$WORK/gp0.txt" 2>&1
+[ "$(grep -c "(glossy_reflection) leaves out object [0-9]* (thin glass): where this pane lies in front of a glossy surface" "$WORK/gp.txt")" = 1 ] \
+  && [ "$(leaves_out "$WORK/gp0.txt")" = 0 ] \
+  && pass "glossy_reflection: a pane before glTF BRDF surfaces said once; without them nothing" \
+  || fail "glossy_reflection and a pane" "$(cat "$WORK/gp.txt" "$WORK/gp0.txt")"
+
+# alphaMode holes on a mirror and on solid glass: refraction draws them and says nothing; a caustics pass
+# and the other view techniques draw the surface whole and say so (tests/scenes/cut_specular.lua)
+"$CAUSTICA" info tests/scenes/cut_specular.lua --set material=1 --no-render >"$WORK/cut1.txt" 2>&1
+[ "$(leaves_out "$WORK/cut1.txt")" = 0 ] && ! grep -q "drawn by pass" "$WORK/cut1.txt" \
+  && pass "refraction draws a mirror's alphaMode holes: nothing said" || fail "refraction and holes" "$(cat "$WORK/cut1.txt")"
+"$CAUSTICA" info tests/scenes/cut_specular.lua --set material=3 --set view=layered_refraction --set caustics=true \
+  --no-render >"$WORK/cut3.txt" 2>&1
+grep -q "(photon_caustics) leaves out object 3 (glass): .*its alphaMode MASK's holes: all the light that meets it is refracted as by .*whole glass" "$WORK/cut3.txt" \
+  && grep -q "(layered_refraction) leaves out object 3 (glass): .*its alphaMode MASK's holes: the view through it is drawn as through .*whole glass" "$WORK/cut3.txt" \
+  && pass "photon_caustics and layered_refraction say they draw glass with holes whole" \
+  || fail "glass with holes in other passes" "$(cat "$WORK/cut3.txt")"
 finish

@@ -9,6 +9,9 @@
 -- caustics pass instead;
 -- technique=caustic_volumes: a rippled pool in place of the ball, its
 -- caustics by caustic volumes, the surface by water_surface.
+-- below=true: the pane between the ball and the floor instead (0.2 above
+-- the floor), where no caustics pass dims the caustic by it (each says so;
+-- the reference's photons cross it).
 local c = require "caustica"
 local scene = c.scene {
   camera = c.camera { eye = {0, 2.6, 2.2}, target = {0, 0, 0}, fov = 40 },
@@ -28,7 +31,7 @@ else
                        material = c.material.glass { ior = 1.5 } })
 end
 if c.param("pane", true) then
-  scene:add(c.object { mesh = c.mesh.plane { size = 1.0 }, position = {0, 1.6, 0},
+  scene:add(c.object { mesh = c.mesh.plane { size = 1.0 }, position = {0, c.param("below", false) and 0.2 or 1.6, 0},
                        material = c.material.glass { thin = true, ior = 1.5, tint = {1, 0.6, 0.2} } })
 end
 local g = c.graph()

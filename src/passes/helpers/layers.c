@@ -76,9 +76,8 @@ const char *layers_refractors_named(const struct scene *scene)
 
 const char *layers_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
-    (void)scene;
     if (object_is(o, OBJECT_ROLE_THIN))
-        return shadow_inputs_pane_left_out(p, o);
+        return shadow_inputs_pane_left_out(p, scene, o);
     if (object_is(o, OBJECT_ROLE_MIRROR))
         return "the light's depth layers hold glass and water only: no caustics off a mirror (photon_caustics "
                "makes them)";

@@ -7,10 +7,53 @@
 
 const struct record_type SHADOW_MAP_RECORD = {"shadow_map"};
 
-const char *shadow_inputs_pane_left_out(const struct pass *p, const struct object *o)
+/* Does pane `o` lie beyond a specular object of the scene as `light` sees
+ * them: its box's centre farther along the light's way than that object's,
+ * and the two boxes' bounding spheres overlapping across it? Its number
+ * (from 1), or 0. */
+static int pane_beyond_specular(const struct scene *scene, const struct light *light, const struct object *o)
+{
+    vec3 plo, phi;
+    object_world_bounds(o, &plo, &phi);
+    vec3 pc = vec3_scale(vec3_add(plo, phi), 0.5f);
+    float pr = 0.5f * vec3_length(vec3_sub(phi, plo));
+    for (int i = 0; i < scene->object_count; i++) {
+        const struct object *s = scene->objects[i];
+        if (!s->visible || !object_is(s, OBJECT_ROLE_SPECULAR))
+            continue;
+        vec3 lo, hi;
+        object_world_bounds(s, &lo, &hi);
+        vec3 c = vec3_scale(vec3_add(lo, hi), 0.5f);
+        float r = 0.5f * vec3_length(vec3_sub(hi, lo));
+        vec3 d = light->kind == LIGHT_DIRECTIONAL ? light->direction : vec3_sub(c, light_center(light));
+        float len = vec3_length(d);
+        if (!(len > 0.0f))
+            continue;
+        d = vec3_scale(d, 1.0f / len);
+        vec3 between = vec3_sub(pc, c);
+        float along = vec3_dot(between, d);
+        vec3 across = vec3_sub(between, vec3_scale(d, along));
+        if (along > 0.0f && vec3_length(across) < pr + r)
+            return i + 1;
+    }
+    return 0;
+}
+
+const char *shadow_inputs_pane_left_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
     if (!object_is(o, OBJECT_ROLE_THIN))
         return NULL;
+    static char beyond[300]; /* (graph_lint copies it before the next call) */
+    int l = pass_param_index(p->desc, "light");
+    const struct light *light = l >= 0 && p->desc->params[l].type == PASS_PARAM_LIGHT ? pass_light_at(p, l) : NULL;
+    int s = light ? pane_beyond_specular(scene, light, o) : 0;
+    if (s) {
+        snprintf(beyond, sizeof beyond,
+                 "it lies beyond object %d (%s) as the light sees them: the caustic that reaches the receivers "
+                 "through it is neither dimmed nor tinted by it (the reference's photons cross it)",
+                 s, object_role_name(object_role(scene->objects[s - 1]) & OBJECT_ROLE_SPECULAR));
+        return beyond;
+    }
     int k = pass_param_index(p->desc, "shadow");
     if (k >= 0 && p->values[k].set)
         return NULL; /* between the light and the glass, by the map's pane filter */

@@ -36,9 +36,12 @@ struct shadow_record {
              "not seen"}
 
 /* What a caustics pass leaves out of pane `o` (thin-walled glass), or NULL:
- * a pass with a `shadow` parameter (SHADOW_PARAM_PANES) sees panes when it
- * is given the light's shadow map; one without does not see them. */
-const char *shadow_inputs_pane_left_out(const struct pass *p, const struct object *o);
+ * a pass with a `shadow` parameter (SHADOW_PARAM_PANES) sees panes between
+ * the light and the glass when it is given the light's shadow map; one
+ * without does not see them; and no pass dims a caustic by a pane that lies
+ * beyond glass, water or a mirror as its light sees them (between them and
+ * the receivers). */
+const char *shadow_inputs_pane_left_out(const struct pass *p, const struct scene *scene, const struct object *o);
 
 /* Binds the shadow maps and sets the uniforms on `program`. */
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *program);

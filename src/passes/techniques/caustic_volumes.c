@@ -221,14 +221,13 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
 static const char *caustic_volumes_leaves_out(const struct pass *p, const struct scene *scene,
                                               const struct object *o)
 {
-    (void)scene;
     if (object_is(o, OBJECT_ROLE_WATER))
         return o == pass_object_at(p, VOLUMES_WATER)
                    ? NULL
                    : "only the water surface named by `water` makes caustic volumes: no caustics through this one "
                      "(add a caustic_volumes pass for it)";
     if (object_is(o, OBJECT_ROLE_THIN))
-        return shadow_inputs_pane_left_out(p, o); /* undeviated: no caustic of its own */
+        return shadow_inputs_pane_left_out(p, scene, o); /* undeviated: no caustic of its own */
     return "caustic volumes are built from the water surface named by `water` alone: no caustics through glass "
            "or off a mirror (photon_caustics or layered_caustics make them)";
 }

@@ -111,7 +111,24 @@ static bool glossy_reflection_execute(struct pass *p, struct pass_frame *f, stru
     return gl_check("glossy reflections", err);
 }
 
+/* The pass adds the reflected scene over its input, where the panes shade
+ * blended are already: a pane in front of a glossy surface does not dim or
+ * tint what it adds (said only where the scene has BRDF surfaces). */
+static const char *glossy_reflection_leaves_out(const struct pass *p, const struct scene *scene,
+                                                const struct object *o)
+{
+    (void)p;
+    if (!object_is(o, OBJECT_ROLE_THIN))
+        return NULL;
+    for (int i = 0; i < scene->object_count; i++)
+        if (scene->objects[i]->material.pbr && object_is(scene->objects[i], OBJECT_ROLE_RECEIVER))
+            return "where this pane lies in front of a glossy surface, the reflection this pass adds there is "
+                   "neither dimmed nor tinted by it (the reference sees the reflection through the pane)";
+    return NULL;
+}
+
 const struct pass_desc glossy_reflection_pass = {
+    .leaves_out = glossy_reflection_leaves_out,
     .name = "glossy_reflection",
     .summary = "the scene on screen in the glossy reflections of glTF's BRDF surfaces (screen-space, over shade)",
     .params = params,

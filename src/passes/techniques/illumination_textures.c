@@ -547,7 +547,6 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
 static const char *illumination_textures_leaves_out(const struct pass *p, const struct scene *scene,
                                                     const struct object *o)
 {
-    (void)scene;
     (void)p;
     if (object_is(o, OBJECT_ROLE_WATER))
         return "the light transport tables are made for closed glass objects (Iwasaki et al. 4.2), not a water "
@@ -556,7 +555,7 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
         return "only glass refracts light into the illumination textures: no caustics off a mirror "
                "(photon_caustics makes them)";
     if (object_is(o, OBJECT_ROLE_THIN))
-        return shadow_inputs_pane_left_out(p, o);
+        return shadow_inputs_pane_left_out(p, scene, o);
     return pass_refractor_left_out(o, true);
 }
 

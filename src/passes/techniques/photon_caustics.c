@@ -634,9 +634,8 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
  * partly diffuse glass as smooth, clear glass. */
 static const char *photon_caustics_leaves_out(const struct pass *p, const struct scene *scene, const struct object *o)
 {
-    (void)scene;
     if (object_is(o, OBJECT_ROLE_THIN))
-        return shadow_inputs_pane_left_out(p, o);
+        return shadow_inputs_pane_left_out(p, scene, o);
     return pass_refractor_left_out(o, true);
 }
 
