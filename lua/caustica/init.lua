@@ -10,6 +10,7 @@ local c = {}
 for k, v in pairs(scene) do c[k] = v end
 c.graph = graph.graph
 c.pass = graph.pass
+c.techniques = graph.techniques
 c.image = image
 c.param = host.param
 c.asset = host.asset

@@ -25,34 +25,43 @@ local passes = {
   layered = function() return c.pass.layered_caustics { light = sun } end,
   beams = function() return c.pass.beam_caustics { light = sun } end,
 }
+-- A caustics technique registered since (issue 54) joins at its defaults,
+-- under its own name: --set technique=NAME, and bench --sweep technique=all.
+local newer = c.techniques("caustics", { "photon_caustics", "illumination_textures", "layered_caustics", "beam_caustics" })
+for _, name in ipairs(newer) do
+  passes[name] = function() return c.pass[name] { light = sun } end
+end
 local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 if technique ~= "plain" then
-  assert(passes[technique], "technique: plain, photons, illumination, layered or beams expected, got " .. tostring(technique))
+  local names = { "plain", "photons", "illumination", "layered", "beams" }
+  for _, name in ipairs(newer) do names[#names + 1] = name end
+  assert(passes[technique], "technique: " .. table.concat(names, ", ") .. " expected, got " .. tostring(technique))
   g:add("caustics", passes[technique]())
 end
 g:add("shade", c.pass.shade { shadow = "shadow.depth", caustics = technique ~= "plain" and "caustics.irradiance" or nil,
                               specular = false })
 g:add("glass", c.pass.layered_refraction { color = "shade.color" })
 g:output("glass.color")
-return { scene = scene, graph = g, size = {256, 256}, frames = 60,
-         -- bench --sweep technique=all / choose: each technique at its defaults and these settings
-         techniques = {
-           metric = "caustic",
-           { "plain" },
-           { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
-                                   { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 },
-                                   { ["caustics.buffer"] = 1024, ["caustics.texture"] = 1024, ["caustics.k"] = 1 },
-                                   { ["caustics.accumulate"] = 16 },
-                                   -- issue 32: the cheapest grid, a point per photon, with and without accumulation
-                                   { ["caustics.buffer"] = 32, ["caustics.footprint"] = 0 },
-                                   { ["caustics.buffer"] = 32, ["caustics.footprint"] = 0, ["caustics.accumulate"] = 16 } } },
-           { "illumination", points = { { ["caustics.planes"] = 8 }, { ["caustics.size"] = 512 },
-                                        { ["caustics.table"] = 8 } } },
-           { "layered", sweep = { ["caustics.buffer"] = {128, 512} } },
-           { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 },
-                                 { ["caustics.grid"] = 32, ["caustics.refine"] = 2 } } },
-         },
+-- bench --sweep technique=all / choose: each technique at its defaults and these settings
+local techniques = {
+  metric = "caustic",
+  { "plain" },
+  { "photons", points = { { ["caustics.buffer"] = 128, ["caustics.texture"] = 128 },
+                          { ["caustics.buffer"] = 512, ["caustics.texture"] = 512 },
+                          { ["caustics.buffer"] = 1024, ["caustics.texture"] = 1024, ["caustics.k"] = 1 },
+                          { ["caustics.accumulate"] = 16 },
+                          -- issue 32: the cheapest grid, a point per photon, with and without accumulation
+                          { ["caustics.buffer"] = 32, ["caustics.footprint"] = 0 },
+                          { ["caustics.buffer"] = 32, ["caustics.footprint"] = 0, ["caustics.accumulate"] = 16 } } },
+  { "illumination", points = { { ["caustics.planes"] = 8 }, { ["caustics.size"] = 512 },
+                               { ["caustics.table"] = 8 } } },
+  { "layered", sweep = { ["caustics.buffer"] = {128, 512} } },
+  { "beams", points = { { ["caustics.refine"] = 0 }, { ["caustics.refine"] = 2 },
+                        { ["caustics.grid"] = 32, ["caustics.refine"] = 2 } } },
+}
+for _, name in ipairs(newer) do techniques[#techniques + 1] = { name } end -- (at their defaults)
+return { scene = scene, graph = g, size = {256, 256}, frames = 60, techniques = techniques,
          update = function(t)
            local a = turn * t
            sun.direction = { 0.35 * math.cos(e) * math.cos(a) - 0.9 * math.cos(e) * math.sin(a), -math.sin(e),

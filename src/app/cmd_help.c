@@ -153,6 +153,10 @@ static void print_pass(FILE *f, const struct pass_desc *d, bool markdown)
     pass_outputs(d, outputs, sizeof outputs);
     if (markdown) {
         fprintf(f, "### `c.pass.%s`\n\n%s.\n\nOutputs: %s.\n\n", d->name, d->summary, outputs);
+        if (pass_technique_name(d->technique))
+            fprintf(f, "A technique of the family `%s` (`c.techniques \"%s\"`: the optics matrix and the comparison "
+                       "scenes enumerate it).\n\n",
+                    pass_technique_name(d->technique), pass_technique_name(d->technique));
         fprintf(f, "| parameter | type | default | range | what it is |\n|---|---|---|---|---|\n");
         for (int i = 0; i < d->param_count; i++) {
             const struct pass_param_desc *p = &d->params[i];
@@ -169,6 +173,9 @@ static void print_pass(FILE *f, const struct pass_desc *d, bool markdown)
         return;
     }
     fprintf(f, "%s: %s\n  outputs: %s\n", d->name, d->summary, outputs);
+    if (pass_technique_name(d->technique))
+        fprintf(f, "  technique: %s (c.techniques \"%s\")\n", pass_technique_name(d->technique),
+                pass_technique_name(d->technique));
     for (int i = 0; i < d->param_count; i++) {
         const struct pass_param_desc *p = &d->params[i];
         param_default(p, def, sizeof def);

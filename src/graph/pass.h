@@ -170,9 +170,26 @@ uint64_t pass_key_mix(uint64_t key, const void *data, size_t size);
  * mesh changes without a version). */
 bool pass_frame_reusable(const struct pass_frame *f, bool made, uint64_t made_key, uint64_t key);
 
+/* The comparison a technique joins (issue 54), by what it plugs into: the
+ * optics matrix lists every registered technique of a family (as "not
+ * measured" until it is given bounds there), the comparison scenes add it
+ * to `bench --sweep technique=all`, and `help` names its family. */
+enum pass_technique {
+    PASS_TECHNIQUE_NONE,           /* a building block, a script's own, a helper of the image */
+    PASS_TECHNIQUE_CAUSTICS,       /* takes `light` (nothing else required) and makes `irradiance` for shade's
+                                    * `caustics` */
+    PASS_TECHNIQUE_WATER_CAUSTICS, /* the same, from the water surface its `water` names */
+    PASS_TECHNIQUE_VIEW,           /* draws glass and water over `color` (with `depth`), nothing else required */
+    PASS_TECHNIQUE_WATER_VIEW,     /* draws the water surface its `water` names over `color` */
+};
+
+/* "caustics", "water_caustics", "view", "water_view" (NULL for none). */
+const char *pass_technique_name(enum pass_technique technique);
+
 struct pass_desc {
     const char *name;
     const char *summary;
+    enum pass_technique technique; /* the comparison it joins (PASS_TECHNIQUE_NONE: none) */
     const struct pass_param_desc *params;
     int param_count;
     /* Declares inputs and outputs from the parameter values. */

@@ -500,6 +500,50 @@ static int pass_table_index(lua_State *L)
     return luaL_error(L, "unknown pass '%s' (known passes: %s)", name ? name : "?", lua_tostring(L, -1));
 }
 
+/* Is `name` among the strings of the list at index `list` (0: no list)? */
+static bool listed(lua_State *L, int list, const char *name)
+{
+    if (!list)
+        return false;
+    lua_Integer n = luaL_len(L, list);
+    for (lua_Integer k = 1; k <= n; k++) {
+        bool same = lua_geti(L, list, k) == LUA_TSTRING && strcmp(lua_tostring(L, -1), name) == 0;
+        lua_pop(L, 1);
+        if (same)
+            return true;
+    }
+    return false;
+}
+
+/* c.techniques(FAMILY [, EXCEPT]): the names of the registered techniques
+ * of a family ("caustics", "water_caustics", "view", "water_view"), in the
+ * registry's order, but those in the list EXCEPT: what the comparison
+ * scenes and the optics matrix enumerate, so that a technique added to the
+ * registry joins them (issue 54); EXCEPT names the ones a scene already
+ * holds, or left out with a reason. */
+static int techniques_l(lua_State *L)
+{
+    const char *family = luaL_checkstring(L, 1);
+    int except = lua_isnoneornil(L, 2) ? 0 : 2;
+    if (except)
+        luaL_checktype(L, 2, LUA_TTABLE);
+    bool known = false;
+    for (int t = PASS_TECHNIQUE_CAUSTICS; t <= PASS_TECHNIQUE_WATER_VIEW; t++)
+        known = known || strcmp(family, pass_technique_name((enum pass_technique)t)) == 0;
+    if (!known)
+        return luaL_argerror(L, 1, "a technique family expected: caustics, water_caustics, view or water_view");
+    lua_newtable(L);
+    int n = 0;
+    for (int i = 0; i < pass_registry_count(); i++) {
+        const char *f = pass_technique_name(pass_registry_get(i)->technique);
+        if (f && strcmp(f, family) == 0 && !listed(L, except, pass_registry_get(i)->name)) {
+            lua_pushstring(L, pass_registry_get(i)->name);
+            lua_rawseti(L, -2, ++n);
+        }
+    }
+    return 1;
+}
+
 int luaopen_caustica_graph(lua_State *L)
 {
     static const luaL_Reg pass_meta[] = {{"__gc", pass_gc}, {"__tostring", pass_tostring}, {NULL, NULL}};
@@ -513,6 +557,8 @@ int luaopen_caustica_graph(lua_State *L)
     lua_newtable(L);
     lua_pushcfunction(L, lgraph_new);
     lua_setfield(L, -2, "graph");
+    lua_pushcfunction(L, techniques_l);
+    lua_setfield(L, -2, "techniques");
     lua_newtable(L);
     for (int i = 0; i < pass_registry_count(); i++) {
         const struct pass_desc *d = pass_registry_get(i);

@@ -828,3 +828,38 @@ t.case("a thin-walled wine glass under a spot light: the floor against the refer
                  "Sandberg & Falemo's volumes are built from a water surface's grid, not a closed object")
   finish(failures)
 end)
+
+-- Every registered technique (c.techniques, by family) is measured by the
+-- cases above or listed here as "not measured" (issue 54): a technique
+-- added to the registry shows in the matrix before anyone gives it bounds
+-- (tests/cli/new_technique_test.sh). And every technique the cases above
+-- name is a registered one of the family they treat it as.
+t.case("every registered technique: measured above, or listed as not measured", function()
+  local measured = {}
+  local lists = { caustics = BALL_TECHNIQUES, view = VIEW_TECHNIQUES }
+  for _, name in ipairs(WATER_TECHNIQUES) do measured[name] = true end
+  for _, list in pairs(lists) do
+    for _, name in ipairs(list) do measured[name] = true end
+  end
+  local registered = {}
+  for _, family in ipairs { "caustics", "water_caustics", "view", "water_view" } do
+    for _, name in ipairs(c.techniques(family)) do
+      registered[name] = family
+      if not measured[name] then
+        print(string.format("matrix| every case | %s | - | - | - | - | - | not measured: a registered %s technique "
+                            .. "that no case above names yet (tests/lua/optics_matrix_test.lua)", name, family))
+      end
+    end
+  end
+  for family, list in pairs(lists) do
+    for _, name in ipairs(list) do
+      local pass = name == "refraction_impostors" and "refraction" or name -- (refraction's impostor lookup)
+      t.expect(registered[pass] == family, string.format("the matrix treats %s as a %s technique; the registry "
+                                                           .. "says %s", name, family, tostring(registered[pass])))
+    end
+  end
+  for _, name in ipairs(WATER_TECHNIQUES) do
+    t.expect(registered[name] == "caustics" or registered[name] == "water_caustics",
+             string.format("the water cases run %s, which is registered as %s", name, tostring(registered[name])))
+  end
+end)

@@ -623,6 +623,7 @@ static bool beam_caustics_configure_block(const struct pass *p, int param, struc
 }
 
 const struct pass_desc beam_caustics_pass = {
+    .technique = PASS_TECHNIQUE_CAUSTICS,
     .volume_caustics = true,
     .name = "beam_caustics",
     .leaves_out = layers_leaves_out,

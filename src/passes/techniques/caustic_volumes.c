@@ -242,6 +242,7 @@ static bool caustic_volumes_configure_block(const struct pass *p, int param, str
 }
 
 const struct pass_desc caustic_volumes_pass = {
+    .technique = PASS_TECHNIQUE_WATER_CAUSTICS,
     .surface_caustics_only = true,
     .name = "caustic_volumes",
     .leaves_out = caustic_volumes_leaves_out,

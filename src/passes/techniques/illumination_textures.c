@@ -560,6 +560,7 @@ static const char *illumination_textures_leaves_out(const struct pass *p, const 
 }
 
 const struct pass_desc illumination_textures_pass = {
+    .technique = PASS_TECHNIQUE_CAUSTICS,
     .surface_caustics_only = true,
     .name = "illumination_textures",
     .leaves_out = illumination_textures_leaves_out,

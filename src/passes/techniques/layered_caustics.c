@@ -368,6 +368,7 @@ static bool layered_caustics_configure_block(const struct pass *p, int param, st
 }
 
 const struct pass_desc layered_caustics_pass = {
+    .technique = PASS_TECHNIQUE_CAUSTICS,
     .name = "layered_caustics",
     .leaves_out = layers_leaves_out,
     .configure_block = layered_caustics_configure_block,

@@ -245,6 +245,7 @@ static const char *layered_refraction_leaves_out(const struct pass *p, const str
 }
 
 const struct pass_desc layered_refraction_pass = {
+    .technique = PASS_TECHNIQUE_VIEW,
     .leaves_out = layered_refraction_leaves_out,
     .draws = layered_refraction_draws,
     .color_behind_refractors = true,

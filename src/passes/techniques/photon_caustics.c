@@ -640,6 +640,7 @@ static const char *photon_caustics_leaves_out(const struct pass *p, const struct
 }
 
 const struct pass_desc photon_caustics_pass = {
+    .technique = PASS_TECHNIQUE_CAUSTICS,
     .surface_caustics_only = true,
     .leaves_out = photon_caustics_leaves_out,
     .name = "photon_caustics",

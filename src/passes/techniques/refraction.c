@@ -514,6 +514,7 @@ static const char *refraction_leaves_out(const struct pass *p, const struct scen
 }
 
 const struct pass_desc refraction_pass = {
+    .technique = PASS_TECHNIQUE_VIEW,
     .leaves_out = refraction_leaves_out,
     .behind_glass_without_caustics = true,
     .draws = refraction_draws,

@@ -403,6 +403,7 @@ static unsigned sliced_refraction_draws(const struct pass *p)
 }
 
 const struct pass_desc sliced_refraction_pass = {
+    .technique = PASS_TECHNIQUE_VIEW,
     .draws = sliced_refraction_draws,
     .name = "sliced_refraction",
     .leaves_out = sliced_refraction_leaves_out,

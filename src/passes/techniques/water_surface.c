@@ -130,6 +130,7 @@ static unsigned water_surface_draws(const struct pass *p)
 }
 
 const struct pass_desc water_surface_pass = {
+    .technique = PASS_TECHNIQUE_WATER_VIEW,
     .draws = water_surface_draws,
     .name = "water_surface",
     .summary = "Sandberg & Falemo's third pass: refraction mapping of the pool through the surface, Fresnel reflection",
