@@ -48,7 +48,8 @@ fi
   echo
   echo "\"black\": pixels at 0 where the closed form lights the whole pixel. \"known\": a failure measured and"
   echo "not fixed yet; its bound is the measured value with a margin (a regression still fails the test)."
-  echo "\"n/a\": the technique does not handle the case, and why. Time: the pass's milliseconds in that render"
+  echo "\"n/a\": the technique does not handle the case, and why; \"not measured\": a registered technique no case"
+  echo "names yet (c.techniques; issue 54). Time: the pass's milliseconds in that render"
   echo "(64 x 64 for water, 128 x 128 for the ball and the identity)."
   echo
   echo "| case | technique | camera | error | bound | black | ms | status |"
