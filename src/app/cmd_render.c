@@ -89,18 +89,26 @@ int cmd_render(struct app *app, struct cli *cli)
     struct session *s;
     if (!open_session(app, cli, NULL, &s))
         return EXIT_SCENE_ERROR;
+    struct gl_program_lookups lookups = {0, 0};
     bool ok = session_render(s, cli->frame, &err);
     if (ok && cli->timings) {
         /* Time a second, fresh run of the frame: the first paid for shader
          * compilation, and rendering the same frame again would only reuse
          * what did not change (shadow maps). */
-        ok = session_reload(s, &err) && session_render(s, cli->frame, &err);
+        ok = session_reload(s, &err);
+        struct gl_program_lookups before = gl_program_lookups_so_far();
+        ok = ok && session_render(s, cli->frame, &err);
+        struct gl_program_lookups after = gl_program_lookups_so_far();
+        lookups.uniforms = after.uniforms - before.uniforms;
+        lookups.units = after.units - before.units;
     }
     ok = ok && session_write_image(s, out, &err);
     if (ok && cli->timings) {
         printf("%s frame %d at %dx%d on %s (%s)\n", s->script, cli->frame, s->width, s->height,
                gl_backend_name(app->backend), app->gl ? app->gl->renderer : "?");
         print_timings(s);
+        printf("look-ups by name this frame: %llu uniform locations, %llu sampler, image and block units\n",
+               lookups.uniforms, lookups.units);
     }
     session_close(s);
     if (!ok) {

@@ -259,6 +259,9 @@ static bool program_build(struct gl_program_cache *cache, struct gl_program *p, 
     if (p->id)
         gl.DeleteProgram(p->id);
     p->id = prog;
+    free(p->attached); /* (its locations were the old link's) */
+    p->attached = NULL;
+    p->attached_size = 0;
     free(p->source);
     p->source = all.data;
     p->cache = cache;
@@ -271,6 +274,7 @@ static bool program_build(struct gl_program_cache *cache, struct gl_program *p, 
 
 static void program_free(struct gl_program *p)
 {
+    free(p->attached);
     free(p->slots);
     free(p->locations);
     free(p->source);
@@ -688,8 +692,27 @@ static bool program_assign_slots(struct gl_program_cache *cache, struct gl_progr
     return true;
 }
 
+void *gl_program_attached(const struct gl_program *p, size_t size, bool *made)
+{
+    /* a cache of what the program's link decided, kept beside it: the
+     * program itself (its GL name, tables and sources) stays as linked */
+    struct gl_program *q = (struct gl_program *)p;
+    *made = false;
+    if (q->attached)
+        return q->attached_size == size ? q->attached : NULL;
+    q->attached = calloc(1, size);
+    if (!q->attached)
+        return NULL;
+    q->attached_size = size;
+    *made = true;
+    return q->attached;
+}
+
+extern struct gl_program_lookups gl_program_lookup_counts; /* (gl_program_uniform.c) */
+
 static const struct gl_program_slot *slot_find(const struct gl_program *p, enum gl_slot_kind kind, const char *name)
 {
+    gl_program_lookup_counts.units++;
     for (int i = 0; i < p->nslots; i++)
         if (p->slots[i].kind == kind && strcmp(p->slots[i].name, name) == 0)
             return &p->slots[i];

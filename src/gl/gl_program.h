@@ -58,6 +58,8 @@ struct gl_program {
     char *source;
     struct gl_program_names *checked;  /* owned: the missing names already looked for in `source` */
     struct gl_program_cache *cache;    /* where an undeclared name is reported */
+    void *attached;                    /* owned: gl_program_attached's block, until the next link */
+    size_t attached_size;
 };
 
 /* The missing names a program was asked for (see gl_program.source). */
@@ -109,6 +111,23 @@ GLint gl_program_uniform(const struct gl_program *p, const char *name);
  * (the renderer's per-object material uniforms, a shared binding): a name
  * the program lacks is no error. */
 GLint gl_program_uniform_optional(const struct gl_program *p, const char *name);
+
+/* A block of `size` bytes kept with the program for one caller: the
+ * renderer's look-ups of its locations and units (renderer.c), found once
+ * per link instead of by name every draw. Zeroed, with *made set, the first
+ * time after each link; the same block afterwards (made false). NULL when
+ * out of memory or when `size` differs from the first call's. */
+void *gl_program_attached(const struct gl_program *p, size_t size, bool *made);
+
+/* Look-ups by name since the process started (issue 54's count of them a
+ * frame: `render --timings` prints the timed frame's): uniforms' locations
+ * (gl_program_uniform and _optional) and the units of samplers, images and
+ * blocks (the gl_program_bind_* functions). The renderer is single-threaded;
+ * nothing else calls these. */
+struct gl_program_lookups {
+    unsigned long long uniforms, units;
+};
+struct gl_program_lookups gl_program_lookups_so_far(void);
 
 /* The undeclared names reported since the last call, as one line in `out`
  * ("'u_strenght' (fx/glow.frag), ..."); their count (0: none). The graph

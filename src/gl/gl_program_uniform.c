@@ -76,8 +76,14 @@ int gl_program_cache_take_undeclared(struct gl_program_cache *cache, char *out, 
     return n;
 }
 
+/* (shared with gl_program.c's slot look-ups) */
+struct gl_program_lookups gl_program_lookup_counts;
+
+struct gl_program_lookups gl_program_lookups_so_far(void) { return gl_program_lookup_counts; }
+
 GLint gl_program_uniform_optional(const struct gl_program *p, const char *name)
 {
+    gl_program_lookup_counts.uniforms++;
     for (int i = 0; i < p->nlocations; i++)
         if (strcmp(p->locations[i].name, name) == 0)
             return p->locations[i].location;

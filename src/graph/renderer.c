@@ -210,10 +210,30 @@ struct material_locations {
     GLint thickness_set, thickness_transform[2];
     GLint metallic, roughness, ior, occlusion_strength, specular, specular_color;
     GLint clearcoat, clearcoat_roughness, clearcoat_normal_scale;
+    /* the samplers' units (-1: not used), in the slots' order, then the
+     * transmission, thickness and BRDF-table textures */
+    int unit[MATERIAL_SLOTS], transmission_unit, thickness_unit, brdf_table_unit;
 };
+
+static const char *const material_samplers[MATERIAL_SLOTS] = {
+    "u_base_color_texture", "u_normal_texture", "u_emissive_texture", "u_metallic_roughness_texture",
+    "u_occlusion_texture", "u_specular_texture", "u_specular_color_texture", "u_clearcoat_texture",
+    "u_clearcoat_roughness_texture", "u_clearcoat_normal_texture"};
+
+/* A texture on unit `unit` (-1: the program does not read it). */
+static void bind_unit(int unit, GLuint texture)
+{
+    if (unit >= 0)
+        gl.BindTextureUnit((GLuint)unit, texture);
+}
 
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
 {
+    for (int s = 0; s < MATERIAL_SLOTS; s++)
+        loc->unit[s] = gl_program_unit(program, GL_SLOT_TEXTURE, material_samplers[s]);
+    loc->transmission_unit = gl_program_unit(program, GL_SLOT_TEXTURE, "u_transmission_texture");
+    loc->thickness_unit = gl_program_unit(program, GL_SLOT_TEXTURE, "u_thickness_texture");
+    loc->brdf_table_unit = gl_program_unit(program, GL_SLOT_TEXTURE, "u_brdf_table");
     for (int s = 0; s < MATERIAL_SLOTS; s++) {
         char name[64];
         snprintf(name, sizeof name, "u_texture_set[%d]", s);
@@ -268,12 +288,6 @@ static GLuint brdf_table_texture(struct renderer *r)
 static void bind_material_textures(struct renderer *r, const struct gl_program *program,
                                    const struct material_locations *loc, const struct object *o)
 {
-    static const char *const samplers[MATERIAL_SLOTS] = {"u_base_color_texture", "u_normal_texture",
-                                                         "u_emissive_texture", "u_metallic_roughness_texture",
-                                                         "u_occlusion_texture", "u_specular_texture",
-                                                         "u_specular_color_texture", "u_clearcoat_texture",
-                                                         "u_clearcoat_roughness_texture",
-                                                         "u_clearcoat_normal_texture"};
     const struct texture_ref *slots[MATERIAL_SLOTS] = {&o->material.base_color, &o->material.normal,
                                                        &o->material.emissive, &o->material.metallic_roughness,
                                                        &o->material.occlusion, &o->material.specular_map,
@@ -294,7 +308,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
                          (s == 1 && (role == OBJECT_ROLE_GLASS || role == OBJECT_ROLE_MIRROR));
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2 || s == 6, &id, &err); /* colours are sRGB */
-        gl_program_bind_texture(program, samplers[s], on ? id : r->dummy_2d.id);
+        bind_unit(loc->unit[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
         const float *m = ref->transform;
         gl.ProgramUniform3f(program->id, loc->transform[s * 2], m[0], m[2], m[4]);
@@ -313,7 +327,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->clearcoat_roughness, o->material.clearcoat_roughness);
     gl.ProgramUniform1f(program->id, loc->clearcoat_normal_scale, o->material.clearcoat_normal.scale);
     if (pbr)
-        gl_program_bind_texture(program, "u_brdf_table", brdf_table_texture(r));
+        bind_unit(loc->brdf_table_unit, brdf_table_texture(r));
     /* cut-outs and blending on every surface the loader gave them (glTF's
      * alphaMode: diffuse surfaces, glass and mirrors); single-sidedness on
      * diffuse surfaces and thin glass only */
@@ -328,7 +342,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     struct error err;
     bool tm_on = tm->texture && (material_role(&o->material) & (OBJECT_ROLE_REFRACTOR | OBJECT_ROLE_THIN)) &&
                  o->mesh->texcoords[tm->texcoord] && texture_cache_get(&r->textures, tm->texture, false, &tid, &err);
-    gl_program_bind_texture(program, "u_transmission_texture", tm_on ? tid : r->dummy_2d.id);
+    bind_unit(loc->transmission_unit, tm_on ? tid : r->dummy_2d.id);
     gl.ProgramUniform1i(program->id, loc->transmission_set, tm_on ? tm->texcoord + 1 : 0);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[0], tm->transform[0], tm->transform[2], tm->transform[4]);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[1], tm->transform[1], tm->transform[3], tm->transform[5]);
@@ -339,7 +353,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     GLuint thid = 0;
     bool th_on = th->texture && material_role(&o->material) == OBJECT_ROLE_GLASS && o->mesh->texcoords[th->texcoord] &&
                  texture_cache_get(&r->textures, th->texture, false, &thid, &err);
-    gl_program_bind_texture(program, "u_thickness_texture", th_on ? thid : r->dummy_2d.id);
+    bind_unit(loc->thickness_unit, th_on ? thid : r->dummy_2d.id);
     gl.ProgramUniform1i(program->id, loc->thickness_set, th_on ? th->texcoord + 1 : 0);
     gl.ProgramUniform3f(program->id, loc->thickness_transform[0], th->transform[0], th->transform[2], th->transform[4]);
     gl.ProgramUniform3f(program->id, loc->thickness_transform[1], th->transform[1], th->transform[3], th->transform[5]);
@@ -356,26 +370,52 @@ static int farther_first(const void *a, const void *b)
     return (da < db) - (da > db);
 }
 
+/* What renderer_draw_objects looks up in a program: found by name once per
+ * link (gl_program_attached), not at every call (issue 54's look-ups a
+ * frame). -1 where the program lacks it. */
+struct draw_locations {
+    struct material_locations material;
+    GLint model, normal, role, color, ior, roughness, transmission, thickness, tint, ideal, emission, absorption,
+        object_id, vertex_colors, tangents;
+};
+
+static const struct draw_locations *draw_locations_of(const struct gl_program *program)
+{
+    static struct draw_locations fallback; /* (out of memory: found again, into this) */
+    bool made = false;
+    struct draw_locations *d = gl_program_attached(program, sizeof *d, &made);
+    if (d && !made)
+        return d;
+    if (!d)
+        d = &fallback;
+    material_locations_find(program, &d->material);
+    d->model = gl_program_uniform_optional(program, "u_model");
+    d->normal = gl_program_uniform_optional(program, "u_normal_matrix");
+    d->role = gl_program_uniform_optional(program, "u_object_role");
+    d->color = gl_program_uniform_optional(program, "u_color");
+    d->ior = gl_program_uniform_optional(program, "u_ior");
+    d->roughness = gl_program_uniform_optional(program, "u_roughness");
+    d->transmission = gl_program_uniform_optional(program, "u_transmission");
+    d->thickness = gl_program_uniform_optional(program, "u_thickness");
+    d->tint = gl_program_uniform_optional(program, "u_tint");
+    d->ideal = gl_program_uniform_optional(program, "u_ideal");
+    d->emission = gl_program_uniform_optional(program, "u_emission");
+    d->absorption = gl_program_uniform_optional(program, "u_absorption");
+    d->object_id = gl_program_uniform_optional(program, "u_object_id");
+    d->vertex_colors = gl_program_uniform_optional(program, "u_vertex_colors");
+    d->tangents = gl_program_uniform_optional(program, "u_has_tangents");
+    return d;
+}
+
 void renderer_draw_objects(struct renderer *r, const struct scene *scene, const struct gl_program *program,
                            unsigned filter)
 {
-    struct material_locations material_loc;
-    material_locations_find(program, &material_loc);
-    GLint loc_model = gl_program_uniform_optional(program, "u_model");
-    GLint loc_normal = gl_program_uniform_optional(program, "u_normal_matrix");
-    GLint loc_role = gl_program_uniform_optional(program, "u_object_role");
-    GLint loc_color = gl_program_uniform_optional(program, "u_color");
-    GLint loc_ior = gl_program_uniform_optional(program, "u_ior");
-    GLint loc_roughness = gl_program_uniform_optional(program, "u_roughness");
-    GLint loc_transmission = gl_program_uniform_optional(program, "u_transmission");
-    GLint loc_thickness = gl_program_uniform_optional(program, "u_thickness");
-    GLint loc_tint = gl_program_uniform_optional(program, "u_tint");
-    GLint loc_ideal = gl_program_uniform_optional(program, "u_ideal");
-    GLint loc_emission = gl_program_uniform_optional(program, "u_emission");
-    GLint loc_abs = gl_program_uniform_optional(program, "u_absorption");
-    GLint loc_id = gl_program_uniform_optional(program, "u_object_id");
-    GLint loc_vertex_colors = gl_program_uniform_optional(program, "u_vertex_colors");
-    GLint loc_tangents = gl_program_uniform_optional(program, "u_has_tangents");
+    const struct draw_locations *d = draw_locations_of(program);
+    const struct material_locations *material_loc = &d->material;
+    GLint loc_model = d->model, loc_normal = d->normal, loc_role = d->role, loc_color = d->color, loc_ior = d->ior;
+    GLint loc_roughness = d->roughness, loc_transmission = d->transmission, loc_thickness = d->thickness;
+    GLint loc_tint = d->tint, loc_ideal = d->ideal, loc_emission = d->emission, loc_abs = d->absorption;
+    GLint loc_id = d->object_id, loc_vertex_colors = d->vertex_colors, loc_tangents = d->tangents;
     gl.UseProgram(program->id);
     /* DRAW_BLENDED: the blended surfaces back to front, by the distance
      * from the eye to each object's box centre (per object, not per
@@ -441,7 +481,7 @@ void renderer_draw_objects(struct renderer *r, const struct scene *scene, const 
         gl.ProgramUniform1i(program->id, loc_vertex_colors,
                             o->mesh->colors && material_is_textured_surface(&o->material));
         gl.ProgramUniform1i(program->id, loc_tangents, o->mesh->tangents != NULL);
-        bind_material_textures(r, program, &material_loc, o);
+        bind_material_textures(r, program, material_loc, o);
         struct error err;
         if (!mesh_cache_bind(&r->meshes, o, &err))
             continue; /* out of memory: the object is not drawn (mesh_cache_begin_frame said so first) */

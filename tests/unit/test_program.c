@@ -166,6 +166,17 @@ int main(void)
     CHECK_NEAR(texel[0], 1.0, 1e-6);
     CHECK(gl.GetError() == GL_NO_ERROR);
 
+    /* a block attached to a program (the renderer's look-ups of it): zeroed
+     * and made once, the same block after, refused at another size, made
+     * again after the program relinks (its locations may have moved) */
+    bool made = false;
+    int *attached = gl_program_attached(pa, 4 * sizeof(int), &made);
+    CHECK(attached != NULL && made && attached[0] == 0 && attached[3] == 0);
+    attached[0] = 7;
+    int *again = gl_program_attached(pa, 4 * sizeof(int), &made);
+    CHECK(again == attached && !made && again[0] == 7);
+    CHECK(gl_program_attached(pa, 8 * sizeof(int), &made) == NULL && !made);
+
     /* a reload keeps every name's unit */
     write_shader(root, "first/a.comp", a); /* the same text, a newer time stamp */
     usleep(20000);
@@ -174,6 +185,8 @@ int main(void)
     CHECK(gl_program_cache_reload_changed(&cache, &reloaded, &err));
     CHECK(gl_program_unit(pa, GL_SLOT_TEXTURE, "u_x") == x && gl_program_unit(pa, GL_SLOT_TEXTURE, "u_y") == y);
     CHECK(sampler_value(pa, "u_x") == x);
+    int *relinked = gl_program_attached(pa, 4 * sizeof(int), &made);
+    CHECK(relinked != NULL && made && relinked[0] == 0);
 
     gl.DeleteBuffers(1, &out);
     GLuint textures[5] = {red, green, blue, grey, image};
