@@ -46,8 +46,8 @@ grep -q "^matrix| every case | example_caustics | .* | not measured: " "$WORK/ma
   fail "optics matrix" "$(cat "$WORK/matrix.txt")"
 
 # bench: the comparison scene of surface caustics tries it beside the others, at its defaults
-"$EXTRA" bench scenes/compare/ball.lua --sweep technique=all --size 32x32 --frames 1 --error-frames 1 \
-  --ref-photons 5000 --ref-spp 8 --truth-spp 8 -o "$WORK/bench" >"$WORK/bench.txt" 2>&1
+"$EXTRA" bench scenes/compare/ball.lua --sweep technique=all --size 16x16 --frames 1 --error-frames 1 \
+  --ref-photons 2000 --ref-spp 8 --truth-spp 8 -o "$WORK/bench" >"$WORK/bench.txt" 2>&1
 rc=$?
 [ $rc = 0 ] && grep -q "^gpu,example_caustics,defaults," "$WORK/bench/results.csv" &&
   grep -q "^| example_caustics | " "$WORK/bench/results.md" &&
