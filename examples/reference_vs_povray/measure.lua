@@ -3,7 +3,7 @@
 -- machine in the same sitting. Run from the project root:
 --   build/caustica test examples/reference_vs_povray/measure.lua
 -- (POV_COUNTS, REF_BUDGETS and SCENES in the environment override the
--- lists below; SIZE and BLOCK the image size, 128, and the error's block,
+-- lists below, POV_SPACINGS sets POV-Ray up by photon spacing instead; SIZE and BLOCK the image size, 128, and the error's block,
 -- 4: SIZE=512 BLOCK=1 measures per pixel at 512^2; CAUSTICA the binary,
 -- build/caustica; the table goes to stdout and to results.md in OUT.)
 local t = require "caustica.test"
@@ -23,6 +23,8 @@ local function list(env, default)
 end
 local pov_counts = list("POV_COUNTS", { 30000, 100000, 300000, 1000000 })
 local ref_budgets = list("REF_BUDGETS", { 1, 2, 4, 8 })
+-- POV_SPACINGS=0.008,0.004: POV-Ray's photons by spacing, gathered as issue 53 sets it up, instead of counts
+local pov_spacings = os.getenv("POV_SPACINGS") and list("POV_SPACINGS", {})
 
 -- POV-Ray's isotropic media scattering has phase function 1 where
 -- caustica's (and physics') has 1 / (4 pi): its media radiance is 4 pi
@@ -139,6 +141,17 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
     -- albedo (no 1/pi), caustica albedo / pi x irradiance.
     local settings = {}
     for _, count in ipairs(pov_counts) do settings[#settings + 1] = { count = count, samples = 10 } end
+    if pov_spacings then
+      -- photon mapping set up for a consistent estimate (issue 53): K photons a gather growing as the
+      -- square root of the photon count (100 at a spacing of 0.008, 400 at 0.002), the gather radius
+      -- 1.2 spacing sqrt(K / pi)
+      settings = {}
+      for _, spacing in ipairs(pov_spacings) do
+        local k = math.floor(100 * 0.008 / spacing + 0.5)
+        settings[#settings + 1] = { spacing = spacing, gather = k, radius = 1.2 * spacing * math.sqrt(k / math.pi),
+                                    samples = 10 }
+      end
+    end
     if name == "fog_lens" and not os.getenv("POV_COUNTS") then
       -- media: photons and samples along each ray both set its quality
       settings = { { count = 30000, samples = 10 }, { count = 100000, samples = 20 }, { count = 300000, samples = 50 } }
@@ -147,12 +160,18 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
     end
     for _, set in ipairs(settings) do
       local count = set.count
-      local file = string.format("%s/%s_pov_%d.hdr", out, name, count)
+      local photons = set.spacing and string.format("Declare=Spacing=%g Declare=Gather=%d Declare=Radius=%.5f",
+                                                    set.spacing, set.gather, set.radius)
+                      or string.format("Declare=Count=%d", count)
+      local label = set.spacing and string.format("spacing %g, gather 20, %d, radius %.4f", set.spacing, set.gather,
+                                                  set.radius)
+                    or "count " .. count
+      local file = string.format("%s/%s_pov_%s.hdr", out, name, set.spacing and ("s" .. set.spacing) or count)
       local rc, secs = timed(string.format(
-        "povray -D +I%s/%s.pov +O%s +FH +W%d +H%d +WT2 -A Declare=Count=%d Declare=Samples=%d%s",
-        dir, sc.file, file, size, size, count, set.samples, settings_for(sc, true)))
+        "povray -D +I%s/%s.pov +O%s +FH +W%d +H%d +WT2 -A %s Declare=Samples=%d%s",
+        dir, sc.file, file, size, size, photons, set.samples, settings_for(sc, true)))
       t.expect(rc == 0, "povray failed on " .. name)
-      row(name, "POV-Ray 3.7", "count " .. count .. (name == "fog_lens" and (", samples " .. set.samples) or ""),
+      row(name, "POV-Ray 3.7", label .. (name == "fog_lens" and (", samples " .. set.samples) or ""),
         string.format("%.2f", secs),
         string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, truth.radiance_units and POV_MEDIA or 1)))
     end
