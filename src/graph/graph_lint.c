@@ -77,28 +77,41 @@ static void lint_undrawn(struct lint *l, const mat4 *view_proj)
  * image in which the pass that made it already drew them (shade {
  * specular = true } before layered_refraction): the refracted image
  * shows the glass inside itself (rel 0.066 on issue 29's scene). */
+/* The pass that made p's `color` input (NULL: none, or one that may draw
+ * anything), its resource's name and the roles it draws: for the lints of a
+ * pass that draws objects over an image already showing them. */
+static const struct pass *color_maker(const struct graph *g, const struct pass *p, const char **source,
+                                      unsigned *theirs)
+{
+    for (int k = 0; k < p->input_count; k++) {
+        if (strcmp(p->inputs[k].name, "color") != 0)
+            continue;
+        const struct pass *maker = producer(g, p->inputs[k].source);
+        *theirs = maker && maker->desc->draws ? maker->desc->draws(maker) : 0;
+        *source = p->inputs[k].source;
+        return *theirs & PASS_DRAWS_ANYTHING ? NULL : maker;
+    }
+    return NULL;
+}
+
 static void lint_drawn_twice(struct lint *l)
 {
     const struct graph *g = l->g;
     for (int i = 0; i < g->count && l->count < l->max; i++) {
         const struct pass *p = g->entries[i].pass;
-        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0;
+        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0, theirs = 0;
         if (!p->desc->color_behind_refractors || !(mine & OBJECT_ROLE_REFRACTOR) || (mine & PASS_DRAWS_ANYTHING))
             continue;
-        for (int k = 0; k < p->input_count && l->count < l->max; k++) {
-            if (strcmp(p->inputs[k].name, "color") != 0)
-                continue;
-            const struct pass *maker = producer(g, p->inputs[k].source);
-            unsigned theirs = maker && maker->desc->draws ? maker->desc->draws(maker) : 0;
-            unsigned both = mine & theirs & OBJECT_ROLE_REFRACTOR;
-            if (both && !(theirs & PASS_DRAWS_ANYTHING))
-                snprintf(l->messages[l->count++], 400,
-                         "pass '%s' (%s) draws the %s over '%s', in which pass '%s' (%s) already drew %s: it shows "
-                         "twice, refracted through itself (shade { specular = false } leaves glass and water to a "
-                         "later pass)",
-                         p->name, p->desc->name, object_role_name(both & OBJECT_ROLE_GLASS ? OBJECT_ROLE_GLASS : both),
-                         p->inputs[k].source, maker->name, maker->desc->name, both & OBJECT_ROLE_GLASS ? "it" : "them");
-        }
+        const char *source = NULL;
+        const struct pass *maker = color_maker(g, p, &source, &theirs);
+        unsigned both = mine & theirs & OBJECT_ROLE_REFRACTOR;
+        if (maker && both)
+            snprintf(l->messages[l->count++], 400,
+                     "pass '%s' (%s) draws the %s over '%s', in which pass '%s' (%s) already drew %s: it shows "
+                     "twice, refracted through itself (shade { specular = false } leaves glass and water to a "
+                     "later pass)",
+                     p->name, p->desc->name, object_role_name(both & OBJECT_ROLE_GLASS ? OBJECT_ROLE_GLASS : both),
+                     source, maker->name, maker->desc->name, both & OBJECT_ROLE_GLASS ? "it" : "them");
     }
 }
 
@@ -112,28 +125,22 @@ static void lint_cut_drawn_twice(struct lint *l)
     const struct graph *g = l->g;
     for (int i = 0; i < g->count && l->count < l->max; i++) {
         const struct pass *p = g->entries[i].pass;
-        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0;
+        unsigned mine = kept(&g->entries[i]) && p->desc->draws ? p->desc->draws(p) : 0, theirs = 0;
         if (!(mine & OBJECT_ROLE_SPECULAR) || (mine & PASS_DRAWS_ANYTHING))
             continue;
-        for (int k = 0; k < p->input_count && l->count < l->max; k++) {
-            if (strcmp(p->inputs[k].name, "color") != 0)
-                continue;
-            const struct pass *maker = producer(g, p->inputs[k].source);
-            unsigned theirs = maker && maker->desc->draws ? maker->desc->draws(maker) : 0;
-            if (theirs & PASS_DRAWS_ANYTHING)
-                continue;
-            for (int o = 0; o < l->scene->object_count && l->count < l->max; o++) {
-                const struct object *ob = l->scene->objects[o];
-                bool blend = ob->material.alpha_blend, mask = ob->material.alpha_cutoff > 0.0f;
-                if ((blend || mask) && (object_role(ob) & mine & theirs & OBJECT_ROLE_SPECULAR))
-                    snprintf(l->messages[l->count++], 400,
-                             "object %d (%s, alphaMode %s) is drawn by pass '%s' (%s) into '%s', over which pass "
-                             "'%s' (%s) draws it: %s shows it again, not what lies behind it (shade { specular = "
-                             "false } leaves it to the later pass)",
-                             o + 1, object_role_name(object_role(ob) & OBJECT_ROLE_SPECULAR), blend ? "BLEND" : "MASK",
-                             maker->name, maker->desc->name, p->inputs[k].source, p->name, p->desc->name,
-                             blend ? "its uncovered share" : "each of its holes");
-            }
+        const char *source = NULL;
+        const struct pass *maker = color_maker(g, p, &source, &theirs);
+        for (int o = 0; maker && o < l->scene->object_count && l->count < l->max; o++) {
+            const struct object *ob = l->scene->objects[o];
+            bool blend = ob->material.alpha_blend, mask = ob->material.alpha_cutoff > 0.0f;
+            if ((blend || mask) && (object_role(ob) & mine & theirs & OBJECT_ROLE_SPECULAR))
+                snprintf(l->messages[l->count++], 400,
+                         "object %d (%s, alphaMode %s) is drawn by pass '%s' (%s) into '%s', over which pass "
+                         "'%s' (%s) draws it: %s shows it again, not what lies behind it (shade { specular = "
+                         "false } leaves it to the later pass)",
+                         o + 1, object_role_name(object_role(ob) & OBJECT_ROLE_SPECULAR), blend ? "BLEND" : "MASK",
+                         maker->name, maker->desc->name, source, p->name, p->desc->name,
+                         blend ? "its uncovered share" : "each of its holes");
         }
     }
 }

@@ -183,6 +183,11 @@ LUA
 "$CAUSTICA" info tests/scenes/cut_specular.lua --set material=1 --no-render >"$WORK/cut1.txt" 2>&1
 [ "$(leaves_out "$WORK/cut1.txt")" = 0 ] && ! grep -q "drawn by pass" "$WORK/cut1.txt" \
   && pass "refraction draws a mirror's alphaMode holes: nothing said" || fail "refraction and holes" "$(cat "$WORK/cut1.txt")"
+# ... but shade { specular = true } under it would show the ball in its holes: said once
+"$CAUSTICA" info tests/scenes/cut_specular.lua --set material=1 --set shade_specular=true --no-render >"$WORK/cut1s.txt" 2>&1
+[ "$(grep -c "object 3 (mirror, alphaMode MASK) is drawn by pass 'shade' (shade) into 'shade.color', over which pass 'view' (refraction) draws it: each of its holes shows it again" "$WORK/cut1s.txt")" = 1 ] \
+  && pass "shade { specular = true } under refraction fills a mirror's holes: said once" \
+  || fail "shade under holes" "$(cat "$WORK/cut1s.txt")"
 "$CAUSTICA" info tests/scenes/cut_specular.lua --set material=3 --set view=layered_refraction --set caustics=true \
   --no-render >"$WORK/cut3.txt" 2>&1
 grep -q "(photon_caustics) leaves out object 3 (glass): .*its alphaMode MASK's holes: all the light that meets it is refracted as by .*whole glass" "$WORK/cut3.txt" \

@@ -37,7 +37,9 @@ local g = c.graph()
 g:add("shadow", c.pass.shadow_map { light = sun, size = 1024 })
 local caustics = c.param("caustics", false)
 if caustics then g:add("caustics", c.pass.photon_caustics { light = sun, shadow = "shadow.depth" }) end
-g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = false,
+-- shade_specular=true: shade draws the ball too, under the view technique,
+-- which would fill its holes (graph_lint says so)
+g:add("shade", c.pass.shade { shadow = "shadow.depth", specular = c.param("shade_specular", false),
                               caustics = caustics and "caustics.irradiance" or nil })
 g:add("view", c.pass[c.param("view", "refraction")] { color = "shade.color", depth = "shade.depth" })
 g:output("view.color")
