@@ -725,6 +725,12 @@ int gl_program_unit(const struct gl_program *p, enum gl_slot_kind kind, const ch
     return s ? s->unit : -1;
 }
 
+void gl_program_bind_texture_unit(int unit, GLuint texture)
+{
+    if (unit >= 0)
+        gl.BindTextureUnit((GLuint)unit, texture);
+}
+
 bool gl_program_bind_texture(const struct gl_program *p, const char *name, GLuint texture)
 {
     return gl_program_bind_texture_at(p, name, 0, texture);

@@ -144,6 +144,10 @@ bool gl_program_cache_reserve(struct gl_program_cache *cache, enum gl_slot_kind 
  * program does not use it (the linker may drop what a shader never reads). */
 int gl_program_unit(const struct gl_program *p, enum gl_slot_kind kind, const char *name);
 
+/* Binds `texture` to a texture unit gl_program_unit gave (the renderer
+ * finds a program's units once per link): -1 binds nothing. */
+void gl_program_bind_texture_unit(int unit, GLuint texture);
+
 /* Bind by the shader's name. Each returns false, binding nothing, when the
  * program does not use the name. `index` picks an element of a sampler
  * array. */

@@ -220,13 +220,6 @@ static const char *const material_samplers[MATERIAL_SLOTS] = {
     "u_occlusion_texture", "u_specular_texture", "u_specular_color_texture", "u_clearcoat_texture",
     "u_clearcoat_roughness_texture", "u_clearcoat_normal_texture"};
 
-/* A texture on unit `unit` (-1: the program does not read it). */
-static void bind_unit(int unit, GLuint texture)
-{
-    if (unit >= 0)
-        gl.BindTextureUnit((GLuint)unit, texture);
-}
-
 static void material_locations_find(const struct gl_program *program, struct material_locations *loc)
 {
     for (int s = 0; s < MATERIAL_SLOTS; s++)
@@ -308,7 +301,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
                          (s == 1 && (role == OBJECT_ROLE_GLASS || role == OBJECT_ROLE_MIRROR));
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&
                   texture_cache_get(&r->textures, ref->texture, s == 0 || s == 2 || s == 6, &id, &err); /* colours are sRGB */
-        bind_unit(loc->unit[s], on ? id : r->dummy_2d.id);
+        gl_program_bind_texture_unit(loc->unit[s], on ? id : r->dummy_2d.id);
         gl.ProgramUniform1i(program->id, loc->set[s], on ? ref->texcoord + 1 : 0);
         const float *m = ref->transform;
         gl.ProgramUniform3f(program->id, loc->transform[s * 2], m[0], m[2], m[4]);
@@ -327,7 +320,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     gl.ProgramUniform1f(program->id, loc->clearcoat_roughness, o->material.clearcoat_roughness);
     gl.ProgramUniform1f(program->id, loc->clearcoat_normal_scale, o->material.clearcoat_normal.scale);
     if (pbr)
-        bind_unit(loc->brdf_table_unit, brdf_table_texture(r));
+        gl_program_bind_texture_unit(loc->brdf_table_unit, brdf_table_texture(r));
     /* cut-outs and blending on every surface the loader gave them (glTF's
      * alphaMode: diffuse surfaces, glass and mirrors); single-sidedness on
      * diffuse surfaces and thin glass only */
@@ -342,7 +335,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     struct error err;
     bool tm_on = tm->texture && (material_role(&o->material) & (OBJECT_ROLE_REFRACTOR | OBJECT_ROLE_THIN)) &&
                  o->mesh->texcoords[tm->texcoord] && texture_cache_get(&r->textures, tm->texture, false, &tid, &err);
-    bind_unit(loc->transmission_unit, tm_on ? tid : r->dummy_2d.id);
+    gl_program_bind_texture_unit(loc->transmission_unit, tm_on ? tid : r->dummy_2d.id);
     gl.ProgramUniform1i(program->id, loc->transmission_set, tm_on ? tm->texcoord + 1 : 0);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[0], tm->transform[0], tm->transform[2], tm->transform[4]);
     gl.ProgramUniform3f(program->id, loc->transmission_transform[1], tm->transform[1], tm->transform[3], tm->transform[5]);
@@ -353,7 +346,7 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
     GLuint thid = 0;
     bool th_on = th->texture && material_role(&o->material) == OBJECT_ROLE_GLASS && o->mesh->texcoords[th->texcoord] &&
                  texture_cache_get(&r->textures, th->texture, false, &thid, &err);
-    bind_unit(loc->thickness_unit, th_on ? thid : r->dummy_2d.id);
+    gl_program_bind_texture_unit(loc->thickness_unit, th_on ? thid : r->dummy_2d.id);
     gl.ProgramUniform1i(program->id, loc->thickness_set, th_on ? th->texcoord + 1 : 0);
     gl.ProgramUniform3f(program->id, loc->thickness_transform[0], th->transform[0], th->transform[2], th->transform[4]);
     gl.ProgramUniform3f(program->id, loc->thickness_transform[1], th->transform[1], th->transform[3], th->transform[5]);
