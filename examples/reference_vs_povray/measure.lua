@@ -145,11 +145,14 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
       -- photon mapping set up for a consistent estimate (issue 53): K photons a gather growing as the
       -- square root of the photon count (100 at a spacing of 0.008, 400 at 0.002), the gather radius
       -- 1.2 spacing sqrt(K / pi)
+      -- (POV_SPACING_SCALE: the spacings are a unit-radius scene's, scaled into this one's: 0.5 for the
+      -- ball lens of radius 0.5)
       settings = {}
+      local scale = tonumber(os.getenv("POV_SPACING_SCALE") or 1)
       for _, spacing in ipairs(pov_spacings) do
         local k = math.floor(100 * 0.008 / spacing + 0.5)
-        settings[#settings + 1] = { spacing = spacing, gather = k, radius = 1.2 * spacing * math.sqrt(k / math.pi),
-                                    samples = 10 }
+        settings[#settings + 1] = { spacing = spacing * scale, gather = k,
+                                    radius = 1.2 * spacing * scale * math.sqrt(k / math.pi), samples = 10 }
       end
     end
     if name == "fog_lens" and not os.getenv("POV_COUNTS") then
