@@ -22,9 +22,21 @@ uniform sampler2D u_input_depth;
 #endif
 #else
 #include "impostors/impostors.glsl"
-uniform int u_correction;
 #endif
 #endif
+// The pass's parameters, one block uploaded in one call each frame: its C
+// mirror is refraction.c's struct refraction_params, whose layout is
+// checked against this one when the program is linked (std140: each member
+// 4 bytes, in this order).
+layout(std140) uniform RefractionParams {
+    int u_iterations;   // of the d_T lookup (Fig. 9)
+    float u_tolerance;  // its stopping step
+    int u_search_steps; // for the dividing pixel p_e (Fig. 7)
+    int u_correction;   // of the impostor lookup (Fig. 16)
+    int u_reflection;   // 0: refraction alone (Fig. 24 a-e)
+    float u_reach;      // the refractors' bounding diameter (marches inside them)
+    int u_internal;     // interfaces a path meets from the first exit on (1: the paper's two)
+};
 in vec3 v_world;
 in vec3 v_normal;
 in float v_thickness;
@@ -66,12 +78,6 @@ vec3 glass_tint()
 uniform float u_ideal;
 uniform vec3 u_absorption;
 uniform vec3 u_color;
-uniform int u_iterations;
-uniform float u_tolerance;
-uniform int u_search_steps;
-uniform int u_reflection; // 0: refraction alone (Fig. 24 a-e)
-uniform float u_reach = 1.0; // the refractors' bounding diameter (marches inside them)
-uniform int u_internal = 4;   // interfaces a path meets from the first exit on (1: the paper's two)
 
 // What a ray from o in direction d sees: a nearby object in the distance
 // map, or its impostor (§2.2, corrected by Fig. 16); false: the

@@ -5,6 +5,8 @@
  * writes what it read into a buffer); uniform locations come from the
  * table read after link. */
 #define _DEFAULT_SOURCE /* mkdtemp, usleep */
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -77,6 +79,11 @@ int main(void)
     write_shader(root, "first/a.comp", a);
     write_shader(root, "first/b.comp", b);
     write_shader(root, "second/c.comp", c);
+    /* a pass's parameters as one block (gl_program_check_block) */
+    write_shader(root, "second/params.comp",
+                 "#version 450 core\nlayout(local_size_x = 1) in;\nlayout(std430) buffer Out { vec4 values[]; };\n"
+                 "layout(std140) uniform Params { int u_count; float u_gain; float u_bias; };\n"
+                 "void main() { values[5] = vec4(float(u_count) * u_gain + u_bias); }\n");
 
     struct gl_program_cache cache;
     gl_program_cache_init(&cache, root);
@@ -165,6 +172,27 @@ int main(void)
     gl.GetTextureImage(image, 0, GL_RGBA, GL_FLOAT, sizeof texel, texel);
     CHECK_NEAR(texel[0], 1.0, 1e-6);
     CHECK(gl.GetError() == GL_NO_ERROR);
+
+    /* a uniform block against its C mirror: each member at its offset,
+     * exactly these members; a wrong offset, a missing member and one C
+     * lacks each an error naming it */
+    struct gl_program *pp;
+    CHECK(gl_program_get_compute(&cache, "second/params.comp", NULL, NULL, &pp, &err));
+    struct params_mirror { int32_t count; float gain, bias, pad; };
+    const struct gl_block_member good[3] = {{"u_count", offsetof(struct params_mirror, count)},
+                                            {"u_gain", offsetof(struct params_mirror, gain)},
+                                            {"u_bias", offsetof(struct params_mirror, bias)}};
+    CHECK(gl_program_check_block(pp, "Params", good, 3, sizeof(struct params_mirror), &err));
+    const struct gl_block_member shifted[3] = {{"u_count", 0}, {"u_gain", 8}, {"u_bias", 4}};
+    CHECK(!gl_program_check_block(pp, "Params", shifted, 3, sizeof(struct params_mirror), &err));
+    CHECK_CONTAINS(err.message, "member 'u_gain' at byte 4, its C mirror's at 8");
+    const struct gl_block_member misspelt[3] = {{"u_count", 0}, {"u_gian", 4}, {"u_bias", 8}};
+    CHECK(!gl_program_check_block(pp, "Params", misspelt, 3, sizeof(struct params_mirror), &err));
+    CHECK_CONTAINS(err.message, "no member 'u_gian'");
+    CHECK(!gl_program_check_block(pp, "Params", good, 2, sizeof(struct params_mirror), &err));
+    CHECK_CONTAINS(err.message, "has 3 members, its C mirror 2");
+    CHECK(!gl_program_check_block(pp, "Parms", good, 3, sizeof(struct params_mirror), &err));
+    CHECK_CONTAINS(err.message, "no uniform block 'Parms'");
 
     /* a block attached to a program (the renderer's look-ups of it): zeroed
      * and made once, the same block after, refused at another size, made

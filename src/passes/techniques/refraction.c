@@ -14,10 +14,13 @@
  * into the environment. Total internal reflection at either interface
  * reflects (never a NaN); every loop has a cap. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_buffer.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -45,6 +48,33 @@ struct refraction_state {
      * cone lookup of refract.frag's seen_rough (made when a refractor is rough) */
     struct gl_texture rough_scene, rough_behind;
     int width, height;
+    GLuint params_ubo;      /* refract.frag's RefractionParams, uploaded each frame */
+    GLuint params_checked;  /* the program (GL name) whose block was checked against the mirror */
+};
+
+/* The C mirror of refract.frag's RefractionParams block (std140: 4-byte
+ * members in order; padded to the block's 16-byte multiple), uploaded in
+ * one call a frame (issue 54: a pass's parameters as one block, as Frame
+ * is, instead of a look-up by name per uniform). */
+struct refraction_params {
+    int32_t iterations;
+    float tolerance;
+    int32_t search_steps;
+    int32_t correction;
+    int32_t reflection;
+    float reach;
+    int32_t internal;
+    int32_t pad;
+};
+
+static const struct gl_block_member refraction_params_members[] = {
+    {"u_iterations", offsetof(struct refraction_params, iterations)},
+    {"u_tolerance", offsetof(struct refraction_params, tolerance)},
+    {"u_search_steps", offsetof(struct refraction_params, search_steps)},
+    {"u_correction", offsetof(struct refraction_params, correction)},
+    {"u_reflection", offsetof(struct refraction_params, reflection)},
+    {"u_reach", offsetof(struct refraction_params, reach)},
+    {"u_internal", offsetof(struct refraction_params, internal)},
 };
 
 /* The parameters by index (pass_int(p, ...), pass_light_at(p, ...)): `params`
@@ -134,7 +164,8 @@ static bool refraction_create(struct pass *p, struct renderer *r, struct error *
         return error_set(err, "out of memory");
     p->state = s;
     return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
-           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err);
+           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err) &&
+           gl_buffer_create(&s->params_ubo, NULL, sizeof(struct refraction_params), GL_DYNAMIC_STORAGE_BIT, err);
 }
 
 static void release_targets(struct refraction_state *s)
@@ -163,6 +194,7 @@ static void refraction_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
     gl_framebuffer_destroy(&s->behind_fb);
+    gl_buffer_destroy(&s->params_ubo);
     free(s);
     p->state = NULL;
 }
@@ -444,9 +476,6 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl_program_bind_texture(prog, "u_back_normal", s->back_normal.id);
     gl_program_bind_texture(prog, "u_front_depth", s->front_depth.id);
     gl_program_bind_texture(prog, "u_back_depth", s->back_depth.id);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_iterations"), (GLint)pass_int(p, REFRACTION_ITERATIONS));
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_tolerance"), (float)pass_real(p, REFRACTION_TOLERANCE));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search_steps"), (GLint)pass_int(p, REFRACTION_SEARCH_STEPS));
     if (distance && !bind_distance_lookup(s, prog, f, centre, &in_color->texture, &in_depth->texture, err))
         return false;
     if (!distance && nearby && s->impostors.count > 0) {
@@ -456,10 +485,26 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"),
                         nearby && !distance ? s->impostors.count : 0);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), (GLint)pass_int(p, REFRACTION_CORRECTION));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, REFRACTION_REFLECTION));
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_reach"), fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), (GLint)pass_int(p, REFRACTION_INTERNAL));
+    /* the parameters, as one block (struct refraction_params) */
+    if (s->params_checked != prog->id) {
+        if (!gl_program_check_block(prog, "RefractionParams", refraction_params_members,
+                                    (int)(sizeof refraction_params_members / sizeof refraction_params_members[0]),
+                                    sizeof(struct refraction_params), err))
+            return false;
+        s->params_checked = prog->id;
+    }
+    const struct refraction_params values = {
+        .iterations = (int32_t)pass_int(p, REFRACTION_ITERATIONS),
+        .tolerance = (float)pass_real(p, REFRACTION_TOLERANCE),
+        .search_steps = (int32_t)pass_int(p, REFRACTION_SEARCH_STEPS),
+        .correction = (int32_t)pass_int(p, REFRACTION_CORRECTION),
+        .reflection = pass_flag(p, REFRACTION_REFLECTION),
+        .reach = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f),
+        .internal = (int32_t)pass_int(p, REFRACTION_INTERNAL),
+    };
+    if (!gl_buffer_update(s->params_ubo, &values, sizeof values, err))
+        return false;
+    gl_program_bind_uniform_block(prog, "RefractionParams", s->params_ubo);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);
