@@ -617,7 +617,8 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
     const char *parts[5];
     int n = 0;
     bool mirror = object_is(o, OBJECT_ROLE_MIRROR);
-    if (mirror ? o->material.roughness > 0.0f : object_is_rough_refractor(o))
+    bool rough = mirror ? o->material.roughness > 0.0f : object_is_rough_refractor(o);
+    if (rough)
         parts[n++] = "its roughness";
     if (!mirror && object_is_partly_diffuse_refractor(o))
         parts[n++] = "its transmission below 1";
@@ -635,7 +636,7 @@ const char *pass_refractor_left_out(const struct object *o, bool caustics)
                  parts[k]);
     /* what the pass draws instead: a mirror or glass without those */
     char as[80] = "";
-    const char *adjectives[4] = {n && !strcmp(parts[0], "its roughness") ? "smooth" : NULL,
+    const char *adjectives[4] = {rough ? "smooth" : NULL,
                                  !mirror && (object_is_partly_diffuse_refractor(o) || object_is_tinted_refractor(o))
                                      ? "clear"
                                      : NULL,

@@ -287,16 +287,17 @@ static void bind_material_textures(struct renderer *r, const struct gl_program *
                                                        &o->material.specular_color_map, &o->material.clearcoat_map,
                                                        &o->material.clearcoat_roughness_map,
                                                        &o->material.clearcoat_normal};
+    /* Textures apply to diffuse surfaces only, in both renderers; a set the
+     * mesh lacks reads nothing (the glTF loader refuses that case). (Glass:
+     * its base colour texture, which tints it; glass and mirrors: their
+     * normal map, which refraction maps, and the base colour's alpha where
+     * it cuts or blends them.) */
+    unsigned role = material_role(&o->material);
+    bool cut = o->material.alpha_cutoff > 0.0f || o->material.alpha_blend;
     for (int s = 0; s < MATERIAL_SLOTS; s++) {
         const struct texture_ref *ref = slots[s];
         GLuint id = 0;
         struct error err;
-        /* Textures apply to diffuse surfaces only, in both renderers; a set
-         * the mesh lacks reads nothing (the glTF loader refuses that case). */
-        /* (glass: its base colour texture, which tints it; glass and
-         * mirrors: their normal map, which refraction maps) */
-        unsigned role = material_role(&o->material);
-        bool cut = o->material.alpha_cutoff > 0.0f || o->material.alpha_blend; /* (its alpha, any role) */
         bool slot_used = material_is_textured_surface(&o->material) || (s == 0 && (role == OBJECT_ROLE_GLASS || cut)) ||
                          (s == 1 && (role == OBJECT_ROLE_GLASS || role == OBJECT_ROLE_MIRROR));
         bool on = ref->texture && slot_used && o->mesh->texcoords[ref->texcoord] &&

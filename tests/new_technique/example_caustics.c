@@ -7,13 +7,11 @@
  * technique=all` by being registered, with nothing else edited. */
 #include "graph/pass.h"
 
-enum example_param { EXAMPLE_LIGHT, EXAMPLE_GAIN };
+enum example_param { EXAMPLE_LIGHT };
 
 static const struct pass_param_desc params[] = {
     [EXAMPLE_LIGHT] = {.name = "light", .type = PASS_PARAM_LIGHT, .required = true,
                        .help = "the light whose caustics it would make"},
-    [EXAMPLE_GAIN] = {.name = "gain", .type = PASS_PARAM_NUMBER, .default_number = 1, .min = 0, .max = 10,
-                      .help = "a scale on the (zero) irradiance"},
 };
 
 static bool example_declare(struct pass *p, struct error *err)
@@ -23,8 +21,9 @@ static bool example_declare(struct pass *p, struct error *err)
 
 static bool example_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
+    (void)p;
     (void)err;
-    const float zero[4] = {0, 0, 0, (float)pass_real(p, EXAMPLE_GAIN) * 0.0f};
+    const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&f->outputs[0]->texture, zero);
     return true;
 }
