@@ -31,7 +31,7 @@ uniform vec3 u_tint;
 uniform int u_panes;
 uniform sampler2D u_surface_depth;
 #ifdef VIEW_FROM_CENTER
-// drawn into a distance map (src/passes/helpers/distance_map.c): seen from its centre
+// drawn into a distance map (src/passes/blocks/distance_map.c): seen from its centre
 uniform vec3 u_center;
 vec3 pane_view(vec3 p) { return normalize(p - u_center); }
 #else

@@ -5,7 +5,7 @@
 // are the camera's images; two-sided, the side facing the centre), and its
 // distance from
 // the centre (Szirmay-Kalos et al. 2005). Layer 1 keeps the nearest
-// surface facing the centre beyond layer 0's (src/passes/helpers/distance_map.h).
+// surface facing the centre beyond layer 0's (src/passes/blocks/distance_map.h).
 #include "common/frame.glsl"
 #include "common/lighting.glsl"
 #include "common/material.glsl"

@@ -1,5 +1,5 @@
 #include "common/scene_bounds.glsl"
-// What a ray sees in the distance map (src/passes/helpers/distance_map.h,
+// What a ray sees in the distance map (src/passes/blocks/distance_map.h,
 // Szirmay-Kalos et al. 2005): the ray is walked in steps spread in the
 // angle seen from the map's centre (t = 4 s a / (1 - a) for a evenly
 // spaced in [0, 1), s the origin's distance from the centre), each point

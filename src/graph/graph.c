@@ -265,7 +265,8 @@ static bool add_blocks(struct graph *g, struct error *err)
             continue;
         for (int k = 0; k < p->desc->param_count && ok; k++) {
             const struct pass_param_desc *pd = &p->desc->params[k];
-            if (pd->type != PASS_PARAM_INPUT || !pd->block || p->values[k].string)
+            if (pd->type != PASS_PARAM_INPUT || !pd->block || p->values[k].string ||
+                (p->desc->reads_block && !p->desc->reads_block(p, k)))
                 continue;
             struct pass *block = NULL;
             int before = count;
@@ -443,10 +444,15 @@ bool graph_check(struct graph *g, struct error *err)
         return false;
     if (!g->output[0])
         return error_set(err, "the graph has no output: call g:output(\"pass.output\")");
-    /* Every input must be produced by an earlier pass. */
-    for (int i = 0; i < g->count; i++) {
-        struct graph_entry *e = &g->entries[i];
-        struct pass *p = e->pass;
+    /* Every input must be produced by an earlier pass: the script's passes
+     * first, then the blocks the graph added, whose inputs come from their
+     * readers' values (a reader's shadow maps lighting its distance map):
+     * the message names the pass the script wrote. */
+    for (int n = 0; n < 2 * g->count; n++) {
+        int i = n % g->count;
+        struct pass *p = g->entries[i].pass;
+        if (p->implicit != (n >= g->count))
+            continue;
         for (int k = 0; k < p->input_count; k++) {
             int which = 0;
             int producer = find_output_of(g, i, p->inputs[k].source, &which);

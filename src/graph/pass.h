@@ -226,6 +226,11 @@ struct pass_desc {
      * parameter `param` (one with `.block`): a depth-layer set for this
      * pass's light at its buffer size. NULL: the block's defaults. */
     bool (*configure_block)(const struct pass *p, int param, struct pass *block, struct error *err);
+    /* Whether the pass reads the block of input parameter `param` (one with
+     * `.block`) as its values stand: refraction reads the distance map only
+     * for the lookups that use one, so the graph adds none for the others.
+     * NULL: every block input is read. */
+    bool (*reads_block)(const struct pass *p, int param);
     /* Which objects the pass draws into the image it makes (graph_lint's
      * "glass no pass draws"): a mask of OBJECT_ROLE_* (scene.h), or
      * PASS_DRAWS_ANYTHING. NULL: none (a pass that makes irradiance, depth

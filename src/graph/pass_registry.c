@@ -26,6 +26,7 @@
     X(volume_light) \
     X(receivers) \
     X(depth_layers) \
+    X(distance_map) \
     CAUSTICA_EXTRA_PASSES(X) \
     /* end */
 

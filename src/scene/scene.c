@@ -362,19 +362,13 @@ void scene_object_remove(struct scene *scene, struct object *obj)
         }
 }
 
-enum bounds_filter { BOUNDS_ALL, BOUNDS_SPECULAR, BOUNDS_REFRACTOR, BOUNDS_DIFFUSE };
-
-static bool bounds_of_visible(const struct scene *scene, enum bounds_filter filter, vec3 *lo, vec3 *hi)
+bool scene_role_bounds(const struct scene *scene, unsigned roles, vec3 *lo, vec3 *hi)
 {
     vec3 l = {INFINITY, INFINITY, INFINITY}, h = {-INFINITY, -INFINITY, -INFINITY};
     bool any = false;
     for (int i = 0; i < scene->object_count; i++) {
         const struct object *o = scene->objects[i];
-        unsigned want = filter == BOUNDS_SPECULAR ? OBJECT_ROLE_SPECULAR
-                        : filter == BOUNDS_REFRACTOR ? OBJECT_ROLE_REFRACTOR
-                        : filter == BOUNDS_DIFFUSE ? OBJECT_ROLE_RECEIVER
-                                                   : OBJECT_ROLE_SPECULAR | OBJECT_ROLE_RECEIVER;
-        if (!object_is(o, want))
+        if (!object_is(o, roles))
             continue;
         vec3 a, b;
         object_world_bounds(o, &a, &b);
@@ -426,25 +420,10 @@ bool scene_specular_in_view(const struct scene *scene, mat4 view_proj)
 
 bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
 {
-    if (bounds_of_visible(scene, BOUNDS_ALL, lo, hi))
+    if (scene_role_bounds(scene, OBJECT_ROLE_SPECULAR | OBJECT_ROLE_RECEIVER, lo, hi))
         return true;
     *lo = *hi = vec3_make(0, 0, 0);
     return false;
-}
-
-bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
-{
-    return bounds_of_visible(scene, BOUNDS_SPECULAR, lo, hi);
-}
-
-bool scene_refractor_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
-{
-    return bounds_of_visible(scene, BOUNDS_REFRACTOR, lo, hi);
-}
-
-bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi)
-{
-    return bounds_of_visible(scene, BOUNDS_DIFFUSE, lo, hi);
 }
 
 int scene_light_index(const struct scene *scene, const struct light *light)

@@ -515,14 +515,13 @@ bool scene_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
 bool scene_specular_in_view(const struct scene *scene, mat4 view_proj);
 /* Does the object's world box reach into the view of `view_proj`? */
 bool object_in_view(const struct object *o, mat4 view_proj);
-/* Bounds of the visible glass, water and mirrors only; false (and lo, hi
- * left as they were) when there are none. */
-bool scene_specular_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
-/* Bounds of the visible glass and water (the refractors: what the depth
- * layers hold); false as above. */
-bool scene_refractor_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
-/* Bounds of the visible objects that are not glass, water or mirrors. */
-bool scene_diffuse_bounds(const struct scene *scene, vec3 *lo, vec3 *hi);
+/* Bounds of the visible objects with one of `roles` (a mask of
+ * OBJECT_ROLE_*: OBJECT_ROLE_SPECULAR for glass, water and mirrors,
+ * OBJECT_ROLE_REFRACTOR for what the depth layers hold, OBJECT_ROLE_RECEIVER
+ * for the diffuse ones): the one role predicate a fit and a drawing both
+ * choose objects by (object_is); false (and lo, hi left as they were) when
+ * there are none. */
+bool scene_role_bounds(const struct scene *scene, unsigned roles, vec3 *lo, vec3 *hi);
 /* Position of `light` in scene->lights, or -1 when it was never added. */
 int scene_light_index(const struct scene *scene, const struct light *light);
 /* Sum of object versions and the scene version: changes when any caster moves. */

@@ -85,7 +85,8 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
     struct light_view lv = {0};
     int slot = -1;
     if (pass_choice(p, DL_VIEW) == VIEW_CAMERA) {
-        if (!scene_refractor_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj))
+        if (!scene_role_bounds(f->scene, OBJECT_ROLE_REFRACTOR, &lo, &hi) ||
+            !scene_specular_in_view(f->scene, f->snapshot->view_proj))
             return true; /* no glass or water in the camera's view: the readers pass the image through */
         view = f->snapshot->view;
         proj = f->snapshot->proj;
@@ -93,7 +94,7 @@ static bool depth_layers_execute(struct pass *p, struct pass_frame *f, struct er
         height = f->height;
     } else {
         slot = renderer_light_slot(r, f->scene, pass_light_at(p, DL_LIGHT));
-        if (slot < 0 || !scene_refractor_bounds(f->scene, &lo, &hi))
+        if (slot < 0 || !scene_role_bounds(f->scene, OBJECT_ROLE_REFRACTOR, &lo, &hi))
             return true; /* the light is not in the scene, or nothing refracts: the readers draw nothing */
         if (!layers_light_view(&f->snapshot->lights[slot], lo, hi, &lv, "depth_layers", err))
             return false;

@@ -60,7 +60,7 @@ static bool draw_refractors(struct caustic_coverage *c, struct pass *p, struct p
 {
     *fitted = false;
     vec3 lo, hi;
-    if (!scene_refractor_bounds(f->scene, &lo, &hi))
+    if (!scene_role_bounds(f->scene, OBJECT_ROLE_REFRACTOR, &lo, &hi))
         return true;
     /* where the view cannot be fit (a light inside their sphere) there is
      * nothing to say */

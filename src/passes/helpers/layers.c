@@ -315,7 +315,7 @@ void layers_bind_scene_trace(const struct gl_program *prog, const struct scene *
                         fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.5f);
     gl.ProgramUniform1i(prog->id, gl_program_uniform_optional(prog, "u_scene_steps"), 64);
     /* what a ray can meet there: the diffuse objects (none: an empty box) */
-    if (!scene_diffuse_bounds(scene, &lo, &hi)) {
+    if (!scene_role_bounds(scene, OBJECT_ROLE_RECEIVER, &lo, &hi)) {
         lo = vec3_make(1e30f, 1e30f, 1e30f);
         hi = vec3_make(-1e30f, -1e30f, -1e30f);
     }

@@ -33,7 +33,7 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "graph/temporal.h"
-#include "passes/helpers/distance_map.h"
+#include "passes/blocks/distance_map.h"
 #include "passes/helpers/caustic_coverage.h"
 #include "passes/helpers/layers.h"
 #include "passes/helpers/shadow_inputs.h"
@@ -56,7 +56,7 @@ struct beam_caustics_state {
     GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
-    struct distance_map distance; /* the receivers' distance impostor (distances only) */
+    const struct distance_map *distance; /* the receivers' distance impostor (the distance_map block's, this frame) */
     GLuint receiver_normal, receiver_depth; /* this frame's, the receivers block's */
     struct gl_texture irradiance_raw, irradiance_half;
     struct gl_framebuffer volumes_fb, blur_fb;
@@ -95,6 +95,7 @@ enum beam_caustics_param {
     BC_LIGHT_LAYERS,
     BC_ACCUMULATE,
     BC_SHADOW,
+    BC_DISTANCE_MAP,
 };
 
 static const struct pass_param_desc params[] = {
@@ -154,6 +155,10 @@ static const struct pass_param_desc params[] = {
              "it) average the last this many frames; while they move, every frame stands alone; 1: none "
              "(docs/TEMPORAL.md)"},
     [BC_SHADOW] = SHADOW_PARAM_PANES("a beam"),
+    [BC_DISTANCE_MAP] = {.name = "distance_map", .type = PASS_PARAM_INPUT, .block = "distance_map",
+     .bundle = &DISTANCE_MAP_RECORD, .default_output = "map",
+     .help = "the receivers' distance impostor the beams' exits are traced against (a distance_map pass's `map`, "
+             "content = \"distances\", around = \"refractors\"): by default the graph adds one of 256 texels a face"},
 };
 
 static bool beam_caustics_declare(struct pass *p, struct error *err)
@@ -203,7 +208,6 @@ static void beam_caustics_destroy(struct pass *p)
         return;
     release_buffers(s);
     release_targets(s);
-    distance_map_release(&s->distance);
     caustic_coverage_release(&s->coverage);
     temporal_release(&s->irradiance_history);
     temporal_release(&s->inscatter_history);
@@ -333,7 +337,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     /* accumulating a still scene: the lattice moved by this frame's
      * sub-cell offset (beam_caustics_execute; the refinement follows it) */
     gl.ProgramUniform2f(trace->id, gl_program_uniform(trace, "u_jitter"), s->jitter[0], s->jitter[1]);
-    gl_program_bind_texture(trace, "u_distance", s->distance.distance[0].id);
+    gl_program_bind_texture(trace, "u_distance", s->distance->distance[0].id);
     gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
     gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
     if (!medium_gpu_bind(r, f->scene, trace, err))
@@ -510,19 +514,23 @@ static bool accumulate_outputs(struct pass *p, struct pass_frame *f, int accumul
 static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct beam_caustics_state *s = p->state;
-    struct renderer *r = f->renderer;
     const float zero[4] = {0, 0, 0, 0};
     gl_texture_clear(&pass_frame_output(p, f, "inscatter")->texture, zero);
     gl_texture_clear(&pass_frame_output(p, f, "irradiance")->texture, zero);
     p->report[0] = '\0';
     /* the building blocks' outputs, made earlier in this frame */
     s->layers = pass_frame_record(p, f, "light_layers", &LAYER_SET_RECORD);
+    s->distance = pass_frame_record(p, f, "distance_map", &DISTANCE_MAP_RECORD);
     struct graph_resource *normal = pass_frame_input(p, f, "receivers"), *depth = pass_frame_input(p, f, "receiver_depth");
     if (!s->layers || !normal || !depth)
         return error_set(err, "its light's layers or the receivers were not made this frame");
-    vec3 slo, shi;
-    if (!s->layers->built || !scene_bounds(f->scene, &slo, &shi))
+    if (!s->layers->built)
         return true; /* the layers' light is not in the scene, or nothing refracts: no beams */
+    if (!s->distance || !s->distance->built || s->distance->content != DISTANCE_MAP_DISTANCES)
+        return error_set(err, "its distance map ('%s') %s", pass_frame_input(p, f, "distance_map")->name,
+                         s->distance && s->distance->built ? "holds radiance: the beams' exits need content = "
+                                                             "\"distances\""
+                                                           : "was not made this frame");
     int slot = layers_light_slot(s->layers, err);
     if (slot < 0)
         return false;
@@ -537,8 +545,8 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     const struct light_view lv = s->layers->light_view;
     float extent = 2.0f * s->layers->radius;
     vec3 center = vec3_scale(vec3_add(s->layers->lo, s->layers->hi), 0.5f);
-    /* the distance impostor reaches past the whole scene from the refractors' centre */
-    float range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) + vec3_length(vec3_sub(center, vec3_scale(vec3_add(slo, shi), 0.5f)))), 1e-3f);
+    /* the distance impostor (the block's, centred as the layers are) reaches past the whole scene */
+    float range = s->distance->range;
 
     /* Accumulating (issue 32), while the light and the geometry stand still:
      * the whole lattice moves by this frame's sub-cell offset, so 16
@@ -559,10 +567,6 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
         temporal_jitter(&s->irradiance_history, &s->jitter[0], &s->jitter[1]);
     }
     pass_stage_begin(p);
-    /* the receivers' distance impostor changes only with the geometry */
-    if (!distance_map_update_distances(&s->distance, r, p, f, center, BEAMS_DISTANCE_SIZE, range, err))
-        return false;
-    pass_stage_end(p, "impostors");
     if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))
         return false;
 
@@ -613,9 +617,13 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
 
 /* The blocks it reads (issue 26): the light's layers at this pass's size
  * (layered_caustics for the same light and size shares them); the
- * receivers as they come. */
+ * receivers as they come; the receivers' distances around the refractors
+ * (issue 54: a block, no longer this pass's own). */
 static bool beam_caustics_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
 {
+    if (param == BC_DISTANCE_MAP)
+        return distance_map_configure_block(block, DISTANCE_MAP_DISTANCES, BEAMS_DISTANCE_SIZE, OBJECT_ROLE_REFRACTOR,
+                                            p, -1, err);
     if (param != BC_LIGHT_LAYERS)
         return true;
     return layers_configure_block(block, pass_light_at(p, BC_LIGHT), pass_int(p, BC_BUFFER), pass_int(p, BC_LAYERS),

@@ -145,7 +145,7 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     /* the image as it is, then the refractors over it */
     const struct gl_texture *oc[2] = {&f->outputs[0]->texture, &f->outputs[1]->texture};
     vec3 lo, hi;
-    if (!scene_specular_bounds(f->scene, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj) ||
+    if (!scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi) || !scene_specular_in_view(f->scene, f->snapshot->view_proj) ||
         !ls->built)
         return gl_framebuffer_attach(&s->out_fb, oc, NULL, 1, NULL, -1, err) &&
                renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err);

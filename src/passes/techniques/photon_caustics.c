@@ -172,7 +172,7 @@ static void photon_destroy(struct pass *p)
 static bool specular_bounds(const struct scene *scene, vec3 *center, float *radius)
 {
     vec3 lo, hi;
-    if (!scene_specular_bounds(scene, &lo, &hi))
+    if (!scene_role_bounds(scene, OBJECT_ROLE_SPECULAR, &lo, &hi))
         return false;
     *center = vec3_scale(vec3_add(lo, hi), 0.5f);
     *radius = fmaxf(0.5f * vec3_length(vec3_sub(hi, lo)), 1e-3f);

@@ -25,7 +25,7 @@
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/helpers/distance_map.h"
+#include "passes/blocks/distance_map.h"
 #include "passes/helpers/impostors.h"
 #include "passes/helpers/layers.h"
 #include "passes/helpers/shadow_inputs.h"
@@ -37,7 +37,6 @@
 
 struct refraction_state {
     struct impostor_set impostors;
-    struct distance_map distance;
     struct thin_glass_over panes;
     struct gl_framebuffer front_fb, back_fb, out_fb, behind_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
@@ -100,6 +99,7 @@ enum refraction_param {
     REFRACTION_LOOKUP,
     REFRACTION_SHADOW,
     REFRACTION_INTERNAL,
+    REFRACTION_DISTANCE_MAP,
 };
 
 static const struct pass_param_desc params[] = {
@@ -140,6 +140,11 @@ static const struct pass_param_desc params[] = {
      .help = "interfaces a path meets from its first way out on: 1 = the paper's two interfaces (a total internal "
              "reflection leaves along its reflection); more follow total internal reflections and the Fresnel-"
              "reflected part inside (huqin only)"},
+    [REFRACTION_DISTANCE_MAP] = {.name = "distance_map", .type = PASS_PARAM_INPUT, .block = "distance_map",
+     .bundle = &DISTANCE_MAP_RECORD, .default_output = "map",
+     .help = "the distance map the lookups \"scene\" and \"map\" read (a distance_map pass's `map`, content = "
+             "\"radiance\"): by default the graph adds one of `impostor` texels a face, lit through `shadow`, "
+             "shared with any reader that wants the same"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
@@ -188,7 +193,6 @@ static void refraction_destroy(struct pass *p)
         return;
     release_targets(s);
     impostors_release(&s->impostors);
-    distance_map_release(&s->distance);
     thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
@@ -358,17 +362,17 @@ static bool draw_surfaces(struct refraction_state *s, struct pass_frame *f, bool
     return true;
 }
 
-/* What a ray leaving the glass looks up: the distance map (and, for the
- * screen lookup, the diffuse objects behind the glass from the camera), or
+/* What a ray leaving the glass looks up: the distance map (the block's;
+ * for the screen lookup, the diffuse objects behind the glass from the
+ * camera too), or
  * §2.2.1's impostors of the nearby (diffuse) objects around the
  * refractors' centre. */
 static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, vec3 centre, bool distance,
                         bool screen, bool nearby, struct error *err)
 {
     struct renderer *r = f->renderer;
-    if (distance)
-        return distance_map_update(&s->distance, r, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), err) &&
-               (!screen || draw_behind(s, p, f, err));
+    if (distance) /* the distance map is the distance_map block's, made before this pass */
+        return !screen || draw_behind(s, p, f, err);
     if (!nearby)
         return true;
     /* recursion redraws the impostors' colours: made again every frame */
@@ -386,15 +390,22 @@ static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_
 
 /* The distance map and the input image for the rays that leave the glass
  * (scene_trace.glsl: the screen first where `screen`, then the map). */
-static bool bind_distance_lookup(struct refraction_state *s, const struct gl_program *prog, struct pass_frame *f,
-                                 vec3 centre, const struct gl_texture *in_color, const struct gl_texture *in_depth,
-                                 struct error *err)
+static bool bind_distance_lookup(struct refraction_state *s, struct pass *p, const struct gl_program *prog,
+                                 struct pass_frame *f, const struct gl_texture *in_color,
+                                 const struct gl_texture *in_depth, struct error *err)
 {
-    gl_program_bind_texture(prog, "u_distance_color", s->distance.color[0].id);
-    gl_program_bind_texture(prog, "u_distance_distance", s->distance.distance[0].id);
-    gl_program_bind_texture(prog, "u_distance_color_behind", s->distance.color[1].id);
-    gl_program_bind_texture(prog, "u_distance_distance_behind", s->distance.distance[1].id);
-    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), centre.x, centre.y, centre.z);
+    const struct distance_map *map = pass_frame_record(p, f, "distance_map", &DISTANCE_MAP_RECORD);
+    if (!map || !map->built || map->content != DISTANCE_MAP_RADIANCE)
+        return error_set(err, "its distance map ('%s') %s", pass_frame_input(p, f, "distance_map")->name,
+                         !map || !map->built ? "was not made this frame (nothing to centre it on: a script's map "
+                                               "around = \"refractors\" with mirrors alone?)"
+                                             : "holds distances alone: the lookups need content = \"radiance\"");
+    gl_program_bind_texture(prog, "u_distance_color", map->color[0].id);
+    gl_program_bind_texture(prog, "u_distance_distance", map->distance[0].id);
+    gl_program_bind_texture(prog, "u_distance_color_behind", map->color[1].id);
+    gl_program_bind_texture(prog, "u_distance_distance_behind", map->distance[1].id);
+    gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), map->center.x, map->center.y,
+                        map->center.z);
     /* the input image first: what the camera sees where the ray goes */
     gl_program_bind_texture(prog, "u_scene", in_color->id);
     gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
@@ -412,6 +423,14 @@ static bool bind_distance_lookup(struct refraction_state *s, const struct gl_pro
      * when the ray looks at it from elsewhere (scene_trace.glsl) */
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_scene_grazing"), 2.0f);
     return true;
+}
+
+/* The distance map is read by the lookups "scene" and "map" (without
+ * recursion, which uses the impostors whatever the lookup). */
+static bool uses_distance_map(const struct pass *p)
+{
+    return pass_flag(p, REFRACTION_NEARBY) && pass_choice(p, REFRACTION_LOOKUP) != REFRACTION_LOOKUP_IMPOSTORS &&
+           pass_int(p, REFRACTION_RECURSION) == 0;
 }
 
 static unsigned refraction_draws(const struct pass *p)
@@ -440,13 +459,14 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         return false;
     bool nearby = pass_flag(p, REFRACTION_NEARBY);
     int lookup = pass_choice(p, REFRACTION_LOOKUP);
-    bool distance = nearby && lookup != REFRACTION_LOOKUP_IMPOSTORS && pass_int(p, REFRACTION_RECURSION) == 0;
+    bool distance = uses_distance_map(p);
     bool screen = distance && lookup == REFRACTION_LOOKUP_SCENE;
     char defines[128];
     snprintf(defines, sizeof defines, "%s%s%s%s", wyman ? "#define WYMAN 1\n" : "", nearby ? "#define NEARBY 1\n" : "",
              distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
     vec3 lo, hi;
-    vec3 centre = scene_specular_bounds(f->scene, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f) : vec3_make(0, 0, 0);
+    vec3 centre = scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f)
+                                                                           : vec3_make(0, 0, 0);
     if (!make_lookup(s, p, f, centre, distance, screen, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
         return false;
     const float zero[4] = {0, 0, 0, 0};
@@ -476,7 +496,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl_program_bind_texture(prog, "u_back_normal", s->back_normal.id);
     gl_program_bind_texture(prog, "u_front_depth", s->front_depth.id);
     gl_program_bind_texture(prog, "u_back_depth", s->back_depth.id);
-    if (distance && !bind_distance_lookup(s, prog, f, centre, &in_color->texture, &in_depth->texture, err))
+    if (distance && !bind_distance_lookup(s, p, prog, f, &in_color->texture, &in_depth->texture, err))
         return false;
     if (!distance && nearby && s->impostors.count > 0) {
         gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
@@ -558,7 +578,24 @@ static const char *refraction_leaves_out(const struct pass *p, const struct scen
     return pass_refractor_holds(scene, o, NULL);
 }
 
+static bool refraction_reads_block(const struct pass *p, int param)
+{
+    return param != REFRACTION_DISTANCE_MAP || uses_distance_map(p);
+}
+
+/* Its distance map: lit radiance around the glass, water and mirrors'
+ * centre, at `impostor` texels a face, through this pass's shadow maps. */
+static bool refraction_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    if (param != REFRACTION_DISTANCE_MAP)
+        return true;
+    return distance_map_configure_block(block, DISTANCE_MAP_RADIANCE, pass_int(p, REFRACTION_IMPOSTOR),
+                                        OBJECT_ROLE_SPECULAR, p, REFRACTION_SHADOW, err);
+}
+
 const struct pass_desc refraction_pass = {
+    .reads_block = refraction_reads_block,
+    .configure_block = refraction_configure_block,
     .technique = PASS_TECHNIQUE_VIEW,
     .leaves_out = refraction_leaves_out,
     .behind_glass_without_caustics = true,

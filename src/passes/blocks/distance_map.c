@@ -1,6 +1,12 @@
-#include "passes/helpers/distance_map.h"
+/* distance_map: the distance impostor around the refractors, a building
+ * block (issue 54; distance_map.h says what it holds and who reads it).
+ * Szirmay-Kalos et al. 2005 for refraction's lookups (two layers, lit) and
+ * Liktor & Dachsbacher §4.3 / §6 for the beams' exits (distances alone). */
+#include "passes/blocks/distance_map.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "graph/frame.h"
@@ -12,7 +18,9 @@
 /* common/object.vert projected by each cube face's matrix */
 #define DISTANCE_MAP_VIEW "#define OBJECT_VIEW_PROJ\n"
 
-void distance_map_release(struct distance_map *m)
+const struct record_type DISTANCE_MAP_RECORD = {"distance_map"};
+
+static void distance_map_release(struct distance_map *m)
 {
     for (int layer = 0; layer < 2; layer++) {
         gl_texture_destroy(&m->color[layer]);
@@ -36,20 +44,6 @@ static bool diffuse_animated(const struct scene *scene)
     return false;
 }
 
-/* The key a map around `center` at `size` (and `range`, 0 for the full
- * map) is made under: the building pass's pass_frame_key with what the
- * map's kind depends on. Sets *key; true when the map already stands for
- * it (no receiver animates: a deforming glass dragon does not count). */
-static bool map_current(const struct distance_map *m, const struct pass *owner, const struct pass_frame *f,
-                        unsigned depends, vec3 center, int size, float range, uint64_t *key)
-{
-    uint64_t k = pass_frame_key(owner, f, depends);
-    k = pass_key_mix(k, &center, sizeof center);
-    k = pass_key_mix(k, &size, sizeof size);
-    *key = pass_key_mix(k, &range, sizeof range);
-    return m->built && m->built_key == *key && !diffuse_animated(f->scene);
-}
-
 /* A program that lights the map's surfaces from its centre: the shadow
  * maps of `shadow_pass`'s inputs (none without it), the medium, the
  * centre. */
@@ -66,13 +60,14 @@ static bool bind_lighting(const struct gl_program *prog, struct pass *shadow_pas
     return true;
 }
 
-bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
-                         vec3 center, int size, struct error *err)
+/* Renders the map around `center` (size x size per face): the visible
+ * diffuse objects lit as `shade` lights them (Lambert, ambient, emission),
+ * shadowed by the shadow maps of the block's inputs when it has any
+ * (shadow_inputs). */
+static bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass,
+                                struct pass_frame *f, vec3 center, int size, uint64_t key, struct error *err)
 {
     const struct scene *scene = f->scene;
-    uint64_t key;
-    if (map_current(m, shadow_pass, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS, center, size, 0.0f, &key))
-        return true;
     m->built = false;
     if (m->size != size || !m->color[0].id) {
         distance_map_release(m);
@@ -171,18 +166,22 @@ bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass
     if (!gl_check("building the distance map", err))
         return false;
     m->center = center;
+    m->range = 0.0f;
+    m->content = DISTANCE_MAP_RADIANCE;
     m->built = true;
     m->built_key = key;
     return true;
 }
 
-bool distance_map_update_distances(struct distance_map *m, struct renderer *r, struct pass *owner,
-                                   struct pass_frame *f, vec3 center, int size, float range, struct error *err)
+/* The distances alone (layer 0, no colour) around `center` out to `range`:
+ * the receivers' distance impostor beam_caustics traces its exits against
+ * (Szirmay-Kalos et al. 2005; Liktor & Dachsbacher §4.3). No surface within
+ * the range reads as the range; the faces are filtered (linear), as the
+ * beams' march expects. */
+static bool distance_map_update_distances(struct distance_map *m, struct renderer *r, struct pass_frame *f,
+                                          vec3 center, int size, float range, uint64_t key, struct error *err)
 {
     const struct scene *scene = f->scene;
-    uint64_t key;
-    if (map_current(m, owner, f, PASS_DEPENDS_GEOMETRY, center, size, range, &key))
-        return true;
     m->built = false;
     if (m->size != size || !m->distance[0].id || m->color[0].id) {
         distance_map_release(m);
@@ -220,7 +219,149 @@ bool distance_map_update_distances(struct distance_map *m, struct renderer *r, s
     if (!gl_check("building the distance impostor", err))
         return false;
     m->center = center;
+    m->range = range;
+    m->content = DISTANCE_MAP_DISTANCES;
     m->built = true;
     m->built_key = key;
     return true;
 }
+
+/* The block's parameters by index (pass_int(p, DM_SIZE)). */
+enum distance_map_param { DM_CONTENT, DM_SIZE, DM_AROUND, DM_SHADOW };
+enum { AROUND_SPECULAR, AROUND_REFRACTORS }; /* the choices of `around`, in order */
+
+static const struct pass_param_desc params[] = {
+    [DM_CONTENT] = {.name = "content", .type = PASS_PARAM_ENUM, .default_string = "radiance",
+     .choices = "radiance|distances",
+     .help = "radiance: two layers of the diffuse surfaces seen from the centre, lit as shade lights them, with their "
+             "distances (refraction's lookups); distances: the nearest surface's distance alone, filtered, out past "
+             "the whole scene (beam_caustics' exits)"},
+    [DM_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "texels per side of each cube face"},
+    [DM_AROUND] = {.name = "around", .type = PASS_PARAM_ENUM, .default_string = "specular",
+     .choices = "specular|refractors",
+     .help = "its centre: the middle of the box of the visible glass, water and mirrors (refraction's), or of the "
+             "glass and water alone (beam_caustics')"},
+    [DM_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
+     .record = &SHADOW_MAP_RECORD,
+     .help = "shadow maps that light the radiance as shade's light the scene (e.g. \"shadow.depth\"); without them "
+             "it is unshadowed"},
+};
+
+bool distance_map_configure_block(struct pass *block, enum distance_map_content content, int size, unsigned around,
+                                  const struct pass *reader, int reader_shadow, struct error *err)
+{
+    if (!pass_set_enum(block, "content", content == DISTANCE_MAP_RADIANCE ? "radiance" : "distances", err) ||
+        !pass_set_number(block, "size", size, err) ||
+        !pass_set_enum(block, "around", around == OBJECT_ROLE_REFRACTOR ? "refractors" : "specular", err))
+        return false;
+    const struct pass_value *shadow = reader_shadow >= 0 ? &reader->values[reader_shadow] : NULL;
+    if (!shadow || !shadow->list_count)
+        return true;
+    return pass_set_list(block, DM_SHADOW, (const char *const *)shadow->list, shadow->list_count, err);
+}
+
+static bool distance_map_declare(struct pass *p, struct error *err)
+{
+    /* shadow0.. are declared from the descriptor (pass_declare) */
+    return pass_declare_bundle(p, "map", &DISTANCE_MAP_RECORD, err);
+}
+
+static bool distance_map_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    p->state = calloc(1, sizeof(struct distance_map));
+    return p->state ? true : error_set(err, "out of memory");
+}
+
+static void distance_map_destroy(struct pass *p)
+{
+    if (!p->state)
+        return;
+    distance_map_release(p->state);
+    free(p->state);
+    p->state = NULL;
+}
+
+/* This frame's centre, range (distances: past the whole scene from the
+ * centre) and the key a map is made under: the block's pass_frame_key
+ * with what its content depends on, the centre, size and range. False:
+ * nothing to centre it on. */
+static bool map_frame(const struct pass *p, const struct pass_frame *f, vec3 *center, float *range, uint64_t *key)
+{
+    vec3 lo, hi;
+    unsigned around = pass_choice(p, DM_AROUND) == AROUND_SPECULAR ? OBJECT_ROLE_SPECULAR : OBJECT_ROLE_REFRACTOR;
+    if (!scene_role_bounds(f->scene, around, &lo, &hi))
+        return false;
+    *center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    *range = 0.0f;
+    bool radiance = pass_choice(p, DM_CONTENT) == DISTANCE_MAP_RADIANCE;
+    vec3 slo, shi;
+    if (!radiance && scene_bounds(f->scene, &slo, &shi))
+        *range = fmaxf(2.0f * (vec3_length(vec3_sub(shi, slo)) +
+                               vec3_length(vec3_sub(*center, vec3_scale(vec3_add(slo, shi), 0.5f)))),
+                       1e-3f);
+    int size = pass_int(p, DM_SIZE);
+    uint64_t k = pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY | (radiance ? PASS_DEPENDS_LIGHTS : 0u));
+    k = pass_key_mix(k, center, sizeof *center);
+    k = pass_key_mix(k, &size, sizeof size);
+    *key = pass_key_mix(k, range, sizeof *range);
+    return true;
+}
+
+/* A static scene keeps the last map; only the receivers' animation counts
+ * (a deforming glass dragon does not make it stale). */
+static enum pass_need distance_map_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    struct distance_map *m = p->state;
+    vec3 center;
+    float range;
+    uint64_t key;
+    if (!map_frame(p, f, &center, &range, &key)) {
+        m->built = false;
+        snprintf(why, whylen, "the scene has no visible %s to centre it on",
+                 pass_choice(p, DM_AROUND) == AROUND_SPECULAR ? "glass, water or mirror" : "glass or water");
+        return PASS_SKIP;
+    }
+    if (m->built && m->built_key == key && !diffuse_animated(f->scene)) {
+        snprintf(why, whylen, "reuses its map: its parameters, the receivers%s did not change",
+                 pass_choice(p, DM_CONTENT) == DISTANCE_MAP_RADIANCE ? ", the lights" : "");
+        return PASS_REUSE;
+    }
+    return PASS_RUN;
+}
+
+static bool distance_map_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct distance_map *m = p->state;
+    pass_frame_output(p, f, "map")->record = m;
+    vec3 center;
+    float range;
+    uint64_t key;
+    if (!map_frame(p, f, &center, &range, &key)) {
+        m->built = false;
+        return true;
+    }
+    int size = pass_int(p, DM_SIZE);
+    bool radiance = pass_choice(p, DM_CONTENT) == DISTANCE_MAP_RADIANCE;
+    if (radiance ? !distance_map_update(m, f->renderer, p, f, center, size, key, err)
+                 : !distance_map_update_distances(m, f->renderer, f, center, size, range, key, err))
+        return false;
+    snprintf(p->report, sizeof p->report, "%s around (%.3g, %.3g, %.3g), %d x %d texels a face",
+             radiance ? "two layers of radiance and distance" : "distances", (double)center.x, (double)center.y,
+             (double)center.z, size, size);
+    return true;
+}
+
+const struct pass_desc distance_map_pass = {
+    .name = "distance_map",
+    .summary = "building block: a cube map of the receivers' radiance and distance around the refractors "
+               "(Szirmay-Kalos et al. 2005), shared by refraction's lookups and beam_caustics' exits",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = distance_map_declare,
+    .create = distance_map_create,
+    .execute = distance_map_execute,
+    .needed = distance_map_needed,
+    .destroy = distance_map_destroy,
+};

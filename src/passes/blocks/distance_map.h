@@ -26,11 +26,27 @@
 #include "graph/pass.h"
 #include "scene/scene.h"
 
-struct renderer;
+/* The building block `distance_map` (issue 54: it was each reader's
+ * private helper, built once per reader): the map around the glass,
+ * water and mirrors' centre (`around = "specular"`, refraction's) or the
+ * refractors' alone (`"refractors"`, beam_caustics'), of `content`
+ * "radiance" (both layers, lit; refraction's lookups) or "distances"
+ * (layer 0's distances alone, out to `range`; beam_caustics' exits). Its
+ * output `map` is a record of DISTANCE_MAP_RECORD's type, a struct
+ * distance_map, that readers take with pass_frame_record and bind. The
+ * graph adds one for a reader that names none (configured by
+ * distance_map_configure_block) and shares it among readers that want the
+ * same one. */
+struct record_type;
+extern const struct record_type DISTANCE_MAP_RECORD;
+
+enum distance_map_content { DISTANCE_MAP_RADIANCE, DISTANCE_MAP_DISTANCES };
 
 struct distance_map {
     int size;
+    enum distance_map_content content;
     vec3 center;
+    float range;                    /* distances: how far the faces reach (none within: the range) */
     struct gl_texture color[2];     /* rgba16f cubes per layer: the radiance seen in each direction (linear) */
     struct gl_texture distance[2];  /* r32f cubes: its distance from the centre, 1e30 where none (nearest: a
                                        filtered distance would blend a near and a far surface into a wall
@@ -38,25 +54,15 @@ struct distance_map {
     struct gl_texture depth_buffer; /* for rendering its faces */
     struct gl_framebuffer fb;
     bool built;
-    uint64_t built_key; /* the building pass's pass_frame_key (geometry, lights), the centre and size */
+    uint64_t built_key; /* the block's pass_frame_key (geometry, lights), the centre, size and range */
 };
 
-/* Renders the map around `center` (size x size per face): the visible
- * diffuse objects lit as `shade` lights them (Lambert, ambient, emission),
- * shadowed by the shadow maps of `shadow_pass`'s inputs when it has any
- * (shadow_inputs). A static scene keeps the last map (pass_frame_key of
- * `shadow_pass` with the geometry and lights, and the same centre and size;
- * only the receivers' animation counts: a deforming glass dragon does not
- * make it stale). */
-bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass, struct pass_frame *f,
-                         vec3 center, int size, struct error *err);
-/* The distances alone (layer 0, no colour) around `center` out to `range`:
- * the receivers' distance impostor beam_caustics traces its exits against
- * (Szirmay-Kalos et al. 2005; Liktor & Dachsbacher §4.3). No surface within
- * the range reads as the range; the faces are filtered (linear), as the
- * beams' march expects. Reused as the full map is (the key with the range). */
-bool distance_map_update_distances(struct distance_map *m, struct renderer *r, struct pass *owner,
-                                   struct pass_frame *f, vec3 center, int size, float range, struct error *err);
-void distance_map_release(struct distance_map *m);
+/* Sets the parameters of the block a reader's input asks the graph for:
+ * the content, the face size, what it is centred on (OBJECT_ROLE_SPECULAR
+ * or OBJECT_ROLE_REFRACTOR) and, for radiance, the shadow maps that light
+ * it: the reader's own `shadow` list (reader_shadow: its parameter's
+ * index; -1: none). */
+bool distance_map_configure_block(struct pass *block, enum distance_map_content content, int size, unsigned around,
+                                  const struct pass *reader, int reader_shadow, struct error *err);
 
 #endif
