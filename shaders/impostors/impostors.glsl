@@ -1,4 +1,4 @@
-// The impostors' frames (src/passes/helpers/impostors.h) and the ray lookup of Hu &
+// The impostors' frames (src/passes/blocks/impostors.h) and the ray lookup of Hu &
 // Qin §2.2: intersect a ray with the rectangles, then correct the hit with
 // the depth texture (the iterative lookup of Fig. 16).
 struct Impostor {

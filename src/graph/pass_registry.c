@@ -27,6 +27,7 @@
     X(receivers) \
     X(depth_layers) \
     X(distance_map) \
+    X(impostors) \
     CAUSTICA_EXTRA_PASSES(X) \
     /* end */
 

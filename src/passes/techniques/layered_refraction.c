@@ -19,13 +19,12 @@
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "passes/helpers/impostors.h"
+#include "passes/blocks/impostors.h"
 #include "passes/helpers/layers.h"
 #include "passes/helpers/thin_glass_over.h"
 
 struct layered_refraction_state {
     struct gl_framebuffer out_fb;
-    struct impostor_set impostors;
     struct thin_glass_over panes;
 };
 
@@ -50,6 +49,7 @@ enum layered_refraction_param {
     LR_IMPOSTOR,
     LR_INTERNAL,
     LR_CAMERA_LAYERS,
+    LR_IMPOSTORS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -84,6 +84,10 @@ static const struct pass_param_desc params[] = {
      .bundle = &LAYER_SET_RECORD, .default_output = "layers",
      .help = "the camera's depth layers (a depth_layers { view = \"camera\" } pass's `layers`): by default the graph "
              "adds one at `layers`, `voxels` and `depths`"},
+    [LR_IMPOSTORS] = {.name = "impostors", .type = PASS_PARAM_INPUT, .block = "impostors",
+     .bundle = &IMPOSTOR_SET_RECORD, .default_output = "set",
+     .help = "the nearby objects' impostors (an impostors pass's `set`), read where `nearby`: by default the graph "
+             "adds one of `impostor` texels, shared with refraction and photon_caustics where they want the same"},
 };
 
 static bool layered_refraction_declare(struct pass *p, struct error *err)
@@ -110,7 +114,6 @@ static void layered_refraction_destroy(struct pass *p)
     struct layered_refraction_state *s = p->state;
     if (!s)
         return;
-    impostors_release(&s->impostors);
     thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->out_fb);
     free(s);
@@ -151,14 +154,9 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
                renderer_draw_copy(r, s->out_fb.id, f->width, f->height, in_color->texture.id, err);
     pass_stage_begin(p);
     bool nearby = pass_flag(p, LR_NEARBY);
-    if (nearby) {
-        uint64_t key = impostors_key(p, f);
-        if (!impostors_current(&s->impostors, f, key) &&
-            !impostors_build(&s->impostors, p, f, vec3_scale(vec3_add(lo, hi), 0.5f), pass_int(p, LR_IMPOSTOR),
-                             false, key, err))
-            return false;
-        pass_stage_end(p, "impostors");
-    }
+    const struct impostor_set *impostors = nearby ? pass_frame_record(p, f, "impostors", &IMPOSTOR_SET_RECORD) : NULL;
+    if (nearby && !impostors)
+        return error_set(err, "its impostors ('%s') were not made this frame", pass_frame_input(p, f, "impostors")->name);
 
     if (!gl_framebuffer_attach(&s->out_fb, oc, NULL, 2, NULL, -1, err))
         return false;
@@ -205,12 +203,12 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), internal);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
-    if (nearby && s->impostors.count > 0) {
-        gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
-        gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
-        gl_program_bind_texture(prog, "u_impostor_color", s->impostors.color.id);
+    if (impostors && impostors->count > 0) {
+        gl_program_bind_storage(prog, "Impostors", impostors->ubo);
+        gl_program_bind_texture(prog, "u_impostor_depth", impostors->depth.id);
+        gl_program_bind_texture(prog, "u_impostor_color", impostors->color.id);
     }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), nearby ? s->impostors.count : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), impostors ? impostors->count : 0);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_correction"), 3);
     renderer_draw_fullscreen(r);
     pass_stage_end(p, "trace");
@@ -224,7 +222,8 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
  * pass's layers, voxels and depths. */
 static bool layered_refraction_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
 {
-    (void)param;
+    if (param == LR_IMPOSTORS) /* unshadowed, as this pass has no shadow maps */
+        return impostors_configure_block(block, pass_int(p, LR_IMPOSTOR), 0, p, -1, err);
     return layers_configure_camera_block(block, pass_int(p, LR_LAYERS), pass_int(p, LR_VOXELS),
                                          pass_choice(p, LR_DEPTHS) == DEPTHS_EXACT, err);
 }
@@ -244,7 +243,13 @@ static const char *layered_refraction_leaves_out(const struct pass *p, const str
     return pass_refractor_holds(scene, o, pass_refractor_left_out(o, false));
 }
 
+static bool layered_refraction_reads_block(const struct pass *p, int param)
+{
+    return param != LR_IMPOSTORS || pass_flag(p, LR_NEARBY);
+}
+
 const struct pass_desc layered_refraction_pass = {
+    .reads_block = layered_refraction_reads_block,
     .technique = PASS_TECHNIQUE_VIEW,
     .leaves_out = layered_refraction_leaves_out,
     .draws = layered_refraction_draws,

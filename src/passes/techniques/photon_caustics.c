@@ -24,7 +24,7 @@
 #include "graph/temporal.h"
 #include "scene/light_view.h"
 #include "passes/helpers/caustic_coverage.h"
-#include "passes/helpers/impostors.h"
+#include "passes/blocks/impostors.h"
 #include "passes/helpers/shadow_inputs.h"
 #include "scene/scene.h"
 
@@ -35,7 +35,7 @@
 
 struct photon_state {
     struct caustic_coverage dark_check; /* what it left dark under glass, measured once */
-    struct impostor_set impostors;
+    const struct impostor_set *impostors; /* the impostors block's, this frame */
     struct gl_framebuffer light_fb[2], photon_fb, map_fb;
     struct gl_texture light_normal[2], light_depth[2]; /* front, back as seen from the light */
     struct gl_texture light_material[2];              /* absorption or tint, and the material kind */
@@ -79,6 +79,7 @@ enum photon_caustics_param {
     PHOTON_PIXEL_SAMPLES,
     PHOTON_ACCUMULATE,
     PHOTON_SHADOW,
+    PHOTON_IMPOSTORS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -113,6 +114,11 @@ static const struct pass_param_desc params[] = {
      .help = "temporal accumulation: the photon grid moves by a sub-texel jitter every frame and the irradiance "
              "averages the last this many frames while the light and the geometry stay, half as many (at least 2; the "
              "history clipped to each pixel's neighbourhood) while they move; 1: none (docs/TEMPORAL.md)"},
+    [PHOTON_IMPOSTORS] = {.name = "impostors", .type = PASS_PARAM_INPUT, .block = "impostors",
+     .bundle = &IMPOSTOR_SET_RECORD, .default_output = "set",
+     .help = "the receivers' impostors the caustic textures are made over (§3.2; an impostors pass's `set`): by "
+             "default the graph adds one of `texture` texels, shared with refraction or layered_refraction where "
+             "they want the same"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -156,7 +162,6 @@ static void photon_destroy(struct pass *p)
     release_textures(s);
     caustic_coverage_release(&s->dark_check);
     temporal_release(&s->temporal);
-    impostors_release(&s->impostors);
     for (int i = 0; i < 2; i++)
         gl_framebuffer_destroy(&s->light_fb[i]);
     gl_framebuffer_destroy(&s->photon_fb);
@@ -223,10 +228,10 @@ static bool ensure_textures(struct photon_state *s, int buffer, int texture, int
 
 static void bind_impostors(struct photon_state *s, const struct gl_program *prog)
 {
-    gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
+    gl_program_bind_storage(prog, "Impostors", s->impostors->ubo);
     gl_program_bind_storage(prog, "PhotonWindows", s->windows);
-    gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors.count);
+    gl_program_bind_texture(prog, "u_impostor_depth", s->impostors->depth.id);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), s->impostors->count);
 }
 
 /* Front and back surfaces of the specular objects as the light sees them
@@ -412,7 +417,7 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
     gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
     gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
     gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_fit"), pass_flag(p, PHOTON_FIT));
-    gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors.count);
+    gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors->count);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     return true;
 }
@@ -499,10 +504,10 @@ static bool map_caustics(struct photon_state *s, struct pass *p, struct pass_fra
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_texture"), texture);
     gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
-    for (int k = 0; k < s->impostors.count; k++) {
+    for (int k = 0; k < s->impostors->count; k++) {
         char name[48];
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);
-        gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors.items[k].object->id);
+        gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors->items[k].object->id);
     }
     gl.Enable(GL_DEPTH_TEST);
     /* the diffuse surfaces only, as shade { specular = false } draws them: the
@@ -523,6 +528,10 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     int light_index = renderer_light_slot(f->renderer, f->scene, light);
     if (light_index < 0)
         return error_set(err, "its light was never added to the scene (use scene:add(light))");
+    /* the receivers' impostors: the impostors block's, made before this pass (§3.2) */
+    s->impostors = pass_frame_record(p, f, "impostors", &IMPOSTOR_SET_RECORD);
+    if (!s->impostors)
+        return error_set(err, "its impostors ('%s') were not made this frame", pass_frame_input(p, f, "impostors")->name);
     vec3 oc = {0, 0, 0};
     float orad = 1.0f; /* photon_needed left the pass out when nothing is specular */
     specular_bounds(f->scene, &oc, &orad);
@@ -544,8 +553,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                    : "photons traced from the light into new caustic textures");
     size_t used = strlen(p->report);
     if (!reuse) {
-        if (!impostors_build(&s->impostors, p, f, oc, texture, false, key, err) ||
-            !ensure_textures(s, buffer, texture, s->impostors.count, err))
+        if (!ensure_textures(s, buffer, texture, s->impostors->count, err))
             return false;
         /* The light's view of the refractors' bounding sphere (then narrowed
          * to what they cover, fit_light_view): wider margins than the
@@ -599,7 +607,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     if (!reuse || (pass_flag(p, PHOTON_FIT) && view_key != s->view_key)) {
         if (reuse && used + 8 < sizeof p->report)
             snprintf(p->report + used, sizeof p->report - used, "; the caustic textures rebuilt for the camera's view");
-        if (s->impostors.count > 0 && !build_caustic_textures(s, r, p, buffer, texture, err))
+        if (s->impostors->count > 0 && !build_caustic_textures(s, r, p, buffer, texture, err))
             return false;
         s->view_key = view_key;
     }
@@ -614,7 +622,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     const float zero[4] = {0, 0, 0, 0};
     gl.ClearNamedFramebufferfv(s->map_fb.id, GL_COLOR, 0, zero);
     gl.Clear(GL_DEPTH_BUFFER_BIT);
-    if (s->impostors.count == 0)
+    if (s->impostors->count == 0)
         return true;
     if (!map_caustics(s, p, f, texture, err))
         return false;
@@ -639,7 +647,18 @@ static const char *photon_caustics_leaves_out(const struct pass *p, const struct
     return pass_refractor_left_out(o, true);
 }
 
+/* Its impostors: the receivers at the caustic textures' size, lit
+ * through its shadow maps (the photons read their depth alone; lit alike,
+ * a refraction pass's at the same size shares them). */
+static bool photon_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
+{
+    if (param != PHOTON_IMPOSTORS)
+        return true;
+    return impostors_configure_block(block, pass_int(p, PHOTON_TEXTURE), 0, p, PHOTON_SHADOW, err);
+}
+
 const struct pass_desc photon_caustics_pass = {
+    .configure_block = photon_configure_block,
     .technique = PASS_TECHNIQUE_CAUSTICS,
     .surface_caustics_only = true,
     .leaves_out = photon_caustics_leaves_out,

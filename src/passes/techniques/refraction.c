@@ -26,7 +26,7 @@
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/blocks/distance_map.h"
-#include "passes/helpers/impostors.h"
+#include "passes/blocks/impostors.h"
 #include "passes/helpers/layers.h"
 #include "passes/helpers/shadow_inputs.h"
 #include "passes/helpers/thin_glass_over.h"
@@ -36,7 +36,7 @@
 #define MAX_SEARCH_STEPS 16
 
 struct refraction_state {
-    struct impostor_set impostors;
+    const struct impostor_set *impostors; /* the impostors block's, this frame (NULL: the lookup reads none) */
     struct thin_glass_over panes;
     struct gl_framebuffer front_fb, back_fb, out_fb, behind_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
@@ -100,6 +100,7 @@ enum refraction_param {
     REFRACTION_SHADOW,
     REFRACTION_INTERNAL,
     REFRACTION_DISTANCE_MAP,
+    REFRACTION_IMPOSTORS,
 };
 
 static const struct pass_param_desc params[] = {
@@ -144,6 +145,11 @@ static const struct pass_param_desc params[] = {
      .bundle = &DISTANCE_MAP_RECORD, .default_output = "map",
      .help = "the distance map the lookups \"scene\" and \"map\" read (a distance_map pass's `map`, content = "
              "\"radiance\"): by default the graph adds one of `impostor` texels a face, lit through `shadow`, "
+             "shared with any reader that wants the same"},
+    [REFRACTION_IMPOSTORS] = {.name = "impostors", .type = PASS_PARAM_INPUT, .block = "impostors",
+     .bundle = &IMPOSTOR_SET_RECORD, .default_output = "set",
+     .help = "the nearby objects' impostors the lookup \"impostors\" and recursion read (an impostors pass's "
+             "`set`): by default the graph adds one of `impostor` texels at `recursion`, lit through `shadow`, "
              "shared with any reader that wants the same"},
 };
 
@@ -192,7 +198,6 @@ static void refraction_destroy(struct pass *p)
     if (!s)
         return;
     release_targets(s);
-    impostors_release(&s->impostors);
     thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
@@ -362,30 +367,22 @@ static bool draw_surfaces(struct refraction_state *s, struct pass_frame *f, bool
     return true;
 }
 
-/* What a ray leaving the glass looks up: the distance map (the block's;
- * for the screen lookup, the diffuse objects behind the glass from the
- * camera too), or
- * §2.2.1's impostors of the nearby (diffuse) objects around the
- * refractors' centre. */
-static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, vec3 centre, bool distance,
-                        bool screen, bool nearby, struct error *err)
+/* What a ray leaving the glass looks up, both made by blocks before this
+ * pass: the distance map (and, for the screen lookup, the diffuse objects
+ * behind the glass from the camera, drawn here), or §2.2.1's impostors of
+ * the nearby (diffuse) objects around the refractors' centre. */
+static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, bool distance, bool screen,
+                        bool nearby, struct error *err)
 {
-    struct renderer *r = f->renderer;
-    if (distance) /* the distance map is the distance_map block's, made before this pass */
+    s->impostors = NULL;
+    if (distance)
         return !screen || draw_behind(s, p, f, err);
     if (!nearby)
         return true;
-    /* recursion redraws the impostors' colours: made again every frame */
-    uint64_t key = impostors_key(p, f);
-    if (impostors_current(&s->impostors, f, key) && pass_int(p, REFRACTION_RECURSION) == 0)
-        return true;
-    int levels = pass_int(p, REFRACTION_RECURSION);
-    if (!impostors_build(&s->impostors, p, f, centre, pass_int(p, REFRACTION_IMPOSTOR), levels > 0, key, err))
-        return false;
-    for (int level = 0; level < levels; level++)
-        if (!impostors_recurse(&s->impostors, r, f->scene, err))
-            return false;
-    return true;
+    s->impostors = pass_frame_record(p, f, "impostors", &IMPOSTOR_SET_RECORD);
+    return s->impostors ? true
+                        : error_set(err, "its impostors ('%s') were not made this frame",
+                                    pass_frame_input(p, f, "impostors")->name);
 }
 
 /* The distance map and the input image for the rays that leave the glass
@@ -464,10 +461,9 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     char defines[128];
     snprintf(defines, sizeof defines, "%s%s%s%s", wyman ? "#define WYMAN 1\n" : "", nearby ? "#define NEARBY 1\n" : "",
              distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
-    vec3 lo, hi;
-    vec3 centre = scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi) ? vec3_scale(vec3_add(lo, hi), 0.5f)
-                                                                           : vec3_make(0, 0, 0);
-    if (!make_lookup(s, p, f, centre, distance, screen, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
+    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
+    scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi); /* (something specular is in view) */
+    if (!make_lookup(s, p, f, distance, screen, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
         return false;
     const float zero[4] = {0, 0, 0, 0};
 
@@ -498,13 +494,13 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     gl_program_bind_texture(prog, "u_back_depth", s->back_depth.id);
     if (distance && !bind_distance_lookup(s, p, prog, f, &in_color->texture, &in_depth->texture, err))
         return false;
-    if (!distance && nearby && s->impostors.count > 0) {
-        gl_program_bind_storage(prog, "Impostors", s->impostors.ubo);
-        gl_program_bind_texture(prog, "u_impostor_depth", s->impostors.depth.id);
-        gl_program_bind_texture(prog, "u_impostor_color", s->impostors.color.id);
+    const struct impostor_set *imp = nearby && !distance ? s->impostors : NULL;
+    if (imp && imp->count > 0) {
+        gl_program_bind_storage(prog, "Impostors", imp->ubo);
+        gl_program_bind_texture(prog, "u_impostor_depth", imp->depth.id);
+        gl_program_bind_texture(prog, "u_impostor_color", imp->color.id);
     }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"),
-                        nearby && !distance ? s->impostors.count : 0);
+    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), imp ? imp->count : 0);
     /* the parameters, as one block (struct refraction_params) */
     if (s->params_checked != prog->id) {
         if (!gl_program_check_block(prog, "RefractionParams", refraction_params_members,
@@ -545,7 +541,6 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
                     object_contains_point(o, f->snapshot->eye);
         any_inside = any_inside || inside[i];
     }
-    const struct impostor_set *imp = nearby && !distance ? &s->impostors : NULL;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_inside"), 0);
     bool ok = draw_refractors(r, f->scene, prog, wyman, true, imp, NULL, false, err);
     if (ok && any_inside && !wyman) {
@@ -580,13 +575,20 @@ static const char *refraction_leaves_out(const struct pass *p, const struct scen
 
 static bool refraction_reads_block(const struct pass *p, int param)
 {
-    return param != REFRACTION_DISTANCE_MAP || uses_distance_map(p);
+    if (param == REFRACTION_DISTANCE_MAP)
+        return uses_distance_map(p);
+    if (param == REFRACTION_IMPOSTORS)
+        return pass_flag(p, REFRACTION_NEARBY) && !uses_distance_map(p);
+    return true;
 }
 
 /* Its distance map: lit radiance around the glass, water and mirrors'
  * centre, at `impostor` texels a face, through this pass's shadow maps. */
 static bool refraction_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
 {
+    if (param == REFRACTION_IMPOSTORS)
+        return impostors_configure_block(block, pass_int(p, REFRACTION_IMPOSTOR), pass_int(p, REFRACTION_RECURSION), p,
+                                         REFRACTION_SHADOW, err);
     if (param != REFRACTION_DISTANCE_MAP)
         return true;
     return distance_map_configure_block(block, DISTANCE_MAP_RADIANCE, pass_int(p, REFRACTION_IMPOSTOR),

@@ -48,24 +48,25 @@ struct impostor_set {
     uint64_t built_key; /* the building pass's pass_frame_key */
 };
 
-/* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
- * `refractor_center`, each rendered at size x size; with `include_specular`
- * the reflectors and refractors too, their colour the environment they
- * reflect and refract (the recursion's level 0). They are lit as shade
- * lights (common/surface_light.glsl), through the shadow maps `owner` has
- * as inputs (none: unshadowed) and the frame's medium. */
-bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_frame *f, vec3 refractor_center,
-                     int size, bool include_specular, uint64_t key, struct error *err);
-/* One level of recursive reflection/refraction (Hu & Qin §2.2, Fig. 1b,
- * 24g): the specular objects' impostors are drawn again, reflecting and
- * refracting the impostors of the previous level. */
-bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err);
-void impostors_release(struct impostor_set *set);
-/* The key a pass builds its impostors under: its pass_frame_key with the
- * geometry and the lights (Hu & Qin §4's reuse in a static scene). */
-uint64_t impostors_key(const struct pass *p, const struct pass_frame *f);
-/* Whether the last build stands for `key` (and no geometry animates). */
-bool impostors_current(const struct impostor_set *set, const struct pass_frame *f, uint64_t key);
+/* The building block `impostors` (issue 54: it was each reader's private
+ * helper): the set around the glass, water and mirrors' centre at `size`
+ * texels, with `specular` the reflectors and refractors too and
+ * `recursion` levels of them reflecting each other (Fig. 1b, 24g), lit
+ * through its `shadow` maps. Its output `set` is a record of
+ * IMPOSTOR_SET_RECORD's type, a struct impostor_set, that refraction,
+ * layered_refraction and photon_caustics read (pass_frame_record). The
+ * graph adds one for a reader that names none (configured by
+ * impostors_configure_block) and shares it among readers that want the
+ * same set. */
+struct record_type;
+extern const struct record_type IMPOSTOR_SET_RECORD;
+
+/* Sets the block's parameters for a reader: `size`, `recursion` (levels;
+ * more than 0 draws the specular objects too) and the shadow maps that
+ * light it, the reader's own `shadow` list (reader_shadow: its parameter's
+ * index; -1: none). */
+bool impostors_configure_block(struct pass *block, int size, int recursion, const struct pass *reader,
+                               int reader_shadow, struct error *err);
 /* Index of the impostor standing in for `object`, or -1. */
 int impostors_find(const struct impostor_set *set, const struct object *object);
 

@@ -1,6 +1,11 @@
-#include "passes/helpers/impostors.h"
+/* impostors: Hu & Qin's impostors of the nearby objects (§2.2.1, Fig. 12),
+ * a building block (issue 54; impostors.h says what the set holds and who
+ * reads it). */
+#include "passes/blocks/impostors.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "graph/frame.h"
@@ -11,7 +16,9 @@
 /* common/object.vert projected by the impostor's parallel view (set_impostor_view) */
 #define IMPOSTOR_VIEW "#define OBJECT_VIEW_PROJ\n"
 
-void impostors_release(struct impostor_set *set)
+const struct record_type IMPOSTOR_SET_RECORD = {"impostor_set"};
+
+static void impostors_release(struct impostor_set *set)
 {
     gl_texture_destroy(&set->depth);
     gl_texture_destroy(&set->color);
@@ -21,16 +28,6 @@ void impostors_release(struct impostor_set *set)
     if (set->ubo && gl_api_ready())
         gl.DeleteBuffers(1, &set->ubo);
     memset(set, 0, sizeof *set);
-}
-
-uint64_t impostors_key(const struct pass *p, const struct pass_frame *f)
-{
-    return pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS);
-}
-
-bool impostors_current(const struct impostor_set *set, const struct pass_frame *f, uint64_t key)
-{
-    return pass_frame_reusable(f, set->built, set->built_key, key);
 }
 
 int impostors_find(const struct impostor_set *set, const struct object *object)
@@ -55,8 +52,14 @@ static void set_impostor_view(const struct gl_program *prog, const struct impost
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_impostor_axis"), im->axis.x, im->axis.y, im->axis.z);
 }
 
-bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_frame *f, vec3 refractor_center,
-                     int size, bool include_specular, uint64_t key, struct error *err)
+/* The receivers (visible diffuse objects, at most IMPOSTOR_MAX) around
+ * `refractor_center`, each rendered at size x size; with `include_specular`
+ * the reflectors and refractors too, their colour the environment they
+ * reflect and refract (the recursion's level 0). They are lit as shade
+ * lights (common/surface_light.glsl), through the shadow maps `owner` has
+ * as inputs (none: unshadowed) and the frame's medium. */
+static bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_frame *f, vec3 refractor_center,
+                            int size, bool include_specular, uint64_t key, struct error *err)
 {
     struct renderer *r = f->renderer;
     const struct scene *scene = f->scene;
@@ -157,7 +160,11 @@ bool impostors_build(struct impostor_set *set, struct pass *owner, struct pass_f
     return true;
 }
 
-bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene, struct error *err)
+/* One level of recursive reflection/refraction (Hu & Qin §2.2, Fig. 1b,
+ * 24g): the specular objects' impostors are drawn again, reflecting and
+ * refracting the impostors of the previous level. */
+static bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struct scene *scene,
+                              struct error *err)
 {
     if (set->count == 0)
         return true;
@@ -191,3 +198,121 @@ bool impostors_recurse(struct impostor_set *set, struct renderer *r, const struc
     gl.Disable(GL_DEPTH_TEST);
     return gl_check("recursive impostors", err);
 }
+
+/* The block's parameters by index. */
+enum impostors_param { IM_SIZE, IM_SPECULAR, IM_RECURSION, IM_SHADOW };
+
+static const struct pass_param_desc params[] = {
+    [IM_SIZE] = {.name = "size", .type = PASS_PARAM_INTEGER, .default_number = 256, .min = 16, .max = 4096,
+     .help = "texels per side of each impostor's texture"},
+    [IM_SPECULAR] = {.name = "specular", .type = PASS_PARAM_BOOLEAN, .default_number = 0,
+     .help = "the reflectors and refractors too, their colour the environment they reflect and refract (level 0 "
+             "of the recursion; on whenever recursion is)"},
+    [IM_RECURSION] = {.name = "recursion", .type = PASS_PARAM_INTEGER, .default_number = 0, .min = 0, .max = 4,
+     .help = "levels of the reflectors' and refractors' impostors drawn again reflecting and refracting the "
+             "previous level's (Hu & Qin Fig. 1b, 24g); made again every frame"},
+    [IM_SHADOW] = {.name = "shadow", .type = PASS_PARAM_INPUT_LIST, .max = SHADOW_INPUTS_MAX,
+     .record = &SHADOW_MAP_RECORD,
+     .help = "shadow maps that light the impostors as shade's light the scene (e.g. \"shadow.depth\"); without "
+             "them they are unshadowed"},
+};
+
+bool impostors_configure_block(struct pass *block, int size, int recursion, const struct pass *reader,
+                               int reader_shadow, struct error *err)
+{
+    if (!pass_set_number(block, "size", size, err) || !pass_set_boolean(block, "specular", recursion > 0, err) ||
+        !pass_set_number(block, "recursion", recursion, err))
+        return false;
+    const struct pass_value *shadow = reader_shadow >= 0 ? &reader->values[reader_shadow] : NULL;
+    if (!shadow || !shadow->list_count)
+        return true;
+    return pass_set_list(block, IM_SHADOW, (const char *const *)shadow->list, shadow->list_count, err);
+}
+
+static bool impostors_declare(struct pass *p, struct error *err)
+{
+    /* shadow0.. are declared from the descriptor (pass_declare) */
+    return pass_declare_bundle(p, "set", &IMPOSTOR_SET_RECORD, err);
+}
+
+static bool impostors_create(struct pass *p, struct renderer *r, struct error *err)
+{
+    (void)r;
+    p->state = calloc(1, sizeof(struct impostor_set));
+    return p->state ? true : error_set(err, "out of memory");
+}
+
+static void impostors_destroy(struct pass *p)
+{
+    if (!p->state)
+        return;
+    impostors_release(p->state);
+    free(p->state);
+    p->state = NULL;
+}
+
+/* The centre the impostors' axes leave from (the glass, water and
+ * mirrors' box's middle, §2.2.1's O_R) and the key a set is made under:
+ * the block's pass_frame_key with the geometry and the lights (Hu & Qin
+ * §4's reuse in a static scene) and the centre. False: nothing specular. */
+static bool set_frame(const struct pass *p, const struct pass_frame *f, vec3 *center, uint64_t *key)
+{
+    vec3 lo, hi;
+    if (!scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi))
+        return false;
+    *center = vec3_scale(vec3_add(lo, hi), 0.5f);
+    *key = pass_key_mix(pass_frame_key(p, f, PASS_DEPENDS_GEOMETRY | PASS_DEPENDS_LIGHTS), center, sizeof *center);
+    return true;
+}
+
+static enum pass_need impostors_needed(struct pass *p, struct pass_frame *f, char *why, size_t whylen)
+{
+    struct impostor_set *set = p->state;
+    vec3 center;
+    uint64_t key;
+    if (!set_frame(p, f, &center, &key)) {
+        set->built = false;
+        snprintf(why, whylen, "the scene has no visible glass, water or mirror for its objects to stand around");
+        return PASS_SKIP;
+    }
+    /* recursion redraws the specular impostors' colours: made every frame */
+    if (pass_int(p, IM_RECURSION) == 0 && pass_frame_reusable(f, set->built, set->built_key, key)) {
+        snprintf(why, whylen, "reuses its impostors: its parameters, the geometry and the lights did not change");
+        return PASS_REUSE;
+    }
+    return PASS_RUN;
+}
+
+static bool impostors_execute(struct pass *p, struct pass_frame *f, struct error *err)
+{
+    struct impostor_set *set = p->state;
+    pass_frame_output(p, f, "set")->record = set;
+    vec3 center;
+    uint64_t key;
+    if (!set_frame(p, f, &center, &key)) {
+        set->built = false;
+        return true;
+    }
+    int levels = pass_int(p, IM_RECURSION);
+    if (!impostors_build(set, p, f, center, pass_int(p, IM_SIZE), levels > 0 || pass_flag(p, IM_SPECULAR), key, err))
+        return false;
+    for (int level = 0; level < levels; level++)
+        if (!impostors_recurse(set, f->renderer, f->scene, err))
+            return false;
+    snprintf(p->report, sizeof p->report, "%d impostors of %d x %d texels%s", set->count, set->size, set->size,
+             levels ? ", drawn again for each level of recursion" : "");
+    return true;
+}
+
+const struct pass_desc impostors_pass = {
+    .name = "impostors",
+    .summary = "building block: Hu & Qin's impostors of the nearby objects around the specular ones (§2.2.1), "
+               "shared by refraction, layered_refraction and photon_caustics",
+    .params = params,
+    .param_count = sizeof params / sizeof params[0],
+    .declare = impostors_declare,
+    .create = impostors_create,
+    .execute = impostors_execute,
+    .needed = impostors_needed,
+    .destroy = impostors_destroy,
+};
