@@ -5,7 +5,6 @@
 #include "beam_caustics/beams.glsl"
 layout(local_size_x = 1) in;
 uniform int u_mode; // 0: the next level's cells; 1: the beam builder; 2: the bounding volumes' draw
-uniform int u_capacity, u_beam_capacity;
 void main()
 {
     if (u_mode == 0) {

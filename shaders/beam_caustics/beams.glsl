@@ -77,7 +77,35 @@ void cell_unpack(uint c, out int level, out int x, out int y)
     y = int(c & 0x3fffu);
 }
 
-uniform int u_lattice;  // M: cells of the finest lattice per side (grid x 2^refine)
-uniform int u_refine;   // levels of the lattice below the coarse grid (refine + edges)
+// The pass's values for one frame, every stage's (issue 54): one block,
+// uploaded in one call, mirrored by struct beam_params in
+// src/passes/techniques/beam_caustics.c (gl_param_block holds the two to
+// each other). What changes between dispatches (a level's offsets, the
+// advance's mode, the filter's direction) stays a plain uniform.
+layout(std140) uniform BeamParams {
+    vec4 u_light_origin;    // xyz: a point light's position; w = 1: a directional light (no position)
+    vec3 u_distance_center; // the receivers' distance impostor's centre (distance.glsl)
+    float u_distance_range; // the longest an edge ray is traced
+    vec2 u_jitter;          // the lattice's offset this frame, in lattice cells (within +-0.5; issue 32)
+    int u_lattice;          // M: cells of the finest lattice per side (grid x 2^refine)
+    int u_refine;           // levels of the lattice below the coarse grid (refine + edges)
+    int u_capacity;         // cells one list holds
+    int u_beam_capacity;    // beams the buffer holds
+    int u_kept_offset;      // where the kept cells' list starts
+    int u_light;            // the light's entry in the frame's list
+    int u_light_ortho;      // a directional light: parallel edge rays
+    int u_free;             // levels below this split on every criterion; the rest on silhouettes only
+    int u_reflection;       // beams reflected off the first interface too (§6)
+    int u_volumes;          // 0: tight (falling back to the prism), 1: the prism always
+    int u_samples;          // samples along a view ray's interval in a beam (1: the paper's midpoint)
+    int u_surface;          // surface caustics too
+    int u_smooth;           // surface caustics from a density per edge ray, averaged over the beams sharing it
+    float u_focus;          // split when min A(y) / A(0) along the beam falls below this
+    float u_pixels;         // split when the beam's width on screen exceeds this many pixels
+    float u_normal_cos;     // split when two corners' normals differ more than this (cosine)
+    float u_depth_jump;     // split when two corners' depths differ more than this x the cell's side
+    float u_cutoff;         // a beam ends where its flux density is below this fraction of its base's or the light's
+    float u_max_focus;      // the bound on focusing: |A| >= A_max / u_max_focus
+};
 
 int vertex_index(int i, int j) { return j * (u_lattice + 1) + i; }

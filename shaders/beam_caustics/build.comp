@@ -12,12 +12,7 @@
 // not meet along one diagonal, Ernst's bounding prism of touching planes.
 #include "beam_caustics/beams.glsl"
 layout(local_size_x = 64) in;
-uniform int u_kept_offset, u_beam_capacity, u_reflection;
-uniform int u_volumes;     // 0: tight (falling back to the prism), 1: the prism always
-uniform float u_cutoff;    // a beam ends where its flux density is below this fraction of its base's or the light's
-uniform float u_max_focus; // the bound on focusing: |A| >= A_max / u_max_focus
-uniform vec4 u_light_origin; // xyz: a point light's position; w = 1: a directional light (no position)
-uniform float u_range;     // the longest an edge ray is traced (distance.glsl's u_distance_range)
+// (its values: BeamParams, beams.glsl)
 
 struct Ray {
     vec3 o, d;
@@ -109,7 +104,7 @@ bool make_beam(ivec2 qa, ivec2 qb, ivec2 qc, bool reflected, out Beam bm, out bo
     if (r[0].len + r[1].len + r[2].len > 0.0)
         for (int i = 0; i < 3; i++)
             if (r[i].len <= 0.0)
-                r[i].len = u_range;
+                r[i].len = u_distance_range;
     for (int i = 0; i < 3; i++) {
         float dn = dot(r[i].d, n);
         if (dn < 0.05)

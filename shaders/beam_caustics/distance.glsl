@@ -4,8 +4,7 @@
 // direction, the distance to the nearest diffuse surface. A ray is
 // marched until it passes the stored distance, then bisected.
 uniform samplerCube u_distance;  // distance_map_update_distances: the range where no receiver is within it
-uniform vec3 u_distance_center;
-uniform float u_distance_range;  // the longest a ray is traced
+// (u_distance_center and u_distance_range: BeamParams, beams.glsl)
 const int DISTANCE_STEPS = 48;
 
 // Is p beyond the receivers in its direction from the centre?

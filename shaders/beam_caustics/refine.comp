@@ -20,13 +20,7 @@
 #include "common/frame.glsl"
 #include "beam_caustics/beams.glsl"
 layout(local_size_x = 64) in;
-uniform int u_in_offset, u_out_offset, u_kept_offset, u_capacity;
-uniform float u_focus;        // split when min A(y) / A(0) along the beam falls below this
-uniform float u_pixels;       // split when the beam's width on screen exceeds this many pixels
-uniform float u_normal_cos;   // split when two corners' normals differ more than this (cosine)
-uniform float u_depth_jump;   // split when two corners' depths differ more than this x the cell's side
-uniform int u_light_ortho;
-uniform int u_free;           // levels below this split on every criterion; the rest on silhouettes only
+uniform int u_in_offset, u_out_offset; // this level's lists (the rest: BeamParams, beams.glsl)
 
 bool valid_vertex(int i, int j)
 {

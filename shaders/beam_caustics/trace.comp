@@ -16,9 +16,7 @@
 #include "beam_caustics/beams.glsl"
 #include "beam_caustics/distance.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-uniform int u_light;
-uniform int u_light_ortho;
-uniform vec2 u_jitter; // the lattice's offset this frame, in lattice cells (within +-0.5; issue 32)
+// (u_light, u_light_ortho, u_jitter: BeamParams, beams.glsl)
 
 // Where lattice vertex ij samples the light's view, in texels: the texel
 // round(i (B - 1) / M) (the lattice spans the light's image), its centre

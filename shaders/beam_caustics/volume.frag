@@ -23,10 +23,7 @@
 flat in int v_beam;
 uniform sampler2D u_scene_depth;
 uniform sampler2D u_scene_normal; // world normal, w = 1 on a receiver
-uniform int u_light;
-uniform int u_samples; // samples along the beam's interval (1: the paper's midpoint)
-uniform int u_surface; // surface caustics too
-uniform int u_smooth;  // surface caustics from a density per edge ray, averaged over the beams sharing it
+// (u_light, u_samples, u_surface, u_smooth: BeamParams, beams.glsl)
 layout(location = 0) out vec4 o_inscatter;
 layout(location = 1) out vec4 o_irradiance;
 

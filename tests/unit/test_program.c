@@ -15,6 +15,7 @@
 #include "check.h"
 #include "core/fileio.h"
 #include "gl/gl_context.h"
+#include "gl/gl_param_block.h"
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
 
@@ -193,6 +194,33 @@ int main(void)
     CHECK_CONTAINS(err.message, "has 3 members, its C mirror 2");
     CHECK(!gl_program_check_block(pp, "Parms", good, 3, sizeof(struct params_mirror), &err));
     CHECK_CONTAINS(err.message, "no uniform block 'Parms'");
+    /* ... and as a pass holds it (gl_param_block): checked on first bind,
+     * uploaded in one call, read by the program; a misspelt member stops
+     * the bind with the member's name */
+    struct gl_param_block block = {.name = "Params", .members = good, .count = 3,
+                                   .size = sizeof(struct params_mirror)};
+    const struct params_mirror values = {3, 2.0f, 0.5f, 0.0f};
+    CHECK(gl_param_block_upload(&block, &values, &err));
+    CHECK(gl_param_block_bind(&block, pp, &err) && block.checked_count == 1);
+    CHECK(gl_param_block_bind(&block, pp, &err) && block.checked_count == 1); /* checked once */
+    GLuint read_back; /* values[5]: six vec4 */
+    gl.CreateBuffers(1, &read_back);
+    gl.NamedBufferStorage(read_back, 6 * 4 * sizeof(float), NULL, GL_DYNAMIC_STORAGE_BIT);
+    gl.UseProgram(pp->id);
+    gl_program_bind_storage(pp, "Out", read_back);
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    float from_block[24];
+    gl.GetNamedBufferSubData(read_back, 0, sizeof from_block, from_block);
+    CHECK_NEAR(from_block[20], 6.5, 1e-6); /* 3 x 2 + 0.5 */
+    gl.DeleteBuffers(1, &read_back);
+    gl_param_block_release(&block);
+    struct gl_param_block wrong = {.name = "Params", .members = misspelt, .count = 3,
+                                   .size = sizeof(struct params_mirror)};
+    CHECK(gl_param_block_upload(&wrong, &values, &err));
+    CHECK(!gl_param_block_bind(&wrong, pp, &err));
+    CHECK_CONTAINS(err.message, "no member 'u_gian'");
+    gl_param_block_release(&wrong);
 
     /* a block attached to a program (the renderer's look-ups of it): zeroed
      * and made once, the same block after, refused at another size, made

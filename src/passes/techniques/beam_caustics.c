@@ -21,6 +21,8 @@
  * `--timings` prints the stages and a line with the beams, the prisms and
  * the fragments the volumes rasterized (the paper's fill rate, §4.3). */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +30,7 @@
 #include "core/log.h"
 #include "gl/gl_api.h"
 #include "gl/gl_buffer.h"
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -51,8 +54,37 @@ enum {
     COUNT_SIZE = 20
 };
 
+/* The C mirror of BeamParams (shaders/beam_caustics/beams.glsl, std140):
+ * the pass's values for one frame, every stage's, uploaded in one call
+ * (issue 54: 34 look-ups by name and calls a frame before). */
+struct beam_params {
+    float light_origin[4];    /* xyz: a point light's position; w = 1: a directional light */
+    float distance_center[3]; /* the receivers' distance impostor's centre */
+    float distance_range;     /* the longest an edge ray is traced */
+    float jitter[2];          /* the lattice's offset this frame (issue 32) */
+    int32_t lattice, refine, capacity, beam_capacity, kept_offset;
+    int32_t light, light_ortho, free_levels, reflection, volumes, samples, surface, smooth;
+    float focus, pixels, normal_cos, depth_jump, cutoff, max_focus;
+    int32_t pad[3];
+};
+
+#define BEAM_PARAM(field, name) {name, offsetof(struct beam_params, field)}
+static const struct gl_block_member beam_params_members[] = {
+    BEAM_PARAM(light_origin, "u_light_origin"), BEAM_PARAM(distance_center, "u_distance_center"),
+    BEAM_PARAM(distance_range, "u_distance_range"), BEAM_PARAM(jitter, "u_jitter"),
+    BEAM_PARAM(lattice, "u_lattice"), BEAM_PARAM(refine, "u_refine"), BEAM_PARAM(capacity, "u_capacity"),
+    BEAM_PARAM(beam_capacity, "u_beam_capacity"), BEAM_PARAM(kept_offset, "u_kept_offset"),
+    BEAM_PARAM(light, "u_light"), BEAM_PARAM(light_ortho, "u_light_ortho"), BEAM_PARAM(free_levels, "u_free"),
+    BEAM_PARAM(reflection, "u_reflection"), BEAM_PARAM(volumes, "u_volumes"), BEAM_PARAM(samples, "u_samples"),
+    BEAM_PARAM(surface, "u_surface"), BEAM_PARAM(smooth, "u_smooth"), BEAM_PARAM(focus, "u_focus"),
+    BEAM_PARAM(pixels, "u_pixels"), BEAM_PARAM(normal_cos, "u_normal_cos"), BEAM_PARAM(depth_jump, "u_depth_jump"),
+    BEAM_PARAM(cutoff, "u_cutoff"), BEAM_PARAM(max_focus, "u_max_focus"),
+};
+#undef BEAM_PARAM
+
 struct beam_caustics_state {
     const struct layer_set *layers; /* this frame's, the depth_layers block's */
+    struct gl_param_block params;   /* BeamParams, this frame's values */
     GLuint vertices, cells, beams, counters, adjacency;
     int lattice, grid, refine, reflection; /* what the buffers were made for */
     int cell_capacity, beam_capacity;
@@ -178,6 +210,10 @@ static bool beam_caustics_create(struct pass *p, struct renderer *r, struct erro
     struct beam_caustics_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "BeamParams", .members = beam_params_members,
+        .count = (int)(sizeof beam_params_members / sizeof beam_params_members[0]),
+        .size = sizeof(struct beam_params)};
     p->state = s;
     gl.GenQueries(1, &s->fragments_query);
     return gl_framebuffer_create(&s->volumes_fb, err) &&
@@ -209,6 +245,7 @@ static void beam_caustics_destroy(struct pass *p)
     release_buffers(s);
     release_targets(s);
     caustic_coverage_release(&s->coverage);
+    gl_param_block_release(&s->params);
     temporal_release(&s->irradiance_history);
     temporal_release(&s->inscatter_history);
     gl_framebuffer_destroy(&s->volumes_fb);
@@ -294,30 +331,23 @@ static void bind_beam_buffers(const struct gl_program *prog, const struct beam_c
     gl_program_bind_storage(prog, "BeamAdjacency", s->adjacency);
 }
 
-static void set_lattice(const struct gl_program *prog, const struct beam_caustics_state *s)
-{
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lattice"), s->lattice);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refine"), s->refine);
-}
-
-static bool run_advance(struct renderer *r, const struct beam_caustics_state *s, int mode, struct error *err)
+static bool run_advance(struct renderer *r, struct beam_caustics_state *s, int mode, struct error *err)
 {
     struct gl_program *prog;
     if (!gl_program_get_compute(&r->programs, "beam_caustics/advance.comp", NULL, NULL, &prog, err))
         return false;
     gl.UseProgram(prog->id);
     bind_beam_buffers(prog, s);
+    if (!gl_param_block_bind(&s->params, prog, err))
+        return false;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_mode"), mode);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_capacity"), s->cell_capacity);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_beam_capacity"), s->beam_capacity);
     gl.DispatchCompute(1, 1, 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     return true;
 }
 
 /* Stages 2-4: edge rays, the adaptive grid, the beams. */
-static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ortho, float extent, vec3 center,
-                        float range, struct error *err)
+static bool build_beams(struct pass *p, struct pass_frame *f, float extent, struct error *err)
 {
     struct beam_caustics_state *s = p->state;
     struct renderer *r = f->renderer;
@@ -330,16 +360,10 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
                                     .layer_extent = extent};
     layers_bind(s->layers, trace, f->scene, &settings);
     bind_beam_buffers(trace, s);
-    set_lattice(trace, s);
-    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light"), slot);
-    gl.ProgramUniform1i(trace->id, gl_program_uniform(trace, "u_light_ortho"), ortho ? 1 : 0);
+    if (!gl_param_block_bind(&s->params, trace, err))
+        return false;
     shadow_inputs_bind(p, f, trace); /* the panes between the light and the glass (its pane filter) */
-    /* accumulating a still scene: the lattice moved by this frame's
-     * sub-cell offset (beam_caustics_execute; the refinement follows it) */
-    gl.ProgramUniform2f(trace->id, gl_program_uniform(trace, "u_jitter"), s->jitter[0], s->jitter[1]);
     gl_program_bind_texture(trace, "u_distance", s->distance->distance[0].id);
-    gl.ProgramUniform3f(trace->id, gl_program_uniform(trace, "u_distance_center"), center.x, center.y, center.z);
-    gl.ProgramUniform1f(trace->id, gl_program_uniform(trace, "u_distance_range"), range);
     if (!medium_gpu_bind(r, f->scene, trace, err))
         return false;
     GLuint groups = (GLuint)((s->lattice + 1 + 7) / 8);
@@ -357,21 +381,12 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
     struct gl_program *refine;
     if (!gl_program_get_compute(&r->programs, "beam_caustics/refine.comp", NULL, NULL, &refine, err))
         return false;
-    set_lattice(refine, s);
-    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_kept_offset"), 2 * s->cell_capacity);
-    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_capacity"), s->cell_capacity);
-    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_focus"), (float)pass_real(p, BC_FOCUS));
-    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_pixels"), (float)pass_real(p, BC_PIXELS));
-    /* surface discontinuities (§4.2): normals more than 20 degrees apart, or
-     * a depth step steeper than 80 degrees across the light's view */
-    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_normal_cos"), cosf(20.0f * (float)MATH_PI / 180.0f));
-    gl.ProgramUniform1f(refine->id, gl_program_uniform(refine, "u_depth_jump"), tanf(80.0f * (float)MATH_PI / 180.0f));
-    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_light_ortho"), ortho ? 1 : 0);
-    gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_free"), pass_int(p, BC_REFINE));
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s->counters);
     for (int level = 0; level <= s->refine; level++) {
         gl.UseProgram(refine->id);
         bind_beam_buffers(refine, s);
+        if (!gl_param_block_bind(&s->params, refine, err))
+            return false;
         gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_in_offset"),
                             level == 0 ? 3 * s->cell_capacity : (level % 2) * s->cell_capacity);
         gl.ProgramUniform1i(refine->id, gl_program_uniform(refine, "u_out_offset"),
@@ -394,17 +409,8 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
         return false;
     gl.UseProgram(build->id);
     bind_beam_buffers(build, s);
-    set_lattice(build, s);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_kept_offset"), 2 * s->cell_capacity);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_beam_capacity"), s->beam_capacity);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_reflection"), pass_flag(p, BC_REFLECTION) ? 1 : 0);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_volumes"), pass_choice(p, BC_VOLUMES));
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_cutoff"), (float)pass_real(p, BC_CUTOFF));
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_max_focus"), (float)pass_real(p, BC_MAX_FOCUS));
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_range"), range);
-    const struct frame_light *fl = &f->snapshot->lights[slot];
-    gl.ProgramUniform4f(build->id, gl_program_uniform(build, "u_light_origin"), fl->position.x, fl->position.y,
-                        fl->position.z, ortho ? 1.0f : 0.0f);
+    if (!gl_param_block_bind(&s->params, build, err))
+        return false;
     gl.DispatchComputeIndirect((GLintptr)(COUNT_BUILD * sizeof(GLuint)));
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -416,7 +422,7 @@ static bool build_beams(struct pass *p, struct pass_frame *f, int slot, bool ort
 
 /* Stage 5: the bounding volumes rasterized, then the surface caustics'
  * low-pass filter. */
-static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct error *err)
+static bool draw_volumes(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct beam_caustics_state *s = p->state;
     struct renderer *r = f->renderer;
@@ -435,15 +441,10 @@ static bool draw_volumes(struct pass *p, struct pass_frame *f, int slot, struct 
         return false;
     gl.UseProgram(prog->id);
     bind_beam_buffers(prog, s);
+    if (!gl_param_block_bind(&s->params, prog, err))
+        return false;
     gl_program_bind_texture(prog, "u_scene_depth", s->receiver_depth);
     gl_program_bind_texture(prog, "u_scene_normal", s->receiver_normal);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_light"), slot);
-    int samples = pass_int(p, BC_SAMPLES);
-    if (samples == 0)
-        samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_samples"), samples);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_surface"), pass_flag(p, BC_SURFACE) ? 1 : 0);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_smooth"), pass_flag(p, BC_SMOOTH) ? 1 : 0);
     if (!medium_gpu_bind(r, f->scene, prog, err))
         return false;
     gl.Disable(GL_DEPTH_TEST);
@@ -566,8 +567,40 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     } else {
         temporal_jitter(&s->irradiance_history, &s->jitter[0], &s->jitter[1]);
     }
+    int samples = pass_int(p, BC_SAMPLES);
+    if (samples == 0)
+        samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
+    const struct beam_params values = {
+        .light_origin = {fl->position.x, fl->position.y, fl->position.z, lv.ortho ? 1.0f : 0.0f},
+        .distance_center = {center.x, center.y, center.z},
+        .distance_range = range,
+        .jitter = {s->jitter[0], s->jitter[1]}, /* a still scene's lattice moved by this frame's sub-cell offset */
+        .lattice = s->lattice,
+        .refine = s->refine,
+        .capacity = s->cell_capacity,
+        .beam_capacity = s->beam_capacity,
+        .kept_offset = 2 * s->cell_capacity,
+        .light = slot,
+        .light_ortho = lv.ortho ? 1 : 0,
+        .free_levels = pass_int(p, BC_REFINE),
+        .reflection = pass_flag(p, BC_REFLECTION) ? 1 : 0,
+        .volumes = pass_choice(p, BC_VOLUMES),
+        .samples = samples,
+        .surface = pass_flag(p, BC_SURFACE) ? 1 : 0,
+        .smooth = pass_flag(p, BC_SMOOTH) ? 1 : 0,
+        .focus = (float)pass_real(p, BC_FOCUS),
+        .pixels = (float)pass_real(p, BC_PIXELS),
+        /* surface discontinuities (§4.2): normals more than 20 degrees
+         * apart, or a depth step steeper than 80 degrees across the light's view */
+        .normal_cos = cosf(20.0f * (float)MATH_PI / 180.0f),
+        .depth_jump = tanf(80.0f * (float)MATH_PI / 180.0f),
+        .cutoff = (float)pass_real(p, BC_CUTOFF),
+        .max_focus = (float)pass_real(p, BC_MAX_FOCUS),
+    };
+    if (!gl_param_block_upload(&s->params, &values, err))
+        return false;
     pass_stage_begin(p);
-    if (!build_beams(p, f, slot, lv.ortho, extent, center, range, err) || !draw_volumes(p, f, slot, err))
+    if (!build_beams(p, f, extent, err) || !draw_volumes(p, f, err))
         return false;
 
     GLuint counters[COUNT_SIZE];

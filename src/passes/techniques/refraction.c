@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "gl/gl_buffer.h"
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -47,8 +48,7 @@ struct refraction_state {
      * cone lookup of refract.frag's seen_rough (made when a refractor is rough) */
     struct gl_texture rough_scene, rough_behind;
     int width, height;
-    GLuint params_ubo;      /* refract.frag's RefractionParams, uploaded each frame */
-    GLuint params_checked;  /* the program (GL name) whose block was checked against the mirror */
+    struct gl_param_block params; /* refract.frag's RefractionParams, uploaded each frame */
 };
 
 /* The C mirror of refract.frag's RefractionParams block (std140: 4-byte
@@ -173,10 +173,13 @@ static bool refraction_create(struct pass *p, struct renderer *r, struct error *
     struct refraction_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "RefractionParams", .members = refraction_params_members,
+        .count = (int)(sizeof refraction_params_members / sizeof refraction_params_members[0]),
+        .size = sizeof(struct refraction_params)};
     p->state = s;
     return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
-           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err) &&
-           gl_buffer_create(&s->params_ubo, NULL, sizeof(struct refraction_params), GL_DYNAMIC_STORAGE_BIT, err);
+           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err);
 }
 
 static void release_targets(struct refraction_state *s)
@@ -203,7 +206,7 @@ static void refraction_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
     gl_framebuffer_destroy(&s->behind_fb);
-    gl_buffer_destroy(&s->params_ubo);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -502,13 +505,6 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     }
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_impostor_count"), imp ? imp->count : 0);
     /* the parameters, as one block (struct refraction_params) */
-    if (s->params_checked != prog->id) {
-        if (!gl_program_check_block(prog, "RefractionParams", refraction_params_members,
-                                    (int)(sizeof refraction_params_members / sizeof refraction_params_members[0]),
-                                    sizeof(struct refraction_params), err))
-            return false;
-        s->params_checked = prog->id;
-    }
     const struct refraction_params values = {
         .iterations = (int32_t)pass_int(p, REFRACTION_ITERATIONS),
         .tolerance = (float)pass_real(p, REFRACTION_TOLERANCE),
@@ -518,9 +514,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
         .reach = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f),
         .internal = (int32_t)pass_int(p, REFRACTION_INTERNAL),
     };
-    if (!gl_buffer_update(s->params_ubo, &values, sizeof values, err))
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, prog, err))
         return false;
-    gl_program_bind_uniform_block(prog, "RefractionParams", s->params_ubo);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LEQUAL);
     gl.DepthMask(GL_FALSE);
