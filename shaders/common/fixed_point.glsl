@@ -6,9 +6,9 @@
 // fraction keeps the expected sum exact. The random numbers are a PCG
 // step (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT
 // 2020); fixed_point_seed starts a stream per invocation.
-uniform float u_fixed_point;
 uint fixed_point_state;
-float fixed_point_units; // counts per unit of flux: u_fixed_point unless the includer knows better
+float fixed_point_units; // counts per unit of flux (the includer's scale: photon_caustics' u_fixed_point, or
+                         // layered_caustics' from the light that landed)
 
 // Starts the invocation's stream, counting `units` per unit of flux.
 void fixed_point_seed(uvec3 id, float units)

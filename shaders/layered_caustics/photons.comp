@@ -15,12 +15,7 @@ uniform sampler2D u_receiver_normal;
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform writeonly image2DArray u_hits;
 layout(rgba32f) uniform writeonly image2DArray u_photons;
-uniform int u_light;          // the light's entry in the frame's list
-uniform int u_light_ortho;    // a directional light: parallel photons
-uniform float u_texel_area;   // directional: the area a texel spans across the beam
-uniform float u_texel_tan;    // point/spot: a texel's side on the plane at distance 1
-uniform vec2 u_jitter;        // where in its texel the photon starts (texels, within +-0.5; issue 32)
-uniform float u_fixed_point;  // counts per unit of flux that fit all the light below 2^30 (landed.glsl)
+// (u_light, u_light_ortho, u_texel_area, u_texel_tan, u_jitter, u_fixed_point: landed.glsl's block)
 #include "layered_caustics/landed.glsl"
 
 // A photon that lands: its brightest channel's counts to the light landed.

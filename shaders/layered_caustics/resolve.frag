@@ -6,10 +6,7 @@
 uniform sampler2D u_receiver_normal;
 uniform sampler2D u_receiver_depth;
 layout(r32ui) uniform readonly uimage2DArray u_flux;
-uniform float u_fixed_point;
 #include "layered_caustics/landed.glsl"
-uniform float u_pixel_tan;   // a pixel's side on the plane at distance 1 (perspective)
-uniform float u_pixel_size;  // a pixel's side (orthographic camera)
 layout(location = 0) out vec4 o_irradiance;
 // Where pixel corner c (window coordinates) looks, on the plane through x
 // with normal n; false where its ray runs along or away from the plane.

@@ -21,9 +21,7 @@ layout(r32ui) uniform uimage2DArray u_flux;
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f) uniform readonly image2DArray u_hits;
 layout(rgba32f) uniform readonly image2DArray u_photons;
-uniform ivec2 u_buffer_size;
-uniform float u_max_radius; // pixels
-uniform float u_stretch_limit; // pixels: layered_caustics.c
+// (u_buffer_size, u_max_radius, u_stretch_limit: landed.glsl's block)
 
 vec2 to_pixels(vec3 p)
 {

@@ -26,8 +26,7 @@ bool gl_param_block_bind(struct gl_param_block *b, const struct gl_program *prog
         b->checked[at] = program->id;
         b->units[at] = gl_program_unit(program, GL_SLOT_UNIFORM_BLOCK, b->name);
     }
-    if (b->units[at] >= 0)
-        gl.BindBufferBase(GL_UNIFORM_BUFFER, (GLuint)b->units[at], b->buffer);
+    gl_program_bind_uniform_block_unit(b->units[at], b->buffer);
     return true;
 }
 

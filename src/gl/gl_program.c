@@ -761,6 +761,12 @@ void gl_program_bind_texture_unit(int unit, GLuint texture)
         gl.BindTextureUnit((GLuint)unit, texture);
 }
 
+void gl_program_bind_uniform_block_unit(int unit, GLuint buffer)
+{
+    if (unit >= 0)
+        gl.BindBufferBase(GL_UNIFORM_BUFFER, (GLuint)unit, buffer);
+}
+
 bool gl_program_bind_texture(const struct gl_program *p, const char *name, GLuint texture)
 {
     return gl_program_bind_texture_at(p, name, 0, texture);

@@ -163,6 +163,8 @@ bool gl_program_check_block(const struct gl_program *p, const char *block, const
 /* Binds `texture` to a texture unit gl_program_unit gave (the renderer
  * finds a program's units once per link): -1 binds nothing. */
 void gl_program_bind_texture_unit(int unit, GLuint texture);
+/* The same for a uniform block's binding point (gl_param_block's). */
+void gl_program_bind_uniform_block_unit(int unit, GLuint buffer);
 
 /* Bind by the shader's name. Each returns false, binding nothing, when the
  * program does not use the name. `index` picks an element of a sampler

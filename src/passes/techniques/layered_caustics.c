@@ -8,11 +8,14 @@
  * which becomes irradiance for `shade { caustics = ... }`. Nothing is
  * precomputed: the light, the refractors and their shapes may all move. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl/gl_buffer.h"
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -21,7 +24,28 @@
 #include "passes/helpers/layers.h"
 #include "passes/helpers/shadow_inputs.h"
 
+/* The C mirror of LayeredCausticsParams (shaders/layered_caustics/
+ * landed.glsl, std140): the frame's values for all three stages, uploaded
+ * in one call (issue 54). */
+struct layered_caustics_params {
+    float jitter[2];
+    int32_t buffer_size[2];
+    int32_t light, light_ortho;
+    float texel_area, texel_tan, fixed_point, pixel_tan, pixel_size, max_radius, stretch_limit;
+    int32_t pad[3];
+};
+
+#define LC_PARAM(field, name) {name, offsetof(struct layered_caustics_params, field)}
+static const struct gl_block_member layered_caustics_params_members[] = {
+    LC_PARAM(jitter, "u_jitter"), LC_PARAM(buffer_size, "u_buffer_size"), LC_PARAM(light, "u_light"),
+    LC_PARAM(light_ortho, "u_light_ortho"), LC_PARAM(texel_area, "u_texel_area"), LC_PARAM(texel_tan, "u_texel_tan"),
+    LC_PARAM(fixed_point, "u_fixed_point"), LC_PARAM(pixel_tan, "u_pixel_tan"), LC_PARAM(pixel_size, "u_pixel_size"),
+    LC_PARAM(max_radius, "u_max_radius"), LC_PARAM(stretch_limit, "u_stretch_limit"),
+};
+#undef LC_PARAM
+
 struct layered_caustics_state {
+    struct gl_param_block params; /* LayeredCausticsParams, this frame's */
     struct gl_framebuffer out_fb;
     struct gl_texture flux;
     struct gl_texture hits, photons; /* per photon: where it lands, its flux */
@@ -93,6 +117,10 @@ static bool layered_caustics_create(struct pass *p, struct renderer *r, struct e
     struct layered_caustics_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "LayeredCausticsParams", .members = layered_caustics_params_members,
+        .count = (int)(sizeof layered_caustics_params_members / sizeof layered_caustics_params_members[0]),
+        .size = sizeof(struct layered_caustics_params)};
     p->state = s;
     return gl_framebuffer_create(&s->out_fb, err);
 }
@@ -114,6 +142,7 @@ static void layered_caustics_destroy(struct pass *p)
     temporal_release(&s->temporal);
     gl_framebuffer_destroy(&s->out_fb);
     caustic_coverage_release(&s->coverage);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -148,7 +177,7 @@ static bool ensure_targets(struct layered_caustics_state *s, int w, int h, int b
 /* Each photon splatted over its own footprint (its neighbours' landing
  * points: footprint.glsl), its flux added in fixed point per pixel. */
 static bool splat_photons(struct layered_caustics_state *s, struct renderer *r, int buffer, GLuint receiver_normal,
-                          float max_radius, float stretch_limit, float fixed_point, struct error *err)
+                          struct error *err)
 {
     struct gl_program *splat;
     if (!gl_program_get_compute(&r->programs, "layered_caustics/splat.comp", NULL, NULL, &splat, err))
@@ -158,10 +187,8 @@ static bool splat_photons(struct layered_caustics_state *s, struct renderer *r, 
     gl_program_bind_image(splat, "u_photons", s->photons.id, GL_TRUE, GL_READ_ONLY, GL_RGBA32F);
     gl_program_bind_image(splat, "u_flux", s->flux.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
     gl_program_bind_texture(splat, "u_receiver_normal", receiver_normal);
-    gl.ProgramUniform2i(splat->id, gl_program_uniform(splat, "u_buffer_size"), buffer, buffer);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_max_radius"), max_radius);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_stretch_limit"), stretch_limit);
-    gl.ProgramUniform1f(splat->id, gl_program_uniform(splat, "u_fixed_point"), fixed_point);
+    if (!gl_param_block_bind(&s->params, splat, err))
+        return false;
     gl_program_bind_storage(splat, "LandedFlux", s->landed);
     /* Accumulating, each frame's photons still cover their whole cells:
      * with the splats as boxes that tile (box_taps.glsl), a focused photon
@@ -177,12 +204,9 @@ static bool splat_photons(struct layered_caustics_state *s, struct renderer *r, 
 
 /* Flux per pixel -> irradiance. */
 static bool resolve_flux(struct layered_caustics_state *s, struct pass_frame *f, struct graph_resource *out,
-                         GLuint receiver_depth, GLuint receiver_normal, float fixed_point, struct error *err)
+                         GLuint receiver_depth, GLuint receiver_normal, struct error *err)
 {
     struct renderer *r = f->renderer;
-    const struct camera *cam = &f->scene->camera;
-    float pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height;
-    float pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f;
     struct gl_program *resolve;
     if (!gl_program_get(&r->programs, "common/fullscreen.vert", "layered_caustics/resolve.frag", NULL, &resolve, err))
         return false;
@@ -195,10 +219,9 @@ static bool resolve_flux(struct layered_caustics_state *s, struct pass_frame *f,
     gl_program_bind_texture(resolve, "u_receiver_depth", receiver_depth);
     gl_program_bind_texture(resolve, "u_receiver_normal", receiver_normal);
     gl_program_bind_image(resolve, "u_flux", s->flux.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_fixed_point"), fixed_point);
     gl_program_bind_storage(resolve, "LandedFlux", s->landed);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_tan"), pixel_tan);
-    gl.ProgramUniform1f(resolve->id, gl_program_uniform(resolve, "u_pixel_size"), pixel_size);
+    if (!gl_param_block_bind(&s->params, resolve, err))
+        return false;
     renderer_draw_fullscreen(r);
     return true;
 }
@@ -308,13 +331,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl_program_bind_texture(photons, "u_scene_depth", receiver_depth);
     gl_program_bind_texture(photons, "u_receiver_normal", receiver_normal);
     shadow_inputs_bind(p, f, photons); /* the panes between the light and the glass (its pane filter) */
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light"), slot);
-    gl.ProgramUniform1i(photons->id, gl_program_uniform(photons, "u_light_ortho"), ortho ? 1 : 0);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_area"), texel_area);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_texel_tan"), texel_tan);
     float jitter[2];
     bool still = photons_jitter(s, p, f, accumulate, jitter);
-    gl.ProgramUniform2f(photons->id, gl_program_uniform(photons, "u_jitter"), jitter[0], jitter[1]);
     float max_radius = (float)pass_real(p, LC_RADIUS);
     /* The longest a footprint's side may stretch where its neighbours say
      * the light is spread smoothly (footprint.glsl): photons land up to
@@ -332,7 +350,22 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
      * photons landed 30 pixels apart). */
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"),
                         fmaxf(2.0f * max_radius, stretch_limit) + 1.0f);
-    gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_fixed_point"), fixed_point);
+    const struct camera *cam = &f->scene->camera;
+    const struct layered_caustics_params values = {
+        .jitter = {jitter[0], jitter[1]},
+        .buffer_size = {buffer, buffer},
+        .light = slot,
+        .light_ortho = ortho ? 1 : 0,
+        .texel_area = texel_area,
+        .texel_tan = texel_tan,
+        .fixed_point = fixed_point,
+        .pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height,
+        .pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f,
+        .max_radius = max_radius,
+        .stretch_limit = stretch_limit,
+    };
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, photons, err))
+        return false;
     gl_program_bind_storage(photons, "LandedFlux", s->landed);
     gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(photons, "u_photons", s->photons.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
@@ -340,10 +373,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "photons");
 
-    if (!splat_photons(s, r, buffer, receiver_normal, max_radius, stretch_limit, fixed_point, err))
+    if (!splat_photons(s, r, buffer, receiver_normal, err))
         return false;
     pass_stage_end(p, "splat");
-    if (!resolve_flux(s, f, out, receiver_depth, receiver_normal, fixed_point, err))
+    if (!resolve_flux(s, f, out, receiver_depth, receiver_normal, err))
         return false;
     pass_stage_end(p, "resolve");
     if (!gl_check("layered_caustics", err) ||
