@@ -11,15 +11,7 @@
 layout(local_size_x = 64) in;
 layout(std430) readonly buffer Positions { float positions[]; };
 layout(std430) readonly buffer Normals { float normals[]; };
-uniform mat4 u_model;
-uniform mat4 u_normal_matrix;
-uniform int u_triangles;
-uniform ivec2 u_water_resolution; // the simulation's vertices along x and z
-uniform ivec2 u_resolution;       // the generator grid's
-uniform int u_light;
-uniform float u_ior;
-uniform float u_ideal;
-uniform float u_bottom;
+// (its values: CausticVolumesParams, volume.glsl)
 
 vec3 fetch(int v, bool normal)
 {

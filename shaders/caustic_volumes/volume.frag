@@ -9,8 +9,6 @@ flat in int v_volume;
 layout(location = 0) out vec4 o_irradiance;
 uniform sampler2D u_positions;
 uniform sampler2D u_normals;
-uniform vec3 u_attenuation;
-uniform float u_cap;
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 

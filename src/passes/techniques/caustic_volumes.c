@@ -18,9 +18,13 @@
  * quarter of the grid's resolution: a caustic cannot be sharper than the
  * generator grid resolves), so focusing never gives Inf. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "gl/gl_param_block.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
 #include "passes/helpers/shadow_inputs.h"
@@ -29,7 +33,28 @@
 
 #define VOLUME_VEC4S 10 /* per volume: top[3], dir[3], bottom[3], flux (std430) */
 
+/* The C mirror of CausticVolumesParams (shaders/caustic_volumes/
+ * volume.glsl, std140): both passes' values, uploaded in one call (issue 54). */
+struct caustic_volumes_params {
+    float model[16], normal_matrix[16];
+    float attenuation[3], ior;
+    int32_t water_resolution[2], resolution[2];
+    int32_t triangles, light;
+    float ideal, bottom, cap;
+    int32_t pad[3];
+};
+
+#define CV_PARAM(field, name) {name, offsetof(struct caustic_volumes_params, field)}
+static const struct gl_block_member caustic_volumes_params_members[] = {
+    CV_PARAM(model, "u_model"), CV_PARAM(normal_matrix, "u_normal_matrix"), CV_PARAM(attenuation, "u_attenuation"),
+    CV_PARAM(ior, "u_ior"), CV_PARAM(water_resolution, "u_water_resolution"), CV_PARAM(resolution, "u_resolution"),
+    CV_PARAM(triangles, "u_triangles"), CV_PARAM(light, "u_light"), CV_PARAM(ideal, "u_ideal"),
+    CV_PARAM(bottom, "u_bottom"), CV_PARAM(cap, "u_cap"),
+};
+#undef CV_PARAM
+
 struct caustic_volumes_state {
+    struct gl_param_block params; /* CausticVolumesParams, this frame's */
     struct gl_framebuffer volumes_fb;
     GLuint volumes;      /* SSBO, owned */
     size_t capacity;     /* volumes it holds */
@@ -83,6 +108,10 @@ static bool caustic_volumes_create(struct pass *p, struct renderer *r, struct er
     struct caustic_volumes_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "CausticVolumesParams", .members = caustic_volumes_params_members,
+        .count = (int)(sizeof caustic_volumes_params_members / sizeof caustic_volumes_params_members[0]),
+        .size = sizeof(struct caustic_volumes_params)};
     p->state = s;
     return gl_framebuffer_create(&s->volumes_fb, err);
 }
@@ -95,6 +124,7 @@ static void caustic_volumes_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->volumes_fb);
     if (s->volumes && gl_api_ready())
         gl.DeleteBuffers(1, &s->volumes);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -166,17 +196,22 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     const struct frame_object *fw = frame_object_of(f->snapshot, water);
     if (!fw)
         return error_set(err, "caustic_volumes: the water surface is not in the scene (scene:add it)");
-    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_model"), 1, GL_FALSE, fw->model.m);
-    gl.ProgramUniformMatrix4fv(build->id, gl_program_uniform(build, "u_normal_matrix"), 1, GL_FALSE,
-                               fw->normal_matrix.m);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_triangles"), (GLint)triangles);
-    gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_water_resolution"), w->nx, w->nz);
-    gl.ProgramUniform2i(build->id, gl_program_uniform(build, "u_resolution"), gen_x, gen_z);
-    gl.ProgramUniform1i(build->id, gl_program_uniform(build, "u_light"), light_index);
+    struct caustic_volumes_params values = {
+        .attenuation = {water->material.absorption.x, water->material.absorption.y, water->material.absorption.z},
+        .ior = water->material.ior,
+        .water_resolution = {w->nx, w->nz},
+        .resolution = {gen_x, gen_z},
+        .triangles = (int32_t)triangles,
+        .light = light_index,
+        .ideal = water->material.ideal ? 1.0f : 0.0f,
+        .bottom = bottom,
+        .cap = (float)cap,
+    };
+    memcpy(values.model, fw->model.m, sizeof values.model);
+    memcpy(values.normal_matrix, fw->normal_matrix.m, sizeof values.normal_matrix);
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, build, err))
+        return false;
     shadow_inputs_bind(p, f, build); /* the panes between the light and the water (its pane filter) */
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ior"), water->material.ior);
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_ideal"), water->material.ideal ? 1.0f : 0.0f);
-    gl.ProgramUniform1f(build->id, gl_program_uniform(build, "u_bottom"), bottom);
     gl.DispatchCompute((GLuint)((triangles + 63) / 64), 1, 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
@@ -201,9 +236,8 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     gl_program_bind_storage(draw, "Volumes", s->volumes);
     gl_program_bind_texture(draw, "u_positions", pos->texture.id);
     gl_program_bind_texture(draw, "u_normals", nrm->texture.id);
-    gl.ProgramUniform3f(draw->id, gl_program_uniform(draw, "u_attenuation"), water->material.absorption.x,
-                        water->material.absorption.y, water->material.absorption.z);
-    gl.ProgramUniform1f(draw->id, gl_program_uniform(draw, "u_cap"), (float)cap);
+    if (!gl_param_block_bind(&s->params, draw, err))
+        return false;
     gl.Enable(GL_BLEND);
     gl.BlendEquation(GL_FUNC_ADD);
     gl.BlendFunc(GL_ONE, GL_ONE);
