@@ -11,10 +11,13 @@
 #include "impostors/impostors.glsl"
 uniform int u_correction; // Fig. 16's iterations for the impostor lookup
 uniform sampler2D u_scene;
-uniform int u_lookup_scene;
-uniform int u_reflection;
-uniform int u_internal = 2; // marches of the light exits reflect back inside (0: the thesis's one path)
-uniform int u_camera_ortho;
+// The pass's values (issue 54: one block, mirrored by struct layered_refraction_params)
+layout(std140) uniform LayeredRefractionParams {
+    int u_lookup_scene; // 1: a leaving ray searches the input image, then the environment
+    int u_reflection;   // the Fresnel-weighted reflection at the first interface
+    int u_internal;     // marches of the light exits reflect back inside (0: the thesis's one path)
+    int u_camera_ortho;
+};
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_info; // layers, dropped, interfaces, total internal reflections (+100: capped)
 

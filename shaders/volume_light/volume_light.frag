@@ -14,8 +14,11 @@
 uniform sampler2D u_color;
 uniform sampler2D u_depth;
 uniform sampler2D u_add[4];
-uniform int u_add_count;
-uniform int u_steps;
+// The pass's values (issue 54: one block, mirrored by struct volume_light_params)
+layout(std140) uniform VolumeLightParams {
+    int u_add_count; // images added to the result (`add`)
+    int u_steps;     // samples along each view ray
+};
 out vec4 o_color;
 
 void main()

@@ -14,10 +14,13 @@ uniform sampler2D u_scene_position;
 uniform float u_ior;
 uniform float u_ideal;
 uniform vec3 u_absorption;
-uniform float u_depth;
-uniform float u_level;
-uniform int u_refract_mapping; // 0: the paper's virtual plane at the mean level; 1: the refracted ray
-uniform int u_eye_in_water;    // the camera under water: the path from the surface to it absorbs too
+// The pass's values (issue 54: one block, mirrored by struct water_surface_params)
+layout(std140) uniform WaterSurfaceParams {
+    float u_depth;          // the pool's depth below the surface
+    float u_level;          // the surface's mean height
+    int u_refract_mapping;  // 0: the paper's virtual plane at the mean level; 1: the refracted ray
+    int u_eye_in_water;     // the camera under water: the path from the surface to it absorbs too
+};
 
 // The scene image seen along a ray from P in direction d down to the
 // virtual plane, with the absorption over the distance to what is there.

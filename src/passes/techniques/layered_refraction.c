@@ -12,10 +12,13 @@
  * output is the input with the refractors drawn over it, like
  * `refraction`, so a script swaps one for the other. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -23,7 +26,19 @@
 #include "passes/helpers/layers.h"
 #include "passes/helpers/thin_glass_over.h"
 
+/* The C mirror of LayeredRefractionParams (refract.frag, std140; issue 54). */
+struct layered_refraction_params {
+    int32_t lookup_scene, reflection, internal, camera_ortho;
+};
+static const struct gl_block_member layered_refraction_params_members[] = {
+    {"u_lookup_scene", offsetof(struct layered_refraction_params, lookup_scene)},
+    {"u_reflection", offsetof(struct layered_refraction_params, reflection)},
+    {"u_internal", offsetof(struct layered_refraction_params, internal)},
+    {"u_camera_ortho", offsetof(struct layered_refraction_params, camera_ortho)},
+};
+
 struct layered_refraction_state {
+    struct gl_param_block params; /* LayeredRefractionParams, this frame's */
     struct gl_framebuffer out_fb;
     struct thin_glass_over panes;
 };
@@ -105,6 +120,9 @@ static bool layered_refraction_create(struct pass *p, struct renderer *r, struct
     struct layered_refraction_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){.name = "LayeredRefractionParams", .members = layered_refraction_params_members,
+                                        .count = (int)(sizeof layered_refraction_params_members / sizeof layered_refraction_params_members[0]),
+                                        .size = sizeof(struct layered_refraction_params)};
     p->state = s;
     return gl_framebuffer_create(&s->out_fb, err);
 }
@@ -116,6 +134,7 @@ static void layered_refraction_destroy(struct pass *p)
         return;
     thin_glass_over_release(&s->panes);
     gl_framebuffer_destroy(&s->out_fb);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -198,11 +217,14 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
     layers_bind(ls, prog, f->scene, &trace);
     gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
     gl_program_bind_texture(prog, "u_scene_depth", in_depth->texture.id);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_lookup_scene"),
-                        pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_reflection"), pass_flag(p, LR_REFLECTION));
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_internal"), internal);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_camera_ortho"), f->scene->camera.ortho_width > 0.0f);
+    const struct layered_refraction_params values = {
+        .lookup_scene = pass_choice(p, LR_LOOKUP) == LOOKUP_SCENE ? 1 : 0,
+        .reflection = pass_flag(p, LR_REFLECTION),
+        .internal = internal,
+        .camera_ortho = f->scene->camera.ortho_width > 0.0f,
+    };
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, prog, err))
+        return false;
     if (impostors && impostors->count > 0) {
         gl_program_bind_storage(prog, "Impostors", impostors->ubo);
         gl_program_bind_texture(prog, "u_impostor_depth", impostors->depth.id);

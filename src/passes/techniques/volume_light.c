@@ -5,9 +5,12 @@
  * in), and radiance images such as beam_caustics' volume caustics added
  * on top. Without a medium in the scene it copies its colour (plus the
  * added images). */
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "gl/gl_param_block.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -15,7 +18,17 @@
 
 #define VOLUME_LIGHT_MAX_ADD 4 /* the sampler array u_add */
 
+/* The C mirror of VolumeLightParams (volume_light.frag, std140; issue 54). */
+struct volume_light_params {
+    int32_t add_count, steps, pad[2];
+};
+static const struct gl_block_member volume_light_params_members[] = {
+    {"u_add_count", offsetof(struct volume_light_params, add_count)},
+    {"u_steps", offsetof(struct volume_light_params, steps)},
+};
+
 struct volume_light_state {
+    struct gl_param_block params; /* VolumeLightParams, this frame's */
     struct gl_framebuffer fb;
 };
 
@@ -52,6 +65,9 @@ static bool volume_light_create(struct pass *p, struct renderer *r, struct error
     struct volume_light_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){.name = "VolumeLightParams", .members = volume_light_params_members,
+                                        .count = (int)(sizeof volume_light_params_members / sizeof volume_light_params_members[0]),
+                                        .size = sizeof(struct volume_light_params)};
     p->state = s;
     return gl_framebuffer_create(&s->fb, err);
 }
@@ -62,6 +78,7 @@ static void volume_light_destroy(struct pass *p)
     if (!s)
         return;
     gl_framebuffer_destroy(&s->fb);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -100,8 +117,9 @@ static bool volume_light_execute(struct pass *p, struct pass_frame *f, struct er
         if (a)
             nadd = i + 1;
     }
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_add_count"), nadd);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_steps"), pass_int(p, VL_STEPS));
+    const struct volume_light_params values = {.add_count = nadd, .steps = pass_int(p, VL_STEPS)};
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, prog, err))
+        return false;
     shadow_inputs_bind(p, f, prog);
     if (!medium_gpu_bind(r, f->scene, prog, err))
         return false;

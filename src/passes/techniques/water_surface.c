@@ -7,16 +7,32 @@
  * environment is reflected with Fresnel weights. Seen from below, total internal
  * reflection shows the pool contents mirrored instead (never a NaN). */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
-#include "scene/water.h"
 #include "passes/helpers/thin_glass_over.h"
+#include "scene/water.h"
+
+/* The C mirror of WaterSurfaceParams (surface.frag, std140; issue 54). */
+struct water_surface_params {
+    float depth, level;
+    int32_t refract_mapping, eye_in_water;
+};
+static const struct gl_block_member water_surface_params_members[] = {
+    {"u_depth", offsetof(struct water_surface_params, depth)},
+    {"u_level", offsetof(struct water_surface_params, level)},
+    {"u_refract_mapping", offsetof(struct water_surface_params, refract_mapping)},
+    {"u_eye_in_water", offsetof(struct water_surface_params, eye_in_water)},
+};
 
 struct water_surface_state {
+    struct gl_param_block params; /* WaterSurfaceParams, this frame's */
     struct gl_framebuffer fb;
     struct thin_glass_over panes;
 };
@@ -61,6 +77,9 @@ static bool water_surface_create(struct pass *p, struct renderer *r, struct erro
     struct water_surface_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){.name = "WaterSurfaceParams", .members = water_surface_params_members,
+                                        .count = (int)(sizeof water_surface_params_members / sizeof water_surface_params_members[0]),
+                                        .size = sizeof(struct water_surface_params)};
     p->state = s;
     return gl_framebuffer_create(&s->fb, err);
 }
@@ -72,6 +91,7 @@ static void water_surface_destroy(struct pass *p)
         return;
     gl_framebuffer_destroy(&s->fb);
     thin_glass_over_release(&s->panes);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -112,11 +132,14 @@ static bool water_surface_execute(struct pass *p, struct pass_frame *f, struct e
     gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
     gl_program_bind_texture(prog, "u_scene_depth", in_depth->texture.id);
     gl_program_bind_texture(prog, "u_scene_position", in_pos->texture.id);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_depth"), water->water->depth);
-    gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_level"), water->position.y);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_refract_mapping"),
-                        pass_choice(p, SURFACE_MAPPING) == SURFACE_MAPPING_REFRACT);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_eye_in_water"), under);
+    const struct water_surface_params values = {
+        .depth = water->water->depth,
+        .level = water->position.y,
+        .refract_mapping = pass_choice(p, SURFACE_MAPPING) == SURFACE_MAPPING_REFRACT,
+        .eye_in_water = under,
+    };
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, prog, err))
+        return false;
     renderer_draw_object(r, f->scene, prog, water);
     /* the panes in front of the water, over it (shade drew them under it) */
     return thin_glass_draw(&s->panes, p, f, THIN_GLASS_OVER_SURFACES, 0, &out->texture, in_depth ? &in_depth->texture : NULL, 0, water,
