@@ -90,6 +90,17 @@ static int find_output_of(const struct graph *g, int upto, const char *resource,
     return -1;
 }
 
+/* Pass i's number as the script counts its passes (from 1): the blocks
+ * the graph added before it do not count (a block's own: the number of the
+ * script's pass it was added before). */
+static int script_number(const struct graph *g, int i)
+{
+    int n = 0;
+    for (int j = 0; j < i; j++)
+        n += !g->entries[j].pass->implicit;
+    return n + 1;
+}
+
 /* "shade.color" is produced by ...: lists the passes that do produce an
  * output of that name, so an order mistake is easy to see. */
 static void list_producers(const struct graph *g, const char *resource, char *out, size_t outlen)
@@ -103,7 +114,7 @@ static void list_producers(const struct graph *g, const char *resource, char *ou
         for (int o = 0; o < p->output_count; o++)
             if (strcmp(p->outputs[o].name, outname) == 0 && used < outlen) {
                 int w = snprintf(out + used, outlen - used, "%s'%s.%s' (pass %d)", used ? ", " : "", p->name,
-                                 p->outputs[o].name, i + 1);
+                                 p->outputs[o].name, script_number(g, i));
                 if (w > 0)
                     used += (size_t)w;
             }
@@ -364,8 +375,9 @@ static bool explain_missing_input(const struct graph *g, int i, int k, struct er
     if (later >= 0)
         return error_set(err, "pass '%s' (%s, pass %d) reads %s = '%s', which pass '%s' (pass %d) "
                               "makes only later: move '%s' before '%s'",
-                         p->name, p->desc->name, i + 1, p->inputs[k].name, p->inputs[k].source,
-                         g->entries[later].pass->name, later + 1, g->entries[later].pass->name, p->name);
+                         p->name, p->desc->name, script_number(g, i), p->inputs[k].name, p->inputs[k].source,
+                         g->entries[later].pass->name, script_number(g, later), g->entries[later].pass->name,
+                         p->name);
     /* what the named pass does make */
     char made[512] = "";
     const char *dot = strchr(p->inputs[k].source, '.');
@@ -384,7 +396,7 @@ static bool explain_missing_input(const struct graph *g, int i, int k, struct er
     }
     return error_set(err, "%s%spass '%s' (%s, pass %d) reads %s = '%s', which no earlier pass makes%s%s%s",
                      p->origin[0] ? p->origin : "", p->origin[0] ? ": " : "", p->name, p->desc->name,
-                     i + 1, p->inputs[k].name, p->inputs[k].source,
+                     script_number(g, i), p->inputs[k].name, p->inputs[k].source,
                      producers[0] ? "; outputs of that name: " : "", producers, made);
 }
 
