@@ -8,11 +8,14 @@
 #include "common/fresnel.glsl"
 #include "illumination_textures/virtual_camera.glsl"
 uniform sampler2DArray u_slices;
-uniform int u_slices_count;
-uniform float u_plane[17];
-uniform float u_ior;
+uniform float u_ior;   // the object's (set per object, as it is drawn)
 uniform float u_ideal;
-uniform int u_reflection;
+// The pass's values (issue 54: one block, mirrored by struct sliced_glass_params)
+layout(std140) uniform SlicedGlassParams {
+    float u_plane[17];  // the slabs' planes along the virtual camera's axis (SLICED_MAX_SLICES + 1)
+    int u_slices_count;
+    int u_reflection;   // 1: the Fresnel reflection at the front surface
+};
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_exit_position;

@@ -15,11 +15,14 @@
  * only (the table is the base shape's); the output is the input with the
  * glass drawn over it, as `refraction`'s. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl/gl_buffer.h"
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/medium_gpu.h"
 #include "graph/pass.h"
@@ -47,7 +50,20 @@ struct sliced_surface {
     uint64_t serial; /* the mesh they hold */
 };
 
+/* The C mirror of SlicedGlassParams (glass.frag, std140; issue 54): the
+ * slabs' planes (a float array's elements 16 bytes apart) and the switches. */
+struct sliced_glass_params {
+    float plane[SLICED_MAX_SLICES + 1][4]; /* along the virtual camera's axis, [0] only */
+    int32_t slices_count, reflection, pad[2];
+};
+static const struct gl_block_member sliced_glass_params_members[] = {
+    {"u_plane[0]", offsetof(struct sliced_glass_params, plane)},
+    {"u_slices_count", offsetof(struct sliced_glass_params, slices_count)},
+    {"u_reflection", offsetof(struct sliced_glass_params, reflection)},
+};
+
 struct sliced_state {
+    struct gl_param_block params; /* SlicedGlassParams, this frame's */
     struct transport_table tables[SLICED_MAX_REFRACTORS];
     struct mesh_table_fine fine[SLICED_MAX_REFRACTORS];
     const struct mesh *table_mesh[SLICED_MAX_REFRACTORS];
@@ -88,6 +104,10 @@ static bool sliced_create(struct pass *p, struct renderer *r, struct error *err)
     struct sliced_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "SlicedGlassParams", .members = sliced_glass_params_members,
+        .count = (int)(sizeof sliced_glass_params_members / sizeof sliced_glass_params_members[0]),
+        .size = sizeof(struct sliced_glass_params)};
     p->state = s;
     return gl_framebuffer_create(&s->slice_fb, err) && gl_framebuffer_create(&s->out_fb, err);
 }
@@ -145,6 +165,7 @@ static void sliced_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->slice_fb);
     gl_framebuffer_destroy(&s->out_fb);
     thin_glass_over_release(&s->panes);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -350,13 +371,11 @@ static bool sliced_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.Enable(GL_CULL_FACE);
     gl.CullFace(GL_BACK);
     gl_program_bind_texture(glass, "u_slices", s->slices.id);
-    gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_slices_count"), count);
-    for (int i = 0; i <= count; i++) {
-        char name[32];
-        snprintf(name, sizeof name, "u_plane[%d]", i);
-        gl.ProgramUniform1f(glass->id, gl_program_uniform(glass, name), planes[i]);
-    }
-    gl.ProgramUniform1i(glass->id, gl_program_uniform(glass, "u_reflection"), pass_flag(p, SR_REFLECTION));
+    struct sliced_glass_params values = {.slices_count = count, .reflection = pass_flag(p, SR_REFLECTION)};
+    for (int i = 0; i <= count; i++)
+        values.plane[i][0] = planes[i];
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, glass, err))
+        return false;
     gl.UseProgram(glass->id);
     k = 0;
     for (int i = 0; i < scene->object_count && k < SLICED_MAX_REFRACTORS; i++) {
