@@ -8,9 +8,12 @@
 #include "illumination_textures/virtual_camera.glsl"
 uniform sampler2D u_target;
 uniform sampler2DArray u_textures;
-uniform int u_planes;
-uniform float u_plane_depth[16];
-uniform float u_bias;
+// The pass's values (issue 54: one block, mirrored by struct illumination_map_params)
+layout(std140) uniform IlluminationMapParams {
+    float u_plane_depth[16]; // the virtual planes' depths along the virtual camera (ILLUM_MAX_PLANES)
+    int u_planes;
+    float u_bias;            // the shadow test's tolerance
+};
 in vec3 v_world;
 layout(location = 0) out vec4 o_irradiance;
 void main()

@@ -26,12 +26,15 @@
  * its flux, which rasterizing it could miss. The virtual camera's square
  * covers where 99% of the transmitted flux crosses the planes. */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/array.h"
 #include "core/hash.h"
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -50,7 +53,23 @@
 #define ILLUM_EDGE_FRACTION (1.0f / 16.0f)
 #define ILLUM_MAX_TABLE_TRIANGLES 8192
 
+/* The C mirror of IlluminationMapParams (map.frag, std140; issue 54): the
+ * virtual planes' depths (a float array's elements 16 bytes apart), their
+ * count and the shadow test's tolerance. */
+struct illumination_map_params {
+    float plane_depth[ILLUM_MAX_PLANES][4]; /* [0] only */
+    int32_t planes;
+    float bias;
+    int32_t pad[2];
+};
+static const struct gl_block_member illumination_map_params_members[] = {
+    {"u_plane_depth[0]", offsetof(struct illumination_map_params, plane_depth)},
+    {"u_planes", offsetof(struct illumination_map_params, planes)},
+    {"u_bias", offsetof(struct illumination_map_params, bias)},
+};
+
 struct illum_state {
+    struct gl_param_block params; /* IlluminationMapParams, this frame's */
     struct transport_table tables[ILLUM_MAX_REFRACTORS];
     /* each table's paths traced exactly where a triangle's vertices' paths
      * part (illumination_geometry.c), made with the table */
@@ -106,6 +125,10 @@ static bool illum_create(struct pass *p, struct renderer *r, struct error *err)
     struct illum_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "IlluminationMapParams", .members = illumination_map_params_members,
+        .count = (int)(sizeof illumination_map_params_members / sizeof illumination_map_params_members[0]),
+        .size = sizeof(struct illumination_map_params)};
     p->state = s;
     if (!gl_framebuffer_create(&s->target_fb, err) || !gl_framebuffer_create(&s->texture_fb, err) ||
         !gl_framebuffer_create(&s->map_fb, err))
@@ -149,6 +172,7 @@ static void illum_destroy(struct pass *p)
         if (s->vao)
             gl.DeleteVertexArrays(1, &s->vao);
     }
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -511,17 +535,14 @@ static bool illum_execute(struct pass *p, struct pass_frame *f, struct error *er
     if (!gl_program_get(&r->programs, "common/object.vert", "illumination_textures/map.frag", NULL, &map,
                         err))
         return false;
-    GLuint id = map->id;
     virtual_camera_set(map, &s->vc);
-    gl.ProgramUniform1i(id, gl_program_uniform(map, "u_planes"), s->planes);
-    for (int i = 0; i < s->planes; i++) {
-        char name[32];
-        snprintf(name, sizeof name, "u_plane_depth[%d]", i);
-        gl.ProgramUniform1f(id, gl_program_uniform(map, name), s->plane_depth[i]);
-    }
     /* the shadow test's tolerance: a few texels of depth along a surface at 60 degrees */
-    gl.ProgramUniform1f(id, gl_program_uniform(map, "u_bias"),
-                        4.0f * 2.0f * s->vc.half / (float)s->size + 1e-3f * (s->vc.far - s->vc.near));
+    struct illumination_map_params values = {
+        .planes = s->planes, .bias = 4.0f * 2.0f * s->vc.half / (float)s->size + 1e-3f * (s->vc.far - s->vc.near)};
+    for (int i = 0; i < s->planes; i++)
+        values.plane_depth[i][0] = s->plane_depth[i];
+    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, map, err))
+        return false;
     const struct gl_texture *oc[1] = {&out->texture};
     if (!gl_framebuffer_attach(&s->map_fb, oc, NULL, 1, &s->receiver_depth, -1, err))
         return false;
