@@ -22,8 +22,6 @@ uniform sampler2D u_flux;
 layout(r32ui) uniform uimage2DArray u_counts;
 #include "common/box_taps.glsl"
 #include "common/fixed_point.glsl"
-uniform float u_fixed_point; // counts per unit of flux (photon_caustics.c: all the light below 2^31)
-uniform float u_footprint; // texels (0: a point)
 #include "photon_caustics/window.glsl"
 
 int receiver;

@@ -7,9 +7,6 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(r32ui) readonly uniform uimage2DArray u_counts;
 layout(rgba32f) writeonly uniform image2DArray u_caustics;
-uniform float u_fixed_point;
-uniform int u_k;
-uniform float u_s;
 void main()
 {
     ivec3 g = ivec3(gl_GlobalInvocationID);

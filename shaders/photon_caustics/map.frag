@@ -12,8 +12,6 @@ layout(location = 0) out vec4 o_irradiance;
 uniform sampler2DArray u_caustics;
 uniform int u_object_id;
 uniform int u_impostor_object[16];
-uniform float u_bias;
-uniform int u_pixel_samples = 1;
 
 // The caustic irradiance at receiver point p of impostor k; false where p
 // is outside the caustic texture or hidden from the refractor's side.

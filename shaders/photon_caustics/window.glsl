@@ -18,8 +18,20 @@
 // past the box of all the photons.
 const int PHOTON_WINDOW_STRIDE = 9; // the seen ones' lo, hi and count; all of them's lo, hi
 layout(std430) buffer PhotonWindows { uint photon_windows[]; };
-uniform int u_fit = 1;
-uniform int u_texture; // the caustic texture's side in texels
+// The caustic textures' values for one frame, every stage's from the
+// photon buffer on (issue 54: one block, uploaded in one call, mirrored by
+// struct photon_params in src/passes/techniques/photon_caustics.c). The
+// light side's (trace.frag: the light's matrices from the fit) stay its own.
+layout(std140) uniform PhotonParams {
+    int u_fit;            // 1: each receiver's texture covers the box its photons landed in
+    int u_texture;        // the caustic texture's side in texels
+    float u_footprint;    // accumulate: a photon's spread at most, texels (0: a point)
+    int u_k;              // filter: radius (§3.2)
+    float u_s;            // filter: scale
+    float u_fixed_point;  // counts per unit of flux (all the light below 2^31)
+    float u_bias;         // map: the caustic mapping test's depth tolerance
+    int u_pixel_samples;  // map: lookups per pixel along each axis where the footprint spans more texels
+};
 const float PHOTONS_PER_TEXEL = 0.5;
 
 // a box of photons' (u, v) in 1/65535 steps, grown by an eighth each way

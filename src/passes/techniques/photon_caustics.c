@@ -14,10 +14,13 @@
  * only the mapping is redone, and the textures rebuilt from the buffer when
  * the camera moved (their box is where it may see the photons land). */
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl/gl_param_block.h"
 #include "graph/frame.h"
 #include "graph/pass.h"
 #include "graph/renderer.h"
@@ -33,7 +36,26 @@
  * them (shaders/photon_caustics/window.glsl) */
 #define PHOTON_WINDOW_STRIDE 9
 
+/* The C mirror of PhotonParams (shaders/photon_caustics/window.glsl,
+ * std140): the caustic textures' and the mapping's values for one frame,
+ * uploaded in one call (issue 54). */
+struct photon_params {
+    int32_t fit, texture;
+    float footprint;
+    int32_t k;
+    float s, fixed_point, bias;
+    int32_t pixel_samples;
+};
+#define PHOTON_PARAM(field, name) {name, offsetof(struct photon_params, field)}
+static const struct gl_block_member photon_params_members[] = {
+    PHOTON_PARAM(fit, "u_fit"), PHOTON_PARAM(texture, "u_texture"), PHOTON_PARAM(footprint, "u_footprint"),
+    PHOTON_PARAM(k, "u_k"), PHOTON_PARAM(s, "u_s"), PHOTON_PARAM(fixed_point, "u_fixed_point"),
+    PHOTON_PARAM(bias, "u_bias"), PHOTON_PARAM(pixel_samples, "u_pixel_samples"),
+};
+#undef PHOTON_PARAM
+
 struct photon_state {
+    struct gl_param_block params; /* PhotonParams, this frame's */
     struct caustic_coverage dark_check; /* what it left dark under glass, measured once */
     const struct impostor_set *impostors; /* the impostors block's, this frame */
     struct gl_framebuffer light_fb[2], photon_fb, map_fb;
@@ -133,6 +155,10 @@ static bool photon_create(struct pass *p, struct renderer *r, struct error *err)
     struct photon_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
+    s->params = (struct gl_param_block){
+        .name = "PhotonParams", .members = photon_params_members,
+        .count = (int)(sizeof photon_params_members / sizeof photon_params_members[0]),
+        .size = sizeof(struct photon_params)};
     p->state = s;
     return gl_framebuffer_create(&s->light_fb[0], err) && gl_framebuffer_create(&s->light_fb[1], err) &&
            gl_framebuffer_create(&s->photon_fb, err) && gl_framebuffer_create(&s->map_fb, err);
@@ -170,6 +196,7 @@ static void photon_destroy(struct pass *p)
         gl.DeleteBuffers(1, &s->windows);
     if (s->cover && gl_api_ready())
         gl.DeleteBuffers(1, &s->cover);
+    gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
 }
@@ -365,8 +392,8 @@ static bool light_motion(struct photon_state *s, struct renderer *r, const struc
  * landed in (issue 8) where the camera may see them (issue 27; window.glsl,
  * bounds.comp): after a new photon buffer, and when the camera's view
  * changed. */
-static bool build_caustic_textures(struct photon_state *s, struct renderer *r, struct pass *p, int buffer,
-                                   int texture, struct error *err)
+static bool build_caustic_textures(struct photon_state *s, struct renderer *r, int buffer, int texture,
+                                   struct error *err)
 {
     if (!s->windows) {
         gl.CreateBuffers(1, &s->windows);
@@ -387,6 +414,8 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
     gl.UseProgram(bounds->id);
     gl_program_bind_texture(bounds, "u_photons", s->photons.id);
     bind_impostors(s, bounds);
+    if (!gl_param_block_bind(&s->params, bounds, err))
+        return false;
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     const GLuint zero_u = 0;
@@ -398,10 +427,8 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
     gl_program_bind_texture(acc, "u_photons", s->photons.id);
     gl_program_bind_texture(acc, "u_flux", s->photon_flux.id);
     gl_program_bind_image(acc, "u_counts", s->counts.id, GL_TRUE, GL_READ_WRITE, GL_R32UI);
-    gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_fixed_point"), s->fixed_point);
-    gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_texture"), texture);
-    gl.ProgramUniform1f(acc->id, gl_program_uniform(acc, "u_footprint"), (float)pass_real(p, PHOTON_FOOTPRINT));
-    gl.ProgramUniform1i(acc->id, gl_program_uniform(acc, "u_fit"), pass_flag(p, PHOTON_FIT));
+    if (!gl_param_block_bind(&s->params, acc, err))
+        return false;
     gl_program_bind_storage(acc, "PhotonWindows", s->windows);
     gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -412,11 +439,8 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, s
     bind_impostors(s, filt);
     gl_program_bind_image(filt, "u_counts", s->counts.id, GL_TRUE, GL_READ_ONLY, GL_R32UI);
     gl_program_bind_image(filt, "u_caustics", s->caustics.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_fixed_point"), s->fixed_point);
-    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_k"), (GLint)pass_int(p, PHOTON_K));
-    gl.ProgramUniform1f(filt->id, gl_program_uniform(filt, "u_s"), (float)pass_real(p, PHOTON_S));
-    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_texture"), texture);
-    gl.ProgramUniform1i(filt->id, gl_program_uniform(filt, "u_fit"), pass_flag(p, PHOTON_FIT));
+    if (!gl_param_block_bind(&s->params, filt, err))
+        return false;
     gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors->count);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     return true;
@@ -491,7 +515,7 @@ static bool accumulate_frames(struct photon_state *s, struct pass *p, struct pas
 
 /* §3.3: the caustic textures mapped onto the receivers the camera sees
  * (the bound framebuffer). */
-static bool map_caustics(struct photon_state *s, struct pass *p, struct pass_frame *f, int texture, struct error *err)
+static bool map_caustics(struct photon_state *s, struct pass_frame *f, struct error *err)
 {
     struct renderer *r = f->renderer;
     struct gl_program *map;
@@ -500,10 +524,8 @@ static bool map_caustics(struct photon_state *s, struct pass *p, struct pass_fra
     gl.UseProgram(map->id);
     bind_impostors(s, map);
     gl_program_bind_texture(map, "u_caustics", s->caustics.id);
-    gl.ProgramUniform1f(map->id, gl_program_uniform(map, "u_bias"), (float)pass_real(p, PHOTON_BIAS));
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_fit"), pass_flag(p, PHOTON_FIT));
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_texture"), texture);
-    gl.ProgramUniform1i(map->id, gl_program_uniform(map, "u_pixel_samples"), pass_int(p, PHOTON_PIXEL_SAMPLES));
+    if (!gl_param_block_bind(&s->params, map, err))
+        return false;
     for (int k = 0; k < s->impostors->count; k++) {
         char name[48];
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);
@@ -600,6 +622,20 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                      "box, %.0f%% of the area it first had)", 100.0 * s->coverage);
         s->key = key;
     }
+    /* the caustic textures' and the mapping's values (the photons' fixed
+     * point as this light-side build, or the last, made it) */
+    const struct photon_params values = {
+        .fit = pass_flag(p, PHOTON_FIT),
+        .texture = texture,
+        .footprint = (float)pass_real(p, PHOTON_FOOTPRINT),
+        .k = pass_int(p, PHOTON_K),
+        .s = (float)pass_real(p, PHOTON_S),
+        .fixed_point = s->fixed_point,
+        .bias = (float)pass_real(p, PHOTON_BIAS),
+        .pixel_samples = pass_int(p, PHOTON_PIXEL_SAMPLES),
+    };
+    if (!gl_param_block_upload(&s->params, &values, err))
+        return false;
     /* The caustic textures cover the box the photons landed in where the
      * camera may see them (bounds.comp), so a moved camera rebuilds them
      * from the photon buffer, which it does not change (§4). */
@@ -607,7 +643,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     if (!reuse || (pass_flag(p, PHOTON_FIT) && view_key != s->view_key)) {
         if (reuse && used + 8 < sizeof p->report)
             snprintf(p->report + used, sizeof p->report - used, "; the caustic textures rebuilt for the camera's view");
-        if (s->impostors->count > 0 && !build_caustic_textures(s, r, p, buffer, texture, err))
+        if (s->impostors->count > 0 && !build_caustic_textures(s, r, buffer, texture, err))
             return false;
         s->view_key = view_key;
     }
@@ -624,7 +660,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     if (s->impostors->count == 0)
         return true;
-    if (!map_caustics(s, p, f, texture, err))
+    if (!map_caustics(s, f, err))
         return false;
     /* the light's front depths and normals as the photons were last traced
      * (the view and projection in one matrix) */
