@@ -259,6 +259,9 @@ static bool program_build(struct gl_program_cache *cache, struct gl_program *p, 
     if (p->id)
         gl.DeleteProgram(p->id);
     p->id = prog;
+    p->local_size[0] = p->local_size[1] = p->local_size[2] = 0;
+    if (p->stages[2][0]) /* a compute program: its work group, as the shader's layout declares it */
+        gl.GetProgramiv(prog, GL_COMPUTE_WORK_GROUP_SIZE, p->local_size);
     free(p->attached); /* (its locations were the old link's) */
     p->attached = NULL;
     p->attached_size = 0;
@@ -753,6 +756,20 @@ bool gl_program_check_block(const struct gl_program *p, const char *block, const
     if ((size_t)bv[0] > size)
         return error_set(err, "%s: uniform block '%s' takes %d bytes, its C mirror %zu", stage, block, bv[0], size);
     return true;
+}
+
+void gl_program_dispatch(const struct gl_program *p, int nx, int ny, int nz, GLbitfield barriers)
+{
+    GLuint groups[3];
+    const int n[3] = {nx, ny, nz};
+    for (int k = 0; k < 3; k++) {
+        int size = p->local_size[k] > 0 ? p->local_size[k] : 1;
+        groups[k] = n[k] > 0 ? (GLuint)((n[k] + size - 1) / size) : 0u;
+    }
+    gl.UseProgram(p->id);
+    gl.DispatchCompute(groups[0], groups[1], groups[2]);
+    if (barriers)
+        gl.MemoryBarrier(barriers);
 }
 
 void gl_program_bind_texture_unit(int unit, GLuint texture)

@@ -59,6 +59,7 @@ struct gl_program {
     struct gl_program_names *checked;  /* owned: the missing names already looked for in `source` */
     struct gl_program_cache *cache;    /* where an undeclared name is reported */
     void *attached;                    /* owned: gl_program_attached's block, until the next link */
+    GLint local_size[3];               /* a compute program's work group (layout(local_size_x = ...)), else 0 */
     size_t attached_size;
 };
 
@@ -159,6 +160,12 @@ struct gl_block_member {
  * an offset). */
 bool gl_program_check_block(const struct gl_program *p, const char *block, const struct gl_block_member *members,
                             int count, size_t size, struct error *err);
+
+/* Runs compute program `p` over nx x ny x nz invocations: as many work
+ * groups of the size its shader declares as cover them (the shader's
+ * layout(local_size_...) is read after link, so C does not repeat it),
+ * then a memory barrier of `barriers` (0: none). */
+void gl_program_dispatch(const struct gl_program *p, int nx, int ny, int nz, GLbitfield barriers);
 
 /* Binds `texture` to a texture unit gl_program_unit gave (the renderer
  * finds a program's units once per link): -1 binds nothing. */

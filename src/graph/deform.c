@@ -106,8 +106,7 @@ bool deform_update(struct renderer *r, struct scene *scene, double time, struct 
         vec3 ext = vec3_sub(m->bounds_max, m->bounds_min);
         float size = vec3_length(ext);
         gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_step"), 1e-3f * (size > 0 ? size : 1.0f));
-        GLuint groups = (GLuint)((m->vertex_count + 255) / 256);
-        gl.DispatchCompute(groups, 1, 1);
+        gl_program_dispatch(prog, (int)m->vertex_count, 1, 1, 0); /* (one barrier after them all) */
         any = true;
     }
     if (any)

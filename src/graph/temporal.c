@@ -90,9 +90,8 @@ bool temporal_accumulate(struct temporal_history *h, struct renderer *r, const s
      * ball (docs/TEMPORAL.md), a quarter lagged less but halved no flicker */
     int moved = frames / 2 > 2 ? frames / 2 : 2;
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_moved_frames"), (float)(moved < frames ? moved : frames));
-    gl.DispatchCompute((GLuint)((h->width + 7) / 8), (GLuint)((h->height + 7) / 8), 1);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                     GL_FRAMEBUFFER_BARRIER_BIT);
+    gl_program_dispatch(prog, h->width, h->height, 1,
+                        GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     h->newest = to;
     h->valid = true;
     h->still = still ? h->still + 1 : 1;

@@ -81,6 +81,10 @@ int main(void)
     write_shader(root, "first/b.comp", b);
     write_shader(root, "second/c.comp", c);
     /* a pass's parameters as one block (gl_program_check_block) */
+    write_shader(root, "second/grid.comp",
+                 "#version 450 core\nlayout(local_size_x = 8, local_size_y = 4) in;\n"
+                 "layout(std430) buffer Count { uint invocations; };\n"
+                 "void main() { atomicAdd(invocations, 1u); }\n");
     write_shader(root, "second/params.comp",
                  "#version 450 core\nlayout(local_size_x = 1) in;\nlayout(std430) buffer Out { vec4 values[]; };\n"
                  "layout(std140) uniform Params { int u_count; float u_gain; float u_bias; };\n"
@@ -206,14 +210,28 @@ int main(void)
     GLuint read_back; /* values[5]: six vec4 */
     gl.CreateBuffers(1, &read_back);
     gl.NamedBufferStorage(read_back, 6 * 4 * sizeof(float), NULL, GL_DYNAMIC_STORAGE_BIT);
-    gl.UseProgram(pp->id);
     gl_program_bind_storage(pp, "Out", read_back);
-    gl.DispatchCompute(1, 1, 1);
-    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    /* the work group as its shader declares it, read after link */
+    CHECK(pp->local_size[0] == 1 && pp->local_size[1] == 1 && pp->local_size[2] == 1);
+    gl_program_dispatch(pp, 1, 1, 1, GL_ALL_BARRIER_BITS);
     float from_block[24];
     gl.GetNamedBufferSubData(read_back, 0, sizeof from_block, from_block);
     CHECK_NEAR(from_block[20], 6.5, 1e-6); /* 3 x 2 + 0.5 */
     gl.DeleteBuffers(1, &read_back);
+    /* 10 x 6 invocations asked of 8 x 4 groups: 2 x 2 groups, 128 run */
+    struct gl_program *pg;
+    CHECK(gl_program_get_compute(&cache, "second/grid.comp", NULL, NULL, &pg, &err));
+    CHECK(pg->local_size[0] == 8 && pg->local_size[1] == 4 && pg->local_size[2] == 1);
+    GLuint counter;
+    const GLuint none = 0;
+    gl.CreateBuffers(1, &counter);
+    gl.NamedBufferStorage(counter, sizeof none, &none, GL_DYNAMIC_STORAGE_BIT);
+    gl_program_bind_storage(pg, "Count", counter);
+    gl_program_dispatch(pg, 10, 6, 1, GL_ALL_BARRIER_BITS);
+    GLuint ran = 0;
+    gl.GetNamedBufferSubData(counter, 0, sizeof ran, &ran);
+    CHECK(ran == 128);
+    gl.DeleteBuffers(1, &counter);
     gl_param_block_release(&block);
     struct gl_param_block wrong = {.name = "Params", .members = misspelt, .count = 3,
                                    .size = sizeof(struct params_mirror)};

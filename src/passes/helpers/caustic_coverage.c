@@ -153,8 +153,7 @@ bool caustic_coverage_check(struct caustic_coverage *c, struct pass *p, struct p
                         light->direction.y, light->direction.z);
     gl.ProgramUniform1f(count->id, gl_program_uniform(count, "u_cos_outer"),
                         light->kind == LIGHT_SPOT ? light->cos_outer : -2.0f);
-    gl.DispatchCompute((GLuint)((f->width + 7) / 8), (GLuint)((f->height + 7) / 8), 1);
-    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_program_dispatch(count, f->width, f->height, 1, GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     unsigned counters[2];
     if (!gl_buffer_read(c->counters, counters, sizeof counters, err))
         return false;

@@ -251,8 +251,7 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl_program_bind_texture(peel, "u_bits", ls->bits.id);
     gl_program_bind_image(peel, "u_depth", ls->depth.id, GL_TRUE, GL_WRITE_ONLY, GL_R32F);
     gl_program_bind_image(peel, "u_info", ls->info.id, GL_FALSE, GL_WRITE_ONLY, GL_RG32UI);
-    gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    gl_program_dispatch(peel, width, height, 1, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (timed)
         pass_stage_end(timed, "peel");
 
@@ -276,8 +275,7 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl_program_bind_texture(ranges, "u_depth", ls->depth.id);
     gl_program_bind_texture(ranges, "u_info", ls->info.id);
     gl_program_bind_storage(ranges, "Ranges", ls->ranges);
-    gl.DispatchCompute((GLuint)((width + 7) / 8), (GLuint)((height + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    gl_program_dispatch(ranges, width, height, 1, GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (timed)
         pass_stage_end(timed, "ranges");
     renderer_reset_state(r);

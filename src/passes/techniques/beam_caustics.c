@@ -341,8 +341,7 @@ static bool run_advance(struct renderer *r, struct beam_caustics_state *s, int m
     if (!gl_param_block_bind(&s->params, prog, err))
         return false;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_mode"), mode);
-    gl.DispatchCompute(1, 1, 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    gl_program_dispatch(prog, 1, 1, 1, GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     return true;
 }
 
@@ -366,9 +365,8 @@ static bool build_beams(struct pass *p, struct pass_frame *f, float extent, stru
     gl_program_bind_texture(trace, "u_distance", s->distance->distance[0].id);
     if (!medium_gpu_bind(r, f->scene, trace, err))
         return false;
-    GLuint groups = (GLuint)((s->lattice + 1 + 7) / 8);
-    gl.DispatchCompute(groups, groups, 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    /* one edge ray per vertex of the finest lattice */
+    gl_program_dispatch(trace, s->lattice + 1, s->lattice + 1, 1, GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "rays");
 
     /* the coarse grid, then `refine` levels of the oracle */

@@ -212,8 +212,7 @@ static bool caustic_volumes_execute(struct pass *p, struct pass_frame *f, struct
     if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, build, err))
         return false;
     shadow_inputs_bind(p, f, build); /* the panes between the light and the water (its pane filter) */
-    gl.DispatchCompute((GLuint)((triangles + 63) / 64), 1, 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_program_dispatch(build, (int)triangles, 1, 1, GL_SHADER_STORAGE_BARRIER_BIT);
 
     /* Pass 2 (§3.5): additive blending, no depth writes, one side culled.
      * A convex volume covers each of its pixels with exactly one front face

@@ -197,8 +197,7 @@ static bool splat_photons(struct layered_caustics_state *s, struct renderer *r, 
      * the ball's 32 x 32 photons worse over 16 frames, 0.102 -> 0.120
      * against a 64-iteration truth, where whole cells stay at 0.103
      * (docs/TEMPORAL.md). */
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 2);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_program_dispatch(splat, buffer, buffer, 2, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     return true;
 }
 
@@ -369,8 +368,7 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
     gl_program_bind_storage(photons, "LandedFlux", s->landed);
     gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     gl_program_bind_image(photons, "u_photons", s->photons.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_program_dispatch(photons, buffer, buffer, 1, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     pass_stage_end(p, "photons");
 
     if (!splat_photons(s, r, buffer, receiver_normal, err))

@@ -316,8 +316,7 @@ static bool fit_light_view(struct photon_state *s, struct renderer *r, const str
     gl_program_bind_texture(cover, "u_front_depth", s->light_depth[0].id);
     gl_program_bind_texture(cover, "u_back_depth", s->light_depth[1].id);
     gl_program_bind_storage(cover, "Cover", s->cover);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl_program_dispatch(cover, buffer, buffer, 1, GL_BUFFER_UPDATE_BARRIER_BIT);
     gl.GetNamedBufferSubData(s->cover, 0, sizeof box, box);
     s->coverage = 0.0f;
     bool jittered = jitter.m[12] != 0.0f || jitter.m[13] != 0.0f;
@@ -383,8 +382,7 @@ static bool light_motion(struct photon_state *s, struct renderer *r, const struc
     gl.ProgramUniform2f(prog->id, gl_program_uniform(prog, "u_shift"), s->jitter_previous[0] - s->jitter[0],
                         s->jitter_previous[1] - s->jitter[1]);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_buffer"), buffer);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl_program_dispatch(prog, buffer, buffer, 1, GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     return true;
 }
 
@@ -416,8 +414,7 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, i
     bind_impostors(s, bounds);
     if (!gl_param_block_bind(&s->params, bounds, err))
         return false;
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl_program_dispatch(bounds, buffer, buffer, 1, GL_SHADER_STORAGE_BARRIER_BIT);
     const GLuint zero_u = 0;
     gl.ClearTexImage(s->counts.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
     struct gl_program *acc;
@@ -430,8 +427,7 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, i
     if (!gl_param_block_bind(&s->params, acc, err))
         return false;
     gl_program_bind_storage(acc, "PhotonWindows", s->windows);
-    gl.DispatchCompute((GLuint)((buffer + 7) / 8), (GLuint)((buffer + 7) / 8), 1);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    gl_program_dispatch(acc, buffer, buffer, 1, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     struct gl_program *filt;
     if (!gl_program_get_compute(&r->programs, "photon_caustics/filter.comp", NULL, NULL, &filt, err))
         return false;
@@ -441,8 +437,8 @@ static bool build_caustic_textures(struct photon_state *s, struct renderer *r, i
     gl_program_bind_image(filt, "u_caustics", s->caustics.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
     if (!gl_param_block_bind(&s->params, filt, err))
         return false;
-    gl.DispatchCompute((GLuint)((texture + 7) / 8), (GLuint)((texture + 7) / 8), (GLuint)s->impostors->count);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl_program_dispatch(filt, texture, texture, s->impostors->count,
+                        GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     return true;
 }
 
