@@ -28,6 +28,12 @@ struct gl_param_block {
     int checked_count;
 };
 
+/* A block named `block_name` in GLSL, mirrored by C type `mirror` whose
+ * fields the array `fields` lists: what a pass's create sets. */
+#define GL_PARAM_BLOCK_OF(block_name, fields, mirror)                                                          \
+    ((struct gl_param_block){.name = (block_name), .members = (fields),                                        \
+                             .count = (int)(sizeof(fields) / sizeof((fields)[0])), .size = sizeof(mirror)})
+
 /* Copies `values` (a mirror of `size` bytes) into the block's buffer. */
 bool gl_param_block_upload(struct gl_param_block *b, const void *values, struct error *err);
 /* Binds the buffer to `program`'s block, checking the layout and finding

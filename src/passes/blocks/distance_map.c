@@ -255,10 +255,7 @@ bool distance_map_configure_block(struct pass *block, enum distance_map_content 
         !pass_set_number(block, "size", size, err) ||
         !pass_set_enum(block, "around", around == OBJECT_ROLE_REFRACTOR ? "refractors" : "specular", err))
         return false;
-    const struct pass_value *shadow = reader_shadow >= 0 ? &reader->values[reader_shadow] : NULL;
-    if (!shadow || !shadow->list_count)
-        return true;
-    return pass_set_list(block, DM_SHADOW, (const char *const *)shadow->list, shadow->list_count, err);
+    return shadow_inputs_give(block, reader, reader_shadow, err);
 }
 
 static bool distance_map_declare(struct pass *p, struct error *err)

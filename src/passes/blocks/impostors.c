@@ -223,10 +223,7 @@ bool impostors_configure_block(struct pass *block, int size, int recursion, cons
     if (!pass_set_number(block, "size", size, err) || !pass_set_boolean(block, "specular", recursion > 0, err) ||
         !pass_set_number(block, "recursion", recursion, err))
         return false;
-    const struct pass_value *shadow = reader_shadow >= 0 ? &reader->values[reader_shadow] : NULL;
-    if (!shadow || !shadow->list_count)
-        return true;
-    return pass_set_list(block, IM_SHADOW, (const char *const *)shadow->list, shadow->list_count, err);
+    return shadow_inputs_give(block, reader, reader_shadow, err);
 }
 
 static bool impostors_declare(struct pass *p, struct error *err)

@@ -64,6 +64,17 @@ const char *shadow_inputs_pane_left_out(const struct pass *p, const struct scene
                     "caustic";
 }
 
+bool shadow_inputs_give(struct pass *block, const struct pass *reader, int reader_shadow, struct error *err)
+{
+    const struct pass_value *shadow = reader_shadow >= 0 ? &reader->values[reader_shadow] : NULL;
+    int param = pass_param_index(block->desc, "shadow");
+    if (!shadow || !shadow->list_count)
+        return true;
+    if (param < 0)
+        return error_set(err, "the block '%s' takes no shadow maps", block->desc->name);
+    return pass_set_list(block, param, (const char *const *)shadow->list, shadow->list_count, err);
+}
+
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *prog)
 {
     struct renderer *r = f->renderer;

@@ -43,6 +43,12 @@ struct shadow_record {
  * the receivers). */
 const char *shadow_inputs_pane_left_out(const struct pass *p, const struct scene *scene, const struct object *o);
 
+/* Gives `block` (a building block with a `shadow` list) the shadow maps of
+ * `reader`'s parameter `reader_shadow` (-1: none): what lights the reader's
+ * own surfaces lights the block it asks the graph for (its distance map, its
+ * impostors). */
+bool shadow_inputs_give(struct pass *block, const struct pass *reader, int reader_shadow, struct error *err);
+
 /* Binds the shadow maps and sets the uniforms on `program`. */
 void shadow_inputs_bind(struct pass *p, struct pass_frame *f, const struct gl_program *program);
 

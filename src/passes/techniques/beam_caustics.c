@@ -210,10 +210,7 @@ static bool beam_caustics_create(struct pass *p, struct renderer *r, struct erro
     struct beam_caustics_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "BeamParams", .members = beam_params_members,
-        .count = (int)(sizeof beam_params_members / sizeof beam_params_members[0]),
-        .size = sizeof(struct beam_params)};
+    s->params = GL_PARAM_BLOCK_OF("BeamParams", beam_params_members, struct beam_params);
     p->state = s;
     gl.GenQueries(1, &s->fragments_query);
     return gl_framebuffer_create(&s->volumes_fb, err) &&

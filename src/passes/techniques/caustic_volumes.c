@@ -108,10 +108,8 @@ static bool caustic_volumes_create(struct pass *p, struct renderer *r, struct er
     struct caustic_volumes_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "CausticVolumesParams", .members = caustic_volumes_params_members,
-        .count = (int)(sizeof caustic_volumes_params_members / sizeof caustic_volumes_params_members[0]),
-        .size = sizeof(struct caustic_volumes_params)};
+    s->params = GL_PARAM_BLOCK_OF("CausticVolumesParams",
+                                  caustic_volumes_params_members, struct caustic_volumes_params);
     p->state = s;
     return gl_framebuffer_create(&s->volumes_fb, err);
 }

@@ -125,10 +125,8 @@ static bool illum_create(struct pass *p, struct renderer *r, struct error *err)
     struct illum_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "IlluminationMapParams", .members = illumination_map_params_members,
-        .count = (int)(sizeof illumination_map_params_members / sizeof illumination_map_params_members[0]),
-        .size = sizeof(struct illumination_map_params)};
+    s->params = GL_PARAM_BLOCK_OF("IlluminationMapParams",
+                                  illumination_map_params_members, struct illumination_map_params);
     p->state = s;
     if (!gl_framebuffer_create(&s->target_fb, err) || !gl_framebuffer_create(&s->texture_fb, err) ||
         !gl_framebuffer_create(&s->map_fb, err))

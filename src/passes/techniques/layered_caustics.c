@@ -117,10 +117,8 @@ static bool layered_caustics_create(struct pass *p, struct renderer *r, struct e
     struct layered_caustics_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "LayeredCausticsParams", .members = layered_caustics_params_members,
-        .count = (int)(sizeof layered_caustics_params_members / sizeof layered_caustics_params_members[0]),
-        .size = sizeof(struct layered_caustics_params)};
+    s->params = GL_PARAM_BLOCK_OF("LayeredCausticsParams",
+                                  layered_caustics_params_members, struct layered_caustics_params);
     p->state = s;
     return gl_framebuffer_create(&s->out_fb, err);
 }

@@ -120,9 +120,8 @@ static bool layered_refraction_create(struct pass *p, struct renderer *r, struct
     struct layered_refraction_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){.name = "LayeredRefractionParams", .members = layered_refraction_params_members,
-                                        .count = (int)(sizeof layered_refraction_params_members / sizeof layered_refraction_params_members[0]),
-                                        .size = sizeof(struct layered_refraction_params)};
+    s->params = GL_PARAM_BLOCK_OF("LayeredRefractionParams",
+                                  layered_refraction_params_members, struct layered_refraction_params);
     p->state = s;
     return gl_framebuffer_create(&s->out_fb, err);
 }

@@ -155,10 +155,7 @@ static bool photon_create(struct pass *p, struct renderer *r, struct error *err)
     struct photon_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "PhotonParams", .members = photon_params_members,
-        .count = (int)(sizeof photon_params_members / sizeof photon_params_members[0]),
-        .size = sizeof(struct photon_params)};
+    s->params = GL_PARAM_BLOCK_OF("PhotonParams", photon_params_members, struct photon_params);
     p->state = s;
     return gl_framebuffer_create(&s->light_fb[0], err) && gl_framebuffer_create(&s->light_fb[1], err) &&
            gl_framebuffer_create(&s->photon_fb, err) && gl_framebuffer_create(&s->map_fb, err);

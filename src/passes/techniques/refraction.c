@@ -173,10 +173,7 @@ static bool refraction_create(struct pass *p, struct renderer *r, struct error *
     struct refraction_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "RefractionParams", .members = refraction_params_members,
-        .count = (int)(sizeof refraction_params_members / sizeof refraction_params_members[0]),
-        .size = sizeof(struct refraction_params)};
+    s->params = GL_PARAM_BLOCK_OF("RefractionParams", refraction_params_members, struct refraction_params);
     p->state = s;
     return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
            gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err);

@@ -104,10 +104,7 @@ static bool sliced_create(struct pass *p, struct renderer *r, struct error *err)
     struct sliced_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){
-        .name = "SlicedGlassParams", .members = sliced_glass_params_members,
-        .count = (int)(sizeof sliced_glass_params_members / sizeof sliced_glass_params_members[0]),
-        .size = sizeof(struct sliced_glass_params)};
+    s->params = GL_PARAM_BLOCK_OF("SlicedGlassParams", sliced_glass_params_members, struct sliced_glass_params);
     p->state = s;
     return gl_framebuffer_create(&s->slice_fb, err) && gl_framebuffer_create(&s->out_fb, err);
 }

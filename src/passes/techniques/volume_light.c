@@ -65,9 +65,7 @@ static bool volume_light_create(struct pass *p, struct renderer *r, struct error
     struct volume_light_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){.name = "VolumeLightParams", .members = volume_light_params_members,
-                                        .count = (int)(sizeof volume_light_params_members / sizeof volume_light_params_members[0]),
-                                        .size = sizeof(struct volume_light_params)};
+    s->params = GL_PARAM_BLOCK_OF("VolumeLightParams", volume_light_params_members, struct volume_light_params);
     p->state = s;
     return gl_framebuffer_create(&s->fb, err);
 }

@@ -77,9 +77,7 @@ static bool water_surface_create(struct pass *p, struct renderer *r, struct erro
     struct water_surface_state *s = calloc(1, sizeof *s);
     if (!s)
         return error_set(err, "out of memory");
-    s->params = (struct gl_param_block){.name = "WaterSurfaceParams", .members = water_surface_params_members,
-                                        .count = (int)(sizeof water_surface_params_members / sizeof water_surface_params_members[0]),
-                                        .size = sizeof(struct water_surface_params)};
+    s->params = GL_PARAM_BLOCK_OF("WaterSurfaceParams", water_surface_params_members, struct water_surface_params);
     p->state = s;
     return gl_framebuffer_create(&s->fb, err);
 }
