@@ -3,6 +3,37 @@
 
 #include "gl/gl_buffer.h"
 
+/* A program's block against its C mirror (gl_param_block.h). */
+bool gl_program_check_block(const struct gl_program *p, const char *block, const struct gl_block_member *members,
+                            int count, size_t size, struct error *err)
+{
+    const char *stage = p->stages[1][0] ? p->stages[1] : p->stages[0][0] ? p->stages[0] : p->stages[2];
+    GLuint b = gl.GetProgramResourceIndex(p->id, GL_UNIFORM_BLOCK, block);
+    if (b == GL_INVALID_INDEX)
+        return error_set(err, "%s: no uniform block '%s' (its C mirror has %d members)", stage, block, count);
+    static const GLenum block_props[2] = {GL_BUFFER_DATA_SIZE, GL_NUM_ACTIVE_VARIABLES};
+    GLint bv[2] = {0, 0};
+    gl.GetProgramResourceiv(p->id, GL_UNIFORM_BLOCK, b, 2, block_props, 2, NULL, bv);
+    for (int i = 0; i < count; i++) {
+        GLuint m = gl.GetProgramResourceIndex(p->id, GL_UNIFORM, members[i].name);
+        static const GLenum props[2] = {GL_OFFSET, GL_BLOCK_INDEX};
+        GLint v[2] = {-1, -1};
+        if (m != GL_INVALID_INDEX)
+            gl.GetProgramResourceiv(p->id, GL_UNIFORM, m, 2, props, 2, NULL, v);
+        if (m == GL_INVALID_INDEX || v[1] != (GLint)b)
+            return error_set(err, "%s: uniform block '%s' has no member '%s', which its C mirror sets", stage, block,
+                             members[i].name);
+        if ((size_t)v[0] != members[i].offset)
+            return error_set(err, "%s: uniform block '%s': member '%s' at byte %d, its C mirror's at %zu", stage,
+                             block, members[i].name, v[0], members[i].offset);
+    }
+    if (bv[1] != count)
+        return error_set(err, "%s: uniform block '%s' has %d members, its C mirror %d", stage, block, bv[1], count);
+    if ((size_t)bv[0] > size)
+        return error_set(err, "%s: uniform block '%s' takes %d bytes, its C mirror %zu", stage, block, bv[0], size);
+    return true;
+}
+
 bool gl_param_block_upload(struct gl_param_block *b, const void *values, struct error *err)
 {
     if (!b->buffer && !gl_buffer_create(&b->buffer, NULL, b->size, GL_DYNAMIC_STORAGE_BIT, err))

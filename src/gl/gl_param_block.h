@@ -15,6 +15,22 @@
 #include "core/error.h"
 #include "gl/gl_program.h"
 
+/* A uniform block member as the C struct that mirrors the block has it:
+ * its name in the shader and offsetof in the struct (issue 54: a pass's
+ * parameters as one block, uploaded in one call, as `Frame` is). */
+struct gl_block_member {
+    const char *name;
+    size_t offset;
+};
+
+/* Whether `p`'s uniform block `block` is laid out as its C mirror: the
+ * block holds exactly these `count` members, each at its offset, in at most
+ * `size` bytes. An error names the program's shader, the block and what
+ * differs (a member C has and the shader lacks, or the other way round, or
+ * an offset). */
+bool gl_program_check_block(const struct gl_program *p, const char *block, const struct gl_block_member *members,
+                            int count, size_t size, struct error *err);
+
 #define GL_PARAM_BLOCK_PROGRAMS 16 /* programs one block remembers as checked */
 
 struct gl_param_block {

@@ -145,22 +145,6 @@ bool gl_program_cache_reserve(struct gl_program_cache *cache, enum gl_slot_kind 
  * program does not use it (the linker may drop what a shader never reads). */
 int gl_program_unit(const struct gl_program *p, enum gl_slot_kind kind, const char *name);
 
-/* A uniform block member as the C struct that mirrors the block has it:
- * its name in the shader and offsetof in the struct (issue 54: a pass's
- * parameters as one block, uploaded in one call, as `Frame` is). */
-struct gl_block_member {
-    const char *name;
-    size_t offset;
-};
-
-/* Whether `p`'s uniform block `block` is laid out as its C mirror: the
- * block holds exactly these `count` members, each at its offset, in at most
- * `size` bytes. An error names the program's shader, the block and what
- * differs (a member C has and the shader lacks, or the other way round, or
- * an offset). */
-bool gl_program_check_block(const struct gl_program *p, const char *block, const struct gl_block_member *members,
-                            int count, size_t size, struct error *err);
-
 /* Runs compute program `p` over nx x ny x nz invocations: as many work
  * groups of the size its shader declares as cover them (the shader's
  * layout(local_size_...) is read after link, so C does not repeat it),

@@ -507,6 +507,45 @@ static bool accumulate_outputs(struct pass *p, struct pass_frame *f, int accumul
     return true;
 }
 
+/* This frame's BeamParams: the light, the lattice, the distance impostor
+ * and the pass's parameters, for every stage (one upload). */
+static bool upload_params(struct pass *p, struct pass_frame *f, const struct frame_light *fl, bool ortho, int slot,
+                          vec3 center, float range, struct error *err)
+{
+    struct beam_caustics_state *s = p->state;
+    int samples = pass_int(p, BC_SAMPLES);
+    if (samples == 0)
+        samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
+    const struct beam_params values = {
+        .light_origin = {fl->position.x, fl->position.y, fl->position.z, ortho ? 1.0f : 0.0f},
+        .distance_center = {center.x, center.y, center.z},
+        .distance_range = range,
+        .jitter = {s->jitter[0], s->jitter[1]}, /* a still scene's lattice moved by this frame's sub-cell offset */
+        .lattice = s->lattice,
+        .refine = s->refine,
+        .capacity = s->cell_capacity,
+        .beam_capacity = s->beam_capacity,
+        .kept_offset = 2 * s->cell_capacity,
+        .light = slot,
+        .light_ortho = ortho ? 1 : 0,
+        .free_levels = pass_int(p, BC_REFINE),
+        .reflection = pass_flag(p, BC_REFLECTION) ? 1 : 0,
+        .volumes = pass_choice(p, BC_VOLUMES),
+        .samples = samples,
+        .surface = pass_flag(p, BC_SURFACE) ? 1 : 0,
+        .smooth = pass_flag(p, BC_SMOOTH) ? 1 : 0,
+        .focus = (float)pass_real(p, BC_FOCUS),
+        .pixels = (float)pass_real(p, BC_PIXELS),
+        /* surface discontinuities (§4.2): normals more than 20 degrees
+         * apart, or a depth step steeper than 80 degrees across the light's view */
+        .normal_cos = cosf(20.0f * (float)MATH_PI / 180.0f),
+        .depth_jump = tanf(80.0f * (float)MATH_PI / 180.0f),
+        .cutoff = (float)pass_real(p, BC_CUTOFF),
+        .max_focus = (float)pass_real(p, BC_MAX_FOCUS),
+    };
+    return gl_param_block_upload(&s->params, &values, err);
+}
+
 static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct beam_caustics_state *s = p->state;
@@ -562,37 +601,7 @@ static bool beam_caustics_execute(struct pass *p, struct pass_frame *f, struct e
     } else {
         temporal_jitter(&s->irradiance_history, &s->jitter[0], &s->jitter[1]);
     }
-    int samples = pass_int(p, BC_SAMPLES);
-    if (samples == 0)
-        samples = f->scene->medium && f->scene->medium->grid ? 4 : 1;
-    const struct beam_params values = {
-        .light_origin = {fl->position.x, fl->position.y, fl->position.z, lv.ortho ? 1.0f : 0.0f},
-        .distance_center = {center.x, center.y, center.z},
-        .distance_range = range,
-        .jitter = {s->jitter[0], s->jitter[1]}, /* a still scene's lattice moved by this frame's sub-cell offset */
-        .lattice = s->lattice,
-        .refine = s->refine,
-        .capacity = s->cell_capacity,
-        .beam_capacity = s->beam_capacity,
-        .kept_offset = 2 * s->cell_capacity,
-        .light = slot,
-        .light_ortho = lv.ortho ? 1 : 0,
-        .free_levels = pass_int(p, BC_REFINE),
-        .reflection = pass_flag(p, BC_REFLECTION) ? 1 : 0,
-        .volumes = pass_choice(p, BC_VOLUMES),
-        .samples = samples,
-        .surface = pass_flag(p, BC_SURFACE) ? 1 : 0,
-        .smooth = pass_flag(p, BC_SMOOTH) ? 1 : 0,
-        .focus = (float)pass_real(p, BC_FOCUS),
-        .pixels = (float)pass_real(p, BC_PIXELS),
-        /* surface discontinuities (§4.2): normals more than 20 degrees
-         * apart, or a depth step steeper than 80 degrees across the light's view */
-        .normal_cos = cosf(20.0f * (float)MATH_PI / 180.0f),
-        .depth_jump = tanf(80.0f * (float)MATH_PI / 180.0f),
-        .cutoff = (float)pass_real(p, BC_CUTOFF),
-        .max_focus = (float)pass_real(p, BC_MAX_FOCUS),
-    };
-    if (!gl_param_block_upload(&s->params, &values, err))
+    if (!upload_params(p, f, fl, lv.ortho, slot, center, range, err))
         return false;
     pass_stage_begin(p);
     if (!build_beams(p, f, extent, err) || !draw_volumes(p, f, err))

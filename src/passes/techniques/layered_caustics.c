@@ -264,6 +264,17 @@ static bool accumulate_frames(struct layered_caustics_state *s, struct pass *p, 
     return true;
 }
 
+/* This frame's LayeredCausticsParams: the light side's `values` and the
+ * camera's pixel (resolve.frag's irradiance per pixel area). */
+static bool upload_params(struct layered_caustics_state *s, const struct pass_frame *f,
+                          struct layered_caustics_params values, struct error *err)
+{
+    const struct camera *cam = &f->scene->camera;
+    values.pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height;
+    values.pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f;
+    return gl_param_block_upload(&s->params, &values, err);
+}
+
 static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct layered_caustics_state *s = p->state;
@@ -347,7 +358,6 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
      * photons landed 30 pixels apart). */
     gl.ProgramUniform1f(photons->id, gl_program_uniform(photons, "u_scene_guard"),
                         fmaxf(2.0f * max_radius, stretch_limit) + 1.0f);
-    const struct camera *cam = &f->scene->camera;
     const struct layered_caustics_params values = {
         .jitter = {jitter[0], jitter[1]},
         .buffer_size = {buffer, buffer},
@@ -356,12 +366,10 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         .texel_area = texel_area,
         .texel_tan = texel_tan,
         .fixed_point = fixed_point,
-        .pixel_tan = 2.0f * tanf(cam->fov * 0.5f * (float)MATH_PI / 180.0f) / (float)f->height,
-        .pixel_size = cam->ortho_width > 0.0f ? cam->ortho_width / (float)f->width : 0.0f,
         .max_radius = max_radius,
         .stretch_limit = stretch_limit,
     };
-    if (!gl_param_block_upload(&s->params, &values, err) || !gl_param_block_bind(&s->params, photons, err))
+    if (!upload_params(s, f, values, err) || !gl_param_block_bind(&s->params, photons, err))
         return false;
     gl_program_bind_storage(photons, "LandedFlux", s->landed);
     gl_program_bind_image(photons, "u_hits", s->hits.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);

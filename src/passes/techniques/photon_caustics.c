@@ -535,6 +535,24 @@ static bool map_caustics(struct photon_state *s, struct pass_frame *f, struct er
     return true;
 }
 
+/* This frame's PhotonParams: the caustic textures' and the mapping's
+ * values (the photons' fixed point as this light-side build, or the last,
+ * made it). */
+static bool upload_params(struct photon_state *s, const struct pass *p, int texture, struct error *err)
+{
+    const struct photon_params values = {
+        .fit = pass_flag(p, PHOTON_FIT),
+        .texture = texture,
+        .footprint = (float)pass_real(p, PHOTON_FOOTPRINT),
+        .k = pass_int(p, PHOTON_K),
+        .s = (float)pass_real(p, PHOTON_S),
+        .fixed_point = s->fixed_point,
+        .bias = (float)pass_real(p, PHOTON_BIAS),
+        .pixel_samples = pass_int(p, PHOTON_PIXEL_SAMPLES),
+    };
+    return gl_param_block_upload(&s->params, &values, err);
+}
+
 static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct photon_state *s = p->state;
@@ -615,19 +633,7 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
                      "box, %.0f%% of the area it first had)", 100.0 * s->coverage);
         s->key = key;
     }
-    /* the caustic textures' and the mapping's values (the photons' fixed
-     * point as this light-side build, or the last, made it) */
-    const struct photon_params values = {
-        .fit = pass_flag(p, PHOTON_FIT),
-        .texture = texture,
-        .footprint = (float)pass_real(p, PHOTON_FOOTPRINT),
-        .k = pass_int(p, PHOTON_K),
-        .s = (float)pass_real(p, PHOTON_S),
-        .fixed_point = s->fixed_point,
-        .bias = (float)pass_real(p, PHOTON_BIAS),
-        .pixel_samples = pass_int(p, PHOTON_PIXEL_SAMPLES),
-    };
-    if (!gl_param_block_upload(&s->params, &values, err))
+    if (!upload_params(s, p, texture, err))
         return false;
     /* The caustic textures cover the box the photons landed in where the
      * camera may see them (bounds.comp), so a moved camera rebuilds them
