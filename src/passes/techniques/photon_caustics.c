@@ -102,6 +102,8 @@ enum photon_caustics_param {
     PHOTON_ACCUMULATE,
     PHOTON_SHADOW,
     PHOTON_IMPOSTORS,
+    PHOTON_RECEIVERS,
+    PHOTON_RECEIVER_DEPTH,
 };
 
 static const struct pass_param_desc params[] = {
@@ -141,6 +143,13 @@ static const struct pass_param_desc params[] = {
      .help = "the receivers' impostors the caustic textures are made over (§3.2; an impostors pass's `set`): by "
              "default the graph adds one of `texture` texels, shared with refraction or layered_refraction where "
              "they want the same"},
+    [PHOTON_RECEIVERS] = {.name = "receivers", .type = PASS_PARAM_INPUT, .block = "receivers",
+     .default_output = "position",
+     .help = "the camera's receivers the caustic textures are mapped onto (a receivers { position = true } pass's "
+             "`position`, w = 1 + the object's id): by default the graph adds one, shared with the other caustics "
+             "passes"},
+    [PHOTON_RECEIVER_DEPTH] = {.name = "receiver_depth", .type = PASS_PARAM_INPUT, .default_beside = "receivers",
+     .default_output = "depth", .help = "their depth, this pass's `depth` (by default beside `receivers`)"},
 };
 
 static bool photon_declare(struct pass *p, struct error *err)
@@ -507,16 +516,22 @@ static bool accumulate_frames(struct photon_state *s, struct pass *p, struct pas
 }
 
 /* §3.3: the caustic textures mapped onto the receivers the camera sees
- * (the bound framebuffer). */
-static bool map_caustics(struct photon_state *s, struct pass_frame *f, struct error *err)
+ * (the receivers block's positions, into the bound framebuffer). */
+static bool map_caustics(struct photon_state *s, struct pass *p, struct pass_frame *f, struct error *err)
 {
     struct renderer *r = f->renderer;
     struct gl_program *map;
-    if (!gl_program_get(&r->programs, "common/object.vert", "photon_caustics/map.frag", NULL, &map, err))
+    if (!gl_program_get(&r->programs, "common/fullscreen.vert", "photon_caustics/map.frag", NULL, &map, err))
         return false;
     gl.UseProgram(map->id);
     bind_impostors(s, map);
     gl_program_bind_texture(map, "u_caustics", s->caustics.id);
+    /* the diffuse surfaces only, as shade { specular = false } draws them: the
+     * refraction passes and water_surface look up that image through the
+     * glass or water, so a floor under water or behind glass needs its
+     * caustics too (drawing the refractors' depth hid them: no caustics at
+     * all under water seen from above) */
+    gl_program_bind_texture(map, "u_receiver_position", pass_frame_input(p, f, "receivers")->texture.id);
     if (!gl_param_block_bind(&s->params, map, err))
         return false;
     for (int k = 0; k < s->impostors->count; k++) {
@@ -524,14 +539,7 @@ static bool map_caustics(struct photon_state *s, struct pass_frame *f, struct er
         snprintf(name, sizeof name, "u_impostor_object[%d]", k);
         gl.ProgramUniform1i(map->id, gl_program_uniform(map, name), s->impostors->items[k].object->id);
     }
-    gl.Enable(GL_DEPTH_TEST);
-    /* the diffuse surfaces only, as shade { specular = false } draws them: the
-     * refraction passes and water_surface look up that image through the
-     * glass or water, so a floor under water or behind glass needs its
-     * caustics too (drawing the refractors' depth hid them: no caustics at
-     * all under water seen from above) */
-    renderer_draw_objects(r, f->scene, map, DRAW_DIFFUSE);
-    gl.Disable(GL_DEPTH_TEST);
+    renderer_draw_fullscreen(r);
     return true;
 }
 
@@ -659,7 +667,12 @@ static bool photon_execute(struct pass *p, struct pass_frame *f, struct error *e
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     if (s->impostors->count == 0)
         return true;
-    if (!map_caustics(s, f, err))
+    /* this pass's depth: the receivers' (what the mapping covered), which
+     * the coverage check and the history's reprojection read */
+    const struct graph_resource *receiver_depth = pass_frame_input(p, f, "receiver_depth");
+    gl.CopyImageSubData(receiver_depth->texture.id, GL_TEXTURE_2D, 0, 0, 0, 0, depth->texture.id, GL_TEXTURE_2D, 0, 0, 0,
+                        0, f->width, f->height, 1);
+    if (!map_caustics(s, p, f, err))
         return false;
     /* the light's front depths and normals as the photons were last traced
      * (the view and projection in one matrix) */
@@ -687,6 +700,8 @@ static const char *photon_caustics_leaves_out(const struct pass *p, const struct
  * a refraction pass's at the same size shares them). */
 static bool photon_configure_block(const struct pass *p, int param, struct pass *block, struct error *err)
 {
+    if (param == PHOTON_RECEIVERS) /* the mapping reads their positions */
+        return pass_set_boolean(block, "position", true, err);
     if (param != PHOTON_IMPOSTORS)
         return true;
     return impostors_configure_block(block, pass_int(p, PHOTON_TEXTURE), 0, p, PHOTON_SHADOW, err);
