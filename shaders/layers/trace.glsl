@@ -30,9 +30,7 @@ struct LayerMaterial {
     vec4 absorption; // rgb per unit length
 };
 layout(std430) readonly buffer LayerMaterials { LayerMaterial layer_materials[]; };
-uniform mat4 u_layer_inv_view;
-uniform mat4 u_layer_inv_proj;
-uniform ivec2 u_layer_size;
+// (u_layer_inv_view, u_layer_inv_proj, u_layer_size: layers.glsl's LayerView)
 uniform int u_search;       // bisection steps per interface (§3.6: 5)
 uniform int u_steps;        // linear steps before them
 uniform int u_gradient;     // 0: the mesh normals; d > 0: eq. 3.2's perspective-corrected gradient with delta = d

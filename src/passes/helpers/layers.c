@@ -17,6 +17,8 @@
 #include "passes/helpers/layers.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +30,41 @@
 const struct record_type LAYER_SET_RECORD = {"layer_set"};
 
 void layers_init(struct layer_set *ls) { memset(ls, 0, sizeof *ls); }
+
+/* The C mirror of LayerView (shaders/layers/layers.glsl, std140). */
+struct layer_view_params {
+    float view[16], proj[16], inv_view[16], inv_proj[16];
+    int32_t size[2];
+    int32_t voxels, layers, exact_depth, pad[3];
+};
+static const struct gl_block_member layer_view_members[] = {
+    {"u_layer_view", offsetof(struct layer_view_params, view)},
+    {"u_layer_proj", offsetof(struct layer_view_params, proj)},
+    {"u_layer_inv_view", offsetof(struct layer_view_params, inv_view)},
+    {"u_layer_inv_proj", offsetof(struct layer_view_params, inv_proj)},
+    {"u_layer_size", offsetof(struct layer_view_params, size)},
+    {"u_voxels", offsetof(struct layer_view_params, voxels)},
+    {"u_layers", offsetof(struct layer_view_params, layers)},
+    {"u_exact_depth", offsetof(struct layer_view_params, exact_depth)},
+};
+
+/* This set's LayerView, uploaded in one call after each build. */
+static bool upload_view(struct layer_set *ls, struct error *err)
+{
+    if (!ls->view_block) {
+        ls->view_block = malloc(sizeof *ls->view_block);
+        if (!ls->view_block)
+            return error_set(err, "out of memory");
+        *ls->view_block = GL_PARAM_BLOCK_OF("LayerView", layer_view_members, struct layer_view_params);
+    }
+    struct layer_view_params values = {.size = {ls->width, ls->height}, .voxels = ls->voxels,
+                                       .layers = ls->layers, .exact_depth = ls->exact_depth ? 1 : 0};
+    memcpy(values.view, ls->view.m, sizeof values.view);
+    memcpy(values.proj, ls->proj.m, sizeof values.proj);
+    memcpy(values.inv_view, ls->inv_view.m, sizeof values.inv_view);
+    memcpy(values.inv_proj, ls->inv_proj.m, sizeof values.inv_proj);
+    return gl_param_block_upload(ls->view_block, &values, err);
+}
 
 static void release_targets(struct layer_set *ls)
 {
@@ -48,6 +85,10 @@ void layers_release(struct layer_set *ls)
             gl.DeleteBuffers(1, &ls->ranges);
         if (ls->materials)
             gl.DeleteBuffers(1, &ls->materials);
+    }
+    if (ls->view_block) {
+        gl_param_block_release(ls->view_block);
+        free(ls->view_block);
     }
     layers_init(ls);
 }
@@ -130,15 +171,6 @@ static bool ensure_targets(struct layer_set *ls, int w, int h, int voxels, int l
     return gl_framebuffer_attach(&ls->bits_fb, wc, wl, words, NULL, -1, err);
 }
 
-static void set_view_uniforms(const struct layer_set *ls, const struct gl_program *prog)
-{
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_view"), 1, GL_FALSE, ls->view.m);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_proj"), 1, GL_FALSE, ls->proj.m);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_voxels"), ls->voxels);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layers"), ls->layers);
-    gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_exact_depth"), ls->exact_depth ? 1 : 0);
-}
-
 /* Each refractor alone, with its slot for the attribute pass. */
 static void draw_refractors(struct layer_set *ls, struct renderer *r, const struct scene *scene,
                             const struct gl_program *prog)
@@ -193,6 +225,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     ls->draws = 0;
     ls->triangles = 0;
     upload_materials(ls, scene);
+    if (!upload_view(ls, err))
+        return false;
 
     struct gl_program *bounds, *voxelize, *attributes, *peel, *ranges;
     if (!gl_program_get(&r->programs, "layers/layers.vert", "layers/bounds.frag", NULL, &bounds, err) ||
@@ -211,7 +245,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.ClearNamedFramebufferfv(ls->bounds_fb.id, GL_COLOR, 0, empty);
     gl.Enable(GL_BLEND);
     gl.BlendEquation(GL_MAX);
-    set_view_uniforms(ls, bounds);
+    if (!gl_param_block_bind(ls->view_block, bounds, err))
+        return false;
     draw_refractors(ls, r, scene, bounds);
     gl.BlendEquation(GL_FUNC_ADD);
     gl.Disable(GL_BLEND);
@@ -226,7 +261,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl.Enable(GL_COLOR_LOGIC_OP);
     gl.LogicOp(GL_OR);
     gl_program_bind_texture(voxelize, "u_bounds", ls->bounds.id);
-    set_view_uniforms(ls, voxelize);
+    if (!gl_param_block_bind(ls->view_block, voxelize, err))
+        return false;
     draw_refractors(ls, r, scene, voxelize);
     gl.Disable(GL_COLOR_LOGIC_OP);
     gl.LogicOp(GL_COPY);
@@ -246,7 +282,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     const float zero_f[4] = {0, 0, 0, 0};
     gl.ClearTexImage(ls->normal.id, 0, GL_RGBA, GL_FLOAT, zero_f);
     gl.UseProgram(peel->id);
-    set_view_uniforms(ls, peel);
+    if (!gl_param_block_bind(ls->view_block, peel, err))
+        return false;
     gl_program_bind_texture(peel, "u_bounds", ls->bounds.id);
     gl_program_bind_texture(peel, "u_bits", ls->bits.id);
     gl_program_bind_image(peel, "u_depth", ls->depth.id, GL_TRUE, GL_WRITE_ONLY, GL_R32F);
@@ -263,7 +300,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl_program_bind_texture(attributes, "u_bits", ls->bits.id);
     gl_program_bind_image(attributes, "u_depth", ls->depth.id, GL_TRUE, GL_WRITE_ONLY, GL_R32F);
     gl_program_bind_image(attributes, "u_normal", ls->normal.id, GL_TRUE, GL_WRITE_ONLY, GL_RGBA32F);
-    set_view_uniforms(ls, attributes);
+    if (!gl_param_block_bind(ls->view_block, attributes, err))
+        return false;
     draw_refractors(ls, r, scene, attributes);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -275,6 +313,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     gl_program_bind_texture(ranges, "u_depth", ls->depth.id);
     gl_program_bind_texture(ranges, "u_info", ls->info.id);
     gl_program_bind_storage(ranges, "Ranges", ls->ranges);
+    if (!gl_param_block_bind(ls->view_block, ranges, err))
+        return false;
     gl_program_dispatch(ranges, width, height, 1, GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (timed)
         pass_stage_end(timed, "ranges");
@@ -282,8 +322,8 @@ bool layers_build(struct layer_set *ls, struct renderer *r, const struct scene *
     return gl_check("depth layers", err);
 }
 
-void layers_bind(const struct layer_set *ls, const struct gl_program *prog, const struct scene *scene,
-                 const struct layers_trace *trace)
+bool layers_bind(const struct layer_set *ls, const struct gl_program *prog, const struct scene *scene,
+                 const struct layers_trace *trace, struct error *err)
 {
     gl_program_bind_texture(prog, "u_bounds", ls->bounds.id);
     gl_program_bind_texture(prog, "u_layer_depth", ls->depth.id);
@@ -291,16 +331,15 @@ void layers_bind(const struct layer_set *ls, const struct gl_program *prog, cons
     gl_program_bind_texture(prog, "u_layer_info", ls->info.id);
     gl_program_bind_storage(prog, "LayerRanges", ls->ranges);
     gl_program_bind_storage(prog, "LayerMaterials", ls->materials);
-    set_view_uniforms(ls, prog);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_view"), 1, GL_FALSE, ls->inv_view.m);
-    gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_layer_inv_proj"), 1, GL_FALSE, ls->inv_proj.m);
-    gl.ProgramUniform2i(prog->id, gl_program_uniform(prog, "u_layer_size"), ls->width, ls->height);
+    if (!gl_param_block_bind(ls->view_block, prog, err))
+        return false;
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_search"), trace->search);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_steps"), trace->steps);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_gradient"), trace->gradient);
     gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_max_interfaces"), trace->max_interfaces);
     gl.ProgramUniform1f(prog->id, gl_program_uniform(prog, "u_layer_extent"), trace->layer_extent);
     layers_bind_scene_trace(prog, scene);
+    return true;
 }
 
 void layers_bind_scene_trace(const struct gl_program *prog, const struct scene *scene)

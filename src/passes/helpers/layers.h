@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/vecmath.h"
+#include "gl/gl_param_block.h"
 #include "gl/gl_program.h"
 #include "gl/gl_texture.h"
 #include "scene/light_view.h"
@@ -63,6 +64,11 @@ struct layer_set {
     vec3 lo, hi;
     struct light_view light_view;
     float radius;
+    /* owned: the uniform block LayerView (layers/layers.glsl) of this set's
+     * view, projection, their inverses, size and counts, uploaded once by
+     * layers_build and bound by every program that reads the set (issue 54;
+     * a pointer, so that a reader holding the set const binds it) */
+    struct gl_param_block *view_block;
 };
 
 void layers_init(struct layer_set *ls);
@@ -86,8 +92,8 @@ struct layers_trace {
 /* Binds the textures and buffers the tracer reads, and sets its uniforms
  * on `program`; rays leaving the layers are marched at most 1.5 times the
  * scene's bounding diameter, in 64 steps. */
-void layers_bind(const struct layer_set *ls, const struct gl_program *program, const struct scene *scene,
-                 const struct layers_trace *trace);
+bool layers_bind(const struct layer_set *ls, const struct gl_program *program, const struct scene *scene,
+                 const struct layers_trace *trace, struct error *err);
 bool layers_is_refractor(const struct object *o);
 /* What a pass tracing the light through the layers leaves out of object o
  * (a mirror: the layers hold glass and water only), for pass_desc.leaves_out;

@@ -354,7 +354,8 @@ static bool build_beams(struct pass *p, struct pass_frame *f, float extent, stru
     gl.UseProgram(trace->id);
     struct layers_trace settings = {.search = 5, .steps = 8, .max_interfaces = 2 * s->layers->layers + 2,
                                     .layer_extent = extent};
-    layers_bind(s->layers, trace, f->scene, &settings);
+    if (!layers_bind(s->layers, trace, f->scene, &settings, err))
+        return false;
     bind_beam_buffers(trace, s);
     if (!gl_param_block_bind(&s->params, trace, err))
         return false;

@@ -335,7 +335,8 @@ static bool layered_caustics_execute(struct pass *p, struct pass_frame *f, struc
         .max_interfaces = 2 * ls->layers + 2,
         .layer_extent = 2.0f * orad,
     };
-    layers_bind(ls, photons, f->scene, &trace);
+    if (!layers_bind(ls, photons, f->scene, &trace, err))
+        return false;
     gl_program_bind_texture(photons, "u_scene_depth", receiver_depth);
     gl_program_bind_texture(photons, "u_receiver_normal", receiver_normal);
     shadow_inputs_bind(p, f, photons); /* the panes between the light and the glass (its pane filter) */

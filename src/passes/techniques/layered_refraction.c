@@ -213,7 +213,8 @@ static bool layered_refraction_execute(struct pass *p, struct pass_frame *f, str
         .max_interfaces = pass_int(p, LR_INTERFACES) > 0 ? pass_int(p, LR_INTERFACES) : 2 * layers + 2,
         .layer_extent = fmaxf(vec3_length(vec3_sub(hi, lo)), 1e-4f) * 1.01f,
     };
-    layers_bind(ls, prog, f->scene, &trace);
+    if (!layers_bind(ls, prog, f->scene, &trace, err))
+        return false;
     gl_program_bind_texture(prog, "u_scene", in_color->texture.id);
     gl_program_bind_texture(prog, "u_scene_depth", in_depth->texture.id);
     const struct layered_refraction_params values = {
