@@ -45,26 +45,32 @@ static bool diffuse_animated(const struct scene *scene)
 }
 
 /* A program that lights the map's surfaces from its centre: the shadow
- * maps of `shadow_pass`'s inputs (none without it), the medium, the
- * centre. */
-static bool bind_lighting(const struct gl_program *prog, struct pass *shadow_pass, struct pass_frame *f, vec3 center,
+ * maps of the block's inputs (none: unshadowed), the medium, the centre. */
+static bool bind_lighting(const struct gl_program *prog, struct pass *block, struct pass_frame *f, vec3 center,
                           struct error *err)
 {
-    if (shadow_pass)
-        shadow_inputs_bind(shadow_pass, f, prog);
-    else
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_shadow_total"), 0);
+    shadow_inputs_bind(block, f, prog);
     if (!medium_gpu_bind(f->renderer, f->scene, prog, err))
         return false;
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     return true;
 }
 
+/* The state every face of a map is drawn in: depth-tested, both sides. */
+static void begin_faces(int size)
+{
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);
+    gl.Viewport(0, 0, size, size);
+}
+
 /* Renders the map around `center` (size x size per face): the visible
  * diffuse objects lit as `shade` lights them (Lambert, ambient, emission),
  * shadowed by the shadow maps of the block's inputs when it has any
  * (shadow_inputs). */
-static bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *shadow_pass,
+static bool distance_map_update(struct distance_map *m, struct renderer *r, struct pass *block,
                                 struct pass_frame *f, vec3 center, int size, uint64_t key, struct error *err)
 {
     const struct scene *scene = f->scene;
@@ -99,7 +105,7 @@ static bool distance_map_update(struct distance_map *m, struct renderer *r, stru
         return false;
     for (int k = 0; k < 2 && progs[k]; k++) {
         /* lit as shade lights (common/surface_light.glsl) */
-        if (!bind_lighting(progs[k], shadow_pass, f, center, err))
+        if (!bind_lighting(progs[k], block, f, center, err))
             return false;
     }
     /* Thin-walled glass over the diffuse surfaces it lies in front of, as
@@ -110,7 +116,7 @@ static bool distance_map_update(struct distance_map *m, struct renderer *r, stru
         if (!gl_program_get(&r->programs, "common/object.vert", "common/thin_glass.frag",
                             DISTANCE_MAP_VIEW "#define VIEW_FROM_CENTER 1\n", &panes, err))
             return false;
-        if (!bind_lighting(panes, shadow_pass, f, center, err))
+        if (!bind_lighting(panes, block, f, center, err))
             return false;
         gl.ProgramUniform1i(panes->id, gl_program_uniform(panes, "u_panes"), 0);
         gl_program_bind_texture(panes, "u_surface_depth", r->dummy_2d.id);
@@ -122,11 +128,7 @@ static bool distance_map_update(struct distance_map *m, struct renderer *r, stru
     float reach = fmaxf(vec3_length(vec3_sub(hi, center)), vec3_length(vec3_sub(lo, center)));
     float far = fmaxf(fmaxf(extent, reach) * 2.0f, 1e-2f);
     mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(far * 1e-5f, 1e-4f), far);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    gl.Disable(GL_CULL_FACE);
-    gl.Viewport(0, 0, size, size);
+    begin_faces(size);
     for (int i = 0; i < 12; i++) {
         int layer = i / 6, face = i % 6;
         mat4 vp = mat4_mul(proj, mat4_cube_face_view(center, face));
@@ -197,11 +199,7 @@ static bool distance_map_update_distances(struct distance_map *m, struct rendere
     gl.UseProgram(prog->id);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), center.x, center.y, center.z);
     mat4 proj = mat4_perspective(90.0f, 1.0f, fmaxf(range * 1e-5f, 1e-5f), range);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    gl.Disable(GL_CULL_FACE);
-    gl.Viewport(0, 0, size, size);
+    begin_faces(size);
     for (int face = 0; face < 6; face++) {
         const struct gl_texture *colors[1] = {&m->distance[0]};
         int layers[1] = {face};
