@@ -5,6 +5,8 @@
 # reader whose values leave it unread, takes the script's own in its place
 # (the same image), reuses it while nothing it shows changes (a recursive
 # set is made every frame), and refuses a map of the wrong content by name.
+# Refraction's image of what lies behind the glass is the block
+# `shade { specular = false }` (it drew the diffuse objects itself).
 source "$(dirname "$0")/lib.sh"
 S=tests/scenes/lookup_blocks.lua
 count() { grep -cE "^[a-z_0-9]+ +$2 " "$WORK/$1.txt"; }
@@ -17,8 +19,8 @@ same() { "$CAUSTICA" compare "$WORK/$1.pfm" "$WORK/$2.pfm" | grep -q "rmse=0 "; 
 
 # the distance map
 [ "$(count default distance_map)" = 1 ] && grep -qE '^distance_map +distance_map +[0-9.]+ +24 ' "$WORK/default.txt" \
-  && grep -qE '^glass +refraction +[0-9.]+ +5 ' "$WORK/default.txt" && [ "$(count default impostors)" = 0 ] \
-  && pass "refraction's map is a block: 24 draws (two layers, six faces, two receivers) there, refraction's own 5" \
+  && grep -qE '^glass +refraction +[0-9.]+ +3 ' "$WORK/default.txt" && [ "$(count default impostors)" = 0 ] \
+  && pass "refraction's map is a block: 24 draws (two layers, six faces, two receivers) there, refraction's own 3" \
   || fail "the added map" "$(cat "$WORK/default.txt")"
 [ "$(count named distance_map)" = 1 ] && grep -qE '^dm +distance_map ' "$WORK/named.txt" && same default named \
   && pass "the script's distance_map in its place: none added, the same image" || fail "a named map" "$(cat "$WORK/named.txt")"
@@ -35,6 +37,20 @@ expect_error "a map of distances where refraction reads radiance" 1 \
   "pass 'glass' (refraction): its distance map ('dm.map') holds distances alone: the lookups need content = \"radiance\"" \
   "$WORK/w.png" -- "$CAUSTICA" render $S --set case=wrong -o "$WORK/w.png"
 
+# what lies behind the glass (lookup "scene")
+"$CAUSTICA" info $S --set case=beams >"$WORK/ib.txt" 2>&1
+"$CAUSTICA" info $S --set case=impostors >"$WORK/s.txt" 2>&1
+[ "$(count default shade)" = 1 ] && grep -q "in  behind       <- shade.color" "$WORK/i.txt" \
+  && grep -q "in  behind_depth <- shade.depth" "$WORK/i.txt" \
+  && pass "the script's shade { specular = false } with the same shadow map serves as refraction's behind" \
+  || fail "behind shared" "$(cat "$WORK/default.txt" "$WORK/i.txt")"
+[ "$(count beams shade)" = 2 ] && grep -q "in  behind       <- shade_2.color" "$WORK/ib.txt" \
+  && grep -q "added by the graph for 'glass'" "$WORK/ib.txt" \
+  && pass "a script's shade with caustics is not the behind image: the graph adds one" \
+  || fail "behind apart" "$(cat "$WORK/beams.txt" "$WORK/ib.txt")"
+[ "$(count impostors shade)" = 1 ] && ! grep -q "in  behind" "$WORK/s.txt" \
+  && pass "lookup = \"impostors\" reads no behind image" || fail "no behind" "$(cat "$WORK/s.txt")"
+
 # the impostors
 [ "$(count impostors impostors)" = 1 ] && [ "$(count impostors distance_map)" = 0 ] \
   && grep -qE '^impostors +impostors +[0-9.]+ +2 ' "$WORK/impostors.txt" \
@@ -48,7 +64,6 @@ expect_error "a map of distances where refraction reads radiance" 1 \
 grep -q "^  3 impostors of 256 x 256 texels, drawn again for each level of recursion" "$WORK/recursion.txt" \
   && pass "recursion: the glass's impostor too, drawn again" || fail "recursion" "$(cat "$WORK/recursion.txt")"
 "$CAUSTICA" info $S --set case=recursion >"$WORK/r.txt" 2>&1
-"$CAUSTICA" info $S --set case=impostors >"$WORK/s.txt" 2>&1
 grep -qE "^ 3  impostors +impostors +kept; runs every frame" "$WORK/r.txt" \
   && grep -qE "^ 3  impostors +impostors +kept; on frame 1 reuses its impostors" "$WORK/s.txt" \
   && pass "a still scene: the impostors reused on frame 1, made every frame with recursion" \

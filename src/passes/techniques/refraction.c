@@ -39,12 +39,9 @@
 struct refraction_state {
     const struct impostor_set *impostors; /* the impostors block's, this frame (NULL: the lookup reads none) */
     struct thin_glass_over panes;
-    struct gl_framebuffer front_fb, back_fb, out_fb, behind_fb;
+    struct gl_framebuffer front_fb, back_fb, out_fb;
     struct gl_texture front_normal, back_normal, front_depth, back_depth;
-    /* lookup = "scene": the diffuse objects as the camera sees them without
-     * the glass, where the input image shows the glass itself */
-    struct gl_texture behind_color, behind_distance, behind_depth;
-    /* rough glass: the input image and behind_color with mipmaps, for the
+    /* rough glass: the input image and the `behind` image with mipmaps, for the
      * cone lookup of refract.frag's seen_rough (made when a refractor is rough) */
     struct gl_texture rough_scene, rough_behind;
     int width, height;
@@ -101,6 +98,8 @@ enum refraction_param {
     REFRACTION_INTERNAL,
     REFRACTION_DISTANCE_MAP,
     REFRACTION_IMPOSTORS,
+    REFRACTION_BEHIND,
+    REFRACTION_BEHIND_DEPTH,
 };
 
 static const struct pass_param_desc params[] = {
@@ -151,6 +150,12 @@ static const struct pass_param_desc params[] = {
      .help = "the nearby objects' impostors the lookup \"impostors\" and recursion read (an impostors pass's "
              "`set`): by default the graph adds one of `impostor` texels at `recursion`, lit through `shadow`, "
              "shared with any reader that wants the same"},
+    [REFRACTION_BEHIND] = {.name = "behind", .type = PASS_PARAM_INPUT, .block = "shade", .default_output = "color",
+     .help = "the lookup \"scene\"'s image of what lies behind the glass where `color` shows the glass itself (a "
+             "shade pass's `color` with specular = false): by default the graph adds one lit through `shadow`, "
+             "shared with any reader that wants the same"},
+    [REFRACTION_BEHIND_DEPTH] = {.name = "behind_depth", .type = PASS_PARAM_INPUT, .default_beside = "behind",
+     .default_output = "depth", .help = "its depth; default: the depth output of the pass that made behind"},
 };
 
 static bool refraction_declare(struct pass *p, struct error *err)
@@ -176,7 +181,7 @@ static bool refraction_create(struct pass *p, struct renderer *r, struct error *
     s->params = GL_PARAM_BLOCK_OF("RefractionParams", refraction_params_members, struct refraction_params);
     p->state = s;
     return gl_framebuffer_create(&s->front_fb, err) && gl_framebuffer_create(&s->back_fb, err) &&
-           gl_framebuffer_create(&s->out_fb, err) && gl_framebuffer_create(&s->behind_fb, err);
+           gl_framebuffer_create(&s->out_fb, err);
 }
 
 static void release_targets(struct refraction_state *s)
@@ -185,9 +190,6 @@ static void release_targets(struct refraction_state *s)
     gl_texture_destroy(&s->back_normal);
     gl_texture_destroy(&s->front_depth);
     gl_texture_destroy(&s->back_depth);
-    gl_texture_destroy(&s->behind_color);
-    gl_texture_destroy(&s->behind_distance);
-    gl_texture_destroy(&s->behind_depth);
     gl_texture_destroy(&s->rough_scene);
     gl_texture_destroy(&s->rough_behind);
 }
@@ -202,7 +204,6 @@ static void refraction_destroy(struct pass *p)
     gl_framebuffer_destroy(&s->front_fb);
     gl_framebuffer_destroy(&s->back_fb);
     gl_framebuffer_destroy(&s->out_fb);
-    gl_framebuffer_destroy(&s->behind_fb);
     gl_param_block_release(&s->params);
     free(s);
     p->state = NULL;
@@ -292,53 +293,11 @@ static bool ensure_targets(struct refraction_state *s, int w, int h, struct erro
     if (!gl_texture_create(&s->front_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->back_normal, GL_TEXTURE_2D, GL_RGBA32F, w, h, 1, err) ||
         !gl_texture_create(&s->front_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
-        !gl_texture_create(&s->back_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err) ||
-        !gl_texture_create(&s->behind_color, GL_TEXTURE_2D, GL_RGBA16F, w, h, 1, err) ||
-        !gl_texture_create(&s->behind_distance, GL_TEXTURE_2D, GL_R32F, w, h, 1, err) ||
-        !gl_texture_create(&s->behind_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err))
+        !gl_texture_create(&s->back_depth, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h, 1, err))
         return false;
     const struct gl_texture *fc[1] = {&s->front_normal}, *bc[1] = {&s->back_normal};
-    const struct gl_texture *behind[2] = {&s->behind_color, &s->behind_distance};
     return gl_framebuffer_attach(&s->front_fb, fc, NULL, 1, &s->front_depth, -1, err) &&
-           gl_framebuffer_attach(&s->back_fb, bc, NULL, 1, &s->back_depth, -1, err) &&
-           gl_framebuffer_attach(&s->behind_fb, behind, NULL, 2, &s->behind_depth, -1, err);
-}
-
-/* lookup = "scene": the diffuse objects from the camera, lit as the distance
- * map lights them (shaders/distance_map/distance.frag), for the rays whose
- * exit the input image hides behind the glass it drew itself. */
-static bool draw_behind(struct refraction_state *s, struct pass *p, struct pass_frame *f, struct error *err)
-{
-    struct renderer *r = f->renderer;
-    /* Lambert's program and its glTF-BRDF variant (renderer_draw_lit) */
-    struct gl_program *progs[2];
-    if (!renderer_lit_programs(r, f->scene, "common/object.vert", "distance_map/distance.frag",
-                               "#define OBJECT_VIEW_PROJ\n", progs, err))
-        return false;
-    vec3 eye = f->snapshot->eye;
-    for (int k = 0; k < 2 && progs[k]; k++) {
-        struct gl_program *prog = progs[k];
-        shadow_inputs_bind(p, f, prog);
-        if (!medium_gpu_bind(r, f->scene, prog, err))
-            return false;
-        gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_center"), eye.x, eye.y, eye.z);
-        gl.ProgramUniform1i(prog->id, gl_program_uniform(prog, "u_layer"), 0);
-        gl_program_bind_texture(prog, "u_first", r->dummy_cube.id);
-        gl.ProgramUniformMatrix4fv(prog->id, gl_program_uniform(prog, "u_object_view_proj"), 1, GL_FALSE,
-                                   f->snapshot->view_proj.m);
-    }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s->behind_fb.id);
-    const float black[4] = {0, 0, 0, 0};
-    gl.ClearNamedFramebufferfv(s->behind_fb.id, GL_COLOR, 0, black);
-    gl.ClearNamedFramebufferfv(s->behind_fb.id, GL_COLOR, 1, black);
-    gl.Clear(GL_DEPTH_BUFFER_BIT);
-    gl.Viewport(0, 0, f->width, f->height);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    gl.Disable(GL_CULL_FACE);
-    renderer_draw_lit(r, f->scene, progs[0], progs[1], DRAW_DIFFUSE);
-    return gl_check("drawing the scene behind the glass", err);
+           gl_framebuffer_attach(&s->back_fb, bc, NULL, 1, &s->back_depth, -1, err);
 }
 
 /* Initial pass (Hu & Qin §2.1): the refractors' front- and back-facing
@@ -367,16 +326,16 @@ static bool draw_surfaces(struct refraction_state *s, struct pass_frame *f, bool
     return true;
 }
 
-/* What a ray leaving the glass looks up, both made by blocks before this
- * pass: the distance map (and, for the screen lookup, the diffuse objects
- * behind the glass from the camera, drawn here), or §2.2.1's impostors of
- * the nearby (diffuse) objects around the refractors' centre. */
-static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, bool distance, bool screen,
-                        bool nearby, struct error *err)
+/* What a ray leaving the glass looks up, all made by blocks before this
+ * pass: the distance map (and, for the screen lookup, the `behind` image:
+ * the diffuse objects from the camera without the glass), or §2.2.1's
+ * impostors of the nearby (diffuse) objects around the refractors' centre. */
+static bool make_lookup(struct refraction_state *s, struct pass *p, struct pass_frame *f, bool distance, bool nearby,
+                        struct error *err)
 {
     s->impostors = NULL;
     if (distance)
-        return !screen || draw_behind(s, p, f, err);
+        return true;
     if (!nearby)
         return true;
     s->impostors = pass_frame_record(p, f, "impostors", &IMPOSTOR_SET_RECORD);
@@ -403,17 +362,20 @@ static bool bind_distance_lookup(struct refraction_state *s, struct pass *p, con
     gl_program_bind_texture(prog, "u_distance_distance_behind", map->distance[1].id);
     gl.ProgramUniform3f(prog->id, gl_program_uniform(prog, "u_distance_center"), map->center.x, map->center.y,
                         map->center.z);
-    /* the input image first: what the camera sees where the ray goes */
+    /* the input image first: what the camera sees where the ray goes, and
+     * behind the glass it shows (the `behind` block: lookup "scene" alone) */
+    struct graph_resource *behind = pass_frame_input(p, f, "behind"), *behind_depth = pass_frame_input(p, f, "behind_depth");
+    GLuint behind_id = behind ? behind->texture.id : f->renderer->dummy_2d.id;
     gl_program_bind_texture(prog, "u_scene", in_color->id);
-    gl_program_bind_texture(prog, "u_scene_depth", s->behind_depth.id);
-    gl_program_bind_texture(prog, "u_behind", s->behind_color.id);
+    gl_program_bind_texture(prog, "u_scene_depth", behind_depth ? behind_depth->texture.id : f->renderer->dummy_depth.id);
+    gl_program_bind_texture(prog, "u_behind", behind_id);
     gl_program_bind_texture(prog, "u_input_depth", in_depth->id);
-    bool rough = scene_has_rough_glass(f->scene);
+    bool rough = behind && scene_has_rough_glass(f->scene);
     if (rough && (!gl_texture_copy(&s->rough_scene, in_color, true, err) ||
-                  !gl_texture_copy(&s->rough_behind, &s->behind_color, true, err)))
+                  !gl_texture_copy(&s->rough_behind, &behind->texture, true, err)))
         return false;
     gl_program_bind_texture(prog, "u_scene_mips", rough ? s->rough_scene.id : in_color->id);
-    gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : s->behind_color.id);
+    gl_program_bind_texture(prog, "u_behind_mips", rough ? s->rough_behind.id : behind_id);
     layers_bind_scene_trace(prog, f->scene);
     /* a surface the camera sees at more than about 63 degrees (its depth
      * changing by two pixel widths a pixel) is asked of the distance map
@@ -463,7 +425,7 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
              distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
     vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
     scene_role_bounds(f->scene, OBJECT_ROLE_SPECULAR, &lo, &hi); /* (something specular is in view) */
-    if (!make_lookup(s, p, f, distance, screen, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
+    if (!make_lookup(s, p, f, distance, nearby, err) || !draw_surfaces(s, f, wyman, defines, err))
         return false;
     const float zero[4] = {0, 0, 0, 0};
 
@@ -569,6 +531,8 @@ static bool refraction_reads_block(const struct pass *p, int param)
 {
     if (param == REFRACTION_DISTANCE_MAP)
         return uses_distance_map(p);
+    if (param == REFRACTION_BEHIND)
+        return uses_distance_map(p) && pass_choice(p, REFRACTION_LOOKUP) == REFRACTION_LOOKUP_SCENE;
     if (param == REFRACTION_IMPOSTORS)
         return pass_flag(p, REFRACTION_NEARBY) && !uses_distance_map(p);
     return true;
@@ -581,6 +545,8 @@ static bool refraction_configure_block(const struct pass *p, int param, struct p
     if (param == REFRACTION_IMPOSTORS)
         return impostors_configure_block(block, pass_int(p, REFRACTION_IMPOSTOR), pass_int(p, REFRACTION_RECURSION), p,
                                          REFRACTION_SHADOW, err);
+    if (param == REFRACTION_BEHIND) /* the diffuse objects alone, lit as shade lights them */
+        return pass_set_boolean(block, "specular", false, err) && shadow_inputs_give(block, p, REFRACTION_SHADOW, err);
     if (param != REFRACTION_DISTANCE_MAP)
         return true;
     return distance_map_configure_block(block, DISTANCE_MAP_RADIANCE, pass_int(p, REFRACTION_IMPOSTOR),
