@@ -419,7 +419,9 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                                 : sqrt(dv_dot(dv_sub(origin, rs->eye), dv_sub(origin, rs->eye)));
     dvec3 beta = sppm_attenuate(dv(1, 1, 1), sppm_medium_sigma(rs, &media), from_eye);
     px->vp.valid = false;
-    px->segment_count = 0;
+    struct pixel_segments *kept = j->segments ? &j->segments[(size_t)y * (size_t)j->o->width + (size_t)x] : NULL;
+    if (kept)
+        kept->count = 0;
     const struct ref_medium *rm = j->medium;
     int depth;
     for (depth = 0; depth < MAX_DEPTH; depth++) {
@@ -439,13 +441,13 @@ static dvec3 trace_eye_path(struct job *j, struct pixel *px, int x, int y, struc
                 dvec3 c = dv_mul(dv_mul(beta, tr), dv_mul(dv_scale(rm->sigma_s, rho * (t1 - t0)), ls));
                 seen = dv_add(seen, c);
             }
-            if (px->segment_count < MAX_SEGMENTS) {
-                int k = px->segment_count++;
-                px->segments[k].origin = origin;
-                px->segments[k].dir = dir;
-                px->segments[k].beta = beta;
-                px->segments[k].t0 = t0;
-                px->segments[k].t1 = t1;
+            if (kept && kept->count < MAX_SEGMENTS) {
+                int k = kept->count++;
+                kept->segments[k].origin = origin;
+                kept->segments[k].dir = dir;
+                kept->segments[k].beta = beta;
+                kept->segments[k].t0 = t0;
+                kept->segments[k].t1 = t1;
             }
             beta = dv_mul(beta, ref_medium_transmittance(rm, origin, dir, hit ? h.t : INFINITY, &rng));
         }

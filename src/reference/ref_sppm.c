@@ -15,6 +15,7 @@
  * and ref_surface_gather.c, the clock and progress ref_budget.c
  * (ref_sppm_internal.h). */
 #define _POSIX_C_SOURCE 200809L
+#include "core/huge_pages.h"
 #include "reference/ref_sppm_internal.h"
 
 
@@ -550,6 +551,7 @@ static void write_estimates(const struct pixel *pixels, size_t npix, const struc
 /* The render's buffers: per pixel, per photon chunk, the budget. */
 struct sppm_buffers {
     struct pixel *pixels;
+    struct pixel_segments *segments; /* with a medium alone */
     struct ref_surface_photons *chunks;
     struct volume_photons *volume_chunks;
     struct aim_log *aims;
@@ -571,17 +573,20 @@ static void sppm_buffers_release(struct sppm_buffers *b)
     free(b->volume_chunks);
     free(b->chunks);
     free(b->pixels);
+    free(b->segments);
 }
 
-static bool sppm_buffers_create(struct sppm_buffers *b, size_t npix)
+static bool sppm_buffers_create(struct sppm_buffers *b, size_t npix, bool medium)
 {
     memset(b, 0, sizeof *b);
-    b->pixels = calloc(npix, sizeof *b->pixels);
+    /* (huge_pages.h: the first eye pass faulted these in 4 KiB at a time) */
+    b->pixels = huge_pages_calloc(npix, sizeof *b->pixels);
+    b->segments = medium ? huge_pages_calloc(npix, sizeof *b->segments) : NULL;
     b->chunks = calloc(PHOTON_CHUNKS, sizeof *b->chunks);
     b->volume_chunks = calloc(PHOTON_CHUNKS, sizeof *b->volume_chunks);
     b->aims = calloc(PHOTON_CHUNKS, sizeof *b->aims);
     b->budget = calloc(1, sizeof *b->budget);
-    return b->pixels && b->chunks && b->volume_chunks && b->aims && b->budget;
+    return b->pixels && (!medium || b->segments) && b->chunks && b->volume_chunks && b->aims && b->budget;
 }
 
 /* A budget that did not buy one whole iteration says so: the image is
@@ -695,7 +700,9 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         }
     size_t npix = (size_t)o->width * (size_t)o->height;
     struct sppm_buffers buf;
-    if (!sppm_buffers_create(&buf, npix) || !image_create(out, o->width, o->height, err) ||
+    struct ref_medium medium;
+    ref_medium_init(&medium, scene->medium);
+    if (!sppm_buffers_create(&buf, npix, medium.present) || !image_create(out, o->width, o->height, err) ||
         (caustic_out && !image_create(caustic_out, o->width, o->height, err))) {
         image_destroy(out);
         sppm_buffers_release(&buf);
@@ -710,8 +717,6 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     int threads = o->threads > 0 ? o->threads : cpus_available();
     if (threads < 1)
         threads = 1;
-    struct ref_medium medium;
-    ref_medium_init(&medium, scene->medium);
     struct sppm_totals totals = {.gather_kept = 1.0};
     if (medium.present) {
         dvec3 ext = dv_sub(medium.hi, medium.lo);
@@ -725,7 +730,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct budget *budget = buf.budget;
     sppm_budget_start(budget, o, start);
     struct ref_photon_map photon_map = {0};
-    struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .camera_media = &camera_media, .medium = &medium,
+    struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .segments = buf.segments, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
                       .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims,
                       .photon_map = &photon_map};

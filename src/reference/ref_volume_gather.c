@@ -109,17 +109,19 @@ static dvec3 volume_estimate(const struct volume_grid *g, double phase_g, dvec3 
 /* The volume caustic seen along a pixel's medium segments. */
 static void gather_volume(struct job *j, int x, int y)
 {
-    struct pixel *px = &j->pixels[(size_t)y * (size_t)j->o->width + (size_t)x];
+    size_t i = (size_t)y * (size_t)j->o->width + (size_t)x;
+    struct pixel *px = &j->pixels[i];
     px->volume_samples += j->pass_fraction;
-    if (px->segment_count == 0)
+    const struct pixel_segments *kept = j->segments ? &j->segments[i] : NULL;
+    if (!kept || kept->count == 0)
         return;
     struct ref_rng rng = ref_rng_seed(j->o->seed, 1000003u * (uint64_t)j->iteration + 3u,
                                       (uint64_t)y * (uint64_t)j->o->width + (uint64_t)x);
     const struct ref_medium *rm = j->medium;
-    for (int k = 0; k < px->segment_count; k++) {
+    for (int k = 0; k < kept->count; k++) {
         int samples = j->volume_samples > 0 ? j->volume_samples : VOLUME_SAMPLES;
-        double t0 = px->segments[k].t0, t1 = px->segments[k].t1, step = (t1 - t0) / samples;
-        dvec3 o = px->segments[k].origin, d = px->segments[k].dir;
+        double t0 = kept->segments[k].t0, t1 = kept->segments[k].t1, step = (t1 - t0) / samples;
+        dvec3 o = kept->segments[k].origin, d = kept->segments[k].dir;
         dvec3 sum = dv(0, 0, 0);
         for (int s = 0; s < samples; s++) {
             double t = t0 + step * (s + ref_rng_uniform(&rng));
@@ -129,7 +131,7 @@ static void gather_volume(struct job *j, int x, int y)
                 continue;
             sum = dv_add(sum, dv_mul(ref_medium_transmittance(rm, o, d, t, &rng), l));
         }
-        px->volume = dv_add(px->volume, dv_mul(px->segments[k].beta, dv_scale(sum, step)));
+        px->volume = dv_add(px->volume, dv_mul(kept->segments[k].beta, dv_scale(sum, step)));
     }
 }
 
