@@ -113,7 +113,7 @@ end
 
 
 --- Renders the ground truth (the CPU reference) of a scene script.
---- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius, antialias,
+--- opts: set, size, frame, photons (per iteration), spp (iterations), seed, radius, antialias, tessellated,
 --- caustics = false (less the caustic part: what refraction without a caustics pass should match)
 function t.reference(script, opts)
   check("reference", 1, "script", script, "string")

@@ -33,6 +33,8 @@ static bool truth_key(const char *script, const struct lua_params *params, int f
     k = hash_fnv1a(k, &ro->seed, sizeof ro->seed);
     if (ro->antialias) /* only then: the point-sampled truths keep their keys */
         k = hash_fnv1a(k, "antialias", 9);
+    /* truths of exact spheres since issue 53 (those before traced their triangles) */
+    k = hash_fnv1a(k, ro->tessellated ? "tessellated" : "spheres", ro->tessellated ? 11 : 7);
     *key = k;
     return true;
 }

@@ -133,6 +133,9 @@ static const struct cli_option {
     {"--radius", NULL, "R", VB_REFERENCE,
      "the initial gather radius in scene units (> 0; default from the scene's size)"},
     {"--antialias", NULL, NULL, VB_REFERENCE, "pixel means instead of pixel centres"},
+    {"--tessellated", NULL, NULL, VB_REFERENCE,
+     "trace the triangles of the spheres the script made (c.mesh.sphere), as the GPU draws them (default: the "
+     "spheres themselves)"},
     {"--mask", NULL, "M", VB_COMPARE, "compare only where the mask image (.png, .pfm, .hdr, .exr) is non-zero"},
     {"--exposure", NULL, "E", VB_CONVERT, "multiply the colour by E before writing (> 0; default 1)"},
     {"--tonemap", NULL, "clamp|reinhard|aces", VB_CONVERT,
@@ -155,6 +158,8 @@ static const struct cli_option {
      "and bench reports the truth's own error beside the table"},
     {"--ref-antialias", NULL, NULL, VB_BENCH | VB_CHOOSE,
      "judge against a truth of pixel means (default: pixel centres)"},
+    {"--ref-tessellated", NULL, NULL, VB_BENCH | VB_CHOOSE,
+     "judge against a truth of the spheres' triangles, as the GPU draws them (default: the spheres themselves)"},
     {"--error-frames", NULL, "K", VB_BENCH | VB_CHOOSE,
      "the error is the mean over K frames spread over the animation (1..16; default 1, or 3 with a technique "
      "sweep)"},
@@ -458,6 +463,8 @@ static int reference_option(const char *a, const char *next, struct app *app, st
                                ".exr), at most 8, got '%s'", next);
     } else if (strcmp(a, "--antialias") == 0 || strcmp(a, "--ref-antialias") == 0) {
         cli->antialias = true;
+    } else if (strcmp(a, "--tessellated") == 0 || strcmp(a, "--ref-tessellated") == 0) {
+        cli->tessellated = true;
     } else if (strcmp(a, "--report") == 0) {
         if (next)
             cli->report_html = next;

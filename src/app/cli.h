@@ -39,6 +39,7 @@ struct cli {
     bool cached_only;        /* --cached (choose): read the bench cache only, never run the sweep */
     bool report;             /* --report: the reference's noise estimate per iteration */
     bool antialias;          /* --antialias (reference), --ref-antialias (bench, choose): pixel means */
+    bool tessellated;        /* --tessellated (reference), --ref-tessellated (bench, choose): spheres' triangles */
     const char *report_html; /* --report OUT.html (test): the HTML report */
     const char *junit;       /* --junit OUT.xml (test): JUnit XML for CI servers */
     int aov;                 /* --aov tir|exit: enum ref_aov (reference) */

@@ -68,6 +68,8 @@ bool bench_sweep_cache_path(const struct cli *cli, const char *dir, char *out, s
         k = hash_fnv1a(k, cli->sweeps[i], strlen(cli->sweeps[i]) + 1);
     if (cli->antialias)
         k = hash_fnv1a(k, "antialias", 9);
+    /* truths of exact spheres since issue 53 (those before traced their triangles) */
+    k = hash_fnv1a(k, cli->tessellated ? "tessellated" : "spheres", cli->tessellated ? 11 : 7);
     if (cli->truth_spp > 0) /* hashed only when given: the caches made before it keep their names */
         k = hash_fnv1a(k, &cli->truth_spp, sizeof cli->truth_spp);
     snprintf(out, size, "%s/cache/sweep_%016llx.csv", dir, (unsigned long long)k);
@@ -199,6 +201,7 @@ static bool bench_plan(struct bench *b, int *exit_code, struct error *err)
     b->truth_options.iterations = cli->truth_spp > 0 ? cli->truth_spp : 16 * b->level_max;
     b->truth_options.progress = true;
     b->truth_options.antialias = cli->antialias;
+    b->truth_options.tessellated = cli->tessellated;
     b->npasses = -1;
     return true;
 }

@@ -53,6 +53,7 @@ int cmd_reference(struct app *app, struct cli *cli)
     o.report = cli->report;
     o.aov = (enum ref_aov)cli->aov;
     o.antialias = cli->antialias;
+    o.tessellated = cli->tessellated;
     struct image img = {0};
     struct ref_stats st = {0};
     bool ok;

@@ -113,7 +113,8 @@ int limage_render(lua_State *L)
 
 /* reference(script, {set, size, frame, photons, spp, seed, radius, time_budget, aov = "tir" | "exit",
  *                     caustics = false (the image less its caustic part),
- *                     antialias = true (each pixel's mean, not its centre)})
+ *                     antialias = true (each pixel's mean, not its centre),
+ *                     tessellated = true (the spheres' triangles, not the spheres)})
  * -> the ground-truth image and {iterations, photons, caustic_photons, seconds}. */
 int limage_reference(lua_State *L)
 {
@@ -150,6 +151,11 @@ int limage_reference(lua_State *L)
             request.without_caustics = !lua_toboolean(L, -1);
         }
         lua_pop(L, 8);
+        if (lua_getfield(L, 2, "tessellated") != LUA_TNIL) {
+            luaL_argexpected(L, lua_isboolean(L, -1), 2, "tessellated = true or false");
+            ro.tessellated = lua_toboolean(L, -1);
+        }
+        lua_pop(L, 1);
     }
     if (ro.photons < 0 || ro.iterations < 1)
         return luaL_error(L, "reference: photons must be >= 0 and spp >= 1");

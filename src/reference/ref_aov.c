@@ -59,7 +59,7 @@ bool ref_render_aov(struct renderer *r, struct scene *scene, const struct ref_op
                     struct error *err)
 {
     struct ref_scene rs;
-    if (!ref_scene_build(&rs, r, scene, err))
+    if (!ref_scene_build(&rs, r, scene, o->tessellated, err))
         return false;
     if (!image_create(out, o->width, o->height, err)) {
         ref_scene_release(&rs);

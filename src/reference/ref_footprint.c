@@ -25,6 +25,10 @@ void ref_footprint_hit(const struct ref_scene *rs, struct ref_footprint *f, stru
     h->footprint = false;
     if (!f->valid)
         return;
+    if (rs->objects[h->object].sphere) {
+        f->valid = false; /* an exact sphere has no triangle to carry the footprint across: level 0 beyond it */
+        return;
+    }
     dvec3 p[3];
     const float *n[3];
     triangle(&rs->objects[h->object], h->primitive, p, n);

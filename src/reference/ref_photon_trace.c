@@ -63,7 +63,11 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         /* Aimed at one triangle: if another surface comes first, this
          * direction belongs to that surface's own photons (or to direct
          * light, for an opaque one) and this photon carries nothing. */
-        if (depth == 0 && (!hit || h.object != target_object || h.primitive != target_primitive))
+        /* (an exact sphere is aimed at through its triangles, whose
+         * projections tile its silhouette but for the thin ring between the
+         * inscribed polygon and the circle: any hit on it counts) */
+        if (depth == 0 && (!hit || h.object != target_object ||
+                           (!j->rs->objects[h.object].sphere && h.primitive != target_primitive)))
             return;
         if (sppm_scene_medium_here(rs, &media) && j->medium->present) {
             double ts = 0;

@@ -145,6 +145,70 @@ static void copy_lights(struct ref_scene *rs, const struct frame *f)
     }
 }
 
+/* Whether object `o`, placed by `model` this frame, is traced as the
+ * sphere the script made (issue 53: the truth of the shape the scene names,
+ * as POV-Ray traces it; the GPU's tessellation is then part of the GPU's
+ * measured error). Only where nothing but the shape is read from its
+ * triangles: glass, water or a mirror of one material with no texture and
+ * no vertex colours, not deformed, and a model matrix that keeps a sphere
+ * a sphere (rotation, translation and one scale). Its world centre and
+ * radius. */
+static bool exact_sphere(const struct object *o, mat4 model, dvec3 *center, double *radius)
+{
+    const struct mesh *m = o->mesh;
+    if (!(m->sphere_radius > 0.0f) || m->colors || object_is_animated_geometry(o) ||
+        !(material_role(&o->material) & REF_SPECULAR_ROLES) || o->material.alpha_cutoff > 0.0f ||
+        o->material.alpha_blend)
+        return false;
+    const struct texture_ref *slots[MATERIAL_TEXTURE_SLOTS];
+    bool srgb[MATERIAL_TEXTURE_SLOTS];
+    material_texture_slots(&o->material, slots, srgb);
+    for (int k = 0; k < MATERIAL_TEXTURE_SLOTS; k++)
+        if (slots[k]->texture)
+            return false;
+    dvec3 axis[3];
+    for (int k = 0; k < 3; k++)
+        axis[k] = from_vec3(mat4_transform_dir(model, vec3_make(k == 0, k == 1, k == 2)));
+    double scale = sqrt(dv_dot(axis[0], axis[0]));
+    if (!(scale > 0.0) || !isfinite(scale))
+        return false;
+    for (int k = 0; k < 3; k++) {
+        if (fabs(sqrt(dv_dot(axis[k], axis[k])) - scale) > 1e-6 * scale ||
+            fabs(dv_dot(axis[k], axis[(k + 1) % 3])) > 1e-6 * scale * scale)
+            return false; /* an ellipsoid or a sheared sphere: its triangles */
+    }
+    *center = from_vec3(mat4_transform_point(model, vec3_make(0, 0, 0)));
+    *radius = scale * (double)m->sphere_radius;
+    return isfinite(center->x + center->y + center->z) && *radius > 0.0;
+}
+
+/* A sphere as an Embree geometry of the scene: a round point (Embree's
+ * SPHERE_POINT), which finds the first sphere a ray meets; the hit is then
+ * solved again in double precision (ref_scene_intersect). Its geometry
+ * id, or RTC_INVALID_GEOMETRY_ID where this Embree has no points. */
+static unsigned attach_sphere(struct ref_scene *rs, const struct ref_object *ro)
+{
+    if (!rtcGetDeviceProperty(rs->device, RTC_DEVICE_PROPERTY_POINT_GEOMETRY_SUPPORTED))
+        return RTC_INVALID_GEOMETRY_ID;
+    RTCGeometry geom = rtcNewGeometry(rs->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    float *v = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1);
+    if (!v) {
+        rtcReleaseGeometry(geom);
+        return RTC_INVALID_GEOMETRY_ID;
+    }
+    /* Embree intersects in single precision: a radius a little larger, so
+     * that no ray the double-precision sphere takes slips past the float
+     * one (the refined solve below decides the hit) */
+    v[0] = (float)ro->sphere_center.x;
+    v[1] = (float)ro->sphere_center.y;
+    v[2] = (float)ro->sphere_center.z;
+    v[3] = (float)(ro->sphere_radius * (1.0 + 1e-6));
+    rtcCommitGeometry(geom);
+    unsigned id = rtcAttachGeometry(rs->rtc, geom);
+    rtcReleaseGeometry(geom);
+    return id;
+}
+
 /* The object's triangles as an Embree geometry of the scene (its world
  * positions shared, not copied); a cut-out surface's filter skips the hits
  * its alpha removes. Its geometry id. */
@@ -166,7 +230,8 @@ static unsigned attach_triangles(struct ref_scene *rs, struct ref_object *ro)
     return id;
 }
 
-bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err)
+bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, bool tessellated,
+                     struct error *err)
 {
     memset(rs, 0, sizeof *rs);
     rs->device = rtcNewDevice(NULL);
@@ -242,7 +307,20 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;
-        unsigned id = attach_triangles(rs, ro);
+        unsigned id = RTC_INVALID_GEOMETRY_ID;
+        ro->sphere = !tessellated && exact_sphere(o, model, &ro->sphere_center, &ro->sphere_radius);
+        if (ro->sphere && (id = attach_sphere(rs, ro)) == RTC_INVALID_GEOMETRY_ID)
+            ro->sphere = false; /* an Embree built without points: the triangles */
+        if (!ro->sphere)
+            id = attach_triangles(rs, ro);
+        else { /* the bounds of the sphere, which its inscribed vertices fall short of */
+            dvec3 r3 = dv(ro->sphere_radius, ro->sphere_radius, ro->sphere_radius);
+            dvec3 slo3 = dv_sub(ro->sphere_center, r3), shi3 = dv_add(ro->sphere_center, r3);
+            lo = dv(fmin(lo.x, slo3.x), fmin(lo.y, slo3.y), fmin(lo.z, slo3.z));
+            hi = dv(fmax(hi.x, shi3.x), fmax(hi.y, shi3.y), fmax(hi.z, shi3.z));
+            slo = dv(fmin(slo.x, slo3.x), fmin(slo.y, slo3.y), fmin(slo.z, slo3.z));
+            shi = dv(fmax(shi.x, shi3.x), fmax(shi.y, shi3.y), fmax(shi.z, shi3.z));
+        }
         rs->geometry_object[id] = (unsigned)rs->object_count;
         rs->has_thin = rs->has_thin || ro->material.thin;
         rs->geometry_count = (int)id + 1;
@@ -291,6 +369,46 @@ void ref_scene_release(struct ref_scene *rs)
     memset(rs, 0, sizeof *rs);
 }
 
+/* A ray's hit on an exact sphere, which Embree found at about t_found:
+ * the root of |origin + t dir - c|^2 = R^2 nearest it, solved in double
+ * precision (the stable form of the quadratic), the point put back on the
+ * sphere and its normal exact. A ray that grazes it so that the double
+ * solve finds no root takes the point of closest approach. */
+static bool sphere_hit(const struct ref_scene *rs, const struct ref_object *o, dvec3 origin, dvec3 dir,
+                       double t_found, struct ref_hit *hit)
+{
+    dvec3 oc = dv_sub(origin, o->sphere_center);
+    double a = dv_dot(dir, dir), b = dv_dot(oc, dir), r = o->sphere_radius;
+    /* the discriminant from the ray's closest point (Hearn & Baker's
+     * form: no cancellation of b^2 against a c for a far origin) */
+    dvec3 perp = dv_sub(oc, dv_scale(dir, b / a));
+    double disc = r * r - dv_dot(perp, perp);
+    double t = -b / a;
+    if (disc > 0.0) {
+        double q = -b - copysign(sqrt(a * disc), b);
+        double t0 = q / a, t1 = q != 0.0 ? (dv_dot(oc, oc) - r * r) / q : t0;
+        if (t0 > t1) {
+            double s = t0;
+            t0 = t1;
+            t1 = s;
+        }
+        t = fabs(t0 - t_found) <= fabs(t1 - t_found) ? t0 : t1;
+    }
+    if (!(t > 0.0) || !isfinite(t))
+        t = t_found; /* a root behind the origin: Embree's, which is ahead of it */
+    dvec3 p = dv_add(origin, dv_scale(dir, t));
+    dvec3 n = dv_normalize_or(dv_sub(p, o->sphere_center), dv_scale(dir, -1.0));
+    hit->t = t;
+    hit->object = (int)(o - rs->objects);
+    hit->primitive = 0; /* no triangle: nothing reads one of a sphere (exact_sphere) */
+    hit->bary_u = hit->bary_v = 0.0;
+    hit->footprint = false;
+    hit->position = dv_add(o->sphere_center, dv_scale(n, r));
+    hit->geometric_normal = n;
+    hit->shading_normal = n;
+    return true;
+}
+
 bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit)
 {
     struct RTCIntersectContext ctx;
@@ -311,6 +429,8 @@ bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, do
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return false;
     const struct ref_object *o = &rs->objects[rs->geometry_object[rh.hit.geomID]];
+    if (o->sphere)
+        return sphere_hit(rs, o, origin, dir, rh.ray.tfar, hit);
     const uint32_t *tri = o->indices + (size_t)rh.hit.primID * 3;
     const float *p0 = o->positions + tri[0] * 3, *p1 = o->positions + tri[1] * 3, *p2 = o->positions + tri[2] * 3;
     dvec3 a = dv(p0[0], p0[1], p0[2]), b = dv(p1[0], p1[1], p1[2]), c = dv(p2[0], p2[1], p2[2]);

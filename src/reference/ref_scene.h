@@ -66,6 +66,13 @@ struct ref_object {
     mat4 model;                /* the frame's model matrix: a tangent's world direction (common/object.vert) */
     size_t vertex_count, triangle_count;
     struct material material;
+    /* Traced as the sphere the script made (c.mesh.sphere), not as its
+     * triangles (issue 53): Embree finds which object a ray meets first,
+     * the hit is solved again in double precision on the sphere, its
+     * normal exact. The triangles stay for the photons' aim (ref_emit.c). */
+    bool sphere;
+    dvec3 sphere_center;
+    double sphere_radius;
 };
 
 /* Texture coordinates `set` at barycentrics (u, v) of triangle `primitive`. */
@@ -149,7 +156,11 @@ void ref_surface_diffuse(const struct ref_scene *rs, const struct ref_hit *h, dv
  * light leaving in unit direction `out`; 1 for other lights. */
 double ref_light_spot(const struct ref_light *l, dvec3 out);
 
-bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, struct error *err);
+/* `tessellated`: trace every object's triangles, spheres too (reference
+ * --tessellated: the shapes the GPU draws); else the spheres the script made
+ * are traced as spheres where they can be (ref_scene.c's exact_sphere). */
+bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *scene, bool tessellated,
+                     struct error *err);
 void ref_scene_release(struct ref_scene *rs);
 bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit);
 bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);

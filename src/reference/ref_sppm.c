@@ -686,7 +686,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     }
     double start = log_now();
     struct ref_scene rs;
-    if (!ref_scene_build(&rs, r, scene, err))
+    if (!ref_scene_build(&rs, r, scene, o->tessellated, err))
         return false;
     struct ref_emitter emitters[SCENE_MAX_GPU_LIGHTS];
     memset(emitters, 0, sizeof emitters);

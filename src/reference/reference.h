@@ -42,6 +42,9 @@ struct ref_options {
      * and averaged (caustica merge). This run renders the passes p with
      * p % shard_count == shard_index. 0: SPPM (Hachisuka & Jensen 2009). */
     int shard_index, shard_count;
+    /* Trace the triangles of spheres the script made (c.mesh.sphere), as
+     * the GPU draws them, instead of the spheres (ref_scene.c) */
+    bool tessellated;
 };
 
 struct ref_stats {

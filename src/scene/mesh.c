@@ -132,6 +132,7 @@ struct mesh *mesh_create_sphere(float radius, int segments, struct error *err)
     struct mesh *m = mesh_create_from_arrays("sphere", p, n, nv, idx, ni, err);
     if (!m || !add_texcoords(m, err))
         return NULL;
+    m->sphere_radius = radius;
     /* u around the axis (from +x towards -z, as phi runs), v from the top pole down */
     for (int r = 0, vi = 0; r <= rings; r++)
         for (int s = 0; s <= segments; s++, vi++) {

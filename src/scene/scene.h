@@ -208,6 +208,10 @@ struct mesh {
     float default_weights[SCENE_MAX_MORPH_TARGETS];
     vec3 bounds_min, bounds_max; /* of the base shape */
     float morph_extent;          /* largest |delta| over the targets, to bound morphs */
+    /* > 0: made by mesh_create_sphere, the tessellation of a sphere of this
+     * radius about the origin, which the reference traces as the sphere
+     * itself (ref_scene.c); 0: any other mesh */
+    float sphere_radius;
     float *thickness;          /* per-vertex d_N for Wyman's refraction, made on demand (owned) */
     /* The GPU copies live in the renderer's mesh cache (graph/mesh_cache.c). */
 };
