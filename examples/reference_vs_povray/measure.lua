@@ -45,6 +45,9 @@ local scenes = {
   ball_lens = ball(0.75, 0.2),
   ball_lens_before = ball(0.65, 0.1),
   ball_lens_beyond = ball(1.0, 0.2),
+  -- issue 53's floors, in radii below the centre: 1.25 R (before the focus) and 2.5 R (beyond it)
+  ball_lens_125R = ball(0.625, 0.1),
+  ball_lens_250R = ball(1.25, 0.2),
   tir_cube = function()
     return cf.tir_cube { ior = 2.42, angle = 30, floor_y = -1.0, height = 0.4, cx = 0.25, fov = 90, size = size,
                          block = block }
