@@ -209,6 +209,31 @@ static unsigned attach_sphere(struct ref_scene *rs, const struct ref_object *ro)
     return id;
 }
 
+static unsigned attach_triangles(struct ref_scene *rs, struct ref_object *ro);
+
+/* Object o (ro, its world vertices made) into the Embree scene: as its
+ * sphere where exact_sphere allows and `tessellated` does not ask for the
+ * triangles, else as its triangles. A sphere widens the scene's bounds and
+ * the specular ones (bounds: lo, hi, specular lo, specular hi) to the
+ * sphere's, which its inscribed vertices fall short of. Its geometry id. */
+static unsigned attach_object(struct ref_scene *rs, struct ref_object *ro, const struct object *o, bool tessellated,
+                              dvec3 bounds[4])
+{
+    unsigned id = RTC_INVALID_GEOMETRY_ID;
+    ro->sphere = !tessellated && exact_sphere(o, ro->model, &ro->sphere_center, &ro->sphere_radius);
+    if (ro->sphere && (id = attach_sphere(rs, ro)) == RTC_INVALID_GEOMETRY_ID)
+        ro->sphere = false; /* an Embree built without points: the triangles */
+    if (!ro->sphere)
+        return attach_triangles(rs, ro);
+    dvec3 r3 = dv(ro->sphere_radius, ro->sphere_radius, ro->sphere_radius);
+    dvec3 a = dv_sub(ro->sphere_center, r3), b = dv_add(ro->sphere_center, r3);
+    for (int k = 0; k < 4; k += 2) {
+        bounds[k] = dv(fmin(bounds[k].x, a.x), fmin(bounds[k].y, a.y), fmin(bounds[k].z, a.z));
+        bounds[k + 1] = dv(fmax(bounds[k + 1].x, b.x), fmax(bounds[k + 1].y, b.y), fmax(bounds[k + 1].z, b.z));
+    }
+    return id;
+}
+
 /* The object's triangles as an Embree geometry of the scene (its world
  * positions shared, not copied); a cut-out surface's filter skips the hits
  * its alpha removes. Its geometry id. */
@@ -307,20 +332,9 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
         ro->vertex_count = n;
         ro->triangle_count = o->mesh->index_count / 3;
         ro->material = o->material;
-        unsigned id = RTC_INVALID_GEOMETRY_ID;
-        ro->sphere = !tessellated && exact_sphere(o, model, &ro->sphere_center, &ro->sphere_radius);
-        if (ro->sphere && (id = attach_sphere(rs, ro)) == RTC_INVALID_GEOMETRY_ID)
-            ro->sphere = false; /* an Embree built without points: the triangles */
-        if (!ro->sphere)
-            id = attach_triangles(rs, ro);
-        else { /* the bounds of the sphere, which its inscribed vertices fall short of */
-            dvec3 r3 = dv(ro->sphere_radius, ro->sphere_radius, ro->sphere_radius);
-            dvec3 slo3 = dv_sub(ro->sphere_center, r3), shi3 = dv_add(ro->sphere_center, r3);
-            lo = dv(fmin(lo.x, slo3.x), fmin(lo.y, slo3.y), fmin(lo.z, slo3.z));
-            hi = dv(fmax(hi.x, shi3.x), fmax(hi.y, shi3.y), fmax(hi.z, shi3.z));
-            slo = dv(fmin(slo.x, slo3.x), fmin(slo.y, slo3.y), fmin(slo.z, slo3.z));
-            shi = dv(fmax(shi.x, shi3.x), fmax(shi.y, shi3.y), fmax(shi.z, shi3.z));
-        }
+        dvec3 bounds[4] = {lo, hi, slo, shi};
+        unsigned id = attach_object(rs, ro, o, tessellated, bounds);
+        lo = bounds[0], hi = bounds[1], slo = bounds[2], shi = bounds[3];
         rs->geometry_object[id] = (unsigned)rs->object_count;
         rs->has_thin = rs->has_thin || ro->material.thin;
         rs->geometry_count = (int)id + 1;
