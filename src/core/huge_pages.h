@@ -1,5 +1,5 @@
 /* Large arrays that the reference fills from scratch every run (the
- * pixels' records, the photon maps) are touched first page by page: with
+ * pixels' records and their medium segments) are touched first page by page: with
  * 4 KiB pages a 512 x 512 image's pixel records (about 230 MiB) took some
  * 60,000 page faults in the first eye pass, a fifth of a 2 s budget's CPU
  * time (perf, docs/REFERENCE.md). Transparent huge pages cut that count

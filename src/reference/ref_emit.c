@@ -135,7 +135,7 @@ static void piece(dvec3 a, dvec3 b, dvec3 c, int level, size_t k, dvec3 out[3])
 
 /* The specular surface's total area, and the pieces it splits into for
  * `piece_area` (0: no count). */
-static size_t count_pieces(const struct ref_scene *rs, double piece_area, double *total_area)
+static size_t count_pieces(const struct ref_scene *rs, const double *scales, double piece_area, double *total_area)
 {
     size_t n = 0;
     *total_area = 0.0;
@@ -143,7 +143,7 @@ static size_t count_pieces(const struct ref_scene *rs, double piece_area, double
         const struct ref_object *o = &rs->objects[i];
         if (!(material_role(&o->material) & REF_SPECULAR_ROLES))
             continue;
-        double scale = aim_scale(o);
+        double scale = scales[i];
         for (size_t t = 0; t < o->triangle_count; t++) {
             const uint32_t *tri = o->indices + t * 3;
             double a = triangle_area(aim_vertex(o, tri[0], scale), aim_vertex(o, tri[1], scale),
@@ -161,13 +161,19 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
 {
     memset(e, 0, sizeof *e);
     double total_area;
-    count_pieces(rs, 0.0, &total_area);
-    size_t n = count_pieces(rs, total_area / EMIT_PIECES, &total_area);
+    /* each object's aim (1, or an exact sphere's blow-up), once */
+    double *scales = malloc((size_t)(rs->object_count + 1) * sizeof *scales);
+    if (!scales)
+        return error_set(err, "reference: out of memory for the photon targets");
+    for (int i = 0; i < rs->object_count; i++)
+        scales[i] = aim_scale(&rs->objects[i]);
+    count_pieces(rs, scales, 0.0, &total_area);
+    size_t n = count_pieces(rs, scales, total_area / EMIT_PIECES, &total_area);
     double piece_area = total_area / EMIT_PIECES;
-    if (n == 0)
-        return true;
-    if (n > UINT32_MAX - 1)
-        return error_set(err, "reference: too many specular triangles for the photon targets (%zu)", n);
+    if (n == 0 || n > UINT32_MAX - 1) {
+        free(scales);
+        return n == 0 || error_set(err, "reference: too many specular triangles for the photon targets (%zu)", n);
+    }
     e->corners = malloc(n * 9 * sizeof *e->corners);
     e->cdf = malloc(n * sizeof *e->cdf);
     e->guide = malloc((n + 1) * sizeof *e->guide);
@@ -178,6 +184,7 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
     e->primitive = malloc(n * sizeof *e->primitive);
     if (!e->corners || !e->guide || !e->cdf || !e->weight || !e->sampled || !e->useful || !e->object || !e->primitive) {
         ref_emitter_release(e);
+        free(scales);
         return error_set(err, "reference: out of memory for the photon targets (%zu triangles)", n);
     }
     double sum = 0.0;
@@ -185,7 +192,7 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
         const struct ref_object *o = &rs->objects[i];
         if (!(material_role(&o->material) & REF_SPECULAR_ROLES))
             continue;
-        double scale = aim_scale(o);
+        double scale = scales[i];
         for (size_t t = 0; t < o->triangle_count; t++) {
             const uint32_t *tri = o->indices + t * 3;
             dvec3 a = aim_vertex(o, tri[0], scale), b = aim_vertex(o, tri[1], scale), c = aim_vertex(o, tri[2], scale);
@@ -212,6 +219,7 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
             }
         }
     }
+    free(scales);
     e->total = sum;
     for (size_t k = 0; k < e->count; k++)
         e->cdf[k] /= sum;

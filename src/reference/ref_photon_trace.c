@@ -63,9 +63,9 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         /* Aimed at one triangle: if another surface comes first, this
          * direction belongs to that surface's own photons (or to direct
          * light, for an opaque one) and this photon carries nothing. */
-        /* (an exact sphere is aimed at through its triangles, whose
-         * projections tile its silhouette but for the thin ring between the
-         * inscribed polygon and the circle: any hit on it counts) */
+        /* (an exact sphere is aimed at through its blown-up triangles,
+         * ref_emit.c's aim_scale, whose facets facing the light tile its
+         * whole outline: any hit on the sphere counts) */
         if (depth == 0 && (!hit || h.object != target_object ||
                            (!j->rs->objects[h.object].sphere && h.primitive != target_primitive)))
             return;

@@ -392,6 +392,13 @@ static bool uses_distance_map(const struct pass *p)
            pass_int(p, REFRACTION_RECURSION) == 0;
 }
 
+/* The lookup "scene" searches the input image first, and the `behind`
+ * image where the input shows the glass itself. */
+static bool uses_screen_lookup(const struct pass *p)
+{
+    return uses_distance_map(p) && pass_choice(p, REFRACTION_LOOKUP) == REFRACTION_LOOKUP_SCENE;
+}
+
 static unsigned refraction_draws(const struct pass *p)
 {
     (void)p;
@@ -417,9 +424,8 @@ static bool refraction_execute(struct pass *p, struct pass_frame *f, struct erro
     if (!ensure_targets(s, f->width, f->height, err))
         return false;
     bool nearby = pass_flag(p, REFRACTION_NEARBY);
-    int lookup = pass_choice(p, REFRACTION_LOOKUP);
     bool distance = uses_distance_map(p);
-    bool screen = distance && lookup == REFRACTION_LOOKUP_SCENE;
+    bool screen = uses_screen_lookup(p);
     char defines[128];
     snprintf(defines, sizeof defines, "%s%s%s%s", wyman ? "#define WYMAN 1\n" : "", nearby ? "#define NEARBY 1\n" : "",
              distance ? "#define DISTANCE_MAP 1\n" : "", screen ? "#define SCREEN_LOOKUP 1\n" : "");
@@ -532,7 +538,7 @@ static bool refraction_reads_block(const struct pass *p, int param)
     if (param == REFRACTION_DISTANCE_MAP)
         return uses_distance_map(p);
     if (param == REFRACTION_BEHIND)
-        return uses_distance_map(p) && pass_choice(p, REFRACTION_LOOKUP) == REFRACTION_LOOKUP_SCENE;
+        return uses_screen_lookup(p);
     if (param == REFRACTION_IMPOSTORS)
         return pass_flag(p, REFRACTION_NEARBY) && !uses_distance_map(p);
     return true;
