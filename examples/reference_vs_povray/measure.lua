@@ -2,7 +2,7 @@
 -- against the closed form (closed_form.lua) against wall time, on the same
 -- machine in the same sitting. Run from the project root:
 --   build/caustica test examples/reference_vs_povray/measure.lua
--- (POV_COUNTS, REF_BUDGETS and SCENES in the environment override the
+-- (POV_COUNTS, REF_BUDGETS, REF_SEEDS and SCENES in the environment override the
 -- lists below, POV_SPACINGS sets POV-Ray up by photon spacing instead; SIZE and BLOCK the image size, 128, and the error's block,
 -- 4: SIZE=512 BLOCK=1 measures per pixel at 512^2; CAUSTICA the binary,
 -- build/caustica; the table goes to stdout and to results.md in OUT.)
@@ -23,6 +23,8 @@ local function list(env, default)
 end
 local pov_counts = list("POV_COUNTS", { 30000, 100000, 300000, 1000000 })
 local ref_budgets = list("REF_BUDGETS", { 1, 2, 4, 8 })
+-- REF_SEEDS=1,2,3: the reference at each budget once per seed (its error swings between seeds)
+local ref_seeds = list("REF_SEEDS", { 1 })
 -- POV_SPACINGS=0.008,0.004: POV-Ray's photons by spacing, gathered as issue 53 sets it up, instead of counts
 local pov_spacings = os.getenv("POV_SPACINGS") and list("POV_SPACINGS", {})
 
@@ -184,13 +186,17 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
     local budgets = ref_budgets
     if name == "fog_lens" and not os.getenv("REF_BUDGETS") then budgets = { 2, 4, 8, 16 } end
     for _, budget in ipairs(budgets) do
-      local file = string.format("%s/%s_ref_%g.hdr", out, name, budget)
-      local rc, secs = timed(string.format(
-        "%s reference %s/%s.lua -o %s --size %dx%d --time-budget %g --photons %d%s",
-        os.getenv("CAUSTICA") or "build/caustica", dir, sc.file, file, size, size, budget, tonumber(os.getenv("REF_PHOTONS") or 200000), settings_for(sc, false)))
-      t.expect(rc == 0, "caustica reference failed on " .. name)
-      row(name, "caustica reference", "budget " .. budget .. " s", string.format("%.2f", secs),
-        string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, truth.radiance_units and 1 or math.pi)))
+      for _, seed in ipairs(ref_seeds) do
+        local file = string.format("%s/%s_ref_%g_%d.hdr", out, name, budget, seed)
+        local rc, secs = timed(string.format(
+          "%s reference %s/%s.lua -o %s --size %dx%d --time-budget %g --photons %d --seed %d%s",
+          os.getenv("CAUSTICA") or "build/caustica", dir, sc.file, file, size, size, budget,
+          tonumber(os.getenv("REF_PHOTONS") or 200000), seed, settings_for(sc, false)))
+        t.expect(rc == 0, "caustica reference failed on " .. name)
+        row(name, "caustica reference", "budget " .. budget .. " s" .. (#ref_seeds > 1 and (", seed " .. seed) or ""),
+          string.format("%.2f", secs),
+          string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, truth.radiance_units and 1 or math.pi)))
+      end
     end
   end
   local f = io.open(out .. "/results.md", "w")

@@ -27,6 +27,9 @@ struct ref_emitter {
                            * guide table: the inverse CDF in O(1) expected, still monotone) */
     double *weight;       /* per entry: its share of the light's view (the first iteration's pdf, unnormalised) */
     double *sampled, *useful; /* per entry: photons aimed at it so far, and those of them that reached a visible point */
+    uint32_t *cell;       /* per entry: its usefulness cell (ref_emitter_adapt pools the counts of a cell's entries) */
+    double *cell_sampled, *cell_useful; /* per cell: the sums of its entries' counts (scratch of ref_emitter_adapt) */
+    size_t cells;
     int *object;          /* per entry: the object and triangle */
     unsigned *primitive;
     size_t count;
@@ -41,23 +44,32 @@ void ref_emitter_release(struct ref_emitter *e);
 
 /* Adaptive emission (Issue 15, "photons only where they matter"): after
  * each iteration, each entry's pdf becomes its share of the light's view
- * times a usefulness: for an entry that has sent a photon to a visible
- * point, the highest useful fraction any entry has (so that every photon
- * the camera's pixels gather carries the same flux, and the emission's
- * stratification survives), and for one that has not, its fraction's
- * posterior mean 1 / (tried + 2) (never 0: no direction a caustic can come
- * from is ever given density 0). Every iteration samples from a pdf fixed
+ * times a usefulness, judged per cell (the entries whose centres share a
+ * cube of the surface about 1/EMIT_CELLS of its area: a finely tessellated
+ * surface's triangles each see a photon or two, too few to judge one by):
+ * for a cell that has sent a photon to a visible point, the highest useful
+ * fraction any cell has (so that every photon the camera's pixels gather
+ * carries the same flux, and the emission's stratification survives), and
+ * for one that has not, its fraction's posterior mean 1 / (tried + 2)
+ * (never 0: no direction a caustic can come from is ever given density 0). Every iteration samples from a pdf fixed
  * before it starts and divides by it, so each iteration's estimate stays
  * unbiased (adaptive importance sampling). */
 void ref_emitter_adapt(struct ref_emitter *e);
 
-/* The three numbers in [0, 1) that place photon `index` of a light: the
- * Halton sequence in bases 2, 3 and 5, shifted by `shift` modulo 1
- * (Cranley-Patterson rotation). Photons spread over the light's view like
- * a jittered grid, as POV-Ray spaces its photons, instead of clumping as
- * independent random points do: the density estimate's noise falls much
- * faster, and the random shift keeps each iteration's estimate unbiased. */
-void ref_emit_point(uint64_t index, const double shift[3], double u[3]);
+/* The numbers in [0, 1) that place photon `index` of a light: the Halton
+ * sequence in bases 2, 3, 5, 7 and 11, shifted by `shift` modulo 1
+ * (Cranley-Patterson rotation). The first three place it: photons spread
+ * over the light's view like a jittered grid, as POV-Ray spaces its
+ * photons, instead of clumping as independent random points do, so the
+ * density estimate's noise falls much faster. The last two are its first
+ * two random choices on the way (Fresnel's reflect-or-refract at the
+ * surfaces it meets first): among the photons through a patch of the
+ * surface, the share reflected is then the reflectance to within one
+ * photon rather than a binomial draw (POV-Ray splits each photon at a
+ * surface instead). The random shift keeps every photon's numbers
+ * uniform, so each iteration's estimate stays unbiased. */
+#define REF_EMIT_DIMS 5
+void ref_emit_point(uint64_t index, const double shift[REF_EMIT_DIMS], double u[REF_EMIT_DIMS]);
 
 /* One photon of `photons` emitted by l at the point u of ref_emit_point:
  * origin, unit direction, flux, and the triangle it is aimed at (its first

@@ -7,6 +7,12 @@
 
 struct ref_rng {
     uint64_t state, inc;
+    /* numbers handed out before the stream's own: a photon's first choices
+     * (which way Fresnel sends it at its first surfaces) drawn from its
+     * quasi-random point like its position (ref_emit_point), so that the
+     * share of photons a surface reflects is stratified too */
+    double given[2];
+    unsigned given_count, given_next;
 };
 
 static inline uint32_t ref_rng_u32(struct ref_rng *r)
@@ -18,8 +24,13 @@ static inline uint32_t ref_rng_u32(struct ref_rng *r)
     return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
 }
 
-/* Uniform in [0, 1). */
-static inline double ref_rng_uniform(struct ref_rng *r) { return ref_rng_u32(r) * (1.0 / 4294967296.0); }
+/* Uniform in [0, 1): the given numbers first, then the stream's. */
+static inline double ref_rng_uniform(struct ref_rng *r)
+{
+    if (r->given_next < r->given_count)
+        return r->given[r->given_next++];
+    return ref_rng_u32(r) * (1.0 / 4294967296.0);
+}
 
 static inline uint64_t ref_hash64(uint64_t x)
 {
@@ -33,7 +44,7 @@ static inline uint64_t ref_hash64(uint64_t x)
 
 static inline struct ref_rng ref_rng_seed(uint64_t seed, uint64_t stream, uint64_t index)
 {
-    struct ref_rng r = {0, (ref_hash64(stream * 0x9e3779b97f4a7c15ULL + seed) << 1u) | 1u};
+    struct ref_rng r = {0, (ref_hash64(stream * 0x9e3779b97f4a7c15ULL + seed) << 1u) | 1u, {0.0, 0.0}, 0, 0};
     ref_rng_u32(&r);
     r.state += ref_hash64(index ^ (seed * 0x632be59bd9b4e019ULL));
     ref_rng_u32(&r);
