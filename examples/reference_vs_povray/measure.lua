@@ -25,6 +25,8 @@ local pov_counts = list("POV_COUNTS", { 30000, 100000, 300000, 1000000 })
 local ref_budgets = list("REF_BUDGETS", { 1, 2, 4, 8 })
 -- REF_SEEDS=1,2,3: the reference at each budget once per seed (its error swings between seeds)
 local ref_seeds = list("REF_SEEDS", { 1 })
+-- REF_BY_ITERATIONS=1: REF_BUDGETS are iterations (--spp), not seconds: equal work, whatever the machine's pace
+local by_iterations = os.getenv("REF_BY_ITERATIONS") == "1"
 -- POV_SPACINGS=0.008,0.004: POV-Ray's photons by spacing, gathered as issue 53 sets it up, instead of counts
 local pov_spacings = os.getenv("POV_SPACINGS") and list("POV_SPACINGS", {})
 
@@ -189,11 +191,13 @@ t.case("caustica reference vs POV-Ray on closed-form scenes", function()
       for _, seed in ipairs(ref_seeds) do
         local file = string.format("%s/%s_ref_%g_%d.hdr", out, name, budget, seed)
         local rc, secs = timed(string.format(
-          "%s reference %s/%s.lua -o %s --size %dx%d --time-budget %g --photons %d --seed %d%s",
-          os.getenv("CAUSTICA") or "build/caustica", dir, sc.file, file, size, size, budget,
+          "%s reference %s/%s.lua -o %s --size %dx%d %s %g --photons %d --seed %d%s",
+          os.getenv("CAUSTICA") or "build/caustica", dir, sc.file, file, size, size,
+          by_iterations and "--spp" or "--time-budget", budget,
           tonumber(os.getenv("REF_PHOTONS") or 200000), seed, settings_for(sc, false)))
         t.expect(rc == 0, "caustica reference failed on " .. name)
-        row(name, "caustica reference", "budget " .. budget .. " s" .. (#ref_seeds > 1 and (", seed " .. seed) or ""),
+        row(name, "caustica reference", (by_iterations and (budget .. " iterations") or ("budget " .. budget .. " s"))
+          .. (#ref_seeds > 1 and (", seed " .. seed) or ""),
           string.format("%.2f", secs),
           string.format("%.2f%%", 100 * block_error(c.image.load(file), truth, truth.radiance_units and 1 or math.pi)))
       end

@@ -366,10 +366,10 @@ static double radical_inverse(uint64_t index, unsigned base)
     return r;
 }
 
-void ref_emit_point(uint64_t index, const double shift[REF_EMIT_DIMS], double u[REF_EMIT_DIMS])
+void ref_emit_point(uint64_t index, const double shift[3], double u[3])
 {
-    static const unsigned bases[REF_EMIT_DIMS] = {2, 3, 5, 7, 11};
-    for (int k = 0; k < REF_EMIT_DIMS; k++) {
+    static const unsigned bases[3] = {2, 3, 5};
+    for (int k = 0; k < 3; k++) {
         double v = radical_inverse(index, bases[k]) + shift[k];
         v -= floor(v);
         u[k] = v < 1.0 ? v : 0.0;

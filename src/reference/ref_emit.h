@@ -56,20 +56,13 @@ void ref_emitter_release(struct ref_emitter *e);
  * unbiased (adaptive importance sampling). */
 void ref_emitter_adapt(struct ref_emitter *e);
 
-/* The numbers in [0, 1) that place photon `index` of a light: the Halton
- * sequence in bases 2, 3, 5, 7 and 11, shifted by `shift` modulo 1
- * (Cranley-Patterson rotation). The first three place it: photons spread
- * over the light's view like a jittered grid, as POV-Ray spaces its
- * photons, instead of clumping as independent random points do, so the
- * density estimate's noise falls much faster. The last two are its first
- * two random choices on the way (Fresnel's reflect-or-refract at the
- * surfaces it meets first): among the photons through a patch of the
- * surface, the share reflected is then the reflectance to within one
- * photon rather than a binomial draw (POV-Ray splits each photon at a
- * surface instead). The random shift keeps every photon's numbers
- * uniform, so each iteration's estimate stays unbiased. */
-#define REF_EMIT_DIMS 5
-void ref_emit_point(uint64_t index, const double shift[REF_EMIT_DIMS], double u[REF_EMIT_DIMS]);
+/* The three numbers in [0, 1) that place photon `index` of a light: the
+ * Halton sequence in bases 2, 3 and 5, shifted by `shift` modulo 1
+ * (Cranley-Patterson rotation). Photons spread over the light's view like
+ * a jittered grid, as POV-Ray spaces its photons, instead of clumping as
+ * independent random points do: the density estimate's noise falls much
+ * faster, and the random shift keeps each iteration's estimate unbiased. */
+void ref_emit_point(uint64_t index, const double shift[3], double u[3]);
 
 /* One photon of `photons` emitted by l at the point u of ref_emit_point:
  * origin, unit direction, flux, and the triangle it is aimed at (its first

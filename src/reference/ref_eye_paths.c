@@ -146,7 +146,7 @@ bool sppm_specular_step(const struct ref_scene *rs, const struct ref_hit *h, str
          * ideal pane: the eye path stays fixed). */
         dvec3 normal, tint;
         double f = ref_thin_surface(o, h, *dir, nn, &normal, &tint);
-        if (f > 0.0 && (f >= 1.0 || ref_rng_choice(rng) < f)) {
+        if (f > 0.0 && (f >= 1.0 || ref_rng_uniform(rng) < f)) {
             *dir = dv_normalize_or(ref_reflect(*dir, normal), ref_reflect(*dir, ngo));
             *origin = dv_add(h->position, dv_scale(ngo, rs->epsilon));
             return true;
@@ -176,7 +176,7 @@ bool sppm_specular_step(const struct ref_scene *rs, const struct ref_hit *h, str
     double f = fresnel_of(m, cos_i, eta);
     dvec3 t;
     bool can_refract = ref_refract(*dir, mn, eta, &t);
-    bool reflected = !can_refract || ref_rng_choice(rng) < f;
+    bool reflected = !can_refract || ref_rng_uniform(rng) < f;
     dvec3 out = reflected ? dv_normalize_or(ref_reflect(*dir, mn), ref_reflect(*dir, ngo)) : t;
     if (alpha > 0.0) {
         dvec3 in = dv_scale(*dir, -1.0);

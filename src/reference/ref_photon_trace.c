@@ -36,12 +36,8 @@ static void trace_photon(struct job *j, int light, long index, struct ref_surfac
      * of it (the pilot one far beyond the rest). */
     uint64_t sequence = j->iteration < 0 ? ((uint64_t)-j->iteration << 40) + (uint64_t)index
                                          : (uint64_t)j->iteration * (uint64_t)j->photons_of[light] + (uint64_t)index;
-    double point[REF_EMIT_DIMS];
+    double point[3];
     ref_emit_point(sequence, j->emit_shift[light], point);
-    /* the photon's first two choices from its point's last two numbers (ref_emit.h) */
-    rng.given[0] = point[3];
-    rng.given[1] = point[4];
-    rng.given_count = 2;
     if (!ref_emitter_sample(&j->emitters[light], rs, &rs->lights[light], j->photons_of[light], point, &origin, &dir,
                             &flux, &target_object, &target_primitive, &entry))
         return;

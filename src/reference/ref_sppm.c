@@ -738,7 +738,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
         caustics = false;
     for (int l = 0; l < rs.light_count; l++) {
         struct ref_rng shift_rng = ref_rng_seed(o->seed, 11u, (uint64_t)l);
-        for (int k = 0; k < REF_EMIT_DIMS; k++)
+        for (int k = 0; k < 3; k++)
             job.emit_shift[l][k] = ref_rng_uniform(&shift_rng);
     }
     totals.volume_radius_first = totals.volume_radius;

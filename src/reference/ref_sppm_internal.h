@@ -151,7 +151,7 @@ struct job {
     double gather_until;      /* when an iteration's surface gather stops (0: no budget) */
     bool independent;         /* passes that share no state (ref_options.shard_count > 0) */
     bool pilot_done;          /* the pilot ran before the passes (independent passes) */
-    double emit_shift[SCENE_MAX_GPU_LIGHTS][REF_EMIT_DIMS]; /* each light's random rotation of its emission sequence */
+    double emit_shift[SCENE_MAX_GPU_LIGHTS][3]; /* each light's random rotation of its emission sequence */
     long photons_of[SCENE_MAX_GPU_LIGHTS], first_of[SCENE_MAX_GPU_LIGHTS];
     long photons_total;
     struct ref_photon_map *photon_map; /* the iterations' map, its arrays kept between them */
