@@ -220,8 +220,8 @@ static bool assign_cells(struct ref_emitter *e, double side)
     }
     free(keys);
     e->cells = cells;
-    e->cell_sampled = calloc(cells ? cells : 1, sizeof *e->cell_sampled);
-    e->cell_useful = calloc(cells ? cells : 1, sizeof *e->cell_useful);
+    e->cell_sampled = calloc(cells, sizeof *e->cell_sampled); /* (cells >= 1: called with entries) */
+    e->cell_useful = calloc(cells, sizeof *e->cell_useful);
     return e->cell_sampled && e->cell_useful;
 }
 
@@ -307,26 +307,26 @@ bool ref_emitter_build(struct ref_emitter *e, const struct ref_scene *rs, const 
 
 void ref_emitter_adapt(struct ref_emitter *e)
 {
-    /* A piece no photon of which has reached a visible point is weighted by
-     * its useful fraction's posterior mean under a uniform prior,
-     * 1 / (sampled + 2): optimistic where few photons were tried (an
-     * untried piece counts as half useful), so a piece is starved only once
+    /* A cell (below) no photon of which has reached a visible point is
+     * weighted by its useful fraction's posterior mean under a uniform
+     * prior, 1 / (sampled + 2): optimistic where few photons were tried (an
+     * untried cell counts as half useful), so a cell is starved only once
      * many of its photons were seen to miss. A photon's flux is inverse to
-     * its piece's density, so a piece whose estimate tracks its true
+     * its piece's density, so a cell whose estimate tracks its true
      * fraction r contributes variance ~ r / estimate, bounded, instead of
      * the unbounded fireflies of a piece judged useless on too few
      * photons. */
     if (e->count == 0)
         return;
-    /* A piece that has sent a photon to a visible point is live: every live
-     * piece gets the pdf of the most useful one (the highest posterior
+    /* A cell that has sent a photon to a visible point is live: every live
+     * cell gets the pdf of the most useful one (the highest posterior
      * mean), so that photons from the pieces the camera sees all carry the
      * same flux. Graded by each piece's own rate, a view cut by piece
      * boundaries got photons whose flux differed 36-fold (flat water seen
      * close up): the emission's stratification was lost in the mix, and
      * the per-pixel noise with 200 photons a gather stayed at Poisson's
-     * level. A piece never seen useful keeps its posterior mean. */
-    /* Judged per cell, not per entry: the ball of 262,144 triangles had
+     * level. A cell never seen useful keeps its posterior mean.
+     * Judged per cell, not per entry: the ball of 262,144 triangles had
      * about one photon a triangle a pilot round, so that a triangle the
      * camera needs was often dead or untried by chance (its one photon
      * reflected, or none yet) and weighted a third or a half of its live

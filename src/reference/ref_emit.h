@@ -51,9 +51,10 @@ void ref_emitter_release(struct ref_emitter *e);
  * fraction any cell has (so that every photon the camera's pixels gather
  * carries the same flux, and the emission's stratification survives), and
  * for one that has not, its fraction's posterior mean 1 / (tried + 2)
- * (never 0: no direction a caustic can come from is ever given density 0). Every iteration samples from a pdf fixed
- * before it starts and divides by it, so each iteration's estimate stays
- * unbiased (adaptive importance sampling). */
+ * (never 0: no direction a caustic can come from is ever given density 0).
+ * Every iteration samples from a pdf fixed before it starts and divides by
+ * it, so each iteration's estimate stays unbiased (adaptive importance
+ * sampling). */
 void ref_emitter_adapt(struct ref_emitter *e);
 
 /* The three numbers in [0, 1) that place photon `index` of a light: the
