@@ -254,8 +254,9 @@ bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i)
 }
 
 /* The photons within r of p on the lit side of a surface like the one
- * whose normal is n: their scaled flux summed into *flux, or with `rings`
- * their grey flux split between the inner half radius and the ring. */
+ * whose normal is n: their scaled flux, weighted by Epanechnikov's kernel,
+ * summed into *flux, or with `rings` their grey flux (unweighted) split
+ * between the inner half radius and the ring. */
 #define SCAN_BLOCK 64
 static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
                  dvec3 *flux, struct ref_photon_rings *rings, long limit)
@@ -283,7 +284,7 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
     u = ul > 0.0 ? dv(u.x / ul, u.y / ul, u.z / ul) : dv(1, 0, 0);
     dvec3 v = dv(n.y * u.z - n.z * u.y, n.z * u.x - n.x * u.z, n.x * u.y - n.y * u.x);
     float ux = (float)u.x, uy = (float)u.y, uz = (float)u.z, vx = (float)v.x, vy = (float)v.y, vz = (float)v.z;
-    double inv_r = 1.0 / r;
+    double inv_r = 1.0 / r, inv_r2 = inv_r * inv_r;
     /* the structure sums in locals (through the pointer, every photon
      * stored them back) */
     struct ref_photon_rings st = {0};
@@ -346,9 +347,19 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
                         }
                         if (!flux)
                             continue;
-                        sx += ph->flux[0] * f;
-                        sy += ph->flux[1] * f;
-                        sz += ph->flux[2] * f;
+                        /* Epanechnikov's kernel, 2 (1 - d^2/r^2): its integral
+                         * over the disc is the disc's area, as the flat
+                         * kernel's, so the estimate's scale is unchanged.
+                         * The photons lie stratified (ref_emit.c), and a
+                         * stratified set's count in a disc varies only by
+                         * the photons its edge cuts: a kernel that falls to
+                         * 0 there does not see them (issue 53: with the
+                         * photons split at interfaces, one iteration's noise
+                         * at a fixed radius 1.77% -> 1.41%). */
+                        double w = f * 2.0 * fmax(1.0 - inside_d2[h] * inv_r2, 0.0);
+                        sx += ph->flux[0] * w;
+                        sy += ph->flux[1] * w;
+                        sz += ph->flux[2] * w;
                         if (!atomic_load_explicit(&map->used[e->photon], memory_order_relaxed))
                             atomic_store_explicit(&map->used[e->photon], 1, memory_order_relaxed);
                     }

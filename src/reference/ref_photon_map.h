@@ -127,8 +127,10 @@ void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, do
 /* The photons within r of p that arrived on the side of the surface whose
  * normal is n (travelling against it) on a surface of the same kind
  * (normals within 60 degrees either way): their flux, each scaled by
- * light_scale[light] (NULL: 1), summed into *flux, and with `rings` (may be
- * NULL) their grey flux split as ref_photon_map_rings does; returns how
+ * light_scale[light] (NULL: 1) and by Epanechnikov's kernel 2 (1 - d^2/r^2)
+ * (whose integral over the disc is its area: *flux / (pi r^2) estimates the
+ * flux density), summed into *flux, and with `rings` (may be NULL) their
+ * grey flux, unweighted, split as ref_photon_map_rings does; returns how
  * many. Marks them used. */
 long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
                            dvec3 *flux, struct ref_photon_rings *rings);
