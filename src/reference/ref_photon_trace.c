@@ -17,9 +17,30 @@ static void aim_push(struct aim_log *log, int light, size_t entry, bool useful)
     log->items[log->count++] = ((uint64_t)light << 40) | ((uint64_t)entry << 1) | (useful ? 1u : 0u);
 }
 
-static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
-                              int target_object, unsigned target_primitive, struct ref_surface_photons *hits,
-                              long long *caustic, double *power, struct volume_photons *volume, uint32_t aim);
+/* Where a photon's path starts: from the light, or the reflected branch
+ * of a photon split at an interface (sppm_specular_step). */
+struct photon_start {
+    dvec3 origin, dir, flux;
+    struct media media;
+    int depth, specular; /* bounces so far, and how many of them specular */
+};
+
+/* What every path of one emitted photon shares: its aim (the surface it
+ * must meet first), where its photons go, and how many more reflected
+ * branches it may start (PHOTON_BRANCHES in all). */
+struct photon_tree {
+    int light;
+    int target_object;
+    unsigned target_primitive;
+    struct ref_surface_photons *hits;
+    long long *caustic;
+    double *power;
+    struct volume_photons *volume;
+    uint32_t aim;
+    int branches_left;
+};
+
+static void trace_photon_path(struct job *j, struct photon_tree *tree, struct ref_rng *rng, struct photon_start st);
 
 static void trace_photon(struct job *j, int light, long index, struct ref_surface_photons *hits, long long *caustic,
                          double *power, struct volume_photons *volume, struct aim_log *aims)
@@ -44,20 +65,20 @@ static void trace_photon(struct job *j, int light, long index, struct ref_surfac
     size_t volume_before = volume->count;
     /* a surface photon is marked useful by the gather (gather_surface_photons),
      * a volume photon now: it is gathered wherever it lies */
-    trace_photon_path(j, light, &rng, origin, dir, flux, target_object, target_primitive, hits, caustic, power, volume,
-                      (uint32_t)aims->count);
+    struct photon_tree tree = {light, target_object, target_primitive, hits, caustic, power, volume,
+                               (uint32_t)aims->count, PHOTON_BRANCHES};
+    /* (lights are outside every dielectric) */
+    trace_photon_path(j, &tree, &rng, (struct photon_start){origin, dir, flux, {.count = 0}, 0, 0});
     aim_push(aims, light, entry, volume->count > volume_before);
 }
 
-static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, dvec3 origin, dvec3 dir, dvec3 flux,
-                              int target_object, unsigned target_primitive, struct ref_surface_photons *hits,
-                              long long *caustic, double *power, struct volume_photons *volume, uint32_t aim)
+static void trace_photon_path(struct job *j, struct photon_tree *tree, struct ref_rng *rng, struct photon_start st)
 {
     const struct ref_scene *rs = j->rs;
-    struct ref_rng rng = *rng_in;
-    struct media media = {.count = 0}; /* lights are outside every dielectric */
-    int specular = 0;
-    for (int depth = 0; depth < MAX_PHOTON_DEPTH; depth++) {
+    struct media media = st.media;
+    dvec3 origin = st.origin, dir = st.dir, flux = st.flux;
+    int specular = st.specular, light = tree->light;
+    for (int depth = st.depth; depth < MAX_PHOTON_DEPTH; depth++) {
         struct ref_hit h;
         bool hit = ref_scene_intersect(rs, origin, dir, INFINITY, &h);
         /* Aimed at one triangle: if another surface comes first, this
@@ -66,13 +87,13 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         /* (an exact sphere is aimed at through its blown-up triangles,
          * ref_emit.c's aim_scale, whose facets facing the light tile its
          * whole outline: any hit on the sphere counts) */
-        if (depth == 0 && (!hit || h.object != target_object ||
-                           (!j->rs->objects[h.object].sphere && h.primitive != target_primitive)))
+        if (depth == 0 && (!hit || h.object != tree->target_object ||
+                           (!j->rs->objects[h.object].sphere && h.primitive != tree->target_primitive)))
             return;
         if (sppm_scene_medium_here(rs, &media) && j->medium->present) {
             double ts = 0;
             dvec3 w = dv(1, 1, 1);
-            enum ref_medium_event ev = ref_medium_track(j->medium, origin, dir, hit ? h.t : INFINITY, &rng, &ts, &w);
+            enum ref_medium_event ev = ref_medium_track(j->medium, origin, dir, hit ? h.t : INFINITY, rng, &ts, &w);
             if (ev == REF_MEDIUM_ABSORB)
                 return;
             if (ev == REF_MEDIUM_SCATTER) {
@@ -80,7 +101,7 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
                  * that scatters before any specular surface is direct
                  * single scattering, which the eye paths estimate. */
                 if (specular > 0)
-                    sppm_volume_push(volume, dv_add(origin, dv_scale(dir, ts)), dir, dv_mul(flux, w), light);
+                    sppm_volume_push(tree->volume, dv_add(origin, dv_scale(dir, ts)), dir, dv_mul(flux, w), light);
                 return;
             }
             flux = dv_mul(flux, w);
@@ -88,23 +109,34 @@ static void trace_photon_path(struct job *j, int light, struct ref_rng *rng_in, 
         if (!hit)
             return;
         flux = sppm_attenuate(flux, sppm_medium_sigma(rs, &media), h.t);
-        if (sppm_hit_is_diffuse(rs, &h, &rng)) {
+        if (sppm_hit_is_diffuse(rs, &h, rng)) {
             if (specular > 0) {
-                (*caustic)++;
-                power[0] += flux.x;
-                power[1] += flux.y;
-                power[2] += flux.z;
+                (*tree->caustic)++;
+                tree->power[0] += flux.x;
+                tree->power[1] += flux.y;
+                tree->power[2] += flux.z;
                 struct ref_surface_photon ph = {
                     {(float)h.position.x, (float)h.position.y, (float)h.position.z},
                     {(float)dir.x, (float)dir.y, (float)dir.z},
                     {(float)h.geometric_normal.x, (float)h.geometric_normal.y, (float)h.geometric_normal.z},
-                    {(float)flux.x, (float)flux.y, (float)flux.z}, light, aim};
-                ref_surface_photons_push(hits, &ph); /* out of memory: the photon is lost, the estimate stays finite */
+                    {(float)flux.x, (float)flux.y, (float)flux.z}, light, tree->aim};
+                ref_surface_photons_push(tree->hits, &ph); /* out of memory: the photon is lost, the estimate stays finite */
             }
             return; /* L D paths are direct light, gathered by shadow rays */
         }
-        if (sppm_specular_step(rs, &h, &media, &dir, &origin, &flux, &rng))
+        struct specular_branch branch = {.taken = false};
+        if (sppm_specular_step(rs, &h, &media, &dir, &origin, &flux, rng, tree->branches_left > 0 ? &branch : NULL))
             specular++;
+        if (branch.taken) {
+            /* the reflected way, on random numbers of its own (a stream
+             * drawn from this path's, so a seed still fixes everything) */
+            tree->branches_left--;
+            uint64_t hi = ref_rng_u32(rng), lo = ref_rng_u32(rng);
+            struct ref_rng branch_rng = ref_rng_seed(j->o->seed, (hi << 32) | lo, 1u);
+            trace_photon_path(j, tree, &branch_rng,
+                              (struct photon_start){branch.origin, branch.dir, branch.beta, branch.media, depth + 1,
+                                                    specular});
+        }
         if (dv_dot(flux, flux) < 1e-40)
             return;
     }

@@ -73,6 +73,7 @@ struct ref_object {
     bool sphere;
     dvec3 sphere_center;
     double sphere_radius;
+    double epsilon; /* ray offset from its surface, from its own size (ref_scene_offset) */
 };
 
 /* Texture coordinates `set` at barycentrics (u, v) of triangle `primitive`. */
@@ -109,7 +110,7 @@ struct ref_scene {
     const struct environment *environment; /* borrowed */
     dvec3 background, ambient;
     dvec3 bounds_lo, bounds_hi;
-    double epsilon; /* ray offset, from the scene size */
+    double epsilon; /* ray offset, from the scene size (a diffuse point's shadow rays) */
     bool has_specular_bounds;
     bool has_thin;  /* thin-walled glass: shadow rays go through it (ref_scene_transmittance) */
     dvec3 specular_center; /* bounding sphere of the specular objects */
@@ -163,6 +164,10 @@ bool ref_scene_build(struct ref_scene *rs, struct renderer *r, struct scene *sce
                      struct error *err);
 void ref_scene_release(struct ref_scene *rs);
 bool ref_scene_intersect(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax, struct ref_hit *hit);
+/* How far off the surface of h a ray leaving it starts: the object's own
+ * scale, at least the float precision of the point (Embree's rays are
+ * float). */
+double ref_scene_offset(const struct ref_scene *rs, const struct ref_hit *h);
 bool ref_scene_occluded(const struct ref_scene *rs, dvec3 origin, dvec3 dir, double tmax);
 /* What reaches origin from tmax along dir: 0 where an opaque surface (or
  * glass, whose light the photons carry) is in the way, else the product
