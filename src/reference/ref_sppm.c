@@ -38,6 +38,39 @@ void ref_options_default(struct ref_options *o)
 static long share_photons(struct job *job, const struct ref_scene *rs, const struct ref_emitter *emitters, long photons);
 static long photons_traced(const struct job *j, const struct budget *b, int l);
 
+/* Under a budget, how many photons the first radii hold: GATHER_PHOTONS,
+ * or where the first gather of that many would take more than
+ * FIRST_GATHER_SHARE of the time left, fewer in proportion, down to
+ * GATHER_PHOTONS_MIN, the radii shrunk to hold them (as sqrt(k'/k): the
+ * density within a radius is about even, or the radius would have been
+ * halved). The first gather is predicted from the first k-nearest-neighbour
+ * pass, which counted the pilot's last round (a quarter of an iteration's
+ * photons) within radii about as wide: its time, per photon counted, times
+ * the photons the gather will take, twice (the flux and the structure
+ * sums). More photons a gather cost fewer iterations, which the photons'
+ * stratification repays, but not where the first gather itself no longer
+ * fits: at 512^2 and 2 s the TIR cube's stopped short of its last rows
+ * (26% of error, against 5.3% with 200 a gather). The pilot's counting
+ * rates at its small radius, and the time the eye pass and the pilot took,
+ * were tried as the measure and missed by 3 to 4 times, differently per
+ * scene. */
+static double budget_gather_photons(const struct budget *budget, struct pixel *pixels, size_t npix)
+{
+    long long counted = budget->knn_pass_counted, served = budget->knn_pass_pixels;
+    if (!(budget->deadline > 0) || counted <= 0 || served <= 0 || !(budget->knn_seconds > 0.0))
+        return GATHER_PHOTONS;
+    double rest = budget->deadline - log_now();
+    double gather = 2.0 * budget->knn_seconds * GATHER_PHOTONS * (double)served / (double)counted;
+    if (gather <= FIRST_GATHER_SHARE * rest)
+        return GATHER_PHOTONS;
+    double k = fmax(GATHER_PHOTONS * FIRST_GATHER_SHARE * fmax(rest, 0.0) / gather, GATHER_PHOTONS_MIN);
+    double shrink = sqrt(k / GATHER_PHOTONS);
+    for (size_t i = 0; i < npix; i++)
+        if (pixels[i].radius > 0.0)
+            pixels[i].radius = fmax(pixels[i].radius * shrink, pixels[i].radius_floor);
+    return k;
+}
+
 static void pilot_photons(struct job *job, int threads, struct budget *budget, struct volume_photons *volume_chunks,
                           long photons, struct pixel *pixels, size_t npix)
 {
@@ -87,8 +120,8 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
     /* A first radius for the photon density (Issue 15, "a gather that
      * adapts", a k-nearest-neighbour choice): where the last round's m
      * photons fell within R_c = PILOT_RADIUS x R0, an iteration's photons
-     * (4 times as many) put about GATHER_PHOTONS within
-     * R_c sqrt(GATHER_PHOTONS / 4m). Kept within [RADIUS_MIN R0,
+     * (4 times as many) put about k = gather_photons within
+     * R_c sqrt(k / 4m). Kept within [RADIUS_MIN R0,
      * RADIUS_MAX R0] (R0: two pixel footprints): a bright caustic is
      * gathered tightly, a dim or even region widely (little noise). Then
      * counting passes correct the guess (knn_step) and the structure test
@@ -109,7 +142,7 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
             continue;
         double r0 = px->radius / PILOT_RADIUS, r = RADIUS_MAX * r0;
         if (px->m > 0)
-            r = PILOT_RADIUS * r0 * sqrt(GATHER_PHOTONS / (4.0 * (double)px->m));
+            r = PILOT_RADIUS * r0 * sqrt(job->gather_photons / (4.0 * (double)px->m));
         px->radius = fmin(fmax(r, RADIUS_MIN * r0), RADIUS_MAX * r0);
         if (search)
             search[i] = (struct radius_search){RADIUS_MIN * r0, RADIUS_MAX * r0};
@@ -119,6 +152,7 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
     if (search) {
         /* the searches take at most what is left of the pilot's share */
         sppm_radius_search(job, threads, search, true, KNN_PASSES, pilot_deadline);
+        job->gather_photons = budget_gather_photons(budget, pixels, npix);
         for (size_t i = 0; i < npix; i++)
             search[i].floor = pixels[i].radius_floor;
         sppm_radius_search(job, threads, search, false, STRUCTURE_HALVINGS, pilot_deadline);
@@ -267,7 +301,7 @@ static void plan_photon_budget(struct job *job, const struct sppm_totals *t, siz
     if (!budget->gather_seen && budget->seconds_per_traced > 0.0 && budget->seconds_per_gathered > 0.0) {
         /* The first iteration's gather, from the pilot's rates: every
          * photon goes into the map, and each visible point takes about
-         * GATHER_PHOTONS at twice the cost of the pilot's counting gather
+         * gather_photons at twice the cost of the pilot's counting gather
          * (the flux and the structure sums). The pilot's own gathers, at
          * its small counting radius, cost far less than this one, and
          * photons traced by their share overran a 1 s budget by a third at
@@ -276,7 +310,7 @@ static void plan_photon_budget(struct job *job, const struct sppm_totals *t, siz
         for (size_t i = 0; i < npix; i++)
             points += pixels[i].vp.valid && pixels[i].radius > 0.0;
         double gather = budget->seconds_per_mapped * (double)job->photons_total +
-                        2.0 * budget->seconds_per_gathered * GATHER_PHOTONS * (double)points;
+                        2.0 * budget->seconds_per_gathered * job->gather_photons * (double)points;
         double trace = budget->seconds_per_traced * (double)job->photons_total;
         budget->gather_share = fmin(gather / (gather + trace), 0.9);
     }
@@ -476,8 +510,8 @@ static void iteration_report(const struct job *job, int it, size_t npix, double 
             job->budget->line_length = 0;
         }
         if (it == 0)
-            fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s (the noise estimate starts at 2)",
-                    t->emitted, log_now() - start);
+            fprintf(stderr, "reference: iteration 1: %lld photons, %.2f s, first radii for %.0f photons a gather "
+                    "(the noise estimate starts at 2)", t->emitted, log_now() - start, job->gather_photons);
         else
             fprintf(stderr, "reference: iteration %d: %lld photons, %.2f s, noise ~%.3g%% (even vs odd iterations)",
                     it + 1, t->emitted, log_now() - start, 100.0 * noise);
@@ -732,6 +766,7 @@ bool ref_render_parts(struct renderer *r, struct scene *scene, const struct ref_
     struct ref_photon_map photon_map = {0};
     struct job job = {.rs = &rs, .o = o, .pixels = buf.pixels, .segments = buf.segments, .camera_media = &camera_media, .medium = &medium,
                       .volume_chunks = buf.volume_chunks, .pixel_angle = pixel_angle, .pixel_size = pixel_size,
+                      .gather_photons = GATHER_PHOTONS,
                       .chunks = buf.chunks, .budget = budget, .emitters = emitters, .aims = buf.aims,
                       .photon_map = &photon_map};
     if (caustics && share_photons(&job, &rs, emitters, o->photons) == 0)

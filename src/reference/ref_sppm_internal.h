@@ -136,11 +136,17 @@ struct budget {
     bool gather_seen;       /* an iteration's gather has set gather_share (before it, the pilot's rates predict it) */
     double seconds_per_traced, seconds_per_mapped, seconds_per_gathered; /* the pilot's rates: a photon traced, put
                                                                           * in the map, taken by a visible point */
+    /* the first k-nearest-neighbour pass: its seconds, the pixels it
+     * served and the photons they counted (budget_gather_photons) */
+    double knn_seconds;
+    atomic_llong knn_pixels, knn_counted; /* (while a pass runs) */
+    long long knn_pass_pixels, knn_pass_counted;
 };
 
 struct job {
     const struct ref_scene *rs;
     const struct ref_options *o;
+    double gather_photons; /* photons a first radius is chosen to hold (GATHER_PHOTONS, or fewer under a budget) */
     struct pixel *pixels;
     struct pixel_segments *segments; /* per pixel; NULL without a medium */
     int iteration;
@@ -233,6 +239,11 @@ struct radius_search {
  * band reach across it before the tests below could stop it). */
 #define PILOT_RADIUS 2.0     /* the pilot counts photons within this many first radii */
 #define GATHER_PHOTONS 400.0 /* photons a first radius is chosen to hold, about, per iteration */
+/* Under a time budget where the first gather of that many would take
+ * more than FIRST_GATHER_SHARE of the rest, fewer, down to
+ * GATHER_PHOTONS_MIN (ref_sppm.c's budget_gather_photons) */
+#define GATHER_PHOTONS_MIN 100.0
+#define FIRST_GATHER_SHARE 0.3
 #define RADIUS_MIN 0.0625    /* the first radius stays within these multiples of two pixel footprints */
 #define RADIUS_MAX 16.0
 

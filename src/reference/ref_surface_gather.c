@@ -264,15 +264,17 @@ bool sppm_structure_restart(struct pixel *px, double passes_now)
 
 
 /* A k-nearest-neighbour radius (after the pilot's first guess from the
- * count within R_c): the radius that holds the GATHER_PHOTONS an
+ * count within R_c): the radius that holds the gather_photons an
  * iteration would put there (a quarter of them in the pilot's round),
  * found by counting at the radius and moving it, within a factor 2 of the
  * count. A count at R_c only sees the density around the pixel: a dim
  * pixel beside a bright caustic would reach far into it. */
 static void knn_step(const struct job *j, struct pixel *px, struct radius_search *s)
 {
-    double want = GATHER_PHOTONS / 4.0;
+    double want = j->gather_photons / 4.0;
     long c = ref_photon_map_count(j->photon_map, px->vp.position, px->vp.normal, px->radius, (long)(8.0 * want));
+    atomic_fetch_add_explicit(&j->budget->knn_pixels, 1, memory_order_relaxed);
+    atomic_fetch_add_explicit(&j->budget->knn_counted, c, memory_order_relaxed);
     double r = px->radius;
     if ((double)c > 2.0 * want)
         r *= fmax(sqrt(want / (double)c), 0.25);
@@ -334,7 +336,17 @@ void sppm_radius_search(struct job *job, int threads, struct radius_search *sear
             break; /* every pixel settled */
         if (!ref_photon_map_build_levels(map, per_level, threads))
             break; /* out of memory: the radii stand */
+        double pass_start = log_now();
+        if (knn && pass == 0) {
+            atomic_store(&job->budget->knn_pixels, 0);
+            atomic_store(&job->budget->knn_counted, 0);
+        }
         sppm_run_threads(job, threads, radius_search_thread);
+        if (knn && pass == 0) {
+            job->budget->knn_seconds = log_now() - pass_start;
+            job->budget->knn_pass_pixels = atomic_load(&job->budget->knn_pixels);
+            job->budget->knn_pass_counted = atomic_load(&job->budget->knn_counted);
+        }
     }
     job->radius_search = NULL;
 }
