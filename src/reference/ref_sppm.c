@@ -38,39 +38,6 @@ void ref_options_default(struct ref_options *o)
 static long share_photons(struct job *job, const struct ref_scene *rs, const struct ref_emitter *emitters, long photons);
 static long photons_traced(const struct job *j, const struct budget *b, int l);
 
-/* Under a budget, how many photons the first radii hold: GATHER_PHOTONS,
- * or where the first gather of that many would take more than
- * FIRST_GATHER_SHARE of the time left, fewer in proportion, down to
- * GATHER_PHOTONS_MIN, the radii shrunk to hold them (as sqrt(k'/k): the
- * density within a radius is about even, or the radius would have been
- * halved). The first gather is predicted from the first k-nearest-neighbour
- * pass, which counted the pilot's last round (a quarter of an iteration's
- * photons) within radii about as wide: its time, per photon counted, times
- * the photons the gather will take, twice (the flux and the structure
- * sums). More photons a gather cost fewer iterations, which the photons'
- * stratification repays, but not where the first gather itself no longer
- * fits: at 512^2 and 2 s the TIR cube's stopped short of its last rows
- * (26% of error, against 5.3% with 200 a gather). The pilot's counting
- * rates at its small radius, and the time the eye pass and the pilot took,
- * were tried as the measure and missed by 3 to 4 times, differently per
- * scene. */
-static double budget_gather_photons(const struct budget *budget, struct pixel *pixels, size_t npix)
-{
-    long long counted = budget->knn_pass_counted, served = budget->knn_pass_pixels;
-    if (!(budget->deadline > 0) || counted <= 0 || served <= 0 || !(budget->knn_seconds > 0.0))
-        return GATHER_PHOTONS;
-    double rest = budget->deadline - log_now();
-    double gather = 2.0 * budget->knn_seconds * GATHER_PHOTONS * (double)served / (double)counted;
-    if (gather <= FIRST_GATHER_SHARE * rest)
-        return GATHER_PHOTONS;
-    double k = fmax(GATHER_PHOTONS * FIRST_GATHER_SHARE * fmax(rest, 0.0) / gather, GATHER_PHOTONS_MIN);
-    double shrink = sqrt(k / GATHER_PHOTONS);
-    for (size_t i = 0; i < npix; i++)
-        if (pixels[i].radius > 0.0)
-            pixels[i].radius = fmax(pixels[i].radius * shrink, pixels[i].radius_floor);
-    return k;
-}
-
 static void pilot_photons(struct job *job, int threads, struct budget *budget, struct volume_photons *volume_chunks,
                           long photons, struct pixel *pixels, size_t npix)
 {
@@ -152,7 +119,7 @@ static void pilot_photons(struct job *job, int threads, struct budget *budget, s
     if (search) {
         /* the searches take at most what is left of the pilot's share */
         sppm_radius_search(job, threads, search, true, KNN_PASSES, pilot_deadline);
-        job->gather_photons = budget_gather_photons(budget, pixels, npix);
+        job->gather_photons = sppm_budget_gather_photons(budget, pixels, npix);
         for (size_t i = 0; i < npix; i++)
             search[i].floor = pixels[i].radius_floor;
         sppm_radius_search(job, threads, search, false, STRUCTURE_HALVINGS, pilot_deadline);

@@ -241,7 +241,7 @@ struct radius_search {
 #define GATHER_PHOTONS 400.0 /* photons a first radius is chosen to hold, about, per iteration */
 /* Under a time budget where the first gather of that many would take
  * more than FIRST_GATHER_SHARE of the rest, fewer, down to
- * GATHER_PHOTONS_MIN (ref_sppm.c's budget_gather_photons) */
+ * GATHER_PHOTONS_MIN (ref_budget.c's sppm_budget_gather_photons) */
 #define GATHER_PHOTONS_MIN 100.0
 #define FIRST_GATHER_SHARE 0.3
 #define RADIUS_MIN 0.0625    /* the first radius stays within these multiples of two pixel footprints */
@@ -291,6 +291,10 @@ void sppm_radius_search(struct job *job, int threads, struct radius_search *sear
 void sppm_progress_line(struct budget *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 bool sppm_budget_photons_spent(struct budget *b);
 bool sppm_budget_spent(struct budget *b);
+/* ref_budget.c: photons a first radius holds under the budget (GATHER_PHOTONS
+ * or fewer, the radii shrunk to match), from the first k-nearest-neighbour
+ * pass's rate */
+double sppm_budget_gather_photons(const struct budget *budget, struct pixel *pixels, size_t npix);
 /* ref_budget.c: when a photon stage that must end by `until` (0: no
  * budget) stops tracing to leave its surface gather the time the last one
  * took; that share, measured. */
