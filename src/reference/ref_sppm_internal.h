@@ -137,7 +137,7 @@ struct budget {
     double seconds_per_traced, seconds_per_mapped, seconds_per_gathered; /* the pilot's rates: a photon traced, put
                                                                           * in the map, taken by a visible point */
     /* the first k-nearest-neighbour pass: its seconds, the pixels it
-     * served and the photons they counted (budget_gather_photons) */
+     * served and the photons they counted (sppm_budget_gather_photons) */
     double knn_seconds;
     atomic_llong knn_pixels, knn_counted; /* (while a pass runs) */
     long long knn_pass_pixels, knn_pass_counted;
