@@ -18,7 +18,6 @@ void sppm_budget_start(struct budget *budget, const struct ref_options *o, doubl
     atomic_init(&budget->knn_pixels, 0);
     atomic_init(&budget->knn_counted, 0);
     budget->knn_seconds = 0.0;
-    budget->knn_pass_pixels = budget->knn_pass_counted = 0;
     budget->start = start;
     budget->gather_share = 0.25;
     budget->deadline = o->time_budget > 0 ? start + o->time_budget : 0.0;
@@ -102,17 +101,14 @@ double sppm_budget_gather_photons(const struct budget *budget, struct pixel *pix
 {
     if (!(budget->deadline > 0))
         return GATHER_PHOTONS;
-    long long counted = budget->knn_pass_counted, served = budget->knn_pass_pixels;
+    long long counted = atomic_load(&budget->knn_counted), served = atomic_load(&budget->knn_pixels);
     double rest = budget->deadline - log_now(), gather;
     if (counted > 0 && served > 0 && budget->knn_seconds > 0.0) {
         gather = 2.0 * budget->knn_seconds * GATHER_PHOTONS * (double)served / (double)counted;
     } else {
         /* no pass before the pilot's deadline (a short budget): the
          * pilot's counting rate, which says too much, is the safer side */
-        size_t points = 0;
-        for (size_t i = 0; i < npix; i++)
-            points += pixels[i].vp.valid && pixels[i].radius > 0.0;
-        gather = 2.0 * budget->seconds_per_gathered * GATHER_PHOTONS * (double)points;
+        gather = 2.0 * budget->seconds_per_gathered * GATHER_PHOTONS * (double)sppm_gathering_points(pixels, npix);
         if (!(gather > 0.0))
             return GATHER_PHOTONS;
     }
@@ -124,4 +120,12 @@ double sppm_budget_gather_photons(const struct budget *budget, struct pixel *pix
         if (pixels[i].radius > 0.0)
             pixels[i].radius = fmax(pixels[i].radius * shrink, pixels[i].radius_floor);
     return k;
+}
+
+size_t sppm_gathering_points(const struct pixel *pixels, size_t npix)
+{
+    size_t points = 0;
+    for (size_t i = 0; i < npix; i++)
+        points += pixels[i].vp.valid && pixels[i].radius > 0.0;
+    return points;
 }

@@ -193,10 +193,12 @@ bool sppm_specular_step(const struct ref_scene *rs, const struct ref_hit *h, str
     bool split = branch && alpha == 0.0 && can_refract && f > 0.0 && f < 1.0;
     if (split) {
         branch->taken = ref_rng_uniform(rng) < f;
-        branch->dir = dv_normalize_or(ref_reflect(*dir, mn), ref_reflect(*dir, ngo));
-        branch->origin = dv_add(h->position, dv_scale(ngo, offset));
-        branch->beta = *beta;
-        branch->media = *media;
+        if (branch->taken) {
+            branch->dir = dv_normalize_or(ref_reflect(*dir, mn), ref_reflect(*dir, ngo));
+            branch->origin = dv_add(h->position, dv_scale(ngo, offset));
+            branch->beta = *beta;
+            branch->media = *media;
+        }
         *beta = dv_scale(*beta, 1.0 - f);
     }
     bool reflected = !can_refract || (!split && ref_rng_uniform(rng) < f);

@@ -273,11 +273,9 @@ static void plan_photon_budget(struct job *job, const struct sppm_totals *t, siz
          * its small counting radius, cost far less than this one, and
          * photons traced by their share overran a 1 s budget by a third at
          * 512^2. */
-        size_t points = 0;
-        for (size_t i = 0; i < npix; i++)
-            points += pixels[i].vp.valid && pixels[i].radius > 0.0;
         double gather = budget->seconds_per_mapped * (double)job->photons_total +
-                        2.0 * budget->seconds_per_gathered * job->gather_photons * (double)points;
+                        2.0 * budget->seconds_per_gathered * job->gather_photons *
+                            (double)sppm_gathering_points(pixels, npix);
         double trace = budget->seconds_per_traced * (double)job->photons_total;
         budget->gather_share = fmin(gather / (gather + trace), 0.9);
     }

@@ -139,8 +139,7 @@ struct budget {
     /* the first k-nearest-neighbour pass: its seconds, the pixels it
      * served and the photons they counted (sppm_budget_gather_photons) */
     double knn_seconds;
-    atomic_llong knn_pixels, knn_counted; /* (while a pass runs) */
-    long long knn_pass_pixels, knn_pass_counted;
+    atomic_llong knn_pixels, knn_counted;
 };
 
 struct job {
@@ -179,6 +178,7 @@ struct job {
     bool gather_counts_only;           /* the pilot's gather: photons per pixel into m, no flux */
     struct radius_search *radius_search; /* the pilot's radius passes: per pixel */
     bool radius_search_knn;              /* their kind: k nearest neighbours, or the structure test */
+    bool radius_search_measured;         /* the first knn pass: its pixels and counts go to the budget */
     double radius_search_until;          /* their deadline (0: none), checked every row */
     struct ref_surface_photons *chunks;
     long long caustic_photons[PHOTON_CHUNKS];
@@ -295,6 +295,8 @@ bool sppm_budget_spent(struct budget *b);
  * or fewer, the radii shrunk to match), from the first k-nearest-neighbour
  * pass's rate */
 double sppm_budget_gather_photons(const struct budget *budget, struct pixel *pixels, size_t npix);
+/* the pixels that gather: those with a visible point and a radius */
+size_t sppm_gathering_points(const struct pixel *pixels, size_t npix);
 /* ref_budget.c: when a photon stage that must end by `until` (0: no
  * budget) stops tracing to leave its surface gather the time the last one
  * took; that share, measured. */

@@ -269,12 +269,10 @@ bool sppm_structure_restart(struct pixel *px, double passes_now)
  * found by counting at the radius and moving it, within a factor 2 of the
  * count. A count at R_c only sees the density around the pixel: a dim
  * pixel beside a bright caustic would reach far into it. */
-static void knn_step(const struct job *j, struct pixel *px, struct radius_search *s)
+static long knn_step(const struct job *j, struct pixel *px, struct radius_search *s)
 {
     double want = j->gather_photons / 4.0;
     long c = ref_photon_map_count(j->photon_map, px->vp.position, px->vp.normal, px->radius, (long)(8.0 * want));
-    atomic_fetch_add_explicit(&j->budget->knn_pixels, 1, memory_order_relaxed);
-    atomic_fetch_add_explicit(&j->budget->knn_counted, c, memory_order_relaxed);
     double r = px->radius;
     if ((double)c > 2.0 * want)
         r *= fmax(sqrt(want / (double)c), 0.25);
@@ -284,6 +282,7 @@ static void knn_step(const struct job *j, struct pixel *px, struct radius_search
     if (r == px->radius)
         s->floor = 0.0; /* settled */
     px->radius = r;
+    return c;
 }
 
 static void structure_step(const struct job *j, struct pixel *px, struct radius_search *s)
@@ -299,20 +298,27 @@ static void structure_step(const struct job *j, struct pixel *px, struct radius_
 static void *radius_search_thread(void *arg)
 {
     struct job *j = arg;
+    long long served = 0, counted = 0;
     for (int y = j->thread; y < j->o->height; y += j->threads) {
         if (j->radius_search_until > 0.0 && log_now() >= j->radius_search_until)
-            return NULL; /* the rows left keep the radii they have */
+            break; /* the rows left keep the radii they have */
         for (int x = 0; x < j->o->width; x++) {
             size_t i = (size_t)y * (size_t)j->o->width + (size_t)x;
             struct pixel *px = &j->pixels[i];
             struct radius_search *s = &j->radius_search[i];
             if (!(s->floor > 0.0) || !px->vp.valid)
                 continue;
-            if (j->radius_search_knn)
-                knn_step(j, px, s);
-            else
+            if (j->radius_search_knn) {
+                counted += knn_step(j, px, s);
+                served++;
+            } else {
                 structure_step(j, px, s);
+            }
         }
+    }
+    if (j->radius_search_measured) {
+        atomic_fetch_add(&j->budget->knn_pixels, served);
+        atomic_fetch_add(&j->budget->knn_counted, counted);
     }
     return NULL;
 }
@@ -337,16 +343,11 @@ void sppm_radius_search(struct job *job, int threads, struct radius_search *sear
         if (!ref_photon_map_build_levels(map, per_level, threads))
             break; /* out of memory: the radii stand */
         double pass_start = log_now();
-        if (knn && pass == 0) {
-            atomic_store(&job->budget->knn_pixels, 0);
-            atomic_store(&job->budget->knn_counted, 0);
-        }
+        job->radius_search_measured = knn && pass == 0;
         sppm_run_threads(job, threads, radius_search_thread);
-        if (knn && pass == 0) {
+        if (job->radius_search_measured)
             job->budget->knn_seconds = log_now() - pass_start;
-            job->budget->knn_pass_pixels = atomic_load(&job->budget->knn_pixels);
-            job->budget->knn_pass_counted = atomic_load(&job->budget->knn_counted);
-        }
+        job->radius_search_measured = false;
     }
     job->radius_search = NULL;
 }
