@@ -1,6 +1,6 @@
 # Unit tests (C, one executable per module), CLI tests (shell), and the
 # scripted regression tests (caustica test), all run by ctest.
-foreach(name math image gltf gltf_hostile gltf_pose graph scene gl texture texture_lod tangents optics shading program illumination plot lua_pattern photon_map sppm_restart huge_pages)
+foreach(name math image gltf gltf_hostile gltf_pose graph scene gl texture texture_lod tangents optics shading program illumination plot lua_pattern photon_map sppm_restart volume_grid huge_pages)
   add_executable(test_${name} tests/unit/test_${name}.c)
   target_link_libraries(test_${name} PRIVATE caustica_core)
   add_test(NAME unit_${name} COMMAND test_${name})

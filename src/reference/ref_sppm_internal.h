@@ -198,10 +198,17 @@ struct volume_photons {
 };
 
 /* A hash grid over volume photons, cell = the gather radius. */
+/* The volume photons sorted by cell (cells of the gather's radius): a
+ * dense grid over their bounds where it fits (dense: the cells of a row
+ * along x lie together, so a gather reads 9 runs of 3 cells), else a hash
+ * of the cells (size slots, 27 read a gather). */
 struct volume_grid {
     double radius, cell;
-    size_t size;
-    size_t *start;
+    bool dense;
+    dvec3 origin;       /* dense: the corner of cell (0, 0, 0) */
+    long nx, ny, nz;    /* dense: cells along each axis */
+    size_t size;        /* cells (dense) or slots (hash) */
+    size_t *start;      /* size + 1 offsets into items */
     struct volume_photon *items; /* sorted by cell */
 };
 
@@ -273,6 +280,10 @@ void *sppm_camera_thread(void *arg);
 void sppm_volume_push(struct volume_photons *v, dvec3 p, dvec3 d, dvec3 flux, int light);
 void sppm_volume_grid_build(struct volume_grid *g, const struct volume_photons *chunks, int nchunks, double radius);
 void sppm_volume_grid_release(struct volume_grid *g);
+/* In-scattered radiance of the grid's photons at x towards -view (the
+ * volume radiance estimate within the grid's radius, Henyey-Greenstein
+ * phase with asymmetry phase_g). */
+dvec3 sppm_volume_estimate(const struct volume_grid *g, double phase_g, dvec3 x, dvec3 view);
 void *sppm_volume_thread(void *arg);
 
 /* ref_photon_trace.c: the photon threads */
