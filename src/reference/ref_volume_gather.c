@@ -38,7 +38,7 @@ static size_t volume_hash(const struct volume_grid *g, long x, long y, long z)
 static long volume_cell_axis(double v, double origin, double cell, long n)
 {
     double c = floor((v - origin) / cell);
-    return c < 0.0 ? 0 : c >= (double)n ? n - 1 : (long)c;
+    return c >= 0.0 ? (c < (double)n ? (long)c : n - 1) : 0; /* (NaN: cell 0, never an undefined conversion) */
 }
 
 /* The photon's cell: its index in the dense grid, or its hash slot. */
