@@ -30,9 +30,9 @@ static size_t volume_hash(const struct volume_grid *g, long x, long y, long z)
     return (size_t)(h % g->size);
 }
 
-/* A dense grid takes at most this many cells for each photon (and at
- * least a million are allowed): beyond it the photons are sparse in their
- * bounds and the hash costs less memory. */
+/* A dense grid takes at most this many cells for each photon: beyond it
+ * the photons are sparse in their bounds, and the hash costs less memory
+ * and less time to build (its offsets are summed cell by cell). */
 #define VOLUME_DENSE_CELLS_PER_PHOTON 8
 
 static long volume_cell_axis(double v, double origin, double cell, long n)
@@ -68,7 +68,7 @@ static void volume_grid_layout(struct volume_grid *g, const struct volume_photon
             lo = dv(fmin(lo.x, p[0]), fmin(lo.y, p[1]), fmin(lo.z, p[2]));
             hi = dv(fmax(hi.x, p[0]), fmax(hi.y, p[1]), fmax(hi.z, p[2]));
         }
-    double limit = fmax((double)VOLUME_DENSE_CELLS_PER_PHOTON * (double)n, 1048576.0);
+    double limit = (double)VOLUME_DENSE_CELLS_PER_PHOTON * (double)n;
     double nx = floor((hi.x - lo.x) / g->cell) + 1.0, ny = floor((hi.y - lo.y) / g->cell) + 1.0,
            nz = floor((hi.z - lo.z) / g->cell) + 1.0;
     if (!(nx * ny * nz <= limit)) /* (NaN bounds: the hash) */
