@@ -4,6 +4,9 @@
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "reference/ref_photon_map.h"
 
@@ -72,14 +75,17 @@ static bool reserve(void **p, size_t *capacity, size_t n, size_t size)
 }
 
 /* One level's grid: a counting sort of the photons by slot, stable (each
- * slot keeps the photon order). */
+ * slot keeps the photon order), into the level's columns. */
 static bool build_level(struct ref_photon_map *map, int l)
 {
     struct ref_photon_map_level *lv = &map->levels[l];
-    size_t n = map->count;
+    size_t n = map->count, stride = n + REF_PHOTON_MAP_PAD;
     if (!reserve((void **)&lv->start, &map->slots_capacity[l], map->slots + 1, sizeof *lv->start) ||
-        !reserve((void **)&lv->entries, &map->entries_capacity[l], n + 1, sizeof *lv->entries))
+        !reserve((void **)&lv->columns, &map->columns_capacity[l], REF_COLUMNS * stride, sizeof *lv->columns) ||
+        !reserve((void **)&lv->light, &map->light_capacity[l], stride, sizeof *lv->light) ||
+        !reserve((void **)&lv->photon, &map->photon_capacity[l], stride, sizeof *lv->photon))
         return false;
+    lv->stride = stride;
     memset(lv->start, 0, (map->slots + 1) * sizeof *lv->start);
     for (size_t i = 0; i < n; i++) {
         const float *p = map->photons[i].position;
@@ -89,13 +95,37 @@ static bool build_level(struct ref_photon_map *map, int l)
     }
     for (size_t s = 0; s < map->slots; s++)
         lv->start[s + 1] += lv->start[s];
+    float *col[REF_COLUMNS];
+    for (int c = 0; c < REF_COLUMNS; c++)
+        col[c] = lv->columns + (size_t)c * stride;
     for (size_t i = 0; i < n; i++) {
-        const float *p = map->photons[i].position;
-        double x = p[0] - map->origin.x, y = p[1] - map->origin.y, z = p[2] - map->origin.z;
+        const struct ref_surface_photon *ph = &map->photons[i];
+        double x = ph->position[0] - map->origin.x, y = ph->position[1] - map->origin.y,
+               z = ph->position[2] - map->origin.z;
         size_t s = slot_of(map, cell_coordinate(x, lv->cell), cell_coordinate(y, lv->cell), cell_coordinate(z, lv->cell));
         /* start[s] is the slot's fill point while filling; the shift below
          * turns the fill points back into starts */
-        lv->entries[lv->start[s]++] = (struct ref_photon_map_entry){(float)x, (float)y, (float)z, (uint32_t)i};
+        uint32_t k = lv->start[s]++;
+        col[REF_COLUMN_X][k] = (float)x;
+        col[REF_COLUMN_Y][k] = (float)y;
+        col[REF_COLUMN_Z][k] = (float)z;
+        for (int c = 0; c < 3; c++) {
+            col[REF_COLUMN_DX + c][k] = ph->dir[c];
+            col[REF_COLUMN_NX + c][k] = ph->normal[c];
+            col[REF_COLUMN_R + c][k] = ph->flux[c];
+        }
+        lv->light[k] = (uint32_t)ph->light;
+        lv->photon[k] = (uint32_t)i;
+    }
+    lv->identity = true;
+    for (size_t k = 0; k < n && lv->identity; k++)
+        lv->identity = lv->photon[k] == (uint32_t)k;
+    /* the padding: finite, and a light that exists */
+    for (size_t k = n; k < stride; k++) {
+        for (int c = 0; c < REF_COLUMNS; c++)
+            col[c][k] = 0.0f;
+        lv->light[k] = 0;
+        lv->photon[k] = 0;
     }
     for (size_t s = map->slots; s > 0; s--)
         lv->start[s] = lv->start[s - 1];
@@ -187,15 +217,22 @@ bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_p
         !reserve((void **)&map->rank, &map->rank_capacity, n + 1, sizeof *map->rank) ||
         !reserve((void **)&map->used, &map->used_capacity, n + 1, sizeof *map->used))
         return false;
+    map->mark_threads = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+    size_t marks = (size_t)map->mark_threads * (n + REF_PHOTON_MAP_PAD);
+    if (!reserve((void **)&map->marks, &map->marks_capacity, marks, 1))
+        return false;
+    memset(map->marks, 0, marks);
     dvec3 lo = dv(INFINITY, INFINITY, INFINITY);
+    map->lights = 1;
     for (int c = 0; c < nchunks; c++)
         for (size_t k = 0; k < chunks[c].count; k++) {
             const struct ref_surface_photon *ph = &chunks[c].items[k];
             map->photons[map->count++] = *ph;
+            if (ph->light >= 0 && (uint32_t)ph->light >= map->lights)
+                map->lights = (uint32_t)ph->light + 1;
             lo = dv(fmin(lo.x, ph->position[0]), fmin(lo.y, ph->position[1]), fmin(lo.z, ph->position[2]));
         }
-    for (size_t i = 0; i < n; i++)
-        atomic_init(&map->used[i], 0);
+    memset(map->used, 0, n + 1);
     map->origin = n ? lo : dv(0, 0, 0);
     map->slots = 1;
     while (map->slots < 2 * n)
@@ -209,13 +246,14 @@ bool ref_photon_map_build(struct ref_photon_map *map, const struct ref_surface_p
      * photons then lie together in memory whichever level it reads. */
     if (!build_level(map, most))
         return false;
-    struct ref_photon_map_entry *e = map->levels[most].entries;
+    uint32_t *e = map->levels[most].photon;
     for (size_t k = 0; k < n; k++)
-        map->original[k] = e[k].photon;
+        map->original[k] = e[k];
     for (size_t k = 0; k < n; k++) {
         map->rank[map->original[k]] = (uint32_t)k;
-        e[k].photon = (uint32_t)k;
+        e[k] = (uint32_t)k;
     }
+    map->levels[most].identity = true;
     /* the permutation in place, cycle by cycle, the ranks as the marks */
     for (size_t i = 0; i < n; i++) {
         if (map->rank[i] == (uint32_t)i)
@@ -248,18 +286,142 @@ bool ref_photon_map_build_levels(struct ref_photon_map *map, const size_t points
     return build_levels(map, wanted, threads);
 }
 
+void ref_photon_map_collect_marks(struct ref_photon_map *map)
+{
+    size_t n = map->count, stride = n + REF_PHOTON_MAP_PAD;
+    for (int t = 0; t < map->mark_threads; t++)
+        for (size_t i = 0; i < n; i++)
+            map->used[i] |= map->marks[(size_t)t * stride + i];
+}
+
 bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i)
 {
-    return i < map->count && atomic_load_explicit(&map->used[map->rank[i]], memory_order_relaxed) != 0;
+    return i < map->count && map->used[map->rank[i]] != 0;
+}
+
+/* The gather tests and sums LANES photons at a time, from the level's
+ * columns, with the compilers' vector types (GCC and Clang; lowered to
+ * scalar code where a target has no vector unit). Scalar, it spent about
+ * 120 instructions on each photon it took and tested almost 4 for each it
+ * took (the cells are up to twice the radius); rearranging the scalar
+ * loop (tiles, prefetching, float sums, a smaller record) never moved it
+ * (docs/REFERENCE.md's levers). Every lane of a group runs the whole test
+ * and the sums, masked; a group with no photon inside skips the sums. */
+#define LANES 4
+typedef float lanes_f __attribute__((vector_size(LANES * sizeof(float))));
+typedef int32_t lanes_i __attribute__((vector_size(LANES * sizeof(int32_t))));
+
+static inline lanes_f lanes_load(const float *p)
+{
+    lanes_f v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
+static inline lanes_f lanes_splat(float x)
+{
+    return (lanes_f){0} + x;
+}
+
+/* v where the mask is set, else 0 */
+static inline lanes_f lanes_select(lanes_i mask, lanes_f v)
+{
+    return (lanes_f)(mask & (lanes_i)v);
+}
+
+static inline lanes_f lanes_abs(lanes_f v)
+{
+    return (lanes_f)((lanes_i)v & 0x7fffffff);
+}
+
+/* bit i set where lane i's mask is */
+static inline unsigned lanes_bits(lanes_i mask)
+{
+#if defined(__SSE2__) && LANES == 4
+    return (unsigned)_mm_movemask_ps((__m128)mask);
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < LANES; i++)
+        bits |= (unsigned)(mask[i] != 0) << i;
+    return bits;
+#endif
+}
+
+/* how many bits a group's mask has set */
+static const unsigned char lanes_popcount[1 << LANES] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+/* marks the set lanes' bytes (at most one thread writes them) */
+static inline void lanes_mark(unsigned char *marks, unsigned bits)
+{
+#if LANES == 4
+    /* one 4-byte OR: byte i is 1 where bit i is set, on either byte order */
+    static const unsigned char spread[16][4] = {
+        {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}, {0, 0, 1, 0}, {1, 0, 1, 0}, {0, 1, 1, 0}, {1, 1, 1, 0},
+        {0, 0, 0, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {1, 1, 0, 1}, {0, 0, 1, 1}, {1, 0, 1, 1}, {0, 1, 1, 1}, {1, 1, 1, 1}};
+    uint32_t word, add;
+    memcpy(&word, marks, 4);
+    memcpy(&add, spread[bits], 4);
+    word |= add;
+    memcpy(marks, &word, 4);
+#else
+    for (int i = 0; i < LANES; i++)
+        marks[i] |= (unsigned char)((bits >> i) & 1u);
+#endif
+}
+
+/* the lanes summed in doubles, in a fixed order (the same sum on every
+ * run: the reference is deterministic for a seed) */
+static inline double lanes_sum(lanes_f v)
+{
+    double s = 0.0;
+    for (int i = 0; i < LANES; i++)
+        s += (double)v[i];
+    return s;
+}
+
+/* The sums a gather keeps in lanes; they go into doubles every
+ * FLUSH_GROUPS groups that took photons (a float sum of a few dozen
+ * photons loses nothing an estimate could see; of thousands it might). */
+#define FLUSH_GROUPS 64
+
+/* groups a slot is read in at a time (ref_photon_map_gather) */
+#define SCAN_BATCH 64
+struct lanes_sums {
+    lanes_f flux[3], inner, inner_sq, ring, ring_sq, moment[2], moment_sq[2], inner_flux[3];
+    lanes_i inner_count;
+};
+
+static inline __attribute__((always_inline)) void lanes_flush(struct lanes_sums *acc, double flux[3],
+                                                              struct ref_photon_rings *st, bool want_flux,
+                                                              bool want_rings)
+{
+    if (want_flux)
+        for (int c = 0; c < 3; c++)
+            flux[c] += lanes_sum(acc->flux[c]);
+    if (!want_rings)
+        return;
+    for (int c = 0; c < 3; c++)
+        st->inner_flux[c] += lanes_sum(acc->inner_flux[c]);
+    st->inner += lanes_sum(acc->inner);
+    st->inner_sq += lanes_sum(acc->inner_sq);
+    st->ring += lanes_sum(acc->ring);
+    st->ring_sq += lanes_sum(acc->ring_sq);
+    for (int c = 0; c < 2; c++) {
+        st->moment[c] += lanes_sum(acc->moment[c]);
+        st->moment_sq[c] += lanes_sum(acc->moment_sq[c]);
+    }
+    for (int i = 0; i < LANES; i++)
+        st->inner_count -= acc->inner_count[i]; /* the masks are -1 */
 }
 
 /* The photons within r of p on the lit side of a surface like the one
  * whose normal is n: their scaled flux, weighted by Epanechnikov's kernel,
- * summed into *flux, or with `rings` their grey flux (unweighted) split
- * between the inner half radius and the ring. */
-#define SCAN_BLOCK 64
-static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
-                 dvec3 *flux, struct ref_photon_rings *rings, long limit)
+ * summed into *flux (want_flux), and their grey flux (unweighted) split
+ * between the inner half radius and the ring into *rings (want_rings).
+ * Inlined into each caller, so that the sums it does not want fold away. */
+static inline __attribute__((always_inline)) long
+scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, const double *light_scale, dvec3 *flux,
+     struct ref_photon_rings *rings, long limit, bool want_flux, bool want_rings)
 {
     if (map->count == 0 || !(r > 0.0))
         return 0;
@@ -276,120 +438,168 @@ static long scan(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, c
     x1 = x1 > x0 + 2 ? x0 + 2 : x1;
     y1 = y1 > y0 + 2 ? y0 + 2 : y1;
     z1 = z1 > z0 + 2 ? z0 + 2 : z1;
-    float fx = (float)qx, fy = (float)qy, fz = (float)qz, r2 = (float)(r * r), inner2 = 0.25f * r2;
+    float r2 = (float)(r * r), inner2 = 0.25f * r2;
+    lanes_f fx = lanes_splat((float)qx), fy = lanes_splat((float)qy), fz = lanes_splat((float)qz);
     float nx = (float)n.x, ny = (float)n.y, nz = (float)n.z;
     /* two directions across the surface, for the moments */
     dvec3 u = fabs(n.x) < 0.9 ? dv(0.0, n.z, -n.y) : dv(-n.z, 0.0, n.x); /* n x (1,0,0) or n x (0,1,0) */
     double ul = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
     u = ul > 0.0 ? dv(u.x / ul, u.y / ul, u.z / ul) : dv(1, 0, 0);
     dvec3 v = dv(n.y * u.z - n.z * u.y, n.z * u.x - n.x * u.z, n.x * u.y - n.y * u.x);
-    float ux = (float)u.x, uy = (float)u.y, uz = (float)u.z, vx = (float)v.x, vy = (float)v.y, vz = (float)v.z;
-    double inv_r = 1.0 / r, inv_r2 = inv_r * inv_r;
-    /* the structure sums in locals (through the pointer, every photon
-     * stored them back) */
+    float inv_r = (float)(1.0 / r), inv_r2 = (float)(1.0 / (r * r));
+    float ux = (float)u.x * inv_r, uy = (float)u.y * inv_r, uz = (float)u.z * inv_r;
+    float vx = (float)v.x * inv_r, vy = (float)v.y * inv_r, vz = (float)v.z * inv_r;
+    /* one light (or none scaled): its scale for every lane */
+    bool per_lane_scale = light_scale && map->lights > 1;
+    lanes_f scale = lanes_splat(light_scale ? (float)light_scale[0] : 1.0f);
+    size_t stride = lv->stride;
+    unsigned char *marks = want_flux && thread >= 0 && thread < map->mark_threads
+                               ? map->marks + (size_t)thread * (map->count + REF_PHOTON_MAP_PAD)
+                               : NULL;
+    const float *X = lv->columns + REF_COLUMN_X * stride, *Y = lv->columns + REF_COLUMN_Y * stride,
+                *Z = lv->columns + REF_COLUMN_Z * stride;
+    const float *DX = lv->columns + REF_COLUMN_DX * stride, *DY = lv->columns + REF_COLUMN_DY * stride,
+                *DZ = lv->columns + REF_COLUMN_DZ * stride;
+    const float *NX = lv->columns + REF_COLUMN_NX * stride, *NY = lv->columns + REF_COLUMN_NY * stride,
+                *NZ = lv->columns + REF_COLUMN_NZ * stride;
+    const float *R = lv->columns + REF_COLUMN_R * stride, *G = lv->columns + REF_COLUMN_G * stride,
+                *B = lv->columns + REF_COLUMN_B * stride;
+    lanes_i lane;
+    for (int i = 0; i < LANES; i++)
+        lane[i] = i;
+    struct lanes_sums acc = {0};
     struct ref_photon_rings st = {0};
+    double sum[3] = {0.0, 0.0, 0.0};
+    int pending = 0;
     size_t seen[27];
     int nseen = 0;
     long count = 0;
-    double sx = 0.0, sy = 0.0, sz = 0.0;
     for (long z = z0; z <= z1; z++)
         for (long y = y0; y <= y1; y++)
             for (long x = x0; x <= x1; x++) {
                 size_t s = slot_of(map, x, y, z);
-                if (!ref_slot_first(seen, &nseen, s))
+                uint32_t begin = lv->start[s], end = lv->start[s + 1];
+                if (begin == end || !ref_slot_first(seen, &nseen, s))
                     continue;
-                /* a slot in blocks: first the distance test alone, without
-                 * branches (every entry written, the count moved on by the
-                 * test), then the photons inside */
-                for (uint32_t k0 = lv->start[s], end = lv->start[s + 1]; k0 < end; k0 += SCAN_BLOCK) {
-                    uint32_t k1 = end - k0 > SCAN_BLOCK ? k0 + SCAN_BLOCK : end;
-                    uint32_t inside[SCAN_BLOCK];
-                    float inside_d2[SCAN_BLOCK];
-                    int found = 0;
-                    for (uint32_t k = k0; k < k1; k++) {
-                        const struct ref_photon_map_entry *e = &lv->entries[k];
-                        float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
-                        float d2 = dx * dx + dy * dy + dz * dz;
-                        inside[found] = k;
-                        inside_d2[found] = d2;
-                        found += d2 <= r2; /* outside: the disc's, or a far cell sharing the slot */
+                /* In batches, two passes: the distance test over every
+                 * group, noting the groups with a photon inside (without
+                 * a branch: about half the groups have one, at random),
+                 * then the rest of the test and the sums over those. */
+                for (uint32_t b0 = begin; b0 < end; b0 += LANES * SCAN_BATCH) {
+                    uint32_t b1 = end - b0 > LANES * SCAN_BATCH ? b0 + LANES * SCAN_BATCH : end;
+                    uint32_t hit[SCAN_BATCH];
+                    int hits = 0;
+                    for (uint32_t k = b0; k < b1; k += LANES) {
+                        lanes_f dx = lanes_load(X + k) - fx, dy = lanes_load(Y + k) - fy, dz = lanes_load(Z + k) - fz;
+                        /* the lanes past the slot's end read the next
+                         * slot's entries (or the padding): masked out;
+                         * outside r: the disc's, or a far cell sharing
+                         * the slot */
+                        lanes_i in = (lane < (int32_t)(end - k)) & (dx * dx + dy * dy + dz * dz <= r2);
+                        hit[hits] = k;
+                        hits += lanes_bits(in) != 0;
                     }
-                    for (int h = 0; h < found; h++) {
-                        const struct ref_photon_map_entry *e = &lv->entries[inside[h]];
-                        const struct ref_surface_photon *ph = &map->photons[e->photon];
+                    for (int h = 0; h < hits; h++) {
+                        uint32_t k = hit[h];
+                        lanes_f dx = lanes_load(X + k) - fx, dy = lanes_load(Y + k) - fy, dz = lanes_load(Z + k) - fz;
+                        lanes_f d2 = dx * dx + dy * dy + dz * dz;
+                        lanes_i in = (lane < (int32_t)(end - k)) & (d2 <= r2);
                         /* same side of the same kind of surface, arriving from the lit side */
-                        float along = nx * ph->dir[0] + ny * ph->dir[1] + nz * ph->dir[2];
-                        float same = nx * ph->normal[0] + ny * ph->normal[1] + nz * ph->normal[2];
-                        if (along >= 0.0f || fabsf(same) < 0.5f)
+                        lanes_f along = nx * lanes_load(DX + k) + ny * lanes_load(DY + k) + nz * lanes_load(DZ + k);
+                        lanes_f same = nx * lanes_load(NX + k) + ny * lanes_load(NY + k) + nz * lanes_load(NZ + k);
+                        in &= (along < 0.0f) & (lanes_abs(same) >= 0.5f);
+                        unsigned bits = lanes_bits(in);
+                        if (!bits) /* none on the lit side: not counted */
                             continue;
-                        count++;
+                        count += lanes_popcount[bits];
                         if (limit > 0 && count > limit)
-                            return count;
-                        double f = light_scale ? light_scale[ph->light] : 1.0;
-                        if (rings) {
-                            double g = f * (ph->flux[0] + ph->flux[1] + ph->flux[2]) * (1.0 / 3.0);
-                            if (inside_d2[h] <= inner2) {
-                                st.inner += g;
-                                st.inner_sq += g * g;
-                                for (int c = 0; c < 3; c++)
-                                    st.inner_flux[c] += f * ph->flux[c];
-                                st.inner_count++;
-                            } else {
-                                st.ring += g;
-                                st.ring_sq += g * g;
-                            }
-                            float dx = e->x - fx, dy = e->y - fy, dz = e->z - fz;
-                            double a = (dx * ux + dy * uy + dz * uz) * inv_r, b = (dx * vx + dy * vy + dz * vz) * inv_r;
-                            st.moment[0] += g * a;
-                            st.moment_sq[0] += g * g * a * a;
-                            st.moment[1] += g * b;
-                            st.moment_sq[1] += g * g * b * b;
-                        }
-                        if (!flux)
+                            return limit + 1;
+                        if (!want_flux && !want_rings)
                             continue;
-                        /* Epanechnikov's kernel, 2 (1 - d^2/r^2): its integral
-                         * over the disc is the disc's area, as the flat
-                         * kernel's, so the estimate's scale is unchanged.
-                         * The photons lie stratified (ref_emit.c), and a
-                         * stratified set's count in a disc varies only by
-                         * the photons its edge cuts: a kernel that falls to
-                         * 0 there does not see them (issue 53: with the
-                         * photons split at interfaces, one iteration's noise
-                         * at a fixed radius 1.77% -> 1.41%). */
-                        double w = f * 2.0 * fmax(1.0 - inside_d2[h] * inv_r2, 0.0);
-                        sx += ph->flux[0] * w;
-                        sy += ph->flux[1] * w;
-                        sz += ph->flux[2] * w;
-                        if (!atomic_load_explicit(&map->used[e->photon], memory_order_relaxed))
-                            atomic_store_explicit(&map->used[e->photon], 1, memory_order_relaxed);
+                        lanes_f f = scale;
+                        if (per_lane_scale)
+                            for (int i = 0; i < LANES; i++)
+                                f[i] = (float)light_scale[lv->light[k + (uint32_t)i]];
+                        lanes_f fr = lanes_select(in, f * lanes_load(R + k)), fg = lanes_select(in, f * lanes_load(G + k)),
+                                fb = lanes_select(in, f * lanes_load(B + k));
+                        if (want_rings) {
+                            lanes_i inner = in & (d2 <= inner2);
+                            lanes_f g = (fr + fg + fb) * (1.0f / 3.0f);
+                            lanes_f gi = lanes_select(inner, g), go = g - gi;
+                            acc.inner += gi;
+                            acc.inner_sq += gi * gi;
+                            acc.ring += go;
+                            acc.ring_sq += go * go;
+                            acc.inner_flux[0] += lanes_select(inner, fr);
+                            acc.inner_flux[1] += lanes_select(inner, fg);
+                            acc.inner_flux[2] += lanes_select(inner, fb);
+                            acc.inner_count += inner;
+                            lanes_f ga = g * (dx * ux + dy * uy + dz * uz), gb = g * (dx * vx + dy * vy + dz * vz);
+                            acc.moment[0] += ga;
+                            acc.moment_sq[0] += ga * ga;
+                            acc.moment[1] += gb;
+                            acc.moment_sq[1] += gb * gb;
+                        }
+                        if (want_flux) {
+                            /* Epanechnikov's kernel, 2 (1 - d^2/r^2): its
+                             * integral over the disc is the disc's area, as the
+                             * flat kernel's, so the estimate's scale is
+                             * unchanged. The photons lie stratified
+                             * (ref_emit.c), and a stratified set's count in a
+                             * disc varies only by the photons its edge cuts: a
+                             * kernel that falls to 0 there does not see them
+                             * (issue 53: with the photons split at interfaces,
+                             * one iteration's noise at a fixed radius 1.77% ->
+                             * 1.41%). */
+                            lanes_f w = 2.0f * (1.0f - d2 * inv_r2);
+                            w = lanes_select(w > 0.0f, w); /* the masked lanes' flux is 0 already */
+                            acc.flux[0] += fr * w;
+                            acc.flux[1] += fg * w;
+                            acc.flux[2] += fb * w;
+                            /* the thread's own marks: no branch, no atomic */
+                            if (!marks)
+                                ;
+                            else if (lv->identity)
+                                lanes_mark(marks + k, bits);
+                            else
+                                for (int i = 0; i < LANES; i++)
+                                    marks[lv->photon[k + (uint32_t)i]] |= (unsigned char)((bits >> i) & 1u);
+                        }
+                        if (++pending == FLUSH_GROUPS) {
+                            lanes_flush(&acc, sum, &st, want_flux, want_rings);
+                            acc = (struct lanes_sums){0};
+                            pending = 0;
+                        }
                     }
                 }
             }
-    if (flux)
-        *flux = dv(sx, sy, sz);
-    if (rings)
+    lanes_flush(&acc, sum, &st, want_flux, want_rings);
+    if (want_flux)
+        *flux = dv(sum[0], sum[1], sum[2]);
+    if (want_rings)
         *rings = st;
     return count;
 }
 
-long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
-                           dvec3 *flux, struct ref_photon_rings *rings)
+long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
+                           const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings)
 {
     *flux = dv(0, 0, 0);
-    if (rings)
-        *rings = (struct ref_photon_rings){0};
-    return scan(map, p, n, r, light_scale, flux, rings, 0);
+    if (!rings)
+        return scan(map, thread, p, n, r, light_scale, flux, NULL, 0, true, false);
+    *rings = (struct ref_photon_rings){0};
+    return scan(map, thread, p, n, r, light_scale, flux, rings, 0, true, true);
 }
 
 void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, struct ref_photon_rings *rings)
 {
     *rings = (struct ref_photon_rings){0};
-    scan(map, p, n, r, NULL, NULL, rings, 0);
+    scan(map, -1, p, n, r, NULL, NULL, rings, 0, false, true);
 }
 
 long ref_photon_map_count(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, long limit)
 {
-    return scan(map, p, n, r, NULL, NULL, NULL, limit);
+    return scan(map, -1, p, n, r, NULL, NULL, NULL, limit, false, false);
 }
 
 void ref_photon_map_release(struct ref_photon_map *map)
@@ -398,9 +608,12 @@ void ref_photon_map_release(struct ref_photon_map *map)
     free(map->original);
     free(map->rank);
     free(map->used);
+    free(map->marks);
     for (int l = 0; l < REF_PHOTON_MAP_LEVELS; l++) {
         free(map->levels[l].start);
-        free(map->levels[l].entries);
+        free(map->levels[l].columns);
+        free(map->levels[l].light);
+        free(map->levels[l].photon);
     }
     memset(map, 0, sizeof *map);
 }

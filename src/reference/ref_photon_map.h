@@ -24,7 +24,6 @@
 #ifndef CAUSTICA_REF_PHOTON_MAP_H
 #define CAUSTICA_REF_PHOTON_MAP_H
 
-#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -65,16 +64,31 @@ static inline bool ref_slot_first(size_t seen[27], int *count, size_t slot)
 
 #define REF_PHOTON_MAP_LEVELS 24
 
-struct ref_photon_map_entry {
-    float x, y, z; /* relative to the map's origin */
-    uint32_t photon;
+/* A level's photons as columns, slot by slot (each slot in photon order):
+ * the gather reads them a few lanes at a time (ref_photon_map.c), so each
+ * quantity it tests or sums lies in an array of its own. Positions are
+ * relative to the map's origin. */
+enum ref_photon_map_column {
+    REF_COLUMN_X, REF_COLUMN_Y, REF_COLUMN_Z,    /* position */
+    REF_COLUMN_DX, REF_COLUMN_DY, REF_COLUMN_DZ, /* direction of travel */
+    REF_COLUMN_NX, REF_COLUMN_NY, REF_COLUMN_NZ, /* the surface's normal */
+    REF_COLUMN_R, REF_COLUMN_G, REF_COLUMN_B,    /* flux */
+    REF_COLUMNS
 };
+
+/* Entries past a level's last, so that a read of a whole group of lanes
+ * at the end stays inside the arrays (those lanes are masked out). */
+#define REF_PHOTON_MAP_PAD 8
 
 struct ref_photon_map_level {
     bool built;
     double cell;
-    uint32_t *start;                      /* slots + 1 offsets into entries */
-    struct ref_photon_map_entry *entries; /* by slot, each slot in photon order */
+    uint32_t *start;  /* slots + 1 offsets into the columns */
+    float *columns;   /* REF_COLUMNS columns of `stride` entries each */
+    size_t stride;    /* count + REF_PHOTON_MAP_PAD */
+    uint32_t *light;  /* each entry's light */
+    uint32_t *photon; /* and which photon (in the map's order) it is */
+    bool identity;    /* photon[k] == k: the level the map's order follows */
 };
 
 struct ref_photon_map {
@@ -86,12 +100,19 @@ struct ref_photon_map {
      * in chunk order, and back */
     struct ref_surface_photon *photons;
     uint32_t *original, *rank;
-    atomic_uchar *used; /* per photon (in the map's order): a visible point gathered it */
+    /* per gathering thread and photon (in the map's order): the thread
+     * took it; each thread writes its own row, without atomics or
+     * branches, and ref_photon_map_collect_marks folds the rows into used */
+    unsigned char *marks;
+    int mark_threads;
+    unsigned char *used; /* per photon (in the map's order): a visible point gathered it */
     struct ref_photon_map_level levels[REF_PHOTON_MAP_LEVELS];
     int read_level[REF_PHOTON_MAP_LEVELS];     /* the built level a radius of each level reads */
     /* the arrays' sizes, kept from one build to the next */
-    size_t photons_capacity, original_capacity, rank_capacity, used_capacity;
-    size_t slots_capacity[REF_PHOTON_MAP_LEVELS], entries_capacity[REF_PHOTON_MAP_LEVELS];
+    size_t photons_capacity, original_capacity, rank_capacity, used_capacity, marks_capacity;
+    size_t slots_capacity[REF_PHOTON_MAP_LEVELS], columns_capacity[REF_PHOTON_MAP_LEVELS];
+    size_t light_capacity[REF_PHOTON_MAP_LEVELS], photon_capacity[REF_PHOTON_MAP_LEVELS];
+    uint32_t lights; /* 1 + the largest light index among the photons */
 };
 
 /* Sets the levels for radii up to rmax (> 0). */
@@ -102,7 +123,8 @@ void ref_photon_map_prepare(struct ref_photon_map *map, double rmax);
 int ref_photon_map_level_of(const struct ref_photon_map *map, double r);
 
 /* Builds the map over the chunks' photons (in chunk order, so that sums do
- * not depend on the thread count), on up to `threads` threads: the levels
+ * not depend on the thread count), on up to `threads` threads (and for
+ * gathers on threads 0 .. threads - 1, at most 64): the levels
  * that at least 1/64 of the points read (points_per_level, by
  * ref_photon_map_level_of), and the coarsest one that any point reads.
  * False when out of memory. */
@@ -131,9 +153,11 @@ void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, do
  * (whose integral over the disc is its area: *flux / (pi r^2) estimates the
  * flux density), summed into *flux, and with `rings` (may be NULL) their
  * grey flux, unweighted, split as ref_photon_map_rings does; returns how
- * many. Marks them used. */
-long ref_photon_map_gather(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, const double *light_scale,
-                           dvec3 *flux, struct ref_photon_rings *rings);
+ * many. Marks them taken in `thread`'s row (one of the threads the build
+ * was given; each gathering thread its own): ref_photon_map_collect_marks
+ * then tells ref_photon_map_was_used. */
+long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
+                           const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings);
 
 /* How many photons a gather at p with radius r would take, counted up to
  * limit + 1 (limit 0: all). */
@@ -143,6 +167,10 @@ long ref_photon_map_count(const struct ref_photon_map *map, dvec3 p, dvec3 n, do
  * (as ref_photon_map_build chooses them). False when out of memory. */
 bool ref_photon_map_build_levels(struct ref_photon_map *map, const size_t points_per_level[REF_PHOTON_MAP_LEVELS],
                                  int threads);
+
+/* After the gathers, before ref_photon_map_was_used: folds the threads'
+ * marks. */
+void ref_photon_map_collect_marks(struct ref_photon_map *map);
 
 /* Whether the gathers took photon i (i counts the chunks' photons in
  * chunk order, as the build read them). */

@@ -58,7 +58,7 @@ static void *surface_gather_thread(void *arg)
             dvec3 flux;
             struct ref_photon_rings rings;
             bool test = !j->gather_counts_only && !j->independent && px->radius_floor > 0.0;
-            long m = ref_photon_map_gather(j->photon_map, px->vp.position, px->vp.normal, px->radius, j->light_scale,
+            long m = ref_photon_map_gather(j->photon_map, j->thread, px->vp.position, px->vp.normal, px->radius, j->light_scale,
                                            &flux, test ? &rings : NULL);
             px->m += m;
             if (m > 0 && !j->gather_counts_only)
@@ -144,6 +144,7 @@ void sppm_gather_surface_photons(struct job *job, int threads, const double *lig
                     job->budget->seconds_per_gathered = (log_now() - scan_start) / (double)taken;
             }
         }
+        ref_photon_map_collect_marks(map);
         size_t i = 0;
         for (int c = 0; c < PHOTON_CHUNKS && map->count > 0; c++)
             for (size_t k = 0; k < job->chunks[c].count; k++, i++)
