@@ -74,8 +74,29 @@ static bool reserve(void **p, size_t *capacity, size_t n, size_t size)
     return *p != NULL;
 }
 
-/* One level's grid: a counting sort of the photons by slot, stable (each
- * slot keeps the photon order), into the level's columns. */
+/* Where a point lies inside its cell, as an 8x8x8 Morton code: within a
+ * slot the photons are sorted by it, so that the four a gather tests
+ * together lie together and are mostly all inside its disc or all
+ * outside (in emission order, 54% of the lanes of a group with a photon
+ * inside did work). */
+#define SUBCELL_BITS 3
+#define SUBCELLS (1 << (3 * SUBCELL_BITS))
+static uint32_t subcell_code(double x, double y, double z, double cell)
+{
+    double v[3] = {x / cell, y / cell, z / cell};
+    uint32_t code = 0;
+    for (int a = 0; a < 3; a++) {
+        double f = (v[a] - floor(v[a])) * (1 << SUBCELL_BITS);
+        uint32_t q = f >= 0.0 && f < (1 << SUBCELL_BITS) ? (uint32_t)f : 0u; /* NaN: 0 */
+        for (int b = 0; b < SUBCELL_BITS; b++)
+            code |= ((q >> b) & 1u) << (3 * b + a);
+    }
+    return code;
+}
+
+/* One level's grid: the photons by slot and, within a slot, by subcell
+ * (two stable counting sorts, the subcell's first: ties keep the photon
+ * order), into the level's columns. */
 static bool build_level(struct ref_photon_map *map, int l)
 {
     struct ref_photon_map_level *lv = &map->levels[l];
@@ -83,39 +104,47 @@ static bool build_level(struct ref_photon_map *map, int l)
     if (!reserve((void **)&lv->start, &map->slots_capacity[l], map->slots + 1, sizeof *lv->start) ||
         !reserve((void **)&lv->columns, &map->columns_capacity[l], REF_COLUMNS * stride, sizeof *lv->columns) ||
         !reserve((void **)&lv->light, &map->light_capacity[l], stride, sizeof *lv->light) ||
-        !reserve((void **)&lv->photon, &map->photon_capacity[l], stride, sizeof *lv->photon))
+        !reserve((void **)&lv->photon, &map->photon_capacity[l], stride, sizeof *lv->photon) ||
+        !reserve((void **)&lv->scratch, &map->scratch_capacity[l], 3 * n + 1, sizeof *lv->scratch))
         return false;
     lv->stride = stride;
+    uint32_t *slot = lv->scratch, *code = lv->scratch + n, *order = lv->scratch + 2 * n;
+    uint32_t by_code[SUBCELLS + 1] = {0};
     memset(lv->start, 0, (map->slots + 1) * sizeof *lv->start);
     for (size_t i = 0; i < n; i++) {
         const float *p = map->photons[i].position;
-        lv->start[slot_of(map, cell_coordinate(p[0] - map->origin.x, lv->cell),
-                          cell_coordinate(p[1] - map->origin.y, lv->cell),
-                          cell_coordinate(p[2] - map->origin.z, lv->cell)) + 1]++;
+        double x = p[0] - map->origin.x, y = p[1] - map->origin.y, z = p[2] - map->origin.z;
+        slot[i] = (uint32_t)slot_of(map, cell_coordinate(x, lv->cell), cell_coordinate(y, lv->cell),
+                                    cell_coordinate(z, lv->cell));
+        code[i] = subcell_code(x, y, z, lv->cell);
+        lv->start[slot[i] + 1]++;
+        by_code[code[i] + 1]++;
     }
+    for (size_t c = 0; c < SUBCELLS; c++)
+        by_code[c + 1] += by_code[c];
+    for (size_t i = 0; i < n; i++)
+        order[by_code[code[i]]++] = (uint32_t)i;
     for (size_t s = 0; s < map->slots; s++)
         lv->start[s + 1] += lv->start[s];
     float *col[REF_COLUMNS];
     for (int c = 0; c < REF_COLUMNS; c++)
         col[c] = lv->columns + (size_t)c * stride;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t j = 0; j < n; j++) {
+        uint32_t i = order[j];
         const struct ref_surface_photon *ph = &map->photons[i];
-        double x = ph->position[0] - map->origin.x, y = ph->position[1] - map->origin.y,
-               z = ph->position[2] - map->origin.z;
-        size_t s = slot_of(map, cell_coordinate(x, lv->cell), cell_coordinate(y, lv->cell), cell_coordinate(z, lv->cell));
         /* start[s] is the slot's fill point while filling; the shift below
          * turns the fill points back into starts */
-        uint32_t k = lv->start[s]++;
-        col[REF_COLUMN_X][k] = (float)x;
-        col[REF_COLUMN_Y][k] = (float)y;
-        col[REF_COLUMN_Z][k] = (float)z;
+        uint32_t k = lv->start[slot[i]]++;
+        col[REF_COLUMN_X][k] = (float)(ph->position[0] - map->origin.x);
+        col[REF_COLUMN_Y][k] = (float)(ph->position[1] - map->origin.y);
+        col[REF_COLUMN_Z][k] = (float)(ph->position[2] - map->origin.z);
         for (int c = 0; c < 3; c++) {
             col[REF_COLUMN_DX + c][k] = ph->dir[c];
             col[REF_COLUMN_NX + c][k] = ph->normal[c];
             col[REF_COLUMN_R + c][k] = ph->flux[c];
         }
         lv->light[k] = (uint32_t)ph->light;
-        lv->photon[k] = (uint32_t)i;
+        lv->photon[k] = i;
     }
     lv->identity = true;
     for (size_t k = 0; k < n && lv->identity; k++)
@@ -614,6 +643,7 @@ void ref_photon_map_release(struct ref_photon_map *map)
         free(map->levels[l].columns);
         free(map->levels[l].light);
         free(map->levels[l].photon);
+        free(map->levels[l].scratch);
     }
     memset(map, 0, sizeof *map);
 }

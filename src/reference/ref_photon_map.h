@@ -89,6 +89,7 @@ struct ref_photon_map_level {
     uint32_t *light;  /* each entry's light */
     uint32_t *photon; /* and which photon (in the map's order) it is */
     bool identity;    /* photon[k] == k: the level the map's order follows */
+    uint32_t *scratch; /* the build's: each photon's slot and subcell, and their order */
 };
 
 struct ref_photon_map {
@@ -112,6 +113,7 @@ struct ref_photon_map {
     size_t photons_capacity, original_capacity, rank_capacity, used_capacity, marks_capacity;
     size_t slots_capacity[REF_PHOTON_MAP_LEVELS], columns_capacity[REF_PHOTON_MAP_LEVELS];
     size_t light_capacity[REF_PHOTON_MAP_LEVELS], photon_capacity[REF_PHOTON_MAP_LEVELS];
+    size_t scratch_capacity[REF_PHOTON_MAP_LEVELS];
     uint32_t lights; /* 1 + the largest light index among the photons */
 };
 
