@@ -20,6 +20,13 @@
  * whatever the radius. A grid few points would read is not built: they
  * read the next coarser one (more photons scanned for those few, one
  * pass over all the photons saved). The grids are built in parallel.
+ *
+ * Each grid keeps its photons as columns (one array a quantity), slot by
+ * slot and, within a slot, in the Morton order of their place in the
+ * cell, and a gather tests and sums four at a time: neighbours in a
+ * column are neighbours in space, so a group of four is mostly all inside
+ * a disc or all outside. Each gathering thread marks the photons it took
+ * in a row of its own (no atomics), folded once the gathers are done.
  */
 #ifndef CAUSTICA_REF_PHOTON_MAP_H
 #define CAUSTICA_REF_PHOTON_MAP_H

@@ -188,6 +188,10 @@ int main(void)
     CHECK(fabs(flux.x - 1.5) < 1e-5);
     CHECK(ref_photon_map_gather(&map, 0, dv(0.05, 0, 0), dv(0, 1, 0), 0.1, NULL, &flux, NULL) == 1);
     CHECK(fabs(flux.y - 2.0) < 1e-5);
+    /* one light's photons only: its scale for every lane */
+    const double half[1] = {0.5};
+    CHECK(ref_photon_map_gather(&map, 0, dv(0.05, 0, 0), dv(0, 1, 0), 0.1, half, &flux, NULL) == 1);
+    CHECK(fabs(flux.y - 1.0) < 1e-5);
     ref_surface_photons_release(&single[0]);
     /* an empty map gathers nothing; a zero radius nothing */
     struct ref_surface_photons empty[1] = {{0}};
