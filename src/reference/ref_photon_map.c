@@ -334,8 +334,10 @@ bool ref_photon_map_was_used(const struct ref_photon_map *map, size_t i)
  * 120 instructions on each photon it took and tested almost 4 for each it
  * took (the cells are up to twice the radius); rearranging the scalar
  * loop (tiles, prefetching, float sums, a smaller record) never moved it
- * (docs/REFERENCE.md's levers). Every lane of a group runs the whole test
- * and the sums, masked; a group with no photon inside skips the sums. */
+ * (docs/REFERENCE.md's levers). A slot is read in two passes: the
+ * distance test over every group of four, then the normal test and the
+ * sums over the groups with a photon inside, every lane of such a group
+ * running them, masked (scan). */
 #define LANES 4
 typedef float lanes_f __attribute__((vector_size(LANES * sizeof(float))));
 typedef int32_t lanes_i __attribute__((vector_size(LANES * sizeof(int32_t))));
