@@ -623,14 +623,22 @@ scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, c
     return count;
 }
 
-GATHER_CLONES long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
-                           const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings)
+/* (the clones on a function of this file, which calls it: Clang 14
+ * makes the loader's choice only for a clone its own file uses) */
+static GATHER_CLONES long gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
+                                 const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings)
 {
     *flux = dv(0, 0, 0);
     if (!rings)
         return scan(map, thread, p, n, r, light_scale, flux, NULL, 0, true, false);
     *rings = (struct ref_photon_rings){0};
     return scan(map, thread, p, n, r, light_scale, flux, rings, 0, true, true);
+}
+
+long ref_photon_map_gather(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r,
+                           const double *light_scale, dvec3 *flux, struct ref_photon_rings *rings)
+{
+    return gather(map, thread, p, n, r, light_scale, flux, rings);
 }
 
 void ref_photon_map_rings(const struct ref_photon_map *map, dvec3 p, dvec3 n, double r, struct ref_photon_rings *rings)
