@@ -126,15 +126,20 @@ static bool build_level(struct ref_photon_map *map, int l)
         order[by_code[code[i]]++] = (uint32_t)i;
     for (size_t s = 0; s < map->slots; s++)
         lv->start[s + 1] += lv->start[s];
+    /* where each photon goes (start[s] is the slot's fill point while
+     * filling; the shift below turns the fill points back into starts),
+     * then the columns written in that order, each once and in sequence:
+     * scattering the photons' fields over the columns themselves cost a
+     * cache miss a column */
+    for (size_t j = 0; j < n; j++) {
+        uint32_t i = order[j];
+        lv->photon[lv->start[slot[i]]++] = i;
+    }
     float *col[REF_COLUMNS];
     for (int c = 0; c < REF_COLUMNS; c++)
         col[c] = lv->columns + (size_t)c * stride;
-    for (size_t j = 0; j < n; j++) {
-        uint32_t i = order[j];
-        const struct ref_surface_photon *ph = &map->photons[i];
-        /* start[s] is the slot's fill point while filling; the shift below
-         * turns the fill points back into starts */
-        uint32_t k = lv->start[slot[i]]++;
+    for (size_t k = 0; k < n; k++) {
+        const struct ref_surface_photon *ph = &map->photons[lv->photon[k]];
         col[REF_COLUMN_X][k] = (float)(ph->position[0] - map->origin.x);
         col[REF_COLUMN_Y][k] = (float)(ph->position[1] - map->origin.y);
         col[REF_COLUMN_Z][k] = (float)(ph->position[2] - map->origin.z);
@@ -144,7 +149,6 @@ static bool build_level(struct ref_photon_map *map, int l)
             col[REF_COLUMN_R + c][k] = ph->flux[c];
         }
         lv->light[k] = (uint32_t)ph->light;
-        lv->photon[k] = i;
     }
     lv->identity = true;
     for (size_t k = 0; k < n && lv->identity; k++)
