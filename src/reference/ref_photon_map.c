@@ -529,7 +529,8 @@ scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, c
                     continue;
                 /* In batches, two passes: the distance test over every
                  * group, noting the groups with a photon inside (without
-                 * a branch: about half the groups have one, at random),
+                 * a branch: a third of the groups have one, beyond the
+                 * focus, too many and too scattered to predict),
                  * then the rest of the test and the sums over those. */
                 for (uint32_t b0 = begin; b0 < end; b0 += LANES * SCAN_BATCH) {
                     uint32_t b1 = end - b0 > LANES * SCAN_BATCH ? b0 + LANES * SCAN_BATCH : end;
