@@ -383,12 +383,12 @@ static inline unsigned lanes_bits(lanes_i mask)
 }
 
 /* how many bits a group's mask has set */
+_Static_assert(LANES == 4, "lanes_popcount and lanes_mark are written for four lanes");
 static const unsigned char lanes_popcount[1 << LANES] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
 
 /* marks the set lanes' bytes (at most one thread writes them) */
 static inline void lanes_mark(unsigned char *marks, unsigned bits)
 {
-#if LANES == 4
     /* one 4-byte OR: byte i is 1 where bit i is set, on either byte order */
     static const unsigned char spread[16][4] = {
         {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}, {0, 0, 1, 0}, {1, 0, 1, 0}, {0, 1, 1, 0}, {1, 1, 1, 0},
@@ -398,10 +398,6 @@ static inline void lanes_mark(unsigned char *marks, unsigned bits)
     memcpy(&add, spread[bits], 4);
     word |= add;
     memcpy(marks, &word, 4);
-#else
-    for (int i = 0; i < LANES; i++)
-        marks[i] |= (unsigned char)((bits >> i) & 1u);
-#endif
 }
 
 /* the lanes summed in doubles, in a fixed order (the same sum on every
@@ -548,6 +544,7 @@ scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, c
                     }
                     for (int h = 0; h < hits; h++) {
                         uint32_t k = hit[h];
+                        /* (the distances again: cheaper than keeping them for every group) */
                         lanes_f dx = lanes_load(X + k) - fx, dy = lanes_load(Y + k) - fy, dz = lanes_load(Z + k) - fz;
                         lanes_f d2 = dx * dx + dy * dy + dz * dz;
                         lanes_i in = (lane < (int32_t)(end - k)) & (d2 <= r2);
@@ -604,11 +601,9 @@ scan(const struct ref_photon_map *map, int thread, dvec3 p, dvec3 n, double r, c
                             acc.flux[1] += fg * w;
                             acc.flux[2] += fb * w;
                             /* the thread's own marks: no branch, no atomic */
-                            if (!marks)
-                                ;
-                            else if (lv->identity)
+                            if (marks && lv->identity)
                                 lanes_mark(marks + k, bits);
-                            else
+                            else if (marks)
                                 for (int i = 0; i < LANES; i++)
                                     marks[lv->photon[k + (uint32_t)i]] |= (unsigned char)((bits >> i) & 1u);
                         }

@@ -197,7 +197,6 @@ struct volume_photons {
     size_t count, capacity;
 };
 
-/* A hash grid over volume photons, cell = the gather radius. */
 /* The volume photons sorted by cell (cells of the gather's radius): a
  * dense grid over their bounds where it fits (dense: the cells of a row
  * along x lie together, so a gather reads 9 runs of 3 cells), else a hash

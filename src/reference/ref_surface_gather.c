@@ -58,8 +58,8 @@ static void *surface_gather_thread(void *arg)
             dvec3 flux;
             struct ref_photon_rings rings;
             bool test = !j->gather_counts_only && !j->independent && px->radius_floor > 0.0;
-            long m = ref_photon_map_gather(j->photon_map, j->thread, px->vp.position, px->vp.normal, px->radius, j->light_scale,
-                                           &flux, test ? &rings : NULL);
+            long m = ref_photon_map_gather(j->photon_map, j->thread, px->vp.position, px->vp.normal, px->radius,
+                                           j->light_scale, &flux, test ? &rings : NULL);
             px->m += m;
             if (m > 0 && !j->gather_counts_only)
                 px->phi = dv_add(px->phi, dv_mul(px->vp.weight, flux));
